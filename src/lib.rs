@@ -1,1 +1,45 @@
-//! placeholder
+//! Exact multibody equations of motion, derived at compile time with
+//! d'Alembert's principle.
+//!
+//! The `dalembert!` macro turns a declarative description of a mechanical
+//! system into a struct whose functions evaluate the mass matrix `M(q)`, the
+//! forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`, the energies and the constraints
+//! as flat, allocation-free code. The struct implements [`MultibodySystem`]
+//! (and [`ConstrainedSystem`] when it has constraints), so this crate's
+//! solvers, integrators and charts work on it:
+//!
+//! ```ignore
+//! dalembert::dalembert! {
+//!     /// A simple pendulum, angle from the downward vertical.
+//!     pub Pendulum {
+//!         parameters m, l, g;
+//!         coordinates theta;
+//!         frame B = N.rotate_z(theta);
+//!         point P = O - l * B.y;
+//!         particle bob { mass: m, at: P };
+//!         gravity -g * N.y;
+//!     }
+//! }
+//!
+//! let pendulum = Pendulum { m: 1.0, l: 1.0, g: 9.81 };
+//! let start = dalembert::State { t: 0.0, q: [1.0], qd: [0.0] };
+//! let end = dalembert::simulate(&pendulum, start, |_, _, _| [], 1e-3, 10_000, |_| {})?;
+//! ```
+
+#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+
+pub use dalembert_macros::dalembert;
+
+#[cfg(feature = "charts")]
+mod chart;
+mod dynamics;
+mod integrate;
+mod system;
+#[cfg(test)]
+mod test_systems;
+
+#[cfg(feature = "charts")]
+pub use chart::{ChartError, Series, line_chart, line_chart_log_y};
+pub use dynamics::{DynamicsError, accelerations, energy};
+pub use integrate::{IntegrationError, State, rk4_step, simulate};
+pub use system::{ConstrainedSystem, MultibodySystem};

@@ -6,20 +6,54 @@
 //! keep expressions canonical as they are built:
 //!
 //! * sums are flat (`Add` never holds an `Add`), their terms are sorted by
-//!   id, like terms are merged (`2ab + 3ab = 5ab`), numbers are folded into a
-//!   single leading constant, and zero terms vanish;
-//! * products are flat, sorted, with one leading rational coefficient, equal
-//!   bases merged by adding integer exponents (`x·x⁻¹ = 1`), and zero
-//!   annihilates;
-//! * products are *not* distributed over sums: chains stay linear in size.
+//!   the id of their coefficient-free part, like terms are merged
+//!   (`2ab + 3ab = 5ab`), numbers are folded into a single leading
+//!   constant, and zero terms vanish;
+//! * products are flat, sorted by the id of each factor's base, with one
+//!   leading rational coefficient, equal bases merged by adding integer
+//!   exponents (`x·x⁻¹ = 1`), and zero annihilates;
+//! * products are *not* distributed over sums: chains stay linear in size;
+//! * integer powers of products are distributed over the factors
+//!   (`(2xy)⁻¹ = ½x⁻¹y⁻¹`), never over sums;
+//! * odd and even functions take a non-negative argument:
+//!   `sin(-x) = -sin x`, `cos(q2 - q1) = cos(q1 - q2)`.
+//!
+//! Ids are handed out in construction order, so the same construction
+//! gives the same DAG on every machine; no pass iterates a hash map in a way
+//! that affects its result.
 //!
 //! Numbers are exact rationals; a result that would overflow `i128` falls
 //! back to a float so that no input can make the engine panic.
 //!
 //! Differentiation is memoised per (expression, symbol), and the time
 //! derivative follows the chain rule through coordinates and speeds.
+//!
+//! Files: `number` (exact arithmetic), `decimal` (literal values), `kinds`
+//! (symbol summaries), `pool` (interning, queries, traversal), `canon`
+//! (sums, products, powers), `func` (elementary functions), `calculus`
+//! (derivatives, substitution), `expand`, `eval` (the interpreter),
+//! `display`.
 
 #![allow(dead_code)] // API filled in by the engine work; users arrive with the kinematics.
+
+mod calculus;
+mod canon;
+mod decimal;
+mod display;
+mod eval;
+mod expand;
+mod func;
+mod kinds;
+mod number;
+mod pool;
+#[cfg(test)]
+mod test_util;
+#[cfg(test)]
+mod tests;
+
+use std::collections::HashMap;
+
+pub use kinds::SymKinds;
 
 /// Index of an expression in its [`Pool`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -47,25 +81,35 @@ pub enum Sym {
 /// Elementary functions of the language.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Func {
+    /// `sin`.
     Sin,
+    /// `cos`.
     Cos,
+    /// `tan`.
     Tan,
+    /// `sqrt` (principal square root).
     Sqrt,
+    /// `exp`.
     Exp,
+    /// `ln` (natural logarithm).
     Ln,
+    /// `abs`.
     Abs,
 }
 
 /// An exact rational `num/den` with `den > 0` and `gcd(num, den) = 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Rational {
+    /// Numerator.
     pub num: i128,
+    /// Denominator, positive.
     pub den: i128,
 }
 
 /// A number: exact where it can be, a float only after an overflow.
 #[derive(Clone, Copy, Debug)]
 pub enum Number {
+    /// An exact value.
     Rational(Rational),
     /// Stored by value; equality and hashing use the bit pattern.
     Float(f64),
@@ -74,7 +118,9 @@ pub enum Number {
 /// One node of the DAG. Children are ids in the same pool.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Node {
+    /// A constant.
     Number(Number),
+    /// A symbol.
     Sym(Sym),
     /// Sum of at least two terms, canonical as described in the module docs.
     Add(Box<[ExprId]>),
@@ -84,15 +130,24 @@ pub enum Node {
     Mul(Box<[ExprId]>),
     /// `base ^ exponent` with an integer exponent other than 0 and 1.
     Pow(ExprId, i32),
+    /// An elementary function of one argument.
     Func(Func, ExprId),
 }
 
 /// Values of the symbols for numeric evaluation.
 pub trait Env {
+    /// The value of `sym`.
     fn value(&self, sym: Sym) -> f64;
 }
 
 /// The arena of hash-consed expressions.
 pub struct Pool {
-    // filled in by the engine work
+    /// The nodes, indexed by id.
+    nodes: Vec<Node>,
+    /// Symbol summaries and coefficient splits, indexed by id.
+    meta: Vec<pool::Meta>,
+    /// Node to id, for hash-consing (looked up, never iterated).
+    index: HashMap<Node, ExprId>,
+    /// Memoised derivatives (looked up, never iterated).
+    derivatives: HashMap<(ExprId, calculus::Derivation), ExprId>,
 }

@@ -31,43 +31,116 @@ pub enum Statement {
     /// `inputs u1, ...;`
     Inputs(Vec<Ident>),
     /// `frame B = <expr>;` (the model accepts `F.rotate_x(angle)` and kin).
-    Frame { name: Ident, value: Expr },
+    Frame {
+        /// The new frame's name.
+        name: Ident,
+        /// Where it is, e.g. `N.rotate_z(theta1)`.
+        value: Expr,
+    },
     /// `point P = <expr>;`
-    Point { name: Ident, value: Expr },
+    Point {
+        /// The new point's name.
+        name: Ident,
+        /// Where it is, e.g. `O - L * B1.y`.
+        value: Expr,
+    },
     /// `body NAME { field: value, ... };`
-    Body { name: Ident, fields: Vec<Field> },
+    Body {
+        /// The body's name.
+        name: Ident,
+        /// The fields in braces, in source order (unchecked).
+        fields: Vec<Field>,
+    },
     /// `particle NAME { field: value, ... };`
-    Particle { name: Ident, fields: Vec<Field> },
+    Particle {
+        /// The particle's name.
+        name: Ident,
+        /// The fields in braces, in source order (unchecked).
+        fields: Vec<Field>,
+    },
     /// `joint KIND NAME { field: value, ... };` where KIND is `revolute` or
     /// `prismatic` (checked by the model, kept here as written).
-    Joint { kind: Ident, name: Ident, fields: Vec<Field> },
+    Joint {
+        /// The joint's kind as written (`revolute`, `prismatic`, ...).
+        kind: Ident,
+        /// The joint's name.
+        name: Ident,
+        /// The fields in braces, in source order (unchecked).
+        fields: Vec<Field>,
+    },
     /// `gravity <vec>;` (`keyword` is the `gravity` token, for diagnostics).
-    Gravity { keyword: Ident, value: Expr },
+    Gravity {
+        /// The `gravity` token.
+        keyword: Ident,
+        /// The field's acceleration vector.
+        value: Expr,
+    },
     /// `force <vec> at P;`
-    Force { keyword: Ident, value: Expr, at: Expr },
+    Force {
+        /// The `force` token.
+        keyword: Ident,
+        /// The force vector.
+        value: Expr,
+        /// The point of application, after `at`.
+        at: Expr,
+    },
     /// `torque <vec> on F;` or `torque <vec> on F reacting G;`
-    Torque { keyword: Ident, value: Expr, on: Expr, reacting: Option<Expr> },
+    Torque {
+        /// The `torque` token.
+        keyword: Ident,
+        /// The torque vector.
+        value: Expr,
+        /// The frame it acts on, after `on`.
+        on: Expr,
+        /// The frame that takes `-value`, after `reacting`, if any.
+        reacting: Option<Expr>,
+    },
     /// `potential <scalar>;`
-    Potential { keyword: Ident, value: Expr },
+    Potential {
+        /// The `potential` token.
+        keyword: Ident,
+        /// The potential `V(q)`.
+        value: Expr,
+    },
     /// `dissipation <scalar>;`
-    Dissipation { keyword: Ident, value: Expr },
+    Dissipation {
+        /// The `dissipation` token.
+        keyword: Ident,
+        /// The Rayleigh dissipation function `D(q, q̇)`.
+        value: Expr,
+    },
     /// `constraint lhs == rhs;` (`eq` is the span of `==`).
-    Constraint { keyword: Ident, lhs: Expr, eq: Span, rhs: Expr },
+    Constraint {
+        /// The `constraint` token.
+        keyword: Ident,
+        /// The left-hand side.
+        lhs: Expr,
+        /// The span of `==`.
+        eq: Span,
+        /// The right-hand side.
+        rhs: Expr,
+    },
 }
 
 /// `name: value` inside the braces of `body`, `particle` and `joint`.
 #[derive(Clone, Debug)]
 pub struct Field {
+    /// The field's name (`mass`, `center`, ...), unchecked.
     pub name: Ident,
+    /// The field's value.
     pub value: Expr,
 }
 
 /// Binary operators, in the order of their precedence groups.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BinOp {
+    /// `+`
     Add,
+    /// `-`
     Sub,
+    /// `*`
     Mul,
+    /// `/`
     Div,
     /// `^`: binds tighter than `*` and unary `-`, right-associative.
     Pow,
@@ -78,23 +151,73 @@ pub enum BinOp {
 pub enum Expr {
     /// A numeric literal; `text` is the literal as written (`1.3`, `2`,
     /// `1e-3`), so the model can read it as an exact decimal.
-    Number { text: String, span: Span },
+    Number {
+        /// The literal's text as written.
+        text: String,
+        /// The literal's span.
+        span: Span,
+    },
     /// A bare name: parameter, coordinate, input, `t`, frame, point, ...
     Name(Ident),
     /// `base.member`, e.g. `B1.y`.
-    Member { base: Ident, member: Ident },
+    Member {
+        /// The name before the `.`.
+        base: Ident,
+        /// The name after the `.`.
+        member: Ident,
+    },
     /// `f(args)`, e.g. `sin(theta1)`, `dt(q1)`.
-    Call { func: Ident, args: Vec<Expr>, span: Span },
+    Call {
+        /// The function's name.
+        func: Ident,
+        /// The arguments, in order.
+        args: Vec<Expr>,
+        /// From the function's name to the closing parenthesis.
+        span: Span,
+    },
     /// `receiver.method(args)`, e.g. `N.rotate_z(theta1)`.
-    MethodCall { receiver: Ident, method: Ident, args: Vec<Expr>, span: Span },
+    MethodCall {
+        /// The name before the `.`.
+        receiver: Ident,
+        /// The method's name.
+        method: Ident,
+        /// The arguments, in order.
+        args: Vec<Expr>,
+        /// From the receiver to the closing parenthesis.
+        span: Span,
+    },
     /// `[a, b, c]` (inertia lists).
-    Array { items: Vec<Expr>, span: Span },
+    Array {
+        /// The items, in order.
+        items: Vec<Expr>,
+        /// The brackets and everything between them.
+        span: Span,
+    },
     /// `-operand` (`op` is the span of `-`).
-    Neg { op: Span, operand: Box<Expr> },
+    Neg {
+        /// The span of `-`.
+        op: Span,
+        /// The negated expression.
+        operand: Box<Expr>,
+    },
     /// `lhs op rhs` (`op_span` is the span of the operator token).
-    Binary { op: BinOp, op_span: Span, lhs: Box<Expr>, rhs: Box<Expr> },
+    Binary {
+        /// The operator.
+        op: BinOp,
+        /// The span of the operator token.
+        op_span: Span,
+        /// The left operand.
+        lhs: Box<Expr>,
+        /// The right operand.
+        rhs: Box<Expr>,
+    },
     /// `( inner )`, kept so that spans cover the parentheses.
-    Paren { inner: Box<Expr>, span: Span },
+    Paren {
+        /// The expression inside.
+        inner: Box<Expr>,
+        /// The parentheses and everything between them.
+        span: Span,
+    },
 }
 
 impl Expr {

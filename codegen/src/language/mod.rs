@@ -3,3 +3,11 @@
 //! recover from, never panics, and gives no meaning to names.
 
 pub mod ast;
+mod cursor;
+mod expression;
+mod keyword;
+mod parse;
+#[cfg(test)]
+mod render;
+
+pub use parse::parse_system;

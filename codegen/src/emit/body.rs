@@ -1,0 +1,387 @@
+//! Straight-line function bodies from expression DAGs: every symbol is
+//! loaded once, every shared subexpression (and every `sin`/`cos`) is bound
+//! to a `let` once, in dependency order, and the rest is written inline.
+
+use crate::expr::{ExprId, Func, Node, Number, Pool, Sym};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+use std::collections::{BTreeSet, HashMap};
+
+/// Rust names for the symbols of one model.
+pub struct Names {
+    /// Parameter field names, by index.
+    pub parameters: Vec<Ident>,
+    /// Coordinate names, by index.
+    pub coordinates: Vec<Ident>,
+    /// Speed names, by index.
+    pub speeds: Vec<Ident>,
+    /// Input names, by index.
+    pub inputs: Vec<Ident>,
+    /// Prefix of temporaries, chosen to collide with no other name.
+    pub temporary: String,
+}
+
+impl Names {
+    fn symbol(&self, sym: Sym) -> Ident {
+        match sym {
+            Sym::Time => Ident::new("t", Span::call_site()),
+            Sym::Param(i) => self.parameters[i as usize].clone(),
+            Sym::Coord(i) => self.coordinates[i as usize].clone(),
+            Sym::Speed(i) => self.speeds[i as usize].clone(),
+            Sym::Input(i) => self.inputs[i as usize].clone(),
+            Sym::Accel(i) => format_ident!("qdd{}", i),
+            Sym::Multiplier(i) => format_ident!("lambda{}", i),
+        }
+    }
+
+    /// The statement that loads `sym` from the function's arguments.
+    fn load(&self, sym: Sym) -> TokenStream {
+        let name = self.symbol(sym);
+        let value = match sym {
+            Sym::Param(_) => quote!(self.#name),
+            Sym::Coord(i) => index("q", i),
+            Sym::Speed(i) => index("qd", i),
+            Sym::Input(i) => index("u", i),
+            Sym::Time | Sym::Accel(_) | Sym::Multiplier(_) => return TokenStream::new(),
+        };
+        quote!(let #name = #value;)
+    }
+}
+
+fn index(array: &str, i: u32) -> TokenStream {
+    let array = Ident::new(array, Span::call_site());
+    let i = Literal::usize_unsuffixed(i as usize);
+    quote!(#array[#i])
+}
+
+/// A function body: `let` statements, then the output expressions.
+pub struct Straight {
+    /// Symbol loads and shared temporaries, in order.
+    pub statements: TokenStream,
+    /// One expression per root, referring to the statements' names.
+    pub outputs: Vec<TokenStream>,
+    /// The symbols the body reads.
+    pub used: BTreeSet<Sym>,
+}
+
+/// Writes the straight-line code computing `roots`.
+pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
+    let order = pool.topo_order(roots);
+    let uses = count_uses(pool, &order, roots);
+    let mut writer = Writer {
+        pool,
+        names,
+        bound: HashMap::new(),
+        statements: TokenStream::new(),
+        temporaries: 0,
+    };
+    let mut used = BTreeSet::new();
+    for &e in &order {
+        if let Node::Sym(sym) = pool.node(e) {
+            used.insert(*sym);
+        }
+    }
+    let loads: TokenStream = used.iter().map(|s| names.load(*s)).collect();
+    let pairs = sin_cos_pairs(pool, &order);
+    for &e in &order {
+        if !writer.needs_binding(e, &uses) {
+            continue;
+        }
+        match pairs.get(&e) {
+            Some(&(sine, cosine, arg)) => writer.bind_sin_cos(sine, cosine, arg),
+            None => writer.bind(e),
+        }
+    }
+    let outputs = roots.iter().map(|&r| writer.expr(r)).collect();
+    let statements = writer.statements;
+    Straight {
+        statements: quote!(#loads #statements),
+        outputs,
+        used,
+    }
+}
+
+fn count_uses(pool: &Pool, order: &[ExprId], roots: &[ExprId]) -> HashMap<ExprId, usize> {
+    let mut uses: HashMap<ExprId, usize> = HashMap::new();
+    for &e in order {
+        for child in children(pool.node(e)) {
+            *uses.entry(child).or_default() += 1;
+        }
+    }
+    for &r in roots {
+        *uses.entry(r).or_default() += 1;
+    }
+    uses
+}
+
+/// For each sine whose cosine also occurs (and the reverse): the pair and
+/// their argument.
+fn sin_cos_pairs(pool: &Pool, order: &[ExprId]) -> HashMap<ExprId, (ExprId, ExprId, ExprId)> {
+    let mut by_argument: HashMap<ExprId, [Option<ExprId>; 2]> = HashMap::new();
+    for &e in order {
+        match pool.node(e) {
+            Node::Func(Func::Sin, arg) => by_argument.entry(*arg).or_default()[0] = Some(e),
+            Node::Func(Func::Cos, arg) => by_argument.entry(*arg).or_default()[1] = Some(e),
+            _ => {}
+        }
+    }
+    let mut pairs = HashMap::new();
+    for (arg, found) in by_argument {
+        if let [Some(sine), Some(cosine)] = found {
+            pairs.insert(sine, (sine, cosine, arg));
+            pairs.insert(cosine, (sine, cosine, arg));
+        }
+    }
+    pairs
+}
+
+fn children(node: &Node) -> Vec<ExprId> {
+    match node {
+        Node::Number(_) | Node::Sym(_) => Vec::new(),
+        Node::Add(items) | Node::Mul(items) => items.to_vec(),
+        Node::Pow(base, _) => vec![*base],
+        Node::Func(_, arg) => vec![*arg],
+    }
+}
+
+struct Writer<'a> {
+    pool: &'a Pool,
+    names: &'a Names,
+    bound: HashMap<ExprId, TokenStream>,
+    statements: TokenStream,
+    temporaries: usize,
+}
+
+impl Writer<'_> {
+    /// Elementary functions are always bound (they are the expensive calls),
+    /// other compound expressions when they are used more than once.
+    fn needs_binding(&self, e: ExprId, uses: &HashMap<ExprId, usize>) -> bool {
+        if self.bound.contains_key(&e) {
+            return false;
+        }
+        match self.pool.node(e) {
+            Node::Number(_) | Node::Sym(_) => false,
+            Node::Func(..) => true,
+            _ => uses.get(&e).copied().unwrap_or(0) > 1,
+        }
+    }
+
+    /// `let (s, c) = x.sin_cos();` binding a sine and the cosine of the
+    /// same argument with one call.
+    fn bind_sin_cos(&mut self, sine: ExprId, cosine: ExprId, arg: ExprId) {
+        let call = self.method_call(arg, "sin_cos");
+        let (s, c) = (self.temporary_name(sine), self.temporary_name(cosine));
+        self.statements.extend(quote!(let (#s, #c) = #call;));
+        self.bound.insert(sine, quote!(#s));
+        self.bound.insert(cosine, quote!(#c));
+    }
+
+    fn bind(&mut self, e: ExprId) {
+        let value = self.compound(e);
+        let name = self.temporary_name(e);
+        self.statements.extend(quote!(let #name = #value;));
+        self.bound.insert(e, quote!(#name));
+    }
+
+    /// `sin_theta1` for functions of a symbol, else `x12`.
+    fn temporary_name(&mut self, e: ExprId) -> Ident {
+        if let Node::Func(f, arg) = self.pool.node(e) {
+            if let Node::Sym(sym) = self.pool.node(*arg) {
+                return format_ident!("{}_{}", func_name(*f), self.names.symbol(*sym));
+            }
+        }
+        self.temporaries += 1;
+        format_ident!("{}{}", self.names.temporary, self.temporaries - 1)
+    }
+
+    /// The expression of `e`, by name if bound.
+    fn expr(&self, e: ExprId) -> TokenStream {
+        match self.bound.get(&e) {
+            Some(name) => name.clone(),
+            None => self.compound(e),
+        }
+    }
+
+    /// `e` written out (its children by name where bound).
+    fn compound(&self, e: ExprId) -> TokenStream {
+        match self.pool.node(e) {
+            Node::Number(n) => number(*n),
+            Node::Sym(sym) => {
+                let name = self.names.symbol(*sym);
+                quote!(#name)
+            }
+            Node::Add(terms) => self.sum(terms),
+            Node::Mul(_) | Node::Pow(..) => self.product(e),
+            Node::Func(f, arg) => self.method_call(*arg, func_name(*f)),
+        }
+    }
+
+    /// `x.method()`, or `f64::method(2.0)` on a literal, whose type a
+    /// method call could not infer.
+    fn method_call(&self, arg: ExprId, method: &str) -> TokenStream {
+        let method = Ident::new(method, Span::call_site());
+        let receiver = self.operand(arg);
+        if !self.bound.contains_key(&arg) && matches!(self.pool.node(arg), Node::Number(_)) {
+            quote!(::core::primitive::f64::#method(#receiver))
+        } else {
+            quote!(#receiver.#method())
+        }
+    }
+
+    /// A child in a position that binds tighter than `*`: parenthesised
+    /// unless it is a name, a literal or a method call.
+    fn operand(&self, e: ExprId) -> TokenStream {
+        let tokens = self.expr(e);
+        let simple = self.bound.contains_key(&e)
+            || match self.pool.node(e) {
+                Node::Sym(_) | Node::Func(..) => true,
+                Node::Number(n) => !n.is_negative(),
+                _ => false,
+            };
+        if simple { tokens } else { quote!((#tokens)) }
+    }
+
+    /// `a + b - c`: terms with a negative coefficient are subtracted.
+    fn sum(&self, terms: &[ExprId]) -> TokenStream {
+        let mut out = TokenStream::new();
+        for (i, &term) in terms.iter().enumerate() {
+            let (negative, magnitude) = self.sign(term);
+            let written = magnitude.unwrap_or_else(|| self.expr(term));
+            out.extend(match (i, negative) {
+                (0, false) => quote!(#written),
+                (0, true) => quote!(-#written),
+                (_, false) => quote!(+ #written),
+                (_, true) => quote!(- #written),
+            });
+        }
+        out
+    }
+
+    /// Whether an unbound term has a negative coefficient, and the term
+    /// with that coefficient made positive.
+    fn sign(&self, term: ExprId) -> (bool, Option<TokenStream>) {
+        if self.bound.contains_key(&term) {
+            return (false, None);
+        }
+        match self.pool.node(term) {
+            Node::Number(n) if n.is_negative() => (true, Some(number(negate(*n)))),
+            Node::Mul(factors) => match self.pool.as_number(factors[0]) {
+                Some(c) if c.is_negative() => (true, Some(self.product_of(negate(c), &factors[1..]))),
+                _ => (false, None),
+            },
+            _ => (false, None),
+        }
+    }
+
+    fn product(&self, e: ExprId) -> TokenStream {
+        match self.pool.node(e) {
+            Node::Mul(factors) => match self.pool.as_number(factors[0]) {
+                Some(c) => self.product_of(c, &factors[1..]),
+                None => self.product_of(Number::Rational(crate::expr::Rational { num: 1, den: 1 }), factors),
+            },
+            _ => self.product_of(Number::Rational(crate::expr::Rational { num: 1, den: 1 }), &[e]),
+        }
+    }
+
+    /// `c * a * b^2 / (d * e)`.
+    fn product_of(&self, coefficient: Number, factors: &[ExprId]) -> TokenStream {
+        let mut numerator = Vec::new();
+        let mut denominator = Vec::new();
+        for &f in factors {
+            match self.pool.node(f) {
+                Node::Pow(base, n) if *n < 0 && !self.bound.contains_key(&f) => {
+                    denominator.push(self.power(*base, -n))
+                }
+                _ => numerator.push(self.factor(f)),
+            }
+        }
+        let negative = coefficient.is_negative();
+        let magnitude = if negative { negate(coefficient) } else { coefficient };
+        if !magnitude.is_one() || numerator.is_empty() {
+            numerator.insert(0, number(magnitude));
+        }
+        let mut out = join(&numerator, quote!(*));
+        if !denominator.is_empty() {
+            let below = join(&denominator, quote!(*));
+            out = if denominator.len() == 1 {
+                quote!(#out / #below)
+            } else {
+                quote!(#out / (#below))
+            };
+        }
+        if negative { quote!(-(#out)) } else { out }
+    }
+
+    fn factor(&self, f: ExprId) -> TokenStream {
+        match (self.bound.contains_key(&f), self.pool.node(f)) {
+            (false, Node::Pow(base, n)) => self.power(*base, *n),
+            _ => self.operand(f),
+        }
+    }
+
+    /// `x^n` for `n ≥ 1`: repeated products up to the cube, `powi` above.
+    fn power(&self, base: ExprId, n: i32) -> TokenStream {
+        let x = self.operand(base);
+        match n {
+            1 => x,
+            2 => quote!(#x * #x),
+            3 => quote!(#x * #x * #x),
+            _ => {
+                let n = Literal::i32_unsuffixed(n);
+                quote!(#x.powi(#n))
+            }
+        }
+    }
+}
+
+fn join(items: &[TokenStream], separator: TokenStream) -> TokenStream {
+    let mut out = TokenStream::new();
+    for (i, item) in items.iter().enumerate() {
+        if i > 0 {
+            out.extend(separator.clone());
+        }
+        out.extend(item.clone());
+    }
+    out
+}
+
+fn negate(n: Number) -> Number {
+    match n {
+        Number::Rational(r) => Number::Rational(crate::expr::Rational {
+            num: -r.num,
+            den: r.den,
+        }),
+        Number::Float(x) => Number::Float(-x),
+    }
+}
+
+/// A float literal for `n`, the nearest double to its exact value
+/// (suffixed, so that a method call on it has a type).
+fn number(n: Number) -> TokenStream {
+    let value = n.to_f64();
+    let magnitude = if value.is_nan() {
+        quote!(::core::primitive::f64::NAN)
+    } else if value.is_infinite() {
+        quote!(::core::primitive::f64::INFINITY)
+    } else {
+        let literal = Literal::f64_unsuffixed(value.abs());
+        quote!(#literal)
+    };
+    if value < 0.0 {
+        quote!((-#magnitude))
+    } else {
+        magnitude
+    }
+}
+
+fn func_name(f: Func) -> &'static str {
+    match f {
+        Func::Sin => "sin",
+        Func::Cos => "cos",
+        Func::Tan => "tan",
+        Func::Sqrt => "sqrt",
+        Func::Exp => "exp",
+        Func::Ln => "ln",
+        Func::Abs => "abs",
+    }
+}

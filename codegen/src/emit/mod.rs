@@ -1,0 +1,323 @@
+//! Emission: the derived equations as Rust items — one public struct of
+//! parameters, its inherent functions (DESIGN §4) and the runtime traits.
+//! Emitted code names everything by absolute path, so user items called
+//! `Result` or `f64` cannot change its meaning.
+
+mod body;
+
+use crate::equations::Equations;
+use crate::model::Model;
+use body::{Names, Straight, straight_line};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+
+/// All items for one system.
+pub fn emit(model: &Model, equations: &Equations, docs: &[String]) -> TokenStream {
+    let names = names(model);
+    let name = &model.name;
+    let nq = model.nq();
+    let nu = model.inputs.len();
+    let nc = model.constraints.len();
+    let items = [
+        emit_mass_matrix(model, equations, &names),
+        emit_forcing(model, equations, &names),
+        emit_energies(model, equations, &names),
+        emit_constraints(model, equations, &names),
+    ];
+    let strukt = emit_struct(model, docs);
+    let constants = emit_constants(model);
+    let traits = emit_trait_impls(name, nq, nu, nc);
+    quote! {
+        #strukt
+        #[allow(non_snake_case, unused_parens, clippy::all)]
+        impl #name {
+            #constants
+            #(#items)*
+        }
+        #traits
+    }
+}
+
+fn names(model: &Model) -> Names {
+    let taken: Vec<String> = model
+        .parameters
+        .iter()
+        .chain(&model.coordinates)
+        .chain(&model.inputs)
+        .map(|i| i.to_string())
+        .collect();
+    let speeds = model
+        .coordinates
+        .iter()
+        .enumerate()
+        .map(|(i, q)| {
+            let preferred = format!("{q}_dot");
+            if taken.contains(&preferred) {
+                format_ident!("qd_{}", i)
+            } else {
+                Ident::new(&preferred, q.span())
+            }
+        })
+        .collect();
+    let mut temporary = "x".to_string();
+    while taken.iter().any(|n| {
+        n.strip_prefix(&temporary)
+            .is_some_and(|rest| rest.chars().all(|c| c.is_ascii_digit()))
+    }) {
+        temporary.push('x');
+    }
+    Names {
+        parameters: model.parameters.clone(),
+        coordinates: model.coordinates.clone(),
+        speeds,
+        inputs: model.inputs.clone(),
+        temporary,
+    }
+}
+
+fn emit_struct(model: &Model, docs: &[String]) -> TokenStream {
+    let name = &model.name;
+    let vis = if model.public { quote!(pub) } else { quote!() };
+    let fields = model.parameters.iter().map(|p| {
+        let doc = format!(" Parameter `{p}`.");
+        quote!(#[doc = #doc] pub #p: f64)
+    });
+    let docs = docs.iter().map(|line| quote!(#[doc = #line]));
+    quote! {
+        #(#docs)*
+        #[derive(::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq)]
+        #[allow(non_snake_case)]
+        #vis struct #name {
+            #(#fields,)*
+        }
+    }
+}
+
+fn emit_constants(model: &Model) -> TokenStream {
+    let [nq, np, nu, nc] = [
+        model.nq(),
+        model.parameters.len(),
+        model.inputs.len(),
+        model.constraints.len(),
+    ]
+    .map(Literal::usize_unsuffixed);
+    let strings = |list: &[Ident]| -> Vec<String> { list.iter().map(|i| i.to_string()).collect() };
+    let coordinates = strings(&model.coordinates);
+    let parameters = strings(&model.parameters);
+    let inputs = strings(&model.inputs);
+    quote! {
+        /// Number of generalized coordinates.
+        pub const NQ: usize = #nq;
+        /// Number of inputs.
+        pub const NU: usize = #nu;
+        /// Number of constraints.
+        pub const NC: usize = #nc;
+        /// Names of the generalized coordinates, in index order.
+        pub const COORDINATES: [&'static str; #nq] = [#(#coordinates),*];
+        /// Names of the parameters, in field order.
+        pub const PARAMETERS: [&'static str; #np] = [#(#parameters),*];
+        /// Names of the inputs, in index order.
+        pub const INPUTS: [&'static str; #nu] = [#(#inputs),*];
+    }
+}
+
+/// `[f64; n]` as tokens.
+fn array(n: usize) -> TokenStream {
+    let n = Literal::usize_unsuffixed(n);
+    quote!([f64; #n])
+}
+
+/// An argument name, with a leading underscore when the body ignores it.
+fn argument(name: &str, used: bool) -> Ident {
+    if used {
+        Ident::new(name, Span::call_site())
+    } else {
+        format_ident!("_{}", name)
+    }
+}
+
+/// Which of `t, q, qd, u` a body reads.
+struct Reads {
+    t: Ident,
+    q: Ident,
+    qd: Ident,
+    u: Ident,
+}
+
+fn reads(body: &Straight) -> Reads {
+    use crate::expr::Sym;
+    let any = |f: fn(&Sym) -> bool| body.used.iter().any(f);
+    Reads {
+        t: argument("t", any(|s| matches!(s, Sym::Time))),
+        q: argument("q", any(|s| matches!(s, Sym::Coord(_)))),
+        qd: argument("qd", any(|s| matches!(s, Sym::Speed(_)))),
+        u: argument("u", any(|s| matches!(s, Sym::Input(_)))),
+    }
+}
+
+/// Groups flat outputs into rows of `width`.
+fn rows(outputs: &[TokenStream], width: usize) -> Vec<TokenStream> {
+    outputs
+        .chunks(width.max(1))
+        .map(|row| quote!([#(#row),*]))
+        .collect()
+}
+
+fn emit_mass_matrix(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
+    let nq = model.nq();
+    let roots: Vec<_> = equations.mass_matrix.iter().flatten().copied().collect();
+    let body = straight_line(&model.pool, names, &roots);
+    let Reads { q, .. } = reads(&body);
+    let (vector, statements, rows) = (array(nq), &body.statements, rows(&body.outputs, nq));
+    let nq = Literal::usize_unsuffixed(nq);
+    quote! {
+        /// The mass matrix `M(q)` (symmetric, positive definite where the
+        /// coordinates are independent).
+        #[inline]
+        #[must_use]
+        pub fn mass_matrix(&self, #q: &#vector) -> [#vector; #nq] {
+            #statements
+            [#(#rows),*]
+        }
+    }
+}
+
+fn emit_forcing(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
+    let body = straight_line(&model.pool, names, &equations.forcing);
+    let Reads { t, q, qd, u } = reads(&body);
+    let (vector, inputs) = (array(model.nq()), array(model.inputs.len()));
+    let (statements, outputs) = (&body.statements, &body.outputs);
+    quote! {
+        /// The forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`: applied and
+        /// gravity forces, minus the velocity-dependent inertia terms.
+        #[inline]
+        #[must_use]
+        pub fn forcing(&self, #t: f64, #q: &#vector, #qd: &#vector, #u: &#inputs) -> #vector {
+            #statements
+            [#(#outputs),*]
+        }
+    }
+}
+
+fn emit_energies(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
+    let vector = array(model.nq());
+    let kinetic = straight_line(&model.pool, names, &[equations.kinetic_energy]);
+    let potential = straight_line(&model.pool, names, &[equations.potential_energy]);
+    let Reads { q: kq, qd: kqd, .. } = reads(&kinetic);
+    let Reads { q: vq, .. } = reads(&potential);
+    let (ks, kv) = (&kinetic.statements, &kinetic.outputs[0]);
+    let (vs, vv) = (&potential.statements, &potential.outputs[0]);
+    quote! {
+        /// The kinetic energy `T(q, q̇)`.
+        #[inline]
+        #[must_use]
+        pub fn kinetic_energy(&self, #kq: &#vector, #kqd: &#vector) -> f64 {
+            #ks
+            #kv
+        }
+
+        /// The potential energy `V(q)`: gravity (from `O`) and the
+        /// `potential` statements.
+        #[inline]
+        #[must_use]
+        pub fn potential_energy(&self, #vq: &#vector) -> f64 {
+            #vs
+            #vv
+        }
+    }
+}
+
+fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
+    let nc = model.constraints.len();
+    if nc == 0 {
+        return TokenStream::new();
+    }
+    let nq = model.nq();
+    let vector = array(nq);
+    let rows_out = array(nc);
+    let roots: Vec<_> = equations.constraint_jacobian.iter().flatten().copied().collect();
+    let jacobian = straight_line(&model.pool, names, &roots);
+    let Reads { q: jq, .. } = reads(&jacobian);
+    let (js, jr) = (&jacobian.statements, rows(&jacobian.outputs, nq));
+    let nc = Literal::usize_unsuffixed(nc);
+    let bias = straight_line(&model.pool, names, &equations.constraint_bias);
+    let Reads { t: bt, q: bq, qd: bqd, .. } = reads(&bias);
+    let (bs, bo) = (&bias.statements, &bias.outputs);
+    let residual = straight_line(&model.pool, names, &equations.constraint_residual);
+    let Reads { t: rt, q: rq, .. } = reads(&residual);
+    let (rs, ro) = (&residual.statements, &residual.outputs);
+    quote! {
+        /// The constraint Jacobian `A(q)` of `M q̈ = f + Aᵀλ`, `A q̈ = b`;
+        /// rows in declaration order.
+        #[inline]
+        #[must_use]
+        pub fn constraint_jacobian(&self, #jq: &#vector) -> [#vector; #nc] {
+            #js
+            [#(#jr),*]
+        }
+
+        /// The constraint bias `b(t, q, q̇)` of `A q̈ = b`.
+        #[inline]
+        #[must_use]
+        pub fn constraint_bias(&self, #bt: f64, #bq: &#vector, #bqd: &#vector) -> #rows_out {
+            #bs
+            [#(#bo),*]
+        }
+
+        /// The residual `lhs − rhs` of each holonomic constraint (0 for
+        /// nonholonomic rows).
+        #[inline]
+        #[must_use]
+        pub fn constraint_residual(&self, #rt: f64, #rq: &#vector) -> #rows_out {
+            #rs
+            [#(#ro),*]
+        }
+    }
+}
+
+fn emit_trait_impls(name: &Ident, nq: usize, nu: usize, nc: usize) -> TokenStream {
+    let (vector, inputs, rows_out) = (array(nq), array(nu), array(nc));
+    let [nq, nu, nc_lit] = [nq, nu, nc].map(Literal::usize_unsuffixed);
+    let system = quote! {
+        impl ::dalembert::MultibodySystem<#nq, #nu> for #name {
+            const COORDINATES: [&'static str; #nq] = #name::COORDINATES;
+            const INPUTS: [&'static str; #nu] = #name::INPUTS;
+            #[inline]
+            fn mass_matrix(&self, q: &#vector) -> [#vector; #nq] {
+                #name::mass_matrix(self, q)
+            }
+            #[inline]
+            fn forcing(&self, t: f64, q: &#vector, qd: &#vector, u: &#inputs) -> #vector {
+                #name::forcing(self, t, q, qd, u)
+            }
+            #[inline]
+            fn kinetic_energy(&self, q: &#vector, qd: &#vector) -> f64 {
+                #name::kinetic_energy(self, q, qd)
+            }
+            #[inline]
+            fn potential_energy(&self, q: &#vector) -> f64 {
+                #name::potential_energy(self, q)
+            }
+        }
+    };
+    if nc == 0 {
+        return system;
+    }
+    quote! {
+        #system
+        impl ::dalembert::ConstrainedSystem<#nq, #nu, #nc_lit> for #name {
+            #[inline]
+            fn constraint_jacobian(&self, q: &#vector) -> [#vector; #nc_lit] {
+                #name::constraint_jacobian(self, q)
+            }
+            #[inline]
+            fn constraint_bias(&self, t: f64, q: &#vector, qd: &#vector) -> #rows_out {
+                #name::constraint_bias(self, t, q, qd)
+            }
+            #[inline]
+            fn constraint_residual(&self, t: f64, q: &#vector) -> #rows_out {
+                #name::constraint_residual(self, t, q)
+            }
+        }
+    }
+}

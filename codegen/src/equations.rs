@@ -1,0 +1,267 @@
+//! d'Alembert's principle assembled into the equations of motion:
+//!
+//! ```text
+//! Σᵢ mᵢ a_Gᵢ · ∂v_Gᵢ/∂q̇ₖ + Σᵢ (I_Gᵢ·αᵢ + ωᵢ × I_Gᵢ·ωᵢ) · ∂ωᵢ/∂q̇ₖ = F_qₖ (+ Σⱼ λⱼ aⱼₖ)
+//! ```
+//!
+//! With `a = Σⱼ (∂v/∂q̇ⱼ) q̈ⱼ + a_bias` (and likewise `α`), the `q̈` terms give
+//! the mass matrix `M` — symmetric by construction — and everything else
+//! moves to the forcing `f`, so that `M q̈ = f (+ Aᵀλ)`. Constraints give
+//! `A` and `b` with `A q̈ = b`, and the energies come from the same
+//! kinematics.
+
+use crate::expr::{ExprId, Pool, Sym};
+use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
+use crate::model::{FrameId, Model, NEWTONIAN, PointId};
+
+/// The derived equations of one system, as expressions of the model's pool.
+pub struct Equations {
+    /// `M(q)`, `nq × nq`.
+    pub mass_matrix: Vec<Vec<ExprId>>,
+    /// `f(t, q, q̇, u)`, length `nq`.
+    pub forcing: Vec<ExprId>,
+    /// `T(q, q̇)`.
+    pub kinetic_energy: ExprId,
+    /// `V(q)`: gravity relative to `O` plus the `potential` statements.
+    pub potential_energy: ExprId,
+    /// `A(q)`, one row per constraint.
+    pub constraint_jacobian: Vec<Vec<ExprId>>,
+    /// `b(t, q, q̇)` with `A q̈ = b`.
+    pub constraint_bias: Vec<ExprId>,
+    /// `lhs − rhs` of holonomic rows, 0 for nonholonomic rows.
+    pub constraint_residual: Vec<ExprId>,
+}
+
+/// A mass moving with a point and, for bodies, turning with a frame.
+struct Inertia<'a> {
+    mass: ExprId,
+    center: PointId,
+    rotation: Option<(FrameId, &'a [[ExprId; 3]; 3])>,
+}
+
+/// Derives every equation of `model`.
+pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
+    let kinematics = Kinematics::new(model, pool);
+    let nq = model.nq();
+    let inertias = inertias(model);
+    let (mass_matrix, inertia_bias) = inertia_terms(&kinematics, pool, &inertias, nq);
+    let forcing = (0..nq)
+        .map(|k| {
+            let active = generalized_force(model, &kinematics, pool, &inertias, k);
+            pool.sub(active, inertia_bias[k])
+        })
+        .collect();
+    let (constraint_jacobian, constraint_bias, constraint_residual) = constraints(model, pool);
+    Equations {
+        mass_matrix,
+        forcing,
+        kinetic_energy: kinetic_energy(&kinematics, pool, &inertias),
+        potential_energy: potential_energy(model, &kinematics, pool, &inertias),
+        constraint_jacobian,
+        constraint_bias,
+        constraint_residual,
+    }
+}
+
+fn inertias(model: &Model) -> Vec<Inertia<'_>> {
+    let bodies = model.bodies.iter().map(|b| Inertia {
+        mass: b.mass,
+        center: b.center,
+        rotation: Some((b.frame, &b.inertia)),
+    });
+    let particles = model.particles.iter().map(|p| Inertia {
+        mass: p.mass,
+        center: p.at,
+        rotation: None,
+    });
+    bodies.chain(particles).collect()
+}
+
+/// Partial velocities of one mass: of its centre (in `N`) and, for a body,
+/// of its frame (in the frame's axes), for every `k`.
+struct Partials {
+    linear: Vec<Vec3>,
+    angular: Vec<Vec3>,
+}
+
+fn partials(kinematics: &Kinematics, pool: &mut Pool, inertia: &Inertia<'_>, nq: usize) -> Partials {
+    Partials {
+        linear: (0..nq)
+            .map(|k| kinematics.partial_velocity(pool, inertia.center, k))
+            .collect(),
+        angular: match inertia.rotation {
+            Some((frame, _)) => (0..nq)
+                .map(|k| kinematics.partial_angular_velocity(pool, frame, k))
+                .collect(),
+            None => Vec::new(),
+        },
+    }
+}
+
+/// The mass matrix `Mₖⱼ = Σ m vₖ·vⱼ + ωₖ·(I ωⱼ)` and, for each `k`, the
+/// inertia terms that multiply no `q̈`:
+/// `Σ m a_bias·vₖ + (I α_bias + ω × Iω)·ωₖ`.
+fn inertia_terms(
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    inertias: &[Inertia<'_>],
+    nq: usize,
+) -> (Vec<Vec<ExprId>>, Vec<ExprId>) {
+    let mut mass_terms = vec![vec![Vec::new(); nq]; nq];
+    let mut bias_terms = vec![Vec::new(); nq];
+    for inertia in inertias {
+        let p = partials(kinematics, pool, inertia, nq);
+        let a_bias = kinematics.acceleration_bias(pool, inertia.center);
+        let m_a_bias = a_bias.map(|x| pool.mul(inertia.mass, x));
+        let rotational = inertia.rotation.map(|(frame, tensor)| {
+            let omega = kinematics.angular_velocity(frame);
+            let alpha = kinematics.angular_acceleration_bias(pool, frame);
+            let i_alpha = mat_vec(pool, tensor, &alpha);
+            let h = mat_vec(pool, tensor, &omega);
+            let gyroscopic = cross(pool, &omega, &h);
+            let moment = [0, 1, 2].map(|i| pool.add(i_alpha[i], gyroscopic[i]));
+            let i_partials: Vec<Vec3> = p.angular.iter().map(|w| mat_vec(pool, tensor, w)).collect();
+            (moment, i_partials)
+        });
+        for k in 0..nq {
+            bias_terms[k].push(dot(pool, &m_a_bias, &p.linear[k]));
+            if let Some((moment, _)) = &rotational {
+                bias_terms[k].push(dot(pool, moment, &p.angular[k]));
+            }
+            for j in k..nq {
+                let linear = dot(pool, &p.linear[k], &p.linear[j]);
+                mass_terms[k][j].push(pool.mul(inertia.mass, linear));
+                if let Some((_, i_partials)) = &rotational {
+                    mass_terms[k][j].push(dot(pool, &p.angular[k], &i_partials[j]));
+                }
+            }
+        }
+    }
+    let mut mass_matrix = vec![vec![pool.zero(); nq]; nq];
+    for k in 0..nq {
+        for j in k..nq {
+            let entry = pool.sum(std::mem::take(&mut mass_terms[k][j]));
+            mass_matrix[k][j] = entry;
+            mass_matrix[j][k] = entry;
+        }
+    }
+    let bias = bias_terms.into_iter().map(|terms| pool.sum(terms)).collect();
+    (mass_matrix, bias)
+}
+
+/// The generalized active force `F_qₖ`: gravity, forces and torques through
+/// their partial velocities, minus `∂V/∂qₖ` and `∂D/∂q̇ₖ`.
+fn generalized_force(
+    model: &Model,
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    inertias: &[Inertia<'_>],
+    k: usize,
+) -> ExprId {
+    let mut terms = Vec::new();
+    if let Some(gravity) = &model.gravity {
+        let g = kinematics.express(pool, model, gravity, NEWTONIAN);
+        for inertia in inertias {
+            let v = kinematics.partial_velocity(pool, inertia.center, k);
+            let g_dot_v = dot(pool, &g, &v);
+            terms.push(pool.mul(inertia.mass, g_dot_v));
+        }
+    }
+    for force in &model.forces {
+        let f = kinematics.express(pool, model, &force.vector, NEWTONIAN);
+        let v = kinematics.partial_velocity(pool, force.at, k);
+        terms.push(dot(pool, &f, &v));
+    }
+    for torque in &model.torques {
+        terms.push(torque_power(model, kinematics, pool, &torque.vector, torque.on, k));
+        if let Some(reacting) = torque.reacting {
+            let reaction = torque_power(model, kinematics, pool, &torque.vector, reacting, k);
+            terms.push(pool.neg(reaction));
+        }
+    }
+    let potential = pool.diff(model.potential, Sym::Coord(k as u32));
+    terms.push(pool.neg(potential));
+    let dissipation = pool.diff(model.dissipation, Sym::Speed(k as u32));
+    terms.push(pool.neg(dissipation));
+    pool.sum(terms)
+}
+
+/// `τ · ∂ω_F/∂q̇ₖ`, in `F`'s axes.
+fn torque_power(
+    model: &Model,
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    torque: &crate::model::Vector,
+    frame: FrameId,
+    k: usize,
+) -> ExprId {
+    let tau = kinematics.express(pool, model, torque, frame);
+    let w = kinematics.partial_angular_velocity(pool, frame, k);
+    dot(pool, &tau, &w)
+}
+
+/// `T = Σ ½ m v·v + ½ ω·(I ω)`.
+fn kinetic_energy(kinematics: &Kinematics, pool: &mut Pool, inertias: &[Inertia<'_>]) -> ExprId {
+    let half = pool.rational(1, 2);
+    let mut terms = Vec::new();
+    for inertia in inertias {
+        let v = kinematics.velocity(pool, inertia.center);
+        let vv = dot(pool, &v, &v);
+        terms.push(pool.product([half, inertia.mass, vv]));
+        if let Some((frame, tensor)) = inertia.rotation {
+            let omega = kinematics.angular_velocity(frame);
+            let h = mat_vec(pool, tensor, &omega);
+            let wh = dot(pool, &omega, &h);
+            terms.push(pool.mul(half, wh));
+        }
+    }
+    pool.sum(terms)
+}
+
+/// `V = −Σ m g·r + Σ potentials`, gravity measured from `O`.
+fn potential_energy(
+    model: &Model,
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    inertias: &[Inertia<'_>],
+) -> ExprId {
+    let mut terms = vec![model.potential];
+    if let Some(gravity) = &model.gravity {
+        let g = kinematics.express(pool, model, gravity, NEWTONIAN);
+        for inertia in inertias {
+            let r = kinematics.position(inertia.center);
+            let g_dot_r = dot(pool, &g, &r);
+            let minus_m = pool.neg(inertia.mass);
+            terms.push(pool.mul(minus_m, g_dot_r));
+        }
+    }
+    pool.sum(terms)
+}
+
+/// `A`, `b` and the residuals. A row's velocity form is `ψ = A q̇ + ψ₀`
+/// (`ψ = dφ/dt` for a holonomic `φ`), so `A = ∂ψ/∂q̇` and
+/// `b = −rate(ψ)`, the time derivative of `ψ` at constant speeds.
+#[allow(clippy::type_complexity)]
+fn constraints(model: &Model, pool: &mut Pool) -> (Vec<Vec<ExprId>>, Vec<ExprId>, Vec<ExprId>) {
+    let nq = model.nq();
+    let mut jacobian = Vec::new();
+    let mut bias = Vec::new();
+    let mut residual = Vec::new();
+    for constraint in &model.constraints {
+        let psi = if constraint.nonholonomic {
+            residual.push(pool.zero());
+            constraint.residual
+        } else {
+            residual.push(constraint.residual);
+            pool.time_derivative(constraint.residual)
+        };
+        jacobian.push(
+            (0..nq)
+                .map(|k| pool.diff(psi, Sym::Speed(k as u32)))
+                .collect(),
+        );
+        let rate = rate_at_constant_speeds(pool, psi, nq as u32);
+        bias.push(pool.neg(rate));
+    }
+    (jacobian, bias, residual)
+}

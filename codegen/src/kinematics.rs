@@ -1,0 +1,265 @@
+//! Kinematics of a checked model: rotation matrices of frames, positions
+//! of points, angular velocities, partial velocities and the velocity-
+//! independent part of accelerations — everything d'Alembert's principle
+//! dots together.
+//!
+//! Conventions: a point's position, velocity and partial velocities are
+//! measured in `N`'s axes; a frame's angular velocity, its partials and its
+//! angular acceleration in the frame's own axes (where its inertia is
+//! given). Partial velocities use `∂v/∂q̇ₖ = ∂r/∂qₖ`, and accelerations split
+//! as `a = Σₖ (∂v/∂q̇ₖ) q̈ₖ + rate(v)`, where `rate` differentiates in time
+//! at constant speeds; so no expression ever holds a `q̈`.
+
+use crate::expr::{ExprId, Pool, Sym};
+use crate::model::{FrameId, Model, NEWTONIAN, PointId, Vector};
+
+/// A column of three components.
+pub type Vec3 = [ExprId; 3];
+/// A 3×3 matrix, row-major.
+pub type Mat3 = [[ExprId; 3]; 3];
+
+/// Rotations, positions and angular velocities of every frame and point.
+pub struct Kinematics {
+    /// `rotation[f]` maps frame `f`'s components to `N`'s.
+    rotation: Vec<Mat3>,
+    /// `angular_velocity[f]`: `ω` of frame `f` in `N`, in `f`'s axes.
+    angular_velocity: Vec<Vec3>,
+    /// `position[p]`: `r` of point `p` from `O`, in `N`'s axes.
+    position: Vec<Vec3>,
+    /// Number of generalized coordinates.
+    nq: u32,
+}
+
+impl Kinematics {
+    /// Computes the rotation and angular velocity of every frame and the
+    /// position of every point of `model`.
+    pub fn new(model: &Model, pool: &mut Pool) -> Kinematics {
+        let mut kinematics = Kinematics {
+            rotation: Vec::with_capacity(model.frames.len()),
+            angular_velocity: Vec::with_capacity(model.frames.len()),
+            position: Vec::with_capacity(model.points.len()),
+            nq: model.nq() as u32,
+        };
+        for frame in &model.frames {
+            let (rotation, omega) = match &frame.placement {
+                None => (identity(pool), [pool.zero(); 3]),
+                Some(p) => {
+                    let relative = axis_rotation(pool, p.axis, p.angle);
+                    let rotation = mat_mul(pool, &kinematics.rotation[p.parent.0], &relative);
+                    // ω_F = ω_parent (in F's axes) + (dθ/dt) ê_axis.
+                    let mut omega =
+                        transpose_mul(pool, &relative, &kinematics.angular_velocity[p.parent.0]);
+                    let spin = pool.time_derivative(p.angle);
+                    omega[p.axis] = pool.add(omega[p.axis], spin);
+                    (rotation, omega)
+                }
+            };
+            kinematics.rotation.push(rotation);
+            kinematics.angular_velocity.push(omega);
+        }
+        for point in &model.points {
+            let r = match &point.placement {
+                None => [pool.zero(); 3],
+                Some((base, offset)) => {
+                    let offset = kinematics.express(pool, model, offset, NEWTONIAN);
+                    add3(pool, &kinematics.position[base.0], &offset)
+                }
+            };
+            kinematics.position.push(r);
+        }
+        kinematics
+    }
+
+    /// Position of point `p` from `O`, in `N`'s axes.
+    pub fn position(&self, p: PointId) -> Vec3 {
+        self.position[p.0]
+    }
+
+    /// Angular velocity of frame `f`, in `f`'s axes.
+    pub fn angular_velocity(&self, f: FrameId) -> Vec3 {
+        self.angular_velocity[f.0]
+    }
+
+    /// Velocity of point `p` in `N`, in `N`'s axes.
+    pub fn velocity(&self, pool: &mut Pool, p: PointId) -> Vec3 {
+        self.position[p.0].map(|x| pool.time_derivative(x))
+    }
+
+    /// `∂v_p/∂q̇ₖ = ∂r_p/∂qₖ`, in `N`'s axes.
+    pub fn partial_velocity(&self, pool: &mut Pool, p: PointId, k: usize) -> Vec3 {
+        self.position[p.0].map(|x| pool.diff(x, Sym::Coord(k as u32)))
+    }
+
+    /// `∂ω_f/∂q̇ₖ`, in `f`'s axes.
+    pub fn partial_angular_velocity(&self, pool: &mut Pool, f: FrameId, k: usize) -> Vec3 {
+        self.angular_velocity[f.0].map(|x| pool.diff(x, Sym::Speed(k as u32)))
+    }
+
+    /// The part of a point's acceleration that remains when every `q̈ = 0`.
+    pub fn acceleration_bias(&self, pool: &mut Pool, p: PointId) -> Vec3 {
+        let v = self.velocity(pool, p);
+        v.map(|x| rate_at_constant_speeds(pool, x, self.nq))
+    }
+
+    /// The part of a frame's angular acceleration (in its own axes) that
+    /// remains when every `q̈ = 0`.
+    pub fn angular_acceleration_bias(&self, pool: &mut Pool, f: FrameId) -> Vec3 {
+        self.angular_velocity[f.0].map(|x| rate_at_constant_speeds(pool, x, self.nq))
+    }
+
+    /// The components of `v` in `frame`'s axes. Each part is rotated from
+    /// its own frame through their lowest common ancestor, so a planar chain
+    /// meets only the rotations between the frames involved.
+    pub fn express(&self, pool: &mut Pool, model: &Model, v: &Vector, frame: FrameId) -> Vec3 {
+        let mut total = [pool.zero(); 3];
+        for (from, components) in &v.parts {
+            let part = self.rotate_between(pool, model, *from, frame, components);
+            total = add3(pool, &total, &part);
+        }
+        total
+    }
+
+    /// Components `c` given in `from`'s axes, re-expressed in `to`'s axes.
+    fn rotate_between(
+        &self,
+        pool: &mut Pool,
+        model: &Model,
+        from: FrameId,
+        to: FrameId,
+        c: &Vec3,
+    ) -> Vec3 {
+        let ancestor = common_ancestor(model, from, to);
+        let up = self.rotation_from_ancestor(pool, model, ancestor, from);
+        let in_ancestor = mat_vec(pool, &up, c);
+        let down = self.rotation_from_ancestor(pool, model, ancestor, to);
+        transpose_mul(pool, &down, &in_ancestor)
+    }
+
+    /// The rotation mapping `frame`'s components to those of its ancestor.
+    fn rotation_from_ancestor(
+        &self,
+        pool: &mut Pool,
+        model: &Model,
+        ancestor: FrameId,
+        frame: FrameId,
+    ) -> Mat3 {
+        if ancestor == NEWTONIAN {
+            return self.rotation[frame.0];
+        }
+        let mut chain = Vec::new();
+        let mut f = frame;
+        while f != ancestor {
+            let Some(p) = &model.frames[f.0].placement else {
+                break;
+            };
+            chain.push(axis_rotation(pool, p.axis, p.angle));
+            f = p.parent;
+        }
+        chain
+            .iter()
+            .rev()
+            .fold(identity(pool), |acc, r| mat_mul(pool, &acc, r))
+    }
+}
+
+/// `∂e/∂t + Σⱼ (∂e/∂qⱼ) q̇ⱼ`: the time derivative of `e` with the speeds
+/// held constant (the acceleration terms that do not multiply a `q̈`).
+pub fn rate_at_constant_speeds(pool: &mut Pool, e: ExprId, nq: u32) -> ExprId {
+    let mut terms = vec![pool.diff(e, Sym::Time)];
+    for j in 0..nq {
+        let d = pool.diff(e, Sym::Coord(j));
+        if !pool.is_zero(d) {
+            let qd = pool.sym(Sym::Speed(j));
+            terms.push(pool.mul(d, qd));
+        }
+    }
+    pool.sum(terms)
+}
+
+/// The frames from `f` up to `N`, `f` first.
+fn ancestors(model: &Model, mut f: FrameId) -> Vec<FrameId> {
+    let mut path = vec![f];
+    while let Some(p) = &model.frames[f.0].placement {
+        f = p.parent;
+        path.push(f);
+    }
+    path
+}
+
+fn common_ancestor(model: &Model, a: FrameId, b: FrameId) -> FrameId {
+    let above_b = ancestors(model, b);
+    ancestors(model, a)
+        .into_iter()
+        .find(|f| above_b.contains(f))
+        .unwrap_or(NEWTONIAN)
+}
+
+/// The rotation by `angle` about axis `axis` (right-handed), mapping the
+/// rotated frame's components to the parent's.
+fn axis_rotation(pool: &mut Pool, axis: usize, angle: ExprId) -> Mat3 {
+    let (zero, one) = (pool.zero(), pool.one());
+    let c = pool.cos(angle);
+    let s = pool.sin(angle);
+    let minus_s = pool.neg(s);
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let mut r = [[zero; 3]; 3];
+    r[axis][axis] = one;
+    r[i][i] = c;
+    r[j][j] = c;
+    r[i][j] = minus_s;
+    r[j][i] = s;
+    r
+}
+
+fn identity(pool: &Pool) -> Mat3 {
+    let mut r = [[pool.zero(); 3]; 3];
+    for (i, row) in r.iter_mut().enumerate() {
+        row[i] = pool.one();
+    }
+    r
+}
+
+fn mat_mul(pool: &mut Pool, a: &Mat3, b: &Mat3) -> Mat3 {
+    let mut r = [[pool.zero(); 3]; 3];
+    for (i, row) in r.iter_mut().enumerate() {
+        for (j, entry) in row.iter_mut().enumerate() {
+            let terms: Vec<ExprId> = (0..3).map(|k| pool.mul(a[i][k], b[k][j])).collect();
+            *entry = pool.sum(terms);
+        }
+    }
+    r
+}
+
+/// `a · v`.
+pub fn mat_vec(pool: &mut Pool, a: &Mat3, v: &Vec3) -> Vec3 {
+    [0, 1, 2].map(|i| dot(pool, &a[i], v))
+}
+
+/// `aᵀ · v`.
+fn transpose_mul(pool: &mut Pool, a: &Mat3, v: &Vec3) -> Vec3 {
+    [0, 1, 2].map(|i| {
+        let column = [a[0][i], a[1][i], a[2][i]];
+        dot(pool, &column, v)
+    })
+}
+
+/// `a · b`.
+pub fn dot(pool: &mut Pool, a: &Vec3, b: &Vec3) -> ExprId {
+    let terms: Vec<ExprId> = (0..3).map(|i| pool.mul(a[i], b[i])).collect();
+    pool.sum(terms)
+}
+
+/// `a × b`.
+pub fn cross(pool: &mut Pool, a: &Vec3, b: &Vec3) -> Vec3 {
+    [0, 1, 2].map(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let first = pool.mul(a[j], b[k]);
+        let second = pool.mul(a[k], b[j]);
+        pool.sub(first, second)
+    })
+}
+
+/// `a + b`.
+fn add3(pool: &mut Pool, a: &Vec3, b: &Vec3) -> Vec3 {
+    [0, 1, 2].map(|i| pool.add(a[i], b[i]))
+}

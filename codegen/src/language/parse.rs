@@ -1,0 +1,795 @@
+//! The system and its statements: `/// docs`, `pub Name { statement; ... }`.
+//!
+//! A statement is recognised by its first identifier (see
+//! [`keyword`](super::keyword)). After an error the parser skips to the
+//! next `;` and goes on, so one run reports every error it can; a missing
+//! `;` before a statement keyword resumes at that keyword.
+
+use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
+use syn::Lit;
+
+use super::ast::{Expr, Field, Statement, System};
+use super::cursor::Cursor;
+use super::expression::expression;
+use super::keyword::{self, STATEMENTS};
+
+/// Parses a whole system from the macro's tokens (or a `.dal` file
+/// tokenised by proc_macro2): doc comments, optional `pub`, the name, and
+/// the statements in braces. Every syntax error found is reported, combined
+/// into one [`syn::Error`].
+pub fn parse_system(input: TokenStream) -> syn::Result<System> {
+    let mut cursor = Cursor::new(input, Span::call_site());
+    let docs = doc_comments(&mut cursor)?;
+    let public = cursor.eat_keyword(keyword::PUB).is_some();
+    let name = cursor.expect_ident("the system's name")?;
+    let Some(body) = cursor.eat_group(Delimiter::Brace) else {
+        return Err(cursor.expected(format!("`{{` after the system's name `{name}`")));
+    };
+    let mut errors = Errors::default();
+    let statements = statements(&mut Cursor::group(&body), &mut errors);
+    if !cursor.is_end() {
+        errors.push(cursor.error(format!(
+            "unexpected tokens after the system's closing brace, starting with {}",
+            cursor.found()
+        )));
+    }
+    errors.finish(System {
+        docs,
+        public,
+        name,
+        statements,
+    })
+}
+
+/// Spanned errors collected while parsing goes on.
+#[derive(Default)]
+struct Errors(Option<syn::Error>);
+
+impl Errors {
+    /// Adds `error` to those already found.
+    fn push(&mut self, error: syn::Error) {
+        match &mut self.0 {
+            Some(errors) => errors.combine(error),
+            None => self.0 = Some(error),
+        }
+    }
+
+    /// `value` if no error was found, else every error found.
+    fn finish<T>(self, value: T) -> syn::Result<T> {
+        match self.0 {
+            Some(errors) => Err(errors),
+            None => Ok(value),
+        }
+    }
+}
+
+/// Parses `#[doc = "text"]` attributes, the form `///` comments take in a
+/// token stream, and returns their texts.
+fn doc_comments(cursor: &mut Cursor) -> syn::Result<Vec<String>> {
+    let mut docs = Vec::new();
+    while cursor.eat_punct('#').is_some() {
+        let Some(attribute) = cursor.eat_group(Delimiter::Bracket) else {
+            return Err(cursor.expected("`[` after `#` (only `///` doc comments are allowed)"));
+        };
+        docs.push(doc_text(&attribute)?);
+    }
+    Ok(docs)
+}
+
+/// The text of one `[doc = "text"]` attribute.
+fn doc_text(attribute: &Group) -> syn::Result<String> {
+    let mut cursor = Cursor::group(attribute);
+    cursor.expect_keyword(
+        keyword::DOC,
+        "`doc` (the only attribute allowed is a `///` doc comment)",
+    )?;
+    cursor.expect_punct('=', "`=` after `doc`")?;
+    let text = match cursor.peek() {
+        Some(TokenTree::Literal(literal)) => string_value(literal.clone()),
+        _ => None,
+    }
+    .ok_or_else(|| cursor.expected("a string after `doc =`"))?;
+    cursor.next_token();
+    if !cursor.is_end() {
+        return Err(cursor.expected("`]` after the doc comment's text"));
+    }
+    Ok(text)
+}
+
+/// The value of `literal` if it is a string literal.
+fn string_value(literal: Literal) -> Option<String> {
+    match Lit::new(literal) {
+        Lit::Str(string) => Some(string.value()),
+        _ => None,
+    }
+}
+
+/// Parses the statements inside the system's braces, adding each error to
+/// `errors` and resuming after it.
+fn statements(cursor: &mut Cursor, errors: &mut Errors) -> Vec<Statement> {
+    let mut statements = Vec::new();
+    loop {
+        if let Err(error) = doc_comments(cursor) {
+            errors.push(error);
+            cursor.skip_past(';');
+            continue;
+        }
+        if cursor.is_end() {
+            return statements;
+        }
+        match statement(cursor) {
+            Ok(statement) => {
+                statements.push(statement);
+                terminator(cursor, errors);
+            }
+            Err(error) => {
+                errors.push(error);
+                cursor.skip_past(';');
+            }
+        }
+    }
+}
+
+/// Consumes the `;` that ends a statement. When it is missing, the parser
+/// resumes at a following statement keyword, or else after the next `;`.
+fn terminator(cursor: &mut Cursor, errors: &mut Errors) {
+    if cursor.eat_punct(';').is_some() {
+        return;
+    }
+    errors.push(cursor.expected("`;` after the statement"));
+    let at_statement = cursor
+        .peek_ident()
+        .is_some_and(|ident| STATEMENTS.iter().any(|keyword| ident == keyword));
+    if !at_statement {
+        cursor.skip_past(';');
+    }
+}
+
+/// Parses one statement, without its `;`.
+fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
+    let Some(keyword) = cursor.eat_ident() else {
+        return Err(cursor.expected(format!(
+            "a statement (one of {})",
+            keyword::statement_list()
+        )));
+    };
+    Ok(match keyword.to_string().as_str() {
+        keyword::PARAMETERS => Statement::Parameters(names(cursor, &keyword)?),
+        keyword::COORDINATES => Statement::Coordinates(names(cursor, &keyword)?),
+        keyword::INPUTS => Statement::Inputs(names(cursor, &keyword)?),
+        keyword::FRAME => {
+            let (name, value) = definition(cursor, &keyword)?;
+            Statement::Frame { name, value }
+        }
+        keyword::POINT => {
+            let (name, value) = definition(cursor, &keyword)?;
+            Statement::Point { name, value }
+        }
+        keyword::BODY => {
+            let (name, fields) = named_fields(cursor, &keyword)?;
+            Statement::Body { name, fields }
+        }
+        keyword::PARTICLE => {
+            let (name, fields) = named_fields(cursor, &keyword)?;
+            Statement::Particle { name, fields }
+        }
+        keyword::JOINT => {
+            let kind = cursor.expect_ident("the joint's kind (`revolute` or `prismatic`)")?;
+            let (name, fields) = named_fields(cursor, &keyword)?;
+            Statement::Joint { kind, name, fields }
+        }
+        keyword::GRAVITY => Statement::Gravity {
+            value: expression(cursor)?,
+            keyword,
+        },
+        keyword::FORCE => {
+            let value = expression(cursor)?;
+            cursor.expect_keyword(keyword::AT, "`at` and a point after the force")?;
+            let at = expression(cursor)?;
+            Statement::Force { keyword, value, at }
+        }
+        keyword::TORQUE => torque(cursor, keyword)?,
+        keyword::POTENTIAL => Statement::Potential {
+            value: expression(cursor)?,
+            keyword,
+        },
+        keyword::DISSIPATION => Statement::Dissipation {
+            value: expression(cursor)?,
+            keyword,
+        },
+        keyword::CONSTRAINT => constraint(cursor, keyword)?,
+        _ => {
+            return Err(syn::Error::new(
+                keyword.span(),
+                format!(
+                    "unknown statement `{keyword}`; expected one of {}",
+                    keyword::statement_list()
+                ),
+            ));
+        }
+    })
+}
+
+/// Parses `a, b, ...` after `parameters`, `coordinates` or `inputs`; a
+/// trailing comma is allowed.
+fn names(cursor: &mut Cursor, keyword: &Ident) -> syn::Result<Vec<Ident>> {
+    let mut names = vec![cursor.expect_ident(format!("a name after `{keyword}`"))?];
+    while cursor.eat_punct(',').is_some() {
+        match cursor.eat_ident() {
+            Some(name) => names.push(name),
+            None => break,
+        }
+    }
+    Ok(names)
+}
+
+/// Parses `NAME = <expr>` after `frame` or `point`.
+fn definition(cursor: &mut Cursor, keyword: &Ident) -> syn::Result<(Ident, Expr)> {
+    let name = cursor.expect_ident(format!("the {keyword}'s name after `{keyword}`"))?;
+    cursor.expect_punct('=', format!("`=` after `{keyword} {name}`"))?;
+    Ok((name, expression(cursor)?))
+}
+
+/// Parses `NAME { field: value, ... }` after `body`, `particle` or
+/// `joint KIND`.
+fn named_fields(cursor: &mut Cursor, keyword: &Ident) -> syn::Result<(Ident, Vec<Field>)> {
+    let name = cursor.expect_ident(format!("the {keyword}'s name"))?;
+    let Some(block) = cursor.eat_group(Delimiter::Brace) else {
+        return Err(cursor.expected(format!("`{{` with the fields of `{name}`")));
+    };
+    Ok((name, fields(&block)?))
+}
+
+/// Parses `field: value, ...` inside braces; a trailing comma is allowed.
+/// After an error it resumes at the next field.
+fn fields(block: &Group) -> syn::Result<Vec<Field>> {
+    let mut cursor = Cursor::group(block);
+    let mut errors = Errors::default();
+    let mut fields = Vec::new();
+    while !cursor.is_end() {
+        match field(&mut cursor) {
+            Ok(field) => fields.push(field),
+            Err(error) => {
+                errors.push(error);
+                cursor.skip_past(',');
+            }
+        }
+    }
+    errors.finish(fields)
+}
+
+/// Parses one `name: value` and the `,` after it (unless it is the last).
+fn field(cursor: &mut Cursor) -> syn::Result<Field> {
+    let name = cursor.expect_ident("a field name")?;
+    cursor.expect_punct(':', format!("`:` after the field name `{name}`"))?;
+    let value = expression(cursor)?;
+    if cursor.eat_punct(',').is_none() && !cursor.is_end() {
+        return Err(cursor.expected("`,` or `}` after the field's value"));
+    }
+    Ok(Field { name, value })
+}
+
+/// Parses `<vec> on F` or `<vec> on F reacting G` after `torque`.
+fn torque(cursor: &mut Cursor, keyword: Ident) -> syn::Result<Statement> {
+    let value = expression(cursor)?;
+    cursor.expect_keyword(keyword::ON, "`on` and a frame after the torque")?;
+    let on = expression(cursor)?;
+    let reacting = match cursor.eat_keyword(keyword::REACTING) {
+        Some(_) => Some(expression(cursor)?),
+        None => None,
+    };
+    Ok(Statement::Torque {
+        keyword,
+        value,
+        on,
+        reacting,
+    })
+}
+
+/// Parses `lhs == rhs` after `constraint`.
+fn constraint(cursor: &mut Cursor, keyword: Ident) -> syn::Result<Statement> {
+    let lhs = expression(cursor)?;
+    let eq = cursor
+        .eat_double_equals()
+        .ok_or_else(|| cursor.expected("`==` in a constraint"))?;
+    let rhs = expression(cursor)?;
+    Ok(Statement::Constraint {
+        keyword,
+        lhs,
+        eq,
+        rhs,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use proc_macro2::{LineColumn, TokenStream};
+
+    use super::super::render::render;
+    use super::*;
+
+    /// Seed example 1 as DESIGN §3 writes it inside `dalembert! { ... }`.
+    const DOUBLE_PENDULUM: &str = "
+    /// Seed example 1: double pendulum, absolute angles from the downward vertical.
+    pub DoublePendulum {
+        parameters m, L, g;
+        coordinates theta1, theta2;
+        frame B1 = N.rotate_z(theta1);
+        frame B2 = N.rotate_z(theta2);
+        point P1 = O - L * B1.y;
+        point G1 = O - L/2 * B1.y;
+        point G2 = P1 - L/2 * B2.y;
+        body link1 { mass: m, center: G1, frame: B1, inertia: [0, 0, m*L^2/12] };
+        body link2 { mass: m, center: G2, frame: B2, inertia: [0, 0, m*L^2/12] };
+        gravity -g * N.y;
+    }";
+
+    /// Seed example 2 as DESIGN §3 writes it.
+    const ROTATING_BAR: &str = "
+pub RotatingBar {
+    parameters m, l, d;
+    coordinates phi, theta;
+    inputs M_phi, M_theta;
+    frame F = N.rotate_z(phi);
+    frame B = F.rotate_y(theta);
+    point G = O + d * F.y;
+    body bar { mass: m, center: G, frame: B, inertia: [0, m*l^2/12, m*l^2/12] };
+    torque M_phi * N.z on F;
+    torque M_theta * F.y on B reacting F;
+}";
+
+    /// Seed example 3 as DESIGN §3 writes it.
+    const CONSTRAINED_PENDULUM: &str = "
+pub ConstrainedPendulum {
+    parameters m, l, g;
+    coordinates x, y, theta;
+    inputs M;
+    frame B = N.rotate_z(theta);
+    point G = O + x * N.x + y * N.y;
+    body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
+    gravity -g * N.y;
+    torque M * N.z on B;
+    constraint x - l/2 * sin(theta) == 0;
+    constraint y + l/2 * cos(theta) == 0;
+}";
+
+    /// `source` lexed and parsed.
+    fn parse(source: &str) -> syn::Result<System> {
+        parse_system(source.parse().expect("test source lexes"))
+    }
+
+    /// `source` parsed successfully.
+    fn system(source: &str) -> System {
+        parse(source).expect("test system parses")
+    }
+
+    /// Every error parsing `source` gives: message, line and column
+    /// (1-based line, 0-based column, as proc_macro2 counts).
+    fn errors(source: &str) -> Vec<(String, usize, usize)> {
+        let error = parse(source).expect_err("test system fails");
+        error
+            .into_iter()
+            .map(|error| {
+                let LineColumn { line, column } = error.span().start();
+                (error.to_string(), line, column)
+            })
+            .collect()
+    }
+
+    /// The names of `fields`, in order.
+    fn field_names(fields: &[Field]) -> Vec<String> {
+        fields.iter().map(|field| field.name.to_string()).collect()
+    }
+
+    #[test]
+    fn parses_seed_example_1() {
+        let system = system(DOUBLE_PENDULUM);
+        assert_eq!(
+            system.docs,
+            [" Seed example 1: double pendulum, absolute angles from the downward vertical."]
+        );
+        assert!(system.public);
+        assert_eq!(system.name, "DoublePendulum");
+        assert_eq!(system.statements.len(), 10);
+        let Statement::Parameters(parameters) = &system.statements[0] else {
+            panic!("expected parameters first");
+        };
+        assert_eq!(parameters.len(), 3);
+        let Statement::Frame { name, value } = &system.statements[2] else {
+            panic!("expected a frame third");
+        };
+        assert_eq!(name, "B1");
+        let Expr::MethodCall {
+            receiver,
+            method,
+            args,
+            ..
+        } = value
+        else {
+            panic!("expected a method call, found {}", render(value));
+        };
+        assert_eq!([receiver, method].map(Ident::to_string), ["N", "rotate_z"]);
+        assert_eq!(args.iter().map(render).collect::<Vec<_>>(), ["theta1"]);
+        let Statement::Point { value, .. } = &system.statements[6] else {
+            panic!("expected a point seventh");
+        };
+        assert_eq!(render(value), "(P1 - ((L / 2) * B2.y))");
+        let Statement::Body { name, fields } = &system.statements[7] else {
+            panic!("expected a body eighth");
+        };
+        assert_eq!(name, "link1");
+        assert_eq!(field_names(fields), ["mass", "center", "frame", "inertia"]);
+        assert_eq!(render(&fields[3].value), "[0, 0, ((m * (L^2)) / 12)]");
+        let Statement::Gravity { value, .. } = &system.statements[9] else {
+            panic!("expected gravity last");
+        };
+        assert_eq!(render(value), "((-g) * N.y)");
+    }
+
+    #[test]
+    fn parses_seed_example_2() {
+        let system = system(ROTATING_BAR);
+        assert!(system.docs.is_empty());
+        assert_eq!(system.statements.len(), 9);
+        let Statement::Inputs(inputs) = &system.statements[2] else {
+            panic!("expected inputs third");
+        };
+        assert_eq!(inputs, &["M_phi", "M_theta"]);
+        let Statement::Torque {
+            value,
+            on,
+            reacting: Some(reacting),
+            ..
+        } = &system.statements[8]
+        else {
+            panic!("expected a reacting torque last");
+        };
+        assert_eq!(
+            [value, on, reacting].map(render),
+            ["(M_theta * F.y)", "B", "F"]
+        );
+        assert!(matches!(
+            &system.statements[7],
+            Statement::Torque { reacting: None, .. }
+        ));
+    }
+
+    #[test]
+    fn parses_seed_example_3() {
+        let system = system(CONSTRAINED_PENDULUM);
+        assert_eq!(system.statements.len(), 10);
+        let Statement::Constraint { lhs, eq, rhs, .. } = &system.statements[8] else {
+            panic!("expected a constraint");
+        };
+        assert_eq!(render(lhs), "(x - ((l / 2) * sin(theta)))");
+        assert_eq!(render(rhs), "0");
+        assert_eq!(
+            (eq.start(), eq.end()),
+            (
+                LineColumn {
+                    line: 11,
+                    column: 36
+                },
+                LineColumn {
+                    line: 11,
+                    column: 38
+                }
+            )
+        );
+    }
+
+    #[test]
+    fn parses_the_other_statements() {
+        let system = system(
+            "S {
+                /// Ignored.
+                parameters k, c, m,;
+                particle p { mass: m, at: P, };
+                joint revolute J1 { parent: N, child: B1, axis: z, coordinate: q1, at: O };
+                force F * N.x at P;
+                potential k * q1^2 / 2;
+                dissipation c * dt(q1)^2 / 2;
+            }",
+        );
+        assert!(!system.public);
+        assert_eq!(system.statements.len(), 6);
+        assert!(matches!(&system.statements[0], Statement::Parameters(names) if names.len() == 3));
+        let Statement::Particle { fields, .. } = &system.statements[1] else {
+            panic!("expected a particle");
+        };
+        assert_eq!(field_names(fields), ["mass", "at"]);
+        let Statement::Joint { kind, name, fields } = &system.statements[2] else {
+            panic!("expected a joint");
+        };
+        assert_eq!([kind, name].map(Ident::to_string), ["revolute", "J1"]);
+        assert_eq!(
+            field_names(fields),
+            ["parent", "child", "axis", "coordinate", "at"]
+        );
+        let Statement::Force { value, at, .. } = &system.statements[3] else {
+            panic!("expected a force");
+        };
+        assert_eq!([value, at].map(render), ["(F * N.x)", "P"]);
+        assert!(matches!(&system.statements[4], Statement::Potential { .. }));
+        assert!(matches!(
+            &system.statements[5],
+            Statement::Dissipation { .. }
+        ));
+    }
+
+    #[test]
+    fn every_statement_keyword_is_recognised() {
+        for keyword in STATEMENTS {
+            for (message, ..) in errors(&format!("S {{ {keyword} }}")) {
+                assert!(
+                    !message.starts_with("unknown statement"),
+                    "{keyword}: {message}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_missing_semicolon_points_at_the_next_token_and_parsing_goes_on() {
+        let source = "S {
+    frame B = N.rotate_z(q)
+    frame C = B.rotate_x(q);
+    point P = ;
+}";
+        assert_eq!(
+            errors(source),
+            [
+                (
+                    "expected `;` after the statement, found `frame`".to_owned(),
+                    3,
+                    4
+                ),
+                ("expected an expression, found `;`".to_owned(), 4, 14),
+            ]
+        );
+    }
+
+    #[test]
+    fn an_unknown_statement_lists_the_keywords() {
+        assert_eq!(
+            errors("S {\n  bodyy b { mass: m };\n}"),
+            [(
+                "unknown statement `bodyy`; expected one of `parameters`, `coordinates`, \
+                 `inputs`, `frame`, `point`, `body`, `particle`, `joint`, `gravity`, \
+                 `force`, `torque`, `potential`, `dissipation`, `constraint`"
+                    .to_owned(),
+                2,
+                2
+            )]
+        );
+        let (message, line, column) = &errors("S { ; }")[0];
+        assert!(message.starts_with("expected a statement (one of `parameters`"));
+        assert!(message.ends_with("), found `;`"));
+        assert_eq!((line, column), (&1, &4));
+    }
+
+    #[test]
+    fn statement_errors_point_at_the_offending_token() {
+        let cases = [
+            (
+                "S { constraint x = 0; }",
+                "expected `==` in a constraint, found `=`",
+                17,
+            ),
+            (
+                "S { constraint x 0; }",
+                "expected `==` in a constraint, found `0`",
+                17,
+            ),
+            ("S { gravity ; }", "expected an expression, found `;`", 12),
+            (
+                "S { force F P; }",
+                "expected `at` and a point after the force, found `P`",
+                12,
+            ),
+            (
+                "S { torque T at B; }",
+                "expected `on` and a frame after the torque, found `at`",
+                13,
+            ),
+            (
+                "S { frame = x; }",
+                "expected the frame's name after `frame`, found `=`",
+                10,
+            ),
+            (
+                "S { point P O; }",
+                "expected `=` after `point P`, found `O`",
+                12,
+            ),
+            (
+                "S { parameters ; }",
+                "expected a name after `parameters`, found `;`",
+                15,
+            ),
+            (
+                "S { parameters a b; }",
+                "expected `;` after the statement, found `b`",
+                17,
+            ),
+            (
+                "S { frame B = (a + b c); }",
+                "expected an operator or `)`, found `c`",
+                21,
+            ),
+            (
+                "S { body { mass: m }; }",
+                "expected the body's name, found `{`",
+                9,
+            ),
+            (
+                "S { body b [mass: m]; }",
+                "expected `{` with the fields of `b`, found `[`",
+                11,
+            ),
+            (
+                "S { joint { }; }",
+                "expected the joint's kind (`revolute` or `prismatic`), found `{`",
+                10,
+            ),
+            (
+                "S { body b { } }",
+                "expected `;` after the statement, found `}`",
+                15,
+            ),
+            (
+                "S { body b { mass: m center: G }; }",
+                "expected `,` or `}` after the field's value, found `center`",
+                21,
+            ),
+            (
+                "S { #[allow(x)] gravity g; }",
+                "expected `doc` (the only attribute allowed is a `///` doc comment), found `allow`",
+                6,
+            ),
+            (
+                "pub S { } extra",
+                "unexpected tokens after the system's closing brace, starting with `extra`",
+                10,
+            ),
+            (
+                "pub S;",
+                "expected `{` after the system's name `S`, found `;`",
+                5,
+            ),
+            ("pub { }", "expected the system's name, found `{`", 4),
+            (
+                "#[doc = 1] S { }",
+                "expected a string after `doc =`, found `1`",
+                8,
+            ),
+            (
+                "# S { }",
+                "expected `[` after `#` (only `///` doc comments are allowed), found `S`",
+                2,
+            ),
+        ];
+        for (source, message, column) in cases {
+            assert_eq!(
+                errors(source),
+                [(message.to_owned(), 1, column)],
+                "{source}"
+            );
+        }
+        assert_eq!(
+            errors("")[0].0,
+            "expected the system's name, found end of input"
+        );
+    }
+
+    #[test]
+    fn every_error_is_reported() {
+        let source = "S {
+    body b { mass m, center G };
+    frame B = ;
+    constraint x = 0;
+} trailing";
+        assert_eq!(
+            errors(source),
+            [
+                (
+                    "expected `:` after the field name `mass`, found `m`".to_owned(),
+                    2,
+                    18
+                ),
+                (
+                    "expected `:` after the field name `center`, found `G`".to_owned(),
+                    2,
+                    28
+                ),
+                ("expected an expression, found `;`".to_owned(), 3, 14),
+                ("expected `==` in a constraint, found `=`".to_owned(), 4, 17),
+                (
+                    "unexpected tokens after the system's closing brace, starting with `trailing`"
+                        .to_owned(),
+                    5,
+                    2
+                ),
+            ]
+        );
+    }
+
+    #[test]
+    fn garbage_never_panics() {
+        let mut inputs: Vec<String> = Vec::new();
+        for source in [DOUBLE_PENDULUM, ROTATING_BAR, CONSTRAINED_PENDULUM] {
+            inputs.extend(
+                source
+                    .char_indices()
+                    .map(|(end, _)| source[..end].to_owned()),
+            );
+        }
+        // Shuffled sequences of the language's tokens, from a fixed-seed
+        // linear congruential generator so that every run tries the same.
+        let vocabulary = [
+            "pub",
+            "S",
+            "{",
+            "}",
+            "(",
+            ")",
+            "[",
+            "]",
+            ";",
+            ",",
+            ":",
+            "=",
+            "==",
+            "-",
+            "+",
+            "*",
+            "/",
+            "^",
+            ".",
+            "#",
+            "frame",
+            "point",
+            "body",
+            "joint",
+            "torque",
+            "force",
+            "constraint",
+            "parameters",
+            "at",
+            "on",
+            "reacting",
+            "N",
+            "rotate_z",
+            "x",
+            "1e-3",
+            "2",
+            "\"doc\"",
+            "doc",
+            "///x\n",
+            "'c'",
+        ];
+        let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut random = |bound: usize| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            usize::try_from(state >> 33).unwrap_or(0) % bound
+        };
+        for _ in 0..3000 {
+            let length = random(40);
+            let body: Vec<&str> = (0..length)
+                .map(|_| vocabulary[random(vocabulary.len())])
+                .collect();
+            inputs.push(body.join(" "));
+            inputs.push(format!("pub S {{ {} }}", body.join(" ")));
+        }
+        let mut parsed = 0;
+        for input in &inputs {
+            if let Ok(tokens) = input.parse::<TokenStream>() {
+                let _ = parse_system(tokens);
+                parsed += 1;
+            }
+        }
+        assert!(parsed > 1000, "only {parsed} inputs lexed");
+    }
+}

@@ -1,0 +1,148 @@
+//! The model layer: a syntax tree resolved into a checked mechanical model.
+//!
+//! Names are bound to parameters, coordinates, inputs, frames and points;
+//! every scalar is an expression of the engine's [`Pool`]; every rule of the
+//! language (types, what may depend on what, required fields) is checked
+//! here, once, and all violations are reported together, each at the user's
+//! token. Later layers trust the model and report nothing.
+
+mod errors;
+mod resolve;
+mod vector;
+
+pub use errors::Errors;
+pub use resolve::resolve;
+pub use vector::{FrameId, NEWTONIAN, Vector};
+
+use crate::expr::{ExprId, Pool};
+use proc_macro2::Ident;
+
+/// Index of a point in [`Model::points`]; `PointId(0)` is `O`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct PointId(pub usize);
+
+/// The point `O`, fixed in `N`.
+pub const ORIGIN: PointId = PointId(0);
+
+/// A checked system, ready for kinematics.
+pub struct Model {
+    /// Doc comment lines written before the system's name.
+    pub docs: Vec<String>,
+    /// Whether the system was declared `pub`.
+    pub public: bool,
+    /// The system's (and generated struct's) name.
+    pub name: Ident,
+    /// Parameters in declaration order: `Sym::Param(i)` is `parameters[i]`.
+    pub parameters: Vec<Ident>,
+    /// Coordinates in declaration order: `Sym::Coord(i)` is `coordinates[i]`.
+    pub coordinates: Vec<Ident>,
+    /// Inputs in declaration order: `Sym::Input(i)` is `inputs[i]`.
+    pub inputs: Vec<Ident>,
+    /// Frames; `frames[0]` is `N`.
+    pub frames: Vec<Frame>,
+    /// Points; `points[0]` is `O`.
+    pub points: Vec<Point>,
+    /// Rigid bodies, in declaration order.
+    pub bodies: Vec<Body>,
+    /// Point masses, in declaration order.
+    pub particles: Vec<Particle>,
+    /// The uniform gravity field (sum of all `gravity` statements), if any.
+    pub gravity: Option<Vector>,
+    /// Applied forces.
+    pub forces: Vec<Force>,
+    /// Applied torques.
+    pub torques: Vec<Torque>,
+    /// Sum of the `potential` statements (zero if none).
+    pub potential: ExprId,
+    /// Sum of the `dissipation` statements (zero if none).
+    pub dissipation: ExprId,
+    /// Constraints, in declaration order.
+    pub constraints: Vec<Constraint>,
+    /// The expressions of everything above.
+    pub pool: Pool,
+}
+
+/// A reference frame: `N`, or a rotation of a parent frame.
+pub struct Frame {
+    /// Name as written (`N` for the Newtonian frame).
+    pub name: String,
+    /// The parent and the rotation about one of the parent's axes; `None`
+    /// for `N`.
+    pub placement: Option<FramePlacement>,
+}
+
+/// How a frame sits in its parent.
+pub struct FramePlacement {
+    /// The frame it is rotated from.
+    pub parent: FrameId,
+    /// The rotation axis: 0, 1, 2 for the parent's x, y, z.
+    pub axis: usize,
+    /// The rotation angle (right-handed); zero for a parallel frame.
+    pub angle: ExprId,
+}
+
+/// A point: `O`, or a point located from another by a vector.
+pub struct Point {
+    /// Name as written (or a description for anonymous points such as a
+    /// body centre written as an expression).
+    pub name: String,
+    /// The base point and the offset from it; `None` for `O`.
+    pub placement: Option<(PointId, Vector)>,
+}
+
+/// A rigid body.
+pub struct Body {
+    /// Name as written.
+    pub name: Ident,
+    /// Its mass (parameters only).
+    pub mass: ExprId,
+    /// Its centre of mass.
+    pub center: PointId,
+    /// The frame it is fixed in, whose axes the inertia is given in.
+    pub frame: FrameId,
+    /// Central inertia tensor in the body frame's axes (symmetric).
+    pub inertia: [[ExprId; 3]; 3],
+}
+
+/// A point mass.
+pub struct Particle {
+    /// Name as written.
+    pub name: Ident,
+    /// Its mass (parameters only).
+    pub mass: ExprId,
+    /// Where it is.
+    pub at: PointId,
+}
+
+/// `force vec at P`.
+pub struct Force {
+    /// The force.
+    pub vector: Vector,
+    /// Its point of application.
+    pub at: PointId,
+}
+
+/// `torque vec on F` or `torque vec on F reacting G`.
+pub struct Torque {
+    /// The torque acting on `on`.
+    pub vector: Vector,
+    /// The frame the torque acts on.
+    pub on: FrameId,
+    /// The frame that receives the opposite torque, if any.
+    pub reacting: Option<FrameId>,
+}
+
+/// `constraint lhs == rhs`, as `lhs − rhs = 0`.
+pub struct Constraint {
+    /// `lhs − rhs`.
+    pub residual: ExprId,
+    /// Whether it involves speeds (then linear in them).
+    pub nonholonomic: bool,
+}
+
+impl Model {
+    /// Number of generalized coordinates.
+    pub fn nq(&self) -> usize {
+        self.coordinates.len()
+    }
+}

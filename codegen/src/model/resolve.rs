@@ -1,0 +1,990 @@
+//! Name resolution and checking: walks the statements in order, binds each
+//! name, evaluates every expression into the engine's pool with its type
+//! (scalar, vector, point, frame) and checks each rule of the language where
+//! the offending token is at hand.
+
+use super::{
+    Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Model, NEWTONIAN, ORIGIN,
+    Particle, Point, PointId, Torque, Vector,
+};
+use crate::expr::{ExprId, Func, Pool, Sym, SymKinds};
+use crate::language::ast::{BinOp, Expr, Field, Statement, System};
+use proc_macro2::{Ident, Span};
+use std::collections::HashMap;
+
+/// Resolves and checks a parsed system; all errors are reported together.
+pub fn resolve(system: &System) -> syn::Result<Model> {
+    let mut resolver = Resolver::new(system);
+    for statement in &system.statements {
+        resolver.statement(statement);
+    }
+    resolver.finish()
+}
+
+/// The built-in names, which no statement may define again.
+const BUILTINS: [&str; 3] = ["N", "O", "t"];
+
+/// The scalar functions of the language, with `dt`.
+const FUNCTIONS: [(&str, Option<Func>); 8] = [
+    ("sin", Some(Func::Sin)),
+    ("cos", Some(Func::Cos)),
+    ("tan", Some(Func::Tan)),
+    ("sqrt", Some(Func::Sqrt)),
+    ("exp", Some(Func::Exp)),
+    ("ln", Some(Func::Ln)),
+    ("abs", Some(Func::Abs)),
+    ("dt", None),
+];
+
+/// The rotations a frame statement may use, by axis.
+const ROTATIONS: [&str; 3] = ["rotate_x", "rotate_y", "rotate_z"];
+
+/// Axis names of unit vectors and joint axes.
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// What a name stands for at the point of use.
+#[derive(Clone, Copy, Debug)]
+enum Binding {
+    Scalar(Sym),
+    Frame(FrameId),
+    Point(PointId),
+    Body,
+    Particle,
+}
+
+impl Binding {
+    fn describe(self) -> &'static str {
+        match self {
+            Binding::Scalar(Sym::Param(_)) => "a parameter",
+            Binding::Scalar(Sym::Coord(_)) => "a coordinate",
+            Binding::Scalar(Sym::Input(_)) => "an input",
+            Binding::Scalar(_) => "a built-in scalar",
+            Binding::Frame(_) => "a frame",
+            Binding::Point(_) => "a point",
+            Binding::Body => "a body",
+            Binding::Particle => "a particle",
+        }
+    }
+}
+
+/// Where an expression is used, which decides the symbols it may contain.
+#[derive(Clone, Copy)]
+struct Use {
+    allowed: SymKinds,
+    role: &'static str,
+}
+
+const GEOMETRY: Use = Use {
+    allowed: SymKinds::TIME.union(SymKinds::PARAM).union(SymKinds::COORD),
+    role: "geometry (frame angles and point positions)",
+};
+const MASS: Use = Use {
+    allowed: SymKinds::PARAM,
+    role: "mass and inertia, which may depend on parameters only",
+};
+const GRAVITY: Use = Use {
+    allowed: SymKinds::PARAM,
+    role: "gravity, which may depend on parameters only",
+};
+const LOAD: Use = Use {
+    allowed: SymKinds::TIME
+        .union(SymKinds::PARAM)
+        .union(SymKinds::COORD)
+        .union(SymKinds::SPEED)
+        .union(SymKinds::INPUT),
+    role: "a load",
+};
+const POTENTIAL: Use = Use {
+    allowed: SymKinds::PARAM.union(SymKinds::COORD),
+    role: "a potential, which may depend on coordinates and parameters only",
+};
+const DISSIPATION: Use = Use {
+    allowed: SymKinds::PARAM
+        .union(SymKinds::COORD)
+        .union(SymKinds::SPEED),
+    role: "a dissipation function, which may depend on coordinates, speeds and parameters only",
+};
+const CONSTRAINT: Use = Use {
+    allowed: SymKinds::TIME
+        .union(SymKinds::PARAM)
+        .union(SymKinds::COORD)
+        .union(SymKinds::SPEED),
+    role: "a constraint, which may not depend on inputs",
+};
+const EXPONENT: Use = Use {
+    allowed: SymKinds::EMPTY,
+    role: "an exponent, which must be a constant integer",
+};
+
+/// A typed value of an expression.
+enum Value {
+    Scalar(ExprId),
+    Vector(Vector),
+    /// A point given as a base point plus an offset.
+    Point(PointId, Vector),
+    Frame(FrameId),
+}
+
+impl Value {
+    fn describe(&self) -> &'static str {
+        match self {
+            Value::Scalar(_) => "a scalar",
+            Value::Vector(_) => "a vector",
+            Value::Point(..) => "a point",
+            Value::Frame(_) => "a frame",
+        }
+    }
+}
+
+struct Resolver {
+    pool: Pool,
+    errors: Errors,
+    bindings: HashMap<String, (Binding, Span)>,
+    /// Every name some statement defines, for "used before its definition".
+    defined_anywhere: HashMap<String, Span>,
+    model: Model,
+}
+
+impl Resolver {
+    fn new(system: &System) -> Resolver {
+        let pool = Pool::new();
+        let zero = pool.zero();
+        let mut bindings = HashMap::new();
+        let builtin = Span::call_site();
+        bindings.insert("N".to_string(), (Binding::Frame(NEWTONIAN), builtin));
+        bindings.insert("O".to_string(), (Binding::Point(ORIGIN), builtin));
+        bindings.insert("t".to_string(), (Binding::Scalar(Sym::Time), builtin));
+        Resolver {
+            pool,
+            errors: Errors::default(),
+            bindings,
+            defined_anywhere: defined_names(system),
+            model: Model {
+                docs: system.docs.clone(),
+                public: system.public,
+                name: system.name.clone(),
+                parameters: Vec::new(),
+                coordinates: Vec::new(),
+                inputs: Vec::new(),
+                frames: vec![Frame {
+                    name: "N".to_string(),
+                    placement: None,
+                }],
+                points: vec![Point {
+                    name: "O".to_string(),
+                    placement: None,
+                }],
+                bodies: Vec::new(),
+                particles: Vec::new(),
+                gravity: None,
+                forces: Vec::new(),
+                torques: Vec::new(),
+                potential: zero,
+                dissipation: zero,
+                constraints: Vec::new(),
+                pool: Pool::default(),
+            },
+        }
+    }
+
+    fn finish(mut self) -> syn::Result<Model> {
+        if self.model.coordinates.is_empty() {
+            self.errors.push(
+                self.model.name.span(),
+                "a system needs at least one generalized coordinate: add `coordinates q1, ...;`",
+            );
+        }
+        self.model.pool = self.pool;
+        self.errors.finish(self.model)
+    }
+
+    // ----- statements -------------------------------------------------
+
+    fn statement(&mut self, statement: &Statement) {
+        match statement {
+            Statement::Parameters(names) => self.declare_scalars(names, Sym::Param),
+            Statement::Coordinates(names) => self.declare_scalars(names, Sym::Coord),
+            Statement::Inputs(names) => self.declare_scalars(names, Sym::Input),
+            Statement::Frame { name, value } => self.frame_statement(name, value),
+            Statement::Point { name, value } => {
+                if let Some(placement) = self.point_value(value, GEOMETRY) {
+                    self.define_point(name, Some(placement));
+                }
+            }
+            Statement::Body { name, fields } => self.body(name, fields),
+            Statement::Particle { name, fields } => self.particle(name, fields),
+            Statement::Joint { kind, name, fields } => self.joint(kind, name, fields),
+            Statement::Gravity { value, .. } => {
+                if let Some(g) = self.vector(value, GRAVITY) {
+                    let total = match self.model.gravity.take() {
+                        Some(previous) => previous.add(&g, &mut self.pool),
+                        None => g,
+                    };
+                    self.model.gravity = Some(total);
+                }
+            }
+            Statement::Force { value, at, .. } => {
+                let vector = self.vector(value, LOAD);
+                let at = self.point(at, GEOMETRY);
+                if let (Some(vector), Some(at)) = (vector, at) {
+                    self.model.forces.push(Force { vector, at });
+                }
+            }
+            Statement::Torque {
+                value,
+                on,
+                reacting,
+                ..
+            } => self.torque(value, on, reacting.as_ref()),
+            Statement::Potential { value, .. } => {
+                if let Some(v) = self.scalar(value, POTENTIAL) {
+                    self.model.potential = self.pool.add(self.model.potential, v);
+                }
+            }
+            Statement::Dissipation { value, .. } => {
+                if let Some(d) = self.scalar(value, DISSIPATION) {
+                    self.model.dissipation = self.pool.add(self.model.dissipation, d);
+                }
+            }
+            Statement::Constraint {
+                keyword, lhs, rhs, ..
+            } => self.constraint(keyword, lhs, rhs),
+        }
+    }
+
+    fn declare_scalars(&mut self, names: &[Ident], sym: fn(u32) -> Sym) {
+        for name in names {
+            let list = match sym(0) {
+                Sym::Param(_) => &mut self.model.parameters,
+                Sym::Coord(_) => &mut self.model.coordinates,
+                _ => &mut self.model.inputs,
+            };
+            let index = list.len() as u32;
+            list.push(name.clone());
+            self.define(name, Binding::Scalar(sym(index)));
+        }
+    }
+
+    fn frame_statement(&mut self, name: &Ident, value: &Expr) {
+        let Expr::MethodCall {
+            receiver,
+            method,
+            args,
+            span,
+        } = value
+        else {
+            self.errors.push(
+                value.span(),
+                format!(
+                    "expected a rotation of a frame, such as `N.rotate_z(angle)`, for frame `{name}`"
+                ),
+            );
+            return;
+        };
+        let parent = self.frame_name(receiver);
+        let axis = ROTATIONS.iter().position(|r| method == r);
+        if axis.is_none() {
+            self.errors.push(
+                method.span(),
+                format!(
+                    "unknown method `{method}`; a frame is made with `rotate_x`, `rotate_y` or `rotate_z`"
+                ),
+            );
+        }
+        let angle = match args.as_slice() {
+            [angle] => self.scalar(angle, GEOMETRY),
+            _ => {
+                self.errors.push(
+                    *span,
+                    format!("`{method}` takes one argument, the angle; found {}", args.len()),
+                );
+                None
+            }
+        };
+        if let (Some(parent), Some(axis), Some(angle)) = (parent, axis, angle) {
+            self.define_frame(name, parent, axis, angle);
+        }
+    }
+
+    fn body(&mut self, name: &Ident, fields: &[Field]) {
+        let [mass, center, frame, inertia] =
+            self.fields(name, "body", fields, ["mass", "center", "frame", "inertia"]);
+        let mass = mass.and_then(|e| self.mass(e));
+        let center = center.and_then(|e| self.point(e, GEOMETRY));
+        let frame = frame.and_then(|e| self.frame(e));
+        let inertia = inertia.and_then(|e| self.inertia(e));
+        self.define(name, Binding::Body);
+        if let (Some(mass), Some(center), Some(frame), Some(inertia)) =
+            (mass, center, frame, inertia)
+        {
+            self.model.bodies.push(Body {
+                name: name.clone(),
+                mass,
+                center,
+                frame,
+                inertia,
+            });
+        }
+    }
+
+    fn particle(&mut self, name: &Ident, fields: &[Field]) {
+        let [mass, at] = self.fields(name, "particle", fields, ["mass", "at"]);
+        let mass = mass.and_then(|e| self.mass(e));
+        let at = at.and_then(|e| self.point(e, GEOMETRY));
+        self.define(name, Binding::Particle);
+        if let (Some(mass), Some(at)) = (mass, at) {
+            self.model.particles.push(Particle {
+                name: name.clone(),
+                mass,
+                at,
+            });
+        }
+    }
+
+    /// `joint revolute J { parent: F, child: B, axis: z, coordinate: q, at: P };`
+    /// makes frame `B = F.rotate_z(q)` and point `J = P`;
+    /// `joint prismatic J { ... }` makes `B` parallel to `F` and
+    /// `J = P + q * F.z`.
+    fn joint(&mut self, kind: &Ident, name: &Ident, fields: &[Field]) {
+        let revolute = match kind.to_string().as_str() {
+            "revolute" => true,
+            "prismatic" => false,
+            _ => {
+                self.errors.push(
+                    kind.span(),
+                    format!("unknown joint kind `{kind}`; expected `revolute` or `prismatic`"),
+                );
+                return;
+            }
+        };
+        let [parent, child, axis, coordinate, at] = self.fields(
+            name,
+            "joint",
+            fields,
+            ["parent", "child", "axis", "coordinate", "at"],
+        );
+        let parent = parent.and_then(|e| self.frame(e));
+        let axis = axis.and_then(|e| self.axis_name(e));
+        let coordinate = coordinate.and_then(|e| self.scalar(e, GEOMETRY));
+        let at = at.and_then(|e| self.point_value(e, GEOMETRY));
+        let child = child.and_then(|e| match e {
+            Expr::Name(ident) => Some(ident),
+            other => {
+                self.errors.push(
+                    other.span(),
+                    "expected the name of the new child frame",
+                );
+                None
+            }
+        });
+        let (Some(parent), Some(axis), Some(coordinate), Some((base, offset)), Some(child)) =
+            (parent, axis, coordinate, at, child)
+        else {
+            return;
+        };
+        if revolute {
+            self.define_frame(child, parent, axis, coordinate);
+            self.define_point(name, Some((base, offset)));
+        } else {
+            let zero = self.pool.zero();
+            self.define_frame(child, parent, axis, zero);
+            let slide = Vector::unit(&self.pool, parent, axis).scale(coordinate, &mut self.pool);
+            let offset = offset.add(&slide, &mut self.pool);
+            self.define_point(name, Some((base, offset)));
+        }
+    }
+
+    fn torque(&mut self, value: &Expr, on: &Expr, reacting: Option<&Expr>) {
+        let vector = self.vector(value, LOAD);
+        let on = self.frame(on);
+        let reacting = match reacting {
+            Some(e) => self.frame(e).map(Some),
+            None => Some(None),
+        };
+        if let (Some(vector), Some(on), Some(reacting)) = (vector, on, reacting) {
+            self.model.torques.push(Torque {
+                vector,
+                on,
+                reacting,
+            });
+        }
+    }
+
+    fn constraint(&mut self, keyword: &Ident, lhs: &Expr, rhs: &Expr) {
+        let (Some(l), Some(r)) = (self.scalar(lhs, CONSTRAINT), self.scalar(rhs, CONSTRAINT))
+        else {
+            return;
+        };
+        let residual = self.pool.sub(l, r);
+        let kinds = self.pool.kinds(residual);
+        let span = crate::language::ast::join(keyword.span(), rhs.span());
+        if !kinds.intersects(SymKinds::COORD.union(SymKinds::SPEED)) {
+            self.errors.push(
+                span,
+                "this constraint involves no coordinate or speed: it constrains nothing",
+            );
+            return;
+        }
+        let nonholonomic = kinds.intersects(SymKinds::SPEED);
+        if nonholonomic && !self.linear_in_speeds(residual) {
+            self.errors.push(
+                span,
+                "a nonholonomic constraint must be linear in the speeds `dt(q)`: \
+                 its coefficients of the speeds may depend on coordinates, parameters and `t` only",
+            );
+            return;
+        }
+        self.model.constraints.push(Constraint {
+            residual,
+            nonholonomic,
+        });
+    }
+
+    fn linear_in_speeds(&mut self, residual: ExprId) -> bool {
+        (0..self.model.coordinates.len() as u32).all(|i| {
+            let coefficient = self.pool.diff(residual, Sym::Speed(i));
+            !self.pool.kinds(coefficient).intersects(SymKinds::SPEED)
+        })
+    }
+
+    // ----- fields of bodies, particles and joints ------------------------
+
+    /// Picks the named fields out of a `{ ... }` block, reporting unknown,
+    /// repeated and missing ones.
+    fn fields<'a, const K: usize>(
+        &mut self,
+        owner: &Ident,
+        what: &str,
+        fields: &'a [Field],
+        expected: [&str; K],
+    ) -> [Option<&'a Expr>; K] {
+        let mut found: [Option<&'a Expr>; K] = [None; K];
+        for field in fields {
+            match expected.iter().position(|name| field.name == name) {
+                Some(i) if found[i].is_some() => self.errors.push(
+                    field.name.span(),
+                    format!("field `{}` is given twice", field.name),
+                ),
+                Some(i) => found[i] = Some(&field.value),
+                None => self.errors.push(
+                    field.name.span(),
+                    format!(
+                        "unknown field `{}` of a {what}; expected {}",
+                        field.name,
+                        list(&expected)
+                    ),
+                ),
+            }
+        }
+        let missing: Vec<&str> = expected
+            .iter()
+            .zip(&found)
+            .filter(|(_, value)| value.is_none())
+            .map(|(name, _)| *name)
+            .collect();
+        if !missing.is_empty() {
+            self.errors.push(
+                owner.span(),
+                format!(
+                    "{what} `{owner}` is missing {} {}; a {what} needs {}",
+                    if missing.len() == 1 { "the field" } else { "the fields" },
+                    list(&missing),
+                    list(&expected)
+                ),
+            );
+        }
+        found
+    }
+
+    fn mass(&mut self, e: &Expr) -> Option<ExprId> {
+        let mass = self.scalar(e, MASS)?;
+        if let Some(n) = self.pool.as_number(mass) {
+            if n.is_zero() || n.is_negative() {
+                self.errors.push(
+                    e.span(),
+                    "a mass must be positive; a frame without mass needs no body at all",
+                );
+                return None;
+            }
+        }
+        Some(mass)
+    }
+
+    /// `[Ixx, Iyy, Izz]` or `[Ixx, Iyy, Izz, Ixy, Iyz, Izx]`.
+    fn inertia(&mut self, e: &Expr) -> Option<[[ExprId; 3]; 3]> {
+        let Expr::Array { items, span } = e else {
+            self.errors.push(
+                e.span(),
+                "expected the inertia as a list: `[Ixx, Iyy, Izz]` or `[Ixx, Iyy, Izz, Ixy, Iyz, Izx]`",
+            );
+            return None;
+        };
+        if items.len() != 3 && items.len() != 6 {
+            self.errors.push(
+                *span,
+                format!(
+                    "an inertia lists 3 principal moments `[Ixx, Iyy, Izz]` or 6 entries \
+                     `[Ixx, Iyy, Izz, Ixy, Iyz, Izx]`; found {}",
+                    items.len()
+                ),
+            );
+            return None;
+        }
+        let mut values = Vec::with_capacity(6);
+        for (i, item) in items.iter().enumerate() {
+            let value = self.scalar(item, MASS);
+            if let Some(n) = value.and_then(|v| self.pool.as_number(v)) {
+                if i < 3 && n.is_negative() {
+                    self.errors.push(
+                        item.span(),
+                        "a principal moment of inertia cannot be negative",
+                    );
+                }
+            }
+            values.push(value);
+        }
+        let values: Option<Vec<_>> = values.into_iter().collect();
+        let v = values?;
+        let zero = self.pool.zero();
+        let (xy, yz, zx) = if v.len() == 6 {
+            (v[3], v[4], v[5])
+        } else {
+            (zero, zero, zero)
+        };
+        Some([[v[0], xy, zx], [xy, v[1], yz], [zx, yz, v[2]]])
+    }
+
+    fn axis_name(&mut self, e: &Expr) -> Option<usize> {
+        if let Expr::Name(ident) = e {
+            if let Some(axis) = AXES.iter().position(|a| ident == a) {
+                return Some(axis);
+            }
+        }
+        self.errors.push(
+            e.span(),
+            "expected a joint axis: `x`, `y` or `z` (an axis of the parent frame)",
+        );
+        None
+    }
+
+    // ----- definitions --------------------------------------------------
+
+    fn define(&mut self, name: &Ident, binding: Binding) -> bool {
+        let text = name.to_string();
+        if BUILTINS.contains(&text.as_str()) || FUNCTIONS.iter().any(|(f, _)| *f == text) {
+            self.errors.push(
+                name.span(),
+                format!("`{name}` is a built-in name and cannot be defined again; choose another name"),
+            );
+            return false;
+        }
+        if let Some((previous, _)) = self.bindings.get(&text) {
+            self.errors.push(
+                name.span(),
+                format!(
+                    "`{name}` is already defined as {}; every name must be unique",
+                    previous.describe()
+                ),
+            );
+            return false;
+        }
+        self.bindings.insert(text, (binding, name.span()));
+        true
+    }
+
+    fn define_frame(
+        &mut self,
+        name: &Ident,
+        parent: FrameId,
+        axis: usize,
+        angle: ExprId,
+    ) {
+        let id = FrameId(self.model.frames.len());
+        if self.define(name, Binding::Frame(id)) {
+            self.model.frames.push(Frame {
+                name: name.to_string(),
+                placement: Some(FramePlacement {
+                    parent,
+                    axis,
+                    angle,
+                }),
+            });
+        }
+    }
+
+    fn define_point(&mut self, name: &Ident, placement: Option<(PointId, Vector)>) {
+        let id = PointId(self.model.points.len());
+        if self.define(name, Binding::Point(id)) {
+            self.model.points.push(Point {
+                name: name.to_string(),
+                placement,
+            });
+        }
+    }
+
+    // ----- typed evaluation ---------------------------------------------
+
+    fn scalar(&mut self, e: &Expr, usage: Use) -> Option<ExprId> {
+        match self.value(e, usage)? {
+            Value::Scalar(s) => Some(s),
+            other => self.mismatch(e, "a scalar", &other),
+        }
+    }
+
+    fn vector(&mut self, e: &Expr, usage: Use) -> Option<Vector> {
+        match self.value(e, usage)? {
+            Value::Vector(v) => Some(v),
+            Value::Scalar(s) if self.pool.is_zero(s) => Some(Vector::default()),
+            other => self.mismatch(e, "a vector", &other),
+        }
+    }
+
+    fn point_value(&mut self, e: &Expr, usage: Use) -> Option<(PointId, Vector)> {
+        match self.value(e, usage)? {
+            Value::Point(base, offset) => Some((base, offset)),
+            other => self.mismatch(e, "a point", &other),
+        }
+    }
+
+    /// A point, adding an anonymous one where the expression offsets a
+    /// named point (`center: J1 + L/2 * B1.x`).
+    fn point(&mut self, e: &Expr, usage: Use) -> Option<PointId> {
+        let (base, offset) = self.point_value(e, usage)?;
+        if offset.parts.is_empty() {
+            return Some(base);
+        }
+        self.model.points.push(Point {
+            name: format!("{} + ...", self.model.points[base.0].name),
+            placement: Some((base, offset)),
+        });
+        Some(PointId(self.model.points.len() - 1))
+    }
+
+    fn frame(&mut self, e: &Expr) -> Option<FrameId> {
+        match self.value(e, GEOMETRY)? {
+            Value::Frame(f) => Some(f),
+            other => self.mismatch(e, "a frame", &other),
+        }
+    }
+
+    fn frame_name(&mut self, ident: &Ident) -> Option<FrameId> {
+        match self.lookup(ident)? {
+            Binding::Frame(f) => Some(f),
+            other => {
+                self.errors.push(
+                    ident.span(),
+                    format!("`{ident}` is {}; expected a frame", other.describe()),
+                );
+                None
+            }
+        }
+    }
+
+    fn mismatch<T>(&mut self, e: &Expr, expected: &str, found: &Value) -> Option<T> {
+        self.errors.push(
+            e.span(),
+            format!("expected {expected}, found {}", found.describe()),
+        );
+        None
+    }
+
+    fn lookup(&mut self, ident: &Ident) -> Option<Binding> {
+        let text = ident.to_string();
+        if let Some((binding, _)) = self.bindings.get(&text) {
+            return Some(*binding);
+        }
+        let message = if self.defined_anywhere.contains_key(&text) {
+            format!("`{ident}` is used before its definition; move its statement above this one")
+        } else if FUNCTIONS.iter().any(|(f, _)| *f == text) {
+            format!("`{ident}` is a function: call it as `{ident}(...)`")
+        } else {
+            format!(
+                "unknown name `{ident}`; expected a parameter, coordinate, input, frame or point defined above, or `t`"
+            )
+        };
+        self.errors.push(ident.span(), message);
+        None
+    }
+
+    /// Evaluates an expression to a typed value, reporting what is wrong at
+    /// the innermost offending token.
+    fn value(&mut self, e: &Expr, usage: Use) -> Option<Value> {
+        match e {
+            Expr::Number { text, span } => match self.pool.decimal(text) {
+                Some(n) => Some(Value::Scalar(n)),
+                None => {
+                    self.errors.push(*span, format!("`{text}` is not a number"));
+                    None
+                }
+            },
+            Expr::Name(ident) => self.name(ident, usage),
+            Expr::Member { base, member } => {
+                let frame = self.frame_name(base)?;
+                match AXES.iter().position(|a| member == a) {
+                    Some(axis) => Some(Value::Vector(Vector::unit(&self.pool, frame, axis))),
+                    None => {
+                        self.errors.push(
+                            member.span(),
+                            format!(
+                                "a frame has unit vectors `.x`, `.y` and `.z`; found `.{member}`"
+                            ),
+                        );
+                        None
+                    }
+                }
+            }
+            Expr::Call { func, args, span } => self.call(func, args, *span, usage),
+            Expr::MethodCall { method, span, .. } => {
+                self.errors.push(
+                    *span,
+                    format!(
+                        "`{method}(..)` is not a value; frames are made only by `frame B = F.rotate_z(angle);`"
+                    ),
+                );
+                None
+            }
+            Expr::Array { span, .. } => {
+                self.errors.push(*span, "a list `[..]` is allowed only as a body's inertia");
+                None
+            }
+            Expr::Paren { inner, .. } => self.value(inner, usage),
+            Expr::Neg { operand, .. } => match self.value(operand, usage)? {
+                Value::Scalar(s) => Some(Value::Scalar(self.pool.neg(s))),
+                Value::Vector(v) => Some(Value::Vector(v.neg(&mut self.pool))),
+                other => self.mismatch(operand, "a scalar or a vector", &other),
+            },
+            Expr::Binary {
+                op,
+                op_span,
+                lhs,
+                rhs,
+            } => self.binary(*op, *op_span, lhs, rhs, usage),
+        }
+    }
+
+    fn name(&mut self, ident: &Ident, usage: Use) -> Option<Value> {
+        match self.lookup(ident)? {
+            Binding::Scalar(sym) => {
+                let kind = sym.kind();
+                if !usage.allowed.contains(kind) {
+                    self.errors.push(
+                        ident.span(),
+                        format!(
+                            "{} `{ident}` cannot be used in {}",
+                            describe_kind(kind),
+                            usage.role
+                        ),
+                    );
+                    return None;
+                }
+                Some(Value::Scalar(self.pool.sym(sym)))
+            }
+            Binding::Frame(f) => Some(Value::Frame(f)),
+            Binding::Point(p) => Some(Value::Point(p, Vector::default())),
+            other @ (Binding::Body | Binding::Particle) => {
+                self.errors.push(
+                    ident.span(),
+                    format!(
+                        "`{ident}` is {} and has no value here; use its frame or its center point",
+                        other.describe()
+                    ),
+                );
+                None
+            }
+        }
+    }
+
+    fn call(&mut self, func: &Ident, args: &[Expr], span: Span, usage: Use) -> Option<Value> {
+        let Some((_, f)) = FUNCTIONS.iter().find(|(name, _)| func == name) else {
+            self.errors.push(
+                func.span(),
+                format!(
+                    "unknown function `{func}`; expected one of {}",
+                    list(&FUNCTIONS.map(|(name, _)| name))
+                ),
+            );
+            return None;
+        };
+        let [arg] = args else {
+            self.errors.push(
+                span,
+                format!("`{func}` takes one argument; found {}", args.len()),
+            );
+            return None;
+        };
+        match f {
+            Some(f) => {
+                let x = self.scalar(arg, usage)?;
+                Some(Value::Scalar(self.pool.func(*f, x)))
+            }
+            None => self.speed(func, arg, usage),
+        }
+    }
+
+    /// `dt(expr)`: the rate of a geometric expression (usually a coordinate).
+    fn speed(&mut self, func: &Ident, arg: &Expr, usage: Use) -> Option<Value> {
+        if !usage.allowed.contains(SymKinds::SPEED) {
+            self.errors.push(
+                func.span(),
+                format!("speeds `dt(..)` cannot be used in {}", usage.role),
+            );
+            return None;
+        }
+        let inner = Use {
+            allowed: usage.allowed.intersection(GEOMETRY.allowed),
+            role: "the argument of `dt`, which must be a coordinate or an expression of coordinates, parameters and `t`",
+        };
+        let x = self.scalar(arg, inner)?;
+        Some(Value::Scalar(self.pool.time_derivative(x)))
+    }
+
+    fn binary(
+        &mut self,
+        op: BinOp,
+        op_span: Span,
+        lhs: &Expr,
+        rhs: &Expr,
+        usage: Use,
+    ) -> Option<Value> {
+        if op == BinOp::Pow {
+            return self.power(lhs, rhs, usage);
+        }
+        let a = self.value(lhs, usage);
+        let b = self.value(rhs, usage);
+        let (a, b) = (a?, b?);
+        let pool = &mut self.pool;
+        let result = match (op, a, b) {
+            (BinOp::Add, Value::Scalar(x), Value::Scalar(y)) => Value::Scalar(pool.add(x, y)),
+            (BinOp::Sub, Value::Scalar(x), Value::Scalar(y)) => Value::Scalar(pool.sub(x, y)),
+            (BinOp::Mul, Value::Scalar(x), Value::Scalar(y)) => Value::Scalar(pool.mul(x, y)),
+            (BinOp::Div, Value::Scalar(x), Value::Scalar(y)) => {
+                if pool.is_zero(y) {
+                    self.errors.push(rhs.span(), "division by zero");
+                    return None;
+                }
+                Value::Scalar(pool.div(x, y))
+            }
+            (BinOp::Add, Value::Vector(u), Value::Vector(v)) => Value::Vector(u.add(&v, pool)),
+            (BinOp::Sub, Value::Vector(u), Value::Vector(v)) => {
+                let minus_v = v.neg(pool);
+                Value::Vector(u.add(&minus_v, pool))
+            }
+            (BinOp::Mul, Value::Scalar(s), Value::Vector(v))
+            | (BinOp::Mul, Value::Vector(v), Value::Scalar(s)) => Value::Vector(v.scale(s, pool)),
+            (BinOp::Div, Value::Vector(v), Value::Scalar(s)) => {
+                if pool.is_zero(s) {
+                    self.errors.push(rhs.span(), "division by zero");
+                    return None;
+                }
+                let inverse = pool.powi(s, -1);
+                Value::Vector(v.scale(inverse, pool))
+            }
+            (BinOp::Add, Value::Point(p, offset), Value::Vector(v)) => {
+                Value::Point(p, offset.add(&v, pool))
+            }
+            (BinOp::Sub, Value::Point(p, offset), Value::Vector(v)) => {
+                let minus_v = v.neg(pool);
+                Value::Point(p, offset.add(&minus_v, pool))
+            }
+            (op, a, b) => {
+                self.errors.push(op_span, operator_mismatch(op, &a, &b));
+                return None;
+            }
+        };
+        Some(result)
+    }
+
+    /// `base ^ exponent` with a constant integer exponent.
+    fn power(&mut self, lhs: &Expr, rhs: &Expr, usage: Use) -> Option<Value> {
+        let base = self.scalar(lhs, usage);
+        let exponent = self.scalar(rhs, EXPONENT);
+        let (base, exponent) = (base?, exponent?);
+        let integer = self
+            .pool
+            .as_rational(exponent)
+            .filter(|r| r.den == 1)
+            .and_then(|r| i32::try_from(r.num).ok());
+        let Some(n) = integer else {
+            self.errors.push(
+                rhs.span(),
+                "the exponent of `^` must be a constant integer (such as `2` or `-1`); use `sqrt(..)` for square roots",
+            );
+            return None;
+        };
+        if n < 0 && self.pool.is_zero(base) {
+            self.errors.push(lhs.span(), "division by zero: zero to a negative power");
+            return None;
+        }
+        Some(Value::Scalar(self.pool.powi(base, n)))
+    }
+}
+
+/// Every name that some statement defines, with its span.
+fn defined_names(system: &System) -> HashMap<String, Span> {
+    let mut names = HashMap::new();
+    let mut add = |ident: &Ident| {
+        names.entry(ident.to_string()).or_insert(ident.span());
+    };
+    for statement in &system.statements {
+        match statement {
+            Statement::Parameters(list) | Statement::Coordinates(list) | Statement::Inputs(list) => {
+                list.iter().for_each(&mut add)
+            }
+            Statement::Frame { name, .. }
+            | Statement::Point { name, .. }
+            | Statement::Body { name, .. }
+            | Statement::Particle { name, .. } => add(name),
+            Statement::Joint { name, fields, .. } => {
+                add(name);
+                for field in fields {
+                    if let (true, Expr::Name(child)) = (field.name == "child", &field.value) {
+                        add(child);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    names
+}
+
+fn describe_kind(kind: SymKinds) -> &'static str {
+    if kind == SymKinds::INPUT {
+        "the input"
+    } else if kind == SymKinds::COORD {
+        "the coordinate"
+    } else if kind == SymKinds::TIME {
+        "time"
+    } else {
+        "the parameter"
+    }
+}
+
+fn operator_mismatch(op: BinOp, a: &Value, b: &Value) -> String {
+    let (a, b) = (a.describe(), b.describe());
+    match op {
+        BinOp::Add | BinOp::Sub if a == "a point" || b == "a point" => format!(
+            "cannot {} {a} and {b}: a point is written `P + vector` or `P - vector`",
+            if op == BinOp::Add { "add" } else { "subtract" }
+        ),
+        BinOp::Add | BinOp::Sub => format!(
+            "cannot {} {a} and {b}: both sides must be scalars, or both vectors",
+            if op == BinOp::Add { "add" } else { "subtract" }
+        ),
+        BinOp::Mul => format!(
+            "cannot multiply {a} by {b}: expected a scalar times a scalar or a vector"
+        ),
+        BinOp::Div | BinOp::Pow => format!(
+            "cannot divide {a} by {b}: the divisor must be a scalar"
+        ),
+    }
+}
+
+fn list(names: &[&str]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    match quoted.as_slice() {
+        [] => String::new(),
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    }
+}

@@ -1,0 +1,341 @@
+//! Forward dynamics: the accelerations `q̈` that solve `M(q) q̈ = f`, and the
+//! total energy.
+
+use std::fmt;
+
+use nalgebra::{Cholesky, Const, SMatrix, SVector};
+
+use crate::MultibodySystem;
+
+/// A Cholesky pivot at most this fraction of the largest diagonal entry of the
+/// mass matrix counts as zero: the matrix is singular to working precision.
+const RELATIVE_PIVOT_TOLERANCE: f64 = 1e-14;
+
+/// Why the accelerations could not be computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum DynamicsError {
+    /// The time, a coordinate, a speed or an input is NaN or infinite.
+    NonFiniteState,
+    /// The mass matrix or the forcing has a NaN or infinite entry.
+    NonFiniteEquations,
+    /// The mass matrix is not safely positive definite: the Cholesky
+    /// factorisation `M = L Lᵀ` met a pivot `Lⱼⱼ²` that is not larger than
+    /// `1e-14` times the largest diagonal entry of `M`. Coordinate `index`
+    /// then has no inertia of its own beyond that of the coordinates before
+    /// it (a body without inertia about some axis, a gimbal lock, …).
+    SingularMassMatrix {
+        /// Index of the first failing pivot, which is the index of its
+        /// coordinate.
+        index: usize,
+        /// Name of that coordinate.
+        coordinate: &'static str,
+        /// The pivot: zero, negative or tiny.
+        pivot: f64,
+    },
+    /// The accelerations overflowed although the equations were finite and
+    /// the mass matrix passed the pivot test.
+    NonFiniteAccelerations,
+}
+
+impl fmt::Display for DynamicsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonFiniteState => f.write_str("non-finite time, coordinate, speed or input"),
+            Self::NonFiniteEquations => {
+                f.write_str("non-finite entry in the mass matrix or the forcing")
+            }
+            Self::SingularMassMatrix {
+                index,
+                coordinate,
+                pivot,
+            } => write!(
+                f,
+                "singular mass matrix: coordinate `{coordinate}` (index {index}) has no \
+                 inertia of its own (Cholesky pivot {pivot:e})"
+            ),
+            Self::NonFiniteAccelerations => f.write_str("the accelerations overflowed"),
+        }
+    }
+}
+
+impl std::error::Error for DynamicsError {}
+
+/// The accelerations `q̈` that solve `M(q) q̈ = f(t, q, q̇, u)`.
+///
+/// Solves by a Cholesky factorisation on the stack; allocates nothing. Never
+/// returns a non-finite value: a non-finite state or equation, or a mass
+/// matrix that is not safely positive definite, is an error. Only the lower
+/// triangle of `M` is read (generated mass matrices are symmetric by
+/// construction).
+pub fn accelerations<S, const NQ: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    qd: &[f64; NQ],
+    u: &[f64; NU],
+) -> Result<[f64; NQ], DynamicsError>
+where
+    S: MultibodySystem<NQ, NU>,
+{
+    if !(t.is_finite() && all_finite(q) && all_finite(qd) && all_finite(u)) {
+        return Err(DynamicsError::NonFiniteState);
+    }
+    let mass = system.mass_matrix(q);
+    let forcing = system.forcing(t, q, qd, u);
+    if !(mass.iter().all(all_finite) && all_finite(&forcing)) {
+        return Err(DynamicsError::NonFiniteEquations);
+    }
+    let mass = SMatrix::<f64, NQ, NQ>::from_fn(|i, j| mass[i][j]);
+    let factor = cholesky(mass).map_err(|pivot| DynamicsError::SingularMassMatrix {
+        index: pivot.index,
+        coordinate: S::COORDINATES[pivot.index],
+        pivot: pivot.value,
+    })?;
+    let qdd: [f64; NQ] = factor.solve(&SVector::from(forcing)).into();
+    if !all_finite(&qdd) {
+        return Err(DynamicsError::NonFiniteAccelerations);
+    }
+    Ok(qdd)
+}
+
+/// The total energy `T(q, q̇) + V(q)`.
+pub fn energy<S, const NQ: usize, const NU: usize>(system: &S, q: &[f64; NQ], qd: &[f64; NQ]) -> f64
+where
+    S: MultibodySystem<NQ, NU>,
+{
+    system.kinetic_energy(q, qd) + system.potential_energy(q)
+}
+
+/// A Cholesky pivot that is not safely positive.
+struct Pivot {
+    index: usize,
+    value: f64,
+}
+
+/// Factorises a finite `M = L Lᵀ`, or reports its first pivot that is not
+/// safely positive.
+fn cholesky<const N: usize>(mass: SMatrix<f64, N, N>) -> Result<Cholesky<f64, Const<N>>, Pivot> {
+    let tolerance = RELATIVE_PIVOT_TOLERANCE * mass.diagonal().max().max(0.0);
+    // Never fails; a bad pivot leaves NaN behind it, but every row of L up to
+    // it is exact before its diagonal, which is all the pivot scan reads.
+    let factor = Cholesky::new_unchecked(mass);
+    let l = factor.l_dirty();
+    for j in 0..N {
+        let pivot = mass[(j, j)] - l.row(j).columns(0, j).norm_squared();
+        if pivot.is_nan() || pivot <= tolerance {
+            return Err(Pivot {
+                index: j,
+                value: pivot,
+            });
+        }
+    }
+    Ok(factor)
+}
+
+/// Whether every entry is finite.
+fn all_finite<const N: usize>(values: &[f64; N]) -> bool {
+    values.iter().all(|v| v.is_finite())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_systems::{FixedEquations, Pendulum, RotatingBar};
+    use std::f64::consts::FRAC_PI_2;
+
+    const PENDULUM: Pendulum = Pendulum {
+        m: 2.0,
+        l: 0.5,
+        g: 9.81,
+    };
+
+    fn fixed(mass: [[f64; 2]; 2]) -> FixedEquations {
+        FixedEquations {
+            mass,
+            forcing: [1.0, 2.0],
+        }
+    }
+
+    #[test]
+    fn pendulum_acceleration_is_minus_g_over_l_sin_theta() {
+        for theta in [-3.0, -1.0, 0.0, 0.3, 2.5] {
+            let [qdd] = accelerations(&PENDULUM, 0.0, &[theta], &[0.7], &[]).unwrap();
+            let expected = -PENDULUM.g / PENDULUM.l * f64::sin(theta);
+            assert!((qdd - expected).abs() <= 1e-14 * PENDULUM.g / PENDULUM.l);
+        }
+    }
+
+    #[test]
+    fn rotating_bar_accelerations_match_its_closed_form() {
+        let bar = RotatingBar {
+            m: 3.0,
+            l: 2.0,
+            d: 0.4,
+        };
+        let (q, qd, u) = ([0.2, 0.7], [1.5, -0.8], [0.3, -0.1]);
+        let qdd = accelerations(&bar, 0.0, &q, &qd, &u).unwrap();
+        let i = bar.m * bar.l * bar.l / 12.0;
+        let (s, c) = q[1].sin_cos();
+        let expected = [
+            (2.0 * i * s * c * qd[0] * qd[1] + u[0]) / (bar.m * bar.d * bar.d + i * c * c),
+            -s * c * qd[0] * qd[0] + u[1] / i,
+        ];
+        for (got, want) in qdd.iter().zip(expected) {
+            assert!(
+                (got - want).abs() <= 1e-14 * want.abs().max(1.0),
+                "{got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn coupled_mass_matrix_is_solved_exactly() {
+        // [[4, 2], [2, 3]] x = [1, 2]  →  x = [-1/8, 3/4]
+        let qdd = accelerations(
+            &fixed([[4.0, 2.0], [2.0, 3.0]]),
+            0.0,
+            &[0.0; 2],
+            &[0.0; 2],
+            &[],
+        );
+        let qdd = qdd.unwrap();
+        assert!((qdd[0] + 0.125).abs() < 1e-15 && (qdd[1] - 0.75).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bar_along_its_axis_of_rotation_has_a_singular_mass_matrix() {
+        let bar = RotatingBar {
+            m: 1.0,
+            l: 1.0,
+            d: 0.0,
+        };
+        let error = accelerations(&bar, 0.0, &[0.0, FRAC_PI_2], &[0.0; 2], &[0.0; 2]);
+        match error {
+            Err(DynamicsError::SingularMassMatrix {
+                index: 0,
+                coordinate: "phi",
+                pivot,
+            }) => assert!(pivot.abs() < 1e-20),
+            other => panic!("expected a singular pivot for phi, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn nearly_singular_mass_matrix_is_an_error_and_mildly_ill_conditioned_is_not() {
+        let nearly_singular = fixed([[1.0, 0.0], [0.0, 1e-16]]);
+        let error = accelerations(&nearly_singular, 0.0, &[0.0; 2], &[0.0; 2], &[]).unwrap_err();
+        assert_eq!(
+            error,
+            DynamicsError::SingularMassMatrix {
+                index: 1,
+                coordinate: "b",
+                pivot: 1e-16
+            }
+        );
+        let ill_conditioned = fixed([[1.0, 0.0], [0.0, 1e-12]]);
+        let qdd = accelerations(&ill_conditioned, 0.0, &[0.0; 2], &[0.0; 2], &[]).unwrap();
+        assert!((qdd[1] - 2e12).abs() < 1e-3);
+    }
+
+    #[test]
+    fn rank_deficient_and_indefinite_mass_matrices_report_their_pivot() {
+        let cases = [
+            ([[1.0, 1.0], [1.0, 1.0]], 0.0),
+            ([[1.0, 2.0], [2.0, 1.0]], -3.0),
+        ];
+        for (mass, expected_pivot) in cases {
+            match accelerations(&fixed(mass), 0.0, &[0.0; 2], &[0.0; 2], &[]) {
+                Err(DynamicsError::SingularMassMatrix {
+                    index: 1, pivot, ..
+                }) => {
+                    assert!((pivot - expected_pivot).abs() < 1e-15, "pivot {pivot}")
+                }
+                other => panic!("expected pivot 1 to fail for {mass:?}, got {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn zero_and_negative_leading_inertia_fail_at_the_first_pivot() {
+        for leading in [0.0, -1.0] {
+            let error = accelerations(
+                &fixed([[leading, 0.0], [0.0, 1.0]]),
+                0.0,
+                &[0.0; 2],
+                &[0.0; 2],
+                &[],
+            );
+            assert!(matches!(
+                error,
+                Err(DynamicsError::SingularMassMatrix { index: 0, .. })
+            ));
+        }
+    }
+
+    #[test]
+    fn non_finite_state_is_an_error() {
+        let bar = RotatingBar {
+            m: 1.0,
+            l: 1.0,
+            d: 1.0,
+        };
+        let finite = ([0.1, 0.2], [0.3, 0.4], [0.5, 0.6]);
+        let states = [
+            (f64::NAN, finite.0, finite.1, finite.2),
+            (0.0, [f64::INFINITY, 0.2], finite.1, finite.2),
+            (0.0, finite.0, [0.3, f64::NAN], finite.2),
+            (0.0, finite.0, finite.1, [f64::NEG_INFINITY, 0.6]),
+        ];
+        for (t, q, qd, u) in states {
+            let result = accelerations(&bar, t, &q, &qd, &u);
+            assert_eq!(result, Err(DynamicsError::NonFiniteState));
+        }
+    }
+
+    #[test]
+    fn non_finite_equations_are_an_error() {
+        let nan_mass = fixed([[1.0, f64::NAN], [f64::NAN, 1.0]]);
+        let infinite_forcing = FixedEquations {
+            mass: [[1.0, 0.0], [0.0, 1.0]],
+            forcing: [f64::INFINITY, 0.0],
+        };
+        for system in [nan_mass, infinite_forcing] {
+            let result = accelerations(&system, 0.0, &[0.0; 2], &[0.0; 2], &[]);
+            assert_eq!(result, Err(DynamicsError::NonFiniteEquations));
+        }
+    }
+
+    #[test]
+    fn overflowing_accelerations_are_an_error() {
+        let huge = FixedEquations {
+            mass: [[1e-300, 0.0], [0.0, 1e-300]],
+            forcing: [1e300, 0.0],
+        };
+        let result = accelerations(&huge, 0.0, &[0.0; 2], &[0.0; 2], &[]);
+        assert_eq!(result, Err(DynamicsError::NonFiniteAccelerations));
+    }
+
+    #[test]
+    fn energy_is_kinetic_plus_potential() {
+        let (theta, omega) = (0.4, -1.3);
+        let (m, l, g) = (PENDULUM.m, PENDULUM.l, PENDULUM.g);
+        let expected = 0.5 * m * l * l * omega * omega - m * g * l * f64::cos(theta);
+        assert!((energy(&PENDULUM, &[theta], &[omega]) - expected).abs() < 1e-14);
+    }
+
+    #[test]
+    fn singular_mass_matrix_message_names_the_coordinate_and_pivot() {
+        let error = DynamicsError::SingularMassMatrix {
+            index: 1,
+            coordinate: "theta",
+            pivot: -3.0,
+        };
+        let message = error.to_string();
+        assert!(message.starts_with("singular mass matrix"), "{message}");
+        assert!(
+            message.contains("`theta` (index 1)") && message.contains("-3e0"),
+            "{message}"
+        );
+    }
+}
