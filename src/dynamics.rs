@@ -52,7 +52,7 @@ impl fmt::Display for DynamicsError {
             } => write!(
                 f,
                 "singular mass matrix: coordinate `{coordinate}` (index {index}) has no \
-                 inertia of its own (Cholesky pivot {pivot:e})"
+                 inertia of its own (Cholesky pivot {pivot:.3e})"
             ),
             Self::NonFiniteAccelerations => f.write_str("the accelerations overflowed"),
         }
@@ -334,7 +334,7 @@ mod tests {
         let message = error.to_string();
         assert!(message.starts_with("singular mass matrix"), "{message}");
         assert!(
-            message.contains("`theta` (index 1)") && message.contains("-3e0"),
+            message.contains("`theta` (index 1)") && message.contains("pivot -3.000e0"),
             "{message}"
         );
     }

@@ -85,9 +85,24 @@ macro_rules! check_unconstrained {
                 &flat(&matrix::<$nq, $nq>(&s["M"])),
                 TOL,
             );
-            assert_close(&format!("{at} f"), &$sys.forcing(t, &q, &qd, &u), &array::<$nq>(&s["f"]), TOL);
-            assert_close(&format!("{at} T"), &[$sys.kinetic_energy(&q, &qd)], &[s["T"].as_f64().unwrap()], TOL);
-            assert_close(&format!("{at} V"), &[$sys.potential_energy(&q)], &[s["V"].as_f64().unwrap()], TOL);
+            assert_close(
+                &format!("{at} f"),
+                &$sys.forcing(t, &q, &qd, &u),
+                &array::<$nq>(&s["f"]),
+                TOL,
+            );
+            assert_close(
+                &format!("{at} T"),
+                &[$sys.kinetic_energy(&q, &qd)],
+                &[s["T"].as_f64().unwrap()],
+                TOL,
+            );
+            assert_close(
+                &format!("{at} V"),
+                &[$sys.potential_energy(&q)],
+                &[s["V"].as_f64().unwrap()],
+                TOL,
+            );
         }
     };
 }
@@ -136,9 +151,17 @@ fn seed_3_constrained_pendulum_matches_reference() {
             &flat(&matrix::<2, 3>(&s["A"])),
             TOL,
         );
-        assert_close(&format!("state {i} b"), &sys.constraint_bias(t, &q, &qd), &array::<2>(&s["b"]), TOL);
+        assert_close(
+            &format!("state {i} b"),
+            &sys.constraint_bias(t, &q, &qd),
+            &array::<2>(&s["b"]),
+            TOL,
+        );
         let residual = sys.constraint_residual(t, &q);
-        assert!(residual.iter().all(|r| r.abs() < 1e-12), "state {i}: residual {residual:?}");
+        assert!(
+            residual.iter().all(|r| r.abs() < 1e-12),
+            "state {i}: residual {residual:?}"
+        );
     }
 }
 

@@ -266,7 +266,9 @@ impl Writer<'_> {
         match self.pool.node(term) {
             Node::Number(n) if n.is_negative() => (true, Some(number(negate(*n)))),
             Node::Mul(factors) => match self.pool.as_number(factors[0]) {
-                Some(c) if c.is_negative() => (true, Some(self.product_of(negate(c), &factors[1..]))),
+                Some(c) if c.is_negative() => {
+                    (true, Some(self.product_of(negate(c), &factors[1..])))
+                }
                 _ => (false, None),
             },
             _ => (false, None),
@@ -277,9 +279,15 @@ impl Writer<'_> {
         match self.pool.node(e) {
             Node::Mul(factors) => match self.pool.as_number(factors[0]) {
                 Some(c) => self.product_of(c, &factors[1..]),
-                None => self.product_of(Number::Rational(crate::expr::Rational { num: 1, den: 1 }), factors),
+                None => self.product_of(
+                    Number::Rational(crate::expr::Rational { num: 1, den: 1 }),
+                    factors,
+                ),
             },
-            _ => self.product_of(Number::Rational(crate::expr::Rational { num: 1, den: 1 }), &[e]),
+            _ => self.product_of(
+                Number::Rational(crate::expr::Rational { num: 1, den: 1 }),
+                &[e],
+            ),
         }
     }
 
@@ -296,7 +304,11 @@ impl Writer<'_> {
             }
         }
         let negative = coefficient.is_negative();
-        let magnitude = if negative { negate(coefficient) } else { coefficient };
+        let magnitude = if negative {
+            negate(coefficient)
+        } else {
+            coefficient
+        };
         if !magnitude.is_one() || numerator.is_empty() {
             numerator.insert(0, number(magnitude));
         }

@@ -235,13 +235,23 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
     let nq = model.nq();
     let vector = array(nq);
     let rows_out = array(nc);
-    let roots: Vec<_> = equations.constraint_jacobian.iter().flatten().copied().collect();
+    let roots: Vec<_> = equations
+        .constraint_jacobian
+        .iter()
+        .flatten()
+        .copied()
+        .collect();
     let jacobian = straight_line(&model.pool, names, &roots);
     let Reads { q: jq, .. } = reads(&jacobian);
     let (js, jr) = (&jacobian.statements, rows(&jacobian.outputs, nq));
     let nc = Literal::usize_unsuffixed(nc);
     let bias = straight_line(&model.pool, names, &equations.constraint_bias);
-    let Reads { t: bt, q: bq, qd: bqd, .. } = reads(&bias);
+    let Reads {
+        t: bt,
+        q: bq,
+        qd: bqd,
+        ..
+    } = reads(&bias);
     let (bs, bo) = (&bias.statements, &bias.outputs);
     let residual = straight_line(&model.pool, names, &equations.constraint_residual);
     let Reads { t: rt, q: rq, .. } = reads(&residual);

@@ -40,9 +40,9 @@ impl Pool {
     fn may_vary(&self, e: ExprId, d: Derivation) -> bool {
         match d {
             Derivation::Partial(s) => self.may_contain(e, s),
-            Derivation::Time => {
-                self.kinds(e).intersects(SymKinds::TIME | SymKinds::COORD | SymKinds::SPEED)
-            }
+            Derivation::Time => self
+                .kinds(e)
+                .intersects(SymKinds::TIME | SymKinds::COORD | SymKinds::SPEED),
         }
     }
 
@@ -58,8 +58,9 @@ impl Pool {
     /// Differentiates `e`: every node below it that may vary and is not yet
     /// memoised is differentiated once, children first.
     fn derive(&mut self, e: ExprId, d: Derivation) -> ExprId {
-        let pending =
-            self.post_order(&[e], |n| self.may_vary(n, d) && !self.derivatives.contains_key(&(n, d)));
+        let pending = self.post_order(&[e], |n| {
+            self.may_vary(n, d) && !self.derivatives.contains_key(&(n, d))
+        });
         for n in pending {
             let dn = self.derive_node(n, d);
             self.derivatives.insert((n, d), dn);
@@ -177,7 +178,7 @@ impl Pool {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_util::{Point, Rng, assert_close};
+    use super::super::test_util::{Point, Rng, Scratch, assert_close};
     use super::*;
 
     /// `(∂e/∂s)(env)` by central differences.
@@ -187,114 +188,128 @@ mod tests {
         (f(h) - f(-h)) / (2.0 * h)
     }
 
-    /// Checks `diff(e, s)` against finite differences at random points.
-    fn check_diff(p: &mut Pool, e: ExprId, syms: &[Sym]) {
+    /// Checks `diff(text, s)` against finite differences at random points
+    /// for each of `syms`.
+    fn check_diff(text: &str, syms: &[Sym]) {
+        let mut s = Scratch::default();
+        let e = s.e(text);
         let mut rng = Rng::new(7);
-        for &s in syms {
-            let de = p.diff(e, s);
+        for &by in syms {
+            let de = s.pool.diff(e, by);
             for _ in 0..5 {
                 let env = Point::random(&mut rng, syms);
-                let (exact, numeric) = (p.eval(de, &env), numeric_partial(p, e, s, &env));
-                assert_close(exact, numeric, 1e-6, &p.display(de, &|s| format!("{s:?}")));
+                let exact = s.pool.eval(de, &env);
+                let numeric = numeric_partial(&s.pool, e, by, &env);
+                assert_close(
+                    exact,
+                    numeric,
+                    1e-6,
+                    &format!("d({text})/d{by:?} = {}", s.show(de)),
+                );
             }
         }
     }
 
     #[test]
     fn derivatives_match_finite_differences() {
-        let mut p = Pool::new();
         let syms = [Sym::Coord(0), Sym::Coord(1), Sym::Param(0)];
-        let [x, y, a] = syms.map(|s| p.sym(s));
-        let xy = p.mul(x, y);
-        let s = p.sin(xy);
-        let c = p.cos(p.sub(x, y));
-        let t = p.func(Func::Tan, p.mul(a, x));
-        let sq = p.func(Func::Sqrt, p.add(p.mul(x, x), p.int(2)));
-        let ex = p.func(Func::Exp, p.div(y, p.int(3)));
-        let ln = p.func(Func::Ln, p.add(p.mul(a, a), p.int(1)));
-        let ab = p.func(Func::Abs, p.sub(x, p.int(5)));
-        let inv = p.powi(p.add(x, p.int(4)), -3);
-        let terms = [p.mul(s, a), c, t, p.mul(sq, ex), p.mul(ln, y), p.mul(ab, x), inv];
-        let e = p.sum(terms);
-        check_diff(&mut p, e, &syms);
-        // Chain rule through nested calls.
-        let nested = p.sin(p.cos(p.powi(xy, 2)));
-        check_diff(&mut p, nested, &syms);
+        for text in [
+            "p0*sin(q0*q1) + cos(q0 - q1)^3",
+            "tan(p0*q0/3) + sqrt(q0^2 + 2)*exp(q1/3)",
+            "ln(p0^2 + 1)*q1 + abs(q0 - 5)*q0 + (q0 + 4)^-3",
+            "sin(cos((q0*q1)^2))",
+            "q0*q1*p0*sin(q0)/(1 + q1^2)",
+            "sqrt(exp(q0) + ln(2 + sin(q1)))",
+        ] {
+            check_diff(text, &syms);
+        }
     }
 
     #[test]
     fn simple_rules_are_exact() {
-        let mut p = Pool::new();
-        let x = p.sym(Sym::Coord(0));
-        let sin = p.sin(x);
-        assert_eq!(p.diff(sin, Sym::Coord(0)), p.cos(x));
-        let cos = p.cos(x);
-        assert_eq!(p.diff(cos, Sym::Coord(0)), p.neg(sin));
-        let x3 = p.powi(x, 3);
-        assert_eq!(p.diff(x3, Sym::Coord(0)), p.mul(p.int(3), p.powi(x, 2)));
-        assert_eq!(p.diff(x3, Sym::Coord(1)), p.zero());
-        let exp = p.func(Func::Exp, x);
-        assert_eq!(p.diff(exp, Sym::Coord(0)), exp);
-        let ln = p.func(Func::Ln, x);
-        assert_eq!(p.diff(ln, Sym::Coord(0)), p.powi(x, -1));
+        let mut s = Scratch::default();
+        let x = Sym::Coord(0);
+        for (text, derivative) in [
+            ("sin(q0)", "cos(q0)"),
+            ("cos(q0)", "-sin(q0)"),
+            ("q0^3", "3*q0^2"),
+            ("q0^-1", "-q0^-2"),
+            ("exp(q0)", "exp(q0)"),
+            ("ln(q0)", "1/q0"),
+            ("tan(q0)", "1 + tan(q0)^2"),
+            ("sqrt(q0)", "1/(2*sqrt(q0))"),
+            ("abs(q0)", "q0/abs(q0)"),
+            ("p0*q0*q1", "p0*q1"),
+            ("sin(2*q0)", "2*cos(2*q0)"),
+            ("q1^3", "0"),
+        ] {
+            let e = s.e(text);
+            let expected = s.e(derivative);
+            assert_eq!(s.pool.diff(e, x), expected, "d({text})/dq0");
+        }
     }
 
     #[test]
     fn diff_is_memoised_and_skips_absent_symbols() {
-        let mut p = Pool::new();
-        let (x, m) = (p.sym(Sym::Coord(0)), p.sym(Sym::Param(0)));
-        let e = p.mul(m, p.sin(x));
-        let first = p.diff(e, Sym::Coord(0));
-        let len = p.len();
-        assert_eq!(p.diff(e, Sym::Coord(0)), first);
-        assert_eq!(p.len(), len, "second call built nodes");
-        assert_eq!(p.diff(e, Sym::Speed(0)), p.zero());
-        assert!(!p.derivatives.contains_key(&(e, Derivation::Partial(Sym::Speed(0)))));
+        let mut s = Scratch::default();
+        let e = s.e("p0*sin(q0)");
+        let first = s.pool.diff(e, Sym::Coord(0));
+        let len = s.pool.len();
+        assert_eq!(s.pool.diff(e, Sym::Coord(0)), first);
+        assert_eq!(s.pool.len(), len, "second call built nodes");
+        assert_eq!(s.pool.diff(e, Sym::Speed(0)), s.pool.zero());
+        let key = (e, Derivation::Partial(Sym::Speed(0)));
+        assert!(
+            !s.pool.derivatives.contains_key(&key),
+            "absent symbol was traversed"
+        );
     }
 
     #[test]
     fn time_derivative_of_sin_q0_times_q1() {
-        let mut p = Pool::new();
-        let [q0, q1, u0, u1, a1, m] = [
-            Sym::Coord(0),
-            Sym::Coord(1),
-            Sym::Speed(0),
-            Sym::Speed(1),
-            Sym::Accel(1),
-            Sym::Param(0),
-        ]
-        .map(|s| p.sym(s));
-        let e = p.product([p.sin(q0), q1, m]);
-        // d/dt (m sin(q0) q1) = m cos(q0) q̇0 q1 + m sin(q0) q̇1
-        let expected = {
-            let a = p.product([m, p.cos(q0), u0, q1]);
-            let b = p.product([m, p.sin(q0), u1]);
-            p.add(a, b)
-        };
-        assert_eq!(p.time_derivative(e), expected);
-        // Speeds differentiate to accelerations, time to one.
-        let t = p.sym(Sym::Time);
-        let f = p.add(p.mul(t, t), u1);
-        assert_eq!(p.time_derivative(f), p.add(p.mul(p.int(2), t), a1));
-        assert_eq!(p.time_derivative(m), p.zero());
+        let mut s = Scratch::default();
+        for (text, rate) in [
+            ("sin(q0)*q1", "cos(q0)*u0*q1 + sin(q0)*u1"),
+            ("p0*sin(q0)*q1", "p0*(cos(q0)*u0*q1 + sin(q0)*u1)"),
+            ("t^2 + u1 + f0", "2*t + a1"),
+            ("p0*a0 + l0", "0"),
+        ] {
+            let e = s.e(text);
+            let td = s.pool.time_derivative(e);
+            let expected = s.e(rate);
+            // p0*(...) is not distributed: compare the expanded forms.
+            assert_eq!(s.pool.expand(td), s.pool.expand(expected), "d/dt {text}");
+        }
+        let e = s.e("sin(q0)*q1");
+        let td = s.pool.time_derivative(e);
+        assert_eq!(
+            td,
+            s.e("u0*q1*cos(q0) + u1*sin(q0)"),
+            "canonical without expansion"
+        );
     }
 
     #[test]
     fn substitute_replaces_and_recanonicalises() {
-        let mut p = Pool::new();
-        let (x, y) = (p.sym(Sym::Coord(0)), p.sym(Sym::Coord(1)));
-        let e = p.add(p.sin(x), p.mul(x, y));
-        let zero = p.zero();
-        let at_zero = p.substitute(e, &|s| (s == Sym::Coord(0)).then_some(zero));
-        assert_eq!(at_zero, zero);
-        let minus_y = p.neg(y);
-        let swapped = p.substitute(e, &|s| (s == Sym::Coord(0)).then_some(minus_y));
-        // sin(-y) + (-y)·y = -sin(y) - y²
-        let expected = {
-            let (sin, square) = (p.sin(y), p.powi(y, 2));
-            p.sub(p.neg(sin), square)
-        };
-        assert_eq!(swapped, expected);
-        assert_eq!(p.substitute(e, &|_| None), e);
+        let mut s = Scratch::default();
+        let e = s.e("sin(q0) + q0*q1");
+        let zero = s.pool.zero();
+        assert_eq!(
+            s.pool
+                .substitute(e, &|v| (v == Sym::Coord(0)).then_some(zero)),
+            zero
+        );
+        let minus_y = s.e("-q1");
+        let swapped = s
+            .pool
+            .substitute(e, &|v| (v == Sym::Coord(0)).then_some(minus_y));
+        assert_eq!(swapped, s.e("-sin(q1) - q1^2"));
+        assert_eq!(s.pool.substitute(e, &|_| None), e);
+        let shared = s.e("(q0 + q1)^2 + sin(q0 + q1)");
+        let t = s.e("t");
+        let image = s
+            .pool
+            .substitute(shared, &|v| matches!(v, Sym::Coord(_)).then_some(t));
+        assert_eq!(image, s.e("4*t^2 + sin(2*t)"));
     }
 }

@@ -32,10 +32,10 @@ impl Pool {
         let mut constant = Number::ZERO;
         let mut parts = Vec::new();
         for term in terms {
-            self.collect_term(term, &mut constant, &mut parts);
+            self.collect_term(term, Number::ONE, &mut constant, &mut parts);
         }
         parts.sort_by_key(|&(rest, _)| rest);
-        let merged = merge_sorted(parts, |a, b| Some(a.add(b)));
+        let merged = merge_sorted(parts, |a, b| Some(a + b));
         let mut out = Vec::with_capacity(merged.len() + 1);
         if !constant.is_zero() {
             out.push(self.number(constant));
@@ -52,20 +52,31 @@ impl Pool {
         }
     }
 
-    /// Adds `term` to a sum under construction: numbers to `constant`,
-    /// others as `(rest, coefficient)` to `parts`; sums are flattened.
-    fn collect_term(&self, term: ExprId, constant: &mut Number, parts: &mut Vec<(ExprId, Number)>) {
+    /// Adds `scale · term` to a sum under construction: numbers to
+    /// `constant`, others as `(rest, coefficient)` to `parts`. Sums and
+    /// numeric multiples of sums are flattened (the terms of a canonical
+    /// sum are neither, so this recurses at most twice).
+    fn collect_term(
+        &self,
+        term: ExprId,
+        scale: Number,
+        constant: &mut Number,
+        parts: &mut Vec<(ExprId, Number)>,
+    ) {
         match self.node(term) {
-            Node::Number(n) => *constant = constant.add(*n),
-            // Terms of a canonical sum are never sums: one level suffices.
+            Node::Number(n) => *constant = *constant + scale * *n,
             Node::Add(terms) => {
                 for &t in terms.iter() {
-                    self.collect_term(t, constant, parts);
+                    self.collect_term(t, scale, constant, parts);
                 }
             }
             _ => {
                 let (c, rest) = self.split_coefficient(term);
-                parts.push((rest, c));
+                if matches!(self.node(rest), Node::Add(_)) {
+                    self.collect_term(rest, scale * c, constant, parts);
+                } else {
+                    parts.push((rest, scale * c));
+                }
             }
         }
     }
@@ -80,7 +91,9 @@ impl Pool {
         }
         let coefficient = self.number(c);
         let factors: Box<[ExprId]> = match self.node(rest) {
-            Node::Mul(factors) => std::iter::once(coefficient).chain(factors.iter().copied()).collect(),
+            Node::Mul(factors) => std::iter::once(coefficient)
+                .chain(factors.iter().copied())
+                .collect(),
             _ => [coefficient, rest].into(),
         };
         self.intern(Node::Mul(factors))
@@ -138,7 +151,7 @@ impl Pool {
         powers: &mut Vec<(ExprId, i32)>,
     ) {
         match self.node(factor) {
-            Node::Number(n) => *coefficient = coefficient.mul(*n),
+            Node::Number(n) => *coefficient = *coefficient * *n,
             // Factors of a canonical product are never products.
             Node::Mul(factors) => {
                 for &f in factors.iter() {
@@ -193,105 +206,95 @@ fn merge_sorted<V: Copy>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::Sym;
+    use super::super::test_util::Scratch;
     use super::*;
-
-    fn xyz(p: &mut Pool) -> (ExprId, ExprId, ExprId) {
-        (p.sym(Sym::Coord(0)), p.sym(Sym::Coord(1)), p.sym(Sym::Param(0)))
-    }
 
     #[test]
     fn like_terms_merge_and_cancel() {
-        let mut p = Pool::new();
-        let (x, y, _) = xyz(&mut p);
-        let two_x = p.mul(p.int(2), x);
-        assert_eq!(p.add(x, x), two_x);
-        assert_eq!(p.sub(x, x), p.zero());
-        let xy = p.mul(x, y);
-        let yx = p.mul(y, x);
-        assert_eq!(xy, yx);
-        let a = p.sum([xy, y, x, xy]);
-        let b = p.sum([y, x, p.mul(p.int(2), yx)]);
-        assert_eq!(a, b);
-        assert_eq!(p.sum([]), p.zero());
-        assert_eq!(p.sum([x]), x);
+        let mut s = Scratch::default();
+        assert_eq!(s.e("q0 + q0"), s.e("2*q0"));
+        assert_eq!(s.e("q0 - q0"), s.pool.zero());
+        assert_eq!(s.e("q0*q1"), s.e("q1*q0"));
+        assert_eq!(s.e("q0*q1 + q1 + q0 + q0*q1"), s.e("q1 + q0 + 2*q1*q0"));
+        assert_eq!(s.e("3*q0*q1 - 2*q1*q0 - q0*q1"), s.pool.zero());
+        assert_eq!(s.pool.sum([]), s.pool.zero());
+        let x = s.e("q0");
+        assert_eq!(s.pool.sum([x]), x);
     }
 
     #[test]
     fn rational_constants_fold() {
-        let mut p = Pool::new();
-        let (a, b, c) = (p.rational(1, 3), p.rational(1, 6), p.rational(-1, 2));
-        assert_eq!(p.sum([a, b, c]), p.zero());
-        let (x, _, _) = xyz(&mut p);
-        let s = p.sum([x, a, x, b]);
-        assert_eq!(p.node(s).clone(), Node::Add([p.rational(1, 2), p.mul(p.int(2), x)].into()));
+        let mut s = Scratch::default();
+        assert_eq!(s.e("1/3 + 1/6 - 1/2"), s.pool.zero());
+        let e = s.e("q0 + 1/3 + q0 + 1/6");
+        let expected = Node::Add([s.e("1/2"), s.e("2*q0")].into());
+        assert_eq!(s.pool.node(e), &expected);
+        assert_eq!(s.show(e), "1/2 + 2*q0");
     }
 
     #[test]
     fn products_merge_powers() {
-        let mut p = Pool::new();
-        let (x, y, m) = xyz(&mut p);
-        let half_x = p.div(x, p.int(2));
-        assert_eq!(p.mul(p.int(2), half_x), x);
-        let x2 = p.mul(x, x);
-        assert_eq!(x2, p.powi(x, 2));
-        let inv = p.powi(x2, -1);
-        assert_eq!(p.mul(inv, x2), p.one());
-        assert_eq!(p.div(x, x), p.one());
-        assert_eq!(p.product([]), p.one());
-        assert_eq!(p.product([x, p.zero(), y]), p.zero());
-        let a = p.product([m, x, y, x]);
-        let b = p.product([y, x2, m]);
-        assert_eq!(a, b);
-        let Node::Mul(factors) = p.node(p.product([x, p.int(3), y])).clone() else { panic!() };
-        assert_eq!(factors[0], p.int(3), "coefficient leads");
+        let mut s = Scratch::default();
+        assert_eq!(s.e("2*(q0/2)"), s.e("q0"));
+        assert_eq!(s.e("q0*q0"), s.e("q0^2"));
+        assert_eq!(s.e("(q0^2)^-1 * q0^2"), s.pool.one());
+        assert_eq!(s.e("q0/q0"), s.pool.one());
+        assert_eq!(s.pool.product([]), s.pool.one());
+        assert_eq!(s.e("q0*0*q1"), s.pool.zero());
+        assert_eq!(s.e("p0*q0*q1*q0"), s.e("q1*q0^2*p0"));
+        let e = s.e("q0*3*q1");
+        let three = s.e("3");
+        assert_eq!(s.pool.children(e)[0], three, "coefficient leads");
+        assert_eq!(s.show(e), "3*q0*q1");
     }
 
     #[test]
     fn products_do_not_distribute_over_sums() {
-        let mut p = Pool::new();
-        let (x, y, _) = xyz(&mut p);
-        let s = p.add(x, y);
-        let e = p.mul(p.int(3), s);
-        assert_eq!(p.node(e).clone(), Node::Mul([p.int(3), s].into()));
-        let minus = p.neg(e);
-        assert_eq!(p.add(e, minus), p.zero());
-        assert_eq!(p.split_coefficient(minus), (Number::from(-3), s));
+        let mut s = Scratch::default();
+        let e = s.e("3*(q0 + q1)");
+        let expected = Node::Mul([s.e("3"), s.e("q0 + q1")].into());
+        assert_eq!(s.pool.node(e), &expected);
+        assert_eq!(s.e("3*(q0 + q1) - 3*(q1 + q0)"), s.pool.zero());
+        // Inside a sum, a multiple of a sum is flattened like a sum.
+        assert_eq!(s.e("q0 - 2*(q0 + q1)"), s.e("-q0 - 2*q1"));
+        let e = s.e("(q0 + q1 + 1) - (q0 + q1 + 1)");
+        assert_eq!(e, s.pool.zero());
+        let minus = s.e("-3*(q0 + q1)");
+        let sum = s.e("q0 + q1");
+        assert_eq!(s.pool.split_coefficient(minus), (Number::from(-3), sum));
     }
 
     #[test]
     fn powers_fold() {
-        let mut p = Pool::new();
-        let (x, y, _) = xyz(&mut p);
-        assert_eq!(p.powi(x, 0), p.one());
-        assert_eq!(p.powi(x, 1), x);
-        let x2 = p.powi(x, 2);
-        assert_eq!(p.powi(x2, 3), p.powi(x, 6));
-        assert_eq!(p.powi(p.rational(2, 3), -2), p.rational(9, 4));
-        let e = p.product([p.int(2), x, y]);
-        let inv = p.powi(e, -1);
-        let expected = p.product([p.rational(1, 2), p.powi(x, -1), p.powi(y, -1)]);
-        assert_eq!(inv, expected);
-        assert_eq!(p.mul(inv, x), p.div(p.rational(1, 2), y));
-        let s = p.add(x, y);
-        assert_eq!(p.node(p.powi(s, 2)).clone(), Node::Pow(s, 2));
+        let mut s = Scratch::default();
+        let x = s.e("q0");
+        assert_eq!(s.pool.powi(x, 0), s.pool.one());
+        assert_eq!(s.pool.powi(x, 1), x);
+        assert_eq!(s.e("(q0^2)^3"), s.e("q0^6"));
+        assert_eq!(s.e("(2/3)^-2"), s.e("9/4"));
+        assert_eq!(s.e("(2*q0*q1)^-1"), s.e("1/2 * q0^-1 * q1^-1"));
+        assert_eq!(s.e("(2*q0*q1)^-1 * q0"), s.e("1/(2*q1)"));
+        let (sum, square) = (s.e("q0 + q1"), s.e("(q0 + q1)^2"));
+        assert_eq!(s.pool.node(square), &Node::Pow(sum, 2));
     }
 
     #[test]
     fn overflow_falls_back_to_floats() {
-        let mut p = Pool::new();
-        let big = p.powi(p.int(10), 30);
-        assert_eq!(p.as_rational(big).map(|r| r.num), Some(10i128.pow(30)));
-        let square = p.mul(big, big);
-        let value = p.as_number(square).map(Number::to_f64).unwrap();
-        assert!(p.as_rational(square).is_none() && (value / 1e60 - 1.0).abs() < 1e-12);
-        let (x, _, _) = xyz(&mut p);
-        let huge = p.powi(x, i32::MAX);
-        let nested = p.powi(huge, 2);
-        assert_ne!(nested, huge);
-        let twice = p.mul(huge, huge);
-        assert_ne!(twice, p.zero(), "exponent overflow must not panic or vanish");
-        let inf = p.div(p.one(), p.zero());
-        assert_eq!(p.as_number(inf).map(Number::to_f64), Some(f64::INFINITY));
+        let mut s = Scratch::default();
+        let big = s.e("10^30");
+        assert_eq!(s.pool.as_rational(big).map(|r| r.num), Some(10i128.pow(30)));
+        let square = s.pool.mul(big, big);
+        let value = s.pool.as_number(square).map(Number::to_f64).unwrap();
+        assert!(s.pool.as_rational(square).is_none() && (value / 1e60 - 1.0).abs() < 1e-12);
+        let huge = s.e("q0^2147483647");
+        let nested = s.pool.powi(huge, 2);
+        assert_eq!(s.pool.node(nested), &Node::Pow(huge, 2));
+        let twice = s.pool.mul(huge, huge);
+        assert_eq!(s.pool.children(twice), [huge, huge], "kept apart, no panic");
+        let inf = s.e("1/0");
+        assert_eq!(
+            s.pool.as_number(inf).map(Number::to_f64),
+            Some(f64::INFINITY)
+        );
     }
 }

@@ -18,10 +18,12 @@ pub(super) fn parse_literal(text: &str) -> Option<Number> {
     }
     let body = strip_suffix(text);
     let digits: String = body.chars().filter(|&c| c != '_').collect();
-    if let Some(value) = parse_radix(&digits) {
-        return value;
+    match radix_prefix(&digits) {
+        Some((radix, rest)) => i128::from_str_radix(rest, radix)
+            .ok()
+            .map(|i| Rational::int(i).into()),
+        None => parse_decimal(&digits),
     }
-    parse_decimal(&digits)
 }
 
 /// `text` without a type suffix (and the `_` before it). A float literal
@@ -36,16 +38,19 @@ fn strip_suffix(text: &str) -> &str {
         .unwrap_or(text)
 }
 
-/// `Some(value)` for `0x`/`0o`/`0b` literals, `None` if `digits` has no
-/// radix prefix.
-fn parse_radix(digits: &str) -> Option<Option<Number>> {
+/// The radix and digits of a `0x`/`0o`/`0b` literal.
+fn radix_prefix(digits: &str) -> Option<(u32, &str)> {
     let radix = match digits.get(..2)? {
         "0x" | "0X" => 16,
         "0o" => 8,
         "0b" => 2,
         _ => return None,
     };
-    Some(i128::from_str_radix(&digits[2..], radix).ok().map(|i| Rational::int(i).into()))
+    let rest = &digits[2..];
+    // `from_str_radix` would also take a sign.
+    rest.chars()
+        .all(|c| c.is_digit(radix))
+        .then_some((radix, rest))
 }
 
 /// A decimal mantissa with optional fraction and exponent.
@@ -62,7 +67,9 @@ fn parse_decimal(digits: &str) -> Option<Number> {
     let frac_part = frac_part.trim_end_matches('0');
     let exact = exact_value(int_part, frac_part, exponent);
     // The float fallback parses the same text, so it is the nearest f64.
-    exact.map(Number::Rational).or_else(|| digits.parse::<f64>().ok().map(Number::Float))
+    exact
+        .map(Number::Rational)
+        .or_else(|| digits.parse::<f64>().ok().map(Number::Float))
 }
 
 /// `int_part.frac_part × 10^exponent` exactly, `None` on overflow.
@@ -118,7 +125,9 @@ mod tests {
 
     #[test]
     fn non_numbers_are_rejected() {
-        for text in ["", "x", "_1", "-1", ".5", "1.2.3", "1e", "1ee3", "f64", "1.5x", "0xZZ"] {
+        for text in [
+            "", "x", "_1", "-1", ".5", "1.2.3", "1e", "1ee3", "f64", "1.5x", "0xZZ", "0x-1", "0b",
+        ] {
             assert!(parse_literal(text).is_none(), "{text:?} parsed");
         }
     }

@@ -70,59 +70,40 @@ impl Pool {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Func, Sym};
+    use super::super::test_util::Scratch;
     use super::*;
 
-    fn name(s: Sym) -> String {
-        match s {
-            Sym::Coord(0) => "a".into(),
-            Sym::Coord(1) => "b".into(),
-            _ => format!("{s:?}"),
-        }
+    /// `expand(text)` and the canonical form of `expected`.
+    fn check(text: &str, expected: &str) {
+        let mut s = Scratch::default();
+        s.e("q0 + q1");
+        let e = s.e(text);
+        let expanded = s.pool.expand(e);
+        assert_eq!(s.show(expanded), expected, "expand({text})");
+        assert_eq!(expanded, s.e(expected));
     }
 
     #[test]
     fn square_of_a_sum() {
-        let mut p = Pool::new();
-        let (a, b) = (p.sym(Sym::Coord(0)), p.sym(Sym::Coord(1)));
-        let square = p.powi(p.add(a, b), 2);
-        let expanded = p.expand(square);
-        let expected = {
-            let terms = [p.powi(a, 2), p.product([p.int(2), a, b]), p.powi(b, 2)];
-            p.sum(terms)
-        };
-        assert_eq!(expanded, expected);
-        assert_eq!(p.display(expanded, &name), "a^2 + 2*a*b + b^2");
+        check("(q0 + q1)^2", "q0^2 + 2*q0*q1 + q1^2");
+        check("(q0 - q1)*(q0 + q1) - q0^2 + q1^2", "0");
+        check("2*(q0 + 1)*(q1 - 3)", "-6 - 6*q0 + 2*q1 + 2*q0*q1");
     }
 
     #[test]
-    fn products_distribute_and_cancel() {
-        let mut p = Pool::new();
-        let (a, b) = (p.sym(Sym::Coord(0)), p.sym(Sym::Coord(1)));
-        // (a + b)(a - b) - a² + b² = 0 once expanded.
-        let e = {
-            let product = p.mul(p.add(a, b), p.sub(a, b));
-            let rest = p.sub(p.powi(b, 2), p.powi(a, 2));
-            p.add(product, rest)
-        };
-        assert_ne!(e, p.zero());
-        assert_eq!(p.expand(e), p.zero());
-        // Inside function arguments too, and (a+b)^10 has 11 terms.
-        let s = p.sin(p.mul(p.int(2), p.add(a, b)));
-        let expected = p.sin(p.add(p.mul(p.int(2), a), p.mul(p.int(2), b)));
-        assert_eq!(p.expand(s), expected);
-        let tenth = p.powi(p.add(a, b), 10);
-        let expanded = p.expand(tenth);
-        assert_eq!(p.children(expanded).len(), 11);
-        assert!(matches!(p.node(expanded), Node::Add(_)));
-        // Negative powers keep their (expanded) base: 1/((a+b)² + 1).
-        let inv = p.powi(p.add(p.powi(p.add(a, b), 2), p.one()), -1);
-        let expected = {
-            let terms = [p.one(), p.powi(a, 2), p.product([p.int(2), a, b]), p.powi(b, 2)];
-            let base = p.sum(terms);
-            p.powi(base, -1)
-        };
-        assert_eq!(p.expand(inv), expected);
-        assert_eq!(p.expand(p.func(Func::Exp, a)), p.func(Func::Exp, a));
+    fn expands_inside_calls_and_negative_powers() {
+        check("sin(2*(q0 + q1))", "sin(2*q0 + 2*q1)");
+        check("1/((q0 + q1)^2 + 1)", "1/(1 + q0^2 + 2*q0*q1 + q1^2)");
+        check("exp(q0)*(exp(q0) - q1)", "-q1*exp(q0) + exp(q0)^2");
+    }
+
+    #[test]
+    fn like_terms_merge_during_expansion() {
+        let mut s = Scratch::default();
+        let e = s.e("(q0 + q1)^10");
+        let expanded = s.pool.expand(e);
+        assert!(matches!(s.pool.node(expanded), Node::Add(_)));
+        assert_eq!(s.pool.children(expanded).len(), 11);
+        assert!(s.pool.len() < 300, "{} nodes", s.pool.len());
     }
 }

@@ -78,7 +78,7 @@ impl Pool {
     fn negated(&mut self, arg: ExprId) -> Option<ExprId> {
         let (c, rest) = self.split_coefficient(arg);
         if c.is_negative() {
-            return Some(self.scale(c.neg(), rest));
+            return Some(self.scale(-c, rest));
         }
         let terms = match self.node(arg) {
             Node::Add(terms) if self.split_coefficient(terms[0]).0.is_negative() => terms.to_vec(),
@@ -101,57 +101,62 @@ impl Pool {
 
 #[cfg(test)]
 mod tests {
-    use super::super::Sym;
+    use super::super::test_util::Scratch;
     use super::*;
 
     #[test]
     fn special_values_fold_exactly() {
-        let mut p = Pool::new();
-        let (zero, one) = (p.zero(), p.one());
-        assert_eq!(p.sin(zero), zero);
-        assert_eq!(p.cos(zero), one);
-        assert_eq!(p.func(Func::Tan, zero), zero);
-        assert_eq!(p.func(Func::Exp, zero), one);
-        assert_eq!(p.func(Func::Ln, one), zero);
-        let q = p.rational(9, 4);
-        assert_eq!(p.func(Func::Sqrt, q), p.rational(3, 2));
-        let m = p.rational(-5, 3);
-        assert_eq!(p.func(Func::Abs, m), p.rational(5, 3));
+        let mut s = Scratch::default();
+        for (text, value) in [
+            ("sin(0)", "0"),
+            ("cos(0)", "1"),
+            ("tan(0)", "0"),
+            ("exp(0)", "1"),
+            ("ln(1)", "0"),
+            ("sqrt(9/4)", "3/2"),
+            ("abs(-5/3)", "5/3"),
+            ("sin(q0 - q0)", "0"),
+        ] {
+            assert_eq!(s.e(text), s.e(value), "{text}");
+        }
     }
 
     #[test]
     fn other_numbers_stay_symbolic() {
-        let mut p = Pool::new();
-        let (one, two) = (p.one(), p.int(2));
-        assert_eq!(p.node(p.sin(one)).clone(), Node::Func(Func::Sin, one));
-        assert_eq!(p.node(p.func(Func::Sqrt, two)).clone(), Node::Func(Func::Sqrt, two));
-        let minus_one = p.int(-1);
-        let s = p.sin(minus_one);
-        assert_eq!(s, p.neg(p.sin(one)));
-        assert!(p.as_number(s).is_none());
+        let mut s = Scratch::default();
+        let (one, two) = (s.e("1"), s.e("2"));
+        for (text, node) in [
+            ("sin(1)", Node::Func(Func::Sin, one)),
+            ("sqrt(2)", Node::Func(Func::Sqrt, two)),
+            ("ln(2)", Node::Func(Func::Ln, two)),
+        ] {
+            let e = s.e(text);
+            assert_eq!(s.pool.node(e), &node);
+        }
+        let e = s.e("sin(-1)");
+        assert_eq!(e, s.e("-sin(1)"));
+        assert_eq!(s.show(e), "-sin(1)");
     }
 
     #[test]
     fn parity_rules() {
-        let mut p = Pool::new();
-        let x = p.sym(Sym::Coord(0));
-        let minus_2x = p.mul(p.int(-2), x);
-        let two_x = p.mul(p.int(2), x);
-        assert_eq!(p.sin(minus_2x), p.neg(p.sin(two_x)));
-        assert_eq!(p.cos(minus_2x), p.cos(two_x));
-        assert_eq!(p.func(Func::Tan, minus_2x), p.neg(p.func(Func::Tan, two_x)));
-        assert_eq!(p.func(Func::Abs, minus_2x), p.func(Func::Abs, two_x));
-        assert_ne!(p.func(Func::Exp, minus_2x), p.func(Func::Exp, two_x));
+        let mut s = Scratch::default();
+        assert_eq!(s.e("sin(-2*q0)"), s.e("-sin(2*q0)"));
+        assert_eq!(s.e("cos(-2*q0)"), s.e("cos(2*q0)"));
+        assert_eq!(s.e("tan(-q0/3)"), s.e("-tan(q0/3)"));
+        assert_eq!(s.e("abs(-q0)"), s.e("abs(q0)"));
+        assert_ne!(s.e("exp(-q0)"), s.e("exp(q0)"));
+        assert_eq!(s.e("sin(-q0) + sin(q0)"), s.pool.zero());
     }
 
     #[test]
     fn differences_have_one_orientation() {
-        let mut p = Pool::new();
-        let (a, b) = (p.sym(Sym::Coord(0)), p.sym(Sym::Coord(1)));
-        let (ab, ba) = (p.sub(a, b), p.sub(b, a));
-        assert_eq!(p.cos(ab), p.cos(ba));
-        assert_eq!(p.sin(ba), p.neg(p.sin(ab)));
-        let minus_sum = p.neg(p.add(a, b));
-        assert_eq!(p.cos(minus_sum), p.cos(p.add(a, b)));
+        let mut s = Scratch::default();
+        assert_eq!(s.e("cos(q0 - q1)"), s.e("cos(q1 - q0)"));
+        assert_eq!(s.e("sin(q1 - q0)"), s.e("-sin(q0 - q1)"));
+        assert_eq!(s.e("cos(-(q0 + q1))"), s.e("cos(q0 + q1)"));
+        assert_eq!(s.e("sin(-1 - q0) + sin(1 + q0)"), s.pool.zero());
+        let e = s.e("cos(q1 - q0)");
+        assert_eq!(s.show(e), "cos(q0 - q1)");
     }
 }

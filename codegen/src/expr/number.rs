@@ -3,6 +3,7 @@
 
 use std::fmt;
 use std::hash::{Hash, Hasher};
+use std::ops::{Add, Mul, Neg};
 
 use super::{Number, Rational};
 
@@ -37,7 +38,10 @@ impl Rational {
         let g = gcd(num, den);
         let (num, den) = (div_exact(num, g)?, div_exact(den, g)?);
         if den < 0 {
-            Some(Rational { num: num.checked_neg()?, den: den.checked_neg()? })
+            Some(Rational {
+                num: num.checked_neg()?,
+                den: den.checked_neg()?,
+            })
         } else {
             Some(Rational { num, den })
         }
@@ -63,7 +67,10 @@ impl Rational {
     pub fn checked_add(self, other: Rational) -> Option<Rational> {
         let g = i128::try_from(gcd(self.den, other.den)).ok()?;
         let (bd, dd) = (self.den / g, other.den / g);
-        let num = self.num.checked_mul(dd)?.checked_add(other.num.checked_mul(bd)?)?;
+        let num = self
+            .num
+            .checked_mul(dd)?
+            .checked_add(other.num.checked_mul(bd)?)?;
         Rational::new(num, self.den.checked_mul(dd)?)
     }
 
@@ -79,7 +86,10 @@ impl Rational {
 
     /// `-self`, `None` on overflow.
     pub fn checked_neg(self) -> Option<Rational> {
-        Some(Rational { num: self.num.checked_neg()?, den: self.den })
+        Some(Rational {
+            num: self.num.checked_neg()?,
+            den: self.den,
+        })
     }
 
     /// `1 / self`, `None` for zero or on overflow.
@@ -92,7 +102,10 @@ impl Rational {
     pub fn checked_pow(self, exp: i32) -> Option<Rational> {
         let base = if exp < 0 { self.checked_recip()? } else { self };
         let e = exp.unsigned_abs();
-        Some(Rational { num: base.num.checked_pow(e)?, den: base.den.checked_pow(e)? })
+        Some(Rational {
+            num: base.num.checked_pow(e)?,
+            den: base.den.checked_pow(e)?,
+        })
     }
 
     /// The exact square root, if `self` is the square of a rational.
@@ -196,21 +209,6 @@ impl Number {
         Number::Float(float(self.to_f64(), other.to_f64()))
     }
 
-    /// `self + other`.
-    pub fn add(self, other: Number) -> Number {
-        self.combine(other, Rational::checked_add, |a, b| a + b)
-    }
-
-    /// `self * other`.
-    pub fn mul(self, other: Number) -> Number {
-        self.combine(other, Rational::checked_mul, |a, b| a * b)
-    }
-
-    /// `-self`.
-    pub fn neg(self) -> Number {
-        self.mul(Number::from(-1))
-    }
-
     /// `self ^ exp`; `0` to a negative power is `inf`.
     pub fn powi(self, exp: i32) -> Number {
         if let Number::Rational(r) = self {
@@ -223,7 +221,31 @@ impl Number {
 
     /// `|self|`.
     pub fn abs(self) -> Number {
-        if self.is_negative() { self.neg() } else { self }
+        if self.is_negative() { -self } else { self }
+    }
+}
+
+impl Add for Number {
+    type Output = Number;
+    /// Exact, or a float on overflow.
+    fn add(self, other: Number) -> Number {
+        self.combine(other, Rational::checked_add, |a, b| a + b)
+    }
+}
+
+impl Mul for Number {
+    type Output = Number;
+    /// Exact, or a float on overflow.
+    fn mul(self, other: Number) -> Number {
+        self.combine(other, Rational::checked_mul, |a, b| a * b)
+    }
+}
+
+impl Neg for Number {
+    type Output = Number;
+    /// Exact, or a float on overflow (`-i128::MIN`).
+    fn neg(self) -> Number {
+        self * Number::from(-1)
     }
 }
 
@@ -309,7 +331,7 @@ mod tests {
     fn numbers_fall_back_to_floats() {
         let big = Number::from(10).powi(30);
         assert_eq!(big.as_rational(), Some(Rational::int(10i128.pow(30))));
-        let square = big.mul(big);
+        let square = big * big;
         assert!(matches!(square, Number::Float(x) if (x / 1e60 - 1.0).abs() < 1e-12));
         assert!(matches!(Number::ratio(-1, 0), Number::Float(x) if x == f64::NEG_INFINITY));
         assert!(matches!(Number::ratio(0, 0), Number::Float(x) if x.is_nan()));

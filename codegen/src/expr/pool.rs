@@ -60,7 +60,8 @@ impl Pool {
 
     /// The id of `node`, interning it if it is new. `node` must already be
     /// canonical: this is the only place nodes are created, and only the
-    /// canonicalising constructors call it.
+    /// canonicalising constructors call it. Panics only beyond 2³² nodes
+    /// (some 200 GB of expressions).
     pub(super) fn intern(&mut self, node: Node) -> ExprId {
         if let Some(&id) = self.index.get(&node) {
             return id;
@@ -68,7 +69,11 @@ impl Pool {
         let (kinds, signature) = self.summarise(&node);
         let rest = self.coefficient_rest(&node);
         let id = ExprId(u32::try_from(self.nodes.len()).expect("more than 2^32 expression nodes"));
-        self.meta.push(Meta { kinds, signature, rest: rest.unwrap_or(id) });
+        self.meta.push(Meta {
+            kinds,
+            signature,
+            rest: rest.unwrap_or(id),
+        });
         self.nodes.push(node.clone());
         self.index.insert(node, id);
         id
@@ -95,10 +100,12 @@ impl Pool {
     fn coefficient_rest(&mut self, node: &Node) -> Option<ExprId> {
         match node {
             Node::Number(_) => Some(Pool::ONE),
-            Node::Mul(factors) if self.as_number(factors[0]).is_some() => Some(match &factors[1..] {
-                [single] => *single,
-                rest => self.intern(Node::Mul(rest.into())),
-            }),
+            Node::Mul(factors) if self.as_number(factors[0]).is_some() => {
+                Some(match &factors[1..] {
+                    [single] => *single,
+                    rest => self.intern(Node::Mul(rest.into())),
+                })
+            }
             _ => None,
         }
     }
@@ -255,6 +262,7 @@ fn node_children(node: &Node) -> &[ExprId] {
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_util::Scratch;
     use super::*;
 
     #[test]
@@ -268,76 +276,92 @@ mod tests {
         assert_eq!(p.int(1), p.one());
         assert_eq!(p.rational(4, 2), p.int(2));
         assert_eq!(p.len(), 4);
+        assert!(!p.is_empty());
     }
 
     #[test]
     fn division_by_exact_zero_is_a_float() {
         let mut p = Pool::new();
         let inf = p.rational(-3, 0);
-        assert_eq!(p.as_number(inf).map(Number::to_f64), Some(f64::NEG_INFINITY));
+        assert_eq!(
+            p.as_number(inf).map(Number::to_f64),
+            Some(f64::NEG_INFINITY)
+        );
         assert_eq!(p.as_rational(inf), None);
-        assert!(p.as_number(p.rational(0, 0)).unwrap().to_f64().is_nan());
+        let nan = p.rational(0, 0);
+        assert!(p.as_number(nan).unwrap().to_f64().is_nan());
     }
 
     #[test]
     fn decimal_constructor_is_exact() {
         let mut p = Pool::new();
-        assert_eq!(p.decimal("1.3"), Some(p.rational(13, 10)));
-        assert_eq!(p.decimal("2.5E+2"), Some(p.int(250)));
+        let exact = p.rational(13, 10);
+        assert_eq!(p.decimal("1.3"), Some(exact));
+        assert_eq!(p.as_rational(exact), Rational::new(13, 10));
+        let e = p.decimal("2.5E+2");
+        assert_eq!(e, Some(p.int(250)));
         assert_eq!(p.decimal("theta"), None);
     }
 
     #[test]
     fn summaries_and_free_symbols() {
-        let mut p = Pool::new();
-        let (q, v, m) = (p.sym(Sym::Coord(1)), p.sym(Sym::Speed(1)), p.sym(Sym::Param(0)));
-        let s = p.sin(q);
-        let e = p.product([m, s, v]);
-        assert_eq!(p.kinds(e), SymKinds::PARAM | SymKinds::COORD | SymKinds::SPEED);
+        let mut s = Scratch::default();
+        let e = s.e("p0*sin(q1)*u1");
+        let p = &s.pool;
+        assert_eq!(
+            p.kinds(e),
+            SymKinds::PARAM | SymKinds::COORD | SymKinds::SPEED
+        );
         assert_eq!(p.kinds(p.one()), SymKinds::EMPTY);
         assert!(p.may_contain(e, Sym::Coord(1)) && !p.may_contain(e, Sym::Coord(0)));
         let expected: BTreeSet<Sym> = [Sym::Param(0), Sym::Coord(1), Sym::Speed(1)].into();
         assert_eq!(p.free_symbols(e), expected);
-        assert!(p.free_symbols(p.int(5)).is_empty());
+        let constant = s.e("sqrt(2) + 5");
+        assert!(s.pool.free_symbols(constant).is_empty());
+        assert!(s.pool.is_zero(s.pool.zero()) && !s.pool.is_zero(constant));
     }
 
     #[test]
     fn split_coefficient_cases() {
-        let mut p = Pool::new();
-        let (x, y) = (p.sym(Sym::Coord(0)), p.sym(Sym::Coord(1)));
-        let three = p.int(3);
-        assert_eq!(p.split_coefficient(three), (Number::from(3), p.one()));
-        assert_eq!(p.split_coefficient(x), (Number::ONE, x));
-        let xy = p.mul(x, y);
-        let e = p.product([three, x, y]);
-        assert_eq!(p.split_coefficient(e), (Number::from(3), xy));
-        let half_x = p.div(x, p.int(2));
-        assert_eq!(p.split_coefficient(half_x), (Number::ratio(1, 2), x));
-        let s = p.add(x, y);
-        assert_eq!(p.split_coefficient(s), (Number::ONE, s));
+        let mut s = Scratch::default();
+        for (text, coefficient, rest) in [
+            ("3", Number::from(3), "1"),
+            ("q0", Number::ONE, "q0"),
+            ("3*q0*q1", Number::from(3), "q0*q1"),
+            ("q0/2", Number::ratio(1, 2), "q0"),
+            ("-(q0 + q1)", Number::from(-1), "q0 + q1"),
+            ("q0 + q1", Number::ONE, "q0 + q1"),
+        ] {
+            let (e, rest) = (s.e(text), s.e(rest));
+            assert_eq!(s.pool.split_coefficient(e), (coefficient, rest), "{text}");
+        }
     }
 
     #[test]
     fn topo_order_puts_children_first() {
-        let mut p = Pool::new();
-        let (x, y) = (p.sym(Sym::Coord(0)), p.sym(Sym::Coord(1)));
-        let s = p.sin(x);
-        let a = p.product([s, y, p.int(2)]);
-        let b = p.add(a, s);
-        let c = p.powi(b, 3);
-        let order = p.topo_order(&[c, a]);
+        let mut s = Scratch::default();
+        let (c, a) = (s.e("(2*sin(q0)*q1 + sin(q0))^3"), s.e("2*sin(q0)*q1"));
+        let order = s.pool.topo_order(&[c, a]);
         let position: HashMap<ExprId, usize> =
             order.iter().enumerate().map(|(i, &e)| (e, i)).collect();
         assert_eq!(position.len(), order.len(), "a node is listed twice");
         for &e in &order {
-            for child in p.children(e) {
+            for child in s.pool.children(e) {
                 assert!(position[child] < position[&e], "child after parent");
             }
         }
-        for e in [x, y, s, a, b, c, p.int(2)] {
-            assert!(position.contains_key(&e));
+        for text in [
+            "q0",
+            "q1",
+            "2",
+            "sin(q0)",
+            "2*sin(q0)*q1",
+            "2*sin(q0)*q1 + sin(q0)",
+        ] {
+            assert!(position.contains_key(&s.e(text)), "{text} missing");
         }
-        assert_eq!(order, p.topo_order(&[c, a]), "not deterministic");
+        assert_eq!(order.len(), 7);
+        assert_eq!(order, s.pool.topo_order(&[c, a]), "not deterministic");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{Env, Sym};
+use super::{Env, ExprId, Func, Pool, Sym};
 
 /// A deterministic xorshift generator (tests must not depend on a seed
 /// from the environment).
@@ -52,4 +52,182 @@ impl Env for Point {
 pub fn assert_close(a: f64, b: f64, tol: f64, what: &str) {
     let scale = 1f64.max(a.abs()).max(b.abs());
     assert!((a - b).abs() <= tol * scale, "{a} vs {b} for {what}");
+}
+
+/// Builds an expression from infix text through the public constructors,
+/// so tests read like the math: `parse(p, "p0*sin(q1)^2 - 1/2")`. Symbols
+/// are a letter and an index: `q` coordinates, `u` speeds, `a`
+/// accelerations, `p` parameters, `f` inputs, `l` multipliers, and `t` is
+/// time; calls are the language's functions. `^` takes an integer and binds
+/// tighter than unary minus. Panics on malformed text (tests only).
+pub fn parse(pool: &mut Pool, text: &str) -> ExprId {
+    let mut parser = Parser {
+        pool,
+        chars: text.chars().filter(|c| !c.is_whitespace()).collect(),
+        at: 0,
+    };
+    let e = parser.sum();
+    assert_eq!(parser.at, parser.chars.len(), "trailing text in {text:?}");
+    e
+}
+
+/// The naming that [`parse`] reads, for [`Pool::display`].
+pub fn name(s: Sym) -> String {
+    match s {
+        Sym::Time => "t".into(),
+        Sym::Coord(i) => format!("q{i}"),
+        Sym::Speed(i) => format!("u{i}"),
+        Sym::Accel(i) => format!("a{i}"),
+        Sym::Param(i) => format!("p{i}"),
+        Sym::Input(i) => format!("f{i}"),
+        Sym::Multiplier(i) => format!("l{i}"),
+    }
+}
+
+/// Recursive descent over the characters of one expression.
+struct Parser<'a> {
+    pool: &'a mut Pool,
+    chars: Vec<char>,
+    at: usize,
+}
+
+impl Parser<'_> {
+    fn peek(&self) -> Option<char> {
+        self.chars.get(self.at).copied()
+    }
+
+    fn eat(&mut self, c: char) -> bool {
+        let found = self.peek() == Some(c);
+        self.at += usize::from(found);
+        found
+    }
+
+    /// The longest run of characters satisfying `keep`.
+    fn run(&mut self, keep: impl Fn(char) -> bool) -> String {
+        let start = self.at;
+        while self.peek().is_some_and(&keep) {
+            self.at += 1;
+        }
+        self.chars[start..self.at].iter().collect()
+    }
+
+    fn sum(&mut self) -> ExprId {
+        let mut acc = self.product();
+        loop {
+            if self.eat('+') {
+                let rhs = self.product();
+                acc = self.pool.add(acc, rhs);
+            } else if self.eat('-') {
+                let rhs = self.product();
+                acc = self.pool.sub(acc, rhs);
+            } else {
+                return acc;
+            }
+        }
+    }
+
+    fn product(&mut self) -> ExprId {
+        let mut acc = self.unary();
+        loop {
+            if self.eat('*') {
+                let rhs = self.unary();
+                acc = self.pool.mul(acc, rhs);
+            } else if self.eat('/') {
+                let rhs = self.unary();
+                acc = self.pool.div(acc, rhs);
+            } else {
+                return acc;
+            }
+        }
+    }
+
+    fn unary(&mut self) -> ExprId {
+        if self.eat('-') {
+            let operand = self.unary();
+            return self.pool.neg(operand);
+        }
+        let base = self.atom();
+        if !self.eat('^') {
+            return base;
+        }
+        let sign = if self.eat('-') { "-" } else { "" };
+        let exp: i32 = format!("{sign}{}", self.run(|c| c.is_ascii_digit()))
+            .parse()
+            .expect("exponent");
+        self.pool.powi(base, exp)
+    }
+
+    fn atom(&mut self) -> ExprId {
+        if self.eat('(') {
+            let inner = self.sum();
+            assert!(self.eat(')'), "missing `)`");
+            return inner;
+        }
+        if self.peek().is_some_and(|c| c.is_ascii_digit()) {
+            let literal = self.run(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_');
+            return self.pool.decimal(&literal).expect("number");
+        }
+        let word = self.run(|c| c.is_ascii_alphanumeric());
+        if self.eat('(') {
+            let arg = self.sum();
+            assert!(self.eat(')'), "missing `)`");
+            return self.pool.func(function(&word), arg);
+        }
+        let sym = symbol(&word);
+        self.pool.sym(sym)
+    }
+}
+
+/// The function called `word`.
+fn function(word: &str) -> Func {
+    [
+        Func::Sin,
+        Func::Cos,
+        Func::Tan,
+        Func::Sqrt,
+        Func::Exp,
+        Func::Ln,
+        Func::Abs,
+    ]
+    .into_iter()
+    .find(|f| f.name() == word)
+    .unwrap_or_else(|| panic!("unknown function {word:?}"))
+}
+
+/// The symbol called `word` (see [`parse`]).
+fn symbol(word: &str) -> Sym {
+    if word == "t" {
+        return Sym::Time;
+    }
+    let (kind, index) = word.split_at(1);
+    let i: u32 = index
+        .parse()
+        .unwrap_or_else(|_| panic!("bad symbol {word:?}"));
+    match kind {
+        "q" => Sym::Coord(i),
+        "u" => Sym::Speed(i),
+        "a" => Sym::Accel(i),
+        "p" => Sym::Param(i),
+        "f" => Sym::Input(i),
+        "l" => Sym::Multiplier(i),
+        _ => panic!("bad symbol {word:?}"),
+    }
+}
+
+/// A pool and a shorthand to build and show expressions in it.
+#[derive(Default)]
+pub struct Scratch {
+    pub pool: Pool,
+}
+
+impl Scratch {
+    /// [`parse`] in this pool.
+    pub fn e(&mut self, text: &str) -> ExprId {
+        parse(&mut self.pool, text)
+    }
+
+    /// [`Pool::display`] with the naming [`parse`] reads.
+    pub fn show(&self, e: ExprId) -> String {
+        self.pool.display(e, &name)
+    }
 }

@@ -68,17 +68,13 @@ pub enum Statement {
         /// The fields in braces, in source order (unchecked).
         fields: Vec<Field>,
     },
-    /// `gravity <vec>;` (`keyword` is the `gravity` token, for diagnostics).
+    /// `gravity <vec>;`
     Gravity {
-        /// The `gravity` token.
-        keyword: Ident,
         /// The field's acceleration vector.
         value: Expr,
     },
     /// `force <vec> at P;`
     Force {
-        /// The `force` token.
-        keyword: Ident,
         /// The force vector.
         value: Expr,
         /// The point of application, after `at`.
@@ -86,8 +82,6 @@ pub enum Statement {
     },
     /// `torque <vec> on F;` or `torque <vec> on F reacting G;`
     Torque {
-        /// The `torque` token.
-        keyword: Ident,
         /// The torque vector.
         value: Expr,
         /// The frame it acts on, after `on`.
@@ -97,26 +91,20 @@ pub enum Statement {
     },
     /// `potential <scalar>;`
     Potential {
-        /// The `potential` token.
-        keyword: Ident,
         /// The potential `V(q)`.
         value: Expr,
     },
     /// `dissipation <scalar>;`
     Dissipation {
-        /// The `dissipation` token.
-        keyword: Ident,
         /// The Rayleigh dissipation function `D(q, q̇)`.
         value: Expr,
     },
-    /// `constraint lhs == rhs;` (`eq` is the span of `==`).
+    /// `constraint lhs == rhs;`
     Constraint {
         /// The `constraint` token.
         keyword: Ident,
         /// The left-hand side.
         lhs: Expr,
-        /// The span of `==`.
-        eq: Span,
         /// The right-hand side.
         rhs: Expr,
     },

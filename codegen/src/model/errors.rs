@@ -20,11 +20,6 @@ impl Errors {
         }
     }
 
-    /// Whether nothing has been recorded.
-    pub fn is_empty(&self) -> bool {
-        self.first.is_none()
-    }
-
     /// `Ok(value)` if no error was recorded, else all of them.
     pub fn finish<T>(self, value: T) -> syn::Result<T> {
         match self.first {

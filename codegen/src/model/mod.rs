@@ -64,8 +64,6 @@ pub struct Model {
 
 /// A reference frame: `N`, or a rotation of a parent frame.
 pub struct Frame {
-    /// Name as written (`N` for the Newtonian frame).
-    pub name: String,
     /// The parent and the rotation about one of the parent's axes; `None`
     /// for `N`.
     pub placement: Option<FramePlacement>,
@@ -83,17 +81,12 @@ pub struct FramePlacement {
 
 /// A point: `O`, or a point located from another by a vector.
 pub struct Point {
-    /// Name as written (or a description for anonymous points such as a
-    /// body centre written as an expression).
-    pub name: String,
     /// The base point and the offset from it; `None` for `O`.
     pub placement: Option<(PointId, Vector)>,
 }
 
 /// A rigid body.
 pub struct Body {
-    /// Name as written.
-    pub name: Ident,
     /// Its mass (parameters only).
     pub mass: ExprId,
     /// Its centre of mass.
@@ -106,8 +99,6 @@ pub struct Body {
 
 /// A point mass.
 pub struct Particle {
-    /// Name as written.
-    pub name: Ident,
     /// Its mass (parameters only).
     pub mass: ExprId,
     /// Where it is.

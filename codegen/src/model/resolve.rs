@@ -166,14 +166,8 @@ impl Resolver {
                 parameters: Vec::new(),
                 coordinates: Vec::new(),
                 inputs: Vec::new(),
-                frames: vec![Frame {
-                    name: "N".to_string(),
-                    placement: None,
-                }],
-                points: vec![Point {
-                    name: "O".to_string(),
-                    placement: None,
-                }],
+                frames: vec![Frame { placement: None }],
+                points: vec![Point { placement: None }],
                 bodies: Vec::new(),
                 particles: Vec::new(),
                 gravity: None,
@@ -296,7 +290,10 @@ impl Resolver {
             _ => {
                 self.errors.push(
                     *span,
-                    format!("`{method}` takes one argument, the angle; found {}", args.len()),
+                    format!(
+                        "`{method}` takes one argument, the angle; found {}",
+                        args.len()
+                    ),
                 );
                 None
             }
@@ -318,7 +315,6 @@ impl Resolver {
             (mass, center, frame, inertia)
         {
             self.model.bodies.push(Body {
-                name: name.clone(),
                 mass,
                 center,
                 frame,
@@ -333,11 +329,7 @@ impl Resolver {
         let at = at.and_then(|e| self.point(e, GEOMETRY));
         self.define(name, Binding::Particle);
         if let (Some(mass), Some(at)) = (mass, at) {
-            self.model.particles.push(Particle {
-                name: name.clone(),
-                mass,
-                at,
-            });
+            self.model.particles.push(Particle { mass, at });
         }
     }
 
@@ -370,10 +362,8 @@ impl Resolver {
         let child = child.and_then(|e| match e {
             Expr::Name(ident) => Some(ident),
             other => {
-                self.errors.push(
-                    other.span(),
-                    "expected the name of the new child frame",
-                );
+                self.errors
+                    .push(other.span(), "expected the name of the new child frame");
                 None
             }
         });
@@ -487,7 +477,11 @@ impl Resolver {
                 owner.span(),
                 format!(
                     "{what} `{owner}` is missing {} {}; a {what} needs {}",
-                    if missing.len() == 1 { "the field" } else { "the fields" },
+                    if missing.len() == 1 {
+                        "the field"
+                    } else {
+                        "the fields"
+                    },
                     list(&missing),
                     list(&expected)
                 ),
@@ -574,7 +568,9 @@ impl Resolver {
         if BUILTINS.contains(&text.as_str()) || FUNCTIONS.iter().any(|(f, _)| *f == text) {
             self.errors.push(
                 name.span(),
-                format!("`{name}` is a built-in name and cannot be defined again; choose another name"),
+                format!(
+                    "`{name}` is a built-in name and cannot be defined again; choose another name"
+                ),
             );
             return false;
         }
@@ -592,17 +588,10 @@ impl Resolver {
         true
     }
 
-    fn define_frame(
-        &mut self,
-        name: &Ident,
-        parent: FrameId,
-        axis: usize,
-        angle: ExprId,
-    ) {
+    fn define_frame(&mut self, name: &Ident, parent: FrameId, axis: usize, angle: ExprId) {
         let id = FrameId(self.model.frames.len());
         if self.define(name, Binding::Frame(id)) {
             self.model.frames.push(Frame {
-                name: name.to_string(),
                 placement: Some(FramePlacement {
                     parent,
                     axis,
@@ -615,10 +604,7 @@ impl Resolver {
     fn define_point(&mut self, name: &Ident, placement: Option<(PointId, Vector)>) {
         let id = PointId(self.model.points.len());
         if self.define(name, Binding::Point(id)) {
-            self.model.points.push(Point {
-                name: name.to_string(),
-                placement,
-            });
+            self.model.points.push(Point { placement });
         }
     }
 
@@ -654,7 +640,6 @@ impl Resolver {
             return Some(base);
         }
         self.model.points.push(Point {
-            name: format!("{} + ...", self.model.points[base.0].name),
             placement: Some((base, offset)),
         });
         Some(PointId(self.model.points.len() - 1))
@@ -744,7 +729,8 @@ impl Resolver {
                 None
             }
             Expr::Array { span, .. } => {
-                self.errors.push(*span, "a list `[..]` is allowed only as a body's inertia");
+                self.errors
+                    .push(*span, "a list `[..]` is allowed only as a body's inertia");
                 None
             }
             Expr::Paren { inner, .. } => self.value(inner, usage),
@@ -912,7 +898,8 @@ impl Resolver {
             return None;
         };
         if n < 0 && self.pool.is_zero(base) {
-            self.errors.push(lhs.span(), "division by zero: zero to a negative power");
+            self.errors
+                .push(lhs.span(), "division by zero: zero to a negative power");
             return None;
         }
         Some(Value::Scalar(self.pool.powi(base, n)))
@@ -927,9 +914,9 @@ fn defined_names(system: &System) -> HashMap<String, Span> {
     };
     for statement in &system.statements {
         match statement {
-            Statement::Parameters(list) | Statement::Coordinates(list) | Statement::Inputs(list) => {
-                list.iter().for_each(&mut add)
-            }
+            Statement::Parameters(list)
+            | Statement::Coordinates(list)
+            | Statement::Inputs(list) => list.iter().for_each(&mut add),
             Statement::Frame { name, .. }
             | Statement::Point { name, .. }
             | Statement::Body { name, .. }
@@ -971,12 +958,12 @@ fn operator_mismatch(op: BinOp, a: &Value, b: &Value) -> String {
             "cannot {} {a} and {b}: both sides must be scalars, or both vectors",
             if op == BinOp::Add { "add" } else { "subtract" }
         ),
-        BinOp::Mul => format!(
-            "cannot multiply {a} by {b}: expected a scalar times a scalar or a vector"
-        ),
-        BinOp::Div | BinOp::Pow => format!(
-            "cannot divide {a} by {b}: the divisor must be a scalar"
-        ),
+        BinOp::Mul => {
+            format!("cannot multiply {a} by {b}: expected a scalar times a scalar or a vector")
+        }
+        BinOp::Div | BinOp::Pow => {
+            format!("cannot divide {a} by {b}: the divisor must be a scalar")
+        }
     }
 }
 

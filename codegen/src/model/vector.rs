@@ -65,12 +65,8 @@ impl Vector {
         self.scale(minus_one, pool)
     }
 
-    /// Every scalar component, for checks over all of them.
-    pub fn components(&self) -> impl Iterator<Item = ExprId> + '_ {
-        self.parts.iter().flat_map(|(_, c)| c.iter().copied())
-    }
-
     fn drop_zero_parts(&mut self, pool: &Pool) {
-        self.parts.retain(|(_, c)| c.iter().any(|x| !pool.is_zero(*x)));
+        self.parts
+            .retain(|(_, c)| c.iter().any(|x| !pool.is_zero(*x)));
     }
 }

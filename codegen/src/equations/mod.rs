@@ -84,7 +84,12 @@ struct Partials {
     angular: Vec<Vec3>,
 }
 
-fn partials(kinematics: &Kinematics, pool: &mut Pool, inertia: &Inertia<'_>, nq: usize) -> Partials {
+fn partials(
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    inertia: &Inertia<'_>,
+    nq: usize,
+) -> Partials {
     Partials {
         linear: (0..nq)
             .map(|k| kinematics.partial_velocity(pool, inertia.center, k))
@@ -120,7 +125,8 @@ fn inertia_terms(
             let h = mat_vec(pool, tensor, &omega);
             let gyroscopic = cross(pool, &omega, &h);
             let moment = [0, 1, 2].map(|i| pool.add(i_alpha[i], gyroscopic[i]));
-            let i_partials: Vec<Vec3> = p.angular.iter().map(|w| mat_vec(pool, tensor, w)).collect();
+            let i_partials: Vec<Vec3> =
+                p.angular.iter().map(|w| mat_vec(pool, tensor, w)).collect();
             (moment, i_partials)
         });
         for k in 0..nq {
@@ -145,7 +151,10 @@ fn inertia_terms(
             mass_matrix[j][k] = entry;
         }
     }
-    let bias = bias_terms.into_iter().map(|terms| pool.sum(terms)).collect();
+    let bias = bias_terms
+        .into_iter()
+        .map(|terms| pool.sum(terms))
+        .collect();
     (mass_matrix, bias)
 }
 
@@ -173,7 +182,14 @@ fn generalized_force(
         terms.push(dot(pool, &f, &v));
     }
     for torque in &model.torques {
-        terms.push(torque_power(model, kinematics, pool, &torque.vector, torque.on, k));
+        terms.push(torque_power(
+            model,
+            kinematics,
+            pool,
+            &torque.vector,
+            torque.on,
+            k,
+        ));
         if let Some(reacting) = torque.reacting {
             let reaction = torque_power(model, kinematics, pool, &torque.vector, reacting, k);
             terms.push(pool.neg(reaction));
@@ -265,3 +281,6 @@ fn constraints(model: &Model, pool: &mut Pool) -> (Vec<Vec<ExprId>>, Vec<ExprId>
     }
     (jacobian, bias, residual)
 }
+
+#[cfg(test)]
+mod lagrange_check;
