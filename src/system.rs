@@ -43,4 +43,9 @@ pub trait ConstrainedSystem<const NQ: usize, const NU: usize, const NC: usize>:
     /// The residual `lhs − rhs` of each holonomic constraint at `(t, q)`; `0`
     /// for the rows of nonholonomic constraints.
     fn constraint_residual(&self, t: f64, q: &[f64; NQ]) -> [f64; NC];
+
+    /// The velocity form of each constraint at `(t, q, q̇)`: `dφ/dt` of a
+    /// holonomic row, the row itself for a nonholonomic one; zero on the
+    /// constraint manifold (velocity-level drift).
+    fn constraint_velocity(&self, t: f64, q: &[f64; NQ], qd: &[f64; NQ]) -> [f64; NC];
 }

@@ -176,3 +176,28 @@ fn generated_constants_follow_the_declarations() {
     assert_eq!(ConstrainedPendulum::NC, 2);
     assert_eq!(ConstrainedPendulum::COORDINATES, ["x", "y", "theta"]);
 }
+
+#[test]
+fn seed_3_velocity_form_vanishes_on_the_reference_states() {
+    let reference = system("S3");
+    let sys = ConstrainedPendulum {
+        m: parameter(&reference, "m"),
+        l: parameter(&reference, "l"),
+        g: parameter(&reference, "g"),
+    };
+    for (i, s) in states(&reference).iter().enumerate() {
+        let (t, q, qd) = (
+            s["t"].as_f64().unwrap(),
+            array::<3>(&s["q"]),
+            array::<3>(&s["qd"]),
+        );
+        let expected = array::<2>(&s["constraint_residual_Aqd"]);
+        let velocity = sys.constraint_velocity(t, &q, &qd);
+        for (v, e) in velocity.iter().zip(expected) {
+            assert!(
+                (v - e).abs() < 1e-12,
+                "state {i}: velocity form {velocity:?}, reference {e}"
+            );
+        }
+    }
+}

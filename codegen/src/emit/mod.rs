@@ -256,6 +256,14 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
     let residual = straight_line(&model.pool, names, &equations.constraint_residual);
     let Reads { t: rt, q: rq, .. } = reads(&residual);
     let (rs, ro) = (&residual.statements, &residual.outputs);
+    let velocity = straight_line(&model.pool, names, &equations.constraint_velocity);
+    let Reads {
+        t: vt,
+        q: vq,
+        qd: vqd,
+        ..
+    } = reads(&velocity);
+    let (vs, vo) = (&velocity.statements, &velocity.outputs);
     quote! {
         /// The constraint Jacobian `A(q)` of `M q̈ = f + Aᵀλ`, `A q̈ = b`;
         /// rows in declaration order.
@@ -281,6 +289,16 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
         pub fn constraint_residual(&self, #rt: f64, #rq: &#vector) -> #rows_out {
             #rs
             [#(#ro),*]
+        }
+
+        /// The velocity form of each constraint, `A q̇ + ψ₀(t, q)`: the time
+        /// derivative of a holonomic row's residual, a nonholonomic row
+        /// itself. Zero on the constraint manifold.
+        #[inline]
+        #[must_use]
+        pub fn constraint_velocity(&self, #vt: f64, #vq: &#vector, #vqd: &#vector) -> #rows_out {
+            #vs
+            [#(#vo),*]
         }
     }
 }
@@ -327,6 +345,10 @@ fn emit_trait_impls(name: &Ident, nq: usize, nu: usize, nc: usize) -> TokenStrea
             #[inline]
             fn constraint_residual(&self, t: f64, q: &#vector) -> #rows_out {
                 #name::constraint_residual(self, t, q)
+            }
+            #[inline]
+            fn constraint_velocity(&self, t: f64, q: &#vector, qd: &#vector) -> #rows_out {
+                #name::constraint_velocity(self, t, q, qd)
             }
         }
     }

@@ -30,6 +30,17 @@ pub struct Equations {
     pub constraint_bias: Vec<ExprId>,
     /// `lhs − rhs` of holonomic rows, 0 for nonholonomic rows.
     pub constraint_residual: Vec<ExprId>,
+    /// The velocity form `ψ = A q̇ + ψ₀` of each row: `dφ/dt` of a
+    /// holonomic row, the row itself for a nonholonomic one.
+    pub constraint_velocity: Vec<ExprId>,
+}
+
+/// The rows of `A`, `b`, residual and velocity form, as in [`Equations`].
+struct ConstraintRows {
+    jacobian: Vec<Vec<ExprId>>,
+    bias: Vec<ExprId>,
+    residual: Vec<ExprId>,
+    velocity: Vec<ExprId>,
 }
 
 /// A mass moving with a point and, for bodies, turning with a frame.
@@ -51,15 +62,16 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
             pool.sub(active, inertia_bias[k])
         })
         .collect();
-    let (constraint_jacobian, constraint_bias, constraint_residual) = constraints(model, pool);
+    let rows = constraints(model, pool);
     Equations {
         mass_matrix,
         forcing,
         kinetic_energy: kinetic_energy(&kinematics, pool, &inertias),
         potential_energy: potential_energy(model, &kinematics, pool, &inertias),
-        constraint_jacobian,
-        constraint_bias,
-        constraint_residual,
+        constraint_jacobian: rows.jacobian,
+        constraint_bias: rows.bias,
+        constraint_residual: rows.residual,
+        constraint_velocity: rows.velocity,
     }
 }
 
@@ -254,32 +266,35 @@ fn potential_energy(
     pool.sum(terms)
 }
 
-/// `A`, `b` and the residuals. A row's velocity form is `ψ = A q̇ + ψ₀`
-/// (`ψ = dφ/dt` for a holonomic `φ`), so `A = ∂ψ/∂q̇` and
+/// `A`, `b`, the residuals and velocity forms. A row's velocity form is
+/// `ψ = A q̇ + ψ₀` (`ψ = dφ/dt` for a holonomic `φ`), so `A = ∂ψ/∂q̇` and
 /// `b = −rate(ψ)`, the time derivative of `ψ` at constant speeds.
-#[allow(clippy::type_complexity)]
-fn constraints(model: &Model, pool: &mut Pool) -> (Vec<Vec<ExprId>>, Vec<ExprId>, Vec<ExprId>) {
+fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
     let nq = model.nq();
-    let mut jacobian = Vec::new();
-    let mut bias = Vec::new();
-    let mut residual = Vec::new();
+    let mut rows = ConstraintRows {
+        jacobian: Vec::new(),
+        bias: Vec::new(),
+        residual: Vec::new(),
+        velocity: Vec::new(),
+    };
     for constraint in &model.constraints {
         let psi = if constraint.nonholonomic {
-            residual.push(pool.zero());
+            rows.residual.push(pool.zero());
             constraint.residual
         } else {
-            residual.push(constraint.residual);
+            rows.residual.push(constraint.residual);
             pool.time_derivative(constraint.residual)
         };
-        jacobian.push(
+        rows.jacobian.push(
             (0..nq)
                 .map(|k| pool.diff(psi, Sym::Speed(k as u32)))
                 .collect(),
         );
         let rate = rate_at_constant_speeds(pool, psi, nq as u32);
-        bias.push(pool.neg(rate));
+        rows.bias.push(pool.neg(rate));
+        rows.velocity.push(psi);
     }
-    (jacobian, bias, residual)
+    rows
 }
 
 #[cfg(test)]
