@@ -36,6 +36,31 @@ pub enum DynamicsError {
     /// The accelerations overflowed although the equations were finite and
     /// the mass matrix passed the pivot test.
     NonFiniteAccelerations,
+    /// The constraint Jacobian `A`, the bias `b`, the residual `φ` or the
+    /// velocity form `ψ` has a NaN or infinite entry.
+    NonFiniteConstraints,
+    /// The constraint rows are linearly dependent to working precision: the
+    /// Cholesky factorisation of the Schur complement `S = A M⁻¹ Aᵀ` met a
+    /// pivot not larger than `1e-14` times the largest diagonal entry of `S`.
+    /// Constraint `row` is then a combination of the rows before it: a
+    /// redundant or contradictory constraint, or a singular configuration of
+    /// the mechanism (a slider-crank whose rod equals its crank, at the
+    /// position where both are vertical).
+    DependentConstraints {
+        /// Index of the first failing pivot, which is the index of its
+        /// constraint row (declaration order).
+        row: usize,
+        /// The pivot: zero, negative or tiny.
+        pivot: f64,
+    },
+    /// Coordinate projection did not bring the largest constraint residual
+    /// `|φᵢ|` below its tolerance within its iteration budget.
+    ProjectionNotConverged {
+        /// Gauss–Newton iterations made.
+        iterations: usize,
+        /// The largest `|φᵢ|` left.
+        residual: f64,
+    },
 }
 
 impl fmt::Display for DynamicsError {
@@ -55,6 +80,22 @@ impl fmt::Display for DynamicsError {
                  inertia of its own (Cholesky pivot {pivot:.3e})"
             ),
             Self::NonFiniteAccelerations => f.write_str("the accelerations overflowed"),
+            Self::NonFiniteConstraints => {
+                f.write_str("non-finite entry in the constraint Jacobian, bias or residual")
+            }
+            Self::DependentConstraints { row, pivot } => write!(
+                f,
+                "constraint row {row} depends on the rows before it: redundant, contradictory \
+                 or at a singular configuration (Schur pivot {pivot:.3e})"
+            ),
+            Self::ProjectionNotConverged {
+                iterations,
+                residual,
+            } => write!(
+                f,
+                "projection onto the constraints did not converge: max |φ| = {residual:.3e} \
+                 after {iterations} iterations"
+            ),
         }
     }
 }
@@ -86,12 +127,7 @@ where
     if !(mass.iter().all(all_finite) && all_finite(&forcing)) {
         return Err(DynamicsError::NonFiniteEquations);
     }
-    let mass = SMatrix::<f64, NQ, NQ>::from_fn(|i, j| mass[i][j]);
-    let factor = cholesky(mass).map_err(|pivot| DynamicsError::SingularMassMatrix {
-        index: pivot.index,
-        coordinate: S::COORDINATES[pivot.index],
-        pivot: pivot.value,
-    })?;
+    let factor = factor_mass_matrix(&mass, &S::COORDINATES)?;
     let qdd: [f64; NQ] = factor.solve(&SVector::from(forcing)).into();
     if !all_finite(&qdd) {
         return Err(DynamicsError::NonFiniteAccelerations);
@@ -107,15 +143,33 @@ where
     system.kinetic_energy(q, qd) + system.potential_energy(q)
 }
 
+/// The Cholesky factor of a finite mass matrix, or the error naming the
+/// coordinate (of `coordinates`) whose pivot is not safely positive.
+pub(crate) fn factor_mass_matrix<const NQ: usize>(
+    mass: &[[f64; NQ]; NQ],
+    coordinates: &[&'static str; NQ],
+) -> Result<Cholesky<f64, Const<NQ>>, DynamicsError> {
+    let mass = SMatrix::<f64, NQ, NQ>::from_fn(|i, j| mass[i][j]);
+    cholesky(mass).map_err(|pivot| DynamicsError::SingularMassMatrix {
+        index: pivot.index,
+        coordinate: coordinates[pivot.index],
+        pivot: pivot.value,
+    })
+}
+
 /// A Cholesky pivot that is not safely positive.
-struct Pivot {
-    index: usize,
-    value: f64,
+pub(crate) struct Pivot {
+    /// Its row and column.
+    pub(crate) index: usize,
+    /// Its value `Lⱼⱼ²`.
+    pub(crate) value: f64,
 }
 
 /// Factorises a finite `M = L Lᵀ`, or reports its first pivot that is not
 /// safely positive.
-fn cholesky<const N: usize>(mass: SMatrix<f64, N, N>) -> Result<Cholesky<f64, Const<N>>, Pivot> {
+pub(crate) fn cholesky<const N: usize>(
+    mass: SMatrix<f64, N, N>,
+) -> Result<Cholesky<f64, Const<N>>, Pivot> {
     let tolerance = RELATIVE_PIVOT_TOLERANCE * mass.diagonal().max().max(0.0);
     // Never fails; a bad pivot leaves NaN behind it, but every row of L up to
     // it is exact before its diagonal, which is all the pivot scan reads.
@@ -134,7 +188,7 @@ fn cholesky<const N: usize>(mass: SMatrix<f64, N, N>) -> Result<Cholesky<f64, Co
 }
 
 /// Whether every entry is finite.
-fn all_finite<const N: usize>(values: &[f64; N]) -> bool {
+pub(crate) fn all_finite<const N: usize>(values: &[f64; N]) -> bool {
     values.iter().all(|v| v.is_finite())
 }
 

@@ -54,7 +54,20 @@ pub fn rk4_step<S, const NQ: usize, const NU: usize>(
 where
     S: MultibodySystem<NQ, NU>,
 {
-    let rate = |stage: &State<NQ>| Rate::at(system, &inputs, stage);
+    rk4_step_with(state, h, |t, q, qd| {
+        accelerations(system, t, q, qd, &inputs(t, q, qd))
+    })
+}
+
+/// One classical RK4 step of length `h` of `q̇' = q̈(t, q, q̇)`, with the
+/// accelerations given by `acceleration` (the stepper shared by
+/// unconstrained and constrained integration).
+pub(crate) fn rk4_step_with<const NQ: usize>(
+    state: &State<NQ>,
+    h: f64,
+    acceleration: impl Fn(f64, &[f64; NQ], &[f64; NQ]) -> Result<[f64; NQ], DynamicsError>,
+) -> Result<State<NQ>, IntegrationError<NQ>> {
+    let rate = |stage: &State<NQ>| Rate::at(&acceleration, stage);
     let k1 = rate(state)?;
     let k2 = rate(&k1.advance(state, h / 2.0))?;
     let k3 = rate(&k2.advance(state, h / 2.0))?;
@@ -74,15 +87,32 @@ pub fn simulate<S, const NQ: usize, const NU: usize>(
     inputs: impl Fn(f64, &[f64; NQ], &[f64; NQ]) -> [f64; NU],
     h: f64,
     steps: usize,
-    mut observer: impl FnMut(&State<NQ>),
+    observer: impl FnMut(&State<NQ>),
 ) -> Result<State<NQ>, IntegrationError<NQ>>
 where
     S: MultibodySystem<NQ, NU>,
 {
+    march(
+        initial,
+        steps,
+        |state| rk4_step(system, state, &inputs, h),
+        observer,
+    )
+}
+
+/// Applies `step` `steps` times from `initial` and returns the final state;
+/// `observer` sees the initial state and then every new one. Stops at the
+/// first step that fails.
+pub(crate) fn march<const NQ: usize>(
+    initial: State<NQ>,
+    steps: usize,
+    mut step: impl FnMut(&State<NQ>) -> Result<State<NQ>, IntegrationError<NQ>>,
+    mut observer: impl FnMut(&State<NQ>),
+) -> Result<State<NQ>, IntegrationError<NQ>> {
     observer(&initial);
     let mut state = initial;
     for _ in 0..steps {
-        state = rk4_step(system, &state, &inputs, h)?;
+        state = step(&state)?;
         observer(&state);
     }
     Ok(state)
@@ -95,18 +125,14 @@ struct Rate<const NQ: usize> {
 }
 
 impl<const NQ: usize> Rate<NQ> {
-    /// Evaluates the equations of motion at `state`.
-    fn at<S, const NU: usize>(
-        system: &S,
-        inputs: &impl Fn(f64, &[f64; NQ], &[f64; NQ]) -> [f64; NU],
+    /// Evaluates the equations of motion, given as `acceleration`, at
+    /// `state`.
+    fn at(
+        acceleration: &impl Fn(f64, &[f64; NQ], &[f64; NQ]) -> Result<[f64; NQ], DynamicsError>,
         state: &State<NQ>,
-    ) -> Result<Self, IntegrationError<NQ>>
-    where
-        S: MultibodySystem<NQ, NU>,
-    {
+    ) -> Result<Self, IntegrationError<NQ>> {
         let State { t, q, qd } = state;
-        let u = inputs(*t, q, qd);
-        let qdd = accelerations(system, *t, q, qd, &u).map_err(|cause| IntegrationError {
+        let qdd = acceleration(*t, q, qd).map_err(|cause| IntegrationError {
             t: *t,
             q: *q,
             cause,

@@ -32,6 +32,7 @@ pub use dalembert_macros::dalembert;
 
 #[cfg(feature = "charts")]
 mod chart;
+mod constrained;
 mod dynamics;
 mod integrate;
 mod system;
@@ -40,6 +41,10 @@ mod test_systems;
 
 #[cfg(feature = "charts")]
 pub use chart::{ChartError, Series, line_chart, line_chart_log_y};
+pub use constrained::{
+    Stabilisation, baumgarte_accelerations, constrained_accelerations, constrained_rk4_step,
+    constraint_drift, project_onto_constraints, simulate_constrained,
+};
 pub use dynamics::{DynamicsError, accelerations, energy};
 pub use integrate::{IntegrationError, State, rk4_step, simulate};
 pub use system::{ConstrainedSystem, MultibodySystem};

@@ -22,6 +22,18 @@ pub struct Names {
 }
 
 impl Names {
+    /// Whether a user's parameter, coordinate, speed or input has this name.
+    fn is_taken(&self, name: &str) -> bool {
+        self.parameters
+            .iter()
+            .chain(&self.coordinates)
+            .chain(&self.speeds)
+            .chain(&self.inputs)
+            .any(|ident| ident == name)
+    }
+}
+
+impl Names {
     fn symbol(&self, sym: Sym) -> Ident {
         match sym {
             Sym::Time => Ident::new("t", Span::call_site()),
@@ -34,25 +46,52 @@ impl Names {
         }
     }
 
-    /// The statement that loads `sym` from the function's arguments.
-    fn load(&self, sym: Sym) -> TokenStream {
-        let name = self.symbol(sym);
-        let value = match sym {
-            Sym::Param(_) => quote!(self.#name),
-            Sym::Coord(i) => index("q", i),
-            Sym::Speed(i) => index("qd", i),
-            Sym::Input(i) => index("u", i),
-            Sym::Time | Sym::Accel(_) | Sym::Multiplier(_) => return TokenStream::new(),
-        };
-        quote!(let #name = #value;)
+    /// One statement binding every used symbol from the arguments and
+    /// `self`, all read before any is bound, so that no user name (a
+    /// parameter called `q`, a coordinate called `u`) can shadow an argument
+    /// another load still needs.
+    fn load(&self, used: &BTreeSet<Sym>) -> TokenStream {
+        let mut patterns = Vec::new();
+        let mut values = Vec::new();
+        for (i, name) in self.parameters.iter().enumerate() {
+            if used.contains(&Sym::Param(i as u32)) {
+                patterns.push(quote!(#name));
+                values.push(quote!(self.#name));
+            }
+        }
+        let arrays: [ArrayArgument<'_>; 3] = [
+            ("q", &self.coordinates, Sym::Coord),
+            ("qd", &self.speeds, Sym::Speed),
+            ("u", &self.inputs, Sym::Input),
+        ];
+        for (array, names, sym) in arrays {
+            let elements: Vec<TokenStream> = names
+                .iter()
+                .enumerate()
+                .map(|(i, name)| {
+                    if used.contains(&sym(i as u32)) {
+                        quote!(#name)
+                    } else {
+                        quote!(_)
+                    }
+                })
+                .collect();
+            if (0..names.len() as u32).any(|i| used.contains(&sym(i))) {
+                let array = Ident::new(array, Span::call_site());
+                patterns.push(quote!([#(#elements),*]));
+                values.push(quote!(*#array));
+            }
+        }
+        match (patterns.as_slice(), values.as_slice()) {
+            ([], _) => TokenStream::new(),
+            ([pattern], [value]) => quote!(let #pattern = #value;),
+            _ => quote!(let (#(#patterns),*) = (#(#values),*);),
+        }
     }
 }
 
-fn index(array: &str, i: u32) -> TokenStream {
-    let array = Ident::new(array, Span::call_site());
-    let i = Literal::usize_unsuffixed(i as usize);
-    quote!(#array[#i])
-}
+/// An array argument: its name, the names of its elements, their symbols.
+type ArrayArgument<'a> = (&'static str, &'a [Ident], fn(u32) -> Sym);
 
 /// A function body: `let` statements, then the output expressions.
 pub struct Straight {
@@ -81,7 +120,7 @@ pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
             used.insert(*sym);
         }
     }
-    let loads: TokenStream = used.iter().map(|s| names.load(*s)).collect();
+    let loads = names.load(&used);
     let pairs = sin_cos_pairs(pool, &order);
     for &e in &order {
         if !writer.needs_binding(e, &uses) {
@@ -183,11 +222,15 @@ impl Writer<'_> {
         self.bound.insert(e, quote!(#name));
     }
 
-    /// `sin_theta1` for functions of a symbol, else `x12`.
+    /// `sin_theta1` for functions of a symbol (unless a user name is
+    /// spelled so), else `x12`.
     fn temporary_name(&mut self, e: ExprId) -> Ident {
         if let Node::Func(f, arg) = self.pool.node(e) {
             if let Node::Sym(sym) = self.pool.node(*arg) {
-                return format_ident!("{}_{}", func_name(*f), self.names.symbol(*sym));
+                let name = format_ident!("{}_{}", func_name(*f), self.names.symbol(*sym));
+                if !self.names.is_taken(&name.to_string()) {
+                    return name;
+                }
             }
         }
         self.temporaries += 1;

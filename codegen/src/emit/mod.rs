@@ -11,8 +11,17 @@ use body::{Names, Straight, straight_line};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
+/// The human-readable side of a system: its doc-comment lines (the user's,
+/// then the derived equations) and the equations as plain text.
+pub struct Documentation {
+    /// Lines of the struct's doc comment.
+    pub docs: Vec<String>,
+    /// The derived equations, for `NAME::EQUATIONS`.
+    pub text: String,
+}
+
 /// All items for one system.
-pub fn emit(model: &Model, equations: &Equations, docs: &[String]) -> TokenStream {
+pub fn emit(model: &Model, equations: &Equations, documentation: &Documentation) -> TokenStream {
     let names = names(model);
     let name = &model.name;
     let nq = model.nq();
@@ -24,8 +33,8 @@ pub fn emit(model: &Model, equations: &Equations, docs: &[String]) -> TokenStrea
         emit_energies(model, equations, &names),
         emit_constraints(model, equations, &names),
     ];
-    let strukt = emit_struct(model, docs);
-    let constants = emit_constants(model);
+    let strukt = emit_struct(model, &documentation.docs);
+    let constants = emit_constants(model, &documentation.text);
     let traits = emit_trait_impls(name, nq, nu, nc);
     quote! {
         #strukt
@@ -93,7 +102,7 @@ fn emit_struct(model: &Model, docs: &[String]) -> TokenStream {
     }
 }
 
-fn emit_constants(model: &Model) -> TokenStream {
+fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
     let [nq, np, nu, nc] = [
         model.nq(),
         model.parameters.len(),
@@ -118,6 +127,8 @@ fn emit_constants(model: &Model) -> TokenStream {
         pub const PARAMETERS: [&'static str; #np] = [#(#parameters),*];
         /// Names of the inputs, in index order.
         pub const INPUTS: [&'static str; #nu] = [#(#inputs),*];
+        /// The derived equations of motion, in the seed document's style.
+        pub const EQUATIONS: &'static str = #equations_text;
     }
 }
 

@@ -9,46 +9,15 @@ use super::derive;
 use crate::expr::{Env, ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, dot, rate_at_constant_speeds};
 use crate::model::{Model, NEWTONIAN, Vector, resolve};
+use crate::seeds::{CONSTRAINED_PENDULUM, DOUBLE_PENDULUM, ROTATING_BAR};
 
 /// Seed examples 1–3 as in DESIGN §3, and systems that exercise the rest of
 /// the language: 3-D rotations, products of inertia, particles, forces,
 /// reacting torques, potentials, dissipation, moving geometry and joints.
 const SYSTEMS: [&str; 6] = [
-    "pub DoublePendulum {
-        parameters m, L, g;
-        coordinates theta1, theta2;
-        frame B1 = N.rotate_z(theta1);
-        frame B2 = N.rotate_z(theta2);
-        point P1 = O - L * B1.y;
-        point G1 = O - L/2 * B1.y;
-        point G2 = P1 - L/2 * B2.y;
-        body link1 { mass: m, center: G1, frame: B1, inertia: [0, 0, m*L^2/12] };
-        body link2 { mass: m, center: G2, frame: B2, inertia: [0, 0, m*L^2/12] };
-        gravity -g * N.y;
-    }",
-    "pub RotatingBar {
-        parameters m, l, d;
-        coordinates phi, theta;
-        inputs M_phi, M_theta;
-        frame F = N.rotate_z(phi);
-        frame B = F.rotate_y(theta);
-        point G = O + d * F.y;
-        body bar { mass: m, center: G, frame: B, inertia: [0, m*l^2/12, m*l^2/12] };
-        torque M_phi * N.z on F;
-        torque M_theta * F.y on B reacting F;
-    }",
-    "pub ConstrainedPendulum {
-        parameters m, l, g;
-        coordinates x, y, theta;
-        inputs M;
-        frame B = N.rotate_z(theta);
-        point G = O + x * N.x + y * N.y;
-        body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
-        gravity -g * N.y;
-        torque M * N.z on B;
-        constraint x - l/2 * sin(theta) == 0;
-        constraint y + l/2 * cos(theta) == 0;
-    }",
+    DOUBLE_PENDULUM,
+    ROTATING_BAR,
+    CONSTRAINED_PENDULUM,
     "pub Gyro {
         parameters m, a, b, c, g, k, r;
         coordinates psi, th, ph;

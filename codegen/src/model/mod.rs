@@ -137,3 +137,6 @@ impl Model {
         self.coordinates.len()
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -50,6 +50,9 @@ enum Binding {
     Point(PointId),
     Body,
     Particle,
+    /// A name whose definition had an error (already reported): later uses
+    /// stay silent instead of repeating it.
+    Invalid,
 }
 
 impl Binding {
@@ -63,6 +66,7 @@ impl Binding {
             Binding::Point(_) => "a point",
             Binding::Body => "a body",
             Binding::Particle => "a particle",
+            Binding::Invalid => "a name with an error",
         }
     }
 }
@@ -200,11 +204,12 @@ impl Resolver {
             Statement::Coordinates(names) => self.declare_scalars(names, Sym::Coord),
             Statement::Inputs(names) => self.declare_scalars(names, Sym::Input),
             Statement::Frame { name, value } => self.frame_statement(name, value),
-            Statement::Point { name, value } => {
-                if let Some(placement) = self.point_value(value, GEOMETRY) {
-                    self.define_point(name, Some(placement));
+            Statement::Point { name, value } => match self.point_value(value, GEOMETRY) {
+                Some(placement) => self.define_point(name, Some(placement)),
+                None => {
+                    self.define(name, Binding::Invalid);
                 }
-            }
+            },
             Statement::Body { name, fields } => self.body(name, fields),
             Statement::Particle { name, fields } => self.particle(name, fields),
             Statement::Joint { kind, name, fields } => self.joint(kind, name, fields),
@@ -267,6 +272,7 @@ impl Resolver {
             span,
         } = value
         else {
+            self.define(name, Binding::Invalid);
             self.errors.push(
                 value.span(),
                 format!(
@@ -298,8 +304,11 @@ impl Resolver {
                 None
             }
         };
-        if let (Some(parent), Some(axis), Some(angle)) = (parent, axis, angle) {
-            self.define_frame(name, parent, axis, angle);
+        match (parent, axis, angle) {
+            (Some(parent), Some(axis), Some(angle)) => self.define_frame(name, parent, axis, angle),
+            _ => {
+                self.define(name, Binding::Invalid);
+            }
         }
     }
 
@@ -370,6 +379,12 @@ impl Resolver {
         let (Some(parent), Some(axis), Some(coordinate), Some((base, offset)), Some(child)) =
             (parent, axis, coordinate, at, child)
         else {
+            self.define(name, Binding::Invalid);
+            if let Some(Expr::Name(child)) =
+                fields.iter().find(|f| f.name == "child").map(|f| &f.value)
+            {
+                self.define(child, Binding::Invalid);
+            }
             return;
         };
         if revolute {
@@ -676,7 +691,10 @@ impl Resolver {
     fn lookup(&mut self, ident: &Ident) -> Option<Binding> {
         let text = ident.to_string();
         if let Some((binding, _)) = self.bindings.get(&text) {
-            return Some(*binding);
+            return match binding {
+                Binding::Invalid => None,
+                valid => Some(*valid),
+            };
         }
         let message = if self.defined_anywhere.contains_key(&text) {
             format!("`{ident}` is used before its definition; move its statement above this one")
@@ -767,6 +785,7 @@ impl Resolver {
             }
             Binding::Frame(f) => Some(Value::Frame(f)),
             Binding::Point(p) => Some(Value::Point(p, Vector::default())),
+            Binding::Invalid => None,
             other @ (Binding::Body | Binding::Particle) => {
                 self.errors.push(
                     ident.span(),

@@ -220,12 +220,20 @@ fn candidates(pool: &mut Pool, monomial: ExprId) -> Vec<Candidate> {
     for (i, &(base, f, x, exp)) in trig.iter().enumerate() {
         if exp >= 2 {
             let rest = divide(pool, monomial, &[base, base]);
-            found.push(Candidate { monomial, rest, pattern: Pattern::squared(f, x) });
+            found.push(Candidate {
+                monomial,
+                rest,
+                pattern: Pattern::squared(f, x),
+            });
         }
         for &(other, g, y, _) in &trig[i + 1..] {
             if let Some(pattern) = Pattern::pair((f, x), (g, y)) {
                 let rest = divide(pool, monomial, &[base, other]);
-                found.push(Candidate { monomial, rest, pattern });
+                found.push(Candidate {
+                    monomial,
+                    rest,
+                    pattern,
+                });
             }
         }
     }
@@ -294,10 +302,11 @@ impl Monomials {
     /// each monomial taking part in at most one rewrite. `None` if the sum
     /// did not get shorter (then no rule applies).
     fn recombined(&self, pool: &mut Pool) -> Option<Monomials> {
-        let all: Vec<Candidate> =
-            self.0.keys().flat_map(|&m| candidates(pool, m)).collect();
-        let by_shape: HashMap<(ExprId, Pattern), ExprId> =
-            all.iter().map(|c| ((c.rest, c.pattern), c.monomial)).collect();
+        let all: Vec<Candidate> = self.0.keys().flat_map(|&m| candidates(pool, m)).collect();
+        let by_shape: HashMap<(ExprId, Pattern), ExprId> = all
+            .iter()
+            .map(|c| ((c.rest, c.pattern), c.monomial))
+            .collect();
         let mut next = self.clone();
         let mut touched = BTreeSet::new();
         for candidate in all {
@@ -308,7 +317,12 @@ impl Monomials {
             if touched.contains(&candidate.monomial) || touched.contains(&partner) {
                 continue;
             }
-            let rewrite = Rewrite { candidate, partner, sum: &next, touched: &touched };
+            let rewrite = Rewrite {
+                candidate,
+                partner,
+                sum: &next,
+                touched: &touched,
+            };
             if let Some(replacement) = rewrite.replacement(pool) {
                 touched.extend([candidate.monomial, partner]);
                 next.0.remove(&candidate.monomial);
@@ -362,7 +376,11 @@ impl Rewrite<'_> {
         };
         // cos a cos b ± sin a sin b = cos(a ∓ b); sin a cos b ± cos a sin b = sin(a ± b).
         let difference = same_sign == (f == Func::Cos);
-        let angle = if difference { pool.sub(a, b) } else { pool.add(a, b) };
+        let angle = if difference {
+            pool.sub(a, b)
+        } else {
+            pool.add(a, b)
+        };
         let call = pool.func(f, angle);
         Some(vec![(coefficient, pool.mul(rest, call))])
     }
@@ -374,5 +392,357 @@ impl Rewrite<'_> {
         let rest = self.candidate.rest;
         let absorbs = self.sum.0.contains_key(&rest) && !self.touched.contains(&rest);
         absorbs.then(|| vec![(d, rest), (c + -d, self.candidate.monomial)])
+    }
+}
+
+#[cfg(test)]
+pub(super) mod tests {
+    use std::hash::{DefaultHasher, Hash, Hasher};
+
+    use super::*;
+    use crate::expr::{Env, Sym};
+
+    /// Symbol values in `[-2, 2)` drawn from a hash of `(seed, symbol)`:
+    /// deterministic on every machine.
+    struct Sample(u64);
+
+    impl Env for Sample {
+        fn value(&self, sym: Sym) -> f64 {
+            let mut hasher = DefaultHasher::new();
+            (self.0, sym).hash(&mut hasher);
+            (hasher.finish() >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+        }
+    }
+
+    /// Asserts that `a` and `b` agree at 20 sample points.
+    fn assert_same_value(pool: &Pool, a: ExprId, b: ExprId) {
+        for seed in 0..20 {
+            let (x, y) = (pool.eval(a, &Sample(seed)), pool.eval(b, &Sample(seed)));
+            let scale = x.abs().max(y.abs()).max(1.0);
+            assert!(
+                (x - y).abs() <= 1e-10 * scale,
+                "{x} vs {y} at sample {seed}"
+            );
+        }
+    }
+
+    /// The readable form of `e`, checked to have the value of `e`.
+    fn checked(pool: &mut Pool, e: ExprId) -> ExprId {
+        let form = readable(pool, e, 400).expect("within the budget");
+        assert_same_value(pool, e, form);
+        form
+    }
+
+    /// Small constructors for building test expressions without nested
+    /// `&mut` borrows.
+    pub(in crate::render) trait Build {
+        fn num(&mut self, num: i128, den: i128) -> ExprId;
+        fn prod(&mut self, factors: &[ExprId]) -> ExprId;
+        fn plus(&mut self, terms: &[ExprId]) -> ExprId;
+        fn minus(&mut self, a: ExprId, b: ExprId) -> ExprId;
+        fn pow(&mut self, base: ExprId, exp: i32) -> ExprId;
+        fn sin_pow(&mut self, x: ExprId, exp: i32) -> ExprId;
+        fn cos_pow(&mut self, x: ExprId, exp: i32) -> ExprId;
+    }
+
+    impl Build for Pool {
+        fn num(&mut self, num: i128, den: i128) -> ExprId {
+            self.rational(num, den)
+        }
+        fn prod(&mut self, factors: &[ExprId]) -> ExprId {
+            self.product(factors.iter().copied())
+        }
+        fn plus(&mut self, terms: &[ExprId]) -> ExprId {
+            self.sum(terms.iter().copied())
+        }
+        fn minus(&mut self, a: ExprId, b: ExprId) -> ExprId {
+            self.sub(a, b)
+        }
+        fn pow(&mut self, base: ExprId, exp: i32) -> ExprId {
+            self.powi(base, exp)
+        }
+        fn sin_pow(&mut self, x: ExprId, exp: i32) -> ExprId {
+            let s = self.sin(x);
+            self.powi(s, exp)
+        }
+        fn cos_pow(&mut self, x: ExprId, exp: i32) -> ExprId {
+            let c = self.cos(x);
+            self.powi(c, exp)
+        }
+    }
+
+    /// `m, L, g, d, l` (parameters 0–4), `θ₁, θ₂` and `θ̇₁, θ̇₂`.
+    pub(in crate::render) struct Symbols {
+        pub m: ExprId,
+        pub big_l: ExprId,
+        pub g: ExprId,
+        pub d: ExprId,
+        pub l: ExprId,
+        pub q: [ExprId; 2],
+        pub u: [ExprId; 2],
+    }
+
+    pub(in crate::render) fn symbols(p: &mut Pool) -> Symbols {
+        let [m, big_l, g, d, l] = [0, 1, 2, 3, 4].map(|i| p.sym(Sym::Param(i)));
+        Symbols {
+            m,
+            big_l,
+            g,
+            d,
+            l,
+            q: [0, 1].map(|i| p.sym(Sym::Coord(i))),
+            u: [0, 1].map(|i| p.sym(Sym::Speed(i))),
+        }
+    }
+
+    #[test]
+    fn term_counts() {
+        let mut p = Pool::new();
+        let s = symbols(&mut p);
+        assert_eq!(term_count(&p, p.zero()), 0);
+        let three = p.int(3);
+        assert_eq!(term_count(&p, three), 1);
+        let product = p.prod(&[s.m, s.g, s.q[0]]);
+        assert_eq!(term_count(&p, product), 1);
+        let sum = p.plus(&[s.m, s.g, product]);
+        assert_eq!(term_count(&p, sum), 3);
+    }
+
+    #[test]
+    fn cosine_of_a_difference_is_one_term() {
+        let mut p = Pool::new();
+        let [a, b] = symbols(&mut p).q;
+        let (ca, cb, sa, sb) = (p.cos(a), p.cos(b), p.sin(a), p.sin(b));
+        let (cc, ss) = (p.mul(ca, cb), p.mul(sa, sb));
+        let e = p.add(cc, ss);
+        let form = checked(&mut p, e);
+        assert_eq!(term_count(&p, form), 1);
+        let difference = p.sub(a, b);
+        assert_eq!(form, p.cos(difference));
+    }
+
+    #[test]
+    fn all_four_angle_sum_rules_with_a_common_rest() {
+        let mut p = Pool::new();
+        let s = symbols(&mut p);
+        let [a, b] = s.q;
+        // R = -3/2 m L² θ̇₂², shared by both terms of each pair.
+        let (c, l2, u2) = (p.num(-3, 2), p.pow(s.big_l, 2), p.pow(s.u[1], 2));
+        let rest = p.prod(&[c, s.m, l2, u2]);
+        let (sa, ca, sb, cb) = (p.sin(a), p.cos(a), p.sin(b), p.cos(b));
+        let (difference, total) = (p.sub(a, b), p.add(a, b));
+        let cases = [
+            ([ca, cb], [sa, sb], 1, p.cos(difference)),
+            ([ca, cb], [sa, sb], -1, p.cos(total)),
+            ([sa, cb], [ca, sb], 1, p.sin(total)),
+            ([sa, cb], [ca, sb], -1, p.sin(difference)),
+        ];
+        for (first, second, sign, expected) in cases {
+            let sign_e = p.int(sign);
+            let first = p.prod(&first);
+            let second = p.prod(&[sign_e, second[0], second[1]]);
+            let pair = p.add(first, second);
+            let e = p.mul(rest, pair);
+            let form = checked(&mut p, e);
+            assert_eq!(form, p.mul(rest, expected), "sign {sign}");
+        }
+    }
+
+    /// Seed 2: `M₁₁ = m d² (sin²φ + cos²φ) + 1/12 m l² cos²θ`.
+    pub(in crate::render) fn seed_rotating_bar_m11(p: &mut Pool, s: &Symbols) -> ExprId {
+        let [phi, theta] = s.q;
+        let (sin2, cos2) = (p.sin_pow(phi, 2), p.cos_pow(phi, 2));
+        let squares = p.add(sin2, cos2);
+        let d2 = p.pow(s.d, 2);
+        let orbit = p.prod(&[s.m, d2, squares]);
+        let (twelfth, l2, cos2_theta) = (p.num(1, 12), p.pow(s.l, 2), p.cos_pow(theta, 2));
+        let spin = p.prod(&[twelfth, s.m, l2, cos2_theta]);
+        p.add(orbit, spin)
+    }
+
+    #[test]
+    fn pythagoras_with_equal_coefficients() {
+        let mut p = Pool::new();
+        let s = symbols(&mut p);
+        let e = seed_rotating_bar_m11(&mut p, &s);
+        let form = checked(&mut p, e);
+        assert_eq!(term_count(&p, form), 2);
+        let (d2, l2, twelfth, cos2_theta) = (
+            p.pow(s.d, 2),
+            p.pow(s.l, 2),
+            p.num(1, 12),
+            p.cos_pow(s.q[1], 2),
+        );
+        let orbit = p.mul(s.m, d2);
+        let spin = p.prod(&[twelfth, s.m, l2, cos2_theta]);
+        assert_eq!(form, p.add(orbit, spin));
+    }
+
+    #[test]
+    fn pythagoras_with_different_coefficients_only_when_shorter() {
+        let mut p = Pool::new();
+        let x = symbols(&mut p).q[0];
+        let (sin2, cos2, three, five, two) = (
+            p.sin_pow(x, 2),
+            p.cos_pow(x, 2),
+            p.int(3),
+            p.int(5),
+            p.int(2),
+        );
+        let (a, b) = (p.mul(three, sin2), p.mul(five, cos2));
+        let mixed = p.add(a, b);
+        // Nothing absorbs the constant part: left as it is.
+        assert_eq!(checked(&mut p, mixed), mixed);
+        // With a constant to absorb it, two terms instead of three.
+        let e = p.add(mixed, two);
+        let form = checked(&mut p, e);
+        assert_eq!(term_count(&p, form), 2);
+        assert!(p.free_symbols(form).contains(&Sym::Coord(0)));
+    }
+
+    #[test]
+    fn recombination_repeats_until_nothing_applies() {
+        // cos a cos b sin²c + sin a sin b sin²c + cos(a − b) cos²c = cos(a − b),
+        // in two rounds.
+        let mut p = Pool::new();
+        let [a, b] = symbols(&mut p).q;
+        let c = p.sym(Sym::Coord(2));
+        let (sin2c, cos2c) = (p.sin_pow(c, 2), p.cos_pow(c, 2));
+        let (ca, cb, sa, sb) = (p.cos(a), p.cos(b), p.sin(a), p.sin(b));
+        let a_minus_b = p.sub(a, b);
+        let difference = p.cos(a_minus_b);
+        let first = p.prod(&[ca, cb, sin2c]);
+        let second = p.prod(&[sa, sb, sin2c]);
+        let third = p.mul(difference, cos2c);
+        let e = p.plus(&[first, second, third]);
+        assert_eq!(checked(&mut p, e), difference);
+    }
+
+    /// `scale · e_θ = scale · (cos θ, sin θ)`.
+    fn e_theta(p: &mut Pool, theta: ExprId, scale: ExprId) -> [ExprId; 2] {
+        let (c, s) = (p.cos(theta), p.sin(theta));
+        [p.mul(scale, c), p.mul(scale, s)]
+    }
+
+    /// `v · w` in components.
+    fn dot(p: &mut Pool, v: [ExprId; 2], w: [ExprId; 2]) -> ExprId {
+        let terms = [p.mul(v[0], w[0]), p.mul(v[1], w[1])];
+        p.plus(&terms)
+    }
+
+    /// The bias acceleration `−r θ̇² e_r` with `e_r = (sin θ, −cos θ)`.
+    fn centripetal(p: &mut Pool, theta: ExprId, rate: ExprId, r: ExprId) -> [ExprId; 2] {
+        let rate2 = p.pow(rate, 2);
+        let k = p.mul(r, rate2);
+        let (s, c) = (p.sin(theta), p.cos(theta));
+        let x = p.mul(k, s);
+        [p.neg(x), p.mul(k, c)]
+    }
+
+    /// Seed example 1 as d'Alembert produces it, with vectors in `N`
+    /// components: `(M₁₂, f₁)`.
+    pub(in crate::render) fn seed_double_pendulum(p: &mut Pool, s: &Symbols) -> (ExprId, ExprId) {
+        let ([t1, t2], [u1, u2]) = (s.q, s.u);
+        let half = p.num(1, 2);
+        let half_l = p.mul(half, s.big_l);
+        // M₁₂ = m (∂v_G2/∂θ̇₁) · (∂v_G2/∂θ̇₂).
+        let (v21, v22) = (e_theta(p, t1, s.big_l), e_theta(p, t2, half_l));
+        let v21_v22 = dot(p, v21, v22);
+        let m12 = p.mul(s.m, v21_v22);
+        // f₁ = −m a_G1·∂v_G1/∂θ̇₁ − m a_G2·∂v_G2/∂θ̇₁ − m g j·(∂v_G1/∂θ̇₁ + ∂v_G2/∂θ̇₁).
+        let a1 = centripetal(p, t1, u1, half_l);
+        let (x, y) = (
+            centripetal(p, t1, u1, s.big_l),
+            centripetal(p, t2, u2, half_l),
+        );
+        let a2 = [p.add(x[0], y[0]), p.add(x[1], y[1])];
+        let v11 = e_theta(p, t1, half_l);
+        let inertia = [dot(p, a1, v11), dot(p, a2, v21)];
+        let inertia = p.plus(&inertia);
+        let inertia = p.mul(s.m, inertia);
+        let lever = p.add(v11[1], v21[1]);
+        let gravity = p.prod(&[s.m, s.g, lever]);
+        let active_minus_inertia = p.add(inertia, gravity);
+        (m12, p.neg(active_minus_inertia))
+    }
+
+    #[test]
+    fn seed_double_pendulum_entries() {
+        let mut p = Pool::new();
+        let s = symbols(&mut p);
+        let ([t1, t2], u2) = (s.q, s.u[1]);
+        let (m12, f1) = seed_double_pendulum(&mut p, &s);
+        let (half, l2, u2_2, minus_three_halves) =
+            (p.num(1, 2), p.pow(s.big_l, 2), p.pow(u2, 2), p.num(-3, 2));
+        let t2_minus_t1 = p.sub(t2, t1);
+        let (cos21, sin21, sin1) = (p.cos(t2_minus_t1), p.sin(t2_minus_t1), p.sin(t1));
+        let form = checked(&mut p, m12);
+        assert_eq!(form, p.prod(&[half, s.m, l2, cos21]));
+        let form = checked(&mut p, f1);
+        let coriolis = p.prod(&[half, s.m, l2, u2_2, sin21]);
+        let weight = p.prod(&[minus_three_halves, s.m, s.g, s.big_l, sin1]);
+        assert_eq!(form, p.add(coriolis, weight));
+        assert_eq!(term_count(&p, form), 2);
+    }
+
+    #[test]
+    fn the_budget_bounds_the_expansion() {
+        let mut p = Pool::new();
+        let [a, b] = symbols(&mut p).q;
+        let a_plus_b = p.add(a, b);
+        let cube = p.pow(a_plus_b, 3);
+        let form = readable(&mut p, cube, 4);
+        assert_eq!(form.map(|f| term_count(&p, f)), Some(4));
+        assert_eq!(readable(&mut p, cube, 3), None);
+        let huge = p.pow(a_plus_b, i32::MAX);
+        assert_eq!(readable(&mut p, huge, 400), None);
+        // A product of 40 binomials would have 2⁴⁰ terms.
+        let binomials: Vec<ExprId> = (0..40)
+            .map(|i| {
+                let x = p.sym(Sym::Coord(i));
+                let c = p.cos(x);
+                let one = p.one();
+                p.add(one, c)
+            })
+            .collect();
+        let product = p.prod(&binomials);
+        assert_eq!(readable(&mut p, product, 400), None);
+        let zero = p.zero();
+        assert_eq!(readable(&mut p, zero, 0), Some(zero));
+    }
+
+    #[test]
+    fn random_trigonometric_polynomials_stay_exact() {
+        let mut p = Pool::new();
+        let s = symbols(&mut p);
+        let [a, b] = s.q;
+        let angles = [a, b, p.sub(a, b), p.add(a, b)];
+        let scales = [s.m, s.big_l, s.u[0]];
+        for seed in 0..40u64 {
+            let pick = |i: u64, n: usize| {
+                let mut hasher = DefaultHasher::new();
+                (seed, i).hash(&mut hasher);
+                (hasher.finish() % n as u64) as usize
+            };
+            let mut factors = Vec::new();
+            for i in 0..3 {
+                let mut terms = Vec::new();
+                for j in 0..3 {
+                    let angle = angles[pick(10 * i + j, angles.len())];
+                    let call = if pick(100 + 10 * i + j, 2) == 0 {
+                        p.sin(angle)
+                    } else {
+                        p.cos(angle)
+                    };
+                    let c = p.int(pick(200 + 10 * i + j, 5) as i64 - 2);
+                    terms.push(p.prod(&[c, call, scales[pick(300 + i, 3)]]));
+                }
+                factors.push(p.plus(&terms));
+            }
+            let e = p.prod(&factors);
+            let form = checked(&mut p, e);
+            let expanded = p.expand(e);
+            assert!(term_count(&p, form) <= term_count(&p, expanded));
+        }
     }
 }

@@ -1,0 +1,189 @@
+//! `dalembert`: the equations, generated code and diagnostics of a `.dal`
+//! model from the command line.
+//!
+//! ```text
+//! dalembert eom MODEL.dal [--latex]   the equations of motion, as in the seed document
+//! dalembert generate MODEL.dal        the generated Rust source
+//! dalembert check MODEL.dal           the errors the dalembert! macro would report
+//! ```
+//!
+//! Exit status: 0 on success, 1 if the model has errors or cannot be read,
+//! 2 on a usage error. Arguments are parsed by hand: the codegen crate is
+//! compiled by every user of the macro, and a CLI framework would slow that
+//! build for a three-command tool.
+
+#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+
+use std::ffi::OsString;
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use dalembert_codegen::{BuildError, ModelFile, Style};
+
+const USAGE: &str = "\
+Usage: dalembert <COMMAND> MODEL.dal
+
+Commands:
+  eom MODEL.dal [--latex]   print the equations of motion (Unicode, or LaTeX)
+  generate MODEL.dal        print the generated Rust source
+  check MODEL.dal           report the errors the dalembert! macro would report
+
+Options:
+  -h, --help                print this help
+  -V, --version             print the version";
+
+/// A parsed command line.
+#[derive(Debug, PartialEq)]
+enum Command {
+    Eom { model: PathBuf, style: Style },
+    Generate { model: PathBuf },
+    Check { model: PathBuf },
+    Help,
+    Version,
+}
+
+fn main() -> ExitCode {
+    match parse(std::env::args_os().skip(1)) {
+        Ok(command) => run(command),
+        Err(message) => {
+            eprintln!("error: {message}\n\n{USAGE}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// The command in `args` (without the program name), or what is wrong.
+fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
+    let mut positional = Vec::new();
+    let mut latex = false;
+    for arg in args {
+        match arg.to_str() {
+            Some("-h" | "--help") => return Ok(Command::Help),
+            Some("-V" | "--version") => return Ok(Command::Version),
+            Some("--latex") => latex = true,
+            Some(flag) if flag.starts_with('-') => {
+                return Err(format!("unknown option `{flag}`"));
+            }
+            _ => positional.push(arg),
+        }
+    }
+    let mut positional = positional.into_iter();
+    let Some(name) = positional.next() else {
+        return Err("missing command".into());
+    };
+    let name = name.to_string_lossy().into_owned();
+    let model = PathBuf::from(
+        positional
+            .next()
+            .ok_or_else(|| format!("`{name}` needs a model file"))?,
+    );
+    if let Some(extra) = positional.next() {
+        return Err(format!("unexpected argument `{}`", extra.to_string_lossy()));
+    }
+    if latex && name != "eom" {
+        return Err(format!("`--latex` applies to `eom`, not `{name}`"));
+    }
+    match name.as_str() {
+        "eom" => Ok(Command::Eom {
+            model,
+            style: if latex { Style::Latex } else { Style::Unicode },
+        }),
+        "generate" => Ok(Command::Generate { model }),
+        "check" => Ok(Command::Check { model }),
+        _ => Err(format!(
+            "unknown command `{name}`: expected `eom`, `generate` or `check`"
+        )),
+    }
+}
+
+/// Runs `command`, printing its result to stdout and errors to stderr.
+fn run(command: Command) -> ExitCode {
+    let output = match command {
+        Command::Help => Ok(USAGE.to_owned()),
+        Command::Version => Ok(format!("dalembert {}", env!("CARGO_PKG_VERSION"))),
+        Command::Eom { model, style } => ModelFile::read(model).and_then(|m| m.equations(style)),
+        Command::Generate { model } => ModelFile::read(model).and_then(|m| m.generate()),
+        Command::Check { model } => ModelFile::read(&model)
+            .and_then(|m| m.check())
+            .map(|()| format!("{}: ok", model.display())),
+    };
+    match output {
+        Ok(text) => print(&text),
+        Err(error) => report(&error),
+    }
+}
+
+/// Prints `text` with exactly one final line break. A closed pipe (`| head`)
+/// is not an error worth reporting.
+fn print(text: &str) -> ExitCode {
+    let mut out = std::io::stdout().lock();
+    match writeln!(out, "{}", text.trim_end_matches('\n')) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: writing the output: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Reports `error` on stderr, rustc style.
+fn report(error: &BuildError) -> ExitCode {
+    eprintln!("{error}");
+    let count = error.diagnostics().len();
+    if count > 1 {
+        eprintln!("\nerror: aborting due to {count} errors");
+    }
+    ExitCode::FAILURE
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse_str(args: &[&str]) -> Result<Command, String> {
+        parse(args.iter().map(OsString::from))
+    }
+
+    #[test]
+    fn parses_the_three_commands() {
+        let model = PathBuf::from("m.dal");
+        assert_eq!(
+            parse_str(&["eom", "m.dal", "--latex"]),
+            Ok(Command::Eom {
+                model: model.clone(),
+                style: Style::Latex
+            })
+        );
+        assert_eq!(
+            parse_str(&["eom", "m.dal"]),
+            Ok(Command::Eom {
+                model: model.clone(),
+                style: Style::Unicode
+            })
+        );
+        assert_eq!(
+            parse_str(&["generate", "m.dal"]),
+            Ok(Command::Generate {
+                model: model.clone()
+            })
+        );
+        assert_eq!(parse_str(&["check", "m.dal"]), Ok(Command::Check { model }));
+        assert_eq!(parse_str(&["check", "--help"]), Ok(Command::Help));
+    }
+
+    #[test]
+    fn rejects_bad_usage() {
+        for args in [
+            &[][..],
+            &["eom"],
+            &["frobnicate", "m.dal"],
+            &["check", "m.dal", "extra"],
+            &["check", "m.dal", "--latex"],
+            &["eom", "m.dal", "--unicode"],
+        ] {
+            assert!(parse_str(args).is_err(), "{args:?}");
+        }
+    }
+}

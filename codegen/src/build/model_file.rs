@@ -1,0 +1,62 @@
+//! A `.dal` file read from disk, and the engine's entry points run on it
+//! with their errors located in the file.
+
+use std::path::{Path, PathBuf};
+
+use super::{BuildError, Diagnostic};
+
+/// The text of a `.dal` model file (the `dalembert!` macro's language) and
+/// where it was read from.
+#[derive(Clone, Debug)]
+pub struct ModelFile {
+    path: PathBuf,
+    source: String,
+}
+
+impl ModelFile {
+    /// Reads the model at `path`.
+    pub fn read(path: impl AsRef<Path>) -> Result<Self, BuildError> {
+        let path = path.as_ref();
+        let source = std::fs::read_to_string(path).map_err(|e| BuildError::io(path, e))?;
+        Ok(ModelFile::new(path, source))
+    }
+
+    /// A model with text `source`, reported as read from `path`.
+    pub fn new(path: impl AsRef<Path>, source: impl Into<String>) -> Self {
+        ModelFile {
+            path: path.as_ref().to_owned(),
+            source: source.into(),
+        }
+    }
+
+    /// The path errors are reported against.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The text of the model.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
+    /// Checks the model as the macro does, without deriving its equations.
+    pub fn check(&self) -> Result<(), BuildError> {
+        self.located(crate::check(&self.source))
+    }
+
+    /// The generated Rust source (see [`crate::generate`]).
+    pub fn generate(&self) -> Result<String, BuildError> {
+        self.located(crate::generate(&self.source))
+    }
+
+    /// The derived equations in the seed document's style (see
+    /// [`crate::equations`]).
+    pub fn equations(&self, style: crate::Style) -> Result<String, BuildError> {
+        self.located(crate::equations(&self.source, style))
+    }
+
+    /// Locates the errors of `result` in this file.
+    fn located<T>(&self, result: syn::Result<T>) -> Result<T, BuildError> {
+        result.map_err(|e| BuildError::Model(Diagnostic::from_syn(&self.path, &self.source, e)))
+    }
+}

@@ -1,0 +1,292 @@
+//! Every rule of the model layer: the message of each violation and the
+//! token (line, column) it points at, and that all violations are reported.
+
+use crate::language::parse_system;
+
+/// The errors of `source` as `(message, line, column)`, in order.
+fn errors(source: &str) -> Vec<(String, usize, usize)> {
+    let system = parse_system(source.parse().expect("tokens")).expect("parses");
+    match super::resolve(&system) {
+        Ok(_) => Vec::new(),
+        Err(error) => error
+            .into_iter()
+            .map(|e| {
+                let start = e.span().start();
+                (e.to_string(), start.line, start.column)
+            })
+            .collect(),
+    }
+}
+
+/// Asserts that `source` gives exactly one error, containing `message`, at
+/// `line`:`column` (1-based line, 0-based column, as proc-macro2 reports).
+fn assert_error(source: &str, message: &str, line: usize, column: usize) {
+    let found = errors(source);
+    assert_eq!(found.len(), 1, "expected one error, found {found:?}");
+    let (text, l, c) = &found[0];
+    assert!(text.contains(message), "message {text:?} lacks {message:?}");
+    assert_eq!((*l, *c), (line, column), "position of {text:?}");
+}
+
+/// A valid pendulum, with `EXTRA` replaced by the statement under test.
+fn pendulum(extra: &str) -> String {
+    format!(
+        "P {{
+    parameters m, l, g;
+    coordinates theta;
+    inputs u;
+    frame B = N.rotate_z(theta);
+    point G = O - l * B.y;
+    {extra}
+}}"
+    )
+}
+
+#[test]
+fn the_seed_examples_resolve() {
+    let ok = pendulum(
+        "body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
+         gravity -g * N.y;
+         torque u * N.z on B;",
+    );
+    assert!(errors(&ok).is_empty());
+}
+
+#[test]
+fn unknown_names_point_at_the_name() {
+    assert_error(&pendulum("gravity -k * N.y;"), "unknown name `k`", 7, 13);
+}
+
+#[test]
+fn use_before_definition_says_so() {
+    assert_error(
+        &pendulum("point Q = R + l * B.x;\n    point R = O;"),
+        "`R` is used before its definition",
+        7,
+        14,
+    );
+}
+
+#[test]
+fn duplicate_names_point_at_the_second() {
+    assert_error(
+        &pendulum("point G = O;"),
+        "`G` is already defined as a point",
+        7,
+        10,
+    );
+}
+
+#[test]
+fn built_in_names_cannot_be_defined() {
+    assert_error(
+        &pendulum("frame N = B.rotate_x(theta);"),
+        "`N` is a built-in name",
+        7,
+        10,
+    );
+    assert_error(&pendulum("point t = O;"), "`t` is a built-in name", 7, 10);
+}
+
+#[test]
+fn a_vector_where_a_scalar_is_expected() {
+    assert_error(
+        &pendulum("potential m * B.x;"),
+        "expected a scalar, found a vector",
+        7,
+        14,
+    );
+}
+
+#[test]
+fn a_scalar_where_a_vector_is_expected() {
+    assert_error(
+        &pendulum("gravity g;"),
+        "expected a vector, found a scalar",
+        7,
+        12,
+    );
+}
+
+#[test]
+fn adding_a_scalar_to_a_vector_points_at_the_operator() {
+    assert_error(
+        &pendulum("gravity g * N.y + g;"),
+        "cannot add a vector and a scalar",
+        7,
+        20,
+    );
+}
+
+#[test]
+fn bodies_need_every_field() {
+    assert_error(
+        &pendulum("body bar { center: G, frame: B, inertia: [0, 0, 1] };"),
+        "body `bar` is missing the field `mass`",
+        7,
+        9,
+    );
+    assert_error(
+        &pendulum("body bar { mass: m, center: G, frame: B, inertia: [0, 0, 1], colour: m };"),
+        "unknown field `colour`",
+        7,
+        65,
+    );
+}
+
+#[test]
+fn masses_and_moments_are_checked() {
+    assert_error(
+        &pendulum("body bar { mass: 0, center: G, frame: B, inertia: [0, 0, 1] };"),
+        "a mass must be positive",
+        7,
+        21,
+    );
+    assert_error(
+        &pendulum("body bar { mass: m, center: G, frame: B, inertia: [1, -2, 1] };"),
+        "cannot be negative",
+        7,
+        58,
+    );
+    assert_error(
+        &pendulum("body bar { mass: m * theta, center: G, frame: B, inertia: [1, 1, 1] };"),
+        "coordinate `theta` cannot be used in mass and inertia",
+        7,
+        25,
+    );
+}
+
+#[test]
+fn exponents_must_be_constant_integers() {
+    assert_error(
+        &pendulum("potential theta^0.5;"),
+        "must be a constant integer",
+        7,
+        20,
+    );
+    assert_error(
+        &pendulum("potential theta^g;"),
+        "cannot be used in an exponent",
+        7,
+        20,
+    );
+    assert!(errors(&pendulum("potential theta^(1+1) + l^-2;")).is_empty());
+}
+
+#[test]
+fn inputs_cannot_move_geometry() {
+    assert_error(
+        &pendulum("point Q = G + u * B.x;"),
+        "input `u` cannot be used in geometry",
+        7,
+        18,
+    );
+}
+
+#[test]
+fn speeds_cannot_be_used_in_potentials() {
+    assert_error(
+        &pendulum("potential dt(theta)^2;"),
+        "speeds `dt(..)` cannot be used in a potential",
+        7,
+        14,
+    );
+}
+
+#[test]
+fn nonholonomic_constraints_must_be_linear_in_speeds() {
+    assert_error(
+        &pendulum("constraint dt(theta)^2 == 1;"),
+        "must be linear in the speeds",
+        7,
+        4,
+    );
+    assert_error(
+        &pendulum("constraint theta == u;"),
+        "input `u` cannot be used in a constraint",
+        7,
+        24,
+    );
+    assert!(errors(&pendulum("constraint l * cos(theta) * dt(theta) == t;")).is_empty());
+}
+
+#[test]
+fn unknown_functions_and_members() {
+    assert_error(
+        &pendulum("potential sinh(theta);"),
+        "unknown function `sinh`",
+        7,
+        14,
+    );
+    assert_error(&pendulum("gravity g * B.w;"), "found `.w`", 7, 18);
+    assert_error(
+        &pendulum("frame C = B.turn_z(theta);"),
+        "unknown method `turn_z`",
+        7,
+        16,
+    );
+}
+
+#[test]
+fn points_and_frames_are_not_values() {
+    assert_error(
+        &pendulum("point Q = G + O;"),
+        "cannot add a point and a point",
+        7,
+        16,
+    );
+    assert_error(
+        &pendulum("torque u * N.z on G;"),
+        "expected a frame, found a point",
+        7,
+        22,
+    );
+}
+
+#[test]
+fn a_system_needs_coordinates() {
+    assert_error(
+        "S { parameters m; }",
+        "at least one generalized coordinate",
+        1,
+        0,
+    );
+}
+
+#[test]
+fn every_error_is_reported() {
+    let found = errors(&pendulum(
+        "gravity -k * N.y;\n    potential dt(theta);\n    body b { mass: m };",
+    ));
+    assert_eq!(found.len(), 3, "{found:?}");
+}
+
+#[test]
+fn joints_define_a_frame_and_a_point() {
+    let source = "Arm {
+        parameters L;
+        coordinates q1, q2;
+        joint revolute J1 { parent: N, child: A, axis: z, coordinate: q1, at: O };
+        joint prismatic J2 { parent: A, child: S, axis: x, coordinate: q2, at: J1 + L * A.y };
+        particle p { mass: 1, at: J2 + L * S.z };
+    }";
+    assert!(errors(source).is_empty(), "{:?}", errors(source));
+    let bad = "Arm {
+        coordinates q1;
+        joint hinge J1 { parent: N, child: A, axis: z, coordinate: q1, at: O };
+        joint revolute J2 { parent: N, child: C, axis: w, coordinate: q1, at: O };
+    }";
+    let found = errors(bad);
+    assert_eq!(found.len(), 2, "{found:?}");
+    assert!(found[0].0.contains("unknown joint kind `hinge`"));
+    assert!(found[1].0.contains("expected a joint axis"));
+}
+
+#[test]
+fn a_broken_definition_is_reported_once() {
+    let found = errors(&pendulum(
+        "frame C = B.rotate_x(k);\n    point Q = O + l * C.x;\n    torque u * C.z on C;",
+    ));
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(found[0].0.contains("unknown name `k`"));
+}

@@ -1,0 +1,125 @@
+//! Optimisation of the derived equations before emission.
+//!
+//! d'Alembert's principle assembles each entry as dot products of vectors
+//! in `N`'s axes, so an entry such as `M₁₁` of the double pendulum arrives as
+//! `m L² (¼ cos²θ₁ + ¼ sin²θ₁) + …` where a constant would do. Each output is
+//! therefore offered its compact form: expanded, like terms collected,
+//! `sin² + cos²` and angle-sum pairs recombined (the readable form of the
+//! docs), then every `sin`/`cos` of a sum of angles written back as products
+//! of the sines and cosines of its parts, which the code computes anyway.
+//! The compact form replaces the entry when it costs fewer operations; an
+//! entry too large to expand within the budget keeps its DAG form.
+
+use crate::equations::Equations;
+use crate::expr::{ExprId, Func, Node, Pool};
+use crate::render::trig::readable;
+use std::collections::{HashMap, HashSet};
+
+/// Most monomials an entry may expand to before it keeps its DAG form.
+const BUDGET: usize = 200;
+
+/// Operations charged for a `sin`, `cos` or other elementary function of
+/// anything but a single symbol (whose `sin_cos` the code shares).
+const FUNCTION_COST: usize = 20;
+
+/// Replaces each output of `equations` by its compact form where cheaper.
+pub fn optimize(equations: &mut Equations, pool: &mut Pool) {
+    let mut chosen: HashMap<ExprId, ExprId> = HashMap::new();
+    let mut choose = |e: &mut ExprId| {
+        *e = *chosen.entry(*e).or_insert_with(|| cheaper_form(pool, *e));
+    };
+    equations
+        .mass_matrix
+        .iter_mut()
+        .flatten()
+        .for_each(&mut choose);
+    equations.forcing.iter_mut().for_each(&mut choose);
+    choose(&mut equations.kinetic_energy);
+    choose(&mut equations.potential_energy);
+    equations
+        .constraint_jacobian
+        .iter_mut()
+        .flatten()
+        .for_each(&mut choose);
+    equations.constraint_bias.iter_mut().for_each(&mut choose);
+    equations
+        .constraint_residual
+        .iter_mut()
+        .for_each(&mut choose);
+    equations
+        .constraint_velocity
+        .iter_mut()
+        .for_each(&mut choose);
+}
+
+/// `e`, or its compact form if that costs fewer operations.
+fn cheaper_form(pool: &mut Pool, e: ExprId) -> ExprId {
+    let Some(compact) = readable(pool, e, BUDGET) else {
+        return e;
+    };
+    let compact = expand_angle_sums(pool, compact);
+    if cost(pool, compact) < cost(pool, e) {
+        compact
+    } else {
+        e
+    }
+}
+
+/// `e` with every `sin(a + b)`, `cos(a + b)` rewritten by the addition
+/// formulas, recursively, down to sines and cosines of single terms.
+fn expand_angle_sums(pool: &mut Pool, e: ExprId) -> ExprId {
+    let mut image: HashMap<ExprId, ExprId> = HashMap::new();
+    for n in pool.topo_order(&[e]) {
+        let rebuilt = match pool.node(n).clone() {
+            Node::Number(_) | Node::Sym(_) => n,
+            Node::Add(terms) => {
+                let terms: Vec<ExprId> = terms.iter().map(|t| image[t]).collect();
+                pool.sum(terms)
+            }
+            Node::Mul(factors) => {
+                let factors: Vec<ExprId> = factors.iter().map(|f| image[f]).collect();
+                pool.product(factors)
+            }
+            Node::Pow(base, exp) => pool.powi(image[&base], exp),
+            Node::Func(f @ (Func::Sin | Func::Cos), arg) => {
+                let (sin, cos) = sin_cos_of_sum(pool, image[&arg]);
+                if f == Func::Sin { sin } else { cos }
+            }
+            Node::Func(f, arg) => pool.func(f, image[&arg]),
+        };
+        image.insert(n, rebuilt);
+    }
+    image[&e]
+}
+
+/// `(sin x, cos x)` with `x` a sum split term by term:
+/// `sin(a + r) = sin a cos r + cos a sin r`, `cos(a + r) = cos a cos r − sin a sin r`.
+fn sin_cos_of_sum(pool: &mut Pool, x: ExprId) -> (ExprId, ExprId) {
+    let Node::Add(terms) = pool.node(x).clone() else {
+        return (pool.sin(x), pool.cos(x));
+    };
+    let (first, rest) = (terms[0], pool.sum(terms[1..].iter().copied()));
+    let (sin_a, cos_a) = (pool.sin(first), pool.cos(first));
+    let (sin_r, cos_r) = sin_cos_of_sum(pool, rest);
+    let sin_terms = [pool.mul(sin_a, cos_r), pool.mul(cos_a, sin_r)];
+    let cos_first = pool.mul(cos_a, cos_r);
+    let sin_product = pool.mul(sin_a, sin_r);
+    (pool.sum(sin_terms), pool.sub(cos_first, sin_product))
+}
+
+/// Arithmetic operations to evaluate `e` once, shared nodes counted once;
+/// sines and cosines of single symbols are free (the code shares them).
+fn cost(pool: &Pool, e: ExprId) -> usize {
+    let mut seen = HashSet::new();
+    pool.topo_order(&[e])
+        .into_iter()
+        .filter(|n| seen.insert(*n))
+        .map(|n| match pool.node(n) {
+            Node::Number(_) | Node::Sym(_) => 0,
+            Node::Add(items) | Node::Mul(items) => items.len() - 1,
+            Node::Pow(_, exp) => exp.unsigned_abs() as usize,
+            Node::Func(_, arg) if matches!(pool.node(*arg), Node::Sym(_)) => 0,
+            Node::Func(..) => FUNCTION_COST,
+        })
+        .sum()
+}

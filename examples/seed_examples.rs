@@ -1,0 +1,148 @@
+//! The main job: derive the three seed examples at compile time, print the
+//! derived equations beside the seed document's, simulate the double
+//! pendulum and chart its trajectory and energy.
+//!
+//! ```text
+//! cargo run --release --example seed_examples [-- --out DIR]
+//! ```
+//!
+//! Charts are written to `DIR` (default `target/charts`).
+
+use dalembert::{Series, State, line_chart, line_chart_log_y, simulate};
+use std::path::PathBuf;
+
+#[path = "../tests/seeds/mod.rs"]
+mod seeds;
+use seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
+
+/// The seed document's boxed results, transcribed.
+const SEED_1: &str = "\
+(4/3 m L²) θ̈₁ + (½ m L² C₂₋₁) θ̈₂ − (½ m L² S₂₋₁) θ̇₂² + (3/2 m g L) S₁ = 0
+(½ m L² C₂₋₁) θ̈₁ + (⅓ m L²) θ̈₂ + (½ m L² S₂₋₁) θ̇₁² + (½ m g L) S₂ = 0";
+const SEED_2: &str = "\
+(m d² + 1/12 m ℓ² C²θ) φ̈ − (⅙ m ℓ² Sθ Cθ) θ̇ φ̇ = M_φ
+(1/12 m ℓ²) θ̈ + (1/12 m ℓ² Sθ Cθ) φ̇² = M_θ";
+const SEED_3: &str = "\
+m ẍ = λ₁
+m ÿ = −m g + λ₂
+(1/12 m ℓ²) θ̈ = M − (ℓ/2 Cθ) λ₁ − (ℓ/2 Sθ) λ₂
+ẍ − (ℓ/2 Cθ) θ̈ + (ℓ/2 Sθ) θ̇² = 0
+ÿ − (ℓ/2 Sθ) θ̈ − (ℓ/2 Cθ) θ̇² = 0";
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let out = output_directory();
+    std::fs::create_dir_all(&out)?;
+    for (title, seed, derived) in [
+        (
+            "Seed example 1: double pendulum",
+            SEED_1,
+            DoublePendulum::EQUATIONS,
+        ),
+        (
+            "Seed example 2: rotating bar",
+            SEED_2,
+            RotatingBar::EQUATIONS,
+        ),
+        (
+            "Seed example 3: constrained pendulum",
+            SEED_3,
+            ConstrainedPendulum::EQUATIONS,
+        ),
+    ] {
+        println!(
+            "== {title}\n-- the seed document:\n{seed}\n-- derived by dalembert:\n{derived}\n"
+        );
+    }
+    let charts = simulate_double_pendulum(&out)?;
+    for chart in charts {
+        println!("wrote {}", chart.display());
+    }
+    Ok(())
+}
+
+/// `--out DIR`, or `target/charts`.
+fn output_directory() -> PathBuf {
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        if arg == "--out" {
+            if let Some(dir) = args.next() {
+                return PathBuf::from(dir);
+            }
+        }
+    }
+    PathBuf::from("target/charts")
+}
+
+/// Releases the double pendulum (m = L = 1) from θ₁ = θ₂ = 2 rad at rest,
+/// integrates 10 s with RK4 at two step sizes and charts the angles and the
+/// energy error.
+fn simulate_double_pendulum(
+    out: &std::path::Path,
+) -> Result<Vec<PathBuf>, Box<dyn std::error::Error>> {
+    let pendulum = DoublePendulum {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let initial = State {
+        t: 0.0,
+        q: [2.0, 2.0],
+        qd: [0.0, 0.0],
+    };
+    let energy =
+        |s: &State<2>| pendulum.kinetic_energy(&s.q, &s.qd) + pendulum.potential_energy(&s.q);
+    let e0 = energy(&initial);
+    let mut angles = [Vec::new(), Vec::new()];
+    let mut drift = Vec::new();
+    for (h, keep_angles) in [(1e-3, true), (1e-2, false)] {
+        let mut errors = Vec::new();
+        let steps = (10.0 / h) as usize;
+        simulate(
+            &pendulum,
+            initial,
+            |_, _, _| [],
+            h,
+            steps,
+            |s| {
+                if keep_angles {
+                    angles[0].push((s.t, s.q[0]));
+                    angles[1].push((s.t, s.q[1]));
+                }
+                errors.push((s.t, (energy(s) - e0).abs()));
+            },
+        )?;
+        let worst = errors.iter().map(|p| p.1).fold(0.0, f64::max);
+        println!("double pendulum, RK4 h = {h}: max |E − E₀| = {worst:.3e} J over 10 s");
+        drift.push((format!("RK4, h = {h} s"), errors));
+    }
+    let trajectory = out.join("double_pendulum_angles.svg");
+    line_chart(
+        &trajectory,
+        "Double pendulum released at θ₁ = θ₂ = 2 rad (RK4, h = 1 ms)",
+        "t [s]",
+        "angle [rad]",
+        &[
+            Series {
+                name: "θ₁",
+                points: &angles[0],
+            },
+            Series {
+                name: "θ₂",
+                points: &angles[1],
+            },
+        ],
+    )?;
+    let energy_chart = out.join("double_pendulum_energy.svg");
+    let series: Vec<Series<'_>> = drift
+        .iter()
+        .map(|(name, points)| Series { name, points })
+        .collect();
+    line_chart_log_y(
+        &energy_chart,
+        "Double pendulum: energy error |E − E₀|",
+        "t [s]",
+        "|E − E₀| [J]",
+        &series,
+    )?;
+    Ok(vec![trajectory, energy_chart])
+}

@@ -1,0 +1,50 @@
+//! Snapshots of everything derived from `models/*.dal`: the generated Rust
+//! and the rendered equations. Reviewing a change to a model or to the
+//! derivation means reading the diff of `tests/snapshots/` (`cargo insta
+//! test`); with `CI=true` a changed snapshot fails.
+
+mod common;
+
+use dalembert_codegen::Style;
+
+#[test]
+fn generated_code() {
+    for model in common::models() {
+        insta::assert_snapshot!(format!("code_{}", model.name), model.generated());
+    }
+}
+
+#[test]
+fn rendered_equations() {
+    for model in common::models() {
+        let text = dalembert_codegen::equations(&model.source, Style::Unicode)
+            .unwrap_or_else(|e| panic!("{}: {e}", model.name));
+        insta::assert_snapshot!(format!("eom_{}", model.name), text);
+    }
+}
+
+/// The compiled file is exactly `generate(model)`, and generating twice in
+/// one process gives the same bytes (no hash-order dependence).
+#[test]
+fn build_output_is_the_deterministic_generate() {
+    for model in common::models() {
+        let first = dalembert_codegen::generate(&model.source).expect("generate");
+        let second = dalembert_codegen::generate(&model.source).expect("generate");
+        assert_eq!(first, second, "{}: output differs between runs", model.name);
+        assert_eq!(model.generated(), first, "{}: OUT_DIR is stale", model.name);
+    }
+}
+
+/// `src/lib.rs` includes every model, so each one is compiled as well as
+/// snapshotted.
+#[test]
+fn every_model_is_included() {
+    let lib = include_str!("../src/lib.rs");
+    for model in common::models() {
+        assert!(
+            lib.contains(&format!("    {}\n);", model.name)),
+            "models/{0}.dal is not included: add `model!({0});` to src/lib.rs",
+            model.name
+        );
+    }
+}

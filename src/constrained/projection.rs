@@ -1,0 +1,196 @@
+//! Coordinate projection: a state that has drifted off the constraint
+//! manifold is moved back onto it, positions by Gauss–Newton on `φ(t, q) = 0`
+//! and speeds by the exact projection onto `ψ(t, q, q̇) = 0`, both along the
+//! shortest path in the metric of the mass matrix.
+
+use nalgebra::{Cholesky, Const, SVector};
+
+use super::multipliers::{ConstraintMetric, factored_mass};
+use crate::dynamics::all_finite;
+use crate::{ConstrainedSystem, DynamicsError, State};
+
+/// `state` moved onto the constraint manifold at its time: first the
+/// coordinates, until the largest holonomic residual `|φᵢ(t, q)|` is at most
+/// `tolerance`, then the speeds, so that the velocity form `ψ(t, q, q̇)` of
+/// every constraint vanishes.
+///
+/// Both corrections are the smallest in the metric of the mass matrix `M` at
+/// `state.q` (the kinetic-energy norm): the speeds change by
+/// `Δq̇ = −M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ ψ`, exact in one step because `ψ` is linear in
+/// `q̇`, and every Gauss–Newton iteration moves the coordinates by
+/// `Δq = −M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ φ`, with `A` re-evaluated at each iterate.
+/// Nonholonomic rows have `φ = 0`, so the coordinates move only along
+/// directions that their rows of `A` leave unchanged; their speeds are
+/// projected like the others. A state already within `tolerance` keeps its
+/// coordinates exactly.
+///
+/// Errors: non-finite coordinates or speeds, equations or constraints; a
+/// singular mass matrix or dependent constraints at an iterate; and
+/// [`ProjectionNotConverged`](DynamicsError::ProjectionNotConverged) if
+/// `max_iterations` corrections leave `max |φᵢ| > tolerance` (a state too
+/// far off the manifold, or a `tolerance` below rounding).
+pub fn project_onto_constraints<S, const NQ: usize, const NU: usize, const NC: usize>(
+    system: &S,
+    state: &State<NQ>,
+    tolerance: f64,
+    max_iterations: usize,
+) -> Result<State<NQ>, DynamicsError>
+where
+    S: ConstrainedSystem<NQ, NU, NC>,
+{
+    let State { t, q, qd } = *state;
+    if !(t.is_finite() && all_finite(&q) && all_finite(&qd)) {
+        return Err(DynamicsError::NonFiniteState);
+    }
+    let metric = factored_mass(system, &q)?;
+    let q = project_coordinates(system, t, q, &metric, tolerance, max_iterations)?;
+    let qd = project_speeds(system, t, &q, qd, &metric)?;
+    Ok(State { t, q, qd })
+}
+
+/// Gauss–Newton on `φ(t, q) = 0` in the metric `mass`, from `q`.
+fn project_coordinates<S, const NQ: usize, const NU: usize, const NC: usize>(
+    system: &S,
+    t: f64,
+    q: [f64; NQ],
+    mass: &Cholesky<f64, Const<NQ>>,
+    tolerance: f64,
+    max_iterations: usize,
+) -> Result<[f64; NQ], DynamicsError>
+where
+    S: ConstrainedSystem<NQ, NU, NC>,
+{
+    let mut q = q;
+    let mut iterations = 0;
+    loop {
+        let residual = checked(system.constraint_residual(t, &q))?;
+        let largest = largest_magnitude(&residual);
+        if largest <= tolerance {
+            return Ok(q);
+        }
+        if iterations == max_iterations {
+            return Err(DynamicsError::ProjectionNotConverged {
+                iterations,
+                residual: largest,
+            });
+        }
+        let metric = ConstraintMetric::new(mass, &system.constraint_jacobian(&q))?;
+        let correction = metric.least_norm(&SVector::from(residual));
+        q = std::array::from_fn(|i| q[i] - correction[i]);
+        iterations += 1;
+    }
+}
+
+/// The speeds nearest to `qd` in the metric `mass` with `ψ(t, q, q̇) = 0`.
+fn project_speeds<S, const NQ: usize, const NU: usize, const NC: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    qd: [f64; NQ],
+    mass: &Cholesky<f64, Const<NQ>>,
+) -> Result<[f64; NQ], DynamicsError>
+where
+    S: ConstrainedSystem<NQ, NU, NC>,
+{
+    let velocity = checked(system.constraint_velocity(t, q, &qd))?;
+    let metric = ConstraintMetric::new(mass, &system.constraint_jacobian(q))?;
+    let correction = metric.least_norm(&SVector::from(velocity));
+    Ok(std::array::from_fn(|i| qd[i] - correction[i]))
+}
+
+/// `values`, or an error if one of them is not finite.
+fn checked<const NC: usize>(values: [f64; NC]) -> Result<[f64; NC], DynamicsError> {
+    if all_finite(&values) {
+        Ok(values)
+    } else {
+        Err(DynamicsError::NonFiniteConstraints)
+    }
+}
+
+/// `max |vᵢ|`, `0` for no values.
+pub(crate) fn largest_magnitude<const N: usize>(values: &[f64; N]) -> f64 {
+    values.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constrained::test_systems::PointOnCircle;
+
+    const PENDULUM: PointOnCircle<1> = PointOnCircle {
+        m: 2.0,
+        l: 0.5,
+        g: 9.81,
+    };
+
+    fn off_circle() -> State<2> {
+        // Radius 0.55 at 0.7 rad from the vertical, moving partly outward.
+        let (s, c) = 0.7f64.sin_cos();
+        State {
+            t: 1.5,
+            q: [0.55 * s, -0.55 * c],
+            qd: [0.9, 0.4],
+        }
+    }
+
+    #[test]
+    fn projection_returns_to_the_circle_along_the_radius_and_kills_radial_speed() {
+        let start = off_circle();
+        let projected = project_onto_constraints(&PENDULUM, &start, 1e-14, 10).unwrap();
+        let [x, y] = projected.q;
+        assert!((x.hypot(y) - PENDULUM.l).abs() < 1e-14, "{projected:?}");
+        // Isotropic mass: the nearest point is on the same ray.
+        assert!((y.atan2(x) - start.q[1].atan2(start.q[0])).abs() < 1e-15);
+        let [psi] = PENDULUM.constraint_velocity(projected.t, &projected.q, &projected.qd);
+        assert!(psi.abs() < 1e-15, "{psi}");
+        // Only the radial part of the speed is removed.
+        let tangent = [-y / PENDULUM.l, x / PENDULUM.l];
+        let along = |v: [f64; 2]| v[0] * tangent[0] + v[1] * tangent[1];
+        assert!((along(projected.qd) - along(start.qd)).abs() < 1e-15);
+        assert_eq!(projected.t, start.t);
+    }
+
+    #[test]
+    fn a_state_on_the_manifold_keeps_its_coordinates() {
+        let (s, c) = 0.7f64.sin_cos();
+        let on = State {
+            t: 0.0,
+            q: [0.5 * s, -0.5 * c],
+            qd: [0.5 * c, 0.5 * s],
+        };
+        let projected = project_onto_constraints(&PENDULUM, &on, 1e-12, 0).unwrap();
+        assert_eq!(projected.q, on.q);
+        assert!((projected.qd[0] - on.qd[0]).abs() < 1e-16);
+    }
+
+    #[test]
+    fn too_small_a_budget_is_an_error_with_the_residual_left() {
+        let error = project_onto_constraints(&PENDULUM, &off_circle(), 1e-14, 1).unwrap_err();
+        match error {
+            DynamicsError::ProjectionNotConverged {
+                iterations: 1,
+                residual,
+            } => assert!(residual > 1e-14 && residual < 1e-2, "{residual}"),
+            other => panic!("expected non-convergence, got {other:?}"),
+        }
+        assert!(error.to_string().contains("after 1 iterations"), "{error}");
+    }
+
+    #[test]
+    fn non_finite_state_and_redundant_rows_are_errors() {
+        let mut bad = off_circle();
+        bad.qd[1] = f64::INFINITY;
+        let error = project_onto_constraints(&PENDULUM, &bad, 1e-12, 5);
+        assert_eq!(error, Err(DynamicsError::NonFiniteState));
+        let twice = PointOnCircle::<2> {
+            m: PENDULUM.m,
+            l: PENDULUM.l,
+            g: PENDULUM.g,
+        };
+        let error = project_onto_constraints(&twice, &off_circle(), 1e-12, 5);
+        assert!(matches!(
+            error,
+            Err(DynamicsError::DependentConstraints { row: 1, .. })
+        ));
+    }
+}

@@ -1,0 +1,53 @@
+//! A hand-derived constrained system for the unit tests, in the shape the
+//! macro emits.
+
+use crate::{ConstrainedSystem, MultibodySystem};
+
+/// A point mass `m` in the vertical plane, coordinates `(x, y)`, held on the
+/// circle `x² + y² = l²` about the origin by each of its `NC` identical
+/// constraint rows (`NC = 1` is a pendulum; `NC > 1` is redundant).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointOnCircle<const NC: usize> {
+    pub m: f64,
+    pub l: f64,
+    pub g: f64,
+}
+
+impl<const NC: usize> MultibodySystem<2, 0> for PointOnCircle<NC> {
+    const COORDINATES: [&'static str; 2] = ["x", "y"];
+    const INPUTS: [&'static str; 0] = [];
+
+    fn mass_matrix(&self, _q: &[f64; 2]) -> [[f64; 2]; 2] {
+        [[self.m, 0.0], [0.0, self.m]]
+    }
+
+    fn forcing(&self, _t: f64, _q: &[f64; 2], _qd: &[f64; 2], _u: &[f64; 0]) -> [f64; 2] {
+        [0.0, -self.m * self.g]
+    }
+
+    fn kinetic_energy(&self, _q: &[f64; 2], qd: &[f64; 2]) -> f64 {
+        0.5 * self.m * (qd[0] * qd[0] + qd[1] * qd[1])
+    }
+
+    fn potential_energy(&self, q: &[f64; 2]) -> f64 {
+        self.m * self.g * q[1]
+    }
+}
+
+impl<const NC: usize> ConstrainedSystem<2, 0, NC> for PointOnCircle<NC> {
+    fn constraint_jacobian(&self, q: &[f64; 2]) -> [[f64; 2]; NC] {
+        [[2.0 * q[0], 2.0 * q[1]]; NC]
+    }
+
+    fn constraint_bias(&self, _t: f64, _q: &[f64; 2], qd: &[f64; 2]) -> [f64; NC] {
+        [-2.0 * (qd[0] * qd[0] + qd[1] * qd[1]); NC]
+    }
+
+    fn constraint_residual(&self, _t: f64, q: &[f64; 2]) -> [f64; NC] {
+        [q[0] * q[0] + q[1] * q[1] - self.l * self.l; NC]
+    }
+
+    fn constraint_velocity(&self, _t: f64, q: &[f64; 2], qd: &[f64; 2]) -> [f64; NC] {
+        [2.0 * (q[0] * qd[0] + q[1] * qd[1]); NC]
+    }
+}
