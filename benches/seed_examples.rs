@@ -14,36 +14,9 @@ use std::time::{Duration, Instant};
 
 use criterion::{Criterion, criterion_group, criterion_main};
 
-dalembert::dalembert! {
-    /// Seed example 1: double pendulum, absolute angles from the downward vertical.
-    pub DoublePendulum {
-        parameters m, L, g;
-        coordinates theta1, theta2;
-        frame B1 = N.rotate_z(theta1);
-        frame B2 = N.rotate_z(theta2);
-        point P1 = O - L * B1.y;
-        point G1 = O - L/2 * B1.y;
-        point G2 = P1 - L/2 * B2.y;
-        body link1 { mass: m, center: G1, frame: B1, inertia: [0, 0, m*L^2/12] };
-        body link2 { mass: m, center: G2, frame: B2, inertia: [0, 0, m*L^2/12] };
-        gravity -g * N.y;
-    }
-}
-
-dalembert::dalembert! {
-    /// Seed example 2: a bar on a rotating massless frame, two motors.
-    pub RotatingBar {
-        parameters m, l, d;
-        coordinates phi, theta;
-        inputs M_phi, M_theta;
-        frame F = N.rotate_z(phi);
-        frame B = F.rotate_y(theta);
-        point G = O + d * F.y;
-        body bar { mass: m, center: G, frame: B, inertia: [0, m*l^2/12, m*l^2/12] };
-        torque M_phi * N.z on F;
-        torque M_theta * F.y on B reacting F;
-    }
-}
+#[path = "../tests/seeds/mod.rs"]
+mod seeds;
+use seeds::{DoublePendulum, RotatingBar};
 
 /// Number of states each benchmark cycles through.
 const STATES: usize = 1000;

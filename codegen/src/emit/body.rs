@@ -227,7 +227,7 @@ impl Writer<'_> {
     fn temporary_name(&mut self, e: ExprId) -> Ident {
         if let Node::Func(f, arg) = self.pool.node(e) {
             if let Node::Sym(sym) = self.pool.node(*arg) {
-                let name = format_ident!("{}_{}", func_name(*f), self.names.symbol(*sym));
+                let name = format_ident!("{}_{}", f.name(), self.names.symbol(*sym));
                 if !self.names.is_taken(&name.to_string()) {
                     return name;
                 }
@@ -255,7 +255,7 @@ impl Writer<'_> {
             }
             Node::Add(terms) => self.sum(terms),
             Node::Mul(_) | Node::Pow(..) => self.product(e),
-            Node::Func(f, arg) => self.method_call(*arg, func_name(*f)),
+            Node::Func(f, arg) => self.method_call(*arg, f.name()),
         }
     }
 
@@ -426,17 +426,5 @@ fn number(n: Number) -> TokenStream {
         quote!((-#magnitude))
     } else {
         magnitude
-    }
-}
-
-fn func_name(f: Func) -> &'static str {
-    match f {
-        Func::Sin => "sin",
-        Func::Cos => "cos",
-        Func::Tan => "tan",
-        Func::Sqrt => "sqrt",
-        Func::Exp => "exp",
-        Func::Ln => "ln",
-        Func::Abs => "abs",
     }
 }

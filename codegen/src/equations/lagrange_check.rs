@@ -157,6 +157,16 @@ fn lagrange(
     (mass, forcing)
 }
 
+/// The model, pool and d'Alembert equations of a system in the language.
+fn derived(source: &str) -> (Model, Pool, super::Equations) {
+    let system = crate::language::parse_system(source.parse().expect("tokens"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut model = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
+    let mut pool = std::mem::take(&mut model.pool);
+    let equations = derive(&model, &mut pool);
+    (model, pool, equations)
+}
+
 fn assert_close(what: &str, a: f64, b: f64, scale: f64) {
     assert!(
         (a - b).abs() <= 1e-10 * scale.max(1.0),
@@ -167,11 +177,7 @@ fn assert_close(what: &str, a: f64, b: f64, scale: f64) {
 #[test]
 fn dalembert_agrees_with_lagrange_on_every_example_system() {
     for source in SYSTEMS {
-        let system = crate::language::parse_system(source.parse().expect("tokens"))
-            .unwrap_or_else(|e| panic!("{e}"));
-        let mut model = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
-        let mut pool = std::mem::take(&mut model.pool);
-        let equations = derive(&model, &mut pool);
+        let (model, mut pool, equations) = derived(source);
         let (mass, forcing) = lagrange(
             &model,
             &mut pool,
@@ -206,11 +212,7 @@ fn dalembert_agrees_with_lagrange_on_every_example_system() {
 #[test]
 fn the_mass_matrix_is_symmetric_and_its_quadratic_form_is_twice_t() {
     for source in SYSTEMS {
-        let system = crate::language::parse_system(source.parse().expect("tokens"))
-            .unwrap_or_else(|e| panic!("{e}"));
-        let mut model = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
-        let mut pool = std::mem::take(&mut model.pool);
-        let equations = derive(&model, &mut pool);
+        let (model, pool, equations) = derived(source);
         let state = random_state(&model, 42);
         let nq = model.nq();
         let qd: Vec<f64> = (0..nq as u32).map(|i| state.value(Sym::Speed(i))).collect();
