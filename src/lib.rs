@@ -8,7 +8,7 @@
 //! (and [`ConstrainedSystem`] when it has constraints), so this crate's
 //! solvers, integrators and charts work on it:
 //!
-//! ```ignore
+//! ```
 //! dalembert::dalembert! {
 //!     /// A simple pendulum, angle from the downward vertical.
 //!     pub Pendulum {
@@ -22,9 +22,17 @@
 //! }
 //!
 //! let pendulum = Pendulum { m: 1.0, l: 1.0, g: 9.81 };
+//! assert_eq!(pendulum.mass_matrix(&[0.3]), [[1.0]]); // m l²
 //! let start = dalembert::State { t: 0.0, q: [1.0], qd: [0.0] };
 //! let end = dalembert::simulate(&pendulum, start, |_, _, _| [], 1e-3, 10_000, |_| {})?;
+//! let energy = |s: &dalembert::State<1>| dalembert::energy(&pendulum, &s.q, &s.qd);
+//! assert!((energy(&end) - energy(&start)).abs() < 1e-9);
+//! # Ok::<(), dalembert::IntegrationError<1>>(())
 //! ```
+//!
+//! The language, the generated API and the build-script route are described
+//! in the project's README; `Pendulum::EQUATIONS` and the struct's docs show
+//! the derived equations.
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 

@@ -12,6 +12,7 @@
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
 mod build;
+mod chain;
 mod emit;
 mod equations;
 mod expr;
@@ -24,6 +25,7 @@ mod render;
 mod seeds;
 
 pub use build::{BuildError, Builder, Diagnostic, ModelFile, generate_file};
+pub use chain::{Family, chain};
 pub use render::Style;
 
 use proc_macro2::TokenStream;
