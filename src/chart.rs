@@ -60,13 +60,21 @@ pub fn line_chart(
 ) -> Result<(), ChartError> {
     let drawable = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
     let (x_range, y_range) = data_ranges(series, drawable);
+    let x_range = widen_degenerate(x_range, linear_half_width);
     let y_range = pad(widen_degenerate(y_range, linear_half_width), Y_PADDING);
     let labels = Labels {
         title,
         x: x_label,
         y: y_label,
     };
-    draw(path, labels, series, drawable, x_range, y_range, None)
+    draw(
+        path,
+        labels,
+        series,
+        drawable,
+        (x_range, y_range),
+        Formats::default(),
+    )
 }
 
 /// Like [`line_chart`], with a logarithmic y axis (for errors and energy
@@ -84,24 +92,86 @@ pub fn line_chart_log_y(
 ) -> Result<(), ChartError> {
     let drawable = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && y > 0.0;
     let (x_range, y_range) = data_ranges(series, drawable);
-    let decades = y_range.start.log10()..y_range.end.log10();
-    let decades = pad(widen_degenerate(decades, |_| 1.0), Y_PADDING);
-    let y_range = (10f64.powf(decades.start)..10f64.powf(decades.end)).log_scale();
+    let x_range = widen_degenerate(x_range, linear_half_width);
     let labels = Labels {
         title,
         x: x_label,
         y: y_label,
     };
-    let powers_of_ten = |y: &f64| format!("{y:.0e}");
+    let formats = Formats {
+        y: Some(&powers_of_ten),
+        ..Formats::default()
+    };
     draw(
         path,
         labels,
         series,
         drawable,
-        x_range,
-        y_range,
-        Some(&powers_of_ten),
+        (x_range, log_range(y_range)),
+        formats,
     )
+}
+
+/// Like [`line_chart`], with both axes logarithmic (work-precision
+/// diagrams: error against time), the legend in the lower left corner.
+///
+/// Points with `x ≤ 0` or `y ≤ 0` are left out, as are non-finite ones. A
+/// constant coordinate is shown in a range of a decade on each side.
+pub fn line_chart_log_log(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series<'_>],
+) -> Result<(), ChartError> {
+    let drawable = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && x > 0.0 && y > 0.0;
+    let (x_range, y_range) = data_ranges(series, drawable);
+    let labels = Labels {
+        title,
+        x: x_label,
+        y: y_label,
+    };
+    // Fast and accurate is the empty corner of an error-against-cost chart.
+    let formats = Formats {
+        x: Some(&powers_of_ten),
+        y: Some(&powers_of_ten),
+        legend: SeriesLabelPosition::LowerLeft,
+    };
+    let ranges = (log_range(x_range), log_range(y_range));
+    draw(path, labels, series, drawable, ranges, formats)
+}
+
+/// A log-scaled axis over the positive `range`, padded and widened to a
+/// decade each side if degenerate.
+fn log_range(
+    range: Range<f64>,
+) -> impl AsRangedCoord<Value = f64, CoordDescType: ValueFormatter<f64>> {
+    let decades = range.start.log10()..range.end.log10();
+    let decades = pad(widen_degenerate(decades, |_| 1.0), Y_PADDING);
+    (10f64.powf(decades.start)..10f64.powf(decades.end)).log_scale()
+}
+
+/// A tick label of a log axis: `1e-6`.
+fn powers_of_ten(value: &f64) -> String {
+    format!("{value:.0e}")
+}
+
+/// Tick label formats of the two axes (plotters' own where `None`) and the
+/// corner of the legend.
+struct Formats<'a> {
+    x: Option<&'a dyn Fn(&f64) -> String>,
+    y: Option<&'a dyn Fn(&f64) -> String>,
+    legend: SeriesLabelPosition,
+}
+
+impl Default for Formats<'_> {
+    fn default() -> Self {
+        Self {
+            x: None,
+            y: None,
+            legend: SeriesLabelPosition::UpperRight,
+        }
+    }
 }
 
 /// The texts of a chart.
@@ -111,19 +181,19 @@ struct Labels<'a> {
     y: &'a str,
 }
 
-/// Draws the chart over the data range `x_range` (widened if degenerate) and
-/// the y axis `y_range`, with plotters' tick labels unless `y_format` is
-/// given.
-fn draw<Y>(
+/// Draws the chart over the axes `(x_range, y_range)` with the tick labels
+/// `formats`.
+fn draw<X, Y>(
     path: &Path,
     labels: Labels<'_>,
     series: &[Series<'_>],
     drawable: impl Fn(&(f64, f64)) -> bool + Copy,
-    x_range: Range<f64>,
-    y_range: Y,
-    y_format: Option<&dyn Fn(&f64) -> String>,
+    (x_range, y_range): (X, Y),
+    formats: Formats<'_>,
 ) -> Result<(), ChartError>
 where
+    X: AsRangedCoord<Value = f64>,
+    X::CoordDescType: ValueFormatter<f64>,
     Y: AsRangedCoord<Value = f64>,
     Y::CoordDescType: ValueFormatter<f64>,
 {
@@ -138,11 +208,14 @@ where
         .margin(16)
         .x_label_area_size(48)
         .y_label_area_size(80)
-        .build_cartesian_2d(widen_degenerate(x_range, linear_half_width), y_range)
+        .build_cartesian_2d(x_range, y_range)
         .map_err(|e| failed(&e))?;
     let mut mesh = chart.configure_mesh();
     mesh.x_desc(labels.x).y_desc(labels.y);
-    if let Some(format) = y_format {
+    if let Some(format) = formats.x {
+        mesh.x_label_formatter(format);
+    }
+    if let Some(format) = formats.y {
         mesh.y_label_formatter(format);
     }
     mesh.draw().map_err(|e| failed(&e))?;
@@ -157,6 +230,7 @@ where
     }
     chart
         .configure_series_labels()
+        .position(formats.legend)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()
@@ -331,6 +405,23 @@ mod tests {
         let svg = file.contents();
         assert!(svg.contains("energy drift") && svg.contains("|ΔE| / E"));
         assert!(svg.contains("1e-10") && svg.contains("1e-6"), "{svg}");
+    }
+
+    #[test]
+    fn log_log_chart_labels_both_axes_in_powers_of_ten() {
+        let file = ScratchFile::new("log-log");
+        let work: Vec<(f64, f64)> = (0..8)
+            .map(|i| (1e-4 * 10f64.powi(i / 2), 1e-2 * 10f64.powi(-i)))
+            .chain([(0.0, 1.0), (1.0, -1.0)])
+            .collect();
+        let series = [Series {
+            name: "DOP853",
+            points: &work,
+        }];
+        line_chart_log_log(&file.0, "Work", "CPU time [s]", "error", &series).unwrap();
+        let svg = file.contents();
+        assert!(svg.contains("DOP853") && svg.contains("CPU time [s]"));
+        assert!(svg.contains("1e-3") && svg.contains("1e-8"), "{svg}");
     }
 
     #[test]

@@ -136,6 +136,11 @@ where
 }
 
 /// The total energy `T(q, q̇) + V(q)`.
+///
+/// A diagnostic, not a solver: it returns a plain `f64` and, given a NaN or
+/// infinite state or parameter, a non-finite value (never a finite wrong
+/// one). Check [`f64::is_finite`] where that matters; the solvers report
+/// such input as [`DynamicsError`]s.
 pub fn energy<S, const NQ: usize, const NU: usize>(system: &S, q: &[f64; NQ], qd: &[f64; NQ]) -> f64
 where
     S: MultibodySystem<NQ, NU>,

@@ -7,7 +7,10 @@
 
 use std::fmt;
 
-use crate::{DynamicsError, MultibodySystem, accelerations};
+use crate::equations::Counted;
+use crate::{
+    DynamicsError, Equations, MultibodySystem, Solution, SolverError, Statistics, accelerations,
+};
 
 /// A point of a trajectory: time, coordinates and speeds.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,10 +97,48 @@ where
 {
     march(
         initial,
-        steps,
+        steps as u64,
         |state| rk4_step(system, state, &inputs, h),
         observer,
     )
+}
+
+/// Integrates `steps` fixed steps of length `h` of `equations` with the
+/// classical RK4 method (settled after each step), and returns the final
+/// state with the work done: [`simulate`] for any [`Equations`], with the
+/// report of the other integrators.
+///
+/// `observer` sees the initial state and then the state after every step.
+/// Stops at the first step that fails.
+pub fn simulate_rk4<E, const NQ: usize>(
+    equations: &E,
+    initial: State<NQ>,
+    h: f64,
+    steps: u64,
+    observer: impl FnMut(&State<NQ>),
+) -> Result<Solution<NQ>, SolverError<NQ>>
+where
+    E: Equations<NQ>,
+{
+    let counted = Counted::new(equations);
+    let acceleration = counted.acceleration();
+    let step = |state: &State<NQ>| {
+        let next = rk4_step_with(state, h, &acceleration)?;
+        counted.settle(&next).map_err(|cause| IntegrationError {
+            t: next.t,
+            q: next.q,
+            cause,
+        })
+    };
+    let end = march(initial, steps, step, observer)?;
+    Ok(Solution {
+        end,
+        statistics: Statistics {
+            rhs_evaluations: counted.evaluations(),
+            accepted_steps: steps,
+            rejected_steps: 0,
+        },
+    })
 }
 
 /// Applies `step` `steps` times from `initial` and returns the final state;
@@ -105,7 +146,7 @@ where
 /// first step that fails.
 pub(crate) fn march<const NQ: usize>(
     initial: State<NQ>,
-    steps: usize,
+    steps: u64,
     mut step: impl FnMut(&State<NQ>) -> Result<State<NQ>, IntegrationError<NQ>>,
     mut observer: impl FnMut(&State<NQ>),
 ) -> Result<State<NQ>, IntegrationError<NQ>> {
@@ -118,16 +159,26 @@ pub(crate) fn march<const NQ: usize>(
     Ok(state)
 }
 
-/// The time derivative of a [`State`]: `(q̇, q̈)`.
-struct Rate<const NQ: usize> {
-    dq: [f64; NQ],
-    dqd: [f64; NQ],
+/// The time derivative of a [`State`]: `(q̇, q̈)`, the slope of one stage
+/// of a Runge–Kutta method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Rate<const NQ: usize> {
+    /// `q̇`.
+    pub(crate) dq: [f64; NQ],
+    /// `q̈`.
+    pub(crate) dqd: [f64; NQ],
 }
 
 impl<const NQ: usize> Rate<NQ> {
+    /// No motion: the placeholder of a stage not yet evaluated.
+    pub(crate) const ZERO: Self = Self {
+        dq: [0.0; NQ],
+        dqd: [0.0; NQ],
+    };
+
     /// Evaluates the equations of motion, given as `acceleration`, at
     /// `state`.
-    fn at(
+    pub(crate) fn at(
         acceleration: &impl Fn(f64, &[f64; NQ], &[f64; NQ]) -> Result<[f64; NQ], DynamicsError>,
         state: &State<NQ>,
     ) -> Result<Self, IntegrationError<NQ>> {
@@ -141,7 +192,7 @@ impl<const NQ: usize> Rate<NQ> {
     }
 
     /// `state` moved on by `dt` along this rate (an explicit Euler step).
-    fn advance(&self, state: &State<NQ>, dt: f64) -> State<NQ> {
+    pub(crate) fn advance(&self, state: &State<NQ>, dt: f64) -> State<NQ> {
         State {
             t: state.t + dt,
             q: axpy(&state.q, dt, &self.dq),
@@ -161,10 +212,49 @@ impl<const NQ: usize> Rate<NQ> {
             dqd: sum(|k| &k.dqd),
         }
     }
+
+    /// `Σⱼ weights[j] · stages[j]`, skipping zero weights (a row of a
+    /// Butcher tableau applied to the stage slopes).
+    pub(crate) fn combination<const S: usize>(weights: &[f64; S], stages: &[Self; S]) -> Self {
+        let mut sum = Self::ZERO;
+        for (&w, k) in weights.iter().zip(stages).filter(|(w, _)| **w != 0.0) {
+            for i in 0..NQ {
+                sum.dq[i] += w * k.dq[i];
+                sum.dqd[i] += w * k.dqd[i];
+            }
+        }
+        sum
+    }
+
+    /// The stage state of a Runge–Kutta step of length `h` from `state`:
+    /// coordinates and speeds moved by `h` times this combined slope, at the
+    /// stage time `t + c h`.
+    pub(crate) fn stage(&self, state: &State<NQ>, h: f64, c: f64) -> State<NQ> {
+        State {
+            t: state.t + c * h,
+            ..self.advance(state, h)
+        }
+    }
+
+    /// The largest magnitude of any entry.
+    pub(crate) fn largest_magnitude(&self) -> f64 {
+        self.dq
+            .iter()
+            .chain(&self.dqd)
+            .fold(0.0, |m, x| m.max(x.abs()))
+    }
+
+    /// `self − other`, entry by entry.
+    pub(crate) fn minus(&self, other: &Self) -> Self {
+        Self {
+            dq: std::array::from_fn(|i| self.dq[i] - other.dq[i]),
+            dqd: std::array::from_fn(|i| self.dqd[i] - other.dqd[i]),
+        }
+    }
 }
 
 /// `x + a y`.
-fn axpy<const N: usize>(x: &[f64; N], a: f64, y: &[f64; N]) -> [f64; N] {
+pub(crate) fn axpy<const N: usize>(x: &[f64; N], a: f64, y: &[f64; N]) -> [f64; N] {
     std::array::from_fn(|i| x[i] + a * y[i])
 }
 

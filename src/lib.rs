@@ -38,21 +38,37 @@
 
 pub use dalembert_macros::dalembert;
 
+mod adaptive;
 #[cfg(feature = "charts")]
 mod chart;
 mod constrained;
 mod dynamics;
+mod equations;
+mod gauss;
 mod integrate;
+mod sdirk;
+mod solution;
 mod system;
 #[cfg(test)]
 mod test_systems;
+mod work_precision;
 
+pub use adaptive::{AdaptiveOptions, ExplicitPair, simulate_adaptive};
 #[cfg(feature = "charts")]
-pub use chart::{ChartError, Series, line_chart, line_chart_log_y};
+pub use chart::{ChartError, Series, line_chart, line_chart_log_log, line_chart_log_y};
 pub use constrained::{
     Stabilisation, baumgarte_accelerations, constrained_accelerations, constrained_rk4_step,
     constraint_drift, project_onto_constraints, simulate_constrained,
 };
 pub use dynamics::{DynamicsError, accelerations, energy};
-pub use integrate::{IntegrationError, State, rk4_step, simulate};
+pub use equations::{Constrained, Equations, Unconstrained};
+pub use gauss::{GaussLegendre, simulate_gauss};
+pub use integrate::{IntegrationError, State, rk4_step, simulate, simulate_rk4};
+pub use sdirk::simulate_sdirk;
+pub use solution::{Solution, SolverError, SolverFailure, Statistics};
 pub use system::{ConstrainedSystem, MultibodySystem};
+#[cfg(feature = "charts")]
+pub use work_precision::work_precision_chart;
+pub use work_precision::{
+    Accuracy, WorkPoint, measure, seconds_at_error, state_error, to_csv, work_line,
+};

@@ -196,7 +196,7 @@ fn common_ancestor(model: &Model, a: FrameId, b: FrameId) -> FrameId {
 
 /// The rotation by `angle` about axis `axis` (right-handed), mapping the
 /// rotated frame's components to the parent's.
-fn axis_rotation(pool: &mut Pool, axis: usize, angle: ExprId) -> Mat3 {
+pub fn axis_rotation(pool: &mut Pool, axis: usize, angle: ExprId) -> Mat3 {
     let (zero, one) = (pool.zero(), pool.one());
     let c = pool.cos(angle);
     let s = pool.sin(angle);
@@ -236,7 +236,7 @@ pub fn mat_vec(pool: &mut Pool, a: &Mat3, v: &Vec3) -> Vec3 {
 }
 
 /// `aᵀ · v`.
-fn transpose_mul(pool: &mut Pool, a: &Mat3, v: &Vec3) -> Vec3 {
+pub fn transpose_mul(pool: &mut Pool, a: &Mat3, v: &Vec3) -> Vec3 {
     [0, 1, 2].map(|i| {
         let column = [a[0][i], a[1][i], a[2][i]];
         dot(pool, &column, v)
@@ -260,6 +260,6 @@ pub fn cross(pool: &mut Pool, a: &Vec3, b: &Vec3) -> Vec3 {
 }
 
 /// `a + b`.
-fn add3(pool: &mut Pool, a: &Vec3, b: &Vec3) -> Vec3 {
+pub fn add3(pool: &mut Pool, a: &Vec3, b: &Vec3) -> Vec3 {
     [0, 1, 2].map(|i| pool.add(a[i], b[i]))
 }

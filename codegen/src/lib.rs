@@ -7,7 +7,9 @@
 //! emission. Two front doors share it: [`expand`] for the `dalembert!`
 //! macro and [`generate`] for build scripts, wrapped by [`Builder`] and
 //! [`generate_file`], which read `.dal` files and report errors with file,
-//! line and column.
+//! line and column. Beside the generator, an [`Interpreter`] evaluates the
+//! derived equations numerically (by d'Alembert's route or, independently,
+//! Lagrange's) for differential tests of the emitted code.
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
@@ -16,6 +18,7 @@ mod chain;
 mod emit;
 mod equations;
 mod expr;
+mod interpret;
 mod kinematics;
 mod language;
 mod model;
@@ -26,6 +29,7 @@ mod seeds;
 
 pub use build::{BuildError, Builder, Diagnostic, ModelFile, generate_file};
 pub use chain::{Family, chain};
+pub use interpret::{Interpreter, Route, Sample, Values};
 pub use render::Style;
 
 use proc_macro2::TokenStream;
@@ -61,6 +65,29 @@ pub fn equations(source: &str, style: Style) -> syn::Result<String> {
     let (mut model, equations) = derive(lex(source)?)?;
     let mut pool = std::mem::take(&mut model.pool);
     Ok(render::equations_text(&model, &equations, &mut pool, style))
+}
+
+/// How big the derivation of a system is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Statistics {
+    /// Expression nodes interned while deriving and optimising (the pool's
+    /// size: everything the engine built, dead ends included).
+    pub pool_nodes: usize,
+    /// Distinct nodes reachable from the emitted outputs (`M`, `f`, `T`,
+    /// `V` and the constraint rows): the size of the DAG the code computes.
+    pub output_nodes: usize,
+}
+
+/// The size of the derivation of the system in `source` (the text of a
+/// `.dal` file), as [`generate`] derives and optimises it.
+pub fn statistics(source: &str) -> syn::Result<Statistics> {
+    let (mut model, mut equations) = derive(lex(source)?)?;
+    optimize::optimize(&mut equations, &mut model.pool);
+    let outputs: Vec<expr::ExprId> = equations.expressions_mut().map(|e| *e).collect();
+    Ok(Statistics {
+        pool_nodes: model.pool.len(),
+        output_nodes: model.pool.topo_order(&outputs).len(),
+    })
 }
 
 /// The tokens of `source`, or the lexer's error at its position (where

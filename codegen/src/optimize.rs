@@ -25,31 +25,9 @@ const FUNCTION_COST: usize = 20;
 /// Replaces each output of `equations` by its compact form where cheaper.
 pub fn optimize(equations: &mut Equations, pool: &mut Pool) {
     let mut chosen: HashMap<ExprId, ExprId> = HashMap::new();
-    let mut choose = |e: &mut ExprId| {
+    for e in equations.expressions_mut() {
         *e = *chosen.entry(*e).or_insert_with(|| cheaper_form(pool, *e));
-    };
-    equations
-        .mass_matrix
-        .iter_mut()
-        .flatten()
-        .for_each(&mut choose);
-    equations.forcing.iter_mut().for_each(&mut choose);
-    choose(&mut equations.kinetic_energy);
-    choose(&mut equations.potential_energy);
-    equations
-        .constraint_jacobian
-        .iter_mut()
-        .flatten()
-        .for_each(&mut choose);
-    equations.constraint_bias.iter_mut().for_each(&mut choose);
-    equations
-        .constraint_residual
-        .iter_mut()
-        .for_each(&mut choose);
-    equations
-        .constraint_velocity
-        .iter_mut()
-        .for_each(&mut choose);
+    }
 }
 
 /// `e`, or its compact form if that costs fewer operations.
@@ -118,6 +96,7 @@ fn cost(pool: &Pool, e: ExprId) -> usize {
             Node::Number(_) | Node::Sym(_) => 0,
             Node::Add(items) | Node::Mul(items) => items.len() - 1,
             Node::Pow(_, exp) => exp.unsigned_abs() as usize,
+            Node::Func(Func::Group, _) => 0,
             Node::Func(_, arg) if matches!(pool.node(*arg), Node::Sym(_)) => 0,
             Node::Func(..) => FUNCTION_COST,
         })

@@ -34,8 +34,90 @@ model!(
     constrained_pendulum
 );
 
-// Benchmark chains (issue 5): add `models/NAME.dal` and `model!(NAME);` here.
+// Benchmark chains (issue 5): `models/{planar,spatial}_chain_NN.dal`, written by
+// `dalembert chain FAMILY N` (`dalembert_codegen::chain`); tests/chains.rs checks
+// them against that generator and against tests/reference/chains.json.
+model!(
+    /// The planar chain of 1 link (issue 5).
+    planar_chain_01
+);
+model!(
+    /// The planar chain of 2 links (issue 5).
+    planar_chain_02
+);
+model!(
+    /// The planar chain of 3 links (issue 5).
+    planar_chain_03
+);
+model!(
+    /// The planar chain of 4 links (issue 5).
+    planar_chain_04
+);
+model!(
+    /// The planar chain of 5 links (issue 5).
+    planar_chain_05
+);
+model!(
+    /// The planar chain of 6 links (issue 5).
+    planar_chain_06
+);
+model!(
+    /// The planar chain of 12 links (issue 5).
+    planar_chain_12
+);
+model!(
+    /// The planar chain of 30 links (issue 5).
+    planar_chain_30
+);
+model!(
+    /// The spatial chain of 1 link (issue 5).
+    spatial_chain_01
+);
+model!(
+    /// The spatial chain of 2 links (issue 5).
+    spatial_chain_02
+);
+model!(
+    /// The spatial chain of 3 links (issue 5).
+    spatial_chain_03
+);
+model!(
+    /// The spatial chain of 4 links (issue 5).
+    spatial_chain_04
+);
+model!(
+    /// The spatial chain of 5 links (issue 5).
+    spatial_chain_05
+);
+model!(
+    /// The spatial chain of 6 links (issue 5).
+    spatial_chain_06
+);
+model!(
+    /// The spatial chain of 12 links (issue 5).
+    spatial_chain_12
+);
+model!(
+    /// The spatial chain of 30 links (issue 5).
+    spatial_chain_30
+);
 
 pub use constrained_pendulum::ConstrainedPendulum;
 pub use double_pendulum::DoublePendulum;
+pub use planar_chain_01::PlanarChain1;
+pub use planar_chain_02::PlanarChain2;
+pub use planar_chain_03::PlanarChain3;
+pub use planar_chain_04::PlanarChain4;
+pub use planar_chain_05::PlanarChain5;
+pub use planar_chain_06::PlanarChain6;
+pub use planar_chain_12::PlanarChain12;
+pub use planar_chain_30::PlanarChain30;
 pub use rotating_bar::RotatingBar;
+pub use spatial_chain_01::SpatialChain1;
+pub use spatial_chain_02::SpatialChain2;
+pub use spatial_chain_03::SpatialChain3;
+pub use spatial_chain_04::SpatialChain4;
+pub use spatial_chain_05::SpatialChain5;
+pub use spatial_chain_06::SpatialChain6;
+pub use spatial_chain_12::SpatialChain12;
+pub use spatial_chain_30::SpatialChain30;

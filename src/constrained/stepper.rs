@@ -3,9 +3,8 @@
 //! and [`simulate`](crate::simulate).
 
 use super::projection::largest_magnitude;
-use super::{baumgarte_accelerations, constrained_accelerations, project_onto_constraints};
 use crate::integrate::{march, rk4_step_with};
-use crate::{ConstrainedSystem, IntegrationError, State};
+use crate::{Constrained, ConstrainedSystem, Equations, IntegrationError, State};
 
 /// How a constrained integration keeps the numerical solution on the
 /// constraint manifold.
@@ -19,7 +18,7 @@ pub enum Stabilisation {
     None,
     /// Baumgarte's `φ̈ + 2α φ̇ + β² φ = 0` (velocity level only for
     /// nonholonomic rows): the drift stays bounded at a level set by the step
-    /// and the gains. See [`baumgarte_accelerations`] for how to choose them.
+    /// and the gains. See [`baumgarte_accelerations`](crate::baumgarte_accelerations) for how to choose them.
     Baumgarte {
         /// Damping rate `α` of the velocity error, in 1/s.
         alpha: f64,
@@ -27,7 +26,7 @@ pub enum Stabilisation {
         beta: f64,
     },
     /// After every step, project the state back onto the manifold with
-    /// [`project_onto_constraints`]: `max |φᵢ| ≤ tolerance` and `ψ = 0` to
+    /// [`project_onto_constraints`](crate::project_onto_constraints): `max |φᵢ| ≤ tolerance` and `ψ = 0` to
     /// rounding after each step.
     Projection {
         /// Largest holonomic residual `|φᵢ|` accepted.
@@ -55,38 +54,20 @@ pub fn constrained_rk4_step<S, const NQ: usize, const NU: usize, const NC: usize
 where
     S: ConstrainedSystem<NQ, NU, NC>,
 {
-    let next = rk4_step_with(state, h, |t, q, qd| {
-        let u = inputs(t, q, qd);
-        let solution = match stabilisation {
-            Stabilisation::Baumgarte { alpha, beta } => {
-                baumgarte_accelerations(system, t, q, qd, &u, alpha, beta)
-            }
-            Stabilisation::None | Stabilisation::Projection { .. } => {
-                constrained_accelerations(system, t, q, qd, &u)
-            }
-        };
-        solution.map(|(qdd, _)| qdd)
-    })?;
-    match stabilisation {
-        Stabilisation::Projection {
-            tolerance,
-            max_iterations,
-        } => project_onto_constraints(system, &next, tolerance, max_iterations).map_err(|cause| {
-            IntegrationError {
-                t: next.t,
-                q: next.q,
-                cause,
-            }
-        }),
-        Stabilisation::None | Stabilisation::Baumgarte { .. } => Ok(next),
-    }
+    let equations = Constrained::new(system, inputs, stabilisation);
+    let next = rk4_step_with(state, h, |t, q, qd| equations.accelerations(t, q, qd))?;
+    equations.settle(&next).map_err(|cause| IntegrationError {
+        t: next.t,
+        q: next.q,
+        cause,
+    })
 }
 
 /// Integrates `steps` fixed steps of length `h` with
 /// [`constrained_rk4_step`], from `initial`, and returns the final state.
 ///
 /// `observer` sees the initial state (as given: project it first with
-/// [`project_onto_constraints`] if it is off the manifold) and then the state
+/// [`project_onto_constraints`](crate::project_onto_constraints) if it is off the manifold) and then the state
 /// after every step. Stops at the first step that fails.
 pub fn simulate_constrained<S, const NQ: usize, const NU: usize, const NC: usize>(
     system: &S,
@@ -101,7 +82,7 @@ where
     S: ConstrainedSystem<NQ, NU, NC>,
 {
     let step = |state: &State<NQ>| constrained_rk4_step(system, state, &inputs, h, stabilisation);
-    march(initial, steps, step, observer)
+    march(initial, steps as u64, step, observer)
 }
 
 /// The position-level drift of `state`: the largest holonomic residual

@@ -5,6 +5,7 @@
 //! dalembert eom MODEL.dal [--latex]   the equations of motion, as in the seed document
 //! dalembert generate MODEL.dal        the generated Rust source
 //! dalembert check MODEL.dal           the errors the dalembert! macro would report
+//! dalembert chain FAMILY N            the .dal text of a benchmark chain (planar or spatial)
 //! ```
 //!
 //! Exit status: 0 on success, 1 if the model has errors or cannot be read,
@@ -19,7 +20,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use dalembert_codegen::{BuildError, ModelFile, Style};
+use dalembert_codegen::{BuildError, Family, ModelFile, Style};
 
 const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
@@ -28,6 +29,7 @@ Commands:
   eom MODEL.dal [--latex]   print the equations of motion (Unicode, or LaTeX)
   generate MODEL.dal        print the generated Rust source
   check MODEL.dal           report the errors the dalembert! macro would report
+  chain FAMILY N            print the .dal text of the planar or spatial chain of N links
 
 Options:
   -h, --help                print this help
@@ -39,6 +41,7 @@ enum Command {
     Eom { model: PathBuf, style: Style },
     Generate { model: PathBuf },
     Check { model: PathBuf },
+    Chain { family: Family, links: usize },
     Help,
     Version,
 }
@@ -73,6 +76,9 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
         return Err("missing command".into());
     };
     let name = name.to_string_lossy().into_owned();
+    if name == "chain" {
+        return parse_chain(positional);
+    }
     let model = PathBuf::from(
         positional
             .next()
@@ -92,8 +98,23 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
         "generate" => Ok(Command::Generate { model }),
         "check" => Ok(Command::Check { model }),
         _ => Err(format!(
-            "unknown command `{name}`: expected `eom`, `generate` or `check`"
+            "unknown command `{name}`: expected `eom`, `generate`, `check` or `chain`"
         )),
+    }
+}
+
+/// The arguments of `chain FAMILY N`.
+fn parse_chain(mut args: impl Iterator<Item = OsString>) -> Result<Command, String> {
+    let (Some(family), Some(links), None) = (args.next(), args.next(), args.next()) else {
+        return Err("`chain` needs a family (`planar` or `spatial`) and a number of links".into());
+    };
+    let family = family.to_string_lossy();
+    let family = Family::from_name(&family).ok_or_else(|| {
+        format!("unknown chain family `{family}`: expected `planar` or `spatial`")
+    })?;
+    match links.to_string_lossy().parse::<usize>() {
+        Ok(links) if links > 0 => Ok(Command::Chain { family, links }),
+        _ => Err("the number of links must be a positive integer".into()),
     }
 }
 
@@ -107,6 +128,7 @@ fn run(command: Command) -> ExitCode {
         Command::Check { model } => ModelFile::read(&model)
             .and_then(|m| m.check())
             .map(|()| format!("{}: ok", model.display())),
+        Command::Chain { family, links } => Ok(dalembert_codegen::chain(family, links)),
     };
     match output {
         Ok(text) => print(&text),
@@ -171,6 +193,13 @@ mod tests {
         );
         assert_eq!(parse_str(&["check", "m.dal"]), Ok(Command::Check { model }));
         assert_eq!(parse_str(&["check", "--help"]), Ok(Command::Help));
+        assert_eq!(
+            parse_str(&["chain", "spatial", "12"]),
+            Ok(Command::Chain {
+                family: Family::Spatial,
+                links: 12
+            })
+        );
     }
 
     #[test]
@@ -182,6 +211,10 @@ mod tests {
             &["check", "m.dal", "extra"],
             &["check", "m.dal", "--latex"],
             &["eom", "m.dal", "--unicode"],
+            &["chain", "planar"],
+            &["chain", "helical", "3"],
+            &["chain", "planar", "0"],
+            &["chain", "planar", "3", "4"],
         ] {
             assert!(parse_str(args).is_err(), "{args:?}");
         }

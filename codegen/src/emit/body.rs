@@ -106,10 +106,12 @@ pub struct Straight {
 /// Writes the straight-line code computing `roots`.
 pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
     let order = pool.topo_order(roots);
-    let uses = count_uses(pool, &order, roots);
+    let nested = nested_sums(pool, &order);
+    let uses = count_uses(pool, &order, roots, &nested);
     let mut writer = Writer {
         pool,
         names,
+        nested,
         bound: HashMap::new(),
         statements: TokenStream::new(),
         temporaries: 0,
@@ -140,10 +142,21 @@ pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
     }
 }
 
-fn count_uses(pool: &Pool, order: &[ExprId], roots: &[ExprId]) -> HashMap<ExprId, usize> {
+fn count_uses(
+    pool: &Pool,
+    order: &[ExprId],
+    roots: &[ExprId],
+    nested: &HashMap<ExprId, NestedSum>,
+) -> HashMap<ExprId, usize> {
     let mut uses: HashMap<ExprId, usize> = HashMap::new();
     for &e in order {
-        for child in children(pool.node(e)) {
+        let written = match nested.get(&e) {
+            Some(sum) => std::iter::once(sum.inner)
+                .chain(sum.rest.iter().copied())
+                .collect(),
+            None => children(pool.node(e)),
+        };
+        for child in written {
             *uses.entry(child).or_default() += 1;
         }
     }
@@ -151,6 +164,73 @@ fn count_uses(pool: &Pool, order: &[ExprId], roots: &[ExprId]) -> HashMap<ExprId
         *uses.entry(r).or_default() += 1;
     }
     uses
+}
+
+/// A sum written as an earlier sum plus a constant and other terms.
+struct NestedSum {
+    /// The earlier sum, all of whose non-constant terms this sum holds.
+    inner: ExprId,
+    /// This sum's constant minus the earlier one's.
+    constant: Number,
+    /// The terms not in the earlier sum.
+    rest: Vec<ExprId>,
+}
+
+/// Sums as they are written: a sum that holds every non-constant term of
+/// an earlier sum (the largest such, ties to the lower id) is written as
+/// that sum plus the difference, so that the running totals of a recursion
+/// — which canonical sums flatten — cost one addition per step again.
+fn nested_sums(pool: &Pool, order: &[ExprId]) -> HashMap<ExprId, NestedSum> {
+    let mut containing: HashMap<ExprId, Vec<ExprId>> = HashMap::new();
+    let mut nested = HashMap::new();
+    for &e in order {
+        let Node::Add(terms) = pool.node(e) else {
+            continue;
+        };
+        let (constant, variable) = split_constant(pool, terms);
+        let mut counts: HashMap<ExprId, usize> = HashMap::new();
+        for term in variable {
+            for &sum in containing.get(term).into_iter().flatten() {
+                *counts.entry(sum).or_default() += 1;
+            }
+        }
+        let best = counts
+            .into_iter()
+            .filter(|&(sum, count)| {
+                count >= 2 && count == split_constant(pool, pool.children(sum)).1.len()
+            })
+            .max_by_key(|&(sum, count)| (count, std::cmp::Reverse(sum)));
+        if let Some((inner, _)) = best {
+            let (inner_constant, inner_terms) = split_constant(pool, pool.children(inner));
+            nested.insert(
+                e,
+                NestedSum {
+                    inner,
+                    constant: constant + -inner_constant,
+                    rest: variable
+                        .iter()
+                        .filter(|t| !inner_terms.contains(t))
+                        .copied()
+                        .collect(),
+                },
+            );
+        }
+        for term in variable {
+            containing.entry(*term).or_default().push(e);
+        }
+    }
+    nested
+}
+
+/// A canonical sum's constant (its first term, if a number) and the rest.
+fn split_constant<'a>(pool: &Pool, terms: &'a [ExprId]) -> (Number, &'a [ExprId]) {
+    match terms.split_first() {
+        Some((&first, rest)) => match pool.as_number(first) {
+            Some(n) => (n, rest),
+            None => (Number::ZERO, terms),
+        },
+        None => (Number::ZERO, terms),
+    }
 }
 
 /// For each sine whose cosine also occurs (and the reverse): the pair and
@@ -186,6 +266,8 @@ fn children(node: &Node) -> Vec<ExprId> {
 struct Writer<'a> {
     pool: &'a Pool,
     names: &'a Names,
+    /// Sums written as an earlier sum plus other terms ([`nested_sums`]).
+    nested: HashMap<ExprId, NestedSum>,
     bound: HashMap<ExprId, TokenStream>,
     statements: TokenStream,
     temporaries: usize,
@@ -253,8 +335,12 @@ impl Writer<'_> {
                 let name = self.names.symbol(*sym);
                 quote!(#name)
             }
-            Node::Add(terms) => self.sum(terms),
+            Node::Add(terms) => match self.nested.get(&e) {
+                Some(nested) => self.nested_sum(nested),
+                None => self.sum(terms),
+            },
             Node::Mul(_) | Node::Pow(..) => self.product(e),
+            Node::Func(Func::Group, arg) => self.expr(*arg),
             Node::Func(f, arg) => self.method_call(*arg, f.name()),
         }
     }
@@ -285,9 +371,31 @@ impl Writer<'_> {
     }
 
     /// `a + b - c`: terms with a negative coefficient are subtracted.
+    /// `inner ± constant ± rest…`.
+    fn nested_sum(&self, sum: &NestedSum) -> TokenStream {
+        let inner = self.expr(sum.inner);
+        let mut out = quote!(#inner);
+        if !sum.constant.is_zero() {
+            let magnitude = number(sum.constant.abs());
+            out.extend(if sum.constant.is_negative() {
+                quote!(- #magnitude)
+            } else {
+                quote!(+ #magnitude)
+            });
+        }
+        out.extend(self.terms(&sum.rest, false));
+        out
+    }
+
     fn sum(&self, terms: &[ExprId]) -> TokenStream {
+        self.terms(terms, true)
+    }
+
+    /// Terms joined by their signs; `first` if they start the sum.
+    fn terms(&self, terms: &[ExprId], first: bool) -> TokenStream {
         let mut out = TokenStream::new();
         for (i, &term) in terms.iter().enumerate() {
+            let i = if first { i } else { i + 1 };
             let (negative, magnitude) = self.sign(term);
             let written = magnitude.unwrap_or_else(|| self.expr(term));
             out.extend(match (i, negative) {
@@ -307,11 +415,9 @@ impl Writer<'_> {
             return (false, None);
         }
         match self.pool.node(term) {
-            Node::Number(n) if n.is_negative() => (true, Some(number(negate(*n)))),
+            Node::Number(n) if n.is_negative() => (true, Some(number(-*n))),
             Node::Mul(factors) => match self.pool.as_number(factors[0]) {
-                Some(c) if c.is_negative() => {
-                    (true, Some(self.product_of(negate(c), &factors[1..])))
-                }
+                Some(c) if c.is_negative() => (true, Some(self.product_of(-c, &factors[1..]))),
                 _ => (false, None),
             },
             _ => (false, None),
@@ -340,18 +446,15 @@ impl Writer<'_> {
         let mut denominator = Vec::new();
         for &f in factors {
             match self.pool.node(f) {
-                Node::Pow(base, n) if *n < 0 && !self.bound.contains_key(&f) => {
+                // `i32::MIN` has no positive counterpart: it stays a `powi`.
+                Node::Pow(base, n) if *n < 0 && *n != i32::MIN && !self.bound.contains_key(&f) => {
                     denominator.push(self.power(*base, -n))
                 }
                 _ => numerator.push(self.factor(f)),
             }
         }
         let negative = coefficient.is_negative();
-        let magnitude = if negative {
-            negate(coefficient)
-        } else {
-            coefficient
-        };
+        let magnitude = if negative { -coefficient } else { coefficient };
         if !magnitude.is_one() || numerator.is_empty() {
             numerator.insert(0, number(magnitude));
         }
@@ -398,16 +501,6 @@ fn join(items: &[TokenStream], separator: TokenStream) -> TokenStream {
         out.extend(item.clone());
     }
     out
-}
-
-fn negate(n: Number) -> Number {
-    match n {
-        Number::Rational(r) => Number::Rational(crate::expr::Rational {
-            num: -r.num,
-            den: r.den,
-        }),
-        Number::Float(x) => Number::Float(-x),
-    }
 }
 
 /// A float literal for `n`, the nearest double to its exact value

@@ -4,6 +4,7 @@
 //! `Result` or `f64` cannot change its meaning.
 
 mod body;
+mod solve;
 
 use crate::equations::Equations;
 use crate::model::Model;
@@ -32,6 +33,7 @@ pub fn emit(model: &Model, equations: &Equations, documentation: &Documentation)
         emit_forcing(model, equations, &names),
         emit_energies(model, equations, &names),
         emit_constraints(model, equations, &names),
+        solve::emit_accelerations(model, equations),
     ];
     let strukt = emit_struct(model, &documentation.docs);
     let constants = emit_constants(model, &documentation.text);

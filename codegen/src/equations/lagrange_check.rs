@@ -1,20 +1,14 @@
-//! An independent route to the same equations, run in the interpreter:
-//! `M` as the Hessian of `T` in the speeds, and `f` from Lagrange's
-//! equations `d/dt ∂T/∂q̇ − ∂T/∂q + ∂V/∂q + ∂D/∂q̇ = Q`, with gravity through
-//! `V` rather than as a force, and the generalized forces `Q` of forces and
-//! torques through partial velocities taken another way. Checked at random
-//! states on every example system.
+//! The d'Alembert route checked against the independent Lagrange route
+//! ([`lagrange`](super::lagrange)) in the interpreter, at random states of
+//! systems that exercise the whole language.
 
-use super::derive;
-use crate::expr::{Env, ExprId, Pool, Sym};
-use crate::kinematics::{Kinematics, dot, rate_at_constant_speeds};
-use crate::model::{Model, NEWTONIAN, Vector, resolve};
+use crate::interpret::{Interpreter, Route, Sample};
 use crate::seeds::{CONSTRAINED_PENDULUM, DOUBLE_PENDULUM, ROTATING_BAR};
 
 /// Seed examples 1–3 as in DESIGN §3, and systems that exercise the rest of
 /// the language: 3-D rotations, products of inertia, particles, forces,
-/// reacting torques, potentials, dissipation, moving geometry and joints.
-const SYSTEMS: [&str; 6] = [
+/// reacting torques, potentials, dissipation, constant tilts and joints.
+const SYSTEMS: [&str; 7] = [
     DOUBLE_PENDULUM,
     ROTATING_BAR,
     CONSTRAINED_PENDULUM,
@@ -34,11 +28,11 @@ const SYSTEMS: [&str; 6] = [
         potential k * th^2 / 2 + k * sin(ph)^2;
         dissipation c * dt(psi)^2 / 2 + r * dt(ph) * dt(th);
     }",
-    "pub MovingBase {
+    "pub TiltedRail {
         parameters m, l, w, g;
         coordinates s, theta;
-        frame R = N.rotate_z(w * t);
-        point C = O + s * R.x + sin(w * t) * N.y;
+        frame R = N.rotate_z(w);
+        point C = O + s * R.x + sin(w) * N.y;
         frame B = R.rotate_z(theta);
         body cart { mass: 2 * m, center: C, frame: R, inertia: [0, 0, m] };
         body arm { mass: m, center: C - l * B.y, frame: B, inertia: [m*l^2, 0, m*l^2/3] };
@@ -55,116 +49,28 @@ const SYSTEMS: [&str; 6] = [
         particle slider { mass: m2/2, at: J3 };
         gravity -g * N.z;
     }",
+    // A branching tree of revolute joints only: the recursive shortcut.
+    "pub Tree {
+        parameters m, a, b, g;
+        coordinates q1, q2, q3, q4;
+        inputs u;
+        joint revolute J1 { parent: N, child: A, axis: z, coordinate: q1, at: O + a * N.y };
+        joint revolute J2 { parent: A, child: B, axis: x, coordinate: q2, at: J1 + a * A.x - b * A.z };
+        joint revolute J3 { parent: A, child: C, axis: y, coordinate: q3, at: J1 - b * A.y };
+        joint revolute J4 { parent: C, child: D, axis: z, coordinate: q4, at: J3 + a * C.x + b * C.y };
+        body hub { mass: 2 * m, center: J1 + b * A.x, frame: A, inertia: [m, 2 * m, 3 * m, m/10, m/20, -m/30] };
+        body arm { mass: m, center: J2 + a/2 * B.y + b * B.z, frame: B, inertia: [m*a^2/12, m*b, m*a^2/12] };
+        body leg { mass: m/2, center: J3 - b/2 * C.z, frame: C, inertia: [m*b^2/12, m*b^2/12, 0] };
+        body foot { mass: m/3, center: J4, frame: D, inertia: [m/7, m/5, m/3] };
+        particle toe { mass: m/4, at: J4 + a * D.x - b * D.z };
+        gravity -g * N.z + g/3 * N.x;
+        torque u * C.y on C reacting A;
+        force u * N.y at J2;
+    }",
 ];
 
-/// Numeric values of every symbol, from a small deterministic generator.
-struct State {
-    values: Vec<(Sym, f64)>,
-}
-
-impl Env for State {
-    fn value(&self, sym: Sym) -> f64 {
-        self.values
-            .iter()
-            .find(|(s, _)| *s == sym)
-            .map_or(0.0, |(_, v)| *v)
-    }
-}
-
-fn random_state(model: &Model, seed: u64) -> State {
-    let mut x = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    let mut next = move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut values = vec![(Sym::Time, 3.0 * next())];
-    for i in 0..model.parameters.len() as u32 {
-        values.push((Sym::Param(i), 0.5 + next()));
-    }
-    for i in 0..model.nq() as u32 {
-        values.push((Sym::Coord(i), 6.0 * next() - 3.0));
-        values.push((Sym::Speed(i), 4.0 * next() - 2.0));
-    }
-    for i in 0..model.inputs.len() as u32 {
-        values.push((Sym::Input(i), 10.0 * next() - 5.0));
-    }
-    State { values }
-}
-
-/// `Qₖ = Σ F·∂v/∂q̇ₖ + Σ τ·∂ω/∂q̇ₖ`, by another route than the generator's:
-/// `∂v/∂q̇ₖ` differentiates the velocity (not the position), and torques
-/// are dotted in `N`'s axes with `ω` rotated into `N`.
-fn applied_force(model: &Model, kinematics: &Kinematics, pool: &mut Pool, k: u32) -> ExprId {
-    let mut terms = Vec::new();
-    for force in &model.forces {
-        let f = kinematics.express(pool, model, &force.vector, NEWTONIAN);
-        let v = kinematics.velocity(pool, force.at);
-        let partial = v.map(|x| pool.diff(x, Sym::Speed(k)));
-        terms.push(dot(pool, &f, &partial));
-    }
-    for torque in &model.torques {
-        let tau = kinematics.express(pool, model, &torque.vector, NEWTONIAN);
-        let mut frames = vec![(torque.on, false)];
-        frames.extend(torque.reacting.map(|r| (r, true)));
-        for (frame, reaction) in frames {
-            let mut omega_in_frame = Vector::default();
-            let omega = kinematics.angular_velocity(frame);
-            for (axis, w) in omega.iter().enumerate() {
-                let unit = Vector::unit(pool, frame, axis).scale(*w, pool);
-                omega_in_frame = omega_in_frame.add(&unit, pool);
-            }
-            let omega_n = kinematics.express(pool, model, &omega_in_frame, NEWTONIAN);
-            let partial = omega_n.map(|x| pool.diff(x, Sym::Speed(k)));
-            let p = dot(pool, &tau, &partial);
-            terms.push(if reaction { pool.neg(p) } else { p });
-        }
-    }
-    pool.sum(terms)
-}
-
-/// `(M, f)` by Lagrange's equations, as expressions.
-fn lagrange(
-    model: &Model,
-    pool: &mut Pool,
-    t: ExprId,
-    v: ExprId,
-) -> (Vec<Vec<ExprId>>, Vec<ExprId>) {
-    let kinematics = Kinematics::new(model, pool);
-    let nq = model.nq() as u32;
-    let mut mass = Vec::new();
-    let mut forcing = Vec::new();
-    for k in 0..nq {
-        let momentum = pool.diff(t, Sym::Speed(k));
-        mass.push(
-            (0..nq)
-                .map(|j| pool.diff(momentum, Sym::Speed(j)))
-                .collect(),
-        );
-        let momentum_rate = rate_at_constant_speeds(pool, momentum, nq);
-        // Qₖ + ∂T/∂qₖ − (rate of ∂T/∂q̇ₖ) − ∂V/∂qₖ − ∂D/∂q̇ₖ
-        let applied = applied_force(model, &kinematics, pool, k);
-        let dissipated = pool.diff(model.dissipation, Sym::Speed(k));
-        let conservative = pool.diff(v, Sym::Coord(k));
-        let dt_dq = pool.diff(t, Sym::Coord(k));
-        let gained = pool.add(applied, dt_dq);
-        let lost = pool.sum([dissipated, conservative, momentum_rate]);
-        forcing.push(pool.sub(gained, lost));
-    }
-    (mass, forcing)
-}
-
-/// The model, pool and d'Alembert equations of a system in the language.
-fn derived(source: &str) -> (Model, Pool, super::Equations) {
-    let system = crate::language::parse_system(source.parse().expect("tokens"))
-        .unwrap_or_else(|e| panic!("{e}"));
-    let mut model = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
-    let mut pool = std::mem::take(&mut model.pool);
-    let equations = derive(&model, &mut pool);
-    (model, pool, equations)
+fn interpreter(source: &str, route: Route) -> Interpreter {
+    Interpreter::new(source, route).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn assert_close(what: &str, a: f64, b: f64, scale: f64) {
@@ -174,36 +80,30 @@ fn assert_close(what: &str, a: f64, b: f64, scale: f64) {
     );
 }
 
+/// The largest magnitude in `values`.
+fn largest(values: &[f64]) -> f64 {
+    values.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
 #[test]
 fn dalembert_agrees_with_lagrange_on_every_example_system() {
     for source in SYSTEMS {
-        let (model, mut pool, equations) = derived(source);
-        let (mass, forcing) = lagrange(
-            &model,
-            &mut pool,
-            equations.kinetic_energy,
-            equations.potential_energy,
-        );
-        let nq = model.nq();
+        let ours = interpreter(source, Route::Dalembert);
+        let theirs = interpreter(source, Route::Lagrange);
         for seed in 0..5 {
-            let state = random_state(&model, seed);
-            let name = format!("{} at state {seed}", model.name);
-            let scale_m = (0..nq)
-                .map(|k| pool.eval(equations.mass_matrix[k][k], &state).abs())
-                .fold(0.0, f64::max);
-            let scale_f = (0..nq)
-                .map(|k| pool.eval(forcing[k], &state).abs())
-                .fold(0.0, f64::max);
-            for k in 0..nq {
-                for (j, (&ours, &theirs)) in
-                    equations.mass_matrix[k].iter().zip(&mass[k]).enumerate()
-                {
-                    let (a, b) = (pool.eval(ours, &state), pool.eval(theirs, &state));
-                    assert_close(&format!("{name}: M[{k}][{j}]"), a, b, scale_m);
+            let state = Sample::random(&ours, seed);
+            let at = state.values();
+            let name = format!("{} at state {seed}", ours.name());
+            let (m1, m2) = (ours.mass_matrix(&at), theirs.mass_matrix(&at));
+            let (f1, f2) = (ours.forcing(&at), theirs.forcing(&at));
+            let scale_m = largest(&m1.concat());
+            for (k, (row1, row2)) in m1.iter().zip(&m2).enumerate() {
+                for (j, (a, b)) in row1.iter().zip(row2).enumerate() {
+                    assert_close(&format!("{name}: M[{k}][{j}]"), *a, *b, scale_m);
                 }
-                let a = pool.eval(equations.forcing[k], &state);
-                let b = pool.eval(forcing[k], &state);
-                assert_close(&format!("{name}: f[{k}]"), a, b, scale_f);
+            }
+            for (k, (a, b)) in f1.iter().zip(&f2).enumerate() {
+                assert_close(&format!("{name}: f[{k}]"), *a, *b, largest(&f2));
             }
         }
     }
@@ -212,25 +112,20 @@ fn dalembert_agrees_with_lagrange_on_every_example_system() {
 #[test]
 fn the_mass_matrix_is_symmetric_and_its_quadratic_form_is_twice_t() {
     for source in SYSTEMS {
-        let (model, pool, equations) = derived(source);
-        let state = random_state(&model, 42);
-        let nq = model.nq();
-        let qd: Vec<f64> = (0..nq as u32).map(|i| state.value(Sym::Speed(i))).collect();
+        let ours = interpreter(source, Route::Dalembert);
+        let state = Sample::random(&ours, 42);
+        let at = state.values();
+        let m = ours.mass_matrix(&at);
         let mut quadratic = 0.0;
-        for k in 0..nq {
-            for j in 0..nq {
-                let m = pool.eval(equations.mass_matrix[k][j], &state);
-                assert_eq!(m, pool.eval(equations.mass_matrix[j][k], &state));
-                quadratic += qd[k] * m * qd[j];
+        for (k, row) in m.iter().enumerate() {
+            for (j, &mkj) in row.iter().enumerate() {
+                assert_eq!(mkj, m[j][k]);
+                quadratic += state.qd[k] * mkj * state.qd[j];
             }
         }
-        let t = pool.eval(equations.kinetic_energy, &state);
-        // Only scleronomic systems have T = ½ q̇ᵀ M q̇ exactly.
-        if !pool
-            .kinds(equations.kinetic_energy)
-            .intersects(crate::expr::SymKinds::TIME)
-        {
-            assert_close(&format!("{}: 2T", model.name), quadratic, 2.0 * t, t.abs());
-        }
+        // No mass moves with time (the checker rejects it), so every
+        // system is scleronomic: T = ½ q̇ᵀ M q̇ exactly.
+        let t = ours.kinetic_energy(&at);
+        assert_close(&format!("{}: 2T", ours.name()), quadratic, 2.0 * t, t.abs());
     }
 }

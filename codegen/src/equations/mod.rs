@@ -9,12 +9,17 @@
 //! moves to the forcing `f`, so that `M q̈ = f (+ Aᵀλ)`. Constraints give
 //! `A` and `b` with `A q̈ = b`, and the energies come from the same
 //! kinematics.
+//!
+//! A tree of revolute joints takes a shortcut to the same `M` and inertia
+//! terms: the recursions of `recursive`, linear in the number of links per
+//! entry where the dot products are quadratic.
 
 use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
 
 /// The derived equations of one system, as expressions of the model's pool.
+#[derive(Clone)]
 pub struct Equations {
     /// `M(q)`, `nq × nq`.
     pub mass_matrix: Vec<Vec<ExprId>>,
@@ -33,6 +38,36 @@ pub struct Equations {
     /// The velocity form `ψ = A q̇ + ψ₀` of each row: `dφ/dt` of a
     /// holonomic row, the row itself for a nonholonomic one.
     pub constraint_velocity: Vec<ExprId>,
+}
+
+impl Equations {
+    /// Every expression, in a fixed order (`M` row by row, `f`, `T`, `V`,
+    /// `A`, `b`, residuals, velocity forms), for passes that rewrite them.
+    pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut ExprId> {
+        self.mass_matrix
+            .iter_mut()
+            .flatten()
+            .chain(&mut self.forcing)
+            .chain(std::iter::once(&mut self.kinetic_energy))
+            .chain(std::iter::once(&mut self.potential_energy))
+            .chain(self.constraint_jacobian.iter_mut().flatten())
+            .chain(&mut self.constraint_bias)
+            .chain(&mut self.constraint_residual)
+            .chain(&mut self.constraint_velocity)
+    }
+
+    /// The same equations without [`Func::Group`](crate::expr::Func::Group)
+    /// nodes, as plain canonical expressions (for rendering).
+    pub fn ungrouped(&self, pool: &mut Pool) -> Equations {
+        let mut plain = self.clone();
+        let roots: Vec<ExprId> = plain.expressions_mut().map(|e| *e).collect();
+        let images = pool.ungroup(&roots);
+        plain
+            .expressions_mut()
+            .zip(images)
+            .for_each(|(e, image)| *e = image);
+        plain
+    }
 }
 
 /// The rows of `A`, `b`, residual and velocity form, as in [`Equations`].
@@ -55,10 +90,22 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
     let kinematics = Kinematics::new(model, pool);
     let nq = model.nq();
     let inertias = inertias(model);
-    let (mass_matrix, inertia_bias) = inertia_terms(&kinematics, pool, &inertias, nq);
+    let (mass_matrix, inertia_bias) = match recursive::JointTree::of(model, pool) {
+        Some(tree) => recursive::inertia_terms(&tree, pool),
+        None => {
+            let (mass_matrix, bias) = inertia_terms(&kinematics, pool, &inertias, nq);
+            let bias = (0..nq)
+                .map(|k| {
+                    let gravity = gravity_force(model, &kinematics, pool, &inertias, k);
+                    pool.sub(bias[k], gravity)
+                })
+                .collect::<Vec<_>>();
+            (mass_matrix, bias)
+        }
+    };
     let forcing = (0..nq)
         .map(|k| {
-            let active = generalized_force(model, &kinematics, pool, &inertias, k);
+            let active = generalized_force(model, &kinematics, pool, k);
             pool.sub(active, inertia_bias[k])
         })
         .collect();
@@ -170,9 +217,8 @@ fn inertia_terms(
     (mass_matrix, bias)
 }
 
-/// The generalized active force `F_qₖ`: gravity, forces and torques through
-/// their partial velocities, minus `∂V/∂qₖ` and `∂D/∂q̇ₖ`.
-fn generalized_force(
+/// The generalized gravity force `Σ m g · ∂v_G/∂q̇ₖ`.
+fn gravity_force(
     model: &Model,
     kinematics: &Kinematics,
     pool: &mut Pool,
@@ -188,6 +234,13 @@ fn generalized_force(
             terms.push(pool.mul(inertia.mass, g_dot_v));
         }
     }
+    pool.sum(terms)
+}
+
+/// The generalized active force `F_qₖ` other than gravity: forces and
+/// torques through their partial velocities, minus `∂V/∂qₖ` and `∂D/∂q̇ₖ`.
+fn generalized_force(model: &Model, kinematics: &Kinematics, pool: &mut Pool, k: usize) -> ExprId {
+    let mut terms = Vec::new();
     for force in &model.forces {
         let f = kinematics.express(pool, model, &force.vector, NEWTONIAN);
         let v = kinematics.partial_velocity(pool, force.at, k);
@@ -297,5 +350,7 @@ fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
     rows
 }
 
+pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;
+mod recursive;

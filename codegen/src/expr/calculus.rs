@@ -144,6 +144,7 @@ impl Pool {
             Func::Ln => self.powi(arg, -1),
             // x / |x|
             Func::Abs => self.div(arg, call),
+            Func::Group => self.one(),
         }
     }
 

@@ -17,6 +17,7 @@ impl Func {
             Func::Exp => x.exp(),
             Func::Ln => x.ln(),
             Func::Abs => x.abs(),
+            Func::Group => x,
         }
     }
 }

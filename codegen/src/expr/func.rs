@@ -1,6 +1,8 @@
 //! Elementary functions: exact folding of special values and the parity
 //! rules that keep `sin(-x)` and `-sin(x)` one node.
 
+use std::collections::HashMap;
+
 use super::{ExprId, Func, Node, Number, Pool};
 
 /// How a function treats a negated argument.
@@ -24,12 +26,13 @@ impl Func {
             Func::Exp => "exp",
             Func::Ln => "ln",
             Func::Abs => "abs",
+            Func::Group => "group",
         }
     }
 
     fn parity(self) -> Parity {
         match self {
-            Func::Sin | Func::Tan => Parity::Odd,
+            Func::Sin | Func::Tan | Func::Group => Parity::Odd,
             Func::Cos | Func::Abs => Parity::Even,
             Func::Sqrt | Func::Exp | Func::Ln => Parity::None,
         }
@@ -44,6 +47,7 @@ impl Func {
             Func::Ln if n.is_one() => Some(Number::ZERO),
             Func::Sqrt => n.as_rational()?.sqrt_exact().map(Number::Rational),
             Func::Abs => Some(n.abs()),
+            Func::Group => Some(n),
             _ => None,
         }
     }
@@ -86,6 +90,43 @@ impl Pool {
         };
         let negated: Vec<ExprId> = terms.into_iter().map(|t| self.neg(t)).collect();
         Some(self.sum(negated))
+    }
+
+    /// `a` as one operand ([`Func::Group`]) if it is a sum, or a numeric
+    /// multiple of one; anything else is already one.
+    pub fn group(&mut self, a: ExprId) -> ExprId {
+        let (c, rest) = self.split_coefficient(a);
+        match self.node(rest) {
+            Node::Add(_) => {
+                let group = self.intern(Node::Func(Func::Group, rest));
+                self.scale(c, group)
+            }
+            _ => a,
+        }
+    }
+
+    /// `roots` with every [`Func::Group`] replaced by its argument, so that
+    /// its sums flatten into their surroundings again.
+    pub fn ungroup(&mut self, roots: &[ExprId]) -> Vec<ExprId> {
+        let mut image: HashMap<ExprId, ExprId> = HashMap::new();
+        for n in self.topo_order(roots) {
+            let rebuilt = match self.node(n).clone() {
+                Node::Number(_) | Node::Sym(_) => n,
+                Node::Add(terms) => {
+                    let terms: Vec<ExprId> = terms.iter().map(|t| image[t]).collect();
+                    self.sum(terms)
+                }
+                Node::Mul(factors) => {
+                    let factors: Vec<ExprId> = factors.iter().map(|f| image[f]).collect();
+                    self.product(factors)
+                }
+                Node::Pow(base, exp) => self.powi(image[&base], exp),
+                Node::Func(Func::Group, arg) => image[&arg],
+                Node::Func(f, arg) => self.func(f, image[&arg]),
+            };
+            image.insert(n, rebuilt);
+        }
+        roots.iter().map(|r| image[r]).collect()
     }
 
     /// `sin(a)`.

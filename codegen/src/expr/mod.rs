@@ -97,6 +97,12 @@ pub enum Func {
     Ln,
     /// `abs`.
     Abs,
+    /// The identity, kept as a node: a sum held as one operand, which
+    /// construction never distributes a coefficient into nor merges with
+    /// other terms. Not in the language; the recursive assembly groups each
+    /// step's running totals with it so that the next step costs a few
+    /// operations, not as many as the terms so far.
+    Group,
 }
 
 /// An exact rational `num/den` with `den > 0` and `gcd(num, den) = 1`.

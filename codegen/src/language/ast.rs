@@ -5,7 +5,9 @@
 //! `B1` names a frame or not, and `P1 - L * B1.y` is a binary expression
 //! whatever `P1` is. The model layer gives names their meaning.
 
-use proc_macro2::{Ident, Span};
+use std::fmt::Display;
+
+use proc_macro2::{Ident, Punct, Spacing, Span, TokenStream, TokenTree};
 
 /// One `pub Name { ... }` system.
 #[derive(Clone, Debug)]
@@ -160,8 +162,8 @@ pub enum Expr {
         func: Ident,
         /// The arguments, in order.
         args: Vec<Expr>,
-        /// From the function's name to the closing parenthesis.
-        span: Span,
+        /// The parentheses and everything between them.
+        parens: Span,
     },
     /// `receiver.method(args)`, e.g. `N.rotate_z(theta1)`.
     MethodCall {
@@ -171,8 +173,8 @@ pub enum Expr {
         method: Ident,
         /// The arguments, in order.
         args: Vec<Expr>,
-        /// From the receiver to the closing parenthesis.
-        span: Span,
+        /// The parentheses and everything between them.
+        parens: Span,
     },
     /// `[a, b, c]` (inertia lists).
     Array {
@@ -209,21 +211,61 @@ pub enum Expr {
 }
 
 impl Expr {
-    /// The span a diagnostic about this whole expression should point at:
-    /// the first token's span joined to the last where the compiler allows
-    /// it, else the first token's span.
-    pub fn span(&self) -> Span {
+    /// The first and last token of the expression, for diagnostics that
+    /// underline all of it (see [`SpanRange`]).
+    pub fn range(&self) -> SpanRange {
         match self {
-            Expr::Number { span, .. }
-            | Expr::Call { span, .. }
-            | Expr::MethodCall { span, .. }
-            | Expr::Array { span, .. }
-            | Expr::Paren { span, .. } => *span,
-            Expr::Name(ident) => ident.span(),
-            Expr::Member { base, member } => join(base.span(), member.span()),
-            Expr::Neg { op, operand } => join(*op, operand.span()),
-            Expr::Binary { lhs, rhs, .. } => join(lhs.span(), rhs.span()),
+            Expr::Number { span, .. } | Expr::Array { span, .. } | Expr::Paren { span, .. } => {
+                SpanRange::from(*span)
+            }
+            Expr::Name(ident) => SpanRange::from(ident.span()),
+            Expr::Member { base, member } => SpanRange::new(base.span(), member.span()),
+            Expr::Call { func, parens, .. } => SpanRange::new(func.span(), *parens),
+            Expr::MethodCall {
+                receiver, parens, ..
+            } => SpanRange::new(receiver.span(), *parens),
+            Expr::Neg { op, operand } => SpanRange::new(*op, operand.range().end),
+            Expr::Binary { lhs, rhs, .. } => SpanRange::new(lhs.range().start, rhs.range().end),
         }
+    }
+}
+
+/// Where a diagnostic points: from the span of a first token to that of a
+/// last one. In a procedural macro on stable Rust spans cannot be joined,
+/// but an error carrying both ends is shown over the whole range (as
+/// `syn::Error::new_spanned` does), so `m * B.x` is underlined whole rather
+/// than at `m`.
+#[derive(Clone, Copy, Debug)]
+pub struct SpanRange {
+    /// The first token's span.
+    pub start: Span,
+    /// The last token's span.
+    pub end: Span,
+}
+
+impl SpanRange {
+    /// The range from `start` to `end`.
+    pub fn new(start: Span, end: Span) -> SpanRange {
+        SpanRange { start, end }
+    }
+
+    /// An error with `message` over the whole range.
+    pub fn error(self, message: impl Display) -> syn::Error {
+        let ends: TokenStream = [self.start, self.end]
+            .into_iter()
+            .map(|span| {
+                let mut marker = Punct::new('*', Spacing::Alone);
+                marker.set_span(span);
+                TokenTree::Punct(marker)
+            })
+            .collect();
+        syn::Error::new_spanned(ends, message)
+    }
+}
+
+impl From<Span> for SpanRange {
+    fn from(span: Span) -> SpanRange {
+        SpanRange::new(span, span)
     }
 }
 

@@ -16,7 +16,7 @@
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenTree};
 use syn::Lit;
 
-use super::ast::{BinOp, Expr, join};
+use super::ast::{BinOp, Expr};
 use super::cursor::Cursor;
 
 /// How deeply parentheses, brackets, calls and unary minus may nest before
@@ -149,7 +149,7 @@ fn grouped(group: &Group, depth: usize) -> syn::Result<Expr> {
 fn path(cursor: &mut Cursor, first: Ident, depth: usize) -> syn::Result<Expr> {
     if let Some(args) = cursor.eat_group(Delimiter::Parenthesis) {
         return Ok(Expr::Call {
-            span: join(first.span(), args.span()),
+            parens: args.span(),
             args: expression_list(&mut Cursor::group(&args), depth + 1)?,
             func: first,
         });
@@ -160,7 +160,7 @@ fn path(cursor: &mut Cursor, first: Ident, depth: usize) -> syn::Result<Expr> {
     let member = cursor.expect_ident(format!("a member name after `{first}.`"))?;
     match cursor.eat_group(Delimiter::Parenthesis) {
         Some(args) => Ok(Expr::MethodCall {
-            span: join(first.span(), args.span()),
+            parens: args.span(),
             args: expression_list(&mut Cursor::group(&args), depth + 1)?,
             receiver: first,
             method: member,
@@ -342,9 +342,11 @@ mod tests {
         let Ok(Expr::Binary { rhs, .. }) = expression(&mut cursor) else {
             panic!("expected a product");
         };
-        assert_eq!((rhs.span().start(), rhs.span().end()), (at(4), at(17)));
+        let range = rhs.range();
+        assert_eq!((range.start.start(), range.end.end()), (at(4), at(17)));
         let array = expression(&mut self::cursor(" [a, (b)]")).expect("array parses");
-        assert_eq!((array.span().start(), array.span().end()), (at(1), at(9)));
+        let range = array.range();
+        assert_eq!((range.start.start(), range.end.end()), (at(1), at(9)));
     }
 
     #[test]

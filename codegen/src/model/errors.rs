@@ -1,8 +1,9 @@
 //! Diagnostics collected while checking, reported together at the end (the
 //! habit of serde_derive's `Ctxt`): one mistake does not hide the next.
 
-use proc_macro2::Span;
 use std::fmt::Display;
+
+use crate::language::ast::SpanRange;
 
 /// Accumulates spanned errors.
 #[derive(Default)]
@@ -11,9 +12,10 @@ pub struct Errors {
 }
 
 impl Errors {
-    /// Records an error at `span`.
-    pub fn push(&mut self, span: Span, message: impl Display) {
-        let error = syn::Error::new(span, message);
+    /// Records an error at `at`: a token's span, or the range of an
+    /// expression.
+    pub fn push(&mut self, at: impl Into<SpanRange>, message: impl Display) {
+        let error = at.into().error(message);
         match &mut self.first {
             Some(first) => first.combine(error),
             None => self.first = Some(error),

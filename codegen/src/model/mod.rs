@@ -40,6 +40,8 @@ pub struct Model {
     pub inputs: Vec<Ident>,
     /// Frames; `frames[0]` is `N`.
     pub frames: Vec<Frame>,
+    /// The revolute joints, in declaration order.
+    pub joints: Vec<Joint>,
     /// Points; `points[0]` is `O`.
     pub points: Vec<Point>,
     /// Rigid bodies, in declaration order.
@@ -77,6 +79,15 @@ pub struct FramePlacement {
     pub axis: usize,
     /// The rotation angle (right-handed); zero for a parallel frame.
     pub angle: ExprId,
+}
+
+/// A revolute joint: its child frame turns about the child's placement
+/// axis through `point`, which the joint statement located.
+pub struct Joint {
+    /// The child frame (its placement holds the parent, axis and angle).
+    pub frame: FrameId,
+    /// The joint's point, on the axis.
+    pub point: PointId,
 }
 
 /// A point: `O`, or a point located from another by a vector.

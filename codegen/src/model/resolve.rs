@@ -4,11 +4,11 @@
 //! the offending token is at hand.
 
 use super::{
-    Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Model, NEWTONIAN, ORIGIN,
-    Particle, Point, PointId, Torque, Vector,
+    Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Joint, Model, NEWTONIAN,
+    ORIGIN, Particle, Point, PointId, Torque, Vector,
 };
 use crate::expr::{ExprId, Func, Pool, Sym, SymKinds};
-use crate::language::ast::{BinOp, Expr, Field, Statement, System};
+use crate::language::ast::{BinOp, Expr, Field, SpanRange, Statement, System};
 use proc_macro2::{Ident, Span};
 use std::collections::HashMap;
 
@@ -171,6 +171,7 @@ impl Resolver {
                 coordinates: Vec::new(),
                 inputs: Vec::new(),
                 frames: vec![Frame { placement: None }],
+                joints: Vec::new(),
                 points: vec![Point { placement: None }],
                 bodies: Vec::new(),
                 particles: Vec::new(),
@@ -205,7 +206,9 @@ impl Resolver {
             Statement::Inputs(names) => self.declare_scalars(names, Sym::Input),
             Statement::Frame { name, value } => self.frame_statement(name, value),
             Statement::Point { name, value } => match self.point_value(value, GEOMETRY) {
-                Some(placement) => self.define_point(name, Some(placement)),
+                Some(placement) => {
+                    self.define_point(name, Some(placement));
+                }
                 None => {
                     self.define(name, Binding::Invalid);
                 }
@@ -269,12 +272,12 @@ impl Resolver {
             receiver,
             method,
             args,
-            span,
+            ..
         } = value
         else {
             self.define(name, Binding::Invalid);
             self.errors.push(
-                value.span(),
+                value.range(),
                 format!(
                     "expected a rotation of a frame, such as `N.rotate_z(angle)`, for frame `{name}`"
                 ),
@@ -295,7 +298,7 @@ impl Resolver {
             [angle] => self.scalar(angle, GEOMETRY),
             _ => {
                 self.errors.push(
-                    *span,
+                    value.range(),
                     format!(
                         "`{method}` takes one argument, the angle; found {}",
                         args.len()
@@ -305,7 +308,9 @@ impl Resolver {
             }
         };
         match (parent, axis, angle) {
-            (Some(parent), Some(axis), Some(angle)) => self.define_frame(name, parent, axis, angle),
+            (Some(parent), Some(axis), Some(angle)) => {
+                self.define_frame(name, parent, axis, angle);
+            }
             _ => {
                 self.define(name, Binding::Invalid);
             }
@@ -319,6 +324,9 @@ impl Resolver {
         let center = center.and_then(|e| self.point(e, GEOMETRY));
         let frame = frame.and_then(|e| self.frame(e));
         let inertia = inertia.and_then(|e| self.inertia(e));
+        if let (Some(center), Some(frame)) = (center, frame) {
+            self.check_fixed_in_time(name, "body", center, Some(frame));
+        }
         self.define(name, Binding::Body);
         if let (Some(mass), Some(center), Some(frame), Some(inertia)) =
             (mass, center, frame, inertia)
@@ -336,6 +344,9 @@ impl Resolver {
         let [mass, at] = self.fields(name, "particle", fields, ["mass", "at"]);
         let mass = mass.and_then(|e| self.mass(e));
         let at = at.and_then(|e| self.point(e, GEOMETRY));
+        if let Some(at) = at {
+            self.check_fixed_in_time(name, "particle", at, None);
+        }
         self.define(name, Binding::Particle);
         if let (Some(mass), Some(at)) = (mass, at) {
             self.model.particles.push(Particle { mass, at });
@@ -372,7 +383,7 @@ impl Resolver {
             Expr::Name(ident) => Some(ident),
             other => {
                 self.errors
-                    .push(other.span(), "expected the name of the new child frame");
+                    .push(other.range(), "expected the name of the new child frame");
                 None
             }
         });
@@ -388,8 +399,13 @@ impl Resolver {
             return;
         };
         if revolute {
-            self.define_frame(child, parent, axis, coordinate);
-            self.define_point(name, Some((base, offset)));
+            let frame = FrameId(self.model.frames.len());
+            let point = PointId(self.model.points.len());
+            if self.define_frame(child, parent, axis, coordinate)
+                && self.define_point(name, Some((base, offset)))
+            {
+                self.model.joints.push(Joint { frame, point });
+            }
         } else {
             let zero = self.pool.zero();
             self.define_frame(child, parent, axis, zero);
@@ -422,7 +438,7 @@ impl Resolver {
         };
         let residual = self.pool.sub(l, r);
         let kinds = self.pool.kinds(residual);
-        let span = crate::language::ast::join(keyword.span(), rhs.span());
+        let span = SpanRange::new(keyword.span(), rhs.range().end);
         if !kinds.intersects(SymKinds::COORD.union(SymKinds::SPEED)) {
             self.errors.push(
                 span,
@@ -439,10 +455,88 @@ impl Resolver {
             );
             return;
         }
+        if self.jacobian_depends_on_time(residual, nonholonomic) {
+            self.errors.push(
+                span,
+                "the Jacobian of this constraint depends on time `t`, but the generated \
+                 `constraint_jacobian(q)` has no `t`: time may enter a constraint only as \
+                 a term of its own, such as `x == sin(t)`",
+            );
+            return;
+        }
         self.model.constraints.push(Constraint {
             residual,
             nonholonomic,
         });
+    }
+
+    /// Whether a row of `A` (the derivatives of a holonomic residual by
+    /// the coordinates, or the coefficients of the speeds of a
+    /// nonholonomic one) depends on time.
+    fn jacobian_depends_on_time(&mut self, residual: ExprId, nonholonomic: bool) -> bool {
+        (0..self.model.coordinates.len() as u32).any(|i| {
+            let by = if nonholonomic {
+                Sym::Speed(i)
+            } else {
+                Sym::Coord(i)
+            };
+            let entry = self.pool.diff(residual, by);
+            self.pool.kinds(entry).intersects(SymKinds::TIME)
+        })
+    }
+
+    /// The generated `mass_matrix(q)`, `kinetic_energy(q, q̇)` and
+    /// `potential_energy(q)` take no `t`, so a mass may not move with time
+    /// (prescribed motion of a frame or point that carries it): that would
+    /// make them depend on `t`.
+    fn check_fixed_in_time(
+        &mut self,
+        name: &Ident,
+        what: &str,
+        at: PointId,
+        frame: Option<FrameId>,
+    ) {
+        if self.point_moves_with_time(at) || frame.is_some_and(|f| self.frame_turns_with_time(f)) {
+            self.errors.push(
+                name.span(),
+                format!(
+                    "{what} `{name}` moves with time `t` (its position or frame depends on \
+                     `t`), but the generated `mass_matrix(q)`, `kinetic_energy(q, q̇)` and \
+                     `potential_energy(q)` have no `t`: prescribed motion is not supported; \
+                     make the motion a coordinate and drive it with a load or a constraint"
+                ),
+            );
+        }
+    }
+
+    /// Whether a rotation angle on the way from `N` to `frame` depends on
+    /// time.
+    fn frame_turns_with_time(&self, mut frame: FrameId) -> bool {
+        while let Some(placement) = &self.model.frames[frame.0].placement {
+            if self.pool.kinds(placement.angle).intersects(SymKinds::TIME) {
+                return true;
+            }
+            frame = placement.parent;
+        }
+        false
+    }
+
+    /// Whether an offset on the way from `O` to `point` depends on time,
+    /// or lies along a frame that turns with time.
+    fn point_moves_with_time(&self, mut point: PointId) -> bool {
+        while let Some((base, offset)) = &self.model.points[point.0].placement {
+            let moves = offset.parts.iter().any(|(frame, components)| {
+                components
+                    .iter()
+                    .any(|&c| self.pool.kinds(c).intersects(SymKinds::TIME))
+                    || self.frame_turns_with_time(*frame)
+            });
+            if moves {
+                return true;
+            }
+            point = *base;
+        }
+        false
     }
 
     fn linear_in_speeds(&mut self, residual: ExprId) -> bool {
@@ -510,7 +604,7 @@ impl Resolver {
         if let Some(n) = self.pool.as_number(mass) {
             if n.is_zero() || n.is_negative() {
                 self.errors.push(
-                    e.span(),
+                    e.range(),
                     "a mass must be positive; a frame without mass needs no body at all",
                 );
                 return None;
@@ -523,7 +617,7 @@ impl Resolver {
     fn inertia(&mut self, e: &Expr) -> Option<[[ExprId; 3]; 3]> {
         let Expr::Array { items, span } = e else {
             self.errors.push(
-                e.span(),
+                e.range(),
                 "expected the inertia as a list: `[Ixx, Iyy, Izz]` or `[Ixx, Iyy, Izz, Ixy, Iyz, Izx]`",
             );
             return None;
@@ -545,7 +639,7 @@ impl Resolver {
             if let Some(n) = value.and_then(|v| self.pool.as_number(v)) {
                 if i < 3 && n.is_negative() {
                     self.errors.push(
-                        item.span(),
+                        item.range(),
                         "a principal moment of inertia cannot be negative",
                     );
                 }
@@ -570,7 +664,7 @@ impl Resolver {
             }
         }
         self.errors.push(
-            e.span(),
+            e.range(),
             "expected a joint axis: `x`, `y` or `z` (an axis of the parent frame)",
         );
         None
@@ -603,9 +697,11 @@ impl Resolver {
         true
     }
 
-    fn define_frame(&mut self, name: &Ident, parent: FrameId, axis: usize, angle: ExprId) {
+    /// Defines frame `name`; whether it was new.
+    fn define_frame(&mut self, name: &Ident, parent: FrameId, axis: usize, angle: ExprId) -> bool {
         let id = FrameId(self.model.frames.len());
-        if self.define(name, Binding::Frame(id)) {
+        let new = self.define(name, Binding::Frame(id));
+        if new {
             self.model.frames.push(Frame {
                 placement: Some(FramePlacement {
                     parent,
@@ -614,13 +710,17 @@ impl Resolver {
                 }),
             });
         }
+        new
     }
 
-    fn define_point(&mut self, name: &Ident, placement: Option<(PointId, Vector)>) {
+    /// Defines point `name`; whether it was new.
+    fn define_point(&mut self, name: &Ident, placement: Option<(PointId, Vector)>) -> bool {
         let id = PointId(self.model.points.len());
-        if self.define(name, Binding::Point(id)) {
+        let new = self.define(name, Binding::Point(id));
+        if new {
             self.model.points.push(Point { placement });
         }
+        new
     }
 
     // ----- typed evaluation ---------------------------------------------
@@ -682,7 +782,7 @@ impl Resolver {
 
     fn mismatch<T>(&mut self, e: &Expr, expected: &str, found: &Value) -> Option<T> {
         self.errors.push(
-            e.span(),
+            e.range(),
             format!("expected {expected}, found {}", found.describe()),
         );
         None
@@ -736,10 +836,10 @@ impl Resolver {
                     }
                 }
             }
-            Expr::Call { func, args, span } => self.call(func, args, *span, usage),
-            Expr::MethodCall { method, span, .. } => {
+            Expr::Call { func, args, .. } => self.call(func, args, e.range(), usage),
+            Expr::MethodCall { method, .. } => {
                 self.errors.push(
-                    *span,
+                    e.range(),
                     format!(
                         "`{method}(..)` is not a value; frames are made only by `frame B = F.rotate_z(angle);`"
                     ),
@@ -799,7 +899,7 @@ impl Resolver {
         }
     }
 
-    fn call(&mut self, func: &Ident, args: &[Expr], span: Span, usage: Use) -> Option<Value> {
+    fn call(&mut self, func: &Ident, args: &[Expr], span: SpanRange, usage: Use) -> Option<Value> {
         let Some((_, f)) = FUNCTIONS.iter().find(|(name, _)| func == name) else {
             self.errors.push(
                 func.span(),
@@ -864,7 +964,7 @@ impl Resolver {
             (BinOp::Mul, Value::Scalar(x), Value::Scalar(y)) => Value::Scalar(pool.mul(x, y)),
             (BinOp::Div, Value::Scalar(x), Value::Scalar(y)) => {
                 if pool.is_zero(y) {
-                    self.errors.push(rhs.span(), "division by zero");
+                    self.errors.push(rhs.range(), "division by zero");
                     return None;
                 }
                 Value::Scalar(pool.div(x, y))
@@ -878,7 +978,7 @@ impl Resolver {
             | (BinOp::Mul, Value::Vector(v), Value::Scalar(s)) => Value::Vector(v.scale(s, pool)),
             (BinOp::Div, Value::Vector(v), Value::Scalar(s)) => {
                 if pool.is_zero(s) {
-                    self.errors.push(rhs.span(), "division by zero");
+                    self.errors.push(rhs.range(), "division by zero");
                     return None;
                 }
                 let inverse = pool.powi(s, -1);
@@ -904,21 +1004,25 @@ impl Resolver {
         let base = self.scalar(lhs, usage);
         let exponent = self.scalar(rhs, EXPONENT);
         let (base, exponent) = (base?, exponent?);
-        let integer = self
-            .pool
-            .as_rational(exponent)
-            .filter(|r| r.den == 1)
-            .and_then(|r| i32::try_from(r.num).ok());
-        let Some(n) = integer else {
-            self.errors.push(
-                rhs.span(),
-                "the exponent of `^` must be a constant integer (such as `2` or `-1`); use `sqrt(..)` for square roots",
-            );
+        let integer = self.pool.as_rational(exponent).filter(|r| r.den == 1);
+        let Some(n) = integer.and_then(|r| i32::try_from(r.num).ok()) else {
+            let message = match integer {
+                Some(r) => format!(
+                    "the exponent of `^` must be an integer from {} to {}; found {}",
+                    i32::MIN,
+                    i32::MAX,
+                    r.num
+                ),
+                None => "the exponent of `^` must be a constant integer (such as `2` or `-1`); \
+                         use `sqrt(..)` for square roots"
+                    .to_owned(),
+            };
+            self.errors.push(rhs.range(), message);
             return None;
         };
         if n < 0 && self.pool.is_zero(base) {
             self.errors
-                .push(lhs.span(), "division by zero: zero to a negative power");
+                .push(lhs.range(), "division by zero: zero to a negative power");
             return None;
         }
         Some(Value::Scalar(self.pool.powi(base, n)))

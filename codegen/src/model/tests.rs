@@ -290,3 +290,89 @@ fn a_broken_definition_is_reported_once() {
     assert_eq!(found.len(), 1, "{found:?}");
     assert!(found[0].0.contains("unknown name `k`"));
 }
+
+/// The first and last position of the single error of `source`, as
+/// `(line, column)` pairs: the whole range a diagnostic underlines.
+fn error_range(source: &str) -> ((usize, usize), (usize, usize)) {
+    let system = parse_system(source.parse().expect("tokens")).expect("parses");
+    let error = super::resolve(&system).err().expect("an error");
+    assert_eq!(error.clone().into_iter().count(), 1, "{error:?}");
+    let (start, end) = (error.span().start(), error.span().end());
+    ((start.line, start.column), (end.line, end.column))
+}
+
+#[test]
+fn errors_about_an_expression_underline_all_of_it() {
+    // `potential m * B.x;` on line 7 from column 14: the vector is `B.x`,
+    // so underlining only `m` would point at the wrong token.
+    assert_eq!(
+        error_range(&pendulum("potential m * B.x;")),
+        ((7, 14), (7, 21))
+    );
+    assert_eq!(
+        error_range(&pendulum("potential m * sin(theta, l);")),
+        ((7, 18), (7, 31))
+    );
+    assert_eq!(
+        error_range(&pendulum("constraint dt(theta)^2 == l;")),
+        ((7, 4), (7, 31))
+    );
+    assert_eq!(
+        error_range(&pendulum("gravity -g * theta * N.y + N.x * 2;")),
+        ((7, 17), (7, 22))
+    );
+}
+
+#[test]
+fn an_exponent_out_of_range_says_so() {
+    assert_error(
+        &pendulum("potential theta^4294967296;"),
+        "the exponent of `^` must be an integer from -2147483648 to 2147483647; found 4294967296",
+        7,
+        20,
+    );
+    assert!(errors(&pendulum("potential theta^2147483647 + theta^-2147483648;")).is_empty());
+}
+
+#[test]
+fn a_mass_may_not_move_with_time() {
+    // The generated `mass_matrix(q)` and energies have no `t`.
+    assert_error(
+        &pendulum("frame R = N.rotate_z(t);\n    particle p { mass: m, at: O + l * R.x };"),
+        "particle `p` moves with time `t`",
+        8,
+        13,
+    );
+    assert_error(
+        &pendulum(
+            "point C = G + sin(t) * N.x;\n    body b { mass: m, center: C, frame: B, inertia: [1, 1, 1] };",
+        ),
+        "body `b` moves with time `t`",
+        8,
+        9,
+    );
+    // A time-dependent load or a frame without mass is fine.
+    assert!(
+        errors(&pendulum(
+            "frame R = N.rotate_z(t);\n    torque u * R.z on B;"
+        ))
+        .is_empty()
+    );
+}
+
+#[test]
+fn a_constraint_jacobian_may_not_depend_on_time() {
+    assert_error(
+        &pendulum("constraint sin(theta * t) == 0;"),
+        "the Jacobian of this constraint depends on time `t`",
+        7,
+        4,
+    );
+    assert_error(
+        &pendulum("constraint t * dt(theta) == 0;"),
+        "the Jacobian of this constraint depends on time `t`",
+        7,
+        4,
+    );
+    assert!(errors(&pendulum("constraint l * sin(theta) == sin(t);")).is_empty());
+}

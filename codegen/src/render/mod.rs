@@ -101,6 +101,7 @@ impl Document {
     /// Renders every part of `equations` in `style`.
     fn new(model: &Model, equations: &Equations, pool: &mut Pool, style: Style) -> Document {
         let names = SymbolNames::new(&model.parameters, &model.coordinates, &model.inputs);
+        let equations = &equations.ungrouped(pool);
         let forms = readable_forms(pool, &entries(equations));
         let mut renderer = Renderer {
             pool,

@@ -406,6 +406,7 @@ fn unicode_call(f: Func) -> Call {
     match f {
         Func::Sqrt => Call::Operator("√", ""),
         Func::Abs => Call::Enclosed("|", "|"),
+        Func::Group => Call::Enclosed("(", ")"),
         _ => Call::Operator(f.name(), " "),
     }
 }
@@ -464,6 +465,7 @@ fn latex_call(f: Func) -> Call {
     match f {
         Func::Sqrt => Call::Enclosed("\\sqrt{", "}"),
         Func::Abs => Call::Enclosed("\\left|", "\\right|"),
+        Func::Group => Call::Enclosed("\\left(", "\\right)"),
         Func::Sin => Call::Operator("\\sin", " "),
         Func::Cos => Call::Operator("\\cos", " "),
         Func::Tan => Call::Operator("\\tan", " "),

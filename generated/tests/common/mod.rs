@@ -9,8 +9,16 @@ pub struct Model {
 }
 
 impl Model {
+    /// Whether the model is small enough to snapshot in full: every model
+    /// but the benchmark chains longer than two links.
+    #[allow(dead_code)] // not every test file uses every helper
+    pub fn is_small(&self) -> bool {
+        !self.name.contains("_chain_") || self.name.ends_with("_02")
+    }
+
     /// The Rust source `build.rs` wrote for this model: what the crate
     /// compiles.
+    #[allow(dead_code)] // not every test file uses every helper
     pub fn generated(&self) -> String {
         let path = Path::new(env!("OUT_DIR")).join(format!("{}.rs", self.name));
         std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -34,4 +42,72 @@ pub fn models() -> Vec<Model> {
             source: std::fs::read_to_string(&path).expect("model"),
         })
         .collect()
+}
+
+/// Arithmetic operations in the body of `function` of generated `code`:
+/// `+`, `-` (binary or unary), `*`, `/` tokens and `sin_cos` calls.
+#[allow(dead_code)] // not every test file uses every helper
+pub fn operations(code: &str, function: &str) -> Operations {
+    let file = syn::parse_file(code).expect("generated code parses");
+    let body = file
+        .items
+        .iter()
+        .filter_map(|item| match item {
+            syn::Item::Impl(block) if block.trait_.is_none() => Some(&block.items),
+            _ => None,
+        })
+        .flatten()
+        .find_map(|item| match item {
+            syn::ImplItem::Fn(f) if f.sig.ident == function => Some(&f.block),
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no fn {function}"));
+    let mut counts = Operations::default();
+    count(quote_tokens(body), &mut counts);
+    counts
+}
+
+fn quote_tokens(block: &syn::Block) -> proc_macro2::TokenStream {
+    use quote::ToTokens;
+    block.to_token_stream()
+}
+
+fn count(tokens: proc_macro2::TokenStream, counts: &mut Operations) {
+    use proc_macro2::TokenTree;
+    for token in tokens {
+        match token {
+            TokenTree::Group(g) => count(g.stream(), counts),
+            TokenTree::Punct(p) => match p.as_char() {
+                '+' | '-' => counts.add += 1,
+                '*' => counts.mul += 1,
+                '/' => counts.div += 1,
+                _ => {}
+            },
+            TokenTree::Ident(i) if i == "sin_cos" => counts.sin_cos += 1,
+            _ => {}
+        }
+    }
+}
+
+/// Operation counts of one function, as [`operations`] counts them.
+#[derive(Default)]
+pub struct Operations {
+    pub add: usize,
+    pub mul: usize,
+    pub div: usize,
+    pub sin_cos: usize,
+}
+
+impl std::fmt::Display for Operations {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "add/sub/neg {:5}  mul {:5}  div {:3}  sin_cos {:2}  total {:5}",
+            self.add,
+            self.mul,
+            self.div,
+            self.sin_cos,
+            self.add + self.mul + self.div
+        )
+    }
 }

@@ -1,0 +1,209 @@
+//! The specialised forward dynamics of an unconstrained system: an
+//! `accelerations` method solving `M q̈ = f` by a Cholesky factorisation
+//! `M = L Lᵀ` unrolled for the system's size, which skips every entry of
+//! `L` that the structural zeros of `M` make zero (a tree's branches), with
+//! the same checks and errors as the runtime's `dalembert::accelerations`.
+
+use crate::equations::Equations;
+use crate::model::Model;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{ToTokens, format_ident, quote};
+
+/// A Cholesky pivot at most this fraction of the largest diagonal entry of
+/// `M` counts as zero, as in the runtime's `dalembert::accelerations`.
+const RELATIVE_PIVOT_TOLERANCE: f64 = 1e-14;
+
+/// `pub fn accelerations(..)`, for systems without constraints.
+pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
+    let nq = model.nq();
+    if !model.constraints.is_empty() || nq == 0 {
+        return TokenStream::new();
+    }
+    let pattern = fill_pattern(model, equations);
+    let factor = factorisation(model, &pattern);
+    let forward = forward_substitution(&pattern);
+    let backward = backward_substitution(&pattern);
+    let solution: Vec<Ident> = (0..nq).map(|i| format_ident!("x{}", i)).collect();
+    let (n_lit, nu) = (index(nq), index(model.inputs.len()));
+    let diagonal = (0..nq).map(|i| mass(i, i));
+    let rows = (0..nq).map(|i| {
+        let row = (0..nq).map(|j| match j == i || (j < i && pattern[i][j]) {
+            true => mass(i, j).into_token_stream(),
+            false => quote!(_),
+        });
+        quote!([#(#row),*])
+    });
+    let forcing = (0..nq).map(|i| format_ident!("f{}", i));
+    let tolerance = Literal::f64_unsuffixed(RELATIVE_PIVOT_TOLERANCE);
+    quote! {
+        /// The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a
+        /// Cholesky factorisation unrolled for this system (structural zeros
+        /// of `M` skipped). Same checks and errors as
+        /// `dalembert::accelerations`: a non-finite state, equation or result,
+        /// or a pivot `Lⱼⱼ²` not above `1e-14` times the largest diagonal
+        /// entry of `M`, is an error.
+        #[inline]
+        pub fn accelerations(
+            &self,
+            t: f64,
+            q: &[f64; #n_lit],
+            qd: &[f64; #n_lit],
+            u: &[f64; #nu],
+        ) -> ::core::result::Result<[f64; #n_lit], ::dalembert::DynamicsError> {
+            let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+            if !(t.is_finite() && finite(q) && finite(qd) && finite(u)) {
+                return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteState);
+            }
+            let m = self.mass_matrix(q);
+            let f = self.forcing(t, q, qd, u);
+            if !(m.iter().all(|row| finite(row)) && finite(&f)) {
+                return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
+            }
+            let [#(#rows),*] = m;
+            let [#(#forcing),*] = f;
+            let tolerance =
+                #tolerance * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
+            #factor
+            #forward
+            #backward
+            let qdd = [#(#solution),*];
+            if finite(&qdd) {
+                ::core::result::Result::Ok(qdd)
+            } else {
+                ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations)
+            }
+        }
+    }
+}
+
+/// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero — `Mᵢⱼ` is not
+/// structurally zero, or fill-in through an earlier column.
+fn fill_pattern(model: &Model, equations: &Equations) -> Vec<Vec<bool>> {
+    let nq = model.nq();
+    let mut pattern: Vec<Vec<bool>> = (0..nq)
+        .map(|i| {
+            (0..=i)
+                .map(|j| !model.pool.is_zero(equations.mass_matrix[i][j]))
+                .collect()
+        })
+        .collect();
+    for j in 0..nq {
+        for i in j + 1..nq {
+            let fill = (0..j).any(|k| pattern[i][k] && pattern[j][k]);
+            pattern[i][j] |= fill;
+        }
+    }
+    pattern
+}
+
+/// `start − Σ a·b` over `pairs`, parenthesised if there are any.
+fn minus_products(
+    start: TokenStream,
+    pairs: impl Iterator<Item = (TokenStream, TokenStream)>,
+) -> TokenStream {
+    let mut out = start.clone();
+    for (a, b) in pairs {
+        out = quote!(#out - #a * #b);
+    }
+    if out.to_string() == start.to_string() {
+        start
+    } else {
+        quote!((#out))
+    }
+}
+
+/// The name of `Mᵢⱼ`.
+fn mass(i: usize, j: usize) -> Ident {
+    format_ident!("m{}_{}", i, j)
+}
+
+/// An unsuffixed index literal.
+fn index(i: usize) -> Literal {
+    Literal::usize_unsuffixed(i)
+}
+
+/// The name of `Lᵢⱼ`.
+fn entry(i: usize, j: usize) -> Ident {
+    format_ident!("l{}_{}", i, j)
+}
+
+/// The columns of `L`: pivot test, reciprocal of the diagonal, entries.
+fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
+    let nq = pattern.len();
+    let mut out = TokenStream::new();
+    for j in 0..nq {
+        let row_j = |k: usize| pattern[j][k];
+        let jj = index(j);
+        let diagonal = mass(j, j);
+        let pivot = minus_products(
+            quote!(#diagonal),
+            (0..j).filter(|&k| row_j(k)).map(|k| {
+                let l = entry(j, k);
+                (quote!(#l), quote!(#l))
+            }),
+        );
+        let (p, r) = (format_ident!("p{}", j), format_ident!("r{}", j));
+        let coordinate = model.coordinates[j].to_string();
+        out.extend(quote! {
+            let #p = #pivot;
+            if !(#p > tolerance) {
+                return ::core::result::Result::Err(::dalembert::DynamicsError::SingularMassMatrix {
+                    index: #jj,
+                    coordinate: #coordinate,
+                    pivot: #p,
+                });
+            }
+            let #r = 1.0 / #p.sqrt();
+        });
+        for i in (j + 1..nq).filter(|&i| pattern[i][j]) {
+            let start = mass(i, j);
+            let value = minus_products(
+                quote!(#start),
+                (0..j).filter(|&k| pattern[i][k] && row_j(k)).map(|k| {
+                    let (a, b) = (entry(i, k), entry(j, k));
+                    (quote!(#a), quote!(#b))
+                }),
+            );
+            let l = entry(i, j);
+            out.extend(quote!(let #l = #value * #r;));
+        }
+    }
+    out
+}
+
+/// `L y = f`.
+fn forward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
+    let mut out = TokenStream::new();
+    for (i, row) in pattern.iter().enumerate() {
+        let start = format_ident!("f{}", i);
+        let value = minus_products(
+            quote!(#start),
+            (0..i).filter(|&k| row[k]).map(|k| {
+                let (l, y) = (entry(i, k), format_ident!("y{}", k));
+                (quote!(#l), quote!(#y))
+            }),
+        );
+        let (y, r) = (format_ident!("y{}", i), format_ident!("r{}", i));
+        out.extend(quote!(let #y = #value * #r;));
+    }
+    out
+}
+
+/// `Lᵀ x = y`.
+fn backward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
+    let nq = pattern.len();
+    let mut out = TokenStream::new();
+    for i in (0..nq).rev() {
+        let y = format_ident!("y{}", i);
+        let value = minus_products(
+            quote!(#y),
+            (i + 1..nq).filter(|&k| pattern[k][i]).map(|k| {
+                let (l, x) = (entry(k, i), format_ident!("x{}", k));
+                (quote!(#l), quote!(#x))
+            }),
+        );
+        let (x, r) = (format_ident!("x{}", i), format_ident!("r{}", i));
+        out.extend(quote!(let #x = #value * #r;));
+    }
+    out
+}

@@ -1,0 +1,25 @@
+//! Differential testing on random valid models.
+//!
+//! [`random_model`] is a proptest strategy for random kinematic trees of
+//! one to six links (bodies with random positive inertias, some with
+//! products of inertia, and particles; random rotation axes and angles
+//! built from coordinates; slides; offsets; gravity; forces, some velocity
+//! or time dependent; torques, some reacting; potentials; dissipation),
+//! written out as `.dal` text. Every coordinate carries inertia, so `M` is symmetric
+//! positive definite. Two test suites use it:
+//!
+//! * `tests/interpreter.rs`: the interpreter's d'Alembert route against its
+//!   Lagrange route on many models ([`RANDOM_MODELS`] proptest cases);
+//! * `tests/emitted.rs`: the code that `build.rs` generated and compiled
+//!   for [`EMITTED_MODELS`] fixed-seed models against the interpreter.
+
+#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+
+mod compare;
+mod random_model;
+
+pub use compare::{Evaluation, assert_positive_definite};
+pub use random_model::{EMITTED_MODELS, Link, Load, Mass, RandomModel, Rotation, random_model};
+
+/// How many random models the interpreter test checks in CI.
+pub const RANDOM_MODELS: u32 = 500;

@@ -1,0 +1,85 @@
+//! The generated code has no panic path: the code that `build.rs`
+//! generated for every model in `models/` (in `OUT_DIR`) contains no
+//! indexing (`x[i]`: arrays are destructured, `let [a, b] = *q;`), no
+//! `unwrap`, `expect`, `panic!` or other panicking macro. A check on the
+//! tokens.
+
+use std::path::Path;
+
+use proc_macro2::{Delimiter, TokenStream, TokenTree};
+
+/// Names that panic or may panic when called.
+const PANICKING: [&str; 9] = [
+    "unwrap",
+    "expect",
+    "panic",
+    "unreachable",
+    "todo",
+    "unimplemented",
+    "assert",
+    "assert_eq",
+    "assert_ne",
+];
+
+/// Keywords after which `[` starts a pattern or an array, not an index.
+const BEFORE_PATTERNS: [&str; 4] = ["let", "mut", "return", "in"];
+
+/// Every panic path in `tokens`, described.
+fn panic_paths(tokens: TokenStream, found: &mut Vec<String>) {
+    let mut previous: Option<TokenTree> = None;
+    for token in tokens {
+        match &token {
+            TokenTree::Ident(ident) if PANICKING.iter().any(|p| ident == p) => {
+                found.push(format!("`{ident}`"));
+            }
+            TokenTree::Group(group) => {
+                let indexing = group.delimiter() == Delimiter::Bracket
+                    && match &previous {
+                        Some(TokenTree::Ident(ident)) => {
+                            !BEFORE_PATTERNS.iter().any(|k| ident == k)
+                        }
+                        Some(TokenTree::Group(before)) => before.delimiter() != Delimiter::Brace,
+                        _ => false,
+                    };
+                if indexing {
+                    let before = previous
+                        .as_ref()
+                        .map(ToString::to_string)
+                        .unwrap_or_default();
+                    found.push(format!("indexing `{before}[{}]`", group.stream()));
+                }
+                panic_paths(group.stream(), found);
+            }
+            _ => {}
+        }
+        previous = Some(token);
+    }
+}
+
+#[test]
+fn the_scan_finds_indexing_and_unwrap() {
+    let mut found = Vec::new();
+    let code = "fn f(q: &[f64; 2]) -> f64 { let [a, b] = *q; let x = [a, b]; q[0] + x[1] + g(a).unwrap() }";
+    panic_paths(code.parse().expect("lexes"), &mut found);
+    assert_eq!(found, ["indexing `q[0]`", "indexing `x[1]`", "`unwrap`"]);
+}
+
+#[test]
+fn generated_code_has_no_panic_path() {
+    let out = Path::new(env!("OUT_DIR"));
+    let mut checked = 0;
+    for entry in std::fs::read_dir(out).expect("OUT_DIR exists") {
+        let path = entry.expect("a directory entry").path();
+        if path.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let code = std::fs::read_to_string(&path).expect("readable generated code");
+        let mut found = Vec::new();
+        panic_paths(code.parse().expect("generated code lexes"), &mut found);
+        assert!(found.is_empty(), "{}: {found:?}", path.display());
+        checked += 1;
+    }
+    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("models");
+    let sources = std::fs::read_dir(models).expect("models/ exists").count();
+    assert_eq!(checked, sources, "one generated file per model");
+}

@@ -1,0 +1,138 @@
+//! Generated functions and the runtime's solvers allocate nothing: a
+//! counting global allocator around calls of every generated function and
+//! of `accelerations`, `constrained_accelerations`, `rk4_step`,
+//! `constrained_rk4_step` (with projection) and `energy` finds no
+//! allocation.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+use dalembert::{
+    Stabilisation, State, accelerations, constrained_accelerations, constrained_rk4_step, energy,
+    rk4_step,
+};
+
+#[path = "seeds/mod.rs"]
+mod seeds;
+
+use seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
+
+/// The system allocator, counting the allocations of the thread that
+/// counts (the test harness's own threads are left alone).
+struct Counting;
+
+thread_local! {
+    /// Allocations seen on this thread while counting, if counting.
+    static ALLOCATIONS: Cell<Option<usize>> = const { Cell::new(None) };
+}
+
+// SAFETY: every call is forwarded unchanged to `System`; the counter is a
+// thread-local `Cell` with a const initialiser, which never allocates.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        // SAFETY: the caller upholds `GlobalAlloc::alloc`'s contract.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        count();
+        // SAFETY: as for `alloc`.
+        unsafe { System.alloc_zeroed(layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        // SAFETY: as for `alloc`.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: as for `alloc`.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+fn count() {
+    // `try_with`: the thread-local may be gone while a thread exits.
+    let _ = ALLOCATIONS.try_with(|n| n.set(n.get().map(|n| n + 1)));
+}
+
+/// The allocations `job` makes on this thread.
+fn allocations<T>(job: impl FnOnce() -> T) -> (usize, T) {
+    ALLOCATIONS.with(|n| n.set(Some(0)));
+    let value = std::hint::black_box(job());
+    let made = ALLOCATIONS.with(|n| n.replace(None)).unwrap_or(0);
+    (made, value)
+}
+
+#[test]
+fn the_counter_sees_an_allocation() {
+    let (made, _) = allocations(|| Box::new(std::hint::black_box(1.0_f64)));
+    assert_eq!(made, 1);
+}
+
+#[test]
+fn generated_functions_and_solvers_allocate_nothing() {
+    let pendulum = DoublePendulum {
+        m: 1.0,
+        L: 1.2,
+        g: 9.81,
+    };
+    let bar = RotatingBar {
+        m: 2.0,
+        l: 0.7,
+        d: 0.3,
+    };
+    let constrained = ConstrainedPendulum {
+        m: 1.0,
+        l: 2.0,
+        g: 9.81,
+    };
+    let (q, qd) = ([0.3, -0.4], [0.5, 0.1]);
+    // On the constraints: `x = l/2 sin θ`, `y = −l/2 cos θ`, and rates.
+    let (theta, rate): (f64, f64) = (0.4, 0.2);
+    let cq = [theta.sin(), -theta.cos(), theta];
+    let cqd = [theta.cos() * rate, theta.sin() * rate, rate];
+    let (made, _) = allocations(|| {
+        (
+            pendulum.mass_matrix(&q),
+            pendulum.forcing(0.0, &q, &qd, &[]),
+            pendulum.kinetic_energy(&q, &qd),
+            pendulum.potential_energy(&q),
+            bar.mass_matrix(&q),
+            bar.forcing(0.0, &q, &qd, &[0.1, -0.2]),
+            constrained.constraint_jacobian(&cq),
+            constrained.constraint_bias(0.0, &cq, &cqd),
+            constrained.constraint_residual(0.0, &cq),
+            energy(&pendulum, &q, &qd),
+        )
+    });
+    assert_eq!(made, 0, "the generated functions allocated");
+    let (made, result) = allocations(|| {
+        let a = accelerations(&pendulum, 0.0, &q, &qd, &[]).map(|_| ());
+        let b = constrained_accelerations(&constrained, 0.0, &cq, &cqd, &[0.5]).map(|_| ());
+        let state = State { t: 0.0, q, qd };
+        let c = rk4_step(&pendulum, &state, |_, _, _| [], 1e-3).map(|_| ());
+        let start = State {
+            t: 0.0,
+            q: cq,
+            qd: cqd,
+        };
+        let projection = Stabilisation::Projection {
+            tolerance: 1e-12,
+            max_iterations: 10,
+        };
+        let d = constrained_rk4_step(&constrained, &start, |_, _, _| [0.5], 1e-3, projection)
+            .map(|_| ());
+        (a, b, c.is_ok(), d.is_ok())
+    });
+    assert_eq!(made, 0, "the solvers allocated");
+    assert!(
+        result.0.is_ok() && result.1.is_ok() && result.2 && result.3,
+        "{result:?}"
+    );
+}

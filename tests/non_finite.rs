@@ -1,0 +1,106 @@
+//! Generated systems given NaN or infinite parameters or states: every
+//! runtime solver returns an error instead of propagating NaN, and
+//! `energy`, a plain `f64` diagnostic, returns a non-finite value (never a
+//! finite wrong one).
+
+use dalembert::{
+    DynamicsError, Stabilisation, State, accelerations, constrained_accelerations,
+    constrained_rk4_step, energy, project_onto_constraints, rk4_step,
+};
+
+#[path = "seeds/mod.rs"]
+mod seeds;
+
+use seeds::{ConstrainedPendulum, DoublePendulum};
+
+const BAD: [f64; 3] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+
+#[test]
+fn non_finite_parameters_are_errors() {
+    for bad in BAD {
+        let pendulum = DoublePendulum {
+            m: 1.0,
+            L: bad,
+            g: 9.81,
+        };
+        let (q, qd) = ([0.3, -0.4], [0.5, 0.1]);
+        assert_eq!(
+            accelerations(&pendulum, 0.0, &q, &qd, &[]),
+            Err(DynamicsError::NonFiniteEquations)
+        );
+        let state = State { t: 0.0, q, qd };
+        let error = rk4_step(&pendulum, &state, |_, _, _| [], 1e-3).unwrap_err();
+        assert_eq!(error.cause, DynamicsError::NonFiniteEquations);
+        assert!(!energy(&pendulum, &q, &qd).is_finite());
+
+        let constrained = ConstrainedPendulum {
+            m: 1.0,
+            l: bad,
+            g: 9.81,
+        };
+        let cq = [0.0, -1.0, 0.0];
+        let result = constrained_accelerations(&constrained, 0.0, &cq, &[0.0; 3], &[0.0]);
+        assert!(
+            matches!(
+                result,
+                Err(DynamicsError::NonFiniteEquations | DynamicsError::NonFiniteConstraints)
+            ),
+            "{result:?}"
+        );
+        let start = State {
+            t: 0.0,
+            q: cq,
+            qd: [0.0; 3],
+        };
+        assert!(project_onto_constraints(&constrained, &start, 1e-12, 10).is_err());
+        let projection = Stabilisation::Projection {
+            tolerance: 1e-12,
+            max_iterations: 10,
+        };
+        assert!(
+            constrained_rk4_step(&constrained, &start, |_, _, _| [0.0], 1e-3, projection).is_err()
+        );
+    }
+}
+
+#[test]
+fn non_finite_states_and_inputs_are_errors() {
+    let pendulum = DoublePendulum {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let constrained = ConstrainedPendulum {
+        m: 1.0,
+        l: 2.0,
+        g: 9.81,
+    };
+    for bad in BAD {
+        assert_eq!(
+            accelerations(&pendulum, 0.0, &[bad, 0.0], &[0.0; 2], &[]),
+            Err(DynamicsError::NonFiniteState)
+        );
+        let state = State {
+            t: bad,
+            q: [0.1, 0.2],
+            qd: [0.0; 2],
+        };
+        assert!(rk4_step(&pendulum, &state, |_, _, _| [], 1e-3).is_err());
+        let step = rk4_step(&pendulum, &State { t: 0.0, ..state }, |_, _, _| [], bad);
+        assert!(step.is_err(), "a non-finite step size: {step:?}");
+        let (q, qd) = ([1.0_f64.sin(), -1.0_f64.cos(), 1.0], [0.0, 0.0, bad]);
+        assert_eq!(
+            constrained_accelerations(&constrained, 0.0, &q, &qd, &[0.0]),
+            Err(DynamicsError::NonFiniteState)
+        );
+        assert_eq!(
+            constrained_accelerations(&constrained, 0.0, &q, &[0.0; 3], &[bad]),
+            Err(DynamicsError::NonFiniteState)
+        );
+        let start = State { t: 0.0, q, qd };
+        assert_eq!(
+            project_onto_constraints(&constrained, &start, 1e-12, 10),
+            Err(DynamicsError::NonFiniteState)
+        );
+    }
+}

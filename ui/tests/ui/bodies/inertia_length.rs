@@ -1,0 +1,16 @@
+//! An inertia lists 3 or 6 entries.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        body bar { mass: m, center: G, frame: B, inertia: [1, 2] };
+    }
+}
+
+fn main() {}

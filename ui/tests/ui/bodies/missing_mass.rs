@@ -1,0 +1,16 @@
+//! A body without a mass.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        body bar { center: G, frame: B, inertia: [0, 0, 1] };
+    }
+}
+
+fn main() {}

@@ -1,0 +1,16 @@
+//! A field that bodies do not have.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        body bar { mass: m, center: G, frame: B, inertia: [0, 0, 1], colour: m };
+    }
+}
+
+fn main() {}

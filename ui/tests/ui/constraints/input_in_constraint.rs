@@ -1,0 +1,16 @@
+//! Constraints may not depend on inputs.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        constraint theta == u;
+    }
+}
+
+fn main() {}

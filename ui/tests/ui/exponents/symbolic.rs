@@ -1,0 +1,16 @@
+//! The exponent of `^` must be constant.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        potential m * theta^l;
+    }
+}
+
+fn main() {}

@@ -1,0 +1,16 @@
+//! Division by a constant zero.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        potential m / (l - l);
+    }
+}
+
+fn main() {}

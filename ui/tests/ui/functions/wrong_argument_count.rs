@@ -1,0 +1,16 @@
+//! Functions take one argument.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        potential m * sin(theta, l);
+    }
+}
+
+fn main() {}

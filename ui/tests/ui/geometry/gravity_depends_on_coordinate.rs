@@ -1,0 +1,16 @@
+//! Gravity depends on parameters only.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        gravity -g * theta * N.y;
+    }
+}
+
+fn main() {}

@@ -1,0 +1,16 @@
+//! A speed may not place a point.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        point P = O + dt(theta) * N.x;
+    }
+}
+
+fn main() {}

@@ -1,0 +1,16 @@
+//! A joint axis is `x`, `y` or `z`.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        joint revolute J { parent: B, child: C, axis: w, coordinate: theta, at: G };
+    }
+}
+
+fn main() {}

@@ -1,0 +1,16 @@
+//! `t` is the built-in time.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        parameters t;
+    }
+}
+
+fn main() {}

@@ -1,0 +1,16 @@
+//! A constraint is written with `==`, not `=`.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        constraint theta = 0;
+    }
+}
+
+fn main() {}

@@ -1,0 +1,16 @@
+//! Two points cannot be added.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        point P = O + G;
+    }
+}
+
+fn main() {}

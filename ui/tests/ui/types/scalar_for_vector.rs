@@ -1,0 +1,16 @@
+//! A scalar where a vector is expected.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        gravity g;
+    }
+}
+
+fn main() {}

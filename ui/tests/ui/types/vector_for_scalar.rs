@@ -1,0 +1,16 @@
+//! A vector where a scalar is expected.
+
+use dalembert_macros::dalembert;
+
+dalembert! {
+    pub Pendulum {
+        parameters m, l, g;
+        coordinates theta;
+        inputs u;
+        frame B = N.rotate_z(theta);
+        point G = O - l * B.y;
+        potential m * B.x;
+    }
+}
+
+fn main() {}
