@@ -12,8 +12,10 @@ use std::marker::PhantomData;
 use crate::constrained::{
     baumgarte_accelerations, constrained_accelerations, project_onto_constraints,
 };
+use crate::integrate::march;
 use crate::{
-    ConstrainedSystem, DynamicsError, MultibodySystem, Stabilisation, State, accelerations,
+    ConstrainedSystem, DynamicsError, MultibodySystem, Solution, SolverError, SolverFailure,
+    Stabilisation, State, Statistics, accelerations,
 };
 
 /// Second-order equations of motion `q̈ = a(t, q, q̇)` as integrators see
@@ -160,14 +162,52 @@ impl<'a, E> Counted<'a, E> {
         }
     }
 
-    /// The wrapped equations' correction after a step.
+    /// The wrapped equations' correction after a step that ended at
+    /// `state`; a failure is reported at `state`.
     pub(crate) fn settle<const NQ: usize>(
         &self,
         state: &State<NQ>,
-    ) -> Result<State<NQ>, DynamicsError>
+    ) -> Result<State<NQ>, SolverError<NQ>>
     where
         E: Equations<NQ>,
     {
-        self.equations.settle(state)
+        self.equations
+            .settle(state)
+            .map_err(|cause| SolverError::at(state, SolverFailure::Dynamics(cause)))
+    }
+
+    /// The report of `steps` fixed steps that ended at `end`: the
+    /// evaluations so far, every step accepted.
+    pub(crate) fn fixed_step_solution<const NQ: usize>(
+        &self,
+        end: State<NQ>,
+        steps: u64,
+    ) -> Solution<NQ> {
+        Solution {
+            end,
+            statistics: Statistics {
+                rhs_evaluations: self.evaluations(),
+                accepted_steps: steps,
+                rejected_steps: 0,
+            },
+        }
+    }
+
+    /// Integrates `steps` fixed steps from `initial`: `step` takes a state
+    /// to the next, which the wrapped equations then settle, and `observer`
+    /// sees the initial state and every settled one. Returns the final state
+    /// with the work done; stops at the first step that fails.
+    pub(crate) fn fixed_steps<const NQ: usize>(
+        &self,
+        initial: State<NQ>,
+        steps: u64,
+        mut step: impl FnMut(&State<NQ>) -> Result<State<NQ>, SolverError<NQ>>,
+        observer: impl FnMut(&State<NQ>),
+    ) -> Result<Solution<NQ>, SolverError<NQ>>
+    where
+        E: Equations<NQ>,
+    {
+        let end = march(initial, steps, |state| self.settle(&step(state)?), observer)?;
+        Ok(self.fixed_step_solution(end, steps))
     }
 }

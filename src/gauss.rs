@@ -31,7 +31,7 @@
 
 use crate::equations::Counted;
 use crate::integrate::Rate;
-use crate::{Equations, Solution, SolverError, SolverFailure, State, Statistics};
+use crate::{Equations, Solution, SolverError, SolverFailure, State};
 
 /// Fixed-point iterations allowed per step: a converging iteration gains at
 /// least a digit every few, a diverging one overflows or stalls.
@@ -166,20 +166,11 @@ where
     for _ in 0..steps {
         let stages = solve_stages(scheme, &state, h, guess, &rate)?;
         let next = Rate::combination(&scheme.b, &stages).advance(&state, h);
-        state = counted
-            .settle(&next)
-            .map_err(|cause| SolverError::at(&next, SolverFailure::Dynamics(cause)))?;
+        state = counted.settle(&next)?;
         observer(&state);
         guess = std::array::from_fn(|i| Rate::combination(&extrapolation[i], &stages));
     }
-    Ok(Solution {
-        end: state,
-        statistics: Statistics {
-            rhs_evaluations: counted.evaluations(),
-            accepted_steps: steps,
-            rejected_steps: 0,
-        },
-    })
+    Ok(counted.fixed_step_solution(state, steps))
 }
 
 /// The stage slopes `Kᵢ = F(y + h Σⱼ aᵢⱼ Kⱼ)` of one step from `state`, by

@@ -9,7 +9,7 @@ use std::fmt;
 
 use crate::equations::Counted;
 use crate::{
-    DynamicsError, Equations, MultibodySystem, Solution, SolverError, Statistics, accelerations,
+    DynamicsError, Equations, MultibodySystem, Solution, SolverError, accelerations,
 };
 
 /// A point of a trajectory: time, coordinates and speeds.
@@ -122,34 +122,19 @@ where
 {
     let counted = Counted::new(equations);
     let acceleration = counted.acceleration();
-    let step = |state: &State<NQ>| {
-        let next = rk4_step_with(state, h, &acceleration)?;
-        counted.settle(&next).map_err(|cause| IntegrationError {
-            t: next.t,
-            q: next.q,
-            cause,
-        })
-    };
-    let end = march(initial, steps, step, observer)?;
-    Ok(Solution {
-        end,
-        statistics: Statistics {
-            rhs_evaluations: counted.evaluations(),
-            accepted_steps: steps,
-            rejected_steps: 0,
-        },
-    })
+    let step = |state: &State<NQ>| rk4_step_with(state, h, &acceleration).map_err(SolverError::from);
+    counted.fixed_steps(initial, steps, step, observer)
 }
 
 /// Applies `step` `steps` times from `initial` and returns the final state;
 /// `observer` sees the initial state and then every new one. Stops at the
 /// first step that fails.
-pub(crate) fn march<const NQ: usize>(
+pub(crate) fn march<const NQ: usize, Error>(
     initial: State<NQ>,
     steps: u64,
-    mut step: impl FnMut(&State<NQ>) -> Result<State<NQ>, IntegrationError<NQ>>,
+    mut step: impl FnMut(&State<NQ>) -> Result<State<NQ>, Error>,
     mut observer: impl FnMut(&State<NQ>),
-) -> Result<State<NQ>, IntegrationError<NQ>> {
+) -> Result<State<NQ>, Error> {
     observer(&initial);
     let mut state = initial;
     for _ in 0..steps {

@@ -21,7 +21,7 @@
 
 use crate::equations::Counted;
 use crate::integrate::Rate;
-use crate::{DynamicsError, Equations, Solution, SolverError, SolverFailure, State, Statistics};
+use crate::{DynamicsError, Equations, Solution, SolverError, SolverFailure, State};
 
 /// The diagonal `γ` of the tableau: the root of `x³ − 3x² + 3x/2 − 1/6` in
 /// `(1/6, 1/2)`, which makes the method L-stable.
@@ -64,30 +64,15 @@ pub fn simulate_sdirk<E, const NQ: usize>(
     initial: State<NQ>,
     h: f64,
     steps: u64,
-    mut observer: impl FnMut(&State<NQ>),
+    observer: impl FnMut(&State<NQ>),
 ) -> Result<Solution<NQ>, SolverError<NQ>>
 where
     E: Equations<NQ>,
 {
     let counted = Counted::new(equations);
     let acceleration = counted.acceleration();
-    observer(&initial);
-    let mut state = initial;
-    for _ in 0..steps {
-        let next = sdirk_step(&acceleration, &state, h)?;
-        state = counted
-            .settle(&next)
-            .map_err(|cause| SolverError::at(&next, SolverFailure::Dynamics(cause)))?;
-        observer(&state);
-    }
-    Ok(Solution {
-        end: state,
-        statistics: Statistics {
-            rhs_evaluations: counted.evaluations(),
-            accepted_steps: steps,
-            rejected_steps: 0,
-        },
-    })
+    let step = |state: &State<NQ>| sdirk_step(&acceleration, state, h);
+    counted.fixed_steps(initial, steps, step, observer)
 }
 
 /// One SDIRK step of length `h` from `state`.

@@ -13,7 +13,7 @@ use dalembert::{
     DynamicsError, Stabilisation, State, constrained_accelerations, constraint_drift, energy,
     simulate, simulate_constrained,
 };
-use models::{ConstrainedPendulum, SliderCrank};
+use models::{ConstrainedPendulum, SEED_3, SLIDER_CRANK, SliderCrank};
 
 dalembert::dalembert! {
     /// Seed example 3's bar pinned at `O`, in its one independent coordinate.
@@ -57,12 +57,6 @@ dalembert::dalembert! {
     }
 }
 
-/// Seed example 3 with the parameters of the reference data.
-const SEED_3: ConstrainedPendulum = ConstrainedPendulum {
-    m: 1.7,
-    l: 1.1,
-    g: 9.81,
-};
 /// The step of every fixed-step integration here.
 const H: f64 = 1e-3;
 
@@ -234,12 +228,8 @@ fn a_constraint_written_twice_is_an_error_naming_the_row_not_nan() {
 /// A slider-crank whose rod is `rod_length` long, crank 0.1 m.
 fn slider_crank(rod_length: f64) -> SliderCrank {
     SliderCrank {
-        m_crank: 0.5,
-        r: 0.1,
-        m_rod: 0.8,
         L: rod_length,
-        m_slider: 1.2,
-        g: 9.81,
+        ..SLIDER_CRANK
     }
 }
 

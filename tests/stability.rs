@@ -105,15 +105,8 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
 
 #[test]
 fn projection_holds_the_drift_of_the_adaptive_pair_on_the_slider_crank() {
-    let crank = slider_crank::SliderCrank {
-        m_crank: 0.5,
-        r: 0.1,
-        m_rod: 0.8,
-        L: 0.3,
-        m_slider: 1.2,
-        g: 9.81,
-    };
-    let start = crank.assembled(0.0, 4.0 * std::f64::consts::TAU);
+    let crank = slider_crank::SLIDER_CRANK;
+    let start = crank.assembled(0.0, slider_crank::CRANK_SPEED);
     let drift_after_two_seconds = |stabilisation| {
         let equations = Constrained::new(&crank, |_, _, _| [0.0], stabilisation);
         let options = AdaptiveOptions::with_tolerance(1e-8);

@@ -52,10 +52,9 @@ pub fn generate(source: &str) -> syn::Result<String> {
 }
 
 /// Checks the system in `source` (the text of a `.dal` file) as the macro
-/// does: every error the macro would report, without deriving equations.
+/// does: every error the macro would report, without emitting code.
 pub fn check(source: &str) -> syn::Result<()> {
-    let system = language::parse_system(lex(source)?)?;
-    model::resolve(&system).map(drop)
+    derive(lex(source)?).map(drop)
 }
 
 /// The derived equations of the system in `source` (the text of a `.dal`
@@ -81,8 +80,7 @@ pub struct Statistics {
 /// The size of the derivation of the system in `source` (the text of a
 /// `.dal` file), as [`generate`] derives and optimises it.
 pub fn statistics(source: &str) -> syn::Result<Statistics> {
-    let (mut model, mut equations) = derive(lex(source)?)?;
-    optimize::optimize(&mut equations, &mut model.pool);
+    let (model, mut equations) = derive(lex(source)?)?;
     let outputs: Vec<expr::ExprId> = equations.expressions_mut().map(|e| *e).collect();
     Ok(Statistics {
         pool_nodes: model.pool.len(),
@@ -104,7 +102,7 @@ fn lex(source: &str) -> syn::Result<TokenStream> {
 
 /// The whole pipeline, from tokens to items.
 fn derive_items(input: TokenStream) -> syn::Result<TokenStream> {
-    let (mut model, mut equations) = derive(input)?;
+    let (mut model, equations) = derive(input)?;
     let mut pool = std::mem::take(&mut model.pool);
     let mut docs = model.docs.clone();
     if !docs.is_empty() {
@@ -112,7 +110,6 @@ fn derive_items(input: TokenStream) -> syn::Result<TokenStream> {
     }
     let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool);
     docs.extend(equation_lines);
-    optimize::optimize(&mut equations, &mut pool);
     model.pool = pool;
     Ok(emit::emit(
         &model,
@@ -121,13 +118,41 @@ fn derive_items(input: TokenStream) -> syn::Result<TokenStream> {
     ))
 }
 
-/// Parses, checks and derives: the model (owning the expression pool) and
-/// its equations.
+/// Parses, checks, derives and optimises: the model (owning the expression
+/// pool) and its equations.
 fn derive(input: TokenStream) -> syn::Result<(model::Model, equations::Equations)> {
     let system = language::parse_system(input)?;
     let mut model = model::resolve(&system)?;
     let mut pool = std::mem::take(&mut model.pool);
-    let equations = equations::derive(&model, &mut pool);
+    let mut equations = equations::derive(&model, &mut pool);
+    optimize::optimize(&mut equations, &mut pool);
     model.pool = pool;
+    check_timeless(&model, &equations)?;
     Ok((model, equations))
+}
+
+/// The outputs whose generated functions take no `t` (`M(q)`, `T(q, q̇)`,
+/// `V(q)`) must not depend on time: reports the masses that move with time
+/// when `t` did not cancel from them. (A row of `A(q)` with `t` is rejected
+/// earlier, at its constraint.)
+fn check_timeless(model: &model::Model, equations: &equations::Equations) -> syn::Result<()> {
+    let timeless = equations
+        .mass_matrix
+        .iter()
+        .flatten()
+        .chain([&equations.kinetic_energy, &equations.potential_energy]);
+    let mut timeless = timeless.map(|&e| model.pool.kinds(e));
+    if !timeless.any(|kinds| kinds.intersects(expr::SymKinds::TIME)) {
+        return Ok(());
+    }
+    let mut errors = model.moving_masses.iter().cloned();
+    let mut first = errors.next().unwrap_or_else(|| {
+        syn::Error::new(
+            model.name.span(),
+            "the mass matrix or the energies depend on time `t`, but the generated \
+             `mass_matrix(q)`, `kinetic_energy(q, q̇)` and `potential_energy(q)` have no `t`",
+        )
+    });
+    errors.for_each(|e| first.combine(e));
+    Err(first)
 }

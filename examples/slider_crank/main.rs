@@ -18,7 +18,7 @@ use dalembert::{
     ConstrainedSystem, Series, Stabilisation, State, constraint_drift, energy, line_chart_log_y,
     simulate_constrained,
 };
-use models::{ConstrainedPendulum, SliderCrank};
+use models::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 
 /// The RK4 step, in seconds.
 const STEP: f64 = 1e-3;
@@ -150,11 +150,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let out = output_directory()?;
     std::fs::create_dir_all(&out)?;
 
-    let pendulum = ConstrainedPendulum {
-        m: 1.7,
-        l: 1.1,
-        g: 9.81,
-    };
+    let pendulum = SEED_3;
     // Critical damping at the bar's natural frequency √(3g/2l).
     let pendulum_frequency = (1.5 * pendulum.g / pendulum.l).sqrt();
     compare(
@@ -166,19 +162,11 @@ fn main() -> Result<(), Box<dyn Error>> {
         out.join("constraint_drift_seed_3.svg"),
     )?;
 
-    let crank = SliderCrank {
-        m_crank: 0.5,
-        r: 0.1,
-        m_rod: 0.8,
-        L: 0.3,
-        m_slider: 1.2,
-        g: 9.81,
-    };
-    let crank_speed = 4.0 * std::f64::consts::TAU;
+    let crank = SLIDER_CRANK;
     let [_, _, projected] = compare(
         "slider-crank",
         &crank,
-        crank.assembled(0.0, crank_speed),
+        crank.assembled(0.0, CRANK_SPEED),
         25_000,
         10.0,
         out.join("constraint_drift_slider_crank.svg"),

@@ -8,6 +8,13 @@ use dalembert::State;
 mod seeds;
 pub use seeds::ConstrainedPendulum;
 
+/// Seed example 3 with the parameters of the reference data.
+pub const SEED_3: ConstrainedPendulum = ConstrainedPendulum {
+    m: 1.7,
+    l: 1.1,
+    g: 9.81,
+};
+
 impl ConstrainedPendulum {
     /// The state at time 0 on the constraint manifold with the bar at angle
     /// `theta` from the downward vertical, turning at `theta_dot`.
@@ -48,6 +55,21 @@ dalembert::dalembert! {
         constraint r*sin(theta) + L*sin(phi) == 0;
     }
 }
+
+/// The slider-crank of the examples and tests: a 0.1 m crank and a 0.3 m
+/// rod.
+pub const SLIDER_CRANK: SliderCrank = SliderCrank {
+    m_crank: 0.5,
+    r: 0.1,
+    m_rod: 0.8,
+    L: 0.3,
+    m_slider: 1.2,
+    g: 9.81,
+};
+
+/// The crank speed the examples and tests start [`SLIDER_CRANK`] at: 4
+/// revolutions per second, in rad/s.
+pub const CRANK_SPEED: f64 = 4.0 * std::f64::consts::TAU;
 
 impl SliderCrank {
     /// The state at time 0 on the constraint manifold with the crank at

@@ -37,7 +37,7 @@ use models::{
     CHAOTIC, CHAOTIC_END, CHAOTIC_START, ON_AXIS, STIFF, STIFF_START, TOWARDS_AXIS,
     chaotic_reference, no_inputs,
 };
-use slider_crank::{ConstrainedPendulum, SliderCrank};
+use slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 
 /// The error at which our DOP853 and SciPy's are compared.
 const COMPARISON_ERROR: f64 = 1e-6;
@@ -86,11 +86,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     std::fs::create_dir_all(&out)?;
 
     chaotic_pendulum(&out, repeats, &scipy)?;
-    let pendulum = ConstrainedPendulum {
-        m: 1.7,
-        l: 1.1,
-        g: 9.81,
-    };
+    let pendulum = SEED_3;
     let start = pendulum.assembled(1.0, 2.0);
     constrained(
         "seed example 3",
@@ -101,7 +97,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         start,
         10.0,
     )?;
-    let (crank, start) = slider_crank_setup();
+    let crank = SLIDER_CRANK;
+    let start = crank.assembled(0.0, CRANK_SPEED);
     constrained(
         "slider-crank",
         "slider_crank",
@@ -116,20 +113,6 @@ fn main() -> Result<(), Box<dyn Error>> {
     sensitivity(&out)?;
     singular_mass_matrix();
     Ok(())
-}
-
-/// The slider-crank of the slider-crank example at 4 revolutions per second.
-fn slider_crank_setup() -> (SliderCrank, State<3>) {
-    let crank = SliderCrank {
-        m_crank: 0.5,
-        r: 0.1,
-        m_rod: 0.8,
-        L: 0.3,
-        m_slider: 1.2,
-        g: 9.81,
-    };
-    let start = crank.assembled(0.0, 4.0 * std::f64::consts::TAU);
-    (crank, start)
 }
 
 /// A progress bar over `total` items.

@@ -167,9 +167,7 @@ where
         let factor = step_factor(pair, error, after_rejection);
         if error <= 1.0 {
             statistics.accepted_steps += 1;
-            let settled = counted
-                .settle(&next)
-                .map_err(|cause| SolverError::at(&next, SolverFailure::Dynamics(cause)))?;
+            let settled = counted.settle(&next)?;
             slope = match new_slope {
                 Some(new_slope) if settled == next => new_slope,
                 _ => rate(&settled)?,

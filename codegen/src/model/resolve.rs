@@ -181,6 +181,7 @@ impl Resolver {
                 potential: zero,
                 dissipation: zero,
                 constraints: Vec::new(),
+                moving_masses: Vec::new(),
                 pool: Pool::default(),
             },
         }
@@ -486,9 +487,10 @@ impl Resolver {
     }
 
     /// The generated `mass_matrix(q)`, `kinetic_energy(q, q̇)` and
-    /// `potential_energy(q)` take no `t`, so a mass may not move with time
-    /// (prescribed motion of a frame or point that carries it): that would
-    /// make them depend on `t`.
+    /// `potential_energy(q)` take no `t`: a mass that moves with time
+    /// (prescribed motion of a frame or point that carries it) is recorded,
+    /// and reported if `t` does not cancel from them (see
+    /// [`Model::moving_masses`]).
     fn check_fixed_in_time(
         &mut self,
         name: &Ident,
@@ -497,15 +499,16 @@ impl Resolver {
         frame: Option<FrameId>,
     ) {
         if self.point_moves_with_time(at) || frame.is_some_and(|f| self.frame_turns_with_time(f)) {
-            self.errors.push(
+            self.model.moving_masses.push(syn::Error::new(
                 name.span(),
                 format!(
                     "{what} `{name}` moves with time `t` (its position or frame depends on \
-                     `t`), but the generated `mass_matrix(q)`, `kinetic_energy(q, q̇)` and \
-                     `potential_energy(q)` have no `t`: prescribed motion is not supported; \
-                     make the motion a coordinate and drive it with a load or a constraint"
+                     `t`), and `t` stays in the mass matrix or the energies, but the generated \
+                     `mass_matrix(q)`, `kinetic_energy(q, q̇)` and `potential_energy(q)` have \
+                     no `t`: make the motion a coordinate and drive it with a load or a \
+                     constraint"
                 ),
-            );
+            ));
         }
     }
 

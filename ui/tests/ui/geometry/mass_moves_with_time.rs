@@ -1,4 +1,5 @@
-//! The generated `mass_matrix(q)` has no `t`: a mass may not move with time.
+//! The generated `potential_energy(q)` has no `t`: a mass whose motion in
+//! time stays in the energies (here `V = m g l sin t`) is an error.
 
 use dalembert_macros::dalembert;
 
@@ -11,6 +12,7 @@ dalembert! {
         point G = O - l * B.y;
         frame R = N.rotate_z(t);
         particle p { mass: m, at: O + l * R.x };
+        gravity -g * N.y;
     }
 }
 
