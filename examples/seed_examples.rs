@@ -13,7 +13,9 @@ use std::path::PathBuf;
 
 #[path = "../tests/seeds/mod.rs"]
 mod seeds;
-use seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
+use seeds::{
+    CHAOTIC, CHAOTIC_END, CHAOTIC_START, ConstrainedPendulum, DoublePendulum, RotatingBar,
+};
 
 /// The seed document's boxed results, transcribed.
 const SEED_1: &str = "\
@@ -79,16 +81,7 @@ fn output_directory() -> PathBuf {
 fn simulate_double_pendulum(
     out: &std::path::Path,
 ) -> Result<Vec<PathBuf>, Box<dyn std::error::Error>> {
-    let pendulum = DoublePendulum {
-        m: 1.0,
-        L: 1.0,
-        g: 9.81,
-    };
-    let initial = State {
-        t: 0.0,
-        q: [2.0, 2.0],
-        qd: [0.0, 0.0],
-    };
+    let (pendulum, initial) = (CHAOTIC, CHAOTIC_START);
     let energy =
         |s: &State<2>| pendulum.kinetic_energy(&s.q, &s.qd) + pendulum.potential_energy(&s.q);
     let e0 = energy(&initial);
@@ -96,7 +89,7 @@ fn simulate_double_pendulum(
     let mut drift = Vec::new();
     for (h, keep_angles) in [(1e-3, true), (1e-2, false)] {
         let mut errors = Vec::new();
-        let steps = (10.0 / h) as usize;
+        let steps = (CHAOTIC_END / h) as usize;
         simulate(
             &pendulum,
             initial,

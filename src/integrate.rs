@@ -8,9 +8,7 @@
 use std::fmt;
 
 use crate::equations::Counted;
-use crate::{
-    DynamicsError, Equations, MultibodySystem, Solution, SolverError, accelerations,
-};
+use crate::{DynamicsError, Equations, MultibodySystem, Solution, SolverError, accelerations};
 
 /// A point of a trajectory: time, coordinates and speeds.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -122,7 +120,8 @@ where
 {
     let counted = Counted::new(equations);
     let acceleration = counted.acceleration();
-    let step = |state: &State<NQ>| rk4_step_with(state, h, &acceleration).map_err(SolverError::from);
+    let step =
+        |state: &State<NQ>| rk4_step_with(state, h, &acceleration).map_err(SolverError::from);
     counted.fixed_steps(initial, steps, step, observer)
 }
 

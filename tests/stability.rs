@@ -10,7 +10,7 @@
 //! The energy test runs 10³ s in debug builds (CI) and the full 10⁴ s with
 //! `cargo test --release --test stability`; its bands hold for both.
 
-#[allow(dead_code)] // the example's models; this test uses a subset
+#[allow(dead_code, unused_imports)] // the example's models; this test uses a subset
 #[path = "../examples/work_precision/models.rs"]
 mod models;
 // Both model files compile their own copy of the seed models; each is used

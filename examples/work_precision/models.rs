@@ -11,25 +11,7 @@ use dalembert::State;
 
 #[path = "../../tests/seeds/mod.rs"]
 mod seeds;
-pub use seeds::{DoublePendulum, RotatingBar};
-
-/// Seed example 1 with the parameters of the chaotic reference trajectory.
-pub const CHAOTIC: DoublePendulum = DoublePendulum {
-    m: 1.0,
-    L: 1.0,
-    g: 9.81,
-};
-
-/// Both links at 2 rad from the downward vertical, at rest: the start of the
-/// chaotic reference trajectory.
-pub const CHAOTIC_START: State<2> = State {
-    t: 0.0,
-    q: [2.0, 2.0],
-    qd: [0.0, 0.0],
-};
-
-/// The end of the chaotic reference trajectory, in seconds.
-pub const CHAOTIC_END: f64 = 10.0;
+pub use seeds::{CHAOTIC, CHAOTIC_END, CHAOTIC_START, RotatingBar};
 
 /// No inputs: the double pendulums have none.
 pub fn no_inputs(_: f64, _: &[f64; 2], _: &[f64; 2]) -> [f64; 0] {

@@ -1,7 +1,11 @@
 //! The three seed examples, written exactly as DESIGN §3 writes them, for
-//! the tests, examples and benchmarks that need them (each uses a subset).
+//! the tests, examples and benchmarks that need them (each uses a subset),
+//! and the chaotic reference trajectory of seed example 1
+//! (`tests/reference/chaotic_double_pendulum.json`).
 
 #![allow(dead_code)]
+
+use dalembert::State;
 
 dalembert::dalembert! {
     /// Seed example 1: double pendulum, absolute angles from the downward vertical.
@@ -49,3 +53,21 @@ dalembert::dalembert! {
         constraint y + l/2 * cos(theta) == 0;
     }
 }
+
+/// Seed example 1 with the parameters of the chaotic reference trajectory.
+pub const CHAOTIC: DoublePendulum = DoublePendulum {
+    m: 1.0,
+    L: 1.0,
+    g: 9.81,
+};
+
+/// Both links at 2 rad from the downward vertical, at rest: the start of the
+/// chaotic reference trajectory.
+pub const CHAOTIC_START: State<2> = State {
+    t: 0.0,
+    q: [2.0, 2.0],
+    qd: [0.0, 0.0],
+};
+
+/// The end of the chaotic reference trajectory, in seconds.
+pub const CHAOTIC_END: f64 = 10.0;

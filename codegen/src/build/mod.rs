@@ -21,6 +21,7 @@ pub use diagnostic::Diagnostic;
 pub use error::BuildError;
 pub use model_file::ModelFile;
 
+use crate::Target;
 use std::path::{Path, PathBuf};
 
 /// The extension of model files.
@@ -38,6 +39,7 @@ pub struct Builder {
     model_dirs: Vec<PathBuf>,
     out_dir: Option<PathBuf>,
     emit_rerun_if_changed: bool,
+    target: Target,
 }
 
 impl Default for Builder {
@@ -55,6 +57,7 @@ impl Builder {
             model_dirs: Vec::new(),
             out_dir: None,
             emit_rerun_if_changed: true,
+            target: Target::Std,
         }
     }
 
@@ -88,6 +91,14 @@ impl Builder {
     /// directory (default `true`; turn it off outside build scripts).
     pub fn emit_rerun_if_changed(&mut self, on: bool) -> &mut Self {
         self.emit_rerun_if_changed = on;
+        self
+    }
+
+    /// Generates code for a `#![no_std]` crate depending on `libm` (the
+    /// equations only: no runtime traits, no `accelerations`), or, with
+    /// `false` (the default), for a crate using the `dalembert` runtime.
+    pub fn no_std(&mut self, on: bool) -> &mut Self {
+        self.target = if on { Target::NoStd } else { Target::Std };
         self
     }
 
@@ -145,7 +156,7 @@ impl Builder {
         let mut diagnostics = Vec::new();
         for (model, output) in jobs {
             self.rerun_if_changed(model);
-            match ModelFile::read(model)?.generate() {
+            match ModelFile::read(model)?.generate_for(self.target) {
                 Ok(code) => write_if_changed(output, &code)?,
                 Err(BuildError::Model(found)) => diagnostics.extend(found),
                 Err(other) => return Err(other),

@@ -46,7 +46,13 @@ impl ModelFile {
 
     /// The generated Rust source (see [`crate::generate`]).
     pub fn generate(&self) -> Result<String, BuildError> {
-        self.located(crate::generate(&self.source))
+        self.generate_for(crate::Target::Std)
+    }
+
+    /// The generated Rust source for a kind of crate (see
+    /// [`crate::generate_for`]).
+    pub fn generate_for(&self, target: crate::Target) -> Result<String, BuildError> {
+        self.located(crate::generate_for(&self.source, target))
     }
 
     /// The derived equations in the seed document's style (see

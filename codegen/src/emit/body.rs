@@ -19,6 +19,9 @@ pub struct Names {
     pub inputs: Vec<Ident>,
     /// Prefix of temporaries, chosen to collide with no other name.
     pub temporary: String,
+    /// Whether elementary functions are called through `libm` (for
+    /// `#![no_std]` crates) instead of as `f64`'s methods.
+    pub libm: bool,
 }
 
 impl Names {
@@ -348,6 +351,11 @@ impl Writer<'_> {
     /// `x.method()`, or `f64::method(2.0)` on a literal, whose type a
     /// method call could not infer.
     fn method_call(&self, arg: ExprId, method: &str) -> TokenStream {
+        if self.names.libm {
+            let function = Ident::new(libm_name(method), Span::call_site());
+            let argument = self.expr(arg);
+            return quote!(::libm::#function(#argument));
+        }
         let method = Ident::new(method, Span::call_site());
         let receiver = self.operand(arg);
         if !self.bound.contains_key(&arg) && matches!(self.pool.node(arg), Node::Number(_)) {
@@ -484,11 +492,25 @@ impl Writer<'_> {
             1 => x,
             2 => quote!(#x * #x),
             3 => quote!(#x * #x * #x),
+            _ if self.names.libm => {
+                let n = Literal::f64_unsuffixed(f64::from(n));
+                quote!(::libm::pow(#x, #n))
+            }
             _ => {
                 let n = Literal::i32_unsuffixed(n);
                 quote!(#x.powi(#n))
             }
         }
+    }
+}
+
+/// The `libm` function for an `f64` method of the same meaning.
+fn libm_name(method: &str) -> &str {
+    match method {
+        "sin_cos" => "sincos",
+        "ln" => "log",
+        "abs" => "fabs",
+        same => same,
     }
 }
 

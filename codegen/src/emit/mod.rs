@@ -1,7 +1,9 @@
 //! Emission: the derived equations as Rust items — one public struct of
 //! parameters, its inherent functions (DESIGN §4) and the runtime traits.
 //! Emitted code names everything by absolute path, so user items called
-//! `Result` or `f64` cannot change its meaning.
+//! `Result` or `f64` cannot change its meaning. For `#![no_std]` crates
+//! ([`Target::NoStd`]) the elementary functions go through `libm` and the
+//! items that need the `dalembert` runtime (which needs `std`) are left out.
 
 mod body;
 mod solve;
@@ -21,23 +23,44 @@ pub struct Documentation {
     pub text: String,
 }
 
+/// The kind of crate the code is for.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Target {
+    /// A crate with `std` and the `dalembert` runtime: `f64`'s methods for
+    /// the functions, the runtime's traits, the `accelerations` method.
+    #[default]
+    Std,
+    /// A `#![no_std]` crate depending on `libm`: the equations only.
+    NoStd,
+}
+
 /// All items for one system.
-pub fn emit(model: &Model, equations: &Equations, documentation: &Documentation) -> TokenStream {
-    let names = names(model);
+pub fn emit(
+    model: &Model,
+    equations: &Equations,
+    documentation: &Documentation,
+    target: Target,
+) -> TokenStream {
+    let names = names(model, target);
     let name = &model.name;
     let nq = model.nq();
     let nu = model.inputs.len();
     let nc = model.constraints.len();
-    let items = [
+    let mut items = vec![
         emit_mass_matrix(model, equations, &names),
         emit_forcing(model, equations, &names),
         emit_energies(model, equations, &names),
         emit_constraints(model, equations, &names),
-        solve::emit_accelerations(model, equations),
     ];
     let strukt = emit_struct(model, &documentation.docs);
     let constants = emit_constants(model, &documentation.text);
-    let traits = emit_trait_impls(name, nq, nu, nc);
+    let traits = match target {
+        Target::Std => {
+            items.push(solve::emit_accelerations(model, equations));
+            emit_trait_impls(name, nq, nu, nc)
+        }
+        Target::NoStd => TokenStream::new(),
+    };
     quote! {
         #strukt
         #[allow(non_snake_case, unused_parens, clippy::all)]
@@ -49,7 +72,7 @@ pub fn emit(model: &Model, equations: &Equations, documentation: &Documentation)
     }
 }
 
-fn names(model: &Model) -> Names {
+fn names(model: &Model, target: Target) -> Names {
     let taken: Vec<String> = model
         .parameters
         .iter()
@@ -83,6 +106,7 @@ fn names(model: &Model) -> Names {
         speeds,
         inputs: model.inputs.clone(),
         temporary,
+        libm: target == Target::NoStd,
     }
 }
 
