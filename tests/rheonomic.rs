@@ -6,7 +6,7 @@
 //! The generated code is checked against the interpreter on d'Alembert's
 //! route and on Lagrange's (with the explicit time derivatives).
 
-use dalembert_codegen::{Interpreter, Route, Sample};
+use dalembert_codegen::testing::{Interpreter, Route, Sample};
 
 dalembert::dalembert! {
     /// A bead sliding on a turning platform, a pendulum hanging from it.

@@ -7,9 +7,10 @@
 //! emission. Two front doors share it: [`expand`] for the `dalembert!`
 //! macro and [`generate`] for build scripts, wrapped by [`Builder`] and
 //! [`generate_file`], which read `.dal` files and report errors with file,
-//! line and column. Beside the generator, an [`Interpreter`] evaluates the
+//! line and column. Beside the generator, an interpreter evaluates the
 //! derived equations numerically (by d'Alembert's route or, independently,
-//! Lagrange's) for differential tests of the emitted code.
+//! Lagrange's) for differential tests of the emitted code; it lives in
+//! [`testing`] with the benchmark chain generator.
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
@@ -28,10 +29,23 @@ mod render;
 mod seeds;
 
 pub use build::{BuildError, Builder, Diagnostic, ModelFile, generate_file};
-pub use chain::{Family, chain};
 pub use emit::Target;
-pub use interpret::{Interpreter, Route, Sample, Values};
 pub use render::Style;
+
+/// Tools for testing and benchmarking generated systems, not needed to
+/// generate code.
+///
+/// * [`Interpreter`](testing::Interpreter) evaluates a system's derived
+///   equations numerically, by d'Alembert's route (as the generator derives
+///   them) or Lagrange's (an independent derivation): differential tests
+///   compare the emitted code with both.
+/// * [`chain`](testing::chain) writes the n-link benchmark chains of the
+///   reference data ([`Family`](testing::Family)) as model text; the
+///   `dalembert chain` command prints them.
+pub mod testing {
+    pub use crate::chain::{Family, chain};
+    pub use crate::interpret::{Interpreter, Route, Sample, Values};
+}
 
 use proc_macro2::TokenStream;
 

@@ -1,6 +1,6 @@
 //! The numbers compared between routes, and the comparisons.
 
-use dalembert_codegen::{Interpreter, Values};
+use dalembert_codegen::testing::{Interpreter, Values};
 
 /// The relative tolerance of every comparison.
 const TOLERANCE: f64 = 1e-10;

@@ -3,7 +3,7 @@
 //! its mass matrix is positive definite.
 
 use dalembert::MultibodySystem;
-use dalembert_codegen::{Interpreter, Route, Sample};
+use dalembert_codegen::testing::{Interpreter, Route, Sample};
 use dalembert_differential::{EMITTED_MODELS, Evaluation, assert_positive_definite};
 
 include!(concat!(env!("OUT_DIR"), "/random_models.rs"));

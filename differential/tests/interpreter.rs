@@ -2,7 +2,7 @@
 //! Lagrange route of the interpreter agree at random states, and `M` is
 //! symmetric positive definite.
 
-use dalembert_codegen::{Interpreter, Route, Sample};
+use dalembert_codegen::testing::{Interpreter, Route, Sample};
 use dalembert_differential::{Evaluation, RANDOM_MODELS, assert_positive_definite, random_model};
 use proptest::test_runner::{Config, TestRunner};
 

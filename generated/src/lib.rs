@@ -35,7 +35,7 @@ model!(
 );
 
 // Benchmark chains (issue 5): `models/{planar,spatial}_chain_NN.dal`, written by
-// `dalembert chain FAMILY N` (`dalembert_codegen::chain`); tests/chains.rs checks
+// `dalembert chain FAMILY N` (`dalembert_codegen::testing::chain`); tests/chains.rs checks
 // them against that generator and against tests/reference/chains.json.
 model!(
     /// The planar chain of 1 link (issue 5).

@@ -4,10 +4,10 @@
 //! `forcing = −nle`), `T`, `V` and the accelerations — of the runtime's
 //! `dalembert::accelerations` and of the generated, unrolled
 //! `accelerations` method, which also agree with each other. And the checked-in
-//! `models/*_chain_NN.dal` are exactly what `dalembert_codegen::chain` writes.
+//! `models/*_chain_NN.dal` are exactly what `dalembert_codegen::testing::chain` writes.
 
 use dalembert::{DynamicsError, MultibodySystem};
-use dalembert_codegen::Family;
+use dalembert_codegen::testing::Family;
 use dalembert_generated::*;
 use serde_json::Value;
 
@@ -160,7 +160,7 @@ fn chain_models_are_what_the_generator_writes() {
         let n: usize = n.parse().expect("a link count");
         assert_eq!(
             model.source,
-            dalembert_codegen::chain(family, n),
+            dalembert_codegen::testing::chain(family, n),
             "models/{}.dal is stale: rewrite it with `dalembert chain {} {n}`",
             model.name,
             family.name()

@@ -20,7 +20,8 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use dalembert_codegen::{BuildError, Family, ModelFile, Style};
+use dalembert_codegen::testing::Family;
+use dalembert_codegen::{BuildError, ModelFile, Style};
 
 const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
@@ -128,7 +129,7 @@ fn run(command: Command) -> ExitCode {
         Command::Check { model } => ModelFile::read(&model)
             .and_then(|m| m.check())
             .map(|()| format!("{}: ok", model.display())),
-        Command::Chain { family, links } => Ok(dalembert_codegen::chain(family, links)),
+        Command::Chain { family, links } => Ok(dalembert_codegen::testing::chain(family, links)),
     };
     match output {
         Ok(text) => print(&text),
