@@ -1,0 +1,154 @@
+#!/usr/bin/env python3
+"""Pinocchio reference values for the URDF robots of tests/reference/urdf/.
+
+For each robot, Pinocchio's own URDF parser builds the model (fixed base, mimic
+joints independent: Pinocchio's defaults), and at random states this script
+records crba (the full symmetric M), nle, the generalized gravity, f = tau - nle,
+aba with random torques, and the kinetic and potential energies, in the schema
+of tests/reference/README_chains.md (see tests/reference/urdf/README.md).
+
+Coordinates are written in dalembert's order (depth-first from the root link,
+children in the order their joints appear in the file), computed here from the
+XML independently of Pinocchio, and matched to Pinocchio's joints by name.
+Continuous joints, which Pinocchio stores as (cos, sin) in q, are written as
+one angle.
+
+usage (in a Python environment with `pin` and `numpy`):
+    python scripts/urdf_reference.py [--out tests/reference/urdf/pinocchio.json]
+"""
+import argparse
+import json
+import math
+import os
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pinocchio as pin
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROBOTS = os.path.join(ROOT, "tests", "reference", "urdf")
+FILES = ["panda.urdf", "ur5_robot.urdf", "solo12.urdf"]
+STATES = 10
+SEED = 20261123
+
+
+def file_order_coordinates(path):
+    """Names of the non-fixed joints, depth-first from the root link, children
+    in the order their joints appear in the file."""
+    robot = ET.parse(path).getroot()
+    joints = [
+        (j.get("name"), j.get("type"), j.find("parent").get("link"), j.find("child").get("link"))
+        for j in robot.findall("joint")
+    ]
+    children = {j[3] for j in joints}
+    roots = [l.get("name") for l in robot.findall("link") if l.get("name") not in children]
+    assert len(roots) == 1, roots
+    order = []
+
+    def visit(link):
+        for name, kind, parent, child in joints:
+            if parent == link:
+                if kind != "fixed":
+                    order.append(name)
+                visit(child)
+
+    visit(roots[0])
+    return order
+
+
+def state_values(model, data, order, q_angles, v, tau):
+    """Pinocchio's quantities at one state, permuted into `order`."""
+    q = pin.neutral(model)
+    idx_v = []
+    for name, angle in zip(order, q_angles):
+        jid = model.getJointId(name)
+        joint = model.joints[jid]
+        if joint.nq == 2:  # continuous: (cos, sin)
+            q[joint.idx_q] = math.cos(angle)
+            q[joint.idx_q + 1] = math.sin(angle)
+        else:
+            q[joint.idx_q] = angle
+        idx_v.append(joint.idx_v)
+    perm = np.array(idx_v)
+    vp = np.zeros(model.nv)
+    taup = np.zeros(model.nv)
+    vp[perm] = v
+    taup[perm] = tau
+
+    M = pin.crba(model, data, q).copy()
+    M = np.triu(M) + np.triu(M, 1).T
+    nle = pin.nonLinearEffects(model, data, q, vp).copy()
+    g = pin.computeGeneralizedGravity(model, data, q).copy()
+    qdd = pin.aba(model, data, q, vp, taup).copy()
+    T = pin.computeKineticEnergy(model, data, q, vp)
+    V = pin.computePotentialEnergy(model, data, q)
+
+    M = M[np.ix_(perm, perm)]
+    nle, g, qdd = nle[perm], g[perm], qdd[perm]
+    f = np.asarray(tau) - nle
+    # Self-checks: T = 1/2 v^T M v, M qdd = f.
+    assert abs(T - 0.5 * v @ M @ v) <= 1e-12 * max(1.0, abs(T)), (T, 0.5 * v @ M @ v)
+    assert np.allclose(M @ qdd, f, rtol=1e-9, atol=1e-9 * np.abs(f).max())
+    floats = lambda a: [float(x) for x in a]
+    return {
+        "q": floats(q_angles), "qd": floats(v), "tau": floats(tau),
+        "M": [floats(row) for row in M], "nle": floats(nle), "gravity_torque": floats(g),
+        "coriolis_times_qd": floats(nle - g), "f": floats(f), "qdd": floats(qdd),
+        "T": float(T), "V": float(V),
+    }
+
+
+def robot_entry(file, rng):
+    path = os.path.join(ROBOTS, file)
+    model = pin.buildModelFromUrdf(path)
+    data = model.createData()
+    order = file_order_coordinates(path)
+    assert len(order) == model.nv, (order, model.nv)
+    kinds, lower, upper = [], [], []
+    for name in order:
+        joint = model.joints[model.getJointId(name)]
+        kinds.append(joint.shortname())
+        lo = model.lowerPositionLimit[joint.idx_q]
+        hi = model.upperPositionLimit[joint.idx_q]
+        finite = joint.nq == 1 and np.isfinite(lo) and np.isfinite(hi) and hi > lo
+        lower.append(lo if finite else -math.pi)
+        upper.append(hi if finite else math.pi)
+    states = []
+    for _ in range(STATES):
+        q = rng.uniform(lower, upper)
+        v = rng.uniform(-2.0, 2.0, model.nv)
+        tau = rng.uniform(-10.0, 10.0, model.nv)
+        states.append(state_values(model, data, order, q, v, tau))
+    return {
+        "robot": os.path.splitext(file)[0], "urdf": file, "name": model.name,
+        "nq": model.nv, "nv": model.nv, "gravity": [float(x) for x in model.gravity.linear],
+        "coordinates": order, "pinocchio_order": list(model.names)[1:],
+        "pinocchio_joint_kinds": kinds, "states": states,
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default=os.path.join(ROBOTS, "pinocchio.json"))
+    args = parser.parse_args()
+    rng = np.random.default_rng(SEED)
+    document = {
+        "schema": "urdf/1 (states as chains/1)",
+        "generator": "scripts/urdf_reference.py (Pinocchio Python bindings, its URDF parser)",
+        "pinocchio_version": pin.__version__,
+        "units": "SI: kg, m, s, rad, N m",
+        "seed": SEED,
+        "notes": "See README.md beside this file. q in dalembert's coordinate order "
+                 "(`coordinates`); continuous joints as one angle; fixed base; mimic joints "
+                 "independent; M full symmetric; nle = C(q,qd) qd + g(q); f = tau - nle; "
+                 "M qdd = f; V leaves out the masses fixed to the ground.",
+        "models": [robot_entry(file, rng) for file in FILES],
+    }
+    with open(args.out, "w") as out:
+        json.dump(document, out, indent=1)
+        out.write("\n")
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()
