@@ -27,10 +27,12 @@ mod optimize;
 mod render;
 #[cfg(test)]
 mod seeds;
+mod urdf;
 
 pub use build::{BuildError, Builder, Diagnostic, ModelFile, generate_file};
 pub use emit::Target;
 pub use render::Style;
+pub use urdf::Urdf;
 
 /// Tools for testing and benchmarking generated systems, not needed to
 /// generate code.

@@ -6,6 +6,8 @@
 //! dalembert generate MODEL.dal        the generated Rust source
 //! dalembert check MODEL.dal           the errors the dalembert! macro would report
 //! dalembert chain FAMILY N            the .dal text of a benchmark chain (planar or spatial)
+//! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
+//!                                     the .dal model of a URDF robot
 //! ```
 //!
 //! Exit status: 0 on success, 1 if the model has errors or cannot be read,
@@ -21,7 +23,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use dalembert_codegen::testing::Family;
-use dalembert_codegen::{BuildError, ModelFile, Style};
+use dalembert_codegen::{BuildError, ModelFile, Style, Urdf};
 
 const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
@@ -31,6 +33,9 @@ Commands:
   generate MODEL.dal        print the generated Rust source
   check MODEL.dal           report the errors the dalembert! macro would report
   chain FAMILY N            print the .dal text of the planar or spatial chain of N links
+  urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
+                            print the .dal model of a URDF robot (--damping: joint
+                            damping as a dissipation function)
 
 Options:
   -h, --help                print this help
@@ -39,10 +44,24 @@ Options:
 /// A parsed command line.
 #[derive(Debug, PartialEq)]
 enum Command {
-    Eom { model: PathBuf, style: Style },
-    Generate { model: PathBuf },
-    Check { model: PathBuf },
-    Chain { family: Family, links: usize },
+    Eom {
+        model: PathBuf,
+        style: Style,
+    },
+    Generate {
+        model: PathBuf,
+    },
+    Check {
+        model: PathBuf,
+    },
+    Chain {
+        family: Family,
+        links: usize,
+    },
+    Urdf {
+        robot: PathBuf,
+        options: UrdfOptions,
+    },
     Help,
     Version,
 }
@@ -57,8 +76,20 @@ fn main() -> ExitCode {
     }
 }
 
+/// The options of `urdf`.
+#[derive(Debug, Default, PartialEq)]
+struct UrdfOptions {
+    floating: bool,
+    name: Option<String>,
+    damping: bool,
+}
+
 /// The command in `args` (without the program name), or what is wrong.
 fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
+    let mut args = args.into_iter().peekable();
+    if args.peek().is_some_and(|a| a == "urdf") {
+        return parse_urdf(args.skip(1));
+    }
     let mut positional = Vec::new();
     let mut latex = false;
     for arg in args {
@@ -119,6 +150,44 @@ fn parse_chain(mut args: impl Iterator<Item = OsString>) -> Result<Command, Stri
     }
 }
 
+/// The arguments of `urdf ROBOT.urdf [--floating] [--name NAME] [--damping]`.
+fn parse_urdf(args: impl Iterator<Item = OsString>) -> Result<Command, String> {
+    let mut options = UrdfOptions::default();
+    let mut robot = None;
+    let mut args = args.peekable();
+    while let Some(arg) = args.next() {
+        match arg.to_str() {
+            Some("-h" | "--help") => return Ok(Command::Help),
+            Some("--floating") => options.floating = true,
+            Some("--damping") => options.damping = true,
+            Some("--name") => {
+                let name = args.next().ok_or("`--name` needs a struct name")?;
+                options.name = Some(name.to_string_lossy().into_owned());
+            }
+            Some(flag) if flag.starts_with('-') => {
+                return Err(format!("unknown option `{flag}` of `urdf`"));
+            }
+            _ if robot.is_some() => {
+                return Err(format!("unexpected argument `{}`", arg.to_string_lossy()));
+            }
+            _ => robot = Some(PathBuf::from(arg)),
+        }
+    }
+    let robot = robot.ok_or("`urdf` needs a URDF file")?;
+    Ok(Command::Urdf { robot, options })
+}
+
+/// The `.dal` model of the URDF robot at `robot`.
+fn urdf(robot: &PathBuf, options: UrdfOptions) -> Result<String, BuildError> {
+    let mut urdf = Urdf::read(robot)?
+        .floating(options.floating)
+        .damping(options.damping);
+    if let Some(name) = options.name {
+        urdf = urdf.name(name);
+    }
+    urdf.model()
+}
+
 /// Runs `command`, printing its result to stdout and errors to stderr.
 fn run(command: Command) -> ExitCode {
     let output = match command {
@@ -130,6 +199,7 @@ fn run(command: Command) -> ExitCode {
             .and_then(|m| m.check())
             .map(|()| format!("{}: ok", model.display())),
         Command::Chain { family, links } => Ok(dalembert_codegen::testing::chain(family, links)),
+        Command::Urdf { robot, options } => urdf(&robot, options),
     };
     match output {
         Ok(text) => print(&text),
@@ -195,6 +265,17 @@ mod tests {
         assert_eq!(parse_str(&["check", "m.dal"]), Ok(Command::Check { model }));
         assert_eq!(parse_str(&["check", "--help"]), Ok(Command::Help));
         assert_eq!(
+            parse_str(&["urdf", "r.urdf", "--name", "Arm", "--damping"]),
+            Ok(Command::Urdf {
+                robot: PathBuf::from("r.urdf"),
+                options: UrdfOptions {
+                    floating: false,
+                    name: Some("Arm".into()),
+                    damping: true
+                }
+            })
+        );
+        assert_eq!(
             parse_str(&["chain", "spatial", "12"]),
             Ok(Command::Chain {
                 family: Family::Spatial,
@@ -216,6 +297,10 @@ mod tests {
             &["chain", "helical", "3"],
             &["chain", "planar", "0"],
             &["chain", "planar", "3", "4"],
+            &["urdf"],
+            &["urdf", "r.urdf", "--name"],
+            &["urdf", "r.urdf", "--latex"],
+            &["urdf", "r.urdf", "s.urdf"],
         ] {
             assert!(parse_str(args).is_err(), "{args:?}");
         }

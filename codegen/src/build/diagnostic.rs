@@ -45,6 +45,22 @@ impl Diagnostic {
             .collect()
     }
 
+    /// A diagnostic for text read from `path` that is not in the macro's
+    /// language (a URDF file): `message` at the bytes `range` of `source`,
+    /// or at the whole file when `range` is `None`.
+    pub(crate) fn in_text(
+        path: &Path,
+        source: &str,
+        range: Option<std::ops::Range<usize>>,
+        message: String,
+    ) -> Self {
+        Diagnostic {
+            path: path.to_owned(),
+            message,
+            location: range.and_then(|r| locate_range(source, r)),
+        }
+    }
+
     /// The model file.
     pub fn path(&self) -> &Path {
         &self.path
@@ -72,7 +88,12 @@ impl Diagnostic {
 fn locate(source: &str, span: proc_macro2::Span) -> Option<Location> {
     // A span with no source text is a call-site span: it has no position.
     span.source_text()?;
-    let range = span.byte_range();
+    locate_range(source, span.byte_range())
+}
+
+/// The position of the bytes `range` in `source`, or `None` if they are
+/// not in it.
+fn locate_range(source: &str, range: std::ops::Range<usize>) -> Option<Location> {
     let start = range.start;
     if range.end > source.len() || !source.is_char_boundary(start) {
         return None;

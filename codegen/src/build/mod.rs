@@ -36,6 +36,7 @@ const MODEL_EXTENSION: &str = "dal";
 #[derive(Clone, Debug)]
 pub struct Builder {
     models: Vec<PathBuf>,
+    urdfs: Vec<PathBuf>,
     model_dirs: Vec<PathBuf>,
     out_dir: Option<PathBuf>,
     emit_rerun_if_changed: bool,
@@ -54,6 +55,7 @@ impl Builder {
     pub fn new() -> Self {
         Builder {
             models: Vec::new(),
+            urdfs: Vec::new(),
             model_dirs: Vec::new(),
             out_dir: None,
             emit_rerun_if_changed: true,
@@ -71,6 +73,15 @@ impl Builder {
     pub fn models<P: AsRef<Path>>(&mut self, paths: impl IntoIterator<Item = P>) -> &mut Self {
         self.models
             .extend(paths.into_iter().map(|p| p.as_ref().to_owned()));
+        self
+    }
+
+    /// Adds the URDF robot at `path`, imported as `dalembert urdf` does
+    /// (fixed base, no damping): `NAME.urdf` becomes `NAME.rs`, holding the
+    /// struct named after the robot. Its errors are reported like a
+    /// model's, located in the URDF file.
+    pub fn urdf(&mut self, path: impl AsRef<Path>) -> &mut Self {
+        self.urdfs.push(path.as_ref().to_owned());
         self
     }
 
@@ -115,7 +126,8 @@ impl Builder {
                 .ok_or(BuildError::NoOutDir)?,
         };
         let mut jobs: Vec<(PathBuf, PathBuf)> = Vec::new();
-        for model in self.model_paths()? {
+        let urdfs = self.urdfs.iter().cloned();
+        for model in self.model_paths()?.into_iter().chain(urdfs) {
             let stem = model.file_stem().ok_or_else(|| BuildError::NoFileName {
                 path: model.clone(),
             })?;
@@ -156,7 +168,12 @@ impl Builder {
         let mut diagnostics = Vec::new();
         for (model, output) in jobs {
             self.rerun_if_changed(model);
-            match ModelFile::read(model)?.generate_for(self.target) {
+            let file = if self.urdfs.contains(model) {
+                self.urdf_model(model)
+            } else {
+                ModelFile::read(model)
+            };
+            match file.and_then(|file| file.generate_for(self.target)) {
                 Ok(code) => write_if_changed(output, &code)?,
                 Err(BuildError::Model(found)) => diagnostics.extend(found),
                 Err(other) => return Err(other),
@@ -167,6 +184,15 @@ impl Builder {
         } else {
             Err(BuildError::Model(diagnostics))
         }
+    }
+
+    /// The model imported from the URDF file `path`, reported as
+    /// `path (imported)` if the engine finds errors in it.
+    fn urdf_model(&self, path: &Path) -> Result<ModelFile, BuildError> {
+        let text = crate::Urdf::read(path)?.model()?;
+        let mut imported = path.as_os_str().to_owned();
+        imported.push(" (imported)");
+        Ok(ModelFile::new(imported, text))
     }
 
     /// Tells Cargo to rerun the build script when `path` changes.

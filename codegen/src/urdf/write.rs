@@ -1,0 +1,579 @@
+//! Writing the checked robot as a model in the language of the `dalembert!`
+//! macro: one coordinate per moving joint in depth-first order, named after
+//! the joint, one input `tau_<coordinate>` per coordinate acting along the
+//! joint axis between the two bodies, one body per link welded by fixed
+//! joints to the link a moving joint carries, and gravity along `−N.z`.
+//! Constant placements are written as URDF gives them (`rotate_z(yaw)`,
+//! then `rotate_y(pitch)`, then `rotate_x(roll)`; offsets in the parent's
+//! axes) so that the model reads like the file; only merged mass
+//! properties are computed numbers.
+
+use std::collections::HashSet;
+
+use super::inertia::{MassProperties, Placement, Vec3};
+use super::tree::Tree;
+use super::xml::{JointType, Robot};
+use super::{Options, Problem};
+
+/// The gravity of the model: the acceleration along `−N.z`, the root
+/// link's z axis (Pinocchio's default).
+const GRAVITY: f64 = 9.81;
+
+/// Names the language gives a meaning to: they cannot name anything else.
+const RESERVED: [&str; 11] = [
+    "N", "O", "t", "dt", "sin", "cos", "tan", "sqrt", "exp", "ln", "abs",
+];
+
+/// The model text of `robot`, or the names that cannot be written.
+pub(super) fn model_text(
+    robot: &Robot,
+    tree: &Tree,
+    options: &Options,
+) -> Result<String, Vec<Problem>> {
+    let mut problems = Vec::new();
+    let mut names = Names::default();
+    let struct_name = struct_name(robot, options, &mut problems);
+    let order = tree.depth_first();
+    let moving: Vec<usize> = order
+        .iter()
+        .copied()
+        .filter(|&j| robot.joints[j].kind != JointType::Fixed)
+        .collect();
+    let mut coordinates = vec![String::new(); robot.joints.len()];
+    for &j in &moving {
+        let joint = &robot.joints[j];
+        let name = sanitize(&joint.name);
+        if !names.claim(&name) {
+            problems.push(Problem::new(
+                Some(joint.range.clone()),
+                format!(
+                    "joint `{}`: its coordinate would be named `{name}`, which is not a free \
+                     identifier here (it starts with a digit, is a keyword or a built-in name, \
+                     or another joint's name gives the same); rename the joint",
+                    joint.name
+                ),
+            ));
+        }
+        coordinates[j] = name;
+    }
+    for &j in &moving {
+        let input = format!("tau_{}", coordinates[j]);
+        if !names.claim(&input) {
+            problems.push(Problem::new(
+                Some(robot.joints[j].range.clone()),
+                format!(
+                    "joint `{}`: its input `{input}` is already a name",
+                    robot.joints[j].name
+                ),
+            ));
+        }
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    let mut writer = Writer {
+        robot,
+        tree,
+        options,
+        names,
+        coordinates,
+        lines: Vec::new(),
+    };
+    writer.model(&struct_name, &moving);
+    Ok(writer.lines.join("\n") + "\n")
+}
+
+/// The struct's name: `--name`, else the robot's name in UpperCamelCase.
+fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) -> String {
+    let name = match &options.name {
+        Some(name) => name.clone(),
+        None => upper_camel_case(&robot.name),
+    };
+    if !is_identifier(&name) {
+        let from = match &options.name {
+            Some(_) => "the name given".to_owned(),
+            None => format!("the robot's name `{}`", robot.name),
+        };
+        problems.push(Problem::new(
+            Some(robot.range.start..robot.range.start + 1),
+            format!("{from} gives the struct name `{name}`, which is not a Rust identifier; choose one with `--name`"),
+        ));
+    }
+    name
+}
+
+/// `ur5_robot` → `Ur5Robot`, `panda` → `Panda`.
+fn upper_camel_case(name: &str) -> String {
+    name.split(|c: char| !c.is_ascii_alphanumeric())
+        .filter(|part| !part.is_empty())
+        .map(|part| {
+            let mut chars = part.chars();
+            chars
+                .next()
+                .map(|first| first.to_ascii_uppercase().to_string() + chars.as_str())
+                .unwrap_or_default()
+        })
+        .collect()
+}
+
+/// The name with every character outside `[A-Za-z0-9_]` replaced by `_`.
+fn sanitize(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// Whether `name` can name an item of the model: a Rust identifier that is
+/// not a keyword nor one of the language's built-in names.
+fn is_identifier(name: &str) -> bool {
+    !RESERVED.contains(&name) && syn::parse_str::<syn::Ident>(name).is_ok()
+}
+
+/// The names used so far in the model.
+#[derive(Default)]
+struct Names {
+    taken: HashSet<String>,
+}
+
+impl Names {
+    /// Takes `name` if it is a free identifier.
+    fn claim(&mut self, name: &str) -> bool {
+        is_identifier(name) && self.taken.insert(name.to_owned())
+    }
+
+    /// `base` sanitised, or with a suffix `_2`, `_3`, ... if it is taken.
+    fn fresh(&mut self, base: &str) -> String {
+        let mut base = sanitize(base);
+        if base.starts_with(|c: char| c.is_ascii_digit()) {
+            base.insert(0, '_');
+        }
+        if self.claim(&base) {
+            return base;
+        }
+        (2..)
+            .map(|i| format!("{base}_{i}"))
+            .find(|name| self.claim(name))
+            .unwrap_or_default()
+    }
+}
+
+/// Where a link is in the model: the frame with its axes and the point at
+/// its origin. Links that only add mass to a body have neither (empty).
+#[derive(Clone, Debug)]
+struct Place {
+    /// The frame whose axes are the link's.
+    frame: String,
+    /// The point at the link's origin.
+    origin: String,
+}
+
+struct Writer<'a> {
+    robot: &'a Robot,
+    tree: &'a Tree,
+    options: &'a Options,
+    names: Names,
+    /// Per joint, its coordinate (empty for fixed joints).
+    coordinates: Vec<String>,
+    lines: Vec<String>,
+}
+
+impl Writer<'_> {
+    fn model(&mut self, struct_name: &str, moving: &[usize]) {
+        let robot = self.robot;
+        self.lines.push(format!(
+            "/// The robot `{}` of {}, imported by `dalembert urdf`.",
+            robot.name, self.options.file_name
+        ));
+        self.lines.push(format!(
+            "/// {} joint coordinates in depth-first order from the root link `{}`; \
+             `tau_<coordinate>` is the joint's motor torque or force.",
+            moving.len(),
+            robot.links[self.tree.root].name
+        ));
+        self.lines.push(format!("pub {struct_name} {{"));
+        let coordinates: Vec<String> = moving
+            .iter()
+            .map(|&j| self.coordinates[j].clone())
+            .collect();
+        if !coordinates.is_empty() {
+            self.statement(format!("coordinates {};", coordinates.join(", ")));
+            let inputs: Vec<String> = coordinates.iter().map(|c| format!("tau_{c}")).collect();
+            self.statement(format!("inputs {};", inputs.join(", ")));
+        }
+        self.base();
+        self.statement(format!("gravity -{GRAVITY} * N.z;"));
+        if self.options.damping {
+            self.dissipation(moving);
+        }
+        self.lines.push("}".to_owned());
+    }
+
+    fn statement(&mut self, text: String) {
+        self.lines.push(format!("    {text}"));
+    }
+
+    fn comment(&mut self, text: String) {
+        self.lines.push(String::new());
+        self.lines.push(format!("    // {text}"));
+    }
+
+    /// The root link, fixed to the ground (frame `N`, origin `O`), then
+    /// the tree below it.
+    fn base(&mut self) {
+        let root = self.tree.root;
+        let name = &self.robot.links[root].name;
+        self.comment(format!(
+            "Root link `{name}`, fixed to the ground: its frame is N, its origin O. \
+             Masses welded to it do not move and are left out."
+        ));
+        let ground = Place {
+            frame: "N".to_owned(),
+            origin: "O".to_owned(),
+        };
+        self.below(root, &ground);
+    }
+
+    /// The joints below `link`, placed at `place`, depth first, in file
+    /// order.
+    fn below(&mut self, link: usize, place: &Place) {
+        for j in self.tree.children[link].clone() {
+            if self.robot.joints[j].kind == JointType::Fixed {
+                self.fixed(j, place);
+            } else {
+                self.moving(j, place);
+            }
+        }
+    }
+
+    /// A fixed joint: the child's mass joins the parent's body; the child
+    /// gets a frame and an origin only if joints below it need them.
+    fn fixed(&mut self, j: usize, parent: &Place) {
+        let joint = &self.robot.joints[j];
+        let child = self.tree.child[j];
+        let child_name = &joint.child.0;
+        let (frame, origin) = if self.carries_moving_joints(child) {
+            self.comment(format!(
+                "Fixed joint `{}`: link `{child_name}` is welded to link `{}`.",
+                joint.name, joint.parent.0
+            ));
+            let frame = self.rotated_frames(&parent.frame, joint.origin.rpy, child_name);
+            let origin = if joint.origin.xyz == [0.0; 3] {
+                parent.origin.clone()
+            } else {
+                let point = self.names.fresh(&format!("{child_name}_origin"));
+                let at = offset(&parent.origin, joint.origin.xyz, &parent.frame);
+                self.statement(format!("point {point} = {at};"));
+                point
+            };
+            (frame, origin)
+        } else {
+            (String::new(), String::new())
+        };
+        let place = Place { frame, origin };
+        self.below(child, &place);
+    }
+
+    /// A revolute, continuous or prismatic joint: its placement frames,
+    /// the joint, the child's body (with the links welded to it), and the
+    /// input acting along the axis.
+    fn moving(&mut self, j: usize, parent: &Place) {
+        let joint = &self.robot.joints[j];
+        let child = self.tree.child[j];
+        let child_name = &joint.child.0;
+        self.comment(format!(
+            "Joint `{}` ({}): link `{}` carries link `{child_name}`.",
+            joint.name,
+            joint.kind.name(),
+            joint.parent.0
+        ));
+        if let Some(mimicked) = &joint.mimic {
+            self.statement(format!(
+                "// It mimics `{mimicked}` in the URDF; here it is an independent coordinate, \
+                 as in Pinocchio by default."
+            ));
+        }
+        let joint_frame = self.rotated_frames(
+            &parent.frame,
+            joint.origin.rpy,
+            &format!("{}_frame", joint.name),
+        );
+        let at = offset(&parent.origin, joint.origin.xyz, &parent.frame);
+        let frame = self.names.fresh(child_name);
+        let point = self.names.fresh(&format!("{child_name}_origin"));
+        let coordinate = self.coordinates[j].clone();
+        let length = norm(joint.axis);
+        let axis = joint.axis.map(|a| a / length);
+        let (axis_field, signed) = axis_field(axis, &coordinate);
+        let kind = if joint.kind == JointType::Prismatic {
+            "prismatic"
+        } else {
+            "revolute"
+        };
+        self.statement(format!(
+            "joint {kind} {point} {{ parent: {joint_frame}, child: {frame}, {axis_field}, \
+             coordinate: {signed}, at: {at} }};"
+        ));
+        self.body(child, &frame, &point);
+        let input = format!("tau_{coordinate}");
+        let push = scaled(&input, axis, &joint_frame);
+        if joint.kind == JointType::Prismatic {
+            let pull = scaled(&input, axis.map(|a| -a), &joint_frame);
+            self.statement(format!("force {push} at {point};"));
+            self.statement(format!("force {pull} at {at};"));
+        } else {
+            self.statement(format!("torque {push} on {frame} reacting {joint_frame};"));
+        }
+        let place = Place {
+            frame,
+            origin: point,
+        };
+        self.below(child, &place);
+    }
+
+    /// Whether a moving joint hangs below `link`.
+    fn carries_moving_joints(&self, link: usize) -> bool {
+        self.tree.children[link].iter().any(|&j| {
+            self.robot.joints[j].kind != JointType::Fixed
+                || self.carries_moving_joints(self.tree.child[j])
+        })
+    }
+
+    /// Frames turning `parent` by URDF's `rpy` (`rotate_z(yaw)`, then
+    /// `rotate_y(pitch)`, then `rotate_x(roll)`, the non-zero ones), the
+    /// last named after `name`; `parent` itself when `rpy` is zero.
+    fn rotated_frames(&mut self, parent: &str, [roll, pitch, yaw]: Vec3, name: &str) -> String {
+        let turns: Vec<(&str, f64, &str)> = [
+            ("z", yaw, "yaw"),
+            ("y", pitch, "pitch"),
+            ("x", roll, "roll"),
+        ]
+        .into_iter()
+        .filter(|&(_, angle, _)| angle != 0.0)
+        .collect();
+        let mut frame = parent.to_owned();
+        for (i, (axis, angle, turn)) in turns.iter().enumerate() {
+            let new = if i + 1 == turns.len() {
+                self.names.fresh(name)
+            } else {
+                self.names.fresh(&format!("{name}_{turn}"))
+            };
+            self.statement(format!(
+                "frame {new} = {frame}.rotate_{axis}({});",
+                number(*angle)
+            ));
+            frame = new;
+        }
+        frame
+    }
+
+    /// The body of the link `link` and the links welded to it, in its
+    /// frame `frame` with origin `origin`; nothing if it is massless.
+    fn body(&mut self, link: usize, frame: &str, origin: &str) {
+        let mut total = MassProperties::NONE;
+        let mut welded = Vec::new();
+        for (l, place) in self.links_of_body(link) {
+            let Some(inertial) = &self.robot.links[l].inertial else {
+                continue;
+            };
+            let own = MassProperties::from_inertial(
+                &Placement::from_xyz_rpy(inertial.origin.xyz, inertial.origin.rpy),
+                inertial.mass,
+                &inertial.inertia,
+            );
+            if own.is_empty() {
+                continue;
+            }
+            if l != link {
+                welded.push(format!("`{}`", self.robot.links[l].name));
+            }
+            total = total.merged(&own.placed(&place));
+        }
+        if total.is_empty() {
+            return;
+        }
+        if !welded.is_empty() {
+            self.statement(format!("// With the welded link(s) {}.", welded.join(", ")));
+        }
+        let name = self
+            .names
+            .fresh(&format!("{}_body", self.robot.links[link].name));
+        let center = offset(origin, total.center, frame);
+        let i = total.inertia;
+        let mut entries = vec![i[0][0], i[1][1], i[2][2]];
+        if [i[0][1], i[1][2], i[2][0]] != [0.0; 3] {
+            entries.extend([i[0][1], i[1][2], i[2][0]]);
+        }
+        let entries: Vec<String> = entries.into_iter().map(number).collect();
+        self.statement(format!(
+            "body {name} {{ mass: {}, center: {center}, frame: {frame}, inertia: [{}] }};",
+            number(total.mass),
+            entries.join(", ")
+        ));
+    }
+
+    /// `link` and the links welded to it by fixed joints, with their
+    /// placements in `link`'s frame.
+    fn links_of_body(&self, link: usize) -> Vec<(usize, Placement)> {
+        let mut found = vec![(link, Placement::IDENTITY)];
+        let mut i = 0;
+        while i < found.len() {
+            let (l, place) = found[i];
+            for &j in &self.tree.children[l] {
+                let joint = &self.robot.joints[j];
+                if joint.kind == JointType::Fixed {
+                    let inner = Placement::from_xyz_rpy(joint.origin.xyz, joint.origin.rpy);
+                    found.push((self.tree.child[j], place.then(&inner)));
+                }
+            }
+            i += 1;
+        }
+        found
+    }
+
+    /// `dissipation ½ Σ d q̇²` over the joints with a `<dynamics damping>`.
+    fn dissipation(&mut self, moving: &[usize]) {
+        let terms: Vec<String> = moving
+            .iter()
+            .filter(|&&j| self.robot.joints[j].damping != 0.0)
+            .map(|&j| {
+                format!(
+                    "{} * dt({})^2",
+                    number(self.robot.joints[j].damping),
+                    self.coordinates[j]
+                )
+            })
+            .collect();
+        if !terms.is_empty() {
+            self.comment("Viscous joint damping from `<dynamics damping>`.".to_owned());
+            self.statement(format!("dissipation 1/2 * ({});", terms.join(" + ")));
+        }
+    }
+}
+
+/// The joint's `axis:` field and coordinate expression for the unit axis
+/// `axis`: a positive axis of the frame by name, a negative one by name
+/// with the coordinate negated.
+fn axis_field(axis: Vec3, coordinate: &str) -> (String, String) {
+    for (k, name) in ["x", "y", "z"].into_iter().enumerate() {
+        let mut unit = [0.0; 3];
+        unit[k] = 1.0;
+        if axis == unit {
+            return (format!("axis: {name}"), coordinate.to_owned());
+        }
+        if axis == unit.map(|u: f64| -u) {
+            return (format!("axis: {name}"), format!("-{coordinate}"));
+        }
+    }
+    let components: Vec<String> = axis.into_iter().map(number).collect();
+    (
+        format!("axis: [{}]", components.join(", ")),
+        coordinate.to_owned(),
+    )
+}
+
+fn norm(v: Vec3) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+/// The signed terms `c * F.x` of the vector `v` in `frame`'s axes.
+fn terms(v: Vec3, frame: &str) -> Vec<(bool, String)> {
+    ["x", "y", "z"]
+        .into_iter()
+        .zip(v)
+        .filter(|&(_, c)| c != 0.0)
+        .map(|(axis, c)| {
+            let unit = format!("{frame}.{axis}");
+            let text = if c.abs() == 1.0 {
+                unit
+            } else {
+                format!("{} * {unit}", number(c.abs()))
+            };
+            (c < 0.0, text)
+        })
+        .collect()
+}
+
+/// The point `base` moved by `v` in `frame`'s axes: `P + 0.1 * F.x - F.z`.
+fn offset(base: &str, v: Vec3, frame: &str) -> String {
+    let mut text = base.to_owned();
+    for (negative, term) in terms(v, frame) {
+        text += if negative { " - " } else { " + " };
+        text += &term;
+    }
+    text
+}
+
+/// The vector `v` in `frame`'s axes scaled by `scalar`: `u * F.z`,
+/// `-u * F.y`, `u * (0.6 * F.y - 0.8 * F.z)`.
+fn scaled(scalar: &str, v: Vec3, frame: &str) -> String {
+    let terms = terms(v, frame);
+    if let [(negative, term)] = &terms[..] {
+        let sign = if *negative { "-" } else { "" };
+        return format!("{sign}{scalar} * {term}");
+    }
+    let mut text = String::new();
+    for (i, (negative, term)) in terms.into_iter().enumerate() {
+        text += match (i, negative) {
+            (0, false) => "",
+            (0, true) => "-",
+            (_, false) => " + ",
+            (_, true) => " - ",
+        };
+        text += &term;
+    }
+    format!("{scalar} * ({text})")
+}
+
+/// A literal that reads back as exactly `x`: the shortest decimal that
+/// round-trips, as an integer when it is one.
+fn number(x: f64) -> String {
+    if x == x.trunc() && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else {
+        format!("{x:?}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_follow_the_contract() {
+        assert_eq!(upper_camel_case("ur5_robot"), "Ur5Robot");
+        assert_eq!(upper_camel_case("my-robot v2"), "MyRobotV2");
+        assert_eq!(
+            sanitize("base_link-base_fixed_joint"),
+            "base_link_base_fixed_joint"
+        );
+        assert!(!is_identifier("1st") && !is_identifier("type") && !is_identifier("N"));
+        let mut names = Names::default();
+        assert_eq!(names.fresh("a-b"), "a_b");
+        assert_eq!(names.fresh("a_b"), "a_b_2");
+        assert_eq!(names.fresh("2nd"), "_2nd");
+    }
+
+    #[test]
+    fn numbers_and_vectors_read_back_exactly() {
+        assert_eq!(number(4.0), "4");
+        assert_eq!(number(-0.0), "0");
+        assert_eq!(number(0.333), "0.333");
+        assert_eq!(number(2.3749999999999997e-06), "2.3749999999999997e-6");
+        assert_eq!(offset("P", [0.5, 0.0, -1.0], "F"), "P + 0.5 * F.x - F.z");
+        assert_eq!(scaled("u", [0.0, -1.0, 0.0], "F"), "-u * F.y");
+        assert_eq!(
+            scaled("u", [0.6, 0.0, -0.8], "F"),
+            "u * (0.6 * F.x - 0.8 * F.z)"
+        );
+        assert_eq!(
+            axis_field([0.0, 0.0, -1.0], "q"),
+            ("axis: z".to_owned(), "-q".to_owned())
+        );
+    }
+}

@@ -1,0 +1,156 @@
+//! URDF import against Pinocchio: the models `dalembert urdf` writes for
+//! three real robots (panda, ur5, solo12 of example-robot-data), evaluated
+//! by the interpreter on both routes (d'Alembert's, as the generator derives
+//! them, and Lagrange's), match Pinocchio's crba, nle, aba and energies in
+//! `tests/reference/urdf/pinocchio.json` (written by
+//! `scripts/urdf_reference.py` with Pinocchio's own URDF parser).
+
+use dalembert_codegen::Urdf;
+use dalembert_codegen::testing::{Interpreter, Route, Values};
+use serde_json::Value;
+
+/// Relative agreement required: against the largest entry of the quantity.
+const TOLERANCE: f64 = 1e-10;
+
+fn reference_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/reference/urdf")
+}
+
+fn reference() -> Value {
+    let text = std::fs::read_to_string(reference_dir().join("pinocchio.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+fn vector(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+fn matrix(v: &Value) -> Vec<Vec<f64>> {
+    v.as_array().unwrap().iter().map(vector).collect()
+}
+
+/// The largest |a − b| over the largest |b|.
+fn relative_error(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = b
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()))
+        .max(f64::MIN_POSITIVE);
+    a.iter()
+        .zip(b)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale
+}
+
+/// `x` with `m x = f`, by Gaussian elimination with partial pivoting.
+fn solve(m: &[Vec<f64>], f: &[f64]) -> Vec<f64> {
+    let n = f.len();
+    let mut a: Vec<Vec<f64>> = m
+        .iter()
+        .zip(f)
+        .map(|(row, &b)| [row.clone(), vec![b]].concat())
+        .collect();
+    for k in 0..n {
+        let pivot = (k..n)
+            .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
+            .unwrap();
+        a.swap(k, pivot);
+        for i in k + 1..n {
+            let factor = a[i][k] / a[k][k];
+            for j in k..=n {
+                a[i][j] -= factor * a[k][j];
+            }
+        }
+    }
+    let mut x = vec![0.0; n];
+    for k in (0..n).rev() {
+        x[k] = (a[k][n] - (k + 1..n).map(|j| a[k][j] * x[j]).sum::<f64>()) / a[k][k];
+    }
+    x
+}
+
+/// The worst relative errors over the robot's states: M, f, T, V, q̈.
+fn worst_errors(robot: &str, route: Route) -> [f64; 5] {
+    let reference = reference();
+    let entry = reference["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["robot"] == robot)
+        .unwrap();
+    let model = Urdf::read(reference_dir().join(entry["urdf"].as_str().unwrap()))
+        .unwrap()
+        .model()
+        .unwrap();
+    let interpreter = Interpreter::new(&model, route).unwrap();
+    assert_eq!(interpreter.nq(), entry["nv"].as_u64().unwrap() as usize);
+    let mut worst = [0.0_f64; 5];
+    for state in entry["states"].as_array().unwrap() {
+        let (q, qd, tau) = (
+            vector(&state["q"]),
+            vector(&state["qd"]),
+            vector(&state["tau"]),
+        );
+        let at = Values {
+            parameters: &[],
+            t: 0.0,
+            q: &q,
+            qd: &qd,
+            u: &tau,
+        };
+        let m = interpreter.mass_matrix(&at);
+        let f = interpreter.forcing(&at);
+        let errors = [
+            relative_error(&m.concat(), &matrix(&state["M"]).concat()),
+            relative_error(&f, &vector(&state["f"])),
+            relative_error(
+                &[interpreter.kinetic_energy(&at)],
+                &[state["T"].as_f64().unwrap()],
+            ),
+            relative_error(
+                &[interpreter.potential_energy(&at)],
+                &[state["V"].as_f64().unwrap()],
+            ),
+            relative_error(&solve(&m, &f), &vector(&state["qdd"])),
+        ];
+        for (w, e) in worst.iter_mut().zip(errors) {
+            *w = w.max(e);
+        }
+    }
+    eprintln!(
+        "{robot} {route:?}: worst relative errors M {:.1e}, f {:.1e}, T {:.1e}, V {:.1e}, qdd {:.1e}",
+        worst[0], worst[1], worst[2], worst[3], worst[4]
+    );
+    worst
+}
+
+fn matches_pinocchio(robot: &str) {
+    for route in [Route::Dalembert, Route::Lagrange] {
+        let worst = worst_errors(robot, route);
+        for (error, what) in worst.iter().zip(["M", "f", "T", "V", "qdd"]) {
+            assert!(
+                *error <= TOLERANCE,
+                "{robot} ({route:?}): {what} is off by {error:e} relative"
+            );
+        }
+    }
+}
+
+#[test]
+fn panda_matches_pinocchio() {
+    matches_pinocchio("panda");
+}
+
+#[test]
+fn ur5_matches_pinocchio() {
+    matches_pinocchio("ur5_robot");
+}
+
+#[test]
+fn solo12_matches_pinocchio() {
+    matches_pinocchio("solo12");
+}
