@@ -11,7 +11,7 @@
 //! at constant speeds; so no expression ever holds a `q̈`.
 
 use crate::expr::{ExprId, Pool, Sym};
-use crate::model::{FrameId, Model, NEWTONIAN, PointId, Vector};
+use crate::model::{FrameId, Model, NEWTONIAN, PointId, Vector, principal_axis};
 
 /// A column of three components.
 pub type Vec3 = [ExprId; 3];
@@ -44,13 +44,17 @@ impl Kinematics {
             let (rotation, omega) = match &frame.placement {
                 None => (identity(pool), [pool.zero(); 3]),
                 Some(p) => {
-                    let relative = axis_rotation(pool, p.axis, p.angle);
+                    let relative = axis_rotation(pool, &p.axis, p.angle);
                     let rotation = mat_mul(pool, &kinematics.rotation[p.parent.0], &relative);
-                    // ω_F = ω_parent (in F's axes) + (dθ/dt) ê_axis.
-                    let mut omega =
+                    // ω_F = ω_parent (in F's axes) + (dθ/dt) ê, where the
+                    // axis ê has the same components in F as in its parent.
+                    let carried =
                         transpose_mul(pool, &relative, &kinematics.angular_velocity[p.parent.0]);
                     let spin = pool.time_derivative(p.angle);
-                    omega[p.axis] = pool.add(omega[p.axis], spin);
+                    let omega = [0, 1, 2].map(|i| {
+                        let own = pool.mul(spin, p.axis[i]);
+                        pool.add(carried[i], own)
+                    });
                     (rotation, omega)
                 }
             };
@@ -152,7 +156,7 @@ impl Kinematics {
             let Some(p) = &model.frames[f.0].placement else {
                 break;
             };
-            chain.push(axis_rotation(pool, p.axis, p.angle));
+            chain.push(axis_rotation(pool, &p.axis, p.angle));
             f = p.parent;
         }
         chain
@@ -194,9 +198,42 @@ fn common_ancestor(model: &Model, a: FrameId, b: FrameId) -> FrameId {
         .unwrap_or(NEWTONIAN)
 }
 
-/// The rotation by `angle` about axis `axis` (right-handed), mapping the
-/// rotated frame's components to the parent's.
-pub fn axis_rotation(pool: &mut Pool, axis: usize, angle: ExprId) -> Mat3 {
+/// The rotation by `angle` (right-handed) about the unit vector `axis`,
+/// mapping the rotated frame's components to the parent's: Rodrigues'
+/// `R = cos θ 1 + sin θ [k]× + (1 − cos θ) k kᵀ`, written directly for a
+/// coordinate axis.
+pub fn axis_rotation(pool: &mut Pool, axis: &[ExprId; 3], angle: ExprId) -> Mat3 {
+    if let Some(i) = principal_axis(pool, axis) {
+        return principal_rotation(pool, i, angle);
+    }
+    let c = pool.cos(angle);
+    let s = pool.sin(angle);
+    let one = pool.one();
+    let versine = pool.sub(one, c);
+    let mut r = [[pool.zero(); 3]; 3];
+    for (i, row) in r.iter_mut().enumerate() {
+        for (j, entry) in row.iter_mut().enumerate() {
+            let outer = pool.mul(axis[i], axis[j]);
+            let mut terms = vec![pool.mul(versine, outer)];
+            if i == j {
+                terms.push(c);
+            } else {
+                // [k]× has k_m at (j + 1, j) and −k_m at (j, j + 1) for the
+                // remaining index m.
+                let m = 3 - i - j;
+                let sign = if (i + 1) % 3 == j { -1 } else { 1 };
+                let k = pool.mul(s, axis[m]);
+                let signed = pool.int(sign);
+                terms.push(pool.mul(signed, k));
+            }
+            *entry = pool.sum(terms);
+        }
+    }
+    r
+}
+
+/// The rotation by `angle` about the `axis`-th coordinate axis.
+fn principal_rotation(pool: &mut Pool, axis: usize, angle: ExprId) -> Mat3 {
     let (zero, one) = (pool.zero(), pool.one());
     let c = pool.cos(angle);
     let s = pool.sin(angle);
@@ -263,3 +300,6 @@ pub fn cross(pool: &mut Pool, a: &Vec3, b: &Vec3) -> Vec3 {
 pub fn add3(pool: &mut Pool, a: &Vec3, b: &Vec3) -> Vec3 {
     [0, 1, 2].map(|i| pool.add(a[i], b[i]))
 }
+
+#[cfg(test)]
+mod tests;

@@ -3,7 +3,8 @@
 //! [`random_model`] is a proptest strategy for random kinematic trees of
 //! one to six links (bodies with random positive inertias, some with
 //! products of inertia, and particles; random rotation axes and angles
-//! built from coordinates; slides; offsets; gravity; forces, some velocity
+//! built from coordinates; constant rotations of both signs about
+//! coordinate axes and other directions; slides; offsets; gravity; forces, some velocity
 //! or time dependent; torques, some reacting; potentials; dissipation),
 //! written out as `.dal` text. Every coordinate carries inertia, so `M` is symmetric
 //! positive definite. Two test suites use it:
@@ -19,7 +20,9 @@ mod compare;
 mod random_model;
 
 pub use compare::{Evaluation, assert_positive_definite};
-pub use random_model::{EMITTED_MODELS, Link, Load, Mass, RandomModel, Rotation, random_model};
+pub use random_model::{
+    EMITTED_MODELS, Link, Load, Mass, RandomModel, Rotation, Tilt, random_model,
+};
 
 /// How many random models the interpreter test checks in CI.
 pub const RANDOM_MODELS: u32 = 500;

@@ -41,6 +41,9 @@ pub struct RandomModel {
 pub struct Link {
     /// The parent, modulo the link's index + 1: 0 is the ground.
     pub parent: usize,
+    /// A constant rotation relative to the parent's frame before the
+    /// link's own rotations (bodies only), as a joint's placement has.
+    pub tilt: Option<Tilt>,
     /// Up to two rotations relative to the parent's frame (bodies only).
     pub rotations: Vec<Rotation>,
     /// A slide along this axis of the parent's frame, if any.
@@ -63,6 +66,18 @@ pub struct Rotation {
     /// An earlier coordinate (raw index) and its factor; `sin` of it if
     /// the flag is set.
     pub coupling: Option<(usize, i8, bool)>,
+}
+
+/// A rotation by a constant angle, in tenths of a radian (either sign),
+/// about a coordinate axis or about a constant direction.
+#[derive(Clone, Debug)]
+pub struct Tilt {
+    /// The coordinate axis, used when `direction` is `None` or zero.
+    pub axis: usize,
+    /// A direction `[ax, ay, az]` in the parent's axes, if any.
+    pub direction: Option<[i8; 3]>,
+    /// The angle in tenths of a radian.
+    pub tenths: i8,
 }
 
 /// The mass a link carries.
@@ -139,15 +154,27 @@ fn link() -> impl Strategy<Value = Link> {
         proptest::option::of([-4..=4i8, -4..=4i8, -4..=4i8]),
     )
         .prop_map(|(moments, products)| Mass::Body { moments, products });
+    let tilt = (
+        0..3usize,
+        proptest::option::of([-3..=3i8, -3..=3i8, -3..=3i8]),
+        prop_oneof![-20..=-1i8, 1..=20i8],
+    )
+        .prop_map(|(axis, direction, tenths)| Tilt {
+            axis,
+            direction,
+            tenths,
+        });
     (
         0..6usize,
+        proptest::option::weighted(0.4, tilt),
         proptest::collection::vec(rotation(), 0..=2),
         proptest::option::weighted(0.3, 0..3usize),
         [-10..=10i8, -10..=10i8, -10..=10i8],
         prop_oneof![3 => body, 1 => Just(Mass::Particle)],
     )
-        .prop_map(|(parent, rotations, slide, offset, mass)| Link {
+        .prop_map(|(parent, tilt, rotations, slide, offset, mass)| Link {
             parent,
+            tilt,
             rotations,
             slide,
             offset,
@@ -238,6 +265,18 @@ impl RandomModel {
         for (i, link) in self.links.iter().enumerate() {
             let parent = link.parent % (i + 1);
             let mut frame = frames[parent].clone();
+            if let (Some(tilt), Mass::Body { .. }) = (&link.tilt, &link.mass) {
+                let angle = decimal(i32::from(tilt.tenths), 1);
+                let rotation = match tilt.direction {
+                    Some(d) if d != [0; 3] => {
+                        format!("rotate([{}, {}, {}], {angle})", d[0], d[1], d[2])
+                    }
+                    _ => format!("rotate_{}({angle})", AXES[tilt.axis]),
+                };
+                let name = format!("T{i}");
+                statements.push(format!("frame {name} = {frame}.{rotation};"));
+                frame = name;
+            }
             let mut previous_axis = None;
             for (r, rotation) in Self::rotations(link).iter().take(2).enumerate() {
                 // Successive rotations about one axis would add up to one.

@@ -300,10 +300,16 @@ impl Writer<'_> {
         self.bound.insert(cosine, quote!(#c));
     }
 
+    /// `let x = value;`, typed `f64` where the value holds no symbol, so
+    /// that no literal's type is left for Rust to guess.
     fn bind(&mut self, e: ExprId) {
         let value = self.compound(e);
         let name = self.temporary_name(e);
-        self.statements.extend(quote!(let #name = #value;));
+        self.statements.extend(if self.pool.kinds(e).is_empty() {
+            quote!(let #name: ::core::primitive::f64 = #value;)
+        } else {
+            quote!(let #name = #value;)
+        });
         self.bound.insert(e, quote!(#name));
     }
 

@@ -21,7 +21,7 @@
 
 use crate::expr::{ExprId, Node, Pool, Sym, SymKinds};
 use crate::kinematics::{Mat3, Vec3, add3, axis_rotation, cross, dot, mat_vec, transpose_mul};
-use crate::model::{FrameId, Model, NEWTONIAN, PointId, Vector};
+use crate::model::{FrameId, Model, NEWTONIAN, PointId, Vector, unit_axis};
 
 /// A model whose frames are all children of revolute joints on single
 /// coordinates, each joint located by a constant offset in its parent
@@ -107,7 +107,7 @@ impl JointTree {
             link_of_frame[joint.frame.0] = Some(links.len());
             links.push(Link {
                 parent,
-                axis: placement.axis,
+                axis: placement.principal_axis(pool)?,
                 coordinate,
                 offset,
             });
@@ -196,7 +196,7 @@ pub fn inertia_terms(tree: &JointTree, pool: &mut Pool) -> (Vec<Vec<ExprId>>, Ve
         .iter()
         .map(|link| {
             let q = pool.sym(Sym::Coord(link.coordinate as u32));
-            axis_rotation(pool, link.axis, q)
+            axis_rotation(pool, &unit_axis(pool, link.axis), q)
         })
         .collect();
     let mass_matrix = tree.mass_matrix(pool, &rotations);

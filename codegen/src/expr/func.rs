@@ -39,11 +39,16 @@ impl Func {
     }
 
     /// The exact value of `self(n)` where it is a rational (or `abs` of any
-    /// number); `None` leaves the call symbolic.
+    /// number), and the nearest double of the sine, cosine and tangent of
+    /// any other number (a constant rotation costs nothing at run time);
+    /// `None` leaves the call symbolic.
     fn fold(self, n: Number) -> Option<Number> {
         match self {
             Func::Sin | Func::Tan if n.is_zero() => Some(Number::ZERO),
             Func::Cos | Func::Exp if n.is_zero() => Some(Number::ONE),
+            Func::Sin => finite(n.to_f64().sin()),
+            Func::Cos => finite(n.to_f64().cos()),
+            Func::Tan => finite(n.to_f64().tan()),
             Func::Ln if n.is_one() => Some(Number::ZERO),
             Func::Sqrt => n.as_rational()?.sqrt_exact().map(Number::Rational),
             Func::Abs => Some(n.abs()),
@@ -53,6 +58,11 @@ impl Func {
     }
 }
 
+/// `x` as a number, if finite.
+fn finite(x: f64) -> Option<Number> {
+    x.is_finite().then_some(Number::Float(x))
+}
+
 impl Pool {
     /// `f(arg)`, folded where the value is exact (`sin 0 = 0`, `cos 0 = 1`,
     /// `tan 0 = 0`, `exp 0 = 1`, `ln 1 = 0`, `sqrt(9/4) = 3/2`, `abs` of a
@@ -60,7 +70,8 @@ impl Pool {
     /// rewritten: `sin(-x) = -sin(x)`, `cos(-x) = cos(x)` (also `tan`,
     /// `abs`). An argument is negative if its coefficient is, or if it is a
     /// sum whose leading term's is, so `cos(q2 - q1)` and `cos(q1 - q2)` are
-    /// one node. Other numeric arguments stay symbolic (`sin(1)`).
+    /// one node. Sines, cosines and tangents of other numbers are floats
+    /// (`sin(1)`); other functions of them stay symbolic (`sqrt(2)`).
     pub fn func(&mut self, f: Func, arg: ExprId) -> ExprId {
         if let Some(value) = self.as_number(arg).and_then(|n| f.fold(n)) {
             return self.number(value);
@@ -163,20 +174,34 @@ mod tests {
     }
 
     #[test]
-    fn other_numbers_stay_symbolic() {
+    fn other_roots_and_logarithms_stay_symbolic() {
         let mut s = Scratch::default();
-        let (one, two) = (s.e("1"), s.e("2"));
+        let two = s.e("2");
         for (text, node) in [
-            ("sin(1)", Node::Func(Func::Sin, one)),
             ("sqrt(2)", Node::Func(Func::Sqrt, two)),
             ("ln(2)", Node::Func(Func::Ln, two)),
         ] {
             let e = s.e(text);
             assert_eq!(s.pool.node(e), &node);
         }
-        let e = s.e("sin(-1)");
-        assert_eq!(e, s.e("-sin(1)"));
-        assert_eq!(s.show(e), "-sin(1)");
+    }
+
+    #[test]
+    fn trigonometry_of_numbers_folds_to_floats() {
+        let mut s = Scratch::default();
+        for (text, value) in [
+            ("sin(-1.8)", (-1.8f64).sin()),
+            ("cos(-1.8)", 1.8f64.cos()),
+            ("tan(3/4)", 0.75f64.tan()),
+        ] {
+            let e = s.e(text);
+            assert_eq!(
+                s.pool.as_number(e).map(Number::to_f64),
+                Some(value),
+                "{text}"
+            );
+        }
+        assert_eq!(s.e("sin(-1)"), s.e("-sin(1)"));
     }
 
     #[test]

@@ -80,10 +80,35 @@ pub struct Frame {
 pub struct FramePlacement {
     /// The frame it is rotated from.
     pub parent: FrameId,
-    /// The rotation axis: 0, 1, 2 for the parent's x, y, z.
-    pub axis: usize,
+    /// The rotation axis: a constant unit vector, by its components in the
+    /// parent's axes (which are also its components in the frame's own).
+    pub axis: [ExprId; 3],
     /// The rotation angle (right-handed); zero for a parallel frame.
     pub angle: ExprId,
+}
+
+impl FramePlacement {
+    /// `Some(i)` if the axis is exactly the parent's `i`-th unit vector
+    /// (`x`, `y`, `z` for 0, 1, 2).
+    pub fn principal_axis(&self, pool: &Pool) -> Option<usize> {
+        principal_axis(pool, &self.axis)
+    }
+}
+
+/// `Some(i)` if `axis` is exactly the `i`-th unit vector.
+pub fn principal_axis(pool: &Pool, axis: &[ExprId; 3]) -> Option<usize> {
+    let i = axis.iter().position(|&c| c == pool.one())?;
+    axis.iter()
+        .enumerate()
+        .all(|(j, &c)| j == i || pool.is_zero(c))
+        .then_some(i)
+}
+
+/// The `i`-th unit vector (`x`, `y`, `z` for 0, 1, 2).
+pub fn unit_axis(pool: &Pool, i: usize) -> [ExprId; 3] {
+    let mut axis = [pool.zero(); 3];
+    axis[i] = pool.one();
+    axis
 }
 
 /// A revolute joint: its child frame turns about the child's placement

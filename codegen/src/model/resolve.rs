@@ -5,9 +5,9 @@
 
 use super::{
     Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Joint, Model, NEWTONIAN,
-    ORIGIN, Particle, Point, PointId, Torque, Vector,
+    ORIGIN, Particle, Point, PointId, Torque, Vector, unit_axis,
 };
-use crate::expr::{ExprId, Func, Pool, Sym, SymKinds};
+use crate::expr::{ExprId, Func, Number, Pool, Sym, SymKinds};
 use crate::language::ast::{BinOp, Expr, Field, SpanRange, Statement, System};
 use proc_macro2::{Ident, Span};
 use std::collections::HashMap;
@@ -38,6 +38,9 @@ const FUNCTIONS: [(&str, Option<Func>); 8] = [
 
 /// The rotations a frame statement may use, by axis.
 const ROTATIONS: [&str; 3] = ["rotate_x", "rotate_y", "rotate_z"];
+
+/// The rotation of a frame about a constant axis.
+const ROTATE: &str = "rotate";
 
 /// Axis names of unit vectors and joint axes.
 const AXES: [&str; 3] = ["x", "y", "z"];
@@ -114,6 +117,10 @@ const CONSTRAINT: Use = Use {
         .union(SymKinds::COORD)
         .union(SymKinds::SPEED),
     role: "a constraint, which may not depend on inputs",
+};
+const AXIS: Use = Use {
+    allowed: SymKinds::PARAM,
+    role: "a rotation axis, which must be constant (numbers and parameters)",
 };
 const EXPONENT: Use = Use {
     allowed: SymKinds::EMPTY,
@@ -286,30 +293,52 @@ impl Resolver {
             return;
         };
         let parent = self.frame_name(receiver);
-        let axis = ROTATIONS.iter().position(|r| method == r);
-        if axis.is_none() {
-            self.errors.push(
-                method.span(),
-                format!(
-                    "unknown method `{method}`; a frame is made with `rotate_x`, `rotate_y` or `rotate_z`"
-                ),
-            );
-        }
-        let angle = match args.as_slice() {
-            [angle] => self.scalar(angle, GEOMETRY),
-            _ => {
+        let rotation = match ROTATIONS.iter().position(|r| method == r) {
+            Some(axis) => match args.as_slice() {
+                [angle] => {
+                    let axis = unit_axis(&self.pool, axis);
+                    self.scalar(angle, GEOMETRY).map(|angle| (axis, angle))
+                }
+                _ => {
+                    self.errors.push(
+                        value.range(),
+                        format!(
+                            "`{method}` takes one argument, the angle; found {}",
+                            args.len()
+                        ),
+                    );
+                    None
+                }
+            },
+            None if method == ROTATE => match args.as_slice() {
+                [axis, angle] => {
+                    let axis = self.constant_axis(axis);
+                    let angle = self.scalar(angle, GEOMETRY);
+                    axis.zip(angle)
+                }
+                _ => {
+                    self.errors.push(
+                        value.range(),
+                        format!(
+                            "`rotate` takes two arguments, the axis `[ax, ay, az]` and the angle; found {}",
+                            args.len()
+                        ),
+                    );
+                    None
+                }
+            },
+            None => {
                 self.errors.push(
-                    value.range(),
+                    method.span(),
                     format!(
-                        "`{method}` takes one argument, the angle; found {}",
-                        args.len()
+                        "unknown method `{method}`; a frame is made with `rotate_x`, `rotate_y`, `rotate_z` or `rotate([ax, ay, az], angle)`"
                     ),
                 );
                 None
             }
         };
-        match (parent, axis, angle) {
-            (Some(parent), Some(axis), Some(angle)) => {
+        match (parent, rotation) {
+            (Some(parent), Some((axis, angle))) => {
                 self.define_frame(name, parent, axis, angle);
             }
             _ => {
@@ -410,7 +439,10 @@ impl Resolver {
         } else {
             let zero = self.pool.zero();
             self.define_frame(child, parent, axis, zero);
-            let slide = Vector::unit(&self.pool, parent, axis).scale(coordinate, &mut self.pool);
+            let slide = Vector {
+                parts: vec![(parent, axis)],
+            }
+            .scale(coordinate, &mut self.pool);
             let offset = offset.add(&slide, &mut self.pool);
             self.define_point(name, Some((base, offset)));
         }
@@ -660,17 +692,55 @@ impl Resolver {
         Some([[v[0], xy, zx], [xy, v[1], yz], [zx, yz, v[2]]])
     }
 
-    fn axis_name(&mut self, e: &Expr) -> Option<usize> {
-        if let Expr::Name(ident) = e {
-            if let Some(axis) = AXES.iter().position(|a| ident == a) {
-                return Some(axis);
+    /// A joint axis: `x`, `y`, `z`, or a constant direction `[ax, ay, az]`.
+    fn axis_name(&mut self, e: &Expr) -> Option<[ExprId; 3]> {
+        match e {
+            Expr::Name(ident) => {
+                if let Some(axis) = AXES.iter().position(|a| ident == a) {
+                    return Some(unit_axis(&self.pool, axis));
+                }
             }
+            Expr::Array { .. } => return self.constant_axis(e),
+            _ => {}
         }
         self.errors.push(
             e.range(),
-            "expected a joint axis: `x`, `y` or `z` (an axis of the parent frame)",
+            "expected a joint axis: `x`, `y` or `z` (an axis of the parent frame), or a constant direction `[ax, ay, az]`",
         );
         None
+    }
+
+    /// `[ax, ay, az]` of numbers and parameters, normalised to a unit
+    /// vector.
+    fn constant_axis(&mut self, e: &Expr) -> Option<[ExprId; 3]> {
+        let Expr::Array { items, span } = e else {
+            self.errors.push(
+                e.range(),
+                "expected a constant axis `[ax, ay, az]` (its components in the parent frame's axes)",
+            );
+            return None;
+        };
+        if items.len() != 3 {
+            self.errors.push(
+                *span,
+                format!(
+                    "an axis has three components `[ax, ay, az]`; found {}",
+                    items.len()
+                ),
+            );
+            return None;
+        }
+        let components: Vec<Option<ExprId>> =
+            items.iter().map(|item| self.scalar(item, AXIS)).collect();
+        let components: [ExprId; 3] = [components[0]?, components[1]?, components[2]?];
+        let unit = normalised(&mut self.pool, components);
+        if unit.is_none() {
+            self.errors.push(
+                *span,
+                "the axis is zero; expected a non-zero direction `[ax, ay, az]`",
+            );
+        }
+        unit
     }
 
     // ----- definitions --------------------------------------------------
@@ -701,7 +771,13 @@ impl Resolver {
     }
 
     /// Defines frame `name`; whether it was new.
-    fn define_frame(&mut self, name: &Ident, parent: FrameId, axis: usize, angle: ExprId) -> bool {
+    fn define_frame(
+        &mut self,
+        name: &Ident,
+        parent: FrameId,
+        axis: [ExprId; 3],
+        angle: ExprId,
+    ) -> bool {
         let id = FrameId(self.model.frames.len());
         let new = self.define(name, Binding::Frame(id));
         if new {
@@ -943,6 +1019,13 @@ impl Resolver {
             role: "the argument of `dt`, which must be a coordinate or an expression of coordinates, parameters and `t`",
         };
         let x = self.scalar(arg, inner)?;
+        if !self.pool.kinds(x).contains(SymKinds::COORD) {
+            self.errors.push(
+                arg.range(),
+                "only coordinates have speeds: the argument of `dt` must be a coordinate (or an expression of coordinates)",
+            );
+            return None;
+        }
         Some(Value::Scalar(self.pool.time_derivative(x)))
     }
 
@@ -1029,6 +1112,37 @@ impl Resolver {
             return None;
         }
         Some(Value::Scalar(self.pool.powi(base, n)))
+    }
+}
+
+/// `v / |v|`, exact where the length is rational, in floats for other
+/// numeric vectors; `None` for a vector that is zero.
+fn normalised(pool: &mut Pool, v: [ExprId; 3]) -> Option<[ExprId; 3]> {
+    let squares: Vec<ExprId> = v.iter().map(|&c| pool.mul(c, c)).collect();
+    let length_squared = pool.sum(squares);
+    if pool.is_zero(length_squared) {
+        return None;
+    }
+    let numbers: Option<Vec<f64>> = v
+        .iter()
+        .map(|&c| pool.as_number(c).map(|n| n.to_f64()))
+        .collect();
+    let exact = pool
+        .as_rational(length_squared)
+        .is_some_and(|r| r.sqrt_exact().is_some());
+    match numbers {
+        Some(numbers) if !exact => {
+            let length = numbers.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if length == 0.0 || !length.is_finite() {
+                return None;
+            }
+            Some([0, 1, 2].map(|i| pool.number(Number::Float(numbers[i] / length))))
+        }
+        _ => {
+            let length = pool.func(Func::Sqrt, length_squared);
+            let inverse = pool.powi(length, -1);
+            Some(v.map(|c| pool.mul(c, inverse)))
+        }
     }
 }
 

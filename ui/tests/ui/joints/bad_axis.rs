@@ -1,4 +1,4 @@
-//! A joint axis is `x`, `y` or `z`.
+//! A joint axis is `x`, `y`, `z` or a constant direction `[ax, ay, az]`.
 
 use dalembert_macros::dalembert;
 
