@@ -27,7 +27,7 @@ import pinocchio as pin
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROBOTS = os.path.join(ROOT, "tests", "reference", "urdf")
-FILES = ["panda.urdf", "ur5_robot.urdf", "solo12.urdf"]
+FILES = ["panda.urdf", "ur5_robot.urdf", "solo12.urdf", "features.urdf"]
 STATES = 10
 SEED = 20261123
 

@@ -309,7 +309,7 @@ impl Writer<'_> {
         let coordinate = self.coordinates[j].clone();
         let length = norm(joint.axis);
         let axis = joint.axis.map(|a| a / length);
-        let (axis_field, signed) = axis_field(axis, &coordinate);
+        let axis_field = axis_field(axis);
         let kind = if joint.kind == JointType::Prismatic {
             "prismatic"
         } else {
@@ -317,7 +317,7 @@ impl Writer<'_> {
         };
         self.statement(format!(
             "joint {kind} {point} {{ parent: {joint_frame}, child: {frame}, {axis_field}, \
-             coordinate: {signed}, at: {at} }};"
+             coordinate: {coordinate}, at: {at} }};"
         ));
         self.body(child, &frame, &point);
         let input = format!("tau_{coordinate}");
@@ -456,25 +456,21 @@ impl Writer<'_> {
     }
 }
 
-/// The joint's `axis:` field and coordinate expression for the unit axis
-/// `axis`: a positive axis of the frame by name, a negative one by name
-/// with the coordinate negated.
-fn axis_field(axis: Vec3, coordinate: &str) -> (String, String) {
-    for (k, name) in ["x", "y", "z"].into_iter().enumerate() {
+/// The joint's `axis:` field for the unit axis `axis`: a positive axis of
+/// the frame by name, any other direction by its components.
+fn axis_field(axis: Vec3) -> String {
+    let named = ["x", "y", "z"].into_iter().enumerate().find(|&(k, _)| {
         let mut unit = [0.0; 3];
         unit[k] = 1.0;
-        if axis == unit {
-            return (format!("axis: {name}"), coordinate.to_owned());
-        }
-        if axis == unit.map(|u: f64| -u) {
-            return (format!("axis: {name}"), format!("-{coordinate}"));
+        axis == unit
+    });
+    match named {
+        Some((_, name)) => format!("axis: {name}"),
+        None => {
+            let components: Vec<String> = axis.into_iter().map(number).collect();
+            format!("axis: [{}]", components.join(", "))
         }
     }
-    let components: Vec<String> = axis.into_iter().map(number).collect();
-    (
-        format!("axis: [{}]", components.join(", ")),
-        coordinate.to_owned(),
-    )
 }
 
 fn norm(v: Vec3) -> f64 {
@@ -571,9 +567,7 @@ mod tests {
             scaled("u", [0.6, 0.0, -0.8], "F"),
             "u * (0.6 * F.x - 0.8 * F.z)"
         );
-        assert_eq!(
-            axis_field([0.0, 0.0, -1.0], "q"),
-            ("axis: z".to_owned(), "-q".to_owned())
-        );
+        assert_eq!(axis_field([0.0, 0.0, 1.0]), "axis: z");
+        assert_eq!(axis_field([0.0, 0.0, -1.0]), "axis: [0, 0, -1]");
     }
 }
