@@ -102,8 +102,29 @@ model!(
     spatial_chain_30
 );
 
+// URDF robots (`tests/reference/urdf/*.urdf`), imported by `Builder::urdf`;
+// tests/urdf.rs checks them against Pinocchio.
+model!(
+    /// Franka Emika Panda: 7 arm joints and 2 prismatic fingers.
+    panda
+);
+model!(
+    /// Universal Robots UR5: 6 revolute joints.
+    ur5_robot
+);
+model!(
+    /// Solo12 quadruped on a fixed base: 12 revolute joints.
+    solo12
+);
+model!(
+    /// A small robot with every feature of the URDF import.
+    features
+);
+
 pub use constrained_pendulum::ConstrainedPendulum;
 pub use double_pendulum::DoublePendulum;
+pub use features::FeatureTree;
+pub use panda::Panda;
 pub use planar_chain_01::PlanarChain1;
 pub use planar_chain_02::PlanarChain2;
 pub use planar_chain_03::PlanarChain3;
@@ -113,6 +134,7 @@ pub use planar_chain_06::PlanarChain6;
 pub use planar_chain_12::PlanarChain12;
 pub use planar_chain_30::PlanarChain30;
 pub use rotating_bar::RotatingBar;
+pub use solo12::Solo;
 pub use spatial_chain_01::SpatialChain1;
 pub use spatial_chain_02::SpatialChain2;
 pub use spatial_chain_03::SpatialChain3;
@@ -121,3 +143,4 @@ pub use spatial_chain_05::SpatialChain5;
 pub use spatial_chain_06::SpatialChain6;
 pub use spatial_chain_12::SpatialChain12;
 pub use spatial_chain_30::SpatialChain30;
+pub use ur5_robot::Ur5;

@@ -1,0 +1,94 @@
+//! The URDF robots of `tests/reference/urdf/`, imported by `Builder::urdf`
+//! in `build.rs` and compiled, against Pinocchio's numbers in
+//! `tests/reference/urdf/pinocchio.json` (`scripts/urdf_reference.py`, with
+//! Pinocchio's own URDF parser): `M`, `f = τ − nle`, `T`, `V` and the
+//! accelerations of the generated `accelerations` method (ABA's `q̈`).
+
+use dalembert_generated::{FeatureTree, Panda, Solo, Ur5};
+use serde_json::Value;
+
+/// Relative agreement required, against the largest entry of the quantity.
+const TOLERANCE: f64 = 1e-10;
+
+fn reference() -> Value {
+    let text = include_str!("../../tests/reference/urdf/pinocchio.json");
+    serde_json::from_str(text).expect("pinocchio.json parses")
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    match v {
+        Value::Array(items) => items.iter().flat_map(numbers).collect(),
+        other => vec![other.as_f64().expect("a number")],
+    }
+}
+
+/// `max |got − want| ≤ TOLERANCE · max |want|`.
+fn assert_close(what: &str, got: &[f64], want: &[f64]) {
+    assert_eq!(got.len(), want.len(), "{what}: length");
+    let scale = want.iter().fold(f64::MIN_POSITIVE, |m, w| m.max(w.abs()));
+    let error = got
+        .iter()
+        .zip(want)
+        .fold(0.0_f64, |m, (g, w)| m.max((g - w).abs()));
+    assert!(
+        error <= TOLERANCE * scale,
+        "{what}: off by {:e} relative",
+        error / scale
+    );
+}
+
+/// Checks a generated robot against the reference model `robot`.
+macro_rules! check {
+    ($system:ident, $robot:literal) => {{
+        let system = $system {};
+        let reference = reference();
+        let model = reference["models"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|m| m["robot"] == $robot)
+            .expect("robot in pinocchio.json");
+        let names: Vec<&str> = model["coordinates"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c.as_str().unwrap())
+            .collect();
+        assert_eq!(names, $system::COORDINATES, "{}", $robot);
+        for (index, state) in model["states"].as_array().unwrap().iter().enumerate() {
+            let what = |field: &str| format!("{} state {index} {field}", $robot);
+            let array = |field: &str| numbers(&state[field]).try_into().expect("n entries");
+            let (q, qd, tau) = (array("q"), array("qd"), array("tau"));
+            let mass = system.mass_matrix(&q);
+            assert_close(&what("M"), mass.as_flattened(), &numbers(&state["M"]));
+            let f = system.forcing(0.0, &q, &qd, &tau);
+            assert_close(&what("f"), &f, &numbers(&state["f"]));
+            let t = system.kinetic_energy(&q, &qd);
+            assert_close(&what("T"), &[t], &numbers(&state["T"]));
+            let v = system.potential_energy(&q);
+            assert_close(&what("V"), &[v], &numbers(&state["V"]));
+            let qdd = system.accelerations(0.0, &q, &qd, &tau).expect("solvable");
+            assert_close(&what("qdd"), &qdd, &numbers(&state["qdd"]));
+        }
+    }};
+}
+
+#[test]
+fn panda_matches_pinocchio() {
+    check!(Panda, "panda");
+}
+
+#[test]
+fn ur5_matches_pinocchio() {
+    check!(Ur5, "ur5_robot");
+}
+
+#[test]
+fn solo12_matches_pinocchio() {
+    check!(Solo, "solo12");
+}
+
+#[test]
+fn feature_robot_matches_pinocchio() {
+    check!(FeatureTree, "features");
+}
