@@ -70,9 +70,9 @@ fn malformed_xml() {
 
 #[test]
 fn unknown_parent_and_child() {
-    let text = robot("fixed", "", "").replace("<parent link=\"a\"/>", "<parent link=\"x\"/>");
+    let text = robot("revolute", "", "").replace("<parent link=\"a\"/>", "<parent link=\"x\"/>");
     assert_error(&text, 5, &["joint `j`", "unknown parent link `x`"]);
-    let text = robot("fixed", "", "").replace("<child link=\"b\"/>", "<child link=\"y\"/>");
+    let text = robot("revolute", "", "").replace("<child link=\"b\"/>", "<child link=\"y\"/>");
     assert_error(&text, 6, &["joint `j`", "unknown child link `y`"]);
 }
 
@@ -82,17 +82,27 @@ fn a_cycle() {
   <link name="root"/>
   <link name="a"/>
   <link name="b"/>
-  <joint name="up" type="fixed"><parent link="a"/><child link="b"/></joint>
-  <joint name="down" type="fixed"><parent link="b"/><child link="a"/></joint>
+  <joint name="up" type="revolute"><parent link="a"/><child link="b"/></joint>
+  <joint name="down" type="revolute"><parent link="b"/><child link="a"/></joint>
 </robot>"#;
     assert_error(text, 5, &["the joints `up`, `down` form a cycle"]);
 }
 
 #[test]
 fn two_roots() {
-    let text = robot("fixed", "", "")
+    let text = robot("revolute", "", "")
         .replace("<link name=\"a\"/>", "<link name=\"a\"/><link name=\"c\"/>");
     assert_error(&text, 2, &["2 root links (`a`, `c`)", "link `c`"]);
+}
+
+#[test]
+fn nothing_moves() {
+    assert_error(
+        &robot("fixed", "", ""),
+        1,
+        &["robot `r` has no revolute, continuous or prismatic joint"],
+    );
+    assert_error("<robot name=\"r\">\n</robot>", 1, &["no revolute"]);
 }
 
 #[test]
@@ -100,27 +110,39 @@ fn a_link_with_two_parents() {
     let text = r#"<robot name="r">
   <link name="a"/>
   <link name="b"/>
-  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
-  <joint name="k" type="fixed"><parent link="a"/><child link="b"/></joint>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/></joint>
+  <joint name="k" type="revolute"><parent link="a"/><child link="b"/></joint>
 </robot>"#;
     assert_error(text, 5, &["joint `k`", "already the child of joint `j`"]);
 }
 
 #[test]
 fn a_negative_mass() {
-    let text = robot("fixed", "", &inertial("-1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]));
+    let text = robot(
+        "revolute",
+        "",
+        &inertial("-1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
+    );
     assert_error(&text, 3, &["link `b`", "negative mass -1"]);
 }
 
 #[test]
 fn an_inertia_not_positive_semi_definite() {
-    let text = robot("fixed", "", &inertial("1", [1.0, 1.0, 1.0, 2.0, 0.0, 0.0]));
+    let text = robot(
+        "revolute",
+        "",
+        &inertial("1", [1.0, 1.0, 1.0, 2.0, 0.0, 0.0]),
+    );
     assert_error(&text, 3, &["link `b`", "not positive semi-definite"]);
 }
 
 #[test]
 fn an_inertia_breaking_the_triangle_inequality() {
-    let text = robot("fixed", "", &inertial("1", [1.0, 1.0, 3.0, 0.0, 0.0, 0.0]));
+    let text = robot(
+        "revolute",
+        "",
+        &inertial("1", [1.0, 1.0, 3.0, 0.0, 0.0, 0.0]),
+    );
     assert_error(&text, 3, &["link `b`", "triangle inequality"]);
 }
 

@@ -39,6 +39,16 @@ impl Tree {
 /// Builds and checks the tree of `robot`, or every problem found.
 pub(super) fn tree(robot: &Robot) -> Result<Tree, Vec<Problem>> {
     let mut problems = Vec::new();
+    if !robot.joints.iter().any(|j| j.kind != JointType::Fixed) {
+        problems.push(Problem::new(
+            Some(robot.range.start..robot.range.start + 1),
+            format!(
+                "robot `{}` has no revolute, continuous or prismatic joint: nothing moves, \
+                 so there is no coordinate to write",
+                robot.name
+            ),
+        ));
+    }
     check_links(robot, &mut problems);
     check_joints(robot, &mut problems);
     let mut index: HashMap<&str, usize> = HashMap::new();
