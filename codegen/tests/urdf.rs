@@ -59,10 +59,12 @@ fn solve(m: &[Vec<f64>], f: &[f64]) -> Vec<f64> {
             .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
             .unwrap();
         a.swap(k, pivot);
-        for i in k + 1..n {
-            let factor = a[i][k] / a[k][k];
-            for j in k..=n {
-                a[i][j] -= factor * a[k][j];
+        let (upper, lower) = a.split_at_mut(k + 1);
+        let pivot_row = &upper[k];
+        for row in lower {
+            let factor = row[k] / pivot_row[k];
+            for (x, p) in row[k..].iter_mut().zip(&pivot_row[k..]) {
+                *x -= factor * p;
             }
         }
     }
