@@ -1,5 +1,6 @@
 //! The generated code has no panic path: the code that `build.rs`
-//! generated for every model in `models/` (in `OUT_DIR`) contains no
+//! generated for every model in `models/` and every URDF robot of
+//! `tests/reference/urdf/` (in `OUT_DIR`) contains no
 //! indexing (`x[i]`: arrays are destructured, `let [a, b] = *q;`), no
 //! `unwrap`, `expect`, `panic!` or other panicking macro. A check on the
 //! tokens.
@@ -79,7 +80,17 @@ fn generated_code_has_no_panic_path() {
         assert!(found.is_empty(), "{}: {found:?}", path.display());
         checked += 1;
     }
-    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("models");
-    let sources = std::fs::read_dir(models).expect("models/ exists").count();
-    assert_eq!(checked, sources, "one generated file per model");
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let models = std::fs::read_dir(crate_dir.join("models")).expect("models/ exists");
+    let robots = std::fs::read_dir(crate_dir.join("../tests/reference/urdf"))
+        .expect("tests/reference/urdf/ exists")
+        .filter(|e| {
+            e.as_ref()
+                .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "urdf"))
+        });
+    assert_eq!(
+        checked,
+        models.count() + robots.count(),
+        "one generated file per model and per URDF robot"
+    );
 }
