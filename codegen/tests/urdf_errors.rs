@@ -265,6 +265,28 @@ fn names_and_struct_name() {
     assert!(bad.to_string().contains("not a Rust identifier"), "{bad}");
 }
 
+#[test]
+fn joint_names_that_cannot_be_coordinates() {
+    let keyword = robot("revolute", "", "").replace("name=\"j\"", "name=\"type\"");
+    assert_error(
+        &keyword,
+        4,
+        &["joint `type`", "coordinate would be named `type`"],
+    );
+    let twins = r#"<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <link name="c"/>
+  <joint name="a-b" type="revolute"><parent link="a"/><child link="b"/></joint>
+  <joint name="a_b" type="revolute"><parent link="a"/><child link="c"/></joint>
+</robot>"#;
+    assert_error(
+        twins,
+        6,
+        &["joint `a_b`", "coordinate would be named `a_b`"],
+    );
+}
+
 fn scratch(test: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("urdf_errors_{test}"));
     let _ = std::fs::remove_dir_all(&dir);

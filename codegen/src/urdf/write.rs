@@ -224,7 +224,9 @@ impl Writer<'_> {
     }
 
     /// The root link, fixed to the ground (frame `N`, origin `O`), then
-    /// the tree below it.
+    /// the tree below it. A floating base changes only this: a free joint
+    /// from `N` makes the root's frame and origin, and the masses welded to
+    /// the root become its body.
     fn base(&mut self) {
         let root = self.tree.root;
         let name = &self.robot.links[root].name;
