@@ -43,6 +43,7 @@ pub(super) fn model_text(
     for &j in &moving {
         let joint = &robot.joints[j];
         let name = sanitize(&joint.name);
+        let input = format!("tau_{name}");
         if !names.claim(&name) {
             problems.push(Problem::new(
                 Some(joint.range.clone()),
@@ -53,20 +54,16 @@ pub(super) fn model_text(
                     joint.name
                 ),
             ));
-        }
-        coordinates[j] = name;
-    }
-    for &j in &moving {
-        let input = format!("tau_{}", coordinates[j]);
-        if !names.claim(&input) {
+        } else if !names.claim(&input) {
             problems.push(Problem::new(
-                Some(robot.joints[j].range.clone()),
+                Some(joint.range.clone()),
                 format!(
                     "joint `{}`: its input `{input}` is already a name",
-                    robot.joints[j].name
+                    joint.name
                 ),
             ));
         }
+        coordinates[j] = name;
     }
     if !problems.is_empty() {
         return Err(problems);
