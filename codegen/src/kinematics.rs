@@ -139,6 +139,18 @@ impl Kinematics {
         transpose_mul(pool, &down, &in_ancestor)
     }
 
+    /// The rotation mapping the components of `frame` to those of its
+    /// ancestor `ancestor` (`N` included), through the frames between.
+    pub fn relative_rotation(
+        &self,
+        pool: &mut Pool,
+        model: &Model,
+        ancestor: FrameId,
+        frame: FrameId,
+    ) -> Mat3 {
+        self.rotation_from_ancestor(pool, model, ancestor, frame)
+    }
+
     /// The rotation mapping `frame`'s components to those of its ancestor.
     fn rotation_from_ancestor(
         &self,
@@ -248,7 +260,8 @@ fn principal_rotation(pool: &mut Pool, axis: usize, angle: ExprId) -> Mat3 {
     r
 }
 
-fn identity(pool: &Pool) -> Mat3 {
+/// The identity matrix.
+pub fn identity(pool: &Pool) -> Mat3 {
     let mut r = [[pool.zero(); 3]; 3];
     for (i, row) in r.iter_mut().enumerate() {
         row[i] = pool.one();

@@ -41,11 +41,13 @@ pub use urdf::Urdf;
 ///   equations numerically, by d'Alembert's route (as the generator derives
 ///   them) or Lagrange's (an independent derivation): differential tests
 ///   compare the emitted code with both.
-/// * [`chain`](testing::chain) writes the n-link benchmark chains of the
-///   reference data ([`Family`](testing::Family)) as model text; the
-///   `dalembert chain` command prints them.
+/// * [`chain`](testing::chain) and [`chain_spelled`](testing::chain_spelled)
+///   write the n-link benchmark chains of the reference data
+///   ([`Family`](testing::Family)) as model text, in three
+///   [`Spelling`](testing::Spelling)s; the `dalembert chain` command prints
+///   them.
 pub mod testing {
-    pub use crate::chain::{Family, chain};
+    pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
     pub use crate::interpret::{Interpreter, Route, Sample, Values};
 }
 

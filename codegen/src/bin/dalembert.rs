@@ -5,7 +5,8 @@
 //! dalembert eom MODEL.dal [--latex]   the equations of motion, as in the seed document
 //! dalembert generate MODEL.dal        the generated Rust source
 //! dalembert check MODEL.dal           the errors the dalembert! macro would report
-//! dalembert chain FAMILY N            the .dal text of a benchmark chain (planar or spatial)
+//! dalembert chain FAMILY N [SPELLING] the .dal text of a benchmark chain (planar or spatial;
+//!                                     spelled joints, symbolic or seed)
 //! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
 //!                                     the .dal model of a URDF robot
 //! ```
@@ -22,7 +23,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use dalembert_codegen::testing::Family;
+use dalembert_codegen::testing::{Family, Spelling};
 use dalembert_codegen::{BuildError, ModelFile, Style, Urdf};
 
 const USAGE: &str = "\
@@ -32,7 +33,8 @@ Commands:
   eom MODEL.dal [--latex]   print the equations of motion (Unicode, or LaTeX)
   generate MODEL.dal        print the generated Rust source
   check MODEL.dal           report the errors the dalembert! macro would report
-  chain FAMILY N            print the .dal text of the planar or spatial chain of N links
+  chain FAMILY N [SPELLING] print the .dal text of the planar or spatial chain of N links,
+                            spelled `joints` (default), `symbolic` or `seed`
   urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
                             print the .dal model of a URDF robot (--damping: joint
                             damping as a dissipation function)
@@ -57,6 +59,7 @@ enum Command {
     Chain {
         family: Family,
         links: usize,
+        spelling: Spelling,
     },
     Urdf {
         robot: PathBuf,
@@ -135,17 +138,35 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
     }
 }
 
-/// The arguments of `chain FAMILY N`.
+/// The arguments of `chain FAMILY N [SPELLING]`.
 fn parse_chain(mut args: impl Iterator<Item = OsString>) -> Result<Command, String> {
-    let (Some(family), Some(links), None) = (args.next(), args.next(), args.next()) else {
-        return Err("`chain` needs a family (`planar` or `spatial`) and a number of links".into());
+    let (Some(family), Some(links), spelling, None) =
+        (args.next(), args.next(), args.next(), args.next())
+    else {
+        return Err(
+            "`chain` needs a family (`planar` or `spatial`), a number of links and optionally a spelling (`joints`, `symbolic` or `seed`)"
+                .into(),
+        );
     };
     let family = family.to_string_lossy();
     let family = Family::from_name(&family).ok_or_else(|| {
         format!("unknown chain family `{family}`: expected `planar` or `spatial`")
     })?;
+    let spelling = match spelling {
+        None => Spelling::Joints,
+        Some(name) => {
+            let name = name.to_string_lossy();
+            Spelling::from_name(&name).ok_or_else(|| {
+                format!("unknown spelling `{name}`: expected `joints`, `symbolic` or `seed`")
+            })?
+        }
+    };
     match links.to_string_lossy().parse::<usize>() {
-        Ok(links) if links > 0 => Ok(Command::Chain { family, links }),
+        Ok(links) if links > 0 => Ok(Command::Chain {
+            family,
+            links,
+            spelling,
+        }),
         _ => Err("the number of links must be a positive integer".into()),
     }
 }
@@ -198,7 +219,13 @@ fn run(command: Command) -> ExitCode {
         Command::Check { model } => ModelFile::read(&model)
             .and_then(|m| m.check())
             .map(|()| format!("{}: ok", model.display())),
-        Command::Chain { family, links } => Ok(dalembert_codegen::testing::chain(family, links)),
+        Command::Chain {
+            family,
+            links,
+            spelling,
+        } => Ok(dalembert_codegen::testing::chain_spelled(
+            family, links, spelling,
+        )),
         Command::Urdf { robot, options } => urdf(&robot, options),
     };
     match output {
@@ -279,7 +306,16 @@ mod tests {
             parse_str(&["chain", "spatial", "12"]),
             Ok(Command::Chain {
                 family: Family::Spatial,
-                links: 12
+                links: 12,
+                spelling: Spelling::Joints,
+            })
+        );
+        assert_eq!(
+            parse_str(&["chain", "planar", "3", "seed"]),
+            Ok(Command::Chain {
+                family: Family::Planar,
+                links: 3,
+                spelling: Spelling::FramesAndPoints,
             })
         );
     }
@@ -297,6 +333,7 @@ mod tests {
             &["chain", "helical", "3"],
             &["chain", "planar", "0"],
             &["chain", "planar", "3", "4"],
+            &["chain", "planar", "3", "seed", "5"],
             &["urdf"],
             &["urdf", "r.urdf", "--name"],
             &["urdf", "r.urdf", "--latex"],

@@ -277,8 +277,9 @@ struct Writer<'a> {
 }
 
 impl Writer<'_> {
-    /// Elementary functions are always bound (they are the expensive calls),
-    /// other compound expressions when they are used more than once.
+    /// Elementary functions are always bound (they are the expensive calls,
+    /// and groups the steps of a recursion), other compound expressions when
+    /// they are used more than once.
     fn needs_binding(&self, e: ExprId, uses: &HashMap<ExprId, usize>) -> bool {
         if self.bound.contains_key(&e) {
             return false;
@@ -377,6 +378,7 @@ impl Writer<'_> {
         let tokens = self.expr(e);
         let simple = self.bound.contains_key(&e)
             || match self.pool.node(e) {
+                Node::Func(Func::Group, _) => false,
                 Node::Sym(_) | Node::Func(..) => true,
                 Node::Number(n) => !n.is_negative(),
                 _ => false,

@@ -8,7 +8,7 @@ use crate::seeds::{CONSTRAINED_PENDULUM, DOUBLE_PENDULUM, ROTATING_BAR};
 /// Seed examples 1–3 as in DESIGN §3, and systems that exercise the rest of
 /// the language: 3-D rotations, products of inertia, particles, forces,
 /// reacting torques, potentials, dissipation, constant tilts and joints.
-const SYSTEMS: [&str; 7] = [
+const SYSTEMS: [&str; 10] = [
     DOUBLE_PENDULUM,
     ROTATING_BAR,
     CONSTRAINED_PENDULUM,
@@ -66,6 +66,60 @@ const SYSTEMS: [&str; 7] = [
         gravity -g * N.z + g/3 * N.x;
         torque u * C.y on C reacting A;
         force u * N.y at J2;
+    }",
+    // The seed's spelling of a spatial chain: frames and points relative to
+    // the parent, joint torques as inputs (the recursive route).
+    "pub SeedChain {
+        parameters m1, m2, m3, L1, L2, L3, g, c;
+        coordinates q1, q2, q3;
+        inputs tau1, tau2, tau3;
+        frame B1 = N.rotate_z(q1);
+        point P1 = O + L1 * B1.x;
+        body link1 { mass: m1, center: O + L1/2 * B1.x, frame: B1, inertia: [m1/50, m1*L1^2/12, m1*L1^2/12] };
+        frame B2 = B1.rotate_y(q2);
+        point P2 = P1 + L2 * B2.x;
+        body link2 { mass: m2, center: P1 + L2/2 * B2.x, frame: B2, inertia: [m2/50, m2*L2^2/12, m2*L2^2/12] };
+        frame B3 = B2.rotate_z(q3);
+        body link3 { mass: m3, center: P2 + L3/2 * B3.x, frame: B3, inertia: [m3/50, m3*L3^2/12, m3*L3^2/12] };
+        gravity -g * N.z;
+        torque tau1 * N.z on B1;
+        torque tau2 * B1.y on B2 reacting B1;
+        torque tau3 * B2.z on B3 reacting B2;
+        dissipation c * dt(q2)^2 / 2;
+        potential c * q3^2 / 2;
+    }",
+    // A cart-pole: a slide, then a revolute joint on the cart.
+    "pub CartPole {
+        parameters m, M, l, g, c;
+        coordinates s, theta;
+        inputs F;
+        point C = O + s * N.x;
+        frame B = N.rotate_z(theta);
+        body cart { mass: M, center: C, frame: N, inertia: [M, M, M] };
+        body pole { mass: m, center: C - l * B.y, frame: B, inertia: [m*l^2/12, 0, m*l^2/12] };
+        particle tip { mass: m/2, at: C - 2 * l * B.y };
+        gravity -g * N.y;
+        force F * N.x - c * dt(s) * N.x at C;
+        force c * sin(theta) * B.x at C - l * B.y;
+    }",
+    // Constant axes and welded frames of both signs, a slide along a
+    // rotated axis, loads in other links' frames.
+    "pub Tilted {
+        parameters m, a, b, g;
+        coordinates q1, q2, q3;
+        inputs u;
+        joint revolute J1 { parent: N, child: A, axis: [1, 2, -2], coordinate: q1, at: O + a * N.z };
+        frame T = A.rotate_x(-1.8);
+        joint prismatic J2 { parent: T, child: S, axis: [0, 1, 1], coordinate: q2, at: J1 + a * A.x };
+        frame U = S.rotate([a, 1, b], 0.7);
+        joint revolute J3 { parent: U, child: C, axis: z, coordinate: q3, at: J2 - b * T.z };
+        body hub { mass: m, center: J1 + b * T.y, frame: T, inertia: [m, 2 * m, 3 * m, m/10, m/20, -m/30] };
+        body slider { mass: m/2, center: J2 + a * U.x, frame: U, inertia: [m/3, m/4, m/5] };
+        body arm { mass: m/3, center: J3 + a * C.y, frame: C, inertia: [m/7, m/5, m/3, m/40, 0, m/50] };
+        gravity -g * N.z + g/3 * N.x;
+        torque u * T.y on C reacting S;
+        torque u * N.x on A;
+        force u * C.x + a * N.y at J3 + b * C.z;
     }",
 ];
 
@@ -128,4 +182,29 @@ fn the_mass_matrix_is_symmetric_and_its_quadratic_form_is_twice_t() {
         let t = ours.kinetic_energy(&at);
         assert_close(&format!("{}: 2T", ours.name()), quadratic, 2.0 * t, t.abs());
     }
+}
+
+#[test]
+fn the_trees_among_them_take_the_recursive_route() {
+    let trees: Vec<String> = SYSTEMS
+        .iter()
+        .filter_map(|source| {
+            let system =
+                crate::language::parse_system(source.parse().expect("tokens")).expect("parses");
+            let model = crate::model::resolve(&system).unwrap_or_else(|e| panic!("{e}"));
+            model.tree.is_some().then(|| model.name.to_string())
+        })
+        .collect();
+    assert_eq!(
+        trees,
+        [
+            "RotatingBar",
+            "TiltedRail",
+            "Chain",
+            "Tree",
+            "SeedChain",
+            "CartPole",
+            "Tilted"
+        ]
+    );
 }

@@ -10,9 +10,9 @@
 //! `A` and `b` with `A q̈ = b`, and the energies come from the same
 //! kinematics.
 //!
-//! A tree of revolute joints takes a shortcut to the same `M` and inertia
-//! terms: the recursions of `recursive`, linear in the number of links per
-//! entry where the dot products are quadratic.
+//! A kinematic tree (see [`crate::model::Tree`]) takes a shortcut to the
+//! same `M`, inertia and load terms: the recursions of `recursive`, linear
+//! in the number of links per entry where the dot products are quadratic.
 
 use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
@@ -90,8 +90,17 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
     let kinematics = Kinematics::new(model, pool);
     let nq = model.nq();
     let inertias = inertias(model);
-    let (mass_matrix, inertia_bias) = match recursive::JointTree::of(model, pool) {
-        Some(tree) => recursive::inertia_terms(&tree, pool),
+    let tree = model
+        .tree
+        .as_ref()
+        .and_then(|tree| recursive::JointTree::new(model, tree, &kinematics, &inertias, pool));
+    // The recursion carries the applied forces and torques; the general
+    // route takes them through their partial velocities.
+    let (mass_matrix, bias, loads_done) = match tree {
+        Some(tree) => {
+            let (mass_matrix, bias) = recursive::inertia_terms(&tree, pool);
+            (mass_matrix, bias, true)
+        }
         None => {
             let (mass_matrix, bias) = inertia_terms(&kinematics, pool, &inertias, nq);
             let bias = (0..nq)
@@ -100,13 +109,17 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
                     pool.sub(bias[k], gravity)
                 })
                 .collect::<Vec<_>>();
-            (mass_matrix, bias)
+            (mass_matrix, bias, false)
         }
     };
     let forcing = (0..nq)
         .map(|k| {
-            let active = generalized_force(model, &kinematics, pool, k);
-            pool.sub(active, inertia_bias[k])
+            let mut active = potential_and_dissipation_force(model, pool, k);
+            if !loads_done {
+                let loads = load_force(model, &kinematics, pool, k);
+                active = pool.add(loads, active);
+            }
+            pool.sub(active, bias[k])
         })
         .collect();
     let rows = constraints(model, pool);
@@ -237,9 +250,9 @@ fn gravity_force(
     pool.sum(terms)
 }
 
-/// The generalized active force `F_qₖ` other than gravity: forces and
-/// torques through their partial velocities, minus `∂V/∂qₖ` and `∂D/∂q̇ₖ`.
-fn generalized_force(model: &Model, kinematics: &Kinematics, pool: &mut Pool, k: usize) -> ExprId {
+/// The generalized force `F_qₖ` of the applied forces and torques, through
+/// their partial velocities.
+fn load_force(model: &Model, kinematics: &Kinematics, pool: &mut Pool, k: usize) -> ExprId {
     let mut terms = Vec::new();
     for force in &model.forces {
         let f = kinematics.express(pool, model, &force.vector, NEWTONIAN);
@@ -260,10 +273,14 @@ fn generalized_force(model: &Model, kinematics: &Kinematics, pool: &mut Pool, k:
             terms.push(pool.neg(reaction));
         }
     }
+    pool.sum(terms)
+}
+
+/// `−∂V/∂qₖ − ∂D/∂q̇ₖ`.
+fn potential_and_dissipation_force(model: &Model, pool: &mut Pool, k: usize) -> ExprId {
     let potential = pool.diff(model.potential, Sym::Coord(k as u32));
-    terms.push(pool.neg(potential));
     let dissipation = pool.diff(model.dissipation, Sym::Speed(k as u32));
-    terms.push(pool.neg(dissipation));
+    let terms = [pool.neg(potential), pool.neg(dissipation)];
     pool.sum(terms)
 }
 

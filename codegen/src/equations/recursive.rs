@@ -1,58 +1,65 @@
-//! The inertia terms of a tree of revolute joints, by recursion over the
-//! tree instead of by dot products of partial velocities: the composite-
-//! rigid-body recursion for `M` and the Newton–Euler recursion for the
-//! velocity- and gravity-dependent terms, on the same DAG.
+//! The inertia and load terms of a kinematic tree ([`Tree`]), by recursion
+//! over the tree instead of by dot products of partial velocities: the
+//! composite-rigid-body recursion for `M` and the Newton–Euler recursion
+//! for everything else that multiplies no `q̈`, on the same DAG.
 //!
 //! Both are d'Alembert's principle regrouped. For a revolute joint `k` with
-//! unit axis `eₖ` through point `Jₖ`, the partial velocity of any point `P`
-//! carried by the joint is `eₖ × (r_P − r_Jₖ)` and that of any frame it
-//! carries is `eₖ`; so `Σᵢ (mᵢ a_Gᵢ · ∂v_Gᵢ/∂q̇ₖ + Mᵢ · ∂ωᵢ/∂q̇ₖ)` is `eₖ`
-//! dotted with the moment about `Jₖ` of the inertia forces of everything
-//! beyond joint `k`, which a sweep from the leaves to the root accumulates
-//! in `O(n)`. Every vector lives in the axes of its own link, so a planar
-//! chain meets only 2×2 rotations and its zeros fold away at construction.
+//! unit axis `eₖ` through its origin `Jₖ`, the partial velocity of any point
+//! `P` beyond it is `eₖ × (r_P − r_Jₖ)` and that of any frame beyond it is
+//! `eₖ`; for a prismatic joint they are `eₖ` and `0`. So
+//! `Σᵢ (mᵢ a_Gᵢ · ∂v_Gᵢ/∂q̇ₖ + Mᵢ · ∂ωᵢ/∂q̇ₖ)` minus the applied loads' share
+//! is `eₖ` dotted with the moment about `Jₖ` (revolute) or the resultant
+//! (prismatic) of the inertia forces minus the loads beyond joint `k`,
+//! which a sweep from the leaves to the root accumulates in `O(n)`. Every
+//! vector lives in the axes of its own link, so a planar chain meets only
+//! 2×2 rotations and its zeros fold away at construction.
 //!
 //! Canonical sums would flatten each step's running totals into the next
 //! and spread every coefficient over their terms, making a step cost as
 //! much as all before it; so each step's results are [`Pool::group`]ed.
-//!
-//! The recursion applies when the model is such a tree (see
-//! [`JointTree::of`]); otherwise the general assembly runs.
 
-use crate::expr::{ExprId, Node, Pool, Sym, SymKinds};
-use crate::kinematics::{Mat3, Vec3, add3, axis_rotation, cross, dot, mat_vec, transpose_mul};
-use crate::model::{FrameId, Model, NEWTONIAN, PointId, Vector, unit_axis};
+use super::Inertia;
+use crate::expr::{ExprId, Pool, Sym};
+use crate::kinematics::{
+    Kinematics, Mat3, Vec3, add3, cross, dot, identity, mat_vec, transpose_mul,
+};
+use crate::model::{JointKind, Model, NEWTONIAN, Tree, Vector};
 
-/// A model whose frames are all children of revolute joints on single
-/// coordinates, each joint located by a constant offset in its parent
-/// link, and whose masses are fixed in links.
+/// The tree with every vector in components: the rotations and offsets of
+/// the links, the masses and the loads.
 pub struct JointTree {
-    /// The links, parents before children (the order of the joints).
+    /// The links, parents before children (as in [`Tree::links`]).
     links: Vec<Link>,
     /// The bodies and particles, each fixed in one link.
     masses: Vec<Mass>,
+    /// Applied forces and torques: per link, the resultant and its moment
+    /// about the link's origin, in the link's axes.
+    loads: Vec<(Vec3, Vec3)>,
     /// Gravity in `N`'s axes.
     gravity: Vec3,
 }
 
-/// A link: the frame beyond one joint.
+/// A link: the subtree beyond one joint.
 struct Link {
     /// The parent link, `None` for a joint on `N`.
     parent: Option<usize>,
-    /// The joint axis (0, 1, 2), an axis of both the parent and the link.
-    axis: usize,
+    kind: JointKind,
+    /// The joint axis (unit for a revolute joint), in the link's axes.
+    axis: Vec3,
     /// The joint's coordinate index.
     coordinate: usize,
-    /// From the parent's joint point (or `O`) to this joint's point, in the
-    /// parent's axes.
+    /// From the parent's origin to this link's, in the parent's axes (with
+    /// the slide of a prismatic joint).
     offset: Vec3,
+    /// Maps the link's components to its parent's.
+    rotation: Mat3,
 }
 
 /// A mass fixed in a link.
 struct Mass {
     link: usize,
     mass: ExprId,
-    /// From the link's joint point to the centre, in the link's axes.
+    /// From the link's origin to the centre, in the link's axes.
     center: Vec3,
     /// Central inertia in the link's axes (zero for a particle).
     inertia: Mat3,
@@ -63,11 +70,11 @@ struct Motion {
     omega: Vec3,
     /// Angular acceleration at `q̈ = 0`.
     alpha: Vec3,
-    /// Acceleration of the joint point at `q̈ = 0`, gravity subtracted.
+    /// Acceleration of the link's origin at `q̈ = 0`, gravity subtracted.
     accel: Vec3,
 }
 
-/// A subtree's mass, first moment and inertia about its joint point.
+/// A subtree's mass, first moment and inertia about its link's origin.
 #[derive(Clone, Copy)]
 struct Composite {
     mass: ExprId,
@@ -76,161 +83,157 @@ struct Composite {
 }
 
 impl JointTree {
-    /// The tree of `model`, or `None` if the model is not one: a frame not
-    /// made by a revolute joint on a bare coordinate, a joint point or mass
-    /// not fixed in a link by a constant offset, a mass in `N`, gravity
-    /// given in a moving frame.
-    pub fn of(model: &Model, pool: &Pool) -> Option<JointTree> {
-        if model.frames.len() != model.joints.len() + 1 || model.joints.len() != model.nq() {
-            return None;
-        }
-        let mut link_of_frame = vec![None; model.frames.len()];
-        let mut coordinate_used = vec![false; model.nq()];
-        let mut links = Vec::with_capacity(model.joints.len());
-        for joint in &model.joints {
-            let placement = model.frames[joint.frame.0].placement.as_ref()?;
-            let Node::Sym(Sym::Coord(k)) = pool.node(placement.angle) else {
-                return None;
-            };
-            let coordinate = *k as usize;
-            if std::mem::replace(&mut coordinate_used[coordinate], true) {
-                return None;
-            }
-            let parent = match placement.parent {
-                NEWTONIAN => None,
-                frame => Some(link_of_frame[frame.0]?),
-            };
-            let (frame, offset) = located(model, pool, joint.point)?;
-            if frame != parent {
-                return None;
-            }
-            link_of_frame[joint.frame.0] = Some(links.len());
-            links.push(Link {
-                parent,
-                axis: placement.principal_axis(pool)?,
-                coordinate,
-                offset,
-            });
-        }
+    /// The components of `tree`'s links, masses, loads and gravity; `None`
+    /// if gravity turns with a moving frame.
+    pub fn new(
+        model: &Model,
+        tree: &Tree,
+        kinematics: &Kinematics,
+        inertias: &[Inertia<'_>],
+        pool: &mut Pool,
+    ) -> Option<JointTree> {
+        let frame_of = |link: Option<usize>| link.map_or(NEWTONIAN, |l| tree.links[l].frame);
+        let links: Vec<Link> = tree
+            .links
+            .iter()
+            .map(|link| {
+                let parent_frame = frame_of(link.parent);
+                let mut offset = kinematics.express(pool, model, &link.offset, parent_frame);
+                let axis = kinematics.express(pool, model, &link.axis, link.frame);
+                let rotation = match link.kind {
+                    JointKind::Revolute => {
+                        kinematics.relative_rotation(pool, model, parent_frame, link.frame)
+                    }
+                    JointKind::Prismatic => {
+                        let q = pool.sym(Sym::Coord(link.coordinate as u32));
+                        let slide = axis.map(|e| pool.mul(q, e));
+                        offset = add3(pool, &offset, &slide);
+                        identity(pool)
+                    }
+                };
+                Link {
+                    parent: link.parent,
+                    kind: link.kind,
+                    axis,
+                    coordinate: link.coordinate,
+                    offset,
+                    rotation,
+                }
+            })
+            .collect();
         let mut masses = Vec::new();
-        for body in &model.bodies {
-            let link = link_of_frame[body.frame.0]?;
-            let (frame, center) = attachment(model, pool, body.center)?;
-            if frame != Some(link) {
-                return None;
-            }
+        let attachments = tree
+            .bodies
+            .iter()
+            .chain(model.particles.iter().map(|p| &tree.points[p.at.0]));
+        for (inertia, at) in inertias.iter().zip(attachments) {
+            let Some(link) = at.link else { continue };
+            let frame = tree.links[link].frame;
+            let center = kinematics.express(pool, model, &at.offset, frame);
+            let tensor = match inertia.rotation {
+                Some((body_frame, tensor)) => {
+                    let r = kinematics.relative_rotation(pool, model, frame, body_frame);
+                    rotate_tensor(pool, &r, tensor)
+                }
+                None => [[pool.zero(); 3]; 3],
+            };
             masses.push(Mass {
                 link,
-                mass: body.mass,
+                mass: inertia.mass,
                 center,
-                inertia: body.inertia,
+                inertia: tensor,
             });
         }
-        for particle in &model.particles {
-            let (link, center) = attachment(model, pool, particle.at)?;
-            masses.push(Mass {
-                link: link?,
-                mass: particle.mass,
-                center,
-                inertia: [[pool.zero(); 3]; 3],
-            });
+        let zero = pool.zero();
+        let mut loads = vec![([zero; 3], [zero; 3]); links.len()];
+        for force in &model.forces {
+            let at = &tree.points[force.at.0];
+            let Some(link) = at.link else { continue };
+            let frame = tree.links[link].frame;
+            let f = kinematics.express(pool, model, &force.vector, frame);
+            let c = kinematics.express(pool, model, &at.offset, frame);
+            let moment = cross(pool, &c, &f);
+            let (total, about) = loads[link];
+            loads[link] = (add3(pool, &total, &f), add3(pool, &about, &moment));
+        }
+        for torque in &model.torques {
+            let reaction = torque.reacting.map(|g| (g, torque.vector.neg(pool)));
+            for (frame, vector) in
+                std::iter::once((torque.on, torque.vector.clone())).chain(reaction)
+            {
+                let Some(link) = tree.frames[frame.0] else {
+                    continue;
+                };
+                let tau = kinematics.express(pool, model, &vector, tree.links[link].frame);
+                loads[link].1 = add3(pool, &loads[link].1, &tau);
+            }
         }
         let gravity = match &model.gravity {
-            None => [pool.zero(); 3],
-            Some(g) => constant_in(g, NEWTONIAN, pool)?,
+            None => [zero; 3],
+            Some(g) => constant_in_newtonian(model, kinematics, pool, g)?,
         };
         Some(JointTree {
             links,
             masses,
+            loads,
             gravity,
         })
     }
 }
 
-/// The link a point is fixed in and its offset from that link's joint
-/// point (`O` for `N`, link `None`), in the link's axes: a joint point
-/// itself, or a point [`located`] from one.
-fn attachment(model: &Model, pool: &Pool, point: PointId) -> Option<(Option<usize>, Vec3)> {
-    match origin_of(model, point) {
-        Some(link) => Some((link, [pool.zero(); 3])),
-        None => located(model, pool, point),
-    }
+/// The components of `v` in `N`'s axes, if they are constant.
+fn constant_in_newtonian(
+    model: &Model,
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    v: &Vector,
+) -> Option<Vec3> {
+    let g = kinematics.express(pool, model, v, NEWTONIAN);
+    g.iter()
+        .all(|&x| crate::expr::SymKinds::PARAM.contains(pool.kinds(x)))
+        .then_some(g)
 }
 
-/// The link whose joint point `point` is placed from, and the offset, if
-/// that offset is constant and along the link's own axes.
-fn located(model: &Model, pool: &Pool, point: PointId) -> Option<(Option<usize>, Vec3)> {
-    let (base, offset) = model.points[point.0].placement.as_ref()?;
-    let link = origin_of(model, *base)?;
-    let frame = link.map_or(NEWTONIAN, |l| model.joints[l].frame);
-    Some((link, constant_in(offset, frame, pool)?))
-}
-
-/// `Some(link)` if `point` is the joint point of `link` (`Some(None)` for
-/// `O`), `None` if it is no link's origin.
-fn origin_of(model: &Model, point: PointId) -> Option<Option<usize>> {
-    if point == crate::model::ORIGIN {
-        return Some(None);
-    }
-    model.joints.iter().position(|j| j.point == point).map(Some)
-}
-
-/// The components of `v` if it lies along `frame`'s axes only and is
-/// constant (numbers and parameters).
-fn constant_in(v: &Vector, frame: FrameId, pool: &Pool) -> Option<Vec3> {
-    let mut components = [pool.zero(); 3];
-    for (f, c) in &v.parts {
-        if *f != frame || c.iter().any(|&x| !SymKinds::PARAM.contains(pool.kinds(x))) {
-            return None;
-        }
-        components = *c;
-    }
-    Some(components)
-}
-
-/// `M` and, per coordinate, the inertia and gravity terms that multiply no
-/// `q̈`: `Σᵢ (mᵢ (a_bias − g) · vₖ + (I α_bias + ω × Iω) · ωₖ)`.
+/// `M` and, per coordinate, the terms that multiply no `q̈`:
+/// `Σᵢ (mᵢ (a_bias − g) · vₖ + (I α_bias + ω × Iω) · ωₖ)` minus the
+/// generalized forces of the applied forces and torques.
 pub fn inertia_terms(tree: &JointTree, pool: &mut Pool) -> (Vec<Vec<ExprId>>, Vec<ExprId>) {
-    let rotations: Vec<Mat3> = tree
-        .links
-        .iter()
-        .map(|link| {
-            let q = pool.sym(Sym::Coord(link.coordinate as u32));
-            axis_rotation(pool, &unit_axis(pool, link.axis), q)
-        })
-        .collect();
-    let mass_matrix = tree.mass_matrix(pool, &rotations);
-    let bias = tree.bias(pool, &rotations);
+    let mass_matrix = tree.mass_matrix(pool);
+    let bias = tree.bias(pool);
     (mass_matrix, bias)
 }
 
 impl JointTree {
-    /// `M` by composite rigid bodies: the subtree beyond joint `j` turning
-    /// at unit rate about `eⱼ` has momentum `(eⱼ × hⱼ, Kⱼ eⱼ)` about `Jⱼ`;
-    /// `Mₖⱼ` is its angular momentum about `Jₖ`, along `eₖ`, for every
-    /// ancestor `k`.
-    fn mass_matrix(&self, pool: &mut Pool, rotations: &[Mat3]) -> Vec<Vec<ExprId>> {
+    /// `M` by composite rigid bodies: the subtree beyond joint `j` moving
+    /// at unit rate has momentum `(eⱼ × hⱼ, Kⱼ eⱼ)` about its origin
+    /// (revolute) or `(mⱼ eⱼ, hⱼ × eⱼ)` (prismatic); `Mₖⱼ` is its angular
+    /// momentum about the origin of every ancestor `k` along `eₖ`
+    /// (revolute), or its momentum along `eₖ` (prismatic).
+    fn mass_matrix(&self, pool: &mut Pool) -> Vec<Vec<ExprId>> {
         let nq = self.links.len();
-        let composites = self.composites(pool, rotations);
+        let composites = self.composites(pool);
         let mut m = vec![vec![pool.zero(); nq]; nq];
         for (j, link) in self.links.iter().enumerate() {
-            let e = unit(pool, link.axis);
-            let linear = cross(pool, &e, &composites[j].moment);
-            let mut linear = group3(pool, &linear);
-            let angular = mat_vec(pool, &composites[j].inertia, &e);
-            let mut angular = group3(pool, &angular);
+            let c = &composites[j];
+            let e = &link.axis;
+            let (linear, angular) = match link.kind {
+                JointKind::Revolute => (cross(pool, e, &c.moment), mat_vec(pool, &c.inertia, e)),
+                JointKind::Prismatic => (e.map(|x| pool.mul(c.mass, x)), cross(pool, &c.moment, e)),
+            };
+            let (mut linear, mut angular) = (group3(pool, &linear), group3(pool, &angular));
             let column = link.coordinate;
-            m[column][column] = angular[link.axis];
+            m[column][column] = link.project(pool, &linear, &angular);
             let mut l = j;
             while let Some(p) = self.links[l].parent {
-                linear = mat_vec(pool, &rotations[l], &linear);
-                let rotated = mat_vec(pool, &rotations[l], &angular);
+                let r = &self.links[l].rotation;
+                linear = mat_vec(pool, r, &linear);
+                let rotated = mat_vec(pool, r, &angular);
                 let shift = cross(pool, &self.links[l].offset, &linear);
                 linear = group3(pool, &linear);
                 let sum = add3(pool, &rotated, &shift);
                 angular = group3(pool, &sum);
                 let row = self.links[p].coordinate;
-                m[row][column] = angular[self.links[p].axis];
+                m[row][column] = self.links[p].project(pool, &linear, &angular);
                 m[column][row] = m[row][column];
                 l = p;
             }
@@ -238,9 +241,9 @@ impl JointTree {
         m
     }
 
-    /// Mass, first moment and inertia of every subtree about its joint
-    /// point, in its link's axes, leaves first.
-    fn composites(&self, pool: &mut Pool, rotations: &[Mat3]) -> Vec<Composite> {
+    /// Mass, first moment and inertia of every subtree about its link's
+    /// origin, in its link's axes, leaves first.
+    fn composites(&self, pool: &mut Pool) -> Vec<Composite> {
         let zero = pool.zero();
         let mut composites = vec![
             Composite {
@@ -263,46 +266,51 @@ impl JointTree {
             let Some(p) = self.links[l].parent else {
                 continue;
             };
+            let link = &self.links[l];
             let c = grouped(pool, &composites[l]);
             let rotated = Composite {
                 mass: c.mass,
-                moment: mat_vec(pool, &rotations[l], &c.moment),
-                inertia: rotate_tensor(pool, &rotations[l], &c.inertia),
+                moment: mat_vec(pool, &link.rotation, &c.moment),
+                inertia: rotate_tensor(pool, &link.rotation, &c.inertia),
             };
             let moved_moment = [0, 1, 2].map(|i| {
-                let shift = pool.mul(c.mass, self.links[l].offset[i]);
+                let shift = pool.mul(c.mass, link.offset[i]);
                 pool.add(rotated.moment[i], shift)
             });
-            let moved = shifted(pool, &rotated, &self.links[l].offset, &moved_moment);
+            let moved = shifted(pool, &rotated, &link.offset, &moved_moment);
             composites[p] = combined(pool, &composites[p], &moved);
         }
         composites
     }
 
-    /// The Newton–Euler sweeps: motions from the root out, then the moment
-    /// about each joint point of the inertia forces beyond it (gravity as an
-    /// upward acceleration of the base), along the joint axis.
-    fn bias(&self, pool: &mut Pool, rotations: &[Mat3]) -> Vec<ExprId> {
-        let motions = self.motions(pool, rotations);
-        let zero = pool.zero();
-        let mut force = vec![[zero; 3]; self.links.len()];
-        let mut moment = vec![[zero; 3]; self.links.len()];
+    /// The Newton–Euler sweeps: motions from the root out, then the
+    /// resultant and moment about each link's origin of the inertia forces
+    /// minus the applied loads beyond it (gravity as an upward acceleration
+    /// of the base), projected on the joint.
+    fn bias(&self, pool: &mut Pool) -> Vec<ExprId> {
+        let motions = self.motions(pool);
+        let mut force: Vec<Vec3> = Vec::with_capacity(self.links.len());
+        let mut moment: Vec<Vec3> = Vec::with_capacity(self.links.len());
+        for (f, n) in &self.loads {
+            force.push(f.map(|x| pool.neg(x)));
+            moment.push(n.map(|x| pool.neg(x)));
+        }
         for mass in &self.masses {
             let (f, n) = inertia_wrench(pool, mass, &motions[mass.link]);
             force[mass.link] = add3(pool, &force[mass.link], &f);
             moment[mass.link] = add3(pool, &moment[mass.link], &n);
         }
-        let mut bias = vec![zero; self.links.len()];
+        let mut bias = vec![pool.zero(); self.links.len()];
         for l in (0..self.links.len()).rev() {
             let link = &self.links[l];
-            bias[link.coordinate] = moment[l][link.axis];
+            let f = group3(pool, &force[l]);
+            let n = group3(pool, &moment[l]);
+            bias[link.coordinate] = link.project(pool, &f, &n);
             let Some(p) = link.parent else {
                 continue;
             };
-            let f = group3(pool, &force[l]);
-            let f = mat_vec(pool, &rotations[l], &f);
-            let n = group3(pool, &moment[l]);
-            let n = mat_vec(pool, &rotations[l], &n);
+            let f = mat_vec(pool, &link.rotation, &f);
+            let n = mat_vec(pool, &link.rotation, &n);
             let lever = cross(pool, &link.offset, &f);
             force[p] = add3(pool, &force[p], &f);
             let n = add3(pool, &n, &lever);
@@ -311,9 +319,9 @@ impl JointTree {
         bias
     }
 
-    /// `ω`, `α` and the joint point's acceleration of every link at
-    /// `q̈ = 0`, each in its link's axes; the base accelerates at `−g`.
-    fn motions(&self, pool: &mut Pool, rotations: &[Mat3]) -> Vec<Motion> {
+    /// `ω`, `α` and the origin's acceleration of every link at `q̈ = 0`,
+    /// each in its link's axes; the base accelerates at `−g`.
+    fn motions(&self, pool: &mut Pool) -> Vec<Motion> {
         let zero = pool.zero();
         let base = Motion {
             omega: [zero; 3],
@@ -321,26 +329,35 @@ impl JointTree {
             accel: self.gravity.map(|g| pool.neg(g)),
         };
         let mut motions: Vec<Motion> = Vec::with_capacity(self.links.len());
-        for (l, link) in self.links.iter().enumerate() {
+        for link in &self.links {
             let parent = link.parent.map_or(&base, |p| &motions[p]);
-            let r = &rotations[l];
+            let r = &link.rotation;
             let d = &link.offset;
-            // a_J = a_p + α_p × d + ω_p × (ω_p × d), then into the link's axes.
+            let qd = pool.sym(Sym::Speed(link.coordinate as u32));
+            let rate = link.axis.map(|e| pool.mul(qd, e));
+            // a_J = a_p + α_p × d + ω_p × (ω_p × d) (+ 2 ω_p × ḋ for a slide),
+            // then into the link's axes.
             let tangential = cross(pool, &parent.alpha, d);
             let omega_d = cross(pool, &parent.omega, d);
             let centripetal = cross(pool, &parent.omega, &omega_d);
             let accel = add3(pool, &parent.accel, &tangential);
-            let accel = add3(pool, &accel, &centripetal);
-            let accel = transpose_mul(pool, r, &accel);
-            // ω = Rᵀ ω_p + q̇ e;  α = Rᵀ α_p + (Rᵀ ω_p) × q̇ e.
-            let qd = pool.sym(Sym::Speed(link.coordinate as u32));
-            let mut spin = [zero; 3];
-            spin[link.axis] = qd;
+            let mut accel = add3(pool, &accel, &centripetal);
             let carried = transpose_mul(pool, r, &parent.omega);
-            let omega = add3(pool, &carried, &spin);
             let alpha = transpose_mul(pool, r, &parent.alpha);
-            let coriolis = cross(pool, &carried, &spin);
-            let alpha = add3(pool, &alpha, &coriolis);
+            let (omega, alpha) = match link.kind {
+                JointKind::Revolute => {
+                    // ω = Rᵀ ω_p + q̇ e;  α = Rᵀ α_p + (Rᵀ ω_p) × q̇ e.
+                    let coriolis = cross(pool, &carried, &rate);
+                    (add3(pool, &carried, &rate), add3(pool, &alpha, &coriolis))
+                }
+                JointKind::Prismatic => {
+                    let coriolis = cross(pool, &parent.omega, &rate);
+                    let twice = coriolis.map(|x| pool.add(x, x));
+                    accel = add3(pool, &accel, &twice);
+                    (carried, alpha)
+                }
+            };
+            let accel = transpose_mul(pool, r, &accel);
             motions.push(Motion {
                 omega: group3(pool, &omega),
                 alpha: group3(pool, &alpha),
@@ -348,6 +365,18 @@ impl JointTree {
             });
         }
         motions
+    }
+}
+
+impl Link {
+    /// The joint's share of a wrench (resultant, moment about the link's
+    /// origin): the moment along the axis (revolute) or the resultant
+    /// along it (prismatic).
+    fn project(&self, pool: &mut Pool, resultant: &Vec3, moment: &Vec3) -> ExprId {
+        match self.kind {
+            JointKind::Revolute => dot(pool, &self.axis, moment),
+            JointKind::Prismatic => dot(pool, &self.axis, resultant),
+        }
     }
 }
 
@@ -382,13 +411,6 @@ fn grouped(pool: &mut Pool, c: &Composite) -> Composite {
         moment: group3(pool, &c.moment),
         inertia: c.inertia.map(|row| group3(pool, &row)),
     }
-}
-
-/// The unit vector along axis `axis`.
-fn unit(pool: &Pool, axis: usize) -> Vec3 {
-    let mut e = [pool.zero(); 3];
-    e[axis] = pool.one();
-    e
 }
 
 /// `a + b`, entry by entry.

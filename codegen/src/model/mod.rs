@@ -8,10 +8,12 @@
 
 mod errors;
 mod resolve;
+mod tree;
 mod vector;
 
 pub use errors::Errors;
 pub use resolve::resolve;
+pub use tree::{JointKind, Tree};
 pub use vector::{FrameId, NEWTONIAN, Vector};
 
 use crate::expr::{ExprId, Pool};
@@ -40,8 +42,6 @@ pub struct Model {
     pub inputs: Vec<Ident>,
     /// Frames; `frames[0]` is `N`.
     pub frames: Vec<Frame>,
-    /// The revolute joints, in declaration order.
-    pub joints: Vec<Joint>,
     /// Points; `points[0]` is `O`.
     pub points: Vec<Point>,
     /// Rigid bodies, in declaration order.
@@ -65,6 +65,9 @@ pub struct Model {
     /// (`M(q)`, `T(q, q̇)`, `V(q)`): a rotating platform whose `t` cancels
     /// from them is fine.
     pub moving_masses: Vec<syn::Error>,
+    /// The kinematic tree, if the model is one (see [`Tree`]): decided
+    /// once, here, for every spelling.
+    pub tree: Option<Tree>,
     /// The expressions of everything above.
     pub pool: Pool,
 }
@@ -87,14 +90,6 @@ pub struct FramePlacement {
     pub angle: ExprId,
 }
 
-impl FramePlacement {
-    /// `Some(i)` if the axis is exactly the parent's `i`-th unit vector
-    /// (`x`, `y`, `z` for 0, 1, 2).
-    pub fn principal_axis(&self, pool: &Pool) -> Option<usize> {
-        principal_axis(pool, &self.axis)
-    }
-}
-
 /// `Some(i)` if `axis` is exactly the `i`-th unit vector.
 pub fn principal_axis(pool: &Pool, axis: &[ExprId; 3]) -> Option<usize> {
     let i = axis.iter().position(|&c| c == pool.one())?;
@@ -109,15 +104,6 @@ pub fn unit_axis(pool: &Pool, i: usize) -> [ExprId; 3] {
     let mut axis = [pool.zero(); 3];
     axis[i] = pool.one();
     axis
-}
-
-/// A revolute joint: its child frame turns about the child's placement
-/// axis through `point`, which the joint statement located.
-pub struct Joint {
-    /// The child frame (its placement holds the parent, axis and angle).
-    pub frame: FrameId,
-    /// The joint's point, on the axis.
-    pub point: PointId,
 }
 
 /// A point: `O`, or a point located from another by a vector.

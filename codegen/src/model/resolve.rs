@@ -4,8 +4,8 @@
 //! the offending token is at hand.
 
 use super::{
-    Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Joint, Model, NEWTONIAN,
-    ORIGIN, Particle, Point, PointId, Torque, Vector, unit_axis,
+    Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Model, NEWTONIAN, ORIGIN,
+    Particle, Point, PointId, Torque, Tree, Vector, unit_axis,
 };
 use crate::expr::{ExprId, Func, Number, Pool, Sym, SymKinds};
 use crate::language::ast::{BinOp, Expr, Field, SpanRange, Statement, System};
@@ -178,7 +178,6 @@ impl Resolver {
                 coordinates: Vec::new(),
                 inputs: Vec::new(),
                 frames: vec![Frame { placement: None }],
-                joints: Vec::new(),
                 points: vec![Point { placement: None }],
                 bodies: Vec::new(),
                 particles: Vec::new(),
@@ -189,6 +188,7 @@ impl Resolver {
                 dissipation: zero,
                 constraints: Vec::new(),
                 moving_masses: Vec::new(),
+                tree: None,
                 pool: Pool::default(),
             },
         }
@@ -201,6 +201,7 @@ impl Resolver {
                 "a system needs at least one generalized coordinate: add `coordinates q1, ...;`",
             );
         }
+        self.model.tree = Tree::of(&self.model, &mut self.pool);
         self.model.pool = self.pool;
         self.errors.finish(self.model)
     }
@@ -429,12 +430,8 @@ impl Resolver {
             return;
         };
         if revolute {
-            let frame = FrameId(self.model.frames.len());
-            let point = PointId(self.model.points.len());
-            if self.define_frame(child, parent, axis, coordinate)
-                && self.define_point(name, Some((base, offset)))
-            {
-                self.model.joints.push(Joint { frame, point });
+            if self.define_frame(child, parent, axis, coordinate) {
+                self.define_point(name, Some((base, offset)));
             }
         } else {
             let zero = self.pool.zero();
