@@ -22,8 +22,8 @@ fn numbers(v: &Value) -> Vec<f64> {
     }
 }
 
-/// `max |got − want| ≤ TOLERANCE · max |want|`.
-fn assert_close(what: &str, got: &[f64], want: &[f64]) {
+/// Checks `max |got − want| ≤ TOLERANCE · max |want|`; returns the ratio.
+fn assert_close(what: &str, got: &[f64], want: &[f64]) -> f64 {
     assert_eq!(got.len(), want.len(), "{what}: length");
     let scale = want.iter().fold(f64::MIN_POSITIVE, |m, w| m.max(w.abs()));
     let error = got
@@ -35,6 +35,7 @@ fn assert_close(what: &str, got: &[f64], want: &[f64]) {
         "{what}: off by {:e} relative",
         error / scale
     );
+    error / scale
 }
 
 /// Checks a generated robot against the reference model `robot`.
@@ -55,21 +56,31 @@ macro_rules! check {
             .map(|c| c.as_str().unwrap())
             .collect();
         assert_eq!(names, $system::COORDINATES, "{}", $robot);
+        let mut worst = [0.0_f64; 5];
         for (index, state) in model["states"].as_array().unwrap().iter().enumerate() {
             let what = |field: &str| format!("{} state {index} {field}", $robot);
             let array = |field: &str| numbers(&state[field]).try_into().expect("n entries");
             let (q, qd, tau) = (array("q"), array("qd"), array("tau"));
             let mass = system.mass_matrix(&q);
-            assert_close(&what("M"), mass.as_flattened(), &numbers(&state["M"]));
             let f = system.forcing(0.0, &q, &qd, &tau);
-            assert_close(&what("f"), &f, &numbers(&state["f"]));
             let t = system.kinetic_energy(&q, &qd);
-            assert_close(&what("T"), &[t], &numbers(&state["T"]));
             let v = system.potential_energy(&q);
-            assert_close(&what("V"), &[v], &numbers(&state["V"]));
             let qdd = system.accelerations(0.0, &q, &qd, &tau).expect("solvable");
-            assert_close(&what("qdd"), &qdd, &numbers(&state["qdd"]));
+            let errors = [
+                assert_close(&what("M"), mass.as_flattened(), &numbers(&state["M"])),
+                assert_close(&what("f"), &f, &numbers(&state["f"])),
+                assert_close(&what("T"), &[t], &numbers(&state["T"])),
+                assert_close(&what("V"), &[v], &numbers(&state["V"])),
+                assert_close(&what("qdd"), &qdd, &numbers(&state["qdd"])),
+            ];
+            for (w, e) in worst.iter_mut().zip(errors) {
+                *w = w.max(e);
+            }
         }
+        eprintln!(
+            "{}: worst relative errors M {:.1e}, f {:.1e}, T {:.1e}, V {:.1e}, qdd {:.1e}",
+            $robot, worst[0], worst[1], worst[2], worst[3], worst[4]
+        );
     }};
 }
 
