@@ -7,7 +7,8 @@
 //! emission. Two front doors share it: [`expand`] for the `dalembert!`
 //! macro and [`generate`] for build scripts, wrapped by [`Builder`] and
 //! [`generate_file`], which read `.dal` files and report errors with file,
-//! line and column. Beside the generator, an interpreter evaluates the
+//! line and column. [`Urdf`] imports a robot description (URDF) as a
+//! model in the same language. Beside the generator, an interpreter evaluates the
 //! derived equations numerically (by d'Alembert's route or, independently,
 //! Lagrange's) for differential tests of the emitted code; it lives in
 //! [`testing`] with the benchmark chain generator.
