@@ -182,6 +182,16 @@ fn numbers_are_checked() {
 }
 
 #[test]
+fn quaternion_origins_are_not_supported() {
+    let text = robot("revolute", "\n    <origin quat_xyzw=\"0 0 0 1\"/>", "");
+    assert_error(
+        &text,
+        7,
+        &["joint `j`", "`quat_xyzw` orientations are not supported"],
+    );
+}
+
+#[test]
 fn floating_bases_are_not_supported_yet() {
     let error = Urdf::new("robot.urdf", robot("revolute", "", ""))
         .floating(true)

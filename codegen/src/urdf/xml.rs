@@ -275,6 +275,13 @@ impl Reader {
         let Some(origin) = self.child(node, "origin") else {
             return Some(Pose::default());
         };
+        if let Some(quaternion) = origin.attribute_node("quat_xyzw") {
+            self.problems.push(Problem::new(
+                Some(quaternion.range()),
+                format!("{owner}: `quat_xyzw` orientations are not supported; give `rpy`"),
+            ));
+            return None;
+        }
         let xyz = self.numbers(origin, "xyz", owner, Some([0.0; 3]));
         let rpy = self.numbers(origin, "rpy", owner, Some([0.0; 3]));
         Some(Pose {
