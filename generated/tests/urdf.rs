@@ -3,6 +3,7 @@
 //! `tests/reference/urdf/pinocchio.json` (`scripts/urdf_reference.py`, with
 //! Pinocchio's own URDF parser): `M`, `f = τ − nle`, `T`, `V` and the
 //! accelerations of the generated `accelerations` method (ABA's `q̈`).
+//! And the imported model text, for review, as insta snapshots.
 
 use dalembert_generated::{FeatureTree, Panda, Solo, Ur5};
 use serde_json::Value;
@@ -102,4 +103,17 @@ fn solo12_matches_pinocchio() {
 #[test]
 fn feature_robot_matches_pinocchio() {
     check!(FeatureTree, "features");
+}
+
+/// The model text `Builder::urdf` derives the code from, for review.
+#[test]
+fn imported_models() {
+    for robot in ["panda", "features"] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join(format!("../tests/reference/urdf/{robot}.urdf"));
+        let model = dalembert_codegen::Urdf::read(path)
+            .and_then(|urdf| urdf.model())
+            .expect("imports");
+        insta::assert_snapshot!(format!("urdf_model_{robot}"), model);
+    }
 }
