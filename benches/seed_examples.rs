@@ -27,7 +27,7 @@ macro_rules! bench_system {
         let states = states::<$nq, $nu>($seed);
         // Every state must be solvable, or `accelerations` would time an early return.
         for s in &states {
-            dalembert::accelerations(&sys, s.t, &s.q, &s.qd, &s.u).expect("solvable state");
+            dalembert::accelerations(&sys, s.t, &s.q, &s.v, &s.u).expect("solvable state");
         }
         let mut group = $c.benchmark_group($group);
         group.bench_function("mass_matrix", |b| {
@@ -36,7 +36,7 @@ macro_rules! bench_system {
         group.bench_function("forcing", |b| {
             b.iter_custom(|iters| {
                 per_call(&states, iters, |s| {
-                    black_box(&sys).forcing(s.t, &s.q, &s.qd, &s.u)
+                    black_box(&sys).forcing(s.t, &s.q, &s.v, &s.u)
                 })
             })
         });
@@ -44,14 +44,14 @@ macro_rules! bench_system {
             b.iter_custom(|iters| {
                 per_call(&states, iters, |s| {
                     let sys = black_box(&sys);
-                    (sys.mass_matrix(&s.q), sys.forcing(s.t, &s.q, &s.qd, &s.u))
+                    (sys.mass_matrix(&s.q), sys.forcing(s.t, &s.q, &s.v, &s.u))
                 })
             })
         });
         group.bench_function("accelerations", |b| {
             b.iter_custom(|iters| {
                 per_call(&states, iters, |s| {
-                    dalembert::accelerations(black_box(&sys), s.t, &s.q, &s.qd, &s.u)
+                    dalembert::accelerations(black_box(&sys), s.t, &s.q, &s.v, &s.u)
                 })
             })
         });

@@ -21,14 +21,15 @@ mod slider_crank;
 
 use std::f64::consts::FRAC_PI_2;
 
+use dalembert::constrained::constraint_drift;
+use dalembert::integrate::{self, AdaptiveOptions, ExplicitPair, Failure, GaussLegendre};
 use dalembert::{
-    AdaptiveOptions, Constrained, DynamicsError, ExplicitPair, GaussLegendre, Solution,
-    SolverError, SolverFailure, Stabilisation, State, Unconstrained, constraint_drift, energy,
-    simulate_adaptive, simulate_gauss, simulate_rk4, simulate_sdirk, state_error,
+    Constrained, DynamicsError, IntegrationError, Solution, Stabilisation, State, Unconstrained,
+    energy,
 };
+use dalembert_lab::state_error;
 use models::{
     CHAOTIC, CHAOTIC_START, ON_AXIS, STIFF, STIFF_START, StiffDoublePendulum, TOWARDS_AXIS,
-    no_inputs,
 };
 
 /// Horizon of the long-time energy test: 10⁴ s optimised, 10³ s in debug.
@@ -37,12 +38,12 @@ const HORIZON: f64 = if cfg!(debug_assertions) { 1e3 } else { 1e4 };
 /// The largest relative energy error of the chaotic pendulum over the first
 /// tenth of the horizon and over all of it, as observed by `integrate`.
 fn energy_errors(
-    integrate: impl FnOnce(&mut dyn FnMut(&State<2>)) -> Result<Solution<2>, SolverError<2>>,
+    integrate: impl FnOnce(&mut dyn FnMut(&State<2, 2>)) -> Result<Solution<2, 2>, IntegrationError<2>>,
 ) -> (f64, f64) {
-    let initial = energy(&CHAOTIC, &CHAOTIC_START.q, &CHAOTIC_START.qd);
+    let initial = energy(&CHAOTIC, &CHAOTIC_START.q, &CHAOTIC_START.v);
     let (mut first_tenth, mut all) = (0.0f64, 0.0f64);
-    let mut observe = |s: &State<2>| {
-        let error = ((energy(&CHAOTIC, &s.q, &s.qd) - initial) / initial).abs();
+    let mut observe = |s: &State<2, 2>| {
+        let error = ((energy(&CHAOTIC, &s.q, &s.v) - initial) / initial).abs();
         all = all.max(error);
         if s.t <= HORIZON / 10.0 {
             first_tenth = first_tenth.max(error);
@@ -55,17 +56,14 @@ fn energy_errors(
 
 #[test]
 fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift() {
-    let equations = Unconstrained {
-        system: &CHAOTIC,
-        inputs: no_inputs,
-    };
+    let equations = Unconstrained::without_inputs(&CHAOTIC);
     let steps = |h: f64| (HORIZON / h).round() as u64;
     let rk4 = energy_errors(|observe| {
-        simulate_rk4(&equations, CHAOTIC_START, 5e-3, steps(5e-3), observe)
+        integrate::rk4(&equations, CHAOTIC_START, CHAOTIC_START.t + (steps(5e-3)) as f64 * 5e-3, steps(5e-3), observe)
     });
     let dop853 = energy_errors(|observe| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        simulate_adaptive(
+        integrate::adaptive(
             &equations,
             CHAOTIC_START,
             HORIZON,
@@ -76,14 +74,7 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
     });
     let gauss = energy_errors(|observe| {
         let method = GaussLegendre::Order4;
-        simulate_gauss(
-            &equations,
-            CHAOTIC_START,
-            1e-2,
-            steps(1e-2),
-            method,
-            observe,
-        )
+        integrate::gauss_legendre(&equations, CHAOTIC_START, CHAOTIC_START.t + (steps(1e-2)) as f64 * 1e-2, steps(1e-2), method, observe)
     });
     // Measured (10³ s | 10⁴ s): RK4 3.8e-4 → 3.8e-3 | 3.8e-3 → 3.9e-2;
     // DOP853 3.3e-6 → 3.3e-5 | 3.3e-5 → 3.2e-4: linear drifts, tenfold over
@@ -110,7 +101,7 @@ fn projection_holds_the_drift_of_the_adaptive_pair_on_the_slider_crank() {
     let drift_after_two_seconds = |stabilisation| {
         let equations = Constrained::new(&crank, |_, _, _| [0.0], stabilisation);
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        let end = simulate_adaptive(
+        let end = integrate::adaptive(
             &equations,
             start,
             2.0,
@@ -135,17 +126,11 @@ const SOFT: StiffDoublePendulum = StiffDoublePendulum { k: 0.0, ..STIFF };
 
 #[test]
 fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdirk() {
-    let stiff = Unconstrained {
-        system: &STIFF,
-        inputs: no_inputs,
-    };
-    let soft = Unconstrained {
-        system: &SOFT,
-        inputs: no_inputs,
-    };
+    let stiff = Unconstrained::without_inputs(&STIFF);
+    let soft = Unconstrained::without_inputs(&SOFT);
     let options = AdaptiveOptions::with_tolerance(1e-6);
     let dop853 = |equations: &_| {
-        simulate_adaptive(
+        integrate::adaptive(
             equations,
             STIFF_START,
             1.0,
@@ -168,14 +153,14 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
     );
 
     // RK4 is stable below h ≈ 2.8/ω and blows up above it.
-    let rk4 = |h: f64| simulate_rk4(&stiff, STIFF_START, h, (1.0 / h).round() as u64, |_| {});
+    let rk4 = |h: f64| integrate::rk4(&stiff, STIFF_START, STIFF_START.t + ((1.0 / h).round() as u64) as f64 * h, (1.0 / h).round() as u64, |_| {});
     let stable = rk4(5e-4).unwrap();
     assert!(state_error(&stable.end, &explicit.end) < 1e-4, "{stable:?}");
     let unstable = rk4(2e-3).unwrap_err();
     assert!(unstable.t < 0.1, "{unstable}");
 
     // SDIRK at a twentieth of the steps stays on the slow motion.
-    let implicit = simulate_sdirk(&stiff, STIFF_START, 1e-2, 100, |_| {}).unwrap();
+    let implicit = integrate::sdirk(&stiff, STIFF_START, STIFF_START.t + 100.0 * 1e-2, 100, |_| {}).unwrap();
     assert!(
         state_error(&implicit.end, &explicit.end) < 1e-3,
         "{implicit:?}"
@@ -185,26 +170,23 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
 
 #[test]
 fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_configuration() {
-    let equations = Unconstrained {
-        system: &ON_AXIS,
-        inputs: |_: f64, _: &[f64; 2], _: &[f64; 2]| [0.0; 2],
-    };
-    let finite = |s: &State<2>| assert!(s.q.iter().chain(&s.qd).all(|x| x.is_finite()), "{s:?}");
+    let equations = Unconstrained::without_inputs(&ON_AXIS);
+    let finite = |s: &State<2, 2>| assert!(s.q.iter().chain(&s.v).all(|x| x.is_finite()), "{s:?}");
     // Each schedule puts an evaluation at t = 0.5: a step end for RK4 and
     // SDIRK (whose Jacobian is taken at each step's start), the final time of
     // the adaptive pairs, the first stage of the fifth step for Gauss.
     let gauss = |method, first_node: f64| {
         let h = 0.5 / (4.0 + first_node);
-        simulate_gauss(&equations, TOWARDS_AXIS, h, 10, method, finite)
+        integrate::gauss_legendre(&equations, TOWARDS_AXIS, TOWARDS_AXIS.t + 10.0 * h, 10, method, finite)
     };
     let adaptive = |pair| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        simulate_adaptive(&equations, TOWARDS_AXIS, 0.5, pair, options, finite)
+        integrate::adaptive(&equations, TOWARDS_AXIS, 0.5, pair, options, finite)
     };
     let failures = [
         (
             "RK4",
-            simulate_rk4(&equations, TOWARDS_AXIS, 0.125, 8, finite),
+            integrate::rk4(&equations, TOWARDS_AXIS, TOWARDS_AXIS.t + 8.0 * 0.125, 8, finite),
         ),
         ("DOPRI5", adaptive(ExplicitPair::DormandPrince54)),
         ("DOP853", adaptive(ExplicitPair::Dop853)),
@@ -219,7 +201,7 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
         ),
         (
             "SDIRK",
-            simulate_sdirk(&equations, TOWARDS_AXIS, 0.125, 8, finite),
+            integrate::sdirk(&equations, TOWARDS_AXIS, TOWARDS_AXIS.t + 8.0 * 0.125, 8, finite),
         ),
     ];
     for (name, result) in failures {
@@ -229,7 +211,7 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
         assert!(
             matches!(
                 error.cause,
-                SolverFailure::Dynamics(DynamicsError::SingularMassMatrix {
+                Failure::Dynamics(DynamicsError::SingularMassMatrix {
                     coordinate: "phi",
                     ..
                 })
@@ -248,14 +230,11 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
 
 #[test]
 fn chaotic_trajectories_one_e_minus_ten_apart_part_after_about_nine_seconds() {
-    let equations = Unconstrained {
-        system: &CHAOTIC,
-        inputs: no_inputs,
-    };
+    let equations = Unconstrained::without_inputs(&CHAOTIC);
     let (h, steps) = (2e-3, 6_000);
     let mut first = Vec::with_capacity(steps + 1);
     let method = GaussLegendre::Order6;
-    simulate_gauss(&equations, CHAOTIC_START, h, steps as u64, method, |s| {
+    integrate::gauss_legendre(&equations, CHAOTIC_START, CHAOTIC_START.t + (steps as u64) as f64 * h, steps as u64, method, |s| {
         first.push(*s)
     })
     .unwrap();
@@ -263,7 +242,7 @@ fn chaotic_trajectories_one_e_minus_ten_apart_part_after_about_nine_seconds() {
     nudged.q[0] += 1e-10;
     let mut parted = None;
     let mut index = 0;
-    simulate_gauss(&equations, nudged, h, steps as u64, method, |s| {
+    integrate::gauss_legendre(&equations, nudged, nudged.t + (steps as u64) as f64 * h, steps as u64, method, |s| {
         if parted.is_none() && state_error(s, &first[index]) > 1e-3 {
             parted = Some(s.t);
         }

@@ -18,13 +18,13 @@ pub const SEED_3: ConstrainedPendulum = ConstrainedPendulum {
 impl ConstrainedPendulum {
     /// The state at time 0 on the constraint manifold with the bar at angle
     /// `theta` from the downward vertical, turning at `theta_dot`.
-    pub fn assembled(&self, theta: f64, theta_dot: f64) -> State<3> {
+    pub fn assembled(&self, theta: f64, theta_dot: f64) -> State<3, 3> {
         let (s, c) = theta.sin_cos();
         let half = self.l / 2.0;
         State {
             t: 0.0,
             q: [half * s, -half * c, theta],
-            qd: [half * c * theta_dot, half * s * theta_dot, theta_dot],
+            v: [half * c * theta_dot, half * s * theta_dot, theta_dot],
         }
     }
 }
@@ -75,7 +75,7 @@ impl SliderCrank {
     /// The state at time 0 on the constraint manifold with the crank at
     /// `theta`, turning at `theta_dot`, and the rod on the slider's side
     /// (`L ≥ r`, else the mechanism cannot turn fully).
-    pub fn assembled(&self, theta: f64, theta_dot: f64) -> State<3> {
+    pub fn assembled(&self, theta: f64, theta_dot: f64) -> State<3, 3> {
         let (sin_theta, cos_theta) = theta.sin_cos();
         let phi = -(self.r * sin_theta / self.L).asin();
         let (sin_phi, cos_phi) = phi.sin_cos();
@@ -83,7 +83,7 @@ impl SliderCrank {
         State {
             t: 0.0,
             q: [theta, phi, self.r * cos_theta + self.L * cos_phi],
-            qd: [
+            v: [
                 theta_dot,
                 phi_dot,
                 -self.r * sin_theta * theta_dot - self.L * sin_phi * phi_dot,

@@ -13,14 +13,9 @@ use dalembert::State;
 mod seeds;
 pub use seeds::{CHAOTIC, CHAOTIC_END, CHAOTIC_START, RotatingBar};
 
-/// No inputs: the double pendulums have none.
-pub fn no_inputs(_: f64, _: &[f64; 2], _: &[f64; 2]) -> [f64; 0] {
-    []
-}
-
 /// The reference final state at [`CHAOTIC_END`], its 25 digits rounded to
 /// the nearest doubles.
-pub fn chaotic_reference() -> Result<State<2>, Box<dyn Error>> {
+pub fn chaotic_reference() -> Result<State<2, 2>, Box<dyn Error>> {
     let path =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/chaotic_double_pendulum.json");
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path)?)?;
@@ -38,7 +33,7 @@ pub fn chaotic_reference() -> Result<State<2>, Box<dyn Error>> {
     Ok(State {
         t: json["t_final"].as_f64().ok_or("t_final is not a number")?,
         q: [theta1, theta2],
-        qd: [theta1_dot, theta2_dot],
+        v: [theta1_dot, theta2_dot],
     })
 }
 
@@ -70,10 +65,10 @@ pub const STIFF: StiffDoublePendulum = StiffDoublePendulum {
 
 /// The stiff pendulum released at rest with its spring relaxed, both links
 /// at 1 rad.
-pub const STIFF_START: State<2> = State {
+pub const STIFF_START: State<2, 2> = State {
     t: 0.0,
     q: [1.0, 1.0],
-    qd: [0.0, 0.0],
+    v: [0.0, 0.0],
 };
 
 /// Seed example 2 with its bar on the rotation axis (`d = 0`): the mass
@@ -86,8 +81,8 @@ pub const ON_AXIS: RotatingBar = RotatingBar {
 
 /// The bar 0.5 rad below the vertical, tilting towards it at 1 rad/s
 /// without spin: `θ` grows linearly and reaches `π/2` at `t = 0.5`.
-pub const TOWARDS_AXIS: State<2> = State {
+pub const TOWARDS_AXIS: State<2, 2> = State {
     t: 0.0,
     q: [0.0, std::f64::consts::FRAC_PI_2 - 0.5],
-    qd: [0.0, 1.0],
+    v: [0.0, 1.0],
 };

@@ -63,10 +63,10 @@ pub const CHAOTIC: DoublePendulum = DoublePendulum {
 
 /// Both links at 2 rad from the downward vertical, at rest: the start of the
 /// chaotic reference trajectory.
-pub const CHAOTIC_START: State<2> = State {
+pub const CHAOTIC_START: State<2, 2> = State {
     t: 0.0,
     q: [2.0, 2.0],
-    qd: [0.0, 0.0],
+    v: [0.0, 0.0],
 };
 
 /// The end of the chaotic reference trajectory, in seconds.
