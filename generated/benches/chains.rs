@@ -26,7 +26,7 @@ type Accelerations<S, const N: usize> =
     fn(&S, f64, &[f64; N], &[f64; N], &[f64; 0]) -> Result<[f64; N], DynamicsError>;
 
 /// The three per-call benchmarks of one chain, in group `FAMILY/n`.
-fn bench_chain<S: MultibodySystem<N, 0>, const N: usize>(
+fn bench_chain<S: MultibodySystem<N, N, 0>, const N: usize>(
     c: &mut Criterion,
     family: &str,
     system: S,

@@ -46,7 +46,7 @@ type Accelerations<const N: usize> =
 
 /// Checks `system` (whose generated `accelerations` is `unrolled`) against
 /// every state of the reference model `model`.
-fn check<S: MultibodySystem<N, 0>, const N: usize>(
+fn check<S: MultibodySystem<N, N, 0>, const N: usize>(
     system: &S,
     unrolled: &Accelerations<N>,
     model: &Value,
