@@ -88,7 +88,13 @@ impl<'m, const NV: usize, const NC: usize> ConstraintMetric<'m, NV, NC> {
 /// linearly dependent at `q`
 /// ([`DependentConstraints`](DynamicsError::DependentConstraints): redundant or
 /// contradictory constraints, or a singular configuration).
-pub fn constrained_accelerations<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+pub fn constrained_accelerations<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
@@ -124,7 +130,13 @@ where
 /// with `h = 1e-2 s` and `α = β = 300/s` the integration diverges. `α = β =
 /// 0` is [`constrained_accelerations`]. The returned `λ` include the
 /// stabilising force.
-pub fn baumgarte_accelerations<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+pub fn baumgarte_accelerations<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
     t: f64,
     q: &[f64; NQ],

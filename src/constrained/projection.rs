@@ -29,7 +29,13 @@ use crate::{ConstrainedSystem, DynamicsError, State};
 /// [`ProjectionNotConverged`](DynamicsError::ProjectionNotConverged) if
 /// `max_iterations` corrections leave `max |φᵢ| > tolerance` (a state too
 /// far off the manifold, or a `tolerance` below rounding).
-pub fn project_onto_constraints<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+pub fn project_onto_constraints<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
     state: &State<NQ, NV>,
     tolerance: f64,

@@ -52,8 +52,8 @@ where
 mod tests {
     use super::*;
     use crate::constrained::test_systems::PointOnCircle;
-    use crate::test_systems::Pendulum;
     use crate::integrate::{Failure, rk4, rk4_step};
+    use crate::test_systems::Pendulum;
     use crate::{Constrained, DynamicsError, Unconstrained};
 
     const CIRCLE: PointOnCircle<1> = PointOnCircle {

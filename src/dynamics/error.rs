@@ -93,4 +93,3 @@ impl fmt::Display for DynamicsError {
 }
 
 impl std::error::Error for DynamicsError {}
-
