@@ -1,4 +1,4 @@
-//! Where integrators fail, measured (DESIGN issue 6): the energy drift of
+//! Where integrators fail, measured: the energy drift of
 //! RK4 and DOP853 on the chaotic double pendulum against the bounded energy
 //! error of the symmetric Gauss method; the constraint drift of the adaptive
 //! pair with and without projection; a stiff joint that forces explicit
