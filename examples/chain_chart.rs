@@ -1,4 +1,4 @@
-//! Charts of the chain benchmarks (issue 5): nanoseconds per call against
+//! Charts of the chain benchmarks: nanoseconds per call against
 //! the number of links, log scale, for every tool, one SVG per family.
 //!
 //! Reads `docs/charts/chains.csv` (written by `benches/chains_table.py`
@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::error::Error;
 use std::path::Path;
 
-use dalembert::{Series, line_chart_log_y};
+use dalembert_lab::{Series, line_chart_log_y};
 
 /// Points `(n, ns per call)` per tool, in the CSV's order of tools.
 type Tools = Vec<(String, Vec<(f64, f64)>)>;

@@ -8,12 +8,11 @@
 //!
 //! Charts are written to `DIR` (default `target/charts`).
 
-use dalembert::{Series, State, line_chart, line_chart_log_y, simulate};
+use dalembert::{State, Unconstrained, integrate};
+use dalembert_lab::{Series, line_chart, line_chart_log_y};
 use std::path::PathBuf;
 
-#[path = "../tests/seeds/mod.rs"]
-mod seeds;
-use seeds::{
+use dalembert_fixtures::seeds::{
     CHAOTIC, CHAOTIC_END, CHAOTIC_START, ConstrainedPendulum, DoublePendulum, RotatingBar,
 };
 
@@ -83,27 +82,21 @@ fn simulate_double_pendulum(
 ) -> Result<Vec<PathBuf>, Box<dyn std::error::Error>> {
     let (pendulum, initial) = (CHAOTIC, CHAOTIC_START);
     let energy =
-        |s: &State<2>| pendulum.kinetic_energy(&s.q, &s.qd) + pendulum.potential_energy(&s.q);
+        |s: &State<2, 2>| pendulum.kinetic_energy(&s.q, &s.v) + pendulum.potential_energy(&s.q);
     let e0 = energy(&initial);
     let mut angles = [Vec::new(), Vec::new()];
     let mut drift = Vec::new();
     for (h, keep_angles) in [(1e-3, true), (1e-2, false)] {
         let mut errors = Vec::new();
-        let steps = (CHAOTIC_END / h) as usize;
-        simulate(
-            &pendulum,
-            initial,
-            |_, _, _| [],
-            h,
-            steps,
-            |s| {
-                if keep_angles {
-                    angles[0].push((s.t, s.q[0]));
-                    angles[1].push((s.t, s.q[1]));
-                }
-                errors.push((s.t, (energy(s) - e0).abs()));
-            },
-        )?;
+        let steps = (CHAOTIC_END / h).round() as u64;
+        let dynamics = Unconstrained::without_inputs(&pendulum);
+        integrate::rk4(&dynamics, initial, CHAOTIC_END, steps, |s| {
+            if keep_angles {
+                angles[0].push((s.t, s.q[0]));
+                angles[1].push((s.t, s.q[1]));
+            }
+            errors.push((s.t, (energy(s) - e0).abs()));
+        })?;
         let worst = errors.iter().map(|p| p.1).fold(0.0, f64::max);
         println!("double pendulum, RK4 h = {h}: max |E − E₀| = {worst:.3e} J over 10 s");
         drift.push((format!("RK4, h = {h} s"), errors));

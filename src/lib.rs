@@ -3,12 +3,14 @@
 //!
 //! The `dalembert!` macro turns a declarative description of a mechanical
 //! system into a struct whose functions evaluate the mass matrix `M(q)`, the
-//! forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`, the energies and the constraints
+//! forcing `f(t, q, v, u)` of `M(q) v̇ = f`, the energies and the constraints
 //! as flat, allocation-free code. The struct implements [`MultibodySystem`]
 //! (and [`ConstrainedSystem`] when it has constraints), so this crate's
-//! solvers, integrators and charts work on it:
+//! solvers and integrators work on it:
 //!
 //! ```
+//! use dalembert::{State, Unconstrained, integrate};
+//!
 //! dalembert::dalembert! {
 //!     /// A simple pendulum, angle from the downward vertical.
 //!     pub Pendulum {
@@ -23,52 +25,43 @@
 //!
 //! let pendulum = Pendulum { m: 1.0, l: 1.0, g: 9.81 };
 //! assert_eq!(pendulum.mass_matrix(&[0.3]), [[1.0]]); // m l²
-//! let start = dalembert::State { t: 0.0, q: [1.0], qd: [0.0] };
-//! let end = dalembert::simulate(&pendulum, start, |_, _, _| [], 1e-3, 10_000, |_| {})?;
-//! let energy = |s: &dalembert::State<1>| dalembert::energy(&pendulum, &s.q, &s.qd);
+//! let start = State { t: 0.0, q: [1.0], v: [0.0] };
+//! let dynamics = Unconstrained::without_inputs(&pendulum);
+//! let end = integrate::rk4(&dynamics, start, 10.0, 10_000, |_| {})?.end;
+//! assert_eq!(end.t, 10.0);
+//! let energy = |s: &State<1, 1>| dalembert::energy(&pendulum, &s.q, &s.v);
 //! assert!((energy(&end) - energy(&start)).abs() < 1e-9);
 //! # Ok::<(), dalembert::IntegrationError<1>>(())
 //! ```
 //!
+//! * [`MultibodySystem`] and [`ConstrainedSystem`]: the traits every
+//!   generated system implements;
+//! * [`dynamics`]: the accelerations `v̇` of `M v̇ = f` and their errors;
+//! * [`constrained`]: accelerations and multipliers of constrained systems,
+//!   projection onto the constraints, drift stabilisation;
+//! * [`integrate`]: the integrators, and which one to use for which job.
+//!
 //! The language, the generated API and the build-script route are described
-//! in the project's README; `Pendulum::EQUATIONS` and the struct's docs show
-//! the derived equations.
+//! in the project's README and `docs/language.md`; `Pendulum::EQUATIONS` and
+//! the struct's docs show the derived equations.
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
 pub use dalembert_macros::dalembert;
 
-mod adaptive;
-#[cfg(feature = "charts")]
-mod chart;
-mod constrained;
-mod dynamics;
-mod equations;
-mod gauss;
-mod integrate;
-mod sdirk;
-mod solution;
+pub mod constrained;
+pub mod dynamics;
+pub mod integrate;
 mod system;
 #[cfg(test)]
 mod test_systems;
-mod work_precision;
 
-pub use adaptive::{AdaptiveOptions, ExplicitPair, simulate_adaptive};
-#[cfg(feature = "charts")]
-pub use chart::{ChartError, Series, line_chart, line_chart_log_log, line_chart_log_y};
-pub use constrained::{
-    Stabilisation, baumgarte_accelerations, constrained_accelerations, constrained_rk4_step,
-    constraint_drift, project_onto_constraints, simulate_constrained,
-};
+pub use constrained::Stabilisation;
 pub use dynamics::{DynamicsError, accelerations, energy};
-pub use equations::{Constrained, Equations, Unconstrained};
-pub use gauss::{GaussLegendre, simulate_gauss};
-pub use integrate::{IntegrationError, State, rk4_step, simulate, simulate_rk4};
-pub use sdirk::simulate_sdirk;
-pub use solution::{Solution, SolverError, SolverFailure, Statistics};
+pub use integrate::{Constrained, IntegrationError, Solution, State, Unconstrained};
 pub use system::{ConstrainedSystem, MultibodySystem};
-#[cfg(feature = "charts")]
-pub use work_precision::work_precision_chart;
-pub use work_precision::{
-    Accuracy, WorkPoint, measure, seconds_at_error, state_error, to_csv, work_line,
-};
+
+/// The README's Rust examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

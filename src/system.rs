@@ -1,51 +1,88 @@
 //! The traits that every generated system implements, so that solvers and
 //! integrators work on any of them.
+//!
+//! A system has `NQ` generalized coordinates `q`, `NV` speeds `v` and `NU`
+//! inputs `u`. Its equations of motion are `M(q) v̇ = f(t, q, v, u)` with the
+//! kinematic equation `q̇ = N(q) v`. Today every generated system has
+//! `NV = NQ` and `v = q̇`; joints whose configuration lives on a group
+//! (a quaternion's four numbers for three rotational speeds) make them
+//! differ.
 
-/// A system of equations of motion `M(q) q̈ = f(t, q, q̇, u)`.
+use crate::dynamics::{DynamicsError, cholesky_accelerations};
+
+/// A system of equations of motion `M(q) v̇ = f(t, q, v, u)`, `q̇ = N(q) v`.
 ///
-/// `NQ` is the number of generalized coordinates and `NU` the number of
-/// inputs. The `dalembert!` macro implements this trait for every system it
-/// generates by forwarding to the struct's inherent functions of the same
-/// names.
-pub trait MultibodySystem<const NQ: usize, const NU: usize> {
+/// `NQ` is the number of generalized coordinates, `NV` the number of speeds
+/// and `NU` the number of inputs. The `dalembert!` macro implements this
+/// trait for every system it generates by forwarding to the struct's
+/// inherent functions of the same names.
+pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
     /// Names of the generalized coordinates, in index order.
     const COORDINATES: [&'static str; NQ];
+    /// Names of the speeds, in index order (`"dt(theta)"` when the speed is
+    /// the coordinate's rate).
+    const SPEEDS: [&'static str; NV];
     /// Names of the inputs, in index order.
     const INPUTS: [&'static str; NU];
 
     /// The symmetric mass matrix `M(q)`.
-    fn mass_matrix(&self, q: &[f64; NQ]) -> [[f64; NQ]; NQ];
+    fn mass_matrix(&self, q: &[f64; NQ]) -> [[f64; NV]; NV];
 
-    /// The forcing `f(t, q, q̇, u)`: every generalized force other than the
-    /// inertial term `M(q) q̈`, so that `M(q) q̈ = f`.
-    fn forcing(&self, t: f64, q: &[f64; NQ], qd: &[f64; NQ], u: &[f64; NU]) -> [f64; NQ];
+    /// The forcing `f(t, q, v, u)`: every generalized force other than the
+    /// inertial term `M(q) v̇`, so that `M(q) v̇ = f`.
+    fn forcing(&self, t: f64, q: &[f64; NQ], v: &[f64; NV], u: &[f64; NU]) -> [f64; NV];
 
-    /// The kinetic energy `T(q, q̇)`.
-    fn kinetic_energy(&self, q: &[f64; NQ], qd: &[f64; NQ]) -> f64;
+    /// The kinetic energy `T(q, v)`.
+    fn kinetic_energy(&self, q: &[f64; NQ], v: &[f64; NV]) -> f64;
 
     /// The potential energy `V(q)`: gravity relative to the origin `O` plus
     /// every `potential` statement.
     fn potential_energy(&self, q: &[f64; NQ]) -> f64;
+
+    /// The coordinate rates `q̇ = N(q) v`.
+    fn coordinate_rates(&self, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NQ];
+
+    /// `q ⊕ h v`: the configuration reached from `q` moving at the constant
+    /// speeds `v` for the time `h` (an exact group update; `q + h v` when the
+    /// speeds are the coordinates' rates).
+    fn integrate_configuration(&self, q: &[f64; NQ], v: &[f64; NV], h: f64) -> [f64; NQ];
+
+    /// The accelerations `v̇` that solve `M(q) v̇ = f(t, q, v, u)`.
+    ///
+    /// Provided: a Cholesky factorisation of `M` on the stack
+    /// ([`cholesky_accelerations`](crate::dynamics::cholesky_accelerations),
+    /// whose checks and errors [`accelerations`](crate::accelerations)
+    /// documents). Generated systems override it with their emitted solver,
+    /// unrolled for their size.
+    fn accelerations(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        u: &[f64; NU],
+    ) -> Result<[f64; NV], DynamicsError> {
+        cholesky_accelerations(self, t, q, v, u)
+    }
 }
 
-/// A system with `NC` constraints: `M q̈ = f + Aᵀ λ` and `A q̈ = b`.
-pub trait ConstrainedSystem<const NQ: usize, const NU: usize, const NC: usize>:
-    MultibodySystem<NQ, NU>
+/// A system with `NC` constraints: `M v̇ = f + Aᵀ λ` and `A v̇ = b`.
+pub trait ConstrainedSystem<const NQ: usize, const NV: usize, const NU: usize, const NC: usize>:
+    MultibodySystem<NQ, NV, NU>
 {
     /// The constraint Jacobian `A(q)`, one row per constraint in declaration
     /// order.
-    fn constraint_jacobian(&self, q: &[f64; NQ]) -> [[f64; NQ]; NC];
+    fn constraint_jacobian(&self, q: &[f64; NQ]) -> [[f64; NV]; NC];
 
-    /// The constraint bias `b(t, q, q̇)` of the acceleration-level
-    /// constraints `A q̈ = b`.
-    fn constraint_bias(&self, t: f64, q: &[f64; NQ], qd: &[f64; NQ]) -> [f64; NC];
+    /// The constraint bias `b(t, q, v)` of the acceleration-level
+    /// constraints `A v̇ = b`.
+    fn constraint_bias(&self, t: f64, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NC];
 
     /// The residual `lhs − rhs` of each holonomic constraint at `(t, q)`; `0`
     /// for the rows of nonholonomic constraints.
     fn constraint_residual(&self, t: f64, q: &[f64; NQ]) -> [f64; NC];
 
-    /// The velocity form of each constraint at `(t, q, q̇)`: `dφ/dt` of a
+    /// The velocity form of each constraint at `(t, q, v)`: `dφ/dt` of a
     /// holonomic row, the row itself for a nonholonomic one; zero on the
     /// constraint manifold (velocity-level drift).
-    fn constraint_velocity(&self, t: f64, q: &[f64; NQ], qd: &[f64; NQ]) -> [f64; NC];
+    fn constraint_velocity(&self, t: f64, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NC];
 }

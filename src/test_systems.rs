@@ -3,6 +3,12 @@
 
 use crate::MultibodySystem;
 
+/// `q + h v`: the configuration update of systems whose speeds are their
+/// coordinates' rates.
+pub fn euler_update<const N: usize>(q: &[f64; N], v: &[f64; N], h: f64) -> [f64; N] {
+    std::array::from_fn(|i| q[i] + h * v[i])
+}
+
 /// A point mass `m` on a massless rod of length `l`; `q` is the angle from the
 /// downward vertical.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,8 +44,9 @@ impl Pendulum {
     }
 }
 
-impl MultibodySystem<1, 0> for Pendulum {
+impl MultibodySystem<1, 1, 0> for Pendulum {
     const COORDINATES: [&'static str; 1] = Self::COORDINATES;
+    const SPEEDS: [&'static str; 1] = ["dt(theta)"];
     const INPUTS: [&'static str; 0] = Self::INPUTS;
 
     fn mass_matrix(&self, q: &[f64; 1]) -> [[f64; 1]; 1] {
@@ -56,6 +63,14 @@ impl MultibodySystem<1, 0> for Pendulum {
 
     fn potential_energy(&self, q: &[f64; 1]) -> f64 {
         Self::potential_energy(self, q)
+    }
+
+    fn coordinate_rates(&self, _q: &[f64; 1], v: &[f64; 1]) -> [f64; 1] {
+        *v
+    }
+
+    fn integrate_configuration(&self, q: &[f64; 1], v: &[f64; 1], h: f64) -> [f64; 1] {
+        euler_update(q, v, h)
     }
 }
 
@@ -77,8 +92,9 @@ impl RotatingBar {
     }
 }
 
-impl MultibodySystem<2, 2> for RotatingBar {
+impl MultibodySystem<2, 2, 2> for RotatingBar {
     const COORDINATES: [&'static str; 2] = ["phi", "theta"];
+    const SPEEDS: [&'static str; 2] = ["dt(phi)", "dt(theta)"];
     const INPUTS: [&'static str; 2] = ["M_phi", "M_theta"];
 
     fn mass_matrix(&self, q: &[f64; 2]) -> [[f64; 2]; 2] {
@@ -104,6 +120,14 @@ impl MultibodySystem<2, 2> for RotatingBar {
     fn potential_energy(&self, _q: &[f64; 2]) -> f64 {
         0.0
     }
+
+    fn coordinate_rates(&self, _q: &[f64; 2], v: &[f64; 2]) -> [f64; 2] {
+        *v
+    }
+
+    fn integrate_configuration(&self, q: &[f64; 2], v: &[f64; 2], h: f64) -> [f64; 2] {
+        euler_update(q, v, h)
+    }
 }
 
 /// Equations with a given constant mass matrix and forcing, to probe the
@@ -114,8 +138,9 @@ pub struct FixedEquations {
     pub forcing: [f64; 2],
 }
 
-impl MultibodySystem<2, 0> for FixedEquations {
+impl MultibodySystem<2, 2, 0> for FixedEquations {
     const COORDINATES: [&'static str; 2] = ["a", "b"];
+    const SPEEDS: [&'static str; 2] = ["dt(a)", "dt(b)"];
     const INPUTS: [&'static str; 0] = [];
 
     fn mass_matrix(&self, _q: &[f64; 2]) -> [[f64; 2]; 2] {
@@ -133,5 +158,13 @@ impl MultibodySystem<2, 0> for FixedEquations {
 
     fn potential_energy(&self, _q: &[f64; 2]) -> f64 {
         0.0
+    }
+
+    fn coordinate_rates(&self, _q: &[f64; 2], v: &[f64; 2]) -> [f64; 2] {
+        *v
+    }
+
+    fn integrate_configuration(&self, q: &[f64; 2], v: &[f64; 2], h: f64) -> [f64; 2] {
+        euler_update(q, v, h)
     }
 }

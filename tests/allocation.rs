@@ -1,21 +1,17 @@
 //! Generated functions and the runtime's solvers allocate nothing: a
 //! counting global allocator around calls of every generated function and
-//! of `accelerations`, `constrained_accelerations`, `rk4_step`,
-//! `constrained_rk4_step` (with projection) and `energy` finds no
-//! allocation.
+//! of `accelerations`, `constrained_accelerations`, `rk4_step` (unconstrained
+//! and constrained with projection) and `energy` finds no allocation.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
+use dalembert::constrained::constrained_accelerations;
 use dalembert::{
-    Stabilisation, State, accelerations, constrained_accelerations, constrained_rk4_step, energy,
-    rk4_step,
+    Constrained, Stabilisation, State, Unconstrained, accelerations, energy, integrate,
 };
 
-#[path = "seeds/mod.rs"]
-mod seeds;
-
-use seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
+use dalembert_fixtures::seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
 
 /// The system allocator, counting the allocations of the thread that
 /// counts (the test harness's own threads are left alone).
@@ -115,19 +111,24 @@ fn generated_functions_and_solvers_allocate_nothing() {
     let (made, result) = allocations(|| {
         let a = accelerations(&pendulum, 0.0, &q, &qd, &[]).map(|_| ());
         let b = constrained_accelerations(&constrained, 0.0, &cq, &cqd, &[0.5]).map(|_| ());
-        let state = State { t: 0.0, q, qd };
-        let c = rk4_step(&pendulum, &state, |_, _, _| [], 1e-3).map(|_| ());
+        let state = State { t: 0.0, q, v: qd };
+        let c = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3)
+            .map(|_| ());
         let start = State {
             t: 0.0,
             q: cq,
-            qd: cqd,
+            v: cqd,
         };
         let projection = Stabilisation::Projection {
             tolerance: 1e-12,
             max_iterations: 10,
         };
-        let d = constrained_rk4_step(&constrained, &start, |_, _, _| [0.5], 1e-3, projection)
-            .map(|_| ());
+        let d = integrate::rk4_step(
+            &Constrained::new(&constrained, |_, _, _| [0.5], projection),
+            &start,
+            1e-3,
+        )
+        .map(|_| ());
         (a, b, c.is_ok(), d.is_ok())
     });
     assert_eq!(made, 0, "the solvers allocated");

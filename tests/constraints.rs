@@ -4,16 +4,12 @@
 //! one coordinate, a nonholonomic sleigh, a slider-crank, and the errors for
 //! dependent constraints.
 
-mod common;
-#[path = "../examples/slider_crank/models.rs"]
-mod models;
-
-use common::{array, assert_close, reference};
+use dalembert::constrained::{constrained_accelerations, constraint_drift};
 use dalembert::{
-    DynamicsError, Stabilisation, State, constrained_accelerations, constraint_drift, energy,
-    simulate, simulate_constrained,
+    Constrained, DynamicsError, Stabilisation, State, Unconstrained, energy, integrate,
 };
-use models::{CRANK_SPEED, SEED_3, SLIDER_CRANK, SliderCrank};
+use dalembert_fixtures::reference::{array, assert_close, reference};
+use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK, SliderCrank};
 
 dalembert::dalembert! {
     /// Seed example 3's bar pinned at `O`, in its one independent coordinate.
@@ -69,7 +65,7 @@ fn motor_torque(t: f64) -> [f64; 1] {
 /// ten seconds, from `θ = 1`, `θ̇ = 2`, unforced.
 fn seed_3_drift(stabilisation: Stabilisation) -> (f64, f64) {
     let (mut first_second, mut total) = (0.0f64, 0.0f64);
-    let observe = |s: &State<3>| {
+    let observe = |s: &State<3, 3>| {
         let drift = constraint_drift(&SEED_3, s);
         total = total.max(drift);
         if s.t <= 1.0 + H / 2.0 {
@@ -77,15 +73,14 @@ fn seed_3_drift(stabilisation: Stabilisation) -> (f64, f64) {
         }
     };
     let start = SEED_3.assembled(1.0, 2.0);
-    simulate_constrained(
-        &SEED_3,
+    integrate::rk4(
+        &Constrained::without_inputs(&SEED_3, stabilisation),
         start,
-        |_, _, _| [0.0],
-        H,
+        10.0,
         10_000,
-        stabilisation,
         observe,
     )
+    .map(|solution| solution.end)
     .unwrap();
     (first_second, total)
 }
@@ -169,16 +164,16 @@ fn pendulum_in_one_coordinate_and_in_three_follows_the_same_angle() {
     let start = State {
         t: 0.0,
         q: [1.0],
-        qd: [2.0],
+        v: [2.0],
     };
-    simulate(
-        &one,
+    integrate::rk4(
+        &Unconstrained::new(&one, |t, _, _| motor_torque(t)),
         start,
-        |t, _, _| motor_torque(t),
-        H,
-        steps,
+        steps as f64 * H,
+        steps as u64,
         |s| reference_angle.push(s.q[0]),
     )
+    .map(|solution| solution.end)
     .unwrap();
     for stabilisation in [
         Stabilisation::None,
@@ -189,13 +184,21 @@ fn pendulum_in_one_coordinate_and_in_three_follows_the_same_angle() {
     ] {
         let mut deviation = 0.0f64;
         let mut step = 0;
-        let observe = |s: &State<3>| {
+        let observe = |s: &State<3, 3>| {
             deviation = deviation.max((s.q[2] - reference_angle[step]).abs());
             step += 1;
         };
         let start = SEED_3.assembled(1.0, 2.0);
         let torque = |t: f64, _: &[f64; 3], _: &[f64; 3]| motor_torque(t);
-        simulate_constrained(&SEED_3, start, torque, H, steps, stabilisation, observe).unwrap();
+        integrate::rk4(
+            &Constrained::new(&SEED_3, torque, stabilisation),
+            start,
+            steps as f64 * H,
+            steps as u64,
+            observe,
+        )
+        .map(|solution| solution.end)
+        .unwrap();
         println!(
             "θ in (x, y, θ) vs θ alone over 5 s, {stabilisation:?}: max |Δθ| = {deviation:.3e}"
         );
@@ -213,7 +216,7 @@ fn a_constraint_written_twice_is_an_error_naming_the_row_not_nan() {
         l: 1.1,
         g: 9.81,
     };
-    let State { q, qd, .. } = SEED_3.assembled(0.4, 1.0);
+    let State { q, v: qd, .. } = SEED_3.assembled(0.4, 1.0);
     let error = constrained_accelerations(&twice, 0.0, &q, &qd, &[]).unwrap_err();
     assert!(
         matches!(error, DynamicsError::DependentConstraints { row: 2, pivot } if pivot.abs() < 1e-14),
@@ -258,7 +261,7 @@ fn slider_crank_with_rod_equal_to_crank_is_singular_where_both_stand_vertical() 
     // The ordinary dead centres of a longer rod are regular in these coordinates.
     let regular = slider_crank(0.3);
     for theta in [0.0, std::f64::consts::PI] {
-        let State { q, qd, .. } = regular.assembled(theta, 0.0);
+        let State { q, v: qd, .. } = regular.assembled(theta, 0.0);
         let (qdd, lambda) = constrained_accelerations(&regular, 0.0, &q, &qd, &[0.0]).unwrap();
         assert!(qdd.iter().chain(&lambda).all(|v| v.is_finite()));
     }
@@ -268,26 +271,25 @@ fn slider_crank_with_rod_equal_to_crank_is_singular_where_both_stand_vertical() 
 fn slider_crank_keeps_its_loop_closed_and_its_energy_over_ten_revolutions() {
     let crank = SLIDER_CRANK;
     let start = crank.assembled(0.0, CRANK_SPEED);
-    let initial_energy = energy(&crank, &start.q, &start.qd);
+    let initial_energy = energy(&crank, &start.q, &start.v);
     let (mut drift, mut energy_error) = (0.0f64, 0.0f64);
-    let observe = |s: &State<3>| {
+    let observe = |s: &State<3, 3>| {
         drift = drift.max(constraint_drift(&crank, s));
-        let change = energy(&crank, &s.q, &s.qd) - initial_energy;
+        let change = energy(&crank, &s.q, &s.v) - initial_energy;
         energy_error = energy_error.max(change.abs() / initial_energy.abs());
     };
     let projection = Stabilisation::Projection {
         tolerance: 1e-12,
         max_iterations: 5,
     };
-    let end = simulate_constrained(
-        &crank,
+    let end = integrate::rk4(
+        &Constrained::without_inputs(&crank, projection),
         start,
-        |_, _, _| [0.0],
-        H,
+        5.0,
         5_000,
-        projection,
         observe,
     )
+    .map(|solution| solution.end)
     .unwrap();
     let revolutions = end.q[0] / std::f64::consts::TAU;
     println!(
@@ -305,25 +307,24 @@ fn sleigh_slip_after_one_second(stabilisation: Stabilisation) -> (f64, f64) {
     let start = State {
         t: 0.0,
         q: [0.0, 0.0, 0.5],
-        qd: [0.0, 0.01, 0.7],
+        v: [0.0, 0.01, 0.7],
     };
     let (mut slip, mut drift) = (0.0f64, 0.0f64);
-    let observe = |s: &State<3>| {
+    let observe = |s: &State<3, 3>| {
         drift = drift.max(constraint_drift(&sleigh, s));
-        if s.t > 0.9 {
-            let [psi] = sleigh.constraint_velocity(s.t, &s.q, &s.qd);
+        if s.t >= 0.9 {
+            let [psi] = sleigh.constraint_velocity(s.t, &s.q, &s.v);
             slip = slip.max(psi.abs());
         }
     };
-    simulate_constrained(
-        &sleigh,
+    integrate::rk4(
+        &Constrained::without_inputs(&sleigh, stabilisation),
         start,
-        |_, _, _| [],
-        H,
+        1.0,
         1_000,
-        stabilisation,
         observe,
     )
+    .map(|solution| solution.end)
     .unwrap();
     (slip, drift)
 }

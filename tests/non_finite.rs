@@ -3,15 +3,14 @@
 //! `energy`, a plain `f64` diagnostic, returns a non-finite value (never a
 //! finite wrong one).
 
+use dalembert::constrained::{constrained_accelerations, project_onto_constraints};
+use dalembert::integrate::Failure;
 use dalembert::{
-    DynamicsError, Stabilisation, State, accelerations, constrained_accelerations,
-    constrained_rk4_step, energy, project_onto_constraints, rk4_step,
+    Constrained, DynamicsError, Stabilisation, State, Unconstrained, accelerations, energy,
+    integrate,
 };
 
-#[path = "seeds/mod.rs"]
-mod seeds;
-
-use seeds::{ConstrainedPendulum, DoublePendulum};
+use dalembert_fixtures::seeds::{ConstrainedPendulum, DoublePendulum};
 
 const BAD: [f64; 3] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
 
@@ -28,9 +27,13 @@ fn non_finite_parameters_are_errors() {
             accelerations(&pendulum, 0.0, &q, &qd, &[]),
             Err(DynamicsError::NonFiniteEquations)
         );
-        let state = State { t: 0.0, q, qd };
-        let error = rk4_step(&pendulum, &state, |_, _, _| [], 1e-3).unwrap_err();
-        assert_eq!(error.cause, DynamicsError::NonFiniteEquations);
+        let state = State { t: 0.0, q, v: qd };
+        let error = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3)
+            .unwrap_err();
+        assert_eq!(
+            error.cause,
+            Failure::Dynamics(DynamicsError::NonFiniteEquations)
+        );
         assert!(!energy(&pendulum, &q, &qd).is_finite());
 
         let constrained = ConstrainedPendulum {
@@ -50,7 +53,7 @@ fn non_finite_parameters_are_errors() {
         let start = State {
             t: 0.0,
             q: cq,
-            qd: [0.0; 3],
+            v: [0.0; 3],
         };
         assert!(project_onto_constraints(&constrained, &start, 1e-12, 10).is_err());
         let projection = Stabilisation::Projection {
@@ -58,7 +61,12 @@ fn non_finite_parameters_are_errors() {
             max_iterations: 10,
         };
         assert!(
-            constrained_rk4_step(&constrained, &start, |_, _, _| [0.0], 1e-3, projection).is_err()
+            integrate::rk4_step(
+                &Constrained::without_inputs(&constrained, projection),
+                &start,
+                1e-3
+            )
+            .is_err()
         );
     }
 }
@@ -83,10 +91,16 @@ fn non_finite_states_and_inputs_are_errors() {
         let state = State {
             t: bad,
             q: [0.1, 0.2],
-            qd: [0.0; 2],
+            v: [0.0; 2],
         };
-        assert!(rk4_step(&pendulum, &state, |_, _, _| [], 1e-3).is_err());
-        let step = rk4_step(&pendulum, &State { t: 0.0, ..state }, |_, _, _| [], bad);
+        assert!(
+            integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3).is_err()
+        );
+        let step = integrate::rk4_step(
+            &Unconstrained::without_inputs(&pendulum),
+            &State { t: 0.0, ..state },
+            bad,
+        );
         assert!(step.is_err(), "a non-finite step size: {step:?}");
         let (q, qd) = ([1.0_f64.sin(), -1.0_f64.cos(), 1.0], [0.0, 0.0, bad]);
         assert_eq!(
@@ -97,7 +111,7 @@ fn non_finite_states_and_inputs_are_errors() {
             constrained_accelerations(&constrained, 0.0, &q, &[0.0; 3], &[bad]),
             Err(DynamicsError::NonFiniteState)
         );
-        let start = State { t: 0.0, q, qd };
+        let start = State { t: 0.0, q, v: qd };
         assert_eq!(
             project_onto_constraints(&constrained, &start, 1e-12, 10),
             Err(DynamicsError::NonFiniteState)

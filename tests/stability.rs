@@ -1,4 +1,4 @@
-//! Where integrators fail, measured (DESIGN issue 6): the energy drift of
+//! Where integrators fail, measured: the energy drift of
 //! RK4 and DOP853 on the chaotic double pendulum against the bounded energy
 //! error of the symmetric Gauss method; the constraint drift of the adaptive
 //! pair with and without projection; a stiff joint that forces explicit
@@ -10,26 +10,19 @@
 //! The energy test runs 10³ s in debug builds (CI) and the full 10⁴ s with
 //! `cargo test --release --test stability`; its bands hold for both.
 
-#[allow(dead_code, unused_imports)] // the example's models; this test uses a subset
-#[path = "../examples/work_precision/models.rs"]
-mod models;
-// Both model files compile their own copy of the seed models; each is used
-// for different ones, so the copies never meet.
-#[allow(dead_code, clippy::duplicate_mod)] // this test uses one of the slider-crank models
-#[path = "../examples/slider_crank/models.rs"]
-mod slider_crank;
-
 use std::f64::consts::FRAC_PI_2;
 
+use dalembert::constrained::constraint_drift;
+use dalembert::integrate::{self, AdaptiveOptions, ExplicitPair, Failure, GaussLegendre};
 use dalembert::{
-    AdaptiveOptions, Constrained, DynamicsError, ExplicitPair, GaussLegendre, Solution,
-    SolverError, SolverFailure, Stabilisation, State, Unconstrained, constraint_drift, energy,
-    simulate_adaptive, simulate_gauss, simulate_rk4, simulate_sdirk, state_error,
+    Constrained, DynamicsError, IntegrationError, Solution, Stabilisation, State, Unconstrained,
+    energy,
 };
-use models::{
-    CHAOTIC, CHAOTIC_START, ON_AXIS, STIFF, STIFF_START, StiffDoublePendulum, TOWARDS_AXIS,
-    no_inputs,
+use dalembert_fixtures::seeds::{CHAOTIC, CHAOTIC_START};
+use dalembert_fixtures::stability::{
+    ON_AXIS, STIFF, STIFF_START, StiffDoublePendulum, TOWARDS_AXIS,
 };
+use dalembert_lab::state_error;
 
 /// Horizon of the long-time energy test: 10⁴ s optimised, 10³ s in debug.
 const HORIZON: f64 = if cfg!(debug_assertions) { 1e3 } else { 1e4 };
@@ -37,12 +30,12 @@ const HORIZON: f64 = if cfg!(debug_assertions) { 1e3 } else { 1e4 };
 /// The largest relative energy error of the chaotic pendulum over the first
 /// tenth of the horizon and over all of it, as observed by `integrate`.
 fn energy_errors(
-    integrate: impl FnOnce(&mut dyn FnMut(&State<2>)) -> Result<Solution<2>, SolverError<2>>,
+    integrate: impl FnOnce(&mut dyn FnMut(&State<2, 2>)) -> Result<Solution<2, 2>, IntegrationError<2>>,
 ) -> (f64, f64) {
-    let initial = energy(&CHAOTIC, &CHAOTIC_START.q, &CHAOTIC_START.qd);
+    let initial = energy(&CHAOTIC, &CHAOTIC_START.q, &CHAOTIC_START.v);
     let (mut first_tenth, mut all) = (0.0f64, 0.0f64);
-    let mut observe = |s: &State<2>| {
-        let error = ((energy(&CHAOTIC, &s.q, &s.qd) - initial) / initial).abs();
+    let mut observe = |s: &State<2, 2>| {
+        let error = ((energy(&CHAOTIC, &s.q, &s.v) - initial) / initial).abs();
         all = all.max(error);
         if s.t <= HORIZON / 10.0 {
             first_tenth = first_tenth.max(error);
@@ -55,18 +48,21 @@ fn energy_errors(
 
 #[test]
 fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift() {
-    let equations = Unconstrained {
-        system: &CHAOTIC,
-        inputs: no_inputs,
-    };
+    let dynamics = Unconstrained::without_inputs(&CHAOTIC);
     let steps = |h: f64| (HORIZON / h).round() as u64;
     let rk4 = energy_errors(|observe| {
-        simulate_rk4(&equations, CHAOTIC_START, 5e-3, steps(5e-3), observe)
+        integrate::rk4(
+            &dynamics,
+            CHAOTIC_START,
+            CHAOTIC_START.t + HORIZON,
+            steps(5e-3),
+            observe,
+        )
     });
     let dop853 = energy_errors(|observe| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        simulate_adaptive(
-            &equations,
+        integrate::adaptive(
+            &dynamics,
             CHAOTIC_START,
             HORIZON,
             ExplicitPair::Dop853,
@@ -76,10 +72,10 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
     });
     let gauss = energy_errors(|observe| {
         let method = GaussLegendre::Order4;
-        simulate_gauss(
-            &equations,
+        integrate::gauss_legendre(
+            &dynamics,
             CHAOTIC_START,
-            1e-2,
+            CHAOTIC_START.t + HORIZON,
             steps(1e-2),
             method,
             observe,
@@ -105,19 +101,12 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
 
 #[test]
 fn projection_holds_the_drift_of_the_adaptive_pair_on_the_slider_crank() {
-    let crank = slider_crank::SLIDER_CRANK;
-    let start = crank.assembled(0.0, slider_crank::CRANK_SPEED);
+    let crank = dalembert_fixtures::slider_crank::SLIDER_CRANK;
+    let start = crank.assembled(0.0, dalembert_fixtures::slider_crank::CRANK_SPEED);
     let drift_after_two_seconds = |stabilisation| {
-        let equations = Constrained::new(&crank, |_, _, _| [0.0], stabilisation);
+        let dynamics = Constrained::new(&crank, |_, _, _| [0.0], stabilisation);
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        let end = simulate_adaptive(
-            &equations,
-            start,
-            2.0,
-            ExplicitPair::Dop853,
-            options,
-            |_| {},
-        );
+        let end = integrate::adaptive(&dynamics, start, 2.0, ExplicitPair::Dop853, options, |_| {});
         constraint_drift(&crank, &end.unwrap().end)
     };
     let free = drift_after_two_seconds(Stabilisation::None);
@@ -135,18 +124,12 @@ const SOFT: StiffDoublePendulum = StiffDoublePendulum { k: 0.0, ..STIFF };
 
 #[test]
 fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdirk() {
-    let stiff = Unconstrained {
-        system: &STIFF,
-        inputs: no_inputs,
-    };
-    let soft = Unconstrained {
-        system: &SOFT,
-        inputs: no_inputs,
-    };
+    let stiff = Unconstrained::without_inputs(&STIFF);
+    let soft = Unconstrained::without_inputs(&SOFT);
     let options = AdaptiveOptions::with_tolerance(1e-6);
-    let dop853 = |equations: &_| {
-        simulate_adaptive(
-            equations,
+    let dop853 = |dynamics: &_| {
+        integrate::adaptive(
+            dynamics,
             STIFF_START,
             1.0,
             ExplicitPair::Dop853,
@@ -168,14 +151,22 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
     );
 
     // RK4 is stable below h ≈ 2.8/ω and blows up above it.
-    let rk4 = |h: f64| simulate_rk4(&stiff, STIFF_START, h, (1.0 / h).round() as u64, |_| {});
+    let rk4 = |h: f64| {
+        integrate::rk4(
+            &stiff,
+            STIFF_START,
+            STIFF_START.t + 1.0,
+            (1.0 / h).round() as u64,
+            |_| {},
+        )
+    };
     let stable = rk4(5e-4).unwrap();
     assert!(state_error(&stable.end, &explicit.end) < 1e-4, "{stable:?}");
     let unstable = rk4(2e-3).unwrap_err();
     assert!(unstable.t < 0.1, "{unstable}");
 
     // SDIRK at a twentieth of the steps stays on the slow motion.
-    let implicit = simulate_sdirk(&stiff, STIFF_START, 1e-2, 100, |_| {}).unwrap();
+    let implicit = integrate::sdirk(&stiff, STIFF_START, STIFF_START.t + 1.0, 100, |_| {}).unwrap();
     assert!(
         state_error(&implicit.end, &explicit.end) < 1e-3,
         "{implicit:?}"
@@ -185,26 +176,30 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
 
 #[test]
 fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_configuration() {
-    let equations = Unconstrained {
-        system: &ON_AXIS,
-        inputs: |_: f64, _: &[f64; 2], _: &[f64; 2]| [0.0; 2],
-    };
-    let finite = |s: &State<2>| assert!(s.q.iter().chain(&s.qd).all(|x| x.is_finite()), "{s:?}");
+    let dynamics = Unconstrained::without_inputs(&ON_AXIS);
+    let finite = |s: &State<2, 2>| assert!(s.q.iter().chain(&s.v).all(|x| x.is_finite()), "{s:?}");
     // Each schedule puts an evaluation at t = 0.5: a step end for RK4 and
     // SDIRK (whose Jacobian is taken at each step's start), the final time of
     // the adaptive pairs, the first stage of the fifth step for Gauss.
     let gauss = |method, first_node: f64| {
         let h = 0.5 / (4.0 + first_node);
-        simulate_gauss(&equations, TOWARDS_AXIS, h, 10, method, finite)
+        integrate::gauss_legendre(
+            &dynamics,
+            TOWARDS_AXIS,
+            TOWARDS_AXIS.t + 10.0 * h,
+            10,
+            method,
+            finite,
+        )
     };
     let adaptive = |pair| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        simulate_adaptive(&equations, TOWARDS_AXIS, 0.5, pair, options, finite)
+        integrate::adaptive(&dynamics, TOWARDS_AXIS, 0.5, pair, options, finite)
     };
     let failures = [
         (
             "RK4",
-            simulate_rk4(&equations, TOWARDS_AXIS, 0.125, 8, finite),
+            integrate::rk4(&dynamics, TOWARDS_AXIS, TOWARDS_AXIS.t + 1.0, 8, finite),
         ),
         ("DOPRI5", adaptive(ExplicitPair::DormandPrince54)),
         ("DOP853", adaptive(ExplicitPair::Dop853)),
@@ -219,7 +214,7 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
         ),
         (
             "SDIRK",
-            simulate_sdirk(&equations, TOWARDS_AXIS, 0.125, 8, finite),
+            integrate::sdirk(&dynamics, TOWARDS_AXIS, TOWARDS_AXIS.t + 1.0, 8, finite),
         ),
     ];
     for (name, result) in failures {
@@ -229,7 +224,7 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
         assert!(
             matches!(
                 error.cause,
-                SolverFailure::Dynamics(DynamicsError::SingularMassMatrix {
+                Failure::Dynamics(DynamicsError::SingularMassMatrix {
                     coordinate: "phi",
                     ..
                 })
@@ -248,27 +243,36 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
 
 #[test]
 fn chaotic_trajectories_one_e_minus_ten_apart_part_after_about_nine_seconds() {
-    let equations = Unconstrained {
-        system: &CHAOTIC,
-        inputs: no_inputs,
-    };
+    let dynamics = Unconstrained::without_inputs(&CHAOTIC);
     let (h, steps) = (2e-3, 6_000);
     let mut first = Vec::with_capacity(steps + 1);
     let method = GaussLegendre::Order6;
-    simulate_gauss(&equations, CHAOTIC_START, h, steps as u64, method, |s| {
-        first.push(*s)
-    })
+    integrate::gauss_legendre(
+        &dynamics,
+        CHAOTIC_START,
+        CHAOTIC_START.t + steps as f64 * h,
+        steps as u64,
+        method,
+        |s| first.push(*s),
+    )
     .unwrap();
     let mut nudged = CHAOTIC_START;
     nudged.q[0] += 1e-10;
     let mut parted = None;
     let mut index = 0;
-    simulate_gauss(&equations, nudged, h, steps as u64, method, |s| {
-        if parted.is_none() && state_error(s, &first[index]) > 1e-3 {
-            parted = Some(s.t);
-        }
-        index += 1;
-    })
+    integrate::gauss_legendre(
+        &dynamics,
+        nudged,
+        nudged.t + steps as f64 * h,
+        steps as u64,
+        method,
+        |s| {
+            if parted.is_none() && state_error(s, &first[index]) > 1e-3 {
+                parted = Some(s.t);
+            }
+            index += 1;
+        },
+    )
     .unwrap();
     // Measured: 8.75 s (Gauss 6, h = 1 ms); the reference README's
     // amplification of 1.3e7 by t = 10 puts it at about 9 s.

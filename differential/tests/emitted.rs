@@ -14,7 +14,7 @@ const STATES: u64 = 8;
 /// The emitted functions of `system` at `sample`.
 fn evaluate<S, const NQ: usize, const NU: usize>(system: &S, sample: &Sample) -> Evaluation
 where
-    S: MultibodySystem<NQ, NU>,
+    S: MultibodySystem<NQ, NQ, NU>,
 {
     let array =
         |values: &[f64]| -> [f64; NQ] { values.try_into().expect("one value per coordinate") };

@@ -9,16 +9,13 @@
 //!
 //! The charts go to `DIR` (default `target/charts` in the package).
 
-mod models;
-
 use std::error::Error;
 use std::path::PathBuf;
 
-use dalembert::{
-    ConstrainedSystem, Series, Stabilisation, State, constraint_drift, energy, line_chart_log_y,
-    simulate_constrained,
-};
-use models::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
+use dalembert::constrained::constraint_drift;
+use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, energy, integrate};
+use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
+use dalembert_lab::{Series, line_chart_log_y};
 
 /// The RK4 step, in seconds.
 const STEP: f64 = 1e-3;
@@ -41,18 +38,18 @@ struct Run {
     /// Largest `|E(t) − E(0)| / |E(0)|`.
     worst_energy_error: f64,
     /// The final state.
-    end: State<3>,
+    end: State<3, 3>,
 }
 
 /// Integrates `system` unforced from `start` for `steps` steps of [`STEP`]
 /// and measures its drift and energy.
-fn run<S: ConstrainedSystem<3, 1, 2>>(
+fn run<S: ConstrainedSystem<3, 3, 1, 2>>(
     system: &S,
-    start: State<3>,
+    start: State<3, 3>,
     steps: usize,
     stabilisation: Stabilisation,
 ) -> Result<Run, Box<dyn Error>> {
-    let initial_energy = energy(system, &start.q, &start.qd);
+    let initial_energy = energy(system, &start.q, &start.v);
     let mut run = Run {
         drift: Vec::with_capacity(steps / CHART_STRIDE + 1),
         first_second_drift: 0.0,
@@ -61,9 +58,9 @@ fn run<S: ConstrainedSystem<3, 1, 2>>(
         end: start,
     };
     let mut step = 0;
-    let observe = |s: &State<3>| {
+    let observe = |s: &State<3, 3>| {
         let drift = constraint_drift(system, s);
-        let energy_error = (energy(system, &s.q, &s.qd) - initial_energy) / initial_energy;
+        let energy_error = (energy(system, &s.q, &s.v) - initial_energy) / initial_energy;
         run.worst_drift = run.worst_drift.max(drift);
         run.worst_energy_error = run.worst_energy_error.max(energy_error.abs());
         if s.t <= 1.0 + STEP / 2.0 {
@@ -74,25 +71,24 @@ fn run<S: ConstrainedSystem<3, 1, 2>>(
         }
         step += 1;
     };
-    let end = simulate_constrained(
-        system,
+    let end = integrate::rk4(
+        &Constrained::without_inputs(system, stabilisation),
         start,
-        |_, _, _| [0.0],
-        STEP,
-        steps,
-        stabilisation,
+        start.t + steps as f64 * STEP,
+        steps as u64,
         observe,
-    )?;
+    )
+    .map(|solution| solution.end)?;
     run.end = end;
     Ok(run)
 }
 
 /// Runs `system` three ways, prints the figures and charts the drift to
 /// `chart`.
-fn compare<S: ConstrainedSystem<3, 1, 2>>(
+fn compare<S: ConstrainedSystem<3, 3, 1, 2>>(
     name: &str,
     system: &S,
-    start: State<3>,
+    start: State<3, 3>,
     steps: usize,
     baumgarte_gain: f64,
     chart: PathBuf,

@@ -15,29 +15,24 @@
 //! seed-1 chart and prints the speed ratio at equal error (default:
 //! `DIR/scipy_dop853.csv` if it exists).
 
-mod models;
-// Both model files compile their own copy of the seed models; each uses
-// different ones, so the copies never meet.
-#[allow(clippy::duplicate_mod)]
-#[path = "../slider_crank/models.rs"]
-mod slider_crank;
-
 use std::error::Error;
 use std::path::{Path, PathBuf};
 
-use clap::{Arg, Command, value_parser};
+use dalembert::constrained::constraint_drift;
+use dalembert::integrate::{self, AdaptiveOptions, Dynamics, ExplicitPair, GaussLegendre};
 use dalembert::{
-    Accuracy, AdaptiveOptions, Constrained, ConstrainedSystem, Equations, ExplicitPair,
-    GaussLegendre, Series, Solution, SolverError, Stabilisation, State, Unconstrained, WorkPoint,
-    constraint_drift, energy, line_chart_log_y, measure, seconds_at_error, simulate_adaptive,
-    simulate_gauss, simulate_rk4, simulate_sdirk, state_error, to_csv, work_precision_chart,
+    Constrained, ConstrainedSystem, IntegrationError, Solution, Stabilisation, State,
+    Unconstrained, energy,
 };
-use indicatif::{ProgressBar, ProgressStyle};
-use models::{
-    CHAOTIC, CHAOTIC_END, CHAOTIC_START, ON_AXIS, STIFF, STIFF_START, TOWARDS_AXIS,
-    chaotic_reference, no_inputs,
+use dalembert_fixtures::seeds::{CHAOTIC, CHAOTIC_END, CHAOTIC_START};
+use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
+use dalembert_fixtures::stability::{ON_AXIS, STIFF, STIFF_START, TOWARDS_AXIS, chaotic_reference};
+use dalembert_lab::clap::{Arg, Command, value_parser};
+use dalembert_lab::indicatif::{ProgressBar, ProgressStyle};
+use dalembert_lab::{
+    Accuracy, Series, WorkPoint, line_chart_log_y, measure, seconds_at_error, state_error, to_csv,
+    work_precision_chart,
 };
-use slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 
 /// The error at which our DOP853 and SciPy's are compared.
 const COMPARISON_ERROR: f64 = 1e-6;
@@ -51,7 +46,8 @@ const PROJECTION: Stabilisation = Stabilisation::Projection {
 };
 
 /// A method at one setting: how to run it once.
-type Run<'a, const NQ: usize> = Box<dyn Fn() -> Result<Solution<NQ>, SolverError<NQ>> + 'a>;
+type Run<'a, const NQ: usize> =
+    Box<dyn Fn() -> Result<Solution<NQ, NQ>, IntegrationError<NQ>> + 'a>;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let options = Command::new("work_precision")
@@ -131,7 +127,7 @@ fn sweep<const NQ: usize>(
     title: &str,
     repeats: usize,
     runs: Vec<(String, f64, Run<'_, NQ>)>,
-    judge: &dyn Fn(&State<NQ>) -> Accuracy,
+    judge: &dyn Fn(&State<NQ, NQ>) -> Accuracy,
 ) -> Vec<WorkPoint> {
     let bar = progress(title, runs.len());
     let mut points = Vec::with_capacity(runs.len());
@@ -167,30 +163,31 @@ impl FixedStep {
         }
     }
 
-    /// Integrates `equations` from `start` to `t_end` in steps of about `h`.
-    fn run<E: Equations<NQ>, const NQ: usize>(
+    /// Integrates `dynamics` from `start` to `t_end` in steps of about `h`.
+    fn run<E: Dynamics<NQ, NQ>, const NQ: usize>(
         self,
-        equations: &E,
-        start: State<NQ>,
+        dynamics: &E,
+        start: State<NQ, NQ>,
         t_end: f64,
         h: f64,
-    ) -> Result<Solution<NQ>, SolverError<NQ>> {
+    ) -> Result<Solution<NQ, NQ>, IntegrationError<NQ>> {
         let steps = ((t_end - start.t) / h).round().max(1.0) as u64;
-        let h = (t_end - start.t) / steps as f64;
         match self {
-            Self::Rk4 => simulate_rk4(equations, start, h, steps, |_| {}),
-            Self::Gauss(method) => simulate_gauss(equations, start, h, steps, method, |_| {}),
-            Self::Sdirk => simulate_sdirk(equations, start, h, steps, |_| {}),
+            Self::Rk4 => integrate::rk4(dynamics, start, t_end, steps, |_| {}),
+            Self::Gauss(method) => {
+                integrate::gauss_legendre(dynamics, start, t_end, steps, method, |_| {})
+            }
+            Self::Sdirk => integrate::sdirk(dynamics, start, t_end, steps, |_| {}),
         }
     }
 }
 
 /// The runs of `pairs` over `tolerances` and of `methods` over `steps`, each
 /// name suffixed by `label`.
-fn runs<'a, E: Equations<NQ>, const NQ: usize>(
+fn runs<'a, E: Dynamics<NQ, NQ>, const NQ: usize>(
     label: &str,
-    equations: &'a E,
-    (start, t_end): (State<NQ>, f64),
+    dynamics: &'a E,
+    (start, t_end): (State<NQ, NQ>, f64),
     pairs: &[(ExplicitPair, &[f64])],
     methods: &[(FixedStep, &[f64])],
 ) -> Vec<(String, f64, Run<'a, NQ>)> {
@@ -202,13 +199,13 @@ fn runs<'a, E: Equations<NQ>, const NQ: usize>(
         };
         for &tolerance in tolerances {
             let options = AdaptiveOptions::with_tolerance(tolerance);
-            let run = move || simulate_adaptive(equations, start, t_end, pair, options, |_| {});
+            let run = move || integrate::adaptive(dynamics, start, t_end, pair, options, |_| {});
             runs.push((format!("{name}{label}"), tolerance, Box::new(run)));
         }
     }
     for &(method, steps) in methods {
         for &h in steps {
-            let run = move || method.run(equations, start, t_end, h);
+            let run = move || method.run(dynamics, start, t_end, h);
             runs.push((format!("{}{label}", method.name()), h, Box::new(run)));
         }
     }
@@ -239,18 +236,15 @@ fn write_work_precision(
 /// 25-digit final state, with SciPy's DOP853 and the chaotic limit.
 fn chaotic_pendulum(out: &Path, repeats: usize, scipy: &Path) -> Result<(), Box<dyn Error>> {
     let reference = chaotic_reference()?;
-    let equations = Unconstrained {
-        system: &CHAOTIC,
-        inputs: no_inputs,
-    };
-    let initial_energy = energy(&CHAOTIC, &CHAOTIC_START.q, &CHAOTIC_START.qd);
-    let judge = |end: &State<2>| Accuracy {
+    let dynamics = Unconstrained::without_inputs(&CHAOTIC);
+    let initial_energy = energy(&CHAOTIC, &CHAOTIC_START.q, &CHAOTIC_START.v);
+    let judge = |end: &State<2, 2>| Accuracy {
         error: state_error(end, &reference),
-        energy_error: ((energy(&CHAOTIC, &end.q, &end.qd) - initial_energy) / initial_energy).abs(),
+        energy_error: ((energy(&CHAOTIC, &end.q, &end.v) - initial_energy) / initial_energy).abs(),
         drift: 0.0,
     };
-    let tightest = simulate_adaptive(
-        &equations,
+    let tightest = integrate::adaptive(
+        &dynamics,
         CHAOTIC_START,
         CHAOTIC_END,
         ExplicitPair::Dop853,
@@ -266,7 +260,7 @@ fn chaotic_pendulum(out: &Path, repeats: usize, scipy: &Path) -> Result<(), Box<
     let steps_sdirk = [5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4];
     let runs = runs(
         "",
-        &equations,
+        &dynamics,
         (CHAOTIC_START, CHAOTIC_END),
         &[
             (ExplicitPair::DormandPrince54, &decades(4, 14)),
@@ -363,13 +357,13 @@ fn read_scipy(path: &Path) -> Vec<WorkPoint> {
 /// checked against Gauss 6 with projection, then RK4 and DOP853 without
 /// stabilisation, with Baumgarte's and with projection, and Gauss 6 with
 /// projection.
-fn constrained<S: ConstrainedSystem<3, 1, 2>>(
+fn constrained<S: ConstrainedSystem<3, 3, 1, 2>>(
     title: &str,
     name: &str,
     out: &Path,
     repeats: usize,
     system: &S,
-    start: State<3>,
+    start: State<3, 3>,
     t_end: f64,
 ) -> Result<(), Box<dyn Error>> {
     let inputs = |_: f64, _: &[f64; 3], _: &[f64; 3]| [0.0];
@@ -385,33 +379,33 @@ fn constrained<S: ConstrainedSystem<3, 1, 2>>(
         ),
         (", projection", PROJECTION),
     ];
-    let equations = modes.map(|(_, mode)| Constrained::new(system, inputs, mode));
-    let projected = &equations[2];
+    let dynamics = modes.map(|(_, mode)| Constrained::new(system, inputs, mode));
+    let projected = &dynamics[2];
     let tight = AdaptiveOptions::with_tolerance(1e-14);
     let reference =
-        simulate_adaptive(projected, start, t_end, ExplicitPair::Dop853, tight, |_| {})?.end;
+        integrate::adaptive(projected, start, t_end, ExplicitPair::Dop853, tight, |_| {})?.end;
     let check = FixedStep::Gauss(GaussLegendre::Order6).run(projected, start, t_end, 1e-3)?;
     println!(
         "{title}: reference (DOP853 1e-14, projection) vs Gauss 6 h = 1e-3: {:.2e}",
         state_error(&check.end, &reference)
     );
-    let initial_energy = energy(system, &start.q, &start.qd);
-    let judge = |end: &State<3>| Accuracy {
+    let initial_energy = energy(system, &start.q, &start.v);
+    let judge = |end: &State<3, 3>| Accuracy {
         error: state_error(end, &reference),
-        energy_error: ((energy(system, &end.q, &end.qd) - initial_energy) / initial_energy).abs(),
+        energy_error: ((energy(system, &end.q, &end.v) - initial_energy) / initial_energy).abs(),
         drift: constraint_drift(system, end),
     };
     let steps = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4];
     let tolerances = decades(4, 13);
     let mut all = Vec::new();
-    for ((label, _), equations) in modes.iter().zip(&equations) {
+    for ((label, _), dynamics) in modes.iter().zip(&dynamics) {
         let mut methods = vec![(FixedStep::Rk4, &steps[..])];
         if !label.is_empty() && label.contains("projection") {
             methods.push((FixedStep::Gauss(GaussLegendre::Order6), &steps[..]));
         }
         all.extend(runs(
             label,
-            equations,
+            dynamics,
             (start, t_end),
             &[(ExplicitPair::Dop853, &tolerances)],
             &methods,
@@ -427,14 +421,14 @@ fn constrained<S: ConstrainedSystem<3, 1, 2>>(
 fn energy_history(
     horizon: f64,
     window: f64,
-    integrate: impl FnOnce(&mut dyn FnMut(&State<2>)) -> Result<(), SolverError<2>>,
-) -> Result<Vec<(f64, f64)>, SolverError<2>> {
-    let initial = energy(&CHAOTIC, &CHAOTIC_START.q, &CHAOTIC_START.qd);
+    integrate: impl FnOnce(&mut dyn FnMut(&State<2, 2>)) -> Result<(), IntegrationError<2>>,
+) -> Result<Vec<(f64, f64)>, IntegrationError<2>> {
+    let initial = energy(&CHAOTIC, &CHAOTIC_START.q, &CHAOTIC_START.v);
     let mut history = Vec::with_capacity((horizon / window) as usize + 1);
     let mut worst = 0.0f64;
     let mut window_end = window;
-    let mut observe = |s: &State<2>| {
-        let error = ((energy(&CHAOTIC, &s.q, &s.qd) - initial) / initial).abs();
+    let mut observe = |s: &State<2, 2>| {
+        let error = ((energy(&CHAOTIC, &s.q, &s.v) - initial) / initial).abs();
         worst = worst.max(error);
         if s.t >= window_end {
             history.push((s.t, worst));
@@ -450,19 +444,23 @@ fn energy_history(
 /// pendulum over 10⁴ s, charted as `energy_drift.svg`.
 fn energy_drift(out: &Path) -> Result<(), Box<dyn Error>> {
     const HORIZON: f64 = 1e4;
-    let equations = Unconstrained {
-        system: &CHAOTIC,
-        inputs: no_inputs,
-    };
+    let dynamics = Unconstrained::without_inputs(&CHAOTIC);
     let bar = progress("energy, 10⁴ s", 3);
     let rk4 = energy_history(HORIZON, 10.0, |observe| {
-        simulate_rk4(&equations, CHAOTIC_START, 5e-3, 2_000_000, observe).map(drop)
+        integrate::rk4(
+            &dynamics,
+            CHAOTIC_START,
+            CHAOTIC_START.t + 1e4,
+            2_000_000,
+            observe,
+        )
+        .map(drop)
     })?;
     bar.inc(1);
     let dop853 = energy_history(HORIZON, 10.0, |observe| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        simulate_adaptive(
-            &equations,
+        integrate::adaptive(
+            &dynamics,
             CHAOTIC_START,
             HORIZON,
             ExplicitPair::Dop853,
@@ -473,10 +471,10 @@ fn energy_drift(out: &Path) -> Result<(), Box<dyn Error>> {
     })?;
     bar.inc(1);
     let gauss = energy_history(HORIZON, 10.0, |observe| {
-        simulate_gauss(
-            &equations,
+        integrate::gauss_legendre(
+            &dynamics,
             CHAOTIC_START,
-            1e-2,
+            CHAOTIC_START.t + 1e4,
             1_000_000,
             GaussLegendre::Order4,
             observe,
@@ -527,17 +525,16 @@ fn energy_drift(out: &Path) -> Result<(), Box<dyn Error>> {
 /// `stiff_joint.svg` (the spring's stretch `|θ₂ − θ₁|`).
 fn stiff_joint(out: &Path) -> Result<(), Box<dyn Error>> {
     const DURATION: f64 = 1.0;
-    let equations = Unconstrained {
-        system: &STIFF,
-        inputs: no_inputs,
-    };
-    let stretch = |s: &State<2>| (s.t, (s.q[1] - s.q[0]).abs());
+    let dynamics = Unconstrained::without_inputs(&STIFF);
+    let stretch = |s: &State<2, 2>| (s.t, (s.q[1] - s.q[0]).abs());
     let mut rk4 = Vec::new();
-    let rk4_end = simulate_rk4(&equations, STIFF_START, 2e-3, 500, |s| rk4.push(stretch(s)));
+    let rk4_end = integrate::rk4(&dynamics, STIFF_START, STIFF_START.t + 1.0, 500, |s| {
+        rk4.push(stretch(s))
+    });
     let mut dop853 = Vec::new();
     let options = AdaptiveOptions::with_tolerance(1e-6);
-    let explicit = simulate_adaptive(
-        &equations,
+    let explicit = integrate::adaptive(
+        &dynamics,
         STIFF_START,
         DURATION,
         ExplicitPair::Dop853,
@@ -545,7 +542,7 @@ fn stiff_joint(out: &Path) -> Result<(), Box<dyn Error>> {
         |s| dop853.push(stretch(s)),
     )?;
     let mut sdirk = Vec::new();
-    let implicit = simulate_sdirk(&equations, STIFF_START, 1e-2, 100, |s| {
+    let implicit = integrate::sdirk(&dynamics, STIFF_START, STIFF_START.t + 1.0, 100, |s| {
         sdirk.push(stretch(s))
     })?;
     match rk4_end {
@@ -592,28 +589,25 @@ fn stiff_joint(out: &Path) -> Result<(), Box<dyn Error>> {
 /// Two chaotic trajectories 1e-10 rad apart: their separation over 30 s,
 /// charted as `separation.svg`.
 fn sensitivity(out: &Path) -> Result<(), Box<dyn Error>> {
-    let equations = Unconstrained {
-        system: &CHAOTIC,
-        inputs: no_inputs,
-    };
+    let dynamics = Unconstrained::without_inputs(&CHAOTIC);
     let mut nudged = CHAOTIC_START;
     nudged.q[0] += 1e-10;
     let (h, steps) = (1e-3, 30_000);
     let mut first = Vec::with_capacity(steps + 1);
-    simulate_gauss(
-        &equations,
+    integrate::gauss_legendre(
+        &dynamics,
         CHAOTIC_START,
-        h,
+        CHAOTIC_START.t + steps as f64 * h,
         steps as u64,
         GaussLegendre::Order6,
         |s| first.push(*s),
     )?;
     let mut separation = Vec::with_capacity(steps + 1);
     let mut index = 0;
-    simulate_gauss(
-        &equations,
+    integrate::gauss_legendre(
+        &dynamics,
         nudged,
-        h,
+        nudged.t + steps as f64 * h,
         steps as u64,
         GaussLegendre::Order6,
         |s| {
@@ -642,20 +636,17 @@ fn sensitivity(out: &Path) -> Result<(), Box<dyn Error>> {
 /// Seed example 2 with `d = 0` reaching its singular configuration: prints
 /// how RK4, DOP853 and SDIRK stop there.
 fn singular_mass_matrix() {
-    let equations = Unconstrained {
-        system: &ON_AXIS,
-        inputs: |_: f64, _: &[f64; 2], _: &[f64; 2]| [0.0; 2],
-    };
+    let dynamics = Unconstrained::without_inputs(&ON_AXIS);
     let options = AdaptiveOptions::with_tolerance(1e-8);
     let outcomes = [
         (
             "RK4",
-            simulate_rk4(&equations, TOWARDS_AXIS, 0.125, 8, |_| {}),
+            integrate::rk4(&dynamics, TOWARDS_AXIS, TOWARDS_AXIS.t + 1.0, 8, |_| {}),
         ),
         (
             "DOP853",
-            simulate_adaptive(
-                &equations,
+            integrate::adaptive(
+                &dynamics,
                 TOWARDS_AXIS,
                 0.5,
                 ExplicitPair::Dop853,
@@ -665,7 +656,7 @@ fn singular_mass_matrix() {
         ),
         (
             "SDIRK",
-            simulate_sdirk(&equations, TOWARDS_AXIS, 0.125, 8, |_| {}),
+            integrate::sdirk(&dynamics, TOWARDS_AXIS, TOWARDS_AXIS.t + 1.0, 8, |_| {}),
         ),
     ];
     for (name, outcome) in outcomes {

@@ -6,7 +6,7 @@ use nalgebra::{Cholesky, Const, SMatrix, SVector};
 
 use crate::ConstrainedSystem;
 use crate::DynamicsError;
-use crate::dynamics::{all_finite, cholesky, factor_mass_matrix};
+use crate::dynamics::{all_finite, cholesky, factor_mass_matrix, pivot_names};
 
 /// The constraint Jacobian `A` seen through the metric of the mass matrix
 /// `M`, factorised once for several right-hand sides: `Y = M⁻¹ Aᵀ` and the
@@ -15,24 +15,24 @@ use crate::dynamics::{all_finite, cholesky, factor_mass_matrix};
 /// It solves every problem of the form "minimise `½ xᵀ M x − fᵀ x` subject to
 /// `A x = c`": the accelerations (`f` the forcing, `c = b`) and the
 /// M-orthogonal projections onto the constraints (`f = 0`, `c` the residual).
-pub(crate) struct ConstraintMetric<'m, const NQ: usize, const NC: usize> {
-    mass: &'m Cholesky<f64, Const<NQ>>,
-    jacobian: SMatrix<f64, NC, NQ>,
-    mass_inverse_jacobian_t: SMatrix<f64, NQ, NC>,
+pub(crate) struct ConstraintMetric<'m, const NV: usize, const NC: usize> {
+    mass: &'m Cholesky<f64, Const<NV>>,
+    jacobian: SMatrix<f64, NC, NV>,
+    mass_inverse_jacobian_t: SMatrix<f64, NV, NC>,
     schur: Cholesky<f64, Const<NC>>,
 }
 
-impl<'m, const NQ: usize, const NC: usize> ConstraintMetric<'m, NQ, NC> {
+impl<'m, const NV: usize, const NC: usize> ConstraintMetric<'m, NV, NC> {
     /// Factorises `S = A M⁻¹ Aᵀ` for the factored mass matrix `mass`; fails
     /// if `A` has a non-finite entry or rows dependent to working precision.
     pub(crate) fn new(
-        mass: &'m Cholesky<f64, Const<NQ>>,
-        jacobian: &[[f64; NQ]; NC],
+        mass: &'m Cholesky<f64, Const<NV>>,
+        jacobian: &[[f64; NV]; NC],
     ) -> Result<Self, DynamicsError> {
         if !jacobian.iter().all(all_finite) {
             return Err(DynamicsError::NonFiniteConstraints);
         }
-        let jacobian = SMatrix::<f64, NC, NQ>::from_fn(|i, j| jacobian[i][j]);
+        let jacobian = SMatrix::<f64, NC, NV>::from_fn(|i, j| jacobian[i][j]);
         let mass_inverse_jacobian_t = mass.solve(&jacobian.transpose());
         let schur = cholesky(jacobian * mass_inverse_jacobian_t).map_err(|pivot| {
             DynamicsError::DependentConstraints {
@@ -52,9 +52,9 @@ impl<'m, const NQ: usize, const NC: usize> ConstraintMetric<'m, NQ, NC> {
     /// `λ = S⁻¹ (c − A M⁻¹ f)` and `x = M⁻¹ f + M⁻¹ Aᵀ λ`.
     pub(crate) fn solve(
         &self,
-        f: &SVector<f64, NQ>,
+        f: &SVector<f64, NV>,
         c: &SVector<f64, NC>,
-    ) -> (SVector<f64, NQ>, SVector<f64, NC>) {
+    ) -> (SVector<f64, NV>, SVector<f64, NC>) {
         let unconstrained = self.mass.solve(f);
         let lambda = self.schur.solve(&(c - self.jacobian * unconstrained));
         (
@@ -65,7 +65,7 @@ impl<'m, const NQ: usize, const NC: usize> ConstraintMetric<'m, NQ, NC> {
 
     /// The smallest correction in the M-norm, `x = M⁻¹ Aᵀ S⁻¹ c`, with
     /// `A x = c`.
-    pub(crate) fn least_norm(&self, c: &SVector<f64, NC>) -> SVector<f64, NQ> {
+    pub(crate) fn least_norm(&self, c: &SVector<f64, NC>) -> SVector<f64, NV> {
         self.mass_inverse_jacobian_t * self.schur.solve(c)
     }
 }
@@ -88,19 +88,25 @@ impl<'m, const NQ: usize, const NC: usize> ConstraintMetric<'m, NQ, NC> {
 /// linearly dependent at `q`
 /// ([`DependentConstraints`](DynamicsError::DependentConstraints): redundant or
 /// contradictory constraints, or a singular configuration).
-pub fn constrained_accelerations<S, const NQ: usize, const NU: usize, const NC: usize>(
+pub fn constrained_accelerations<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
-    qd: &[f64; NQ],
+    v: &[f64; NV],
     u: &[f64; NU],
-) -> Result<([f64; NQ], [f64; NC]), DynamicsError>
+) -> Result<([f64; NV], [f64; NC]), DynamicsError>
 where
-    S: ConstrainedSystem<NQ, NU, NC>,
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    check_state(t, q, qd, u)?;
-    let bias = system.constraint_bias(t, q, qd);
-    solve_with_bias(system, t, q, qd, u, bias)
+    check_state(t, q, v, u)?;
+    let bias = system.constraint_bias(t, q, v);
+    solve_with_bias(system, t, q, v, u, bias)
 }
 
 /// Like [`constrained_accelerations`], with the constraints enforced as
@@ -124,51 +130,57 @@ where
 /// with `h = 1e-2 s` and `α = β = 300/s` the integration diverges. `α = β =
 /// 0` is [`constrained_accelerations`]. The returned `λ` include the
 /// stabilising force.
-pub fn baumgarte_accelerations<S, const NQ: usize, const NU: usize, const NC: usize>(
+pub fn baumgarte_accelerations<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
-    qd: &[f64; NQ],
+    v: &[f64; NV],
     u: &[f64; NU],
     alpha: f64,
     beta: f64,
-) -> Result<([f64; NQ], [f64; NC]), DynamicsError>
+) -> Result<([f64; NV], [f64; NC]), DynamicsError>
 where
-    S: ConstrainedSystem<NQ, NU, NC>,
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    check_state(t, q, qd, u)?;
-    let bias = system.constraint_bias(t, q, qd);
+    check_state(t, q, v, u)?;
+    let bias = system.constraint_bias(t, q, v);
     let residual = system.constraint_residual(t, q);
-    let velocity = system.constraint_velocity(t, q, qd);
+    let velocity = system.constraint_velocity(t, q, v);
     let stabilised =
         std::array::from_fn(|i| bias[i] - 2.0 * alpha * velocity[i] - beta * beta * residual[i]);
-    solve_with_bias(system, t, q, qd, u, stabilised)
+    solve_with_bias(system, t, q, v, u, stabilised)
 }
 
 /// The factored mass matrix `M(q)`, which also serves as the metric of the
 /// projections.
-pub(crate) fn factored_mass<S, const NQ: usize, const NU: usize, const NC: usize>(
+pub(crate) fn factored_mass<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     q: &[f64; NQ],
-) -> Result<Cholesky<f64, Const<NQ>>, DynamicsError>
+) -> Result<Cholesky<f64, Const<NV>>, DynamicsError>
 where
-    S: ConstrainedSystem<NQ, NU, NC>,
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let mass = system.mass_matrix(q);
     if !mass.iter().all(all_finite) {
         return Err(DynamicsError::NonFiniteEquations);
     }
-    factor_mass_matrix(&mass, &S::COORDINATES)
+    factor_mass_matrix(&mass, &pivot_names::<S, NQ, NV, NU>())
 }
 
 /// Fails unless the time, coordinates, speeds and inputs are all finite.
-fn check_state<const NQ: usize, const NU: usize>(
+fn check_state<const NQ: usize, const NV: usize, const NU: usize>(
     t: f64,
     q: &[f64; NQ],
-    qd: &[f64; NQ],
+    v: &[f64; NV],
     u: &[f64; NU],
 ) -> Result<(), DynamicsError> {
-    if t.is_finite() && all_finite(q) && all_finite(qd) && all_finite(u) {
+    if t.is_finite() && all_finite(q) && all_finite(v) && all_finite(u) {
         Ok(())
     } else {
         Err(DynamicsError::NonFiniteState)
@@ -176,18 +188,18 @@ fn check_state<const NQ: usize, const NU: usize>(
 }
 
 /// `q̈` and `λ` of `M q̈ = f + Aᵀ λ`, `A q̈ = bias`, at a finite state.
-fn solve_with_bias<S, const NQ: usize, const NU: usize, const NC: usize>(
+fn solve_with_bias<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
-    qd: &[f64; NQ],
+    v: &[f64; NV],
     u: &[f64; NU],
     bias: [f64; NC],
-) -> Result<([f64; NQ], [f64; NC]), DynamicsError>
+) -> Result<([f64; NV], [f64; NC]), DynamicsError>
 where
-    S: ConstrainedSystem<NQ, NU, NC>,
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    let forcing = system.forcing(t, q, qd, u);
+    let forcing = system.forcing(t, q, v, u);
     if !all_finite(&forcing) {
         return Err(DynamicsError::NonFiniteEquations);
     }
@@ -197,7 +209,7 @@ where
     }
     let metric = ConstraintMetric::new(&mass, &system.constraint_jacobian(q))?;
     let (qdd, lambda) = metric.solve(&SVector::from(forcing), &SVector::from(bias));
-    let (qdd, lambda): ([f64; NQ], [f64; NC]) = (qdd.into(), lambda.into());
+    let (qdd, lambda): ([f64; NV], [f64; NC]) = (qdd.into(), lambda.into());
     if all_finite(&qdd) && all_finite(&lambda) {
         Ok((qdd, lambda))
     } else {

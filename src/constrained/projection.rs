@@ -18,7 +18,7 @@ use crate::{ConstrainedSystem, DynamicsError, State};
 /// `state.q` (the kinetic-energy norm): the speeds change by
 /// `Δq̇ = −M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ ψ`, exact in one step because `ψ` is linear in
 /// `q̇`, and every Gauss–Newton iteration moves the coordinates by
-/// `Δq = −M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ φ`, with `A` re-evaluated at each iterate.
+/// `q ⊕ (−Δ)`, `Δ = M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ φ`, with `A` re-evaluated at each iterate.
 /// Nonholonomic rows have `φ = 0`, so the coordinates move only along
 /// directions that their rows of `A` leave unchanged; their speeds are
 /// projected like the others. A state already within `tolerance` keeps its
@@ -29,36 +29,42 @@ use crate::{ConstrainedSystem, DynamicsError, State};
 /// [`ProjectionNotConverged`](DynamicsError::ProjectionNotConverged) if
 /// `max_iterations` corrections leave `max |φᵢ| > tolerance` (a state too
 /// far off the manifold, or a `tolerance` below rounding).
-pub fn project_onto_constraints<S, const NQ: usize, const NU: usize, const NC: usize>(
+pub fn project_onto_constraints<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
-    state: &State<NQ>,
+    state: &State<NQ, NV>,
     tolerance: f64,
     max_iterations: usize,
-) -> Result<State<NQ>, DynamicsError>
+) -> Result<State<NQ, NV>, DynamicsError>
 where
-    S: ConstrainedSystem<NQ, NU, NC>,
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    let State { t, q, qd } = *state;
-    if !(t.is_finite() && all_finite(&q) && all_finite(&qd)) {
+    let State { t, q, v } = *state;
+    if !(t.is_finite() && all_finite(&q) && all_finite(&v)) {
         return Err(DynamicsError::NonFiniteState);
     }
     let metric = factored_mass(system, &q)?;
     let q = project_coordinates(system, t, q, &metric, tolerance, max_iterations)?;
-    let qd = project_speeds(system, t, &q, qd, &metric)?;
-    Ok(State { t, q, qd })
+    let v = project_speeds(system, t, &q, v, &metric)?;
+    Ok(State { t, q, v })
 }
 
 /// Gauss–Newton on `φ(t, q) = 0` in the metric `mass`, from `q`.
-fn project_coordinates<S, const NQ: usize, const NU: usize, const NC: usize>(
+fn project_coordinates<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: [f64; NQ],
-    mass: &Cholesky<f64, Const<NQ>>,
+    mass: &Cholesky<f64, Const<NV>>,
     tolerance: f64,
     max_iterations: usize,
 ) -> Result<[f64; NQ], DynamicsError>
 where
-    S: ConstrainedSystem<NQ, NU, NC>,
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let mut q = q;
     let mut iterations = 0;
@@ -75,27 +81,27 @@ where
             });
         }
         let metric = ConstraintMetric::new(mass, &system.constraint_jacobian(&q))?;
-        let correction = metric.least_norm(&SVector::from(residual));
-        q = std::array::from_fn(|i| q[i] - correction[i]);
+        let correction: [f64; NV] = metric.least_norm(&SVector::from(residual)).into();
+        q = system.integrate_configuration(&q, &correction, -1.0);
         iterations += 1;
     }
 }
 
-/// The speeds nearest to `qd` in the metric `mass` with `ψ(t, q, q̇) = 0`.
-fn project_speeds<S, const NQ: usize, const NU: usize, const NC: usize>(
+/// The speeds nearest to `v` in the metric `mass` with `ψ(t, q, q̇) = 0`.
+fn project_speeds<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
-    qd: [f64; NQ],
-    mass: &Cholesky<f64, Const<NQ>>,
-) -> Result<[f64; NQ], DynamicsError>
+    v: [f64; NV],
+    mass: &Cholesky<f64, Const<NV>>,
+) -> Result<[f64; NV], DynamicsError>
 where
-    S: ConstrainedSystem<NQ, NU, NC>,
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    let velocity = checked(system.constraint_velocity(t, q, &qd))?;
+    let velocity = checked(system.constraint_velocity(t, q, &v))?;
     let metric = ConstraintMetric::new(mass, &system.constraint_jacobian(q))?;
     let correction = metric.least_norm(&SVector::from(velocity));
-    Ok(std::array::from_fn(|i| qd[i] - correction[i]))
+    Ok(std::array::from_fn(|i| v[i] - correction[i]))
 }
 
 /// `values`, or an error if one of them is not finite.
@@ -123,13 +129,13 @@ mod tests {
         g: 9.81,
     };
 
-    fn off_circle() -> State<2> {
+    fn off_circle() -> State<2, 2> {
         // Radius 0.55 at 0.7 rad from the vertical, moving partly outward.
         let (s, c) = 0.7f64.sin_cos();
         State {
             t: 1.5,
             q: [0.55 * s, -0.55 * c],
-            qd: [0.9, 0.4],
+            v: [0.9, 0.4],
         }
     }
 
@@ -141,12 +147,12 @@ mod tests {
         assert!((x.hypot(y) - PENDULUM.l).abs() < 1e-14, "{projected:?}");
         // Isotropic mass: the nearest point is on the same ray.
         assert!((y.atan2(x) - start.q[1].atan2(start.q[0])).abs() < 1e-15);
-        let [psi] = PENDULUM.constraint_velocity(projected.t, &projected.q, &projected.qd);
+        let [psi] = PENDULUM.constraint_velocity(projected.t, &projected.q, &projected.v);
         assert!(psi.abs() < 1e-15, "{psi}");
         // Only the radial part of the speed is removed.
         let tangent = [-y / PENDULUM.l, x / PENDULUM.l];
         let along = |v: [f64; 2]| v[0] * tangent[0] + v[1] * tangent[1];
-        assert!((along(projected.qd) - along(start.qd)).abs() < 1e-15);
+        assert!((along(projected.v) - along(start.v)).abs() < 1e-15);
         assert_eq!(projected.t, start.t);
     }
 
@@ -156,11 +162,11 @@ mod tests {
         let on = State {
             t: 0.0,
             q: [0.5 * s, -0.5 * c],
-            qd: [0.5 * c, 0.5 * s],
+            v: [0.5 * c, 0.5 * s],
         };
         let projected = project_onto_constraints(&PENDULUM, &on, 1e-12, 0).unwrap();
         assert_eq!(projected.q, on.q);
-        assert!((projected.qd[0] - on.qd[0]).abs() < 1e-16);
+        assert!((projected.v[0] - on.v[0]).abs() < 1e-16);
     }
 
     #[test]
@@ -179,7 +185,7 @@ mod tests {
     #[test]
     fn non_finite_state_and_redundant_rows_are_errors() {
         let mut bad = off_circle();
-        bad.qd[1] = f64::INFINITY;
+        bad.v[1] = f64::INFINITY;
         let error = project_onto_constraints(&PENDULUM, &bad, 1e-12, 5);
         assert_eq!(error, Err(DynamicsError::NonFiniteState));
         let twice = PointOnCircle::<2> {

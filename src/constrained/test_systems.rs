@@ -1,6 +1,7 @@
 //! A hand-derived constrained system for the unit tests, in the shape the
 //! macro emits.
 
+use crate::test_systems::euler_update;
 use crate::{ConstrainedSystem, MultibodySystem};
 
 /// A point mass `m` in the vertical plane, coordinates `(x, y)`, held on the
@@ -13,8 +14,9 @@ pub struct PointOnCircle<const NC: usize> {
     pub g: f64,
 }
 
-impl<const NC: usize> MultibodySystem<2, 0> for PointOnCircle<NC> {
+impl<const NC: usize> MultibodySystem<2, 2, 0> for PointOnCircle<NC> {
     const COORDINATES: [&'static str; 2] = ["x", "y"];
+    const SPEEDS: [&'static str; 2] = ["dt(x)", "dt(y)"];
     const INPUTS: [&'static str; 0] = [];
 
     fn mass_matrix(&self, _q: &[f64; 2]) -> [[f64; 2]; 2] {
@@ -32,9 +34,17 @@ impl<const NC: usize> MultibodySystem<2, 0> for PointOnCircle<NC> {
     fn potential_energy(&self, q: &[f64; 2]) -> f64 {
         self.m * self.g * q[1]
     }
+
+    fn coordinate_rates(&self, _q: &[f64; 2], v: &[f64; 2]) -> [f64; 2] {
+        *v
+    }
+
+    fn integrate_configuration(&self, q: &[f64; 2], v: &[f64; 2], h: f64) -> [f64; 2] {
+        euler_update(q, v, h)
+    }
 }
 
-impl<const NC: usize> ConstrainedSystem<2, 0, NC> for PointOnCircle<NC> {
+impl<const NC: usize> ConstrainedSystem<2, 2, 0, NC> for PointOnCircle<NC> {
     fn constraint_jacobian(&self, q: &[f64; 2]) -> [[f64; 2]; NC] {
         [[2.0 * q[0], 2.0 * q[1]]; NC]
     }

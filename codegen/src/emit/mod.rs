@@ -6,6 +6,7 @@
 //! items that need the `dalembert` runtime (which needs `std`) are left out.
 
 mod body;
+mod configuration;
 mod solve;
 
 use crate::equations::Equations;
@@ -51,13 +52,16 @@ pub fn emit(
         emit_forcing(model, equations, &names),
         emit_energies(model, equations, &names),
         emit_constraints(model, equations, &names),
+        configuration::emit_configuration(model.nq()),
     ];
     let strukt = emit_struct(model, &documentation.docs);
     let constants = emit_constants(model, &documentation.text);
     let traits = match target {
         Target::Std => {
-            items.push(solve::emit_accelerations(model, equations));
-            emit_trait_impls(name, nq, nu, nc)
+            let solver = solve::emit_accelerations(model, equations);
+            let has_solver = !solver.is_empty();
+            items.push(solver);
+            emit_trait_impls(name, nq, nu, nc, has_solver)
         }
         Target::NoStd => TokenStream::new(),
     };
@@ -140,15 +144,20 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
     let coordinates = strings(&model.coordinates);
     let parameters = strings(&model.parameters);
     let inputs = strings(&model.inputs);
+    let speeds = coordinates.iter().map(|q| format!("dt({q})"));
     quote! {
         /// Number of generalized coordinates.
         pub const NQ: usize = #nq;
+        /// Number of speeds (the coordinates' rates).
+        pub const NV: usize = #nq;
         /// Number of inputs.
         pub const NU: usize = #nu;
         /// Number of constraints.
         pub const NC: usize = #nc;
         /// Names of the generalized coordinates, in index order.
         pub const COORDINATES: [&'static str; #nq] = [#(#coordinates),*];
+        /// Names of the speeds, in index order.
+        pub const SPEEDS: [&'static str; #nq] = [#(#speeds),*];
         /// Names of the parameters, in field order.
         pub const PARAMETERS: [&'static str; #np] = [#(#parameters),*];
         /// Names of the inputs, in index order.
@@ -340,29 +349,63 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
     }
 }
 
-fn emit_trait_impls(name: &Ident, nq: usize, nu: usize, nc: usize) -> TokenStream {
+/// The runtime's traits, forwarding to the inherent functions (and to the
+/// emitted `accelerations` when the system has one).
+fn emit_trait_impls(
+    name: &Ident,
+    nq: usize,
+    nu: usize,
+    nc: usize,
+    has_solver: bool,
+) -> TokenStream {
     let (vector, inputs, rows_out) = (array(nq), array(nu), array(nc));
     let [nq, nu, nc_lit] = [nq, nu, nc].map(Literal::usize_unsuffixed);
+    let accelerations = if has_solver {
+        quote! {
+            #[inline]
+            fn accelerations(
+                &self,
+                t: f64,
+                q: &#vector,
+                v: &#vector,
+                u: &#inputs,
+            ) -> ::core::result::Result<#vector, ::dalembert::DynamicsError> {
+                #name::accelerations(self, t, q, v, u)
+            }
+        }
+    } else {
+        TokenStream::new()
+    };
     let system = quote! {
-        impl ::dalembert::MultibodySystem<#nq, #nu> for #name {
+        impl ::dalembert::MultibodySystem<#nq, #nq, #nu> for #name {
             const COORDINATES: [&'static str; #nq] = #name::COORDINATES;
+            const SPEEDS: [&'static str; #nq] = #name::SPEEDS;
             const INPUTS: [&'static str; #nu] = #name::INPUTS;
             #[inline]
             fn mass_matrix(&self, q: &#vector) -> [#vector; #nq] {
                 #name::mass_matrix(self, q)
             }
             #[inline]
-            fn forcing(&self, t: f64, q: &#vector, qd: &#vector, u: &#inputs) -> #vector {
-                #name::forcing(self, t, q, qd, u)
+            fn forcing(&self, t: f64, q: &#vector, v: &#vector, u: &#inputs) -> #vector {
+                #name::forcing(self, t, q, v, u)
             }
             #[inline]
-            fn kinetic_energy(&self, q: &#vector, qd: &#vector) -> f64 {
-                #name::kinetic_energy(self, q, qd)
+            fn kinetic_energy(&self, q: &#vector, v: &#vector) -> f64 {
+                #name::kinetic_energy(self, q, v)
             }
             #[inline]
             fn potential_energy(&self, q: &#vector) -> f64 {
                 #name::potential_energy(self, q)
             }
+            #[inline]
+            fn coordinate_rates(&self, q: &#vector, v: &#vector) -> #vector {
+                #name::coordinate_rates(self, q, v)
+            }
+            #[inline]
+            fn integrate_configuration(&self, q: &#vector, v: &#vector, h: f64) -> #vector {
+                #name::integrate_configuration(self, q, v, h)
+            }
+            #accelerations
         }
     };
     if nc == 0 {
@@ -370,22 +413,22 @@ fn emit_trait_impls(name: &Ident, nq: usize, nu: usize, nc: usize) -> TokenStrea
     }
     quote! {
         #system
-        impl ::dalembert::ConstrainedSystem<#nq, #nu, #nc_lit> for #name {
+        impl ::dalembert::ConstrainedSystem<#nq, #nq, #nu, #nc_lit> for #name {
             #[inline]
             fn constraint_jacobian(&self, q: &#vector) -> [#vector; #nc_lit] {
                 #name::constraint_jacobian(self, q)
             }
             #[inline]
-            fn constraint_bias(&self, t: f64, q: &#vector, qd: &#vector) -> #rows_out {
-                #name::constraint_bias(self, t, q, qd)
+            fn constraint_bias(&self, t: f64, q: &#vector, v: &#vector) -> #rows_out {
+                #name::constraint_bias(self, t, q, v)
             }
             #[inline]
             fn constraint_residual(&self, t: f64, q: &#vector) -> #rows_out {
                 #name::constraint_residual(self, t, q)
             }
             #[inline]
-            fn constraint_velocity(&self, t: f64, q: &#vector, qd: &#vector) -> #rows_out {
-                #name::constraint_velocity(self, t, q, qd)
+            fn constraint_velocity(&self, t: f64, q: &#vector, v: &#vector) -> #rows_out {
+                #name::constraint_velocity(self, t, q, v)
             }
         }
     }

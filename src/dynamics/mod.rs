@@ -1,195 +1,101 @@
-//! Forward dynamics: the accelerations `q̈` that solve `M(q) q̈ = f`, and the
+//! Forward dynamics: the accelerations `v̇` that solve `M(q) v̇ = f`, and the
 //! total energy.
 
-use std::fmt;
+mod cholesky;
+mod error;
 
-use nalgebra::{Cholesky, Const, SMatrix, SVector};
+use nalgebra::SVector;
+
+pub use cholesky::RELATIVE_PIVOT_TOLERANCE;
+pub(crate) use cholesky::{cholesky, factor_mass_matrix};
+pub use error::DynamicsError;
 
 use crate::MultibodySystem;
 
-/// A Cholesky pivot at most this fraction of the largest diagonal entry of the
-/// mass matrix counts as zero: the matrix is singular to working precision.
-const RELATIVE_PIVOT_TOLERANCE: f64 = 1e-14;
-
-/// Why the accelerations could not be computed.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum DynamicsError {
-    /// The time, a coordinate, a speed or an input is NaN or infinite.
-    NonFiniteState,
-    /// The mass matrix or the forcing has a NaN or infinite entry.
-    NonFiniteEquations,
-    /// The mass matrix is not safely positive definite: the Cholesky
-    /// factorisation `M = L Lᵀ` met a pivot `Lⱼⱼ²` that is not larger than
-    /// `1e-14` times the largest diagonal entry of `M`. Coordinate `index`
-    /// then has no inertia of its own beyond that of the coordinates before
-    /// it (a body without inertia about some axis, a gimbal lock, …).
-    SingularMassMatrix {
-        /// Index of the first failing pivot, which is the index of its
-        /// coordinate.
-        index: usize,
-        /// Name of that coordinate.
-        coordinate: &'static str,
-        /// The pivot: zero, negative or tiny.
-        pivot: f64,
-    },
-    /// The accelerations overflowed although the equations were finite and
-    /// the mass matrix passed the pivot test.
-    NonFiniteAccelerations,
-    /// The constraint Jacobian `A`, the bias `b`, the residual `φ` or the
-    /// velocity form `ψ` has a NaN or infinite entry.
-    NonFiniteConstraints,
-    /// The constraint rows are linearly dependent to working precision: the
-    /// Cholesky factorisation of the Schur complement `S = A M⁻¹ Aᵀ` met a
-    /// pivot not larger than `1e-14` times the largest diagonal entry of `S`.
-    /// Constraint `row` is then a combination of the rows before it: a
-    /// redundant or contradictory constraint, or a singular configuration of
-    /// the mechanism (a slider-crank whose rod equals its crank, at the
-    /// position where both are vertical).
-    DependentConstraints {
-        /// Index of the first failing pivot, which is the index of its
-        /// constraint row (declaration order).
-        row: usize,
-        /// The pivot: zero, negative or tiny.
-        pivot: f64,
-    },
-    /// Coordinate projection did not bring the largest constraint residual
-    /// `|φᵢ|` below its tolerance within its iteration budget.
-    ProjectionNotConverged {
-        /// Gauss–Newton iterations made.
-        iterations: usize,
-        /// The largest `|φᵢ|` left.
-        residual: f64,
-    },
-}
-
-impl fmt::Display for DynamicsError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::NonFiniteState => f.write_str("non-finite time, coordinate, speed or input"),
-            Self::NonFiniteEquations => {
-                f.write_str("non-finite entry in the mass matrix or the forcing")
-            }
-            Self::SingularMassMatrix {
-                index,
-                coordinate,
-                pivot,
-            } => write!(
-                f,
-                "singular mass matrix: coordinate `{coordinate}` (index {index}) has no \
-                 inertia of its own (Cholesky pivot {pivot:.3e})"
-            ),
-            Self::NonFiniteAccelerations => f.write_str("the accelerations overflowed"),
-            Self::NonFiniteConstraints => {
-                f.write_str("non-finite entry in the constraint Jacobian, bias or residual")
-            }
-            Self::DependentConstraints { row, pivot } => write!(
-                f,
-                "constraint row {row} depends on the rows before it: redundant, contradictory \
-                 or at a singular configuration (Schur pivot {pivot:.3e})"
-            ),
-            Self::ProjectionNotConverged {
-                iterations,
-                residual,
-            } => write!(
-                f,
-                "projection onto the constraints did not converge: max |φ| = {residual:.3e} \
-                 after {iterations} iterations"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for DynamicsError {}
-
-/// The accelerations `q̈` that solve `M(q) q̈ = f(t, q, q̇, u)`.
+/// The accelerations `v̇` that solve `M(q) v̇ = f(t, q, v, u)`: the system's
+/// own [`MultibodySystem::accelerations`], which for generated systems is
+/// their emitted solver, unrolled for their size.
 ///
-/// Solves by a Cholesky factorisation on the stack; allocates nothing. Never
-/// returns a non-finite value: a non-finite state or equation, or a mass
-/// matrix that is not safely positive definite, is an error. Only the lower
-/// triangle of `M` is read (generated mass matrices are symmetric by
-/// construction).
-pub fn accelerations<S, const NQ: usize, const NU: usize>(
+/// Allocates nothing and never returns a non-finite value: a non-finite
+/// state or equation, or a mass matrix that is not safely positive definite
+/// (a Cholesky pivot `Lⱼⱼ²` not above `1e-14` times the largest diagonal
+/// entry), is an error. Only the lower triangle of `M` is read (generated
+/// mass matrices are symmetric by construction).
+pub fn accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
-    qd: &[f64; NQ],
+    v: &[f64; NV],
     u: &[f64; NU],
-) -> Result<[f64; NQ], DynamicsError>
+) -> Result<[f64; NV], DynamicsError>
 where
-    S: MultibodySystem<NQ, NU>,
+    S: MultibodySystem<NQ, NV, NU> + ?Sized,
 {
-    if !(t.is_finite() && all_finite(q) && all_finite(qd) && all_finite(u)) {
+    system.accelerations(t, q, v, u)
+}
+
+/// The runtime's generic solver behind the provided
+/// [`MultibodySystem::accelerations`]: nalgebra's Cholesky factorisation of
+/// `M` on the stack, with the checks and errors of [`accelerations`].
+/// Generated systems solve with their own unrolled factorisation; this one
+/// stays callable to compare with it.
+pub fn cholesky_accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    u: &[f64; NU],
+) -> Result<[f64; NV], DynamicsError>
+where
+    S: MultibodySystem<NQ, NV, NU> + ?Sized,
+{
+    if !(t.is_finite() && all_finite(q) && all_finite(v) && all_finite(u)) {
         return Err(DynamicsError::NonFiniteState);
     }
     let mass = system.mass_matrix(q);
-    let forcing = system.forcing(t, q, qd, u);
+    let forcing = system.forcing(t, q, v, u);
     if !(mass.iter().all(all_finite) && all_finite(&forcing)) {
         return Err(DynamicsError::NonFiniteEquations);
     }
-    let factor = factor_mass_matrix(&mass, &S::COORDINATES)?;
-    let qdd: [f64; NQ] = factor.solve(&SVector::from(forcing)).into();
-    if !all_finite(&qdd) {
+    let factor = factor_mass_matrix(&mass, &pivot_names::<S, NQ, NV, NU>())?;
+    let vdot: [f64; NV] = factor.solve(&SVector::from(forcing)).into();
+    if !all_finite(&vdot) {
         return Err(DynamicsError::NonFiniteAccelerations);
     }
-    Ok(qdd)
+    Ok(vdot)
 }
 
-/// The total energy `T(q, q̇) + V(q)`.
+/// The name reported for each pivot of the mass matrix: the coordinate when
+/// every speed is its coordinate's rate, else the speed.
+pub(crate) fn pivot_names<S, const NQ: usize, const NV: usize, const NU: usize>()
+-> [&'static str; NV]
+where
+    S: MultibodySystem<NQ, NV, NU> + ?Sized,
+{
+    std::array::from_fn(|i| {
+        if NQ == NV {
+            S::COORDINATES[i]
+        } else {
+            S::SPEEDS[i]
+        }
+    })
+}
+
+/// The total energy `T(q, v) + V(q)`.
 ///
 /// A diagnostic, not a solver: it returns a plain `f64` and, given a NaN or
 /// infinite state or parameter, a non-finite value (never a finite wrong
 /// one). Check [`f64::is_finite`] where that matters; the solvers report
 /// such input as [`DynamicsError`]s.
-pub fn energy<S, const NQ: usize, const NU: usize>(system: &S, q: &[f64; NQ], qd: &[f64; NQ]) -> f64
+pub fn energy<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+) -> f64
 where
-    S: MultibodySystem<NQ, NU>,
+    S: MultibodySystem<NQ, NV, NU>,
 {
-    system.kinetic_energy(q, qd) + system.potential_energy(q)
-}
-
-/// The Cholesky factor of a finite mass matrix, or the error naming the
-/// coordinate (of `coordinates`) whose pivot is not safely positive.
-pub(crate) fn factor_mass_matrix<const NQ: usize>(
-    mass: &[[f64; NQ]; NQ],
-    coordinates: &[&'static str; NQ],
-) -> Result<Cholesky<f64, Const<NQ>>, DynamicsError> {
-    let mass = SMatrix::<f64, NQ, NQ>::from_fn(|i, j| mass[i][j]);
-    cholesky(mass).map_err(|pivot| DynamicsError::SingularMassMatrix {
-        index: pivot.index,
-        coordinate: coordinates[pivot.index],
-        pivot: pivot.value,
-    })
-}
-
-/// A Cholesky pivot that is not safely positive.
-pub(crate) struct Pivot {
-    /// Its row and column.
-    pub(crate) index: usize,
-    /// Its value `Lⱼⱼ²`.
-    pub(crate) value: f64,
-}
-
-/// Factorises a finite `M = L Lᵀ`, or reports its first pivot that is not
-/// safely positive.
-pub(crate) fn cholesky<const N: usize>(
-    mass: SMatrix<f64, N, N>,
-) -> Result<Cholesky<f64, Const<N>>, Pivot> {
-    let tolerance = RELATIVE_PIVOT_TOLERANCE * mass.diagonal().max().max(0.0);
-    // Never fails; a bad pivot leaves NaN behind it, but every row of L up to
-    // it is exact before its diagonal, which is all the pivot scan reads.
-    let factor = Cholesky::new_unchecked(mass);
-    let l = factor.l_dirty();
-    for j in 0..N {
-        let pivot = mass[(j, j)] - l.row(j).columns(0, j).norm_squared();
-        if pivot.is_nan() || pivot <= tolerance {
-            return Err(Pivot {
-                index: j,
-                value: pivot,
-            });
-        }
-    }
-    Ok(factor)
+    system.kinetic_energy(q, v) + system.potential_energy(q)
 }
 
 /// Whether every entry is finite.

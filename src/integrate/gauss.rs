@@ -24,14 +24,13 @@
 //! does not provide (finite differences of `M` would trade the structure for
 //! an error of their own). The Lagrangian form needs nothing but the
 //! accelerations, works for constrained systems through the same
-//! [`Equations`], and has a fixed-point iteration that converges for steps
+//! [`Dynamics`], and has a fixed-point iteration that converges for steps
 //! below about `1 / ‖∂q̈/∂(q, q̇)‖` — large enough for non-stiff mechanics.
 //! The first guess of each step's stage slopes extrapolates the previous
 //! step's collocation polynomial, which saves a few iterations a step.
 
-use crate::equations::Counted;
-use crate::integrate::Rate;
-use crate::{Equations, Solution, SolverError, SolverFailure, State};
+use super::runge_kutta::{Kernel, Rate};
+use super::{Dynamics, Failure, IntegrationError, Solution, State};
 
 /// Fixed-point iterations allowed per step: a converging iteration gains at
 /// least a digit every few, a diverging one overflows or stalls.
@@ -51,31 +50,32 @@ pub enum GaussLegendre {
     Order6,
 }
 
-/// Integrates `steps` fixed steps of length `h` of `equations` from
-/// `initial` with the Gauss–Legendre method `method`, and returns the final
-/// state with the work done.
+/// Integrates `dynamics` from `initial` to `t_end` in `steps` equal steps of
+/// the Gauss–Legendre method `method`, and returns the final state, exactly
+/// at `t_end`, with the work done.
 ///
 /// `observer` sees the initial state and then the state after every step
-/// (after the equations' [`settle`](Equations::settle)). Allocates nothing.
+/// (after the dynamics' [`settle`](Dynamics::settle)). Allocates nothing.
 /// Stops at the first evaluation that fails, or with
-/// [`SolverFailure::NotConverged`] when the stage iteration of a step does
+/// [`Failure::NotConverged`] when the stage iteration of a step does
 /// not converge (a step too large for the system's fastest motion, or a
 /// singular solution).
-pub fn simulate_gauss<E, const NQ: usize>(
-    equations: &E,
-    initial: State<NQ>,
-    h: f64,
+pub fn gauss_legendre<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
+    t_end: f64,
     steps: u64,
     method: GaussLegendre,
-    observer: impl FnMut(&State<NQ>),
-) -> Result<Solution<NQ>, SolverError<NQ>>
+    observer: impl FnMut(&State<NQ, NV>),
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
-    E: Equations<NQ>,
+    D: Dynamics<NQ, NV>,
 {
+    let run = (dynamics, initial, t_end, steps);
     match method {
-        GaussLegendre::Midpoint => integrate(equations, initial, h, steps, &MIDPOINT, observer),
-        GaussLegendre::Order4 => integrate(equations, initial, h, steps, &GAUSS4, observer),
-        GaussLegendre::Order6 => integrate(equations, initial, h, steps, &GAUSS6, observer),
+        GaussLegendre::Midpoint => integrate(run, &MIDPOINT, observer),
+        GaussLegendre::Order4 => integrate(run, &GAUSS4, observer),
+        GaussLegendre::Order6 => integrate(run, &GAUSS6, observer),
     }
 }
 
@@ -144,57 +144,52 @@ impl<const S: usize> Collocation<S> {
     }
 }
 
-/// [`simulate_gauss`] with the tableau `scheme`.
-fn integrate<E, const NQ: usize, const S: usize>(
-    equations: &E,
-    initial: State<NQ>,
-    h: f64,
-    steps: u64,
+/// [`gauss_legendre`] with the tableau `scheme`; the first guess of each
+/// step's stage slopes extrapolates the previous step's.
+fn integrate<D, const NQ: usize, const NV: usize, const S: usize>(
+    (dynamics, initial, t_end, steps): (&D, State<NQ, NV>, f64, u64),
     scheme: &Collocation<S>,
-    mut observer: impl FnMut(&State<NQ>),
-) -> Result<Solution<NQ>, SolverError<NQ>>
+    observer: impl FnMut(&State<NQ, NV>),
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
-    E: Equations<NQ>,
+    D: Dynamics<NQ, NV>,
 {
-    let counted = Counted::new(equations);
-    let acceleration = counted.acceleration();
-    let rate = |state: &State<NQ>| Rate::at(&acceleration, state);
+    let kernel = Kernel::new(dynamics);
     let extrapolation = scheme.extrapolation();
-    observer(&initial);
-    let mut state = initial;
-    let mut guess = [rate(&state)?; S];
-    for _ in 0..steps {
-        let stages = solve_stages(scheme, &state, h, guess, &rate)?;
-        let next = Rate::combination(&scheme.b, &stages).advance(&state, h);
-        state = counted.settle(&next)?;
-        observer(&state);
+    let mut guess = [kernel.rate(&initial)?; S];
+    let step = |state: &State<NQ, NV>, h: f64| {
+        let stages = solve_stages(&kernel, scheme, state, h, guess)?;
         guess = std::array::from_fn(|i| Rate::combination(&extrapolation[i], &stages));
-    }
-    Ok(counted.fixed_step_solution(state, steps))
+        Ok(kernel.advance(state, &Rate::combination(&scheme.b, &stages), h))
+    };
+    kernel.fixed_steps(initial, t_end, steps, step, observer)
 }
 
 /// The stage slopes `Kᵢ = F(y + h Σⱼ aᵢⱼ Kⱼ)` of one step from `state`, by
 /// fixed-point iteration from `guess` until the change is rounding.
-fn solve_stages<const NQ: usize, const S: usize>(
+fn solve_stages<D, const NQ: usize, const NV: usize, const S: usize>(
+    kernel: &Kernel<'_, D>,
     scheme: &Collocation<S>,
-    state: &State<NQ>,
+    state: &State<NQ, NV>,
     h: f64,
-    guess: [Rate<NQ>; S],
-    rate: &impl Fn(&State<NQ>) -> Result<Rate<NQ>, crate::IntegrationError<NQ>>,
-) -> Result<[Rate<NQ>; S], SolverError<NQ>> {
+    guess: [Rate<NV>; S],
+) -> Result<[Rate<NV>; S], IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
     let size = 1.0
         + state
             .q
             .iter()
-            .chain(&state.qd)
+            .chain(&state.v)
             .fold(0.0f64, |m, x| m.max(x.abs()));
     let mut stages = guess;
     let mut previous_change = f64::INFINITY;
     for _ in 0..MAX_ITERATIONS {
         let mut updated = [Rate::ZERO; S];
         for (i, slope) in updated.iter_mut().enumerate() {
-            let stage = Rate::combination(&scheme.a[i], &stages).stage(state, h, scheme.c[i]);
-            *slope = rate(&stage)?;
+            let combined = Rate::combination(&scheme.a[i], &stages);
+            *slope = kernel.rate(&kernel.stage(state, &combined, h, scheme.c[i]))?;
         }
         let change = updated.iter().zip(&stages).fold(0.0f64, |m, (new, old)| {
             m.max(new.minus(old).largest_magnitude())
@@ -208,9 +203,9 @@ fn solve_stages<const NQ: usize, const S: usize>(
         }
         previous_change = change;
     }
-    Err(SolverError::at(
+    Err(IntegrationError::at(
         state,
-        SolverFailure::NotConverged {
+        Failure::NotConverged {
             iterations: MAX_ITERATIONS,
         },
     ))

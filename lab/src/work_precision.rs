@@ -5,15 +5,17 @@
 //! [`Solution`]; [`measure`] times it (median CPU-clock wall time of several
 //! repeats), counts its right-hand-side evaluations and judges its final
 //! state against a reference with a caller-supplied [`Accuracy`] function.
-//! The points of a sweep go to a CSV ([`to_csv`]) and, with the `charts`
-//! feature, to a log-log chart of error against time
+//! The points of a sweep go to a CSV ([`to_csv`]) and
+//! to a log-log chart of error against time
 //! ([`work_precision_chart`]); [`seconds_at_error`] interpolates the time a
 //! method needs for a given error, for comparisons at equal accuracy.
 
 use std::fmt::Write as _;
 use std::time::Instant;
 
-use crate::{Solution, SolverError, State};
+use dalembert::{IntegrationError, Solution, State};
+
+use crate::{ChartError, Series, line_chart_log_log};
 
 /// How far a final state is from the truth.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -44,9 +46,12 @@ pub struct WorkPoint {
 }
 
 /// The largest `|Δqᵢ|` or `|Δq̇ᵢ|` between two states.
-pub fn state_error<const NQ: usize>(state: &State<NQ>, reference: &State<NQ>) -> f64 {
+pub fn state_error<const NQ: usize, const NV: usize>(
+    state: &State<NQ, NV>,
+    reference: &State<NQ, NV>,
+) -> f64 {
     let coordinates = state.q.iter().zip(&reference.q);
-    let speeds = state.qd.iter().zip(&reference.qd);
+    let speeds = state.v.iter().zip(&reference.v);
     coordinates
         .chain(speeds)
         .fold(0.0, |m, (a, b)| m.max((a - b).abs()))
@@ -56,13 +61,13 @@ pub fn state_error<const NQ: usize>(state: &State<NQ>, reference: &State<NQ>) ->
 /// its work and the accuracy `judge` gives its final state.
 ///
 /// Stops at the first run that fails.
-pub fn measure<const NQ: usize>(
+pub fn measure<const NQ: usize, const NV: usize>(
     method: &str,
     setting: f64,
     repeats: usize,
-    mut run: impl FnMut() -> Result<Solution<NQ>, SolverError<NQ>>,
-    judge: impl Fn(&State<NQ>) -> Accuracy,
-) -> Result<WorkPoint, SolverError<NQ>> {
+    mut run: impl FnMut() -> Result<Solution<NQ, NV>, IntegrationError<NQ>>,
+    judge: impl Fn(&State<NQ, NV>) -> Accuracy,
+) -> Result<WorkPoint, IntegrationError<NQ>> {
     let (first_time, solution) = timed(&mut run)?;
     let mut times = Vec::with_capacity(repeats.max(1));
     times.push(first_time);
@@ -80,9 +85,9 @@ pub fn measure<const NQ: usize>(
 }
 
 /// One run of `run` and its wall-clock time in seconds.
-fn timed<const NQ: usize>(
-    run: &mut impl FnMut() -> Result<Solution<NQ>, SolverError<NQ>>,
-) -> Result<(f64, Solution<NQ>), SolverError<NQ>> {
+fn timed<const NQ: usize, const NV: usize>(
+    run: &mut impl FnMut() -> Result<Solution<NQ, NV>, IntegrationError<NQ>>,
+) -> Result<(f64, Solution<NQ, NV>), IntegrationError<NQ>> {
     let start = Instant::now();
     let solution = run()?;
     Ok((start.elapsed().as_secs_f64(), solution))
@@ -147,13 +152,12 @@ pub fn work_line(points: &[WorkPoint], method: &str) -> Vec<(f64, f64)> {
 /// Writes the log-log work-precision chart of `points` (final-state error
 /// against median time, one line per method in order of first appearance)
 /// to `path`, with `extra` lines (a baseline, a limit) after them.
-#[cfg(feature = "charts")]
 pub fn work_precision_chart(
     path: &std::path::Path,
     title: &str,
     points: &[WorkPoint],
-    extra: &[crate::Series<'_>],
-) -> Result<(), crate::ChartError> {
+    extra: &[Series<'_>],
+) -> Result<(), ChartError> {
     let mut methods: Vec<&str> = Vec::new();
     for point in points {
         if !methods.contains(&point.method.as_str()) {
@@ -161,13 +165,13 @@ pub fn work_precision_chart(
         }
     }
     let lines: Vec<Vec<(f64, f64)>> = methods.iter().map(|m| work_line(points, m)).collect();
-    let series: Vec<crate::Series<'_>> = methods
+    let series: Vec<Series<'_>> = methods
         .iter()
         .zip(&lines)
-        .map(|(name, points)| crate::Series { name, points })
+        .map(|(name, points)| Series { name, points })
         .chain(extra.iter().copied())
         .collect();
-    crate::line_chart_log_log(
+    line_chart_log_log(
         path,
         title,
         "median wall time per integration [s]",
@@ -179,7 +183,7 @@ pub fn work_precision_chart(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Statistics;
+    use dalembert::integrate::Statistics;
 
     fn point(method: &str, seconds: f64, error: f64) -> WorkPoint {
         WorkPoint {
@@ -200,11 +204,11 @@ mod tests {
         let a = State {
             t: 1.0,
             q: [1.0, 2.0],
-            qd: [0.0, -1.0],
+            v: [0.0, -1.0],
         };
         let b = State {
             q: [1.5, 2.0],
-            qd: [0.0, 1.0],
+            v: [0.0, 1.0],
             ..a
         };
         assert_eq!(state_error(&a, &b), 2.0);
@@ -228,7 +232,7 @@ mod tests {
         let end = State {
             t: 1.0,
             q: [0.5],
-            qd: [0.0],
+            v: [0.0],
         };
         let mut runs = 0;
         let run = || {
@@ -241,7 +245,7 @@ mod tests {
                 },
             })
         };
-        let judge = |s: &State<1>| Accuracy {
+        let judge = |s: &State<1, 1>| Accuracy {
             error: s.q[0],
             ..Accuracy::default()
         };

@@ -1,15 +1,17 @@
-//! What the integrators beyond fixed-step RK4 report: the final state with
-//! the work spent ([`Solution`], [`Statistics`]), or a [`SolverError`] that
-//! names the time and configuration where the integration stopped.
+//! What every integrator reports: the final state with the work spent
+//! ([`Solution`], [`Statistics`]), or an [`IntegrationError`] that names the
+//! time and configuration where the integration stopped and why
+//! ([`Failure`]).
 
 use std::fmt;
 
-use crate::{DynamicsError, IntegrationError};
+use super::State;
+use crate::DynamicsError;
 
 /// The work an integration did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Statistics {
-    /// Evaluations of the accelerations `q̈(t, q, q̇)` (right-hand sides),
+    /// Evaluations of the accelerations `v̇(t, q, v)` (right-hand sides),
     /// including those of finite-difference Jacobians and of rejected steps.
     pub rhs_evaluations: u64,
     /// Steps taken.
@@ -20,28 +22,28 @@ pub struct Statistics {
 
 /// The end of a successful integration.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Solution<const NQ: usize> {
+pub struct Solution<const NQ: usize, const NV: usize> {
     /// The final state.
-    pub end: crate::State<NQ>,
+    pub end: State<NQ, NV>,
     /// The work it took.
     pub statistics: Statistics,
 }
 
 /// An integration stopped: where, and why.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SolverError<const NQ: usize> {
+pub struct IntegrationError<const NQ: usize> {
     /// Time of the failing evaluation or step.
     pub t: f64,
     /// Configuration there.
     pub q: [f64; NQ],
     /// Why the integration stopped.
-    pub cause: SolverFailure,
+    pub cause: Failure,
 }
 
 /// Why an integration stopped.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
-pub enum SolverFailure {
+pub enum Failure {
     /// The equations could not be evaluated (singular mass matrix,
     /// non-finite values, …).
     Dynamics(DynamicsError),
@@ -64,7 +66,7 @@ pub enum SolverFailure {
     },
 }
 
-impl fmt::Display for SolverFailure {
+impl fmt::Display for Failure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::Dynamics(cause) => cause.fmt(f),
@@ -78,32 +80,31 @@ impl fmt::Display for SolverFailure {
     }
 }
 
-impl<const NQ: usize> fmt::Display for SolverError<NQ> {
+impl<const NQ: usize> fmt::Display for IntegrationError<NQ> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{} at t = {} s, q = {:?}", self.cause, self.t, self.q)
     }
 }
 
 /// The cause is part of the message, so it is not repeated as a `source`.
-impl<const NQ: usize> std::error::Error for SolverError<NQ> {}
+impl<const NQ: usize> std::error::Error for IntegrationError<NQ> {}
 
-impl<const NQ: usize> From<IntegrationError<NQ>> for SolverError<NQ> {
-    fn from(error: IntegrationError<NQ>) -> Self {
-        Self {
-            t: error.t,
-            q: error.q,
-            cause: SolverFailure::Dynamics(error.cause),
-        }
-    }
-}
-
-impl<const NQ: usize> SolverError<NQ> {
+impl<const NQ: usize> IntegrationError<NQ> {
     /// The failure `cause` at `state`.
-    pub(crate) fn at(state: &crate::State<NQ>, cause: SolverFailure) -> Self {
+    pub(crate) fn at<const NV: usize>(state: &State<NQ, NV>, cause: Failure) -> Self {
         Self {
             t: state.t,
             q: state.q,
             cause,
+        }
+    }
+
+    /// The equations failed with `cause` at `(t, q)`.
+    pub(crate) fn dynamics(t: f64, q: [f64; NQ], cause: DynamicsError) -> Self {
+        Self {
+            t,
+            q,
+            cause: Failure::Dynamics(cause),
         }
     }
 }

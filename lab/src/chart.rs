@@ -1,4 +1,4 @@
-//! SVG line charts of trajectories and error histories (feature `charts`).
+//! SVG line charts of trajectories and error histories.
 
 use std::cmp::Ordering;
 use std::fmt;

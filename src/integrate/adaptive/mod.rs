@@ -4,12 +4,12 @@
 //! # Why not a crate
 //!
 //! The crates that offer these pairs do not fit the runtime's contract:
-//! `ode_solvers` pins another nalgebra (see `ENGINEERING.md`), and
+//! `ode_solvers` pins another nalgebra than this crate's, and
 //! `russell_ode`'s `Solver` works on heap `Vector`s through a boxed
 //! `System` closure and integrates whole intervals with its own output
 //! machinery. Here the state is the const-generic [`State`] on the stack, a
-//! step allocates nothing, the slopes are those of [`Rate`] (shared with
-//! RK4), and a failure is a [`SolverError`] naming time and configuration
+//! step allocates nothing, the slopes are those of the Runge–Kutta kernel
+//! (shared with RK4), and a failure is an [`IntegrationError`] naming time and configuration
 //! like every other integrator of the crate. The tableaux are transcribed
 //! from Hairer's codes (`tableaux.rs`), and so is the controller: an error
 //! norm `‖err / (atol + rtol max(|y₀|, |y₁|))‖` (root mean square), the next
@@ -21,9 +21,8 @@ mod tableaux;
 
 use tableaux::{DOP853, DOPRI5, EmbeddedPair, ErrorEstimate};
 
-use crate::equations::Counted;
-use crate::integrate::Rate;
-use crate::{Equations, Solution, SolverError, SolverFailure, State, Statistics};
+use super::runge_kutta::{Kernel, Rate};
+use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics};
 
 /// Safety factor of the step-size controller.
 const SAFETY: f64 = 0.9;
@@ -66,66 +65,64 @@ impl AdaptiveOptions {
     }
 }
 
-/// Integrates `equations` from `initial` to `t_end` with the adaptive pair
+/// Integrates `dynamics` from `initial` to `t_end` with the adaptive pair
 /// `pair`, and returns the final state (exactly at `t_end`) with the work
 /// done.
 ///
 /// `observer` sees the initial state and then every accepted step, after
-/// the equations' [`settle`](Equations::settle). Allocates nothing. Stops
+/// the dynamics' [`settle`](Dynamics::settle). Allocates nothing. Stops
 /// at the first evaluation that fails (singular mass matrix, non-finite
 /// values: the error names its time and configuration), when the step size
 /// falls below the resolution of the time, or when `options.max_steps` run
 /// out.
-pub fn simulate_adaptive<E, const NQ: usize>(
-    equations: &E,
-    initial: State<NQ>,
+pub fn adaptive<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
     t_end: f64,
     pair: ExplicitPair,
     options: AdaptiveOptions,
-    observer: impl FnMut(&State<NQ>),
-) -> Result<Solution<NQ>, SolverError<NQ>>
+    observer: impl FnMut(&State<NQ, NV>),
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
-    E: Equations<NQ>,
+    D: Dynamics<NQ, NV>,
 {
     match pair {
         ExplicitPair::DormandPrince54 => {
-            integrate(equations, initial, t_end, &DOPRI5, options, observer)
+            integrate(dynamics, initial, t_end, &DOPRI5, options, observer)
         }
-        ExplicitPair::Dop853 => integrate(equations, initial, t_end, &DOP853, options, observer),
+        ExplicitPair::Dop853 => integrate(dynamics, initial, t_end, &DOP853, options, observer),
     }
 }
 
-/// [`simulate_adaptive`] with the tableau `pair`.
-fn integrate<E, const NQ: usize, const S: usize>(
-    equations: &E,
-    initial: State<NQ>,
+/// [`adaptive`] with the tableau `pair`.
+fn integrate<D, const NQ: usize, const NV: usize, const S: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
     t_end: f64,
     pair: &EmbeddedPair<S>,
     options: AdaptiveOptions,
-    mut observer: impl FnMut(&State<NQ>),
-) -> Result<Solution<NQ>, SolverError<NQ>>
+    mut observer: impl FnMut(&State<NQ, NV>),
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
-    E: Equations<NQ>,
+    D: Dynamics<NQ, NV>,
 {
-    let counted = Counted::new(equations);
-    let acceleration = counted.acceleration();
-    let rate = |state: &State<NQ>| Rate::at(&acceleration, state);
+    let kernel = Kernel::new(dynamics);
     let scale = Scale::from(&options);
     observer(&initial);
     let mut state = initial;
-    let mut slope = rate(&state)?;
+    let mut slope = kernel.rate(&state)?;
     let mut h = match options.initial_step {
         Some(h) => h,
-        None => initial_step(&state, &slope, t_end, pair.order, &scale, rate)?,
+        None => initial_step(&kernel, &state, &slope, t_end, pair.order, &scale)?,
     };
     let mut statistics = Statistics::default();
     let mut after_rejection = false;
     while state.t < t_end {
         if statistics.accepted_steps + statistics.rejected_steps == options.max_steps {
             let steps = options.max_steps;
-            return Err(SolverError::at(
+            return Err(IntegrationError::at(
                 &state,
-                SolverFailure::TooManySteps { steps },
+                Failure::TooManySteps { steps },
             ));
         }
         let last = state.t + 1.01 * h >= t_end;
@@ -133,19 +130,19 @@ where
             h = t_end - state.t;
         }
         if h.is_nan() || h <= 16.0 * f64::EPSILON * state.t.abs() {
-            return Err(SolverError::at(
+            return Err(IntegrationError::at(
                 &state,
-                SolverFailure::StepSizeTooSmall { h },
+                Failure::StepSizeTooSmall { h },
             ));
         }
-        let trial = attempt(pair, &state, &slope, h, &rate)?;
+        let trial = attempt(&kernel, pair, &state, &slope, h)?;
         let mut next = trial.state;
         if last {
             next.t = t_end;
         }
         let error = match &pair.estimate {
             ErrorEstimate::Embedded { e, e_new } => {
-                let new_slope = rate(&next)?;
+                let new_slope = kernel.rate(&next)?;
                 let estimate = Rate::combination(e, &trial.stages);
                 let estimate = combined_with(&estimate, *e_new, &new_slope);
                 let error = h.abs() * scale.norm(&state, &next, &estimate);
@@ -167,10 +164,10 @@ where
         let factor = step_factor(pair, error, after_rejection);
         if error <= 1.0 {
             statistics.accepted_steps += 1;
-            let settled = counted.settle(&next)?;
+            let settled = kernel.settle(&next)?;
             slope = match new_slope {
                 Some(new_slope) if settled == next => new_slope,
-                _ => rate(&settled)?,
+                _ => kernel.rate(&settled)?,
             };
             state = settled;
             observer(&state);
@@ -181,7 +178,7 @@ where
         }
         h *= factor;
     }
-    statistics.rhs_evaluations = counted.evaluations();
+    statistics.rhs_evaluations = kernel.evaluations();
     Ok(Solution {
         end: state,
         statistics,
@@ -189,31 +186,34 @@ where
 }
 
 /// The stage slopes and the propagated solution of one trial step.
-struct Trial<const NQ: usize, const S: usize> {
-    stages: [Rate<NQ>; S],
-    state: State<NQ>,
+struct Trial<const NQ: usize, const NV: usize, const S: usize> {
+    stages: [Rate<NV>; S],
+    state: State<NQ, NV>,
 }
 
 /// One trial step of length `h` from `state`, whose slope is `slope`.
-fn attempt<const NQ: usize, const S: usize>(
+fn attempt<D, const NQ: usize, const NV: usize, const S: usize>(
+    kernel: &Kernel<'_, D>,
     pair: &EmbeddedPair<S>,
-    state: &State<NQ>,
-    slope: &Rate<NQ>,
+    state: &State<NQ, NV>,
+    slope: &Rate<NV>,
     h: f64,
-    rate: &impl Fn(&State<NQ>) -> Result<Rate<NQ>, crate::IntegrationError<NQ>>,
-) -> Result<Trial<NQ, S>, SolverError<NQ>> {
+) -> Result<Trial<NQ, NV, S>, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
     let mut stages = [Rate::ZERO; S];
     stages[0] = *slope;
     for i in 1..S {
-        let stage = Rate::combination(&pair.a[i], &stages).stage(state, h, pair.c[i]);
-        stages[i] = rate(&stage)?;
+        let combined = Rate::combination(&pair.a[i], &stages);
+        stages[i] = kernel.rate(&kernel.stage(state, &combined, h, pair.c[i]))?;
     }
-    let state = Rate::combination(&pair.b, &stages).advance(state, h);
+    let state = kernel.advance(state, &Rate::combination(&pair.b, &stages), h);
     Ok(Trial { stages, state })
 }
 
 /// `estimate + w · slope`.
-fn combined_with<const NQ: usize>(estimate: &Rate<NQ>, w: f64, slope: &Rate<NQ>) -> Rate<NQ> {
+fn combined_with<const NV: usize>(estimate: &Rate<NV>, w: f64, slope: &Rate<NV>) -> Rate<NV> {
     Rate::combination(&[1.0, w], &[*estimate, *slope])
 }
 
@@ -237,17 +237,20 @@ fn step_factor<const S: usize>(pair: &EmbeddedPair<S>, error: f64, after_rejecti
 
 /// Hairer's first step: from the sizes of the state, of its slope and of the
 /// slope's change over a tiny explicit Euler step (one evaluation).
-fn initial_step<const NQ: usize>(
-    state: &State<NQ>,
-    slope: &Rate<NQ>,
+fn initial_step<D, const NQ: usize, const NV: usize>(
+    kernel: &Kernel<'_, D>,
+    state: &State<NQ, NV>,
+    slope: &Rate<NV>,
     t_end: f64,
     order: i32,
     scale: &Scale,
-    rate: impl Fn(&State<NQ>) -> Result<Rate<NQ>, crate::IntegrationError<NQ>>,
-) -> Result<f64, SolverError<NQ>> {
+) -> Result<f64, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
     let as_rate = Rate {
-        dq: state.q,
-        dqd: state.qd,
+        dq: configuration_size(state),
+        dv: state.v,
     };
     let size = scale.norm(state, state, &as_rate);
     let speed = scale.norm(state, state, slope);
@@ -257,8 +260,8 @@ fn initial_step<const NQ: usize>(
         0.01 * size / speed
     };
     let guess = guess.min(t_end - state.t);
-    let euler = slope.advance(state, guess);
-    let change = scale.norm(state, state, &rate(&euler)?.minus(slope)) / guess;
+    let euler = kernel.advance(state, slope, guess);
+    let change = scale.norm(state, state, &kernel.rate(&euler)?.minus(slope)) / guess;
     let largest = speed.max(change);
     let step = if largest <= 1e-15 {
         (guess * 1e-3).max(1e-6)
@@ -285,17 +288,31 @@ impl From<&AdaptiveOptions> for Scale {
 
 impl Scale {
     /// The root mean square of `values / scale(from, to)` over the
-    /// coordinates and speeds.
-    fn norm<const NQ: usize>(&self, from: &State<NQ>, to: &State<NQ>, values: &Rate<NQ>) -> f64 {
+    /// configuration's motion and the speeds.
+    fn norm<const NQ: usize, const NV: usize>(
+        &self,
+        from: &State<NQ, NV>,
+        to: &State<NQ, NV>,
+        values: &Rate<NV>,
+    ) -> f64 {
         let entry = |value: f64, a: f64, b: f64| {
             let scale = self.absolute + self.relative * a.abs().max(b.abs());
             (value / scale).powi(2)
         };
-        let sum: f64 = (0..NQ)
+        let (from_q, to_q) = (configuration_size(from), configuration_size(to));
+        let sum: f64 = (0..NV)
             .map(|i| {
-                entry(values.dq[i], from.q[i], to.q[i]) + entry(values.dqd[i], from.qd[i], to.qd[i])
+                entry(values.dq[i], from_q[i], to_q[i]) + entry(values.dv[i], from.v[i], to.v[i])
             })
             .sum();
-        (sum / (2 * NQ) as f64).sqrt()
+        (sum / (2 * NV) as f64).sqrt()
     }
+}
+
+/// The size of the configuration along each speed, for the relative part of
+/// the error scale: the coordinates themselves when every speed is its
+/// coordinate's rate; zero (an absolute scale) otherwise, where a speed moves
+/// no single coordinate.
+fn configuration_size<const NQ: usize, const NV: usize>(state: &State<NQ, NV>) -> [f64; NV] {
+    std::array::from_fn(|i| if NQ == NV { state.q[i] } else { 0.0 })
 }

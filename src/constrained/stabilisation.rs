@@ -1,10 +1,9 @@
-//! Time integration of constrained systems with a choice of drift
-//! stabilisation, mirroring the unconstrained [`rk4_step`](crate::rk4_step)
-//! and [`simulate`](crate::simulate).
+//! How a constrained integration keeps the numerical solution on the
+//! constraint manifold ([`Stabilisation`], applied by
+//! [`Constrained`](crate::Constrained)), and how far it has drifted off.
 
 use super::projection::largest_magnitude;
-use crate::integrate::{march, rk4_step_with};
-use crate::{Constrained, ConstrainedSystem, Equations, IntegrationError, State};
+use crate::{ConstrainedSystem, State};
 
 /// How a constrained integration keeps the numerical solution on the
 /// constraint manifold.
@@ -18,7 +17,7 @@ pub enum Stabilisation {
     None,
     /// Baumgarte's `φ̈ + 2α φ̇ + β² φ = 0` (velocity level only for
     /// nonholonomic rows): the drift stays bounded at a level set by the step
-    /// and the gains. See [`baumgarte_accelerations`](crate::baumgarte_accelerations) for how to choose them.
+    /// and the gains. See [`baumgarte_accelerations`](super::baumgarte_accelerations) for how to choose them.
     Baumgarte {
         /// Damping rate `α` of the velocity error, in 1/s.
         alpha: f64,
@@ -26,7 +25,7 @@ pub enum Stabilisation {
         beta: f64,
     },
     /// After every step, project the state back onto the manifold with
-    /// [`project_onto_constraints`](crate::project_onto_constraints): `max |φᵢ| ≤ tolerance` and `ψ = 0` to
+    /// [`project_onto_constraints`](super::project_onto_constraints): `max |φᵢ| ≤ tolerance` and `ψ = 0` to
     /// rounding after each step.
     Projection {
         /// Largest holonomic residual `|φᵢ|` accepted.
@@ -37,62 +36,14 @@ pub enum Stabilisation {
     },
 }
 
-/// One step of length `h` of the classical fourth-order Runge–Kutta method
-/// for `M q̈ = f + Aᵀ λ`, `A q̈ = b`, stabilised by `stabilisation`.
-///
-/// `inputs` gives the inputs at every stage, as for
-/// [`rk4_step`](crate::rk4_step). Allocates nothing. A failure names the time
-/// and configuration of the failing stage, or of the end of the step if the
-/// projection failed.
-pub fn constrained_rk4_step<S, const NQ: usize, const NU: usize, const NC: usize>(
-    system: &S,
-    state: &State<NQ>,
-    inputs: impl Fn(f64, &[f64; NQ], &[f64; NQ]) -> [f64; NU],
-    h: f64,
-    stabilisation: Stabilisation,
-) -> Result<State<NQ>, IntegrationError<NQ>>
-where
-    S: ConstrainedSystem<NQ, NU, NC>,
-{
-    let equations = Constrained::new(system, inputs, stabilisation);
-    let next = rk4_step_with(state, h, |t, q, qd| equations.accelerations(t, q, qd))?;
-    equations.settle(&next).map_err(|cause| IntegrationError {
-        t: next.t,
-        q: next.q,
-        cause,
-    })
-}
-
-/// Integrates `steps` fixed steps of length `h` with
-/// [`constrained_rk4_step`], from `initial`, and returns the final state.
-///
-/// `observer` sees the initial state (as given: project it first with
-/// [`project_onto_constraints`](crate::project_onto_constraints) if it is off the manifold) and then the state
-/// after every step. Stops at the first step that fails.
-pub fn simulate_constrained<S, const NQ: usize, const NU: usize, const NC: usize>(
-    system: &S,
-    initial: State<NQ>,
-    inputs: impl Fn(f64, &[f64; NQ], &[f64; NQ]) -> [f64; NU],
-    h: f64,
-    steps: usize,
-    stabilisation: Stabilisation,
-    observer: impl FnMut(&State<NQ>),
-) -> Result<State<NQ>, IntegrationError<NQ>>
-where
-    S: ConstrainedSystem<NQ, NU, NC>,
-{
-    let step = |state: &State<NQ>| constrained_rk4_step(system, state, &inputs, h, stabilisation);
-    march(initial, steps as u64, step, observer)
-}
-
 /// The position-level drift of `state`: the largest holonomic residual
 /// `max |φᵢ(t, q)|` (nonholonomic rows count as `0`).
-pub fn constraint_drift<S, const NQ: usize, const NU: usize, const NC: usize>(
+pub fn constraint_drift<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
-    state: &State<NQ>,
+    state: &State<NQ, NV>,
 ) -> f64
 where
-    S: ConstrainedSystem<NQ, NU, NC>,
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     largest_magnitude(&system.constraint_residual(state.t, &state.q))
 }
@@ -101,8 +52,9 @@ where
 mod tests {
     use super::*;
     use crate::constrained::test_systems::PointOnCircle;
+    use crate::integrate::{Failure, rk4, rk4_step};
     use crate::test_systems::Pendulum;
-    use crate::{DynamicsError, simulate};
+    use crate::{Constrained, DynamicsError, Unconstrained};
 
     const CIRCLE: PointOnCircle<1> = PointOnCircle {
         m: 1.0,
@@ -111,12 +63,12 @@ mod tests {
     };
 
     /// On the circle at `theta` from the downward vertical, at rest.
-    fn at_rest(theta: f64) -> State<2> {
+    fn at_rest(theta: f64) -> State<2, 2> {
         let (s, c) = theta.sin_cos();
         State {
             t: 0.0,
             q: [s, -c],
-            qd: [0.0; 2],
+            v: [0.0; 2],
         }
     }
 
@@ -124,20 +76,12 @@ mod tests {
     fn angles(stabilisation: Stabilisation) -> (Vec<f64>, f64) {
         let mut angles = Vec::new();
         let mut drift: f64 = 0.0;
-        let observe = |s: &State<2>| {
+        let observe = |s: &State<2, 2>| {
             angles.push(s.q[0].atan2(-s.q[1]));
             drift = drift.max(constraint_drift(&CIRCLE, s));
         };
-        simulate_constrained(
-            &CIRCLE,
-            at_rest(1.0),
-            |_, _, _| [],
-            1e-3,
-            2000,
-            stabilisation,
-            observe,
-        )
-        .unwrap();
+        let dynamics = Constrained::without_inputs(&CIRCLE, stabilisation);
+        rk4(&dynamics, at_rest(1.0), 2.0, 2000, observe).unwrap();
         (angles, drift)
     }
 
@@ -152,17 +96,10 @@ mod tests {
         let start = State {
             t: 0.0,
             q: [1.0],
-            qd: [0.0],
+            v: [0.0],
         };
-        simulate(
-            &pendulum,
-            start,
-            |_, _, _| [],
-            1e-3,
-            2000,
-            |s| reference.push(s.q[0]),
-        )
-        .unwrap();
+        let dynamics = Unconstrained::without_inputs(&pendulum);
+        rk4(&dynamics, start, 2.0, 2000, |s| reference.push(s.q[0])).unwrap();
         let modes = [
             Stabilisation::None,
             Stabilisation::Baumgarte {
@@ -205,12 +142,12 @@ mod tests {
             t: 3.0,
             ..at_rest(0.5)
         };
-        let error = constrained_rk4_step(&twice, &start, |_, _, _| [], 0.1, Stabilisation::None)
-            .unwrap_err();
+        let dynamics = Constrained::without_inputs(&twice, Stabilisation::None);
+        let error = rk4_step(&dynamics, &start, 0.1).unwrap_err();
         assert_eq!((error.t, error.q), (3.0, start.q));
         assert!(matches!(
             error.cause,
-            DynamicsError::DependentConstraints { row: 1, .. }
+            Failure::Dynamics(DynamicsError::DependentConstraints { row: 1, .. })
         ));
         assert!(error.to_string().contains("at t = 3 s"), "{error}");
     }
@@ -222,11 +159,12 @@ mod tests {
             tolerance: 0.0,
             max_iterations: 0,
         };
-        let error = constrained_rk4_step(&CIRCLE, &start, |_, _, _| [], 0.1, stingy).unwrap_err();
+        let dynamics = Constrained::without_inputs(&CIRCLE, stingy);
+        let error = rk4_step(&dynamics, &start, 0.1).unwrap_err();
         assert_eq!(error.t, 0.1);
         assert!(matches!(
             error.cause,
-            DynamicsError::ProjectionNotConverged { iterations: 0, .. }
+            Failure::Dynamics(DynamicsError::ProjectionNotConverged { iterations: 0, .. })
         ));
     }
 }

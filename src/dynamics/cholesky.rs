@@ -1,0 +1,56 @@
+//! Cholesky factorisation `M = L Lᵀ` on the stack with a relative pivot test,
+//! shared by the mass matrix and the constraints' Schur complement.
+
+use nalgebra::{Cholesky, Const, SMatrix};
+
+use super::DynamicsError;
+
+/// A Cholesky pivot at most this fraction of the largest diagonal entry of the
+/// matrix counts as zero: the matrix is singular to working precision. The
+/// emitted solvers use the same value.
+pub const RELATIVE_PIVOT_TOLERANCE: f64 = 1e-14;
+
+/// The Cholesky factor of a finite mass matrix, or the error naming the
+/// coordinate (of `coordinates`, one name per speed) whose pivot is not
+/// safely positive.
+pub(crate) fn factor_mass_matrix<const NV: usize>(
+    mass: &[[f64; NV]; NV],
+    coordinates: &[&'static str; NV],
+) -> Result<Cholesky<f64, Const<NV>>, DynamicsError> {
+    let mass = SMatrix::<f64, NV, NV>::from_fn(|i, j| mass[i][j]);
+    cholesky(mass).map_err(|pivot| DynamicsError::SingularMassMatrix {
+        index: pivot.index,
+        coordinate: coordinates[pivot.index],
+        pivot: pivot.value,
+    })
+}
+
+/// A Cholesky pivot that is not safely positive.
+pub(crate) struct Pivot {
+    /// Its row and column.
+    pub(crate) index: usize,
+    /// Its value `Lⱼⱼ²`.
+    pub(crate) value: f64,
+}
+
+/// Factorises a finite `M = L Lᵀ`, or reports its first pivot that is not
+/// safely positive.
+pub(crate) fn cholesky<const N: usize>(
+    mass: SMatrix<f64, N, N>,
+) -> Result<Cholesky<f64, Const<N>>, Pivot> {
+    let tolerance = RELATIVE_PIVOT_TOLERANCE * mass.diagonal().max().max(0.0);
+    // Never fails; a bad pivot leaves NaN behind it, but every row of L up to
+    // it is exact before its diagonal, which is all the pivot scan reads.
+    let factor = Cholesky::new_unchecked(mass);
+    let l = factor.l_dirty();
+    for j in 0..N {
+        let pivot = mass[(j, j)] - l.row(j).columns(0, j).norm_squared();
+        if pivot.is_nan() || pivot <= tolerance {
+            return Err(Pivot {
+                index: j,
+                value: pivot,
+            });
+        }
+    }
+    Ok(factor)
+}

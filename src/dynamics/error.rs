@@ -1,0 +1,95 @@
+//! Why forward dynamics fails: [`DynamicsError`], with the time, state or
+//! equation entry that made the accelerations impossible to compute.
+
+use std::fmt;
+
+/// Why the accelerations could not be computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum DynamicsError {
+    /// The time, a coordinate, a speed or an input is NaN or infinite.
+    NonFiniteState,
+    /// The mass matrix or the forcing has a NaN or infinite entry.
+    NonFiniteEquations,
+    /// The mass matrix is not safely positive definite: the Cholesky
+    /// factorisation `M = L Lᵀ` met a pivot `Lⱼⱼ²` that is not larger than
+    /// `1e-14` times the largest diagonal entry of `M`. Coordinate `index`
+    /// then has no inertia of its own beyond that of the coordinates before
+    /// it (a body without inertia about some axis, a gimbal lock, …).
+    SingularMassMatrix {
+        /// Index of the first failing pivot, which is the index of its
+        /// coordinate.
+        index: usize,
+        /// Name of that coordinate.
+        coordinate: &'static str,
+        /// The pivot: zero, negative or tiny.
+        pivot: f64,
+    },
+    /// The accelerations overflowed although the equations were finite and
+    /// the mass matrix passed the pivot test.
+    NonFiniteAccelerations,
+    /// The constraint Jacobian `A`, the bias `b`, the residual `φ` or the
+    /// velocity form `ψ` has a NaN or infinite entry.
+    NonFiniteConstraints,
+    /// The constraint rows are linearly dependent to working precision: the
+    /// Cholesky factorisation of the Schur complement `S = A M⁻¹ Aᵀ` met a
+    /// pivot not larger than `1e-14` times the largest diagonal entry of `S`.
+    /// Constraint `row` is then a combination of the rows before it: a
+    /// redundant or contradictory constraint, or a singular configuration of
+    /// the mechanism (a slider-crank whose rod equals its crank, at the
+    /// position where both are vertical).
+    DependentConstraints {
+        /// Index of the first failing pivot, which is the index of its
+        /// constraint row (declaration order).
+        row: usize,
+        /// The pivot: zero, negative or tiny.
+        pivot: f64,
+    },
+    /// Coordinate projection did not bring the largest constraint residual
+    /// `|φᵢ|` below its tolerance within its iteration budget.
+    ProjectionNotConverged {
+        /// Gauss–Newton iterations made.
+        iterations: usize,
+        /// The largest `|φᵢ|` left.
+        residual: f64,
+    },
+}
+
+impl fmt::Display for DynamicsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonFiniteState => f.write_str("non-finite time, coordinate, speed or input"),
+            Self::NonFiniteEquations => {
+                f.write_str("non-finite entry in the mass matrix or the forcing")
+            }
+            Self::SingularMassMatrix {
+                index,
+                coordinate,
+                pivot,
+            } => write!(
+                f,
+                "singular mass matrix: coordinate `{coordinate}` (index {index}) has no \
+                 inertia of its own (Cholesky pivot {pivot:.3e})"
+            ),
+            Self::NonFiniteAccelerations => f.write_str("the accelerations overflowed"),
+            Self::NonFiniteConstraints => {
+                f.write_str("non-finite entry in the constraint Jacobian, bias or residual")
+            }
+            Self::DependentConstraints { row, pivot } => write!(
+                f,
+                "constraint row {row} depends on the rows before it: redundant, contradictory \
+                 or at a singular configuration (Schur pivot {pivot:.3e})"
+            ),
+            Self::ProjectionNotConverged {
+                iterations,
+                residual,
+            } => write!(
+                f,
+                "projection onto the constraints did not converge: max |φ| = {residual:.3e} \
+                 after {iterations} iterations"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for DynamicsError {}

@@ -1,0 +1,211 @@
+//! What an integrator steps: a [`Dynamics`], that is a generated system
+//! closed over its input law (and, with constraints, over a drift
+//! [`Stabilisation`]): the accelerations `v̇(t, q, v)`, the configuration
+//! update `q ⊕ h v`, and a correction applied after each step.
+
+use std::marker::PhantomData;
+
+use super::State;
+use crate::constrained::{
+    Stabilisation, baumgarte_accelerations, constrained_accelerations, project_onto_constraints,
+};
+use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
+
+/// Equations of motion `v̇ = a(t, q, v)`, `q̇ = N(q) v` as the integrators
+/// see them.
+pub trait Dynamics<const NQ: usize, const NV: usize> {
+    /// The accelerations at `(t, q, v)`, or why they cannot be computed.
+    fn accelerations(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+    ) -> Result<[f64; NV], DynamicsError>;
+
+    /// `q ⊕ h v`: the configuration reached from `q` at the constant speeds
+    /// `v` after the time `h`.
+    fn integrate_configuration(&self, q: &[f64; NQ], v: &[f64; NV], h: f64) -> [f64; NQ];
+
+    /// The state to continue from after a step ended at `state`: `state`
+    /// itself unless the dynamics correct it (coordinate projection).
+    fn settle(&self, state: &State<NQ, NV>) -> Result<State<NQ, NV>, DynamicsError> {
+        Ok(*state)
+    }
+}
+
+/// The inputs `u(t, q, v)` of a system during an integration: any closure
+/// `Fn(f64, &[f64; NQ], &[f64; NV]) -> [f64; NU]`, or [`NoInputs`].
+pub trait InputLaw<const NQ: usize, const NV: usize, const NU: usize> {
+    /// The inputs at a time, configuration and speed.
+    fn inputs(&self, t: f64, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NU];
+}
+
+impl<F, const NQ: usize, const NV: usize, const NU: usize> InputLaw<NQ, NV, NU> for F
+where
+    F: Fn(f64, &[f64; NQ], &[f64; NV]) -> [f64; NU],
+{
+    #[inline]
+    fn inputs(&self, t: f64, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NU] {
+        self(t, q, v)
+    }
+}
+
+/// Every input zero at all times (and no inputs at all for a system that
+/// has none).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NoInputs;
+
+impl<const NQ: usize, const NV: usize, const NU: usize> InputLaw<NQ, NV, NU> for NoInputs {
+    #[inline]
+    fn inputs(&self, _t: f64, _q: &[f64; NQ], _v: &[f64; NV]) -> [f64; NU] {
+        [0.0; NU]
+    }
+}
+
+/// An unconstrained system `M(q) v̇ = f(t, q, v, u)` with the inputs given by
+/// a law `u(t, q, v)`.
+/// `NU` is the number of inputs.
+#[derive(Clone, Copy, Debug)]
+pub struct Unconstrained<'a, S, F, const NU: usize> {
+    system: &'a S,
+    inputs: F,
+}
+
+impl<'a, S, const NU: usize> Unconstrained<'a, S, NoInputs, NU> {
+    /// `system` with every input zero.
+    pub fn without_inputs<const NQ: usize, const NV: usize>(system: &'a S) -> Self
+    where
+        S: MultibodySystem<NQ, NV, NU>,
+    {
+        Self {
+            system,
+            inputs: NoInputs,
+        }
+    }
+}
+
+impl<'a, S, F, const NU: usize> Unconstrained<'a, S, F, NU> {
+    /// `system` driven by the input law `inputs(t, q, v)`, a closure such as
+    /// `|t, _, _| [t.sin()]`.
+    pub fn new<const NQ: usize, const NV: usize>(system: &'a S, inputs: F) -> Self
+    where
+        S: MultibodySystem<NQ, NV, NU>,
+        F: Fn(f64, &[f64; NQ], &[f64; NV]) -> [f64; NU],
+    {
+        Self { system, inputs }
+    }
+}
+
+impl<S, F, const NQ: usize, const NV: usize, const NU: usize> Dynamics<NQ, NV>
+    for Unconstrained<'_, S, F, NU>
+where
+    S: MultibodySystem<NQ, NV, NU>,
+    F: InputLaw<NQ, NV, NU>,
+{
+    #[inline]
+    fn accelerations(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+    ) -> Result<[f64; NV], DynamicsError> {
+        self.system
+            .accelerations(t, q, v, &self.inputs.inputs(t, q, v))
+    }
+
+    #[inline]
+    fn integrate_configuration(&self, q: &[f64; NQ], v: &[f64; NV], h: f64) -> [f64; NQ] {
+        self.system.integrate_configuration(q, v, h)
+    }
+}
+
+/// A constrained system `M v̇ = f + Aᵀ λ`, `A v̇ = b` with the inputs given by
+/// a law `u(t, q, v)` and its drift held by a [`Stabilisation`]
+/// (Baumgarte's in the accelerations, projection after every step). `NU` is
+/// the number of inputs and `NC` that of constraints.
+#[derive(Clone, Copy, Debug)]
+pub struct Constrained<'a, S, F, const NU: usize, const NC: usize> {
+    system: &'a S,
+    inputs: F,
+    stabilisation: Stabilisation,
+    constraints: PhantomData<[(); NC]>,
+}
+
+impl<'a, S, const NU: usize, const NC: usize> Constrained<'a, S, NoInputs, NU, NC> {
+    /// `system` with every input zero, stabilised by `stabilisation`.
+    pub fn without_inputs<const NQ: usize, const NV: usize>(
+        system: &'a S,
+        stabilisation: Stabilisation,
+    ) -> Self
+    where
+        S: ConstrainedSystem<NQ, NV, NU, NC>,
+    {
+        Self {
+            system,
+            inputs: NoInputs,
+            stabilisation,
+            constraints: PhantomData,
+        }
+    }
+}
+
+impl<'a, S, F, const NU: usize, const NC: usize> Constrained<'a, S, F, NU, NC> {
+    /// `system` driven by the input law `inputs(t, q, v)`, stabilised by
+    /// `stabilisation`.
+    pub fn new<const NQ: usize, const NV: usize>(
+        system: &'a S,
+        inputs: F,
+        stabilisation: Stabilisation,
+    ) -> Self
+    where
+        S: ConstrainedSystem<NQ, NV, NU, NC>,
+        F: Fn(f64, &[f64; NQ], &[f64; NV]) -> [f64; NU],
+    {
+        Self {
+            system,
+            inputs,
+            stabilisation,
+            constraints: PhantomData,
+        }
+    }
+}
+
+impl<S, F, const NQ: usize, const NV: usize, const NU: usize, const NC: usize> Dynamics<NQ, NV>
+    for Constrained<'_, S, F, NU, NC>
+where
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
+    F: InputLaw<NQ, NV, NU>,
+{
+    fn accelerations(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+    ) -> Result<[f64; NV], DynamicsError> {
+        let u = self.inputs.inputs(t, q, v);
+        let solution = match self.stabilisation {
+            Stabilisation::Baumgarte { alpha, beta } => {
+                baumgarte_accelerations(self.system, t, q, v, &u, alpha, beta)
+            }
+            Stabilisation::None | Stabilisation::Projection { .. } => {
+                constrained_accelerations(self.system, t, q, v, &u)
+            }
+        };
+        solution.map(|(vdot, _)| vdot)
+    }
+
+    #[inline]
+    fn integrate_configuration(&self, q: &[f64; NQ], v: &[f64; NV], h: f64) -> [f64; NQ] {
+        self.system.integrate_configuration(q, v, h)
+    }
+
+    fn settle(&self, state: &State<NQ, NV>) -> Result<State<NQ, NV>, DynamicsError> {
+        match self.stabilisation {
+            Stabilisation::Projection {
+                tolerance,
+                max_iterations,
+            } => project_onto_constraints(self.system, state, tolerance, max_iterations),
+            Stabilisation::None | Stabilisation::Baumgarte { .. } => Ok(*state),
+        }
+    }
+}

@@ -1,0 +1,486 @@
+//! The Runge–Kutta kernel shared by every integrator: the [`State`], the
+//! slope of a stage ([`Rate`]: speeds and accelerations, both in the speeds'
+//! space), stages moved on through the system's configuration update
+//! `q ⊕ h v`, evaluations counted, and the fixed-step march that ends
+//! exactly at the final time; with it, the classical fourth-order method.
+
+use std::cell::Cell;
+
+use super::{Dynamics, IntegrationError, Solution, Statistics};
+
+/// A point of a trajectory: time, coordinates and speeds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct State<const NQ: usize, const NV: usize> {
+    /// Time `t`.
+    pub t: f64,
+    /// Generalized coordinates `q`.
+    pub q: [f64; NQ],
+    /// Speeds `v` (the coordinates' rates `q̇` for every system generated
+    /// today).
+    pub v: [f64; NV],
+}
+
+/// The slope of one stage of a Runge–Kutta method: the speeds (the
+/// configuration's motion, in the speeds' space) and the accelerations.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Rate<const NV: usize> {
+    /// The speeds `v`, which move the configuration.
+    pub(crate) dq: [f64; NV],
+    /// The accelerations `v̇`.
+    pub(crate) dv: [f64; NV],
+}
+
+impl<const NV: usize> Rate<NV> {
+    /// No motion: the placeholder of a stage not yet evaluated.
+    pub(crate) const ZERO: Self = Self {
+        dq: [0.0; NV],
+        dv: [0.0; NV],
+    };
+
+    /// `Σⱼ weights[j] · stages[j]`, skipping zero weights (a row of a
+    /// Butcher tableau applied to the stage slopes).
+    pub(crate) fn combination<const S: usize>(weights: &[f64; S], stages: &[Self; S]) -> Self {
+        let mut sum = Self::ZERO;
+        for (&w, k) in weights.iter().zip(stages).filter(|(w, _)| **w != 0.0) {
+            for i in 0..NV {
+                sum.dq[i] += w * k.dq[i];
+                sum.dv[i] += w * k.dv[i];
+            }
+        }
+        sum
+    }
+
+    /// `Σ wᵢ kᵢ / denominator`.
+    fn weighted_sum<const K: usize>(terms: [(f64, &Self); K], denominator: f64) -> Self {
+        let sum = |part: fn(&Self) -> &[f64; NV]| {
+            std::array::from_fn(|i| {
+                terms.iter().map(|(w, k)| w * part(k)[i]).sum::<f64>() / denominator
+            })
+        };
+        Self {
+            dq: sum(|k| &k.dq),
+            dv: sum(|k| &k.dv),
+        }
+    }
+
+    /// The largest magnitude of any entry.
+    pub(crate) fn largest_magnitude(&self) -> f64 {
+        self.dq
+            .iter()
+            .chain(&self.dv)
+            .fold(0.0, |m, x| m.max(x.abs()))
+    }
+
+    /// `self − other`, entry by entry.
+    pub(crate) fn minus(&self, other: &Self) -> Self {
+        Self {
+            dq: std::array::from_fn(|i| self.dq[i] - other.dq[i]),
+            dv: std::array::from_fn(|i| self.dv[i] - other.dv[i]),
+        }
+    }
+}
+
+/// The dynamics as the Runge–Kutta stages use them: slopes evaluated and
+/// counted (the work measure of [`Statistics`]), states moved along slopes,
+/// and the correction after a step.
+pub(crate) struct Kernel<'a, D> {
+    dynamics: &'a D,
+    evaluations: Cell<u64>,
+}
+
+impl<'a, D> Kernel<'a, D> {
+    /// `dynamics`, counting from zero.
+    pub(crate) fn new(dynamics: &'a D) -> Self {
+        Self {
+            dynamics,
+            evaluations: Cell::new(0),
+        }
+    }
+
+    /// Evaluations of the accelerations so far.
+    pub(crate) fn evaluations(&self) -> u64 {
+        self.evaluations.get()
+    }
+
+    /// The accelerations at `(t, q, v)`, counted; a failure names `(t, q)`.
+    #[inline]
+    pub(crate) fn accelerations<const NQ: usize, const NV: usize>(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+    ) -> Result<[f64; NV], IntegrationError<NQ>>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        self.evaluations.set(self.evaluations.get() + 1);
+        self.dynamics
+            .accelerations(t, q, v)
+            .map_err(|cause| IntegrationError::dynamics(t, *q, cause))
+    }
+
+    /// The slope at `state`.
+    #[inline]
+    pub(crate) fn rate<const NQ: usize, const NV: usize>(
+        &self,
+        state: &State<NQ, NV>,
+    ) -> Result<Rate<NV>, IntegrationError<NQ>>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        let dv = self.accelerations(state.t, &state.q, &state.v)?;
+        Ok(Rate { dq: state.v, dv })
+    }
+
+    /// `state` moved on by `dt` along `rate` (an explicit Euler step, the
+    /// configuration through `q ⊕ dt · rate.dq`).
+    #[inline]
+    pub(crate) fn advance<const NQ: usize, const NV: usize>(
+        &self,
+        state: &State<NQ, NV>,
+        rate: &Rate<NV>,
+        dt: f64,
+    ) -> State<NQ, NV>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        State {
+            t: state.t + dt,
+            q: self
+                .dynamics
+                .integrate_configuration(&state.q, &rate.dq, dt),
+            v: std::array::from_fn(|i| state.v[i] + dt * rate.dv[i]),
+        }
+    }
+
+    /// The stage state of a step of length `h` from `state`: moved by `h`
+    /// times the combined slope `rate`, at the stage time `t + c h`.
+    #[inline]
+    pub(crate) fn stage<const NQ: usize, const NV: usize>(
+        &self,
+        state: &State<NQ, NV>,
+        rate: &Rate<NV>,
+        h: f64,
+        c: f64,
+    ) -> State<NQ, NV>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        State {
+            t: state.t + c * h,
+            ..self.advance(state, rate, h)
+        }
+    }
+
+    /// The dynamics' correction after a step that ended at `state`; a
+    /// failure is reported at `state`.
+    pub(crate) fn settle<const NQ: usize, const NV: usize>(
+        &self,
+        state: &State<NQ, NV>,
+    ) -> Result<State<NQ, NV>, IntegrationError<NQ>>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        self.dynamics
+            .settle(state)
+            .map_err(|cause| IntegrationError::dynamics(state.t, state.q, cause))
+    }
+
+    /// `steps` fixed steps from `initial` to `t_end`: `step(state, h)` takes a
+    /// state to the next, which is then settled and given the step's end
+    /// time exactly (`t₀ + k (t_end − t₀) / steps`, the last one `t_end`
+    /// itself). `observer` sees the initial state and every settled one.
+    /// Returns the final state with the work done; stops at the first step
+    /// that fails.
+    pub(crate) fn fixed_steps<const NQ: usize, const NV: usize>(
+        &self,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        steps: u64,
+        mut step: impl FnMut(&State<NQ, NV>, f64) -> Result<State<NQ, NV>, IntegrationError<NQ>>,
+        mut observer: impl FnMut(&State<NQ, NV>),
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        observer(&initial);
+        let span = t_end - initial.t;
+        let mut state = initial;
+        for k in 1..=steps {
+            let t = if k == steps {
+                t_end
+            } else {
+                initial.t + span * (k as f64 / steps as f64)
+            };
+            let mut next = step(&state, t - state.t)?;
+            next.t = t;
+            state = self.settle(&next)?;
+            observer(&state);
+        }
+        Ok(Solution {
+            end: state,
+            statistics: Statistics {
+                rhs_evaluations: self.evaluations(),
+                accepted_steps: steps,
+                rejected_steps: 0,
+            },
+        })
+    }
+}
+
+/// Integrates `dynamics` from `initial` to `t_end` in `steps` equal steps of
+/// the classical fourth-order Runge–Kutta method (settled after each step),
+/// and returns the final state, exactly at `t_end`, with the work done.
+///
+/// `observer` sees the initial state and then the state after every step.
+/// Allocates nothing. Stops at the first step that fails; the error names
+/// the time and configuration of the failing stage.
+pub fn rk4<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
+    t_end: f64,
+    steps: u64,
+    observer: impl FnMut(&State<NQ, NV>),
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
+    let kernel = Kernel::new(dynamics);
+    let step = |state: &State<NQ, NV>, h| rk4_stages(&kernel, state, h);
+    kernel.fixed_steps(initial, t_end, steps, step, observer)
+}
+
+/// One step of length `h` of the classical fourth-order Runge–Kutta method
+/// from `state`, settled: the building block of a control loop that changes
+/// its inputs between steps.
+pub fn rk4_step<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    state: &State<NQ, NV>,
+    h: f64,
+) -> Result<State<NQ, NV>, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
+    let kernel = Kernel::new(dynamics);
+    kernel.settle(&rk4_stages(&kernel, state, h)?)
+}
+
+/// The four stages of a classical RK4 step of length `h` from `state`.
+fn rk4_stages<D, const NQ: usize, const NV: usize>(
+    kernel: &Kernel<'_, D>,
+    state: &State<NQ, NV>,
+    h: f64,
+) -> Result<State<NQ, NV>, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
+    let k1 = kernel.rate(state)?;
+    let k2 = kernel.rate(&kernel.advance(state, &k1, h / 2.0))?;
+    let k3 = kernel.rate(&kernel.advance(state, &k2, h / 2.0))?;
+    let k4 = kernel.rate(&kernel.advance(state, &k3, h))?;
+    let weighted = Rate::weighted_sum([(1.0, &k1), (2.0, &k2), (2.0, &k3), (1.0, &k4)], 6.0);
+    Ok(kernel.advance(state, &weighted, h))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::Failure;
+    use crate::test_systems::{Pendulum, RotatingBar};
+    use crate::{DynamicsError, Unconstrained, energy};
+    use std::f64::consts::FRAC_PI_2;
+
+    const PENDULUM: Pendulum = Pendulum {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
+
+    fn at_rest(angle: f64) -> State<1, 1> {
+        State {
+            t: 0.0,
+            q: [angle],
+            v: [0.0],
+        }
+    }
+
+    /// A bar of unit transverse inertia (`m l² / 12 = 1`), one metre from
+    /// its vertical axis.
+    const UNIT_BAR: RotatingBar = RotatingBar {
+        m: 12.0,
+        l: 1.0,
+        d: 1.0,
+    };
+
+    /// [`UNIT_BAR`] level and at rest.
+    const UNIT_BAR_AT_REST: State<2, 2> = State {
+        t: 0.0,
+        q: [0.0; 2],
+        v: [0.0; 2],
+    };
+
+    /// The pendulum angle after `duration` in steps of `h`.
+    fn pendulum_angle(duration: f64, h: f64) -> f64 {
+        let steps = (duration / h).round() as u64;
+        let dynamics = Unconstrained::without_inputs(&PENDULUM);
+        let end = rk4(&dynamics, at_rest(1.0), duration, steps, |_| {})
+            .unwrap()
+            .end;
+        assert_eq!(end.t, duration);
+        end.q[0]
+    }
+
+    #[test]
+    fn rk4_conserves_pendulum_energy_over_ten_seconds() {
+        let start = at_rest(1.0);
+        let initial_energy = energy(&PENDULUM, &start.q, &start.v);
+        let mut worst_drift: f64 = 0.0;
+        let observe = |s: &State<1, 1>| {
+            let drift = energy(&PENDULUM, &s.q, &s.v) - initial_energy;
+            worst_drift = worst_drift.max(drift.abs());
+        };
+        let dynamics = Unconstrained::without_inputs(&PENDULUM);
+        let end = rk4(&dynamics, start, 10.0, 10_000, observe).unwrap().end;
+        assert_eq!(end.t, 10.0);
+        let energy_scale = PENDULUM.m * PENDULUM.g * PENDULUM.l;
+        assert!(worst_drift < 1e-8 * energy_scale, "drift {worst_drift}");
+        assert!(end.v[0] != 0.0, "the pendulum must have moved");
+    }
+
+    #[test]
+    fn small_swings_have_the_small_angle_period() {
+        // Downward zero crossings of the angle are one period apart.
+        let mut crossings = [0.0; 2];
+        let mut found = 0;
+        let mut previous = at_rest(0.01);
+        let observe = |s: &State<1, 1>| {
+            if previous.q[0] > 0.0 && s.q[0] <= 0.0 && found < crossings.len() {
+                let fraction = previous.q[0] / (previous.q[0] - s.q[0]);
+                crossings[found] = previous.t + fraction * (s.t - previous.t);
+                found += 1;
+            }
+            previous = *s;
+        };
+        let dynamics = Unconstrained::without_inputs(&PENDULUM);
+        rk4(&dynamics, at_rest(0.01), 5.0, 5_000, observe).unwrap();
+        assert_eq!(found, 2);
+        let period = crossings[1] - crossings[0];
+        let expected = PENDULUM.small_angle_period();
+        assert!(
+            (period / expected - 1.0).abs() < 1e-4,
+            "{period} vs {expected}"
+        );
+    }
+
+    #[test]
+    fn rk4_error_falls_sixteenfold_when_the_step_halves() {
+        let reference = pendulum_angle(1.0, 1e-4);
+        let errors = [0.02, 0.01, 0.005].map(|h| (pendulum_angle(1.0, h) - reference).abs());
+        for pair in errors.windows(2) {
+            let ratio = pair[0] / pair[1];
+            assert!((12.0..20.0).contains(&ratio), "errors {errors:?}");
+        }
+    }
+
+    #[test]
+    fn inputs_are_evaluated_at_each_stage_state() {
+        // A constant torque on the bar's tilt: θ̈ = u / I exactly while φ̇ = 0.
+        let (bar, start) = (UNIT_BAR, UNIT_BAR_AT_REST);
+        let torque = |t: f64, _: &[f64; 2], _: &[f64; 2]| [0.0, 2.0 * t];
+        let end = rk4_step(&Unconstrained::new(&bar, torque), &start, 0.5).unwrap();
+        // θ̈ = 2t (I = 1), so θ = t³/3 and θ̇ = t², which RK4 integrates exactly.
+        assert!((end.q[1] - 0.125 / 3.0).abs() < 1e-15, "{end:?}");
+        assert!((end.v[1] - 0.25).abs() < 1e-15 && end.q[0] == 0.0);
+    }
+
+    #[test]
+    fn rk4_stops_where_the_mass_matrix_turns_singular() {
+        // Without spin the bar tilts at a constant rate and reaches the
+        // vertical axis, θ = π/2, at t = 0.5.
+        let bar = RotatingBar {
+            m: 1.0,
+            l: 1.0,
+            d: 0.0,
+        };
+        let start = State {
+            t: 0.0,
+            q: [0.0, FRAC_PI_2 - 0.5],
+            v: [0.0, 1.0],
+        };
+        let mut observed = 0;
+        let dynamics = Unconstrained::without_inputs(&bar);
+        let error = rk4(&dynamics, start, 1.0, 8, |_| observed += 1).unwrap_err();
+        assert_eq!(error.t, 0.5);
+        assert!((error.q[1] - FRAC_PI_2).abs() < 1e-12);
+        assert!(matches!(
+            error.cause,
+            Failure::Dynamics(DynamicsError::SingularMassMatrix {
+                coordinate: "phi",
+                ..
+            })
+        ));
+        assert_eq!(observed, 4, "the initial state and three good steps");
+        let message = error.to_string();
+        assert!(message.starts_with("singular mass matrix"), "{message}");
+        assert!(
+            message.contains("at t = 0.5 s, q = [0.0, 1.57"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn a_fixed_step_run_ends_exactly_at_its_final_time() {
+        let dynamics = Unconstrained::without_inputs(&PENDULUM);
+        for (t_end, steps) in [(5.0, 3_000), (0.3, 7), (1e-3, 1)] {
+            let mut last = 0.0;
+            let solution = rk4(&dynamics, at_rest(1.0), t_end, steps, |s| last = s.t).unwrap();
+            assert_eq!((solution.end.t, last), (t_end, t_end));
+            assert_eq!(solution.statistics.accepted_steps, steps);
+            assert_eq!(solution.statistics.rhs_evaluations, 4 * steps);
+        }
+    }
+
+    #[test]
+    fn a_closure_input_law_needs_no_annotations() {
+        let (bar, start) = (UNIT_BAR, UNIT_BAR_AT_REST);
+        let dynamics = Unconstrained::new(&bar, |_, _, _| [0.0, 1.0]);
+        let end = rk4(&dynamics, start, 1.0, 10, |_| {}).unwrap().end;
+        // θ̈ = u / I = 1 while φ̇ = 0: θ = t²/2.
+        assert!((end.q[1] - 0.5).abs() < 1e-14, "{end:?}");
+    }
+
+    #[test]
+    fn non_finite_inputs_fail_the_step_at_the_stage_that_used_them() {
+        let bar = RotatingBar {
+            m: 1.0,
+            l: 1.0,
+            d: 1.0,
+        };
+        let start = State {
+            t: 2.0,
+            q: [0.1, 0.2],
+            v: [0.0; 2],
+        };
+        let torque_fails_later = |t: f64, _: &[f64; 2], _: &[f64; 2]| {
+            if t > 2.0 { [f64::NAN, 0.0] } else { [0.0; 2] }
+        };
+        let dynamics = Unconstrained::new(&bar, torque_fails_later);
+        let error = rk4_step(&dynamics, &start, 0.5).unwrap_err();
+        assert_eq!(
+            error.cause,
+            Failure::Dynamics(DynamicsError::NonFiniteState)
+        );
+        assert_eq!((error.t, error.q), (2.25, [0.1, 0.2]), "the second stage");
+    }
+
+    #[test]
+    fn non_finite_state_fails_the_first_stage() {
+        let dynamics = Unconstrained::without_inputs(&PENDULUM);
+        let error = rk4_step(&dynamics, &at_rest(f64::INFINITY), 0.1).unwrap_err();
+        assert_eq!(
+            error.cause,
+            Failure::Dynamics(DynamicsError::NonFiniteState)
+        );
+        assert_eq!((error.t, error.q), (0.0, [f64::INFINITY]));
+    }
+}
