@@ -93,12 +93,12 @@ fn simulate_double_pendulum(
         let steps = (CHAOTIC_END / h).round() as u64;
         let dynamics = Unconstrained::without_inputs(&pendulum);
         integrate::rk4(&dynamics, initial, CHAOTIC_END, steps, |s| {
-                if keep_angles {
-                    angles[0].push((s.t, s.q[0]));
-                    angles[1].push((s.t, s.q[1]));
-                }
-                errors.push((s.t, (energy(s) - e0).abs()));
-            })?;
+            if keep_angles {
+                angles[0].push((s.t, s.q[0]));
+                angles[1].push((s.t, s.q[1]));
+            }
+            errors.push((s.t, (energy(s) - e0).abs()));
+        })?;
         let worst = errors.iter().map(|p| p.1).fold(0.0, f64::max);
         println!("double pendulum, RK4 h = {h}: max |E − E₀| = {worst:.3e} J over 10 s");
         drift.push((format!("RK4, h = {h} s"), errors));

@@ -7,7 +7,9 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use dalembert::constrained::constrained_accelerations;
-use dalembert::{Constrained, Stabilisation, State, Unconstrained, accelerations, energy, integrate};
+use dalembert::{
+    Constrained, Stabilisation, State, Unconstrained, accelerations, energy, integrate,
+};
 
 #[path = "seeds/mod.rs"]
 mod seeds;
@@ -113,7 +115,8 @@ fn generated_functions_and_solvers_allocate_nothing() {
         let a = accelerations(&pendulum, 0.0, &q, &qd, &[]).map(|_| ());
         let b = constrained_accelerations(&constrained, 0.0, &cq, &cqd, &[0.5]).map(|_| ());
         let state = State { t: 0.0, q, v: qd };
-        let c = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3).map(|_| ());
+        let c = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3)
+            .map(|_| ());
         let start = State {
             t: 0.0,
             q: cq,
@@ -123,8 +126,12 @@ fn generated_functions_and_solvers_allocate_nothing() {
             tolerance: 1e-12,
             max_iterations: 10,
         };
-        let d = integrate::rk4_step(&Constrained::new(&constrained, |_, _, _| [0.5], projection), &start, 1e-3)
-            .map(|_| ());
+        let d = integrate::rk4_step(
+            &Constrained::new(&constrained, |_, _, _| [0.5], projection),
+            &start,
+            1e-3,
+        )
+        .map(|_| ());
         (a, b, c.is_ok(), d.is_ok())
     });
     assert_eq!(made, 0, "the solvers allocated");

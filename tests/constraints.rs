@@ -10,7 +10,9 @@ mod models;
 
 use common::{array, assert_close, reference};
 use dalembert::constrained::{constrained_accelerations, constraint_drift};
-use dalembert::{Constrained, DynamicsError, Stabilisation, State, Unconstrained, energy, integrate};
+use dalembert::{
+    Constrained, DynamicsError, Stabilisation, State, Unconstrained, energy, integrate,
+};
 use models::{CRANK_SPEED, SEED_3, SLIDER_CRANK, SliderCrank};
 
 dalembert::dalembert! {
@@ -75,7 +77,14 @@ fn seed_3_drift(stabilisation: Stabilisation) -> (f64, f64) {
         }
     };
     let start = SEED_3.assembled(1.0, 2.0);
-    integrate::rk4(&Constrained::without_inputs(&SEED_3, stabilisation), start, start.t + 10_000.0 * H, 10_000, observe).map(|solution| solution.end)
+    integrate::rk4(
+        &Constrained::without_inputs(&SEED_3, stabilisation),
+        start,
+        start.t + 10_000.0 * H,
+        10_000,
+        observe,
+    )
+    .map(|solution| solution.end)
     .unwrap();
     (first_second, total)
 }
@@ -161,7 +170,14 @@ fn pendulum_in_one_coordinate_and_in_three_follows_the_same_angle() {
         q: [1.0],
         v: [2.0],
     };
-    integrate::rk4(&Unconstrained::new(&one, |t, _, _| motor_torque(t)), start, start.t + steps as f64 * H, steps as u64, |s| reference_angle.push(s.q[0])).map(|solution| solution.end)
+    integrate::rk4(
+        &Unconstrained::new(&one, |t, _, _| motor_torque(t)),
+        start,
+        start.t + steps as f64 * H,
+        steps as u64,
+        |s| reference_angle.push(s.q[0]),
+    )
+    .map(|solution| solution.end)
     .unwrap();
     for stabilisation in [
         Stabilisation::None,
@@ -178,7 +194,15 @@ fn pendulum_in_one_coordinate_and_in_three_follows_the_same_angle() {
         };
         let start = SEED_3.assembled(1.0, 2.0);
         let torque = |t: f64, _: &[f64; 3], _: &[f64; 3]| motor_torque(t);
-        integrate::rk4(&Constrained::new(&SEED_3, torque, stabilisation), start, start.t + steps as f64 * H, steps as u64, observe).map(|solution| solution.end).unwrap();
+        integrate::rk4(
+            &Constrained::new(&SEED_3, torque, stabilisation),
+            start,
+            start.t + steps as f64 * H,
+            steps as u64,
+            observe,
+        )
+        .map(|solution| solution.end)
+        .unwrap();
         println!(
             "θ in (x, y, θ) vs θ alone over 5 s, {stabilisation:?}: max |Δθ| = {deviation:.3e}"
         );
@@ -262,7 +286,14 @@ fn slider_crank_keeps_its_loop_closed_and_its_energy_over_ten_revolutions() {
         tolerance: 1e-12,
         max_iterations: 5,
     };
-    let end = integrate::rk4(&Constrained::without_inputs(&crank, projection), start, start.t + 5_000.0 * H, 5_000, observe).map(|solution| solution.end)
+    let end = integrate::rk4(
+        &Constrained::without_inputs(&crank, projection),
+        start,
+        start.t + 5_000.0 * H,
+        5_000,
+        observe,
+    )
+    .map(|solution| solution.end)
     .unwrap();
     let revolutions = end.q[0] / std::f64::consts::TAU;
     println!(
@@ -290,7 +321,14 @@ fn sleigh_slip_after_one_second(stabilisation: Stabilisation) -> (f64, f64) {
             slip = slip.max(psi.abs());
         }
     };
-    integrate::rk4(&Constrained::without_inputs(&sleigh, stabilisation), start, start.t + 1_000.0 * H, 1_000, observe).map(|solution| solution.end)
+    integrate::rk4(
+        &Constrained::without_inputs(&sleigh, stabilisation),
+        start,
+        start.t + 1_000.0 * H,
+        1_000,
+        observe,
+    )
+    .map(|solution| solution.end)
     .unwrap();
     (slip, drift)
 }

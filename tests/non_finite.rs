@@ -31,8 +31,12 @@ fn non_finite_parameters_are_errors() {
             Err(DynamicsError::NonFiniteEquations)
         );
         let state = State { t: 0.0, q, v: qd };
-        let error = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3).unwrap_err();
-        assert_eq!(error.cause, Failure::Dynamics(DynamicsError::NonFiniteEquations));
+        let error = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3)
+            .unwrap_err();
+        assert_eq!(
+            error.cause,
+            Failure::Dynamics(DynamicsError::NonFiniteEquations)
+        );
         assert!(!energy(&pendulum, &q, &qd).is_finite());
 
         let constrained = ConstrainedPendulum {
@@ -60,7 +64,12 @@ fn non_finite_parameters_are_errors() {
             max_iterations: 10,
         };
         assert!(
-            integrate::rk4_step(&Constrained::without_inputs(&constrained, projection), &start, 1e-3).is_err()
+            integrate::rk4_step(
+                &Constrained::without_inputs(&constrained, projection),
+                &start,
+                1e-3
+            )
+            .is_err()
         );
     }
 }
@@ -87,8 +96,14 @@ fn non_finite_states_and_inputs_are_errors() {
             q: [0.1, 0.2],
             v: [0.0; 2],
         };
-        assert!(integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3).is_err());
-        let step = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &State { t: 0.0, ..state }, bad);
+        assert!(
+            integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3).is_err()
+        );
+        let step = integrate::rk4_step(
+            &Unconstrained::without_inputs(&pendulum),
+            &State { t: 0.0, ..state },
+            bad,
+        );
         assert!(step.is_err(), "a non-finite step size: {step:?}");
         let (q, qd) = ([1.0_f64.sin(), -1.0_f64.cos(), 1.0], [0.0, 0.0, bad]);
         assert_eq!(

@@ -59,7 +59,13 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
     let equations = Unconstrained::without_inputs(&CHAOTIC);
     let steps = |h: f64| (HORIZON / h).round() as u64;
     let rk4 = energy_errors(|observe| {
-        integrate::rk4(&equations, CHAOTIC_START, CHAOTIC_START.t + (steps(5e-3)) as f64 * 5e-3, steps(5e-3), observe)
+        integrate::rk4(
+            &equations,
+            CHAOTIC_START,
+            CHAOTIC_START.t + (steps(5e-3)) as f64 * 5e-3,
+            steps(5e-3),
+            observe,
+        )
     });
     let dop853 = energy_errors(|observe| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
@@ -74,7 +80,14 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
     });
     let gauss = energy_errors(|observe| {
         let method = GaussLegendre::Order4;
-        integrate::gauss_legendre(&equations, CHAOTIC_START, CHAOTIC_START.t + (steps(1e-2)) as f64 * 1e-2, steps(1e-2), method, observe)
+        integrate::gauss_legendre(
+            &equations,
+            CHAOTIC_START,
+            CHAOTIC_START.t + (steps(1e-2)) as f64 * 1e-2,
+            steps(1e-2),
+            method,
+            observe,
+        )
     });
     // Measured (10³ s | 10⁴ s): RK4 3.8e-4 → 3.8e-3 | 3.8e-3 → 3.9e-2;
     // DOP853 3.3e-6 → 3.3e-5 | 3.3e-5 → 3.2e-4: linear drifts, tenfold over
@@ -153,14 +166,29 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
     );
 
     // RK4 is stable below h ≈ 2.8/ω and blows up above it.
-    let rk4 = |h: f64| integrate::rk4(&stiff, STIFF_START, STIFF_START.t + ((1.0 / h).round() as u64) as f64 * h, (1.0 / h).round() as u64, |_| {});
+    let rk4 = |h: f64| {
+        integrate::rk4(
+            &stiff,
+            STIFF_START,
+            STIFF_START.t + ((1.0 / h).round() as u64) as f64 * h,
+            (1.0 / h).round() as u64,
+            |_| {},
+        )
+    };
     let stable = rk4(5e-4).unwrap();
     assert!(state_error(&stable.end, &explicit.end) < 1e-4, "{stable:?}");
     let unstable = rk4(2e-3).unwrap_err();
     assert!(unstable.t < 0.1, "{unstable}");
 
     // SDIRK at a twentieth of the steps stays on the slow motion.
-    let implicit = integrate::sdirk(&stiff, STIFF_START, STIFF_START.t + 100.0 * 1e-2, 100, |_| {}).unwrap();
+    let implicit = integrate::sdirk(
+        &stiff,
+        STIFF_START,
+        STIFF_START.t + 100.0 * 1e-2,
+        100,
+        |_| {},
+    )
+    .unwrap();
     assert!(
         state_error(&implicit.end, &explicit.end) < 1e-3,
         "{implicit:?}"
@@ -177,7 +205,14 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
     // the adaptive pairs, the first stage of the fifth step for Gauss.
     let gauss = |method, first_node: f64| {
         let h = 0.5 / (4.0 + first_node);
-        integrate::gauss_legendre(&equations, TOWARDS_AXIS, TOWARDS_AXIS.t + 10.0 * h, 10, method, finite)
+        integrate::gauss_legendre(
+            &equations,
+            TOWARDS_AXIS,
+            TOWARDS_AXIS.t + 10.0 * h,
+            10,
+            method,
+            finite,
+        )
     };
     let adaptive = |pair| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
@@ -186,7 +221,13 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
     let failures = [
         (
             "RK4",
-            integrate::rk4(&equations, TOWARDS_AXIS, TOWARDS_AXIS.t + 8.0 * 0.125, 8, finite),
+            integrate::rk4(
+                &equations,
+                TOWARDS_AXIS,
+                TOWARDS_AXIS.t + 8.0 * 0.125,
+                8,
+                finite,
+            ),
         ),
         ("DOPRI5", adaptive(ExplicitPair::DormandPrince54)),
         ("DOP853", adaptive(ExplicitPair::Dop853)),
@@ -201,7 +242,13 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
         ),
         (
             "SDIRK",
-            integrate::sdirk(&equations, TOWARDS_AXIS, TOWARDS_AXIS.t + 8.0 * 0.125, 8, finite),
+            integrate::sdirk(
+                &equations,
+                TOWARDS_AXIS,
+                TOWARDS_AXIS.t + 8.0 * 0.125,
+                8,
+                finite,
+            ),
         ),
     ];
     for (name, result) in failures {
@@ -234,20 +281,32 @@ fn chaotic_trajectories_one_e_minus_ten_apart_part_after_about_nine_seconds() {
     let (h, steps) = (2e-3, 6_000);
     let mut first = Vec::with_capacity(steps + 1);
     let method = GaussLegendre::Order6;
-    integrate::gauss_legendre(&equations, CHAOTIC_START, CHAOTIC_START.t + (steps as u64) as f64 * h, steps as u64, method, |s| {
-        first.push(*s)
-    })
+    integrate::gauss_legendre(
+        &equations,
+        CHAOTIC_START,
+        CHAOTIC_START.t + (steps as u64) as f64 * h,
+        steps as u64,
+        method,
+        |s| first.push(*s),
+    )
     .unwrap();
     let mut nudged = CHAOTIC_START;
     nudged.q[0] += 1e-10;
     let mut parted = None;
     let mut index = 0;
-    integrate::gauss_legendre(&equations, nudged, nudged.t + (steps as u64) as f64 * h, steps as u64, method, |s| {
-        if parted.is_none() && state_error(s, &first[index]) > 1e-3 {
-            parted = Some(s.t);
-        }
-        index += 1;
-    })
+    integrate::gauss_legendre(
+        &equations,
+        nudged,
+        nudged.t + (steps as u64) as f64 * h,
+        steps as u64,
+        method,
+        |s| {
+            if parted.is_none() && state_error(s, &first[index]) > 1e-3 {
+                parted = Some(s.t);
+            }
+            index += 1;
+        },
+    )
     .unwrap();
     // Measured: 8.75 s (Gauss 6, h = 1 ms); the reference README's
     // amplification of 1.3e7 by t = 10 puts it at about 9 s.

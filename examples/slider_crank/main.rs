@@ -15,7 +15,7 @@ use std::error::Error;
 use std::path::PathBuf;
 
 use dalembert::constrained::constraint_drift;
-use dalembert::{ConstrainedSystem, Constrained, Stabilisation, State, energy, integrate};
+use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, energy, integrate};
 use dalembert_lab::{Series, line_chart_log_y};
 use models::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 
@@ -73,7 +73,14 @@ fn run<S: ConstrainedSystem<3, 3, 1, 2>>(
         }
         step += 1;
     };
-    let end = integrate::rk4(&Constrained::without_inputs(system, stabilisation), start, start.t + steps as f64 * STEP, steps as u64, observe).map(|solution| solution.end)?;
+    let end = integrate::rk4(
+        &Constrained::without_inputs(system, stabilisation),
+        start,
+        start.t + steps as f64 * STEP,
+        steps as u64,
+        observe,
+    )
+    .map(|solution| solution.end)?;
     run.end = end;
     Ok(run)
 }

@@ -55,7 +55,8 @@ const PROJECTION: Stabilisation = Stabilisation::Projection {
 };
 
 /// A method at one setting: how to run it once.
-type Run<'a, const NQ: usize> = Box<dyn Fn() -> Result<Solution<NQ, NQ>, IntegrationError<NQ>> + 'a>;
+type Run<'a, const NQ: usize> =
+    Box<dyn Fn() -> Result<Solution<NQ, NQ>, IntegrationError<NQ>> + 'a>;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let options = Command::new("work_precision")
@@ -182,9 +183,20 @@ impl FixedStep {
         let steps = ((t_end - start.t) / h).round().max(1.0) as u64;
         let h = (t_end - start.t) / steps as f64;
         match self {
-            Self::Rk4 => integrate::rk4(equations, start, start.t + steps as f64 * h, steps, |_| {}),
-            Self::Gauss(method) => integrate::gauss_legendre(equations, start, start.t + steps as f64 * h, steps, method, |_| {}),
-            Self::Sdirk => integrate::sdirk(equations, start, start.t + steps as f64 * h, steps, |_| {}),
+            Self::Rk4 => {
+                integrate::rk4(equations, start, start.t + steps as f64 * h, steps, |_| {})
+            }
+            Self::Gauss(method) => integrate::gauss_legendre(
+                equations,
+                start,
+                start.t + steps as f64 * h,
+                steps,
+                method,
+                |_| {},
+            ),
+            Self::Sdirk => {
+                integrate::sdirk(equations, start, start.t + steps as f64 * h, steps, |_| {})
+            }
         }
     }
 }
@@ -454,7 +466,14 @@ fn energy_drift(out: &Path) -> Result<(), Box<dyn Error>> {
     let equations = Unconstrained::without_inputs(&CHAOTIC);
     let bar = progress("energy, 10⁴ s", 3);
     let rk4 = energy_history(HORIZON, 10.0, |observe| {
-        integrate::rk4(&equations, CHAOTIC_START, CHAOTIC_START.t + 2_000_000.0 * 5e-3, 2_000_000, observe).map(drop)
+        integrate::rk4(
+            &equations,
+            CHAOTIC_START,
+            CHAOTIC_START.t + 2_000_000.0 * 5e-3,
+            2_000_000,
+            observe,
+        )
+        .map(drop)
     })?;
     bar.inc(1);
     let dop853 = energy_history(HORIZON, 10.0, |observe| {
@@ -471,7 +490,14 @@ fn energy_drift(out: &Path) -> Result<(), Box<dyn Error>> {
     })?;
     bar.inc(1);
     let gauss = energy_history(HORIZON, 10.0, |observe| {
-        integrate::gauss_legendre(&equations, CHAOTIC_START, CHAOTIC_START.t + 1_000_000.0 * 1e-2, 1_000_000, GaussLegendre::Order4, observe)
+        integrate::gauss_legendre(
+            &equations,
+            CHAOTIC_START,
+            CHAOTIC_START.t + 1_000_000.0 * 1e-2,
+            1_000_000,
+            GaussLegendre::Order4,
+            observe,
+        )
         .map(drop)
     })?;
     bar.finish();
@@ -521,7 +547,13 @@ fn stiff_joint(out: &Path) -> Result<(), Box<dyn Error>> {
     let equations = Unconstrained::without_inputs(&STIFF);
     let stretch = |s: &State<2, 2>| (s.t, (s.q[1] - s.q[0]).abs());
     let mut rk4 = Vec::new();
-    let rk4_end = integrate::rk4(&equations, STIFF_START, STIFF_START.t + 500.0 * 2e-3, 500, |s| rk4.push(stretch(s)));
+    let rk4_end = integrate::rk4(
+        &equations,
+        STIFF_START,
+        STIFF_START.t + 500.0 * 2e-3,
+        500,
+        |s| rk4.push(stretch(s)),
+    );
     let mut dop853 = Vec::new();
     let options = AdaptiveOptions::with_tolerance(1e-6);
     let explicit = integrate::adaptive(
@@ -533,9 +565,13 @@ fn stiff_joint(out: &Path) -> Result<(), Box<dyn Error>> {
         |s| dop853.push(stretch(s)),
     )?;
     let mut sdirk = Vec::new();
-    let implicit = integrate::sdirk(&equations, STIFF_START, STIFF_START.t + 100.0 * 1e-2, 100, |s| {
-        sdirk.push(stretch(s))
-    })?;
+    let implicit = integrate::sdirk(
+        &equations,
+        STIFF_START,
+        STIFF_START.t + 100.0 * 1e-2,
+        100,
+        |s| sdirk.push(stretch(s)),
+    )?;
     match rk4_end {
         Ok(end) => println!(
             "stiff joint: RK4 at h = 2 ms ends at stretch {:.3e}",
@@ -585,13 +621,27 @@ fn sensitivity(out: &Path) -> Result<(), Box<dyn Error>> {
     nudged.q[0] += 1e-10;
     let (h, steps) = (1e-3, 30_000);
     let mut first = Vec::with_capacity(steps + 1);
-    integrate::gauss_legendre(&equations, CHAOTIC_START, CHAOTIC_START.t + (steps as u64) as f64 * h, steps as u64, GaussLegendre::Order6, |s| first.push(*s))?;
+    integrate::gauss_legendre(
+        &equations,
+        CHAOTIC_START,
+        CHAOTIC_START.t + (steps as u64) as f64 * h,
+        steps as u64,
+        GaussLegendre::Order6,
+        |s| first.push(*s),
+    )?;
     let mut separation = Vec::with_capacity(steps + 1);
     let mut index = 0;
-    integrate::gauss_legendre(&equations, nudged, nudged.t + (steps as u64) as f64 * h, steps as u64, GaussLegendre::Order6, |s| {
+    integrate::gauss_legendre(
+        &equations,
+        nudged,
+        nudged.t + (steps as u64) as f64 * h,
+        steps as u64,
+        GaussLegendre::Order6,
+        |s| {
             separation.push((s.t, state_error(s, &first[index])));
             index += 1;
-        })?;
+        },
+    )?;
     if let Some((t, _)) = separation.iter().find(|(_, d)| *d > 1e-3) {
         println!("sensitivity: trajectories 1e-10 apart separate beyond 1e-3 at t = {t:.2} s");
     }
@@ -618,7 +668,13 @@ fn singular_mass_matrix() {
     let outcomes = [
         (
             "RK4",
-            integrate::rk4(&equations, TOWARDS_AXIS, TOWARDS_AXIS.t + 8.0 * 0.125, 8, |_| {}),
+            integrate::rk4(
+                &equations,
+                TOWARDS_AXIS,
+                TOWARDS_AXIS.t + 8.0 * 0.125,
+                8,
+                |_| {},
+            ),
         ),
         (
             "DOP853",
@@ -633,7 +689,13 @@ fn singular_mass_matrix() {
         ),
         (
             "SDIRK",
-            integrate::sdirk(&equations, TOWARDS_AXIS, TOWARDS_AXIS.t + 8.0 * 0.125, 8, |_| {}),
+            integrate::sdirk(
+                &equations,
+                TOWARDS_AXIS,
+                TOWARDS_AXIS.t + 8.0 * 0.125,
+                8,
+                |_| {},
+            ),
         ),
     ];
     for (name, outcome) in outcomes {

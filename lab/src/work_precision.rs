@@ -46,7 +46,10 @@ pub struct WorkPoint {
 }
 
 /// The largest `|Δqᵢ|` or `|Δq̇ᵢ|` between two states.
-pub fn state_error<const NQ: usize, const NV: usize>(state: &State<NQ, NV>, reference: &State<NQ, NV>) -> f64 {
+pub fn state_error<const NQ: usize, const NV: usize>(
+    state: &State<NQ, NV>,
+    reference: &State<NQ, NV>,
+) -> f64 {
     let coordinates = state.q.iter().zip(&reference.q);
     let speeds = state.v.iter().zip(&reference.v);
     coordinates

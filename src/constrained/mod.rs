@@ -19,11 +19,12 @@ mod projection;
 mod rank;
 mod stabilisation;
 #[cfg(test)]
-mod test_systems;
+pub(crate) mod test_systems;
 
 pub use multipliers::{
     CONSISTENCY_TOLERANCE, ConstraintSolver, RANK_TOLERANCE, baumgarte_accelerations,
     constrained_accelerations,
 };
+pub(crate) use projection::checked;
 pub use projection::project_onto_constraints;
 pub use stabilisation::{Stabilisation, constraint_drift};

@@ -163,7 +163,12 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
             let row = self.schur.row_at(k);
             let a = self.jacobian.row(row);
             let mismatch = (a.dot(&x.transpose()) - c[row]).abs();
-            let scale = a.iter().zip(x.iter()).map(|(a, x)| (a * x).abs()).sum::<f64>() + c[row].abs();
+            let scale = a
+                .iter()
+                .zip(x.iter())
+                .map(|(a, x)| (a * x).abs())
+                .sum::<f64>()
+                + c[row].abs();
             if mismatch > CONSISTENCY_TOLERANCE * scale {
                 let z = self.schur.dependency(k);
                 let with = (0..NC)
@@ -215,7 +220,13 @@ fn augmentation<const NV: usize, const NC: usize>(
 /// ([`SingularMassMatrix`](DynamicsError::SingularMassMatrix)); constraint
 /// rows that contradict each other
 /// ([`InconsistentConstraints`](DynamicsError::InconsistentConstraints)).
-pub fn constrained_accelerations<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+pub fn constrained_accelerations<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
@@ -249,7 +260,13 @@ where
 /// with `h = 1e-2 s` and `α = β = 300/s` the integration diverges. `α = β =
 /// 0` is [`constrained_accelerations`]. The returned `λ` include the
 /// stabilising force.
-pub fn baumgarte_accelerations<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+pub fn baumgarte_accelerations<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
@@ -291,7 +308,13 @@ impl ConstraintSolver {
 
     /// [`baumgarte_accelerations`] by this solver.
     #[allow(clippy::too_many_arguments)]
-    pub fn baumgarte_accelerations<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+    pub fn baumgarte_accelerations<
+        S,
+        const NQ: usize,
+        const NV: usize,
+        const NU: usize,
+        const NC: usize,
+    >(
         self,
         system: &S,
         t: f64,
@@ -379,7 +402,7 @@ fn check_state<const NQ: usize, const NV: usize, const NU: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::constrained::test_systems::PointOnCircle;
+    use crate::constrained::test_systems::{PointOnCircle, TiedMassless};
 
     const PENDULUM: PointOnCircle<1> = PointOnCircle {
         m: 2.0,
@@ -429,7 +452,10 @@ mod tests {
         // The rod tension of the single row, split equally: the least-norm λ.
         let expected = -(m * speed * speed / l + m * g * theta.cos()) / (2.0 * l);
         for half in [first, second] {
-            assert!((half - expected / 2.0).abs() < 1e-12 * expected.abs(), "{half}");
+            assert!(
+                (half - expected / 2.0).abs() < 1e-12 * expected.abs(),
+                "{half}"
+            );
         }
     }
 
@@ -519,5 +545,66 @@ mod tests {
         let unstabilised = baumgarte_accelerations(&PENDULUM, 0.0, &q, &qd, &[], 0.0, 0.0);
         let exact = constrained_accelerations(&PENDULUM, 0.0, &q, &qd, &[]);
         assert_eq!(unstabilised, exact);
+    }
+
+    #[test]
+    fn a_coordinate_without_inertia_tied_by_a_constraint_has_its_acceleration() {
+        let system = TiedMassless {
+            m: 2.0,
+            g: 9.81,
+            push: 5.0,
+        };
+        let (vdot, [lambda]) =
+            constrained_accelerations(&system, 0.0, &[0.3, 0.3], &[1.0, 1.0], &[]).unwrap();
+        let expected = system.push / system.m - system.g;
+        assert!((vdot[0] - expected).abs() < 1e-14 && (vdot[1] - expected).abs() < 1e-14);
+        assert!((lambda + system.push).abs() < 1e-13, "{lambda}");
+        let schur = ConstraintSolver::SchurComplement.accelerations(
+            &system,
+            0.0,
+            &[0.3; 2],
+            &[1.0; 2],
+            &[],
+        );
+        assert!(matches!(
+            schur,
+            Err(DynamicsError::SingularMassMatrix {
+                index: 1,
+                coordinate: "s",
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn contradictory_rows_are_named() {
+        // Rows x = 0 and 2x = 0 agree at position level but, moving, the
+        // second demands a different acceleration: A = [[1, 0], [2, 0]],
+        // b = [0, 1].
+        let a = [[1.0, 0.0], [2.0, 0.0]];
+        let metric = ConstraintMetric::new(
+            ConstraintSolver::RankRevealing,
+            &[[1.0, 0.0], [0.0, 1.0]],
+            &["x", "y"],
+            &a,
+        )
+        .unwrap();
+        let error = metric
+            .solve(&SVector::from([0.0, -9.81]), &SVector::from([0.0, 1.0]))
+            .unwrap_err();
+        // Row 1 is taken first (larger diagonal): row 0 is the one left over.
+        match error {
+            DynamicsError::InconsistentConstraints {
+                row: 0,
+                with: 1,
+                mismatch,
+            } => assert!((mismatch - 0.5).abs() < 1e-15, "{mismatch}"),
+            other => panic!("expected rows 0 and 1 to contradict, got {other:?}"),
+        }
+        assert!(
+            error
+                .to_string()
+                .starts_with("constraint rows 0 and 1 contradict")
+        );
     }
 }

@@ -32,7 +32,13 @@ use crate::{ConstrainedSystem, DynamicsError, State};
 /// [`ProjectionNotConverged`](DynamicsError::ProjectionNotConverged) if
 /// `max_iterations` corrections leave `max |φᵢ| > tolerance` (a state too
 /// far off the manifold, or a `tolerance` below rounding).
-pub fn project_onto_constraints<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+pub fn project_onto_constraints<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NC: usize,
+>(
     system: &S,
     state: &State<NQ, NV>,
     tolerance: f64,
@@ -49,7 +55,13 @@ impl ConstraintSolver {
     /// ([`SchurComplement`](Self::SchurComplement) fails with
     /// [`DependentConstraints`](DynamicsError::DependentConstraints) at
     /// redundant rows).
-    pub fn project_onto_constraints<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+    pub fn project_onto_constraints<
+        S,
+        const NQ: usize,
+        const NV: usize,
+        const NU: usize,
+        const NC: usize,
+    >(
         self,
         system: &S,
         state: &State<NQ, NV>,
@@ -124,7 +136,7 @@ where
 }
 
 /// `values`, or an error if one of them is not finite.
-fn checked<const NC: usize>(values: [f64; NC]) -> Result<[f64; NC], DynamicsError> {
+pub(crate) fn checked<const NC: usize>(values: [f64; NC]) -> Result<[f64; NC], DynamicsError> {
     if all_finite(&values) {
         Ok(values)
     } else {

@@ -245,7 +245,9 @@ mod tests {
 
     #[test]
     fn without_pivoting_the_first_dependent_row_is_an_error() {
-        let error = SchurFactor::new(redundant_schur(), false, 1e-14).err().unwrap();
+        let error = SchurFactor::new(redundant_schur(), false, 1e-14)
+            .err()
+            .unwrap();
         assert_eq!(error.row, 2);
         assert!(error.pivot.abs() < 1e-15);
     }

@@ -51,10 +51,10 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::constrained::test_systems::PointOnCircle;
-    use crate::test_systems::Pendulum;
     use crate::constrained::ConstraintSolver;
+    use crate::constrained::test_systems::PointOnCircle;
     use crate::integrate::{Failure, rk4, rk4_step};
+    use crate::test_systems::Pendulum;
     use crate::{Constrained, DynamicsError, Unconstrained};
 
     const CIRCLE: PointOnCircle<1> = PointOnCircle {

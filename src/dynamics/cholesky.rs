@@ -54,4 +54,3 @@ pub(crate) fn cholesky<const N: usize>(
     }
     Ok(factor)
 }
-

@@ -118,4 +118,3 @@ impl fmt::Display for DynamicsError {
 }
 
 impl std::error::Error for DynamicsError {}
-

@@ -7,7 +7,7 @@ mod error;
 use nalgebra::SVector;
 
 pub use cholesky::RELATIVE_PIVOT_TOLERANCE;
-pub(crate) use cholesky::{cholesky, factor_mass_matrix};
+pub(crate) use cholesky::factor_mass_matrix;
 pub use error::DynamicsError;
 
 use crate::MultibodySystem;
@@ -70,7 +70,13 @@ pub(crate) fn pivot_names<S, const NQ: usize, const NV: usize, const NU: usize>(
 where
     S: MultibodySystem<NQ, NV, NU> + ?Sized,
 {
-    std::array::from_fn(|i| if NQ == NV { S::COORDINATES[i] } else { S::SPEEDS[i] })
+    std::array::from_fn(|i| {
+        if NQ == NV {
+            S::COORDINATES[i]
+        } else {
+            S::SPEEDS[i]
+        }
+    })
 }
 
 /// The total energy `T(q, v) + V(q)`.

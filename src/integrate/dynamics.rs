@@ -219,9 +219,10 @@ where
     ) -> Result<[f64; NV], DynamicsError> {
         let u = self.inputs.inputs(t, q, v);
         let solution = match self.stabilisation {
-            Stabilisation::Baumgarte { alpha, beta } => self
-                .solver
-                .baumgarte_accelerations(self.system, t, q, v, &u, alpha, beta),
+            Stabilisation::Baumgarte { alpha, beta } => {
+                self.solver
+                    .baumgarte_accelerations(self.system, t, q, v, &u, alpha, beta)
+            }
             Stabilisation::None | Stabilisation::Projection { .. } => {
                 self.solver.accelerations(self.system, t, q, v, &u)
             }
@@ -239,12 +240,10 @@ where
             Stabilisation::Projection {
                 tolerance,
                 max_iterations,
-            } => self.solver.project_onto_constraints(
-                self.system,
-                state,
-                tolerance,
-                max_iterations,
-            ),
+            } => {
+                self.solver
+                    .project_onto_constraints(self.system, state, tolerance, max_iterations)
+            }
             Stabilisation::None | Stabilisation::Baumgarte { .. } => Ok(*state),
         }
     }

@@ -65,7 +65,10 @@ impl<const NV: usize> Rate<NV> {
 
     /// The largest magnitude of any entry.
     pub(crate) fn largest_magnitude(&self) -> f64 {
-        self.dq.iter().chain(&self.dv).fold(0.0, |m, x| m.max(x.abs()))
+        self.dq
+            .iter()
+            .chain(&self.dv)
+            .fold(0.0, |m, x| m.max(x.abs()))
     }
 
     /// `self − other`, entry by entry.
@@ -143,7 +146,9 @@ impl<'a, D> Kernel<'a, D> {
     {
         State {
             t: state.t + dt,
-            q: self.dynamics.integrate_configuration(&state.q, &rate.dq, dt),
+            q: self
+                .dynamics
+                .integrate_configuration(&state.q, &rate.dq, dt),
             v: std::array::from_fn(|i| state.v[i] + dt * rate.dv[i]),
         }
     }
@@ -303,7 +308,9 @@ mod tests {
     fn pendulum_angle(duration: f64, h: f64) -> f64 {
         let steps = (duration / h).round() as u64;
         let dynamics = Unconstrained::without_inputs(&PENDULUM);
-        let end = rk4(&dynamics, at_rest(1.0), duration, steps, |_| {}).unwrap().end;
+        let end = rk4(&dynamics, at_rest(1.0), duration, steps, |_| {})
+            .unwrap()
+            .end;
         assert_eq!(end.t, duration);
         end.q[0]
     }
@@ -462,7 +469,10 @@ mod tests {
         };
         let dynamics = Unconstrained::new(&bar, torque_fails_later);
         let error = rk4_step(&dynamics, &start, 0.5).unwrap_err();
-        assert_eq!(error.cause, Failure::Dynamics(DynamicsError::NonFiniteState));
+        assert_eq!(
+            error.cause,
+            Failure::Dynamics(DynamicsError::NonFiniteState)
+        );
         assert_eq!((error.t, error.q), (2.25, [0.1, 0.2]), "the second stage");
     }
 
@@ -470,7 +480,10 @@ mod tests {
     fn non_finite_state_fails_the_first_stage() {
         let dynamics = Unconstrained::without_inputs(&PENDULUM);
         let error = rk4_step(&dynamics, &at_rest(f64::INFINITY), 0.1).unwrap_err();
-        assert_eq!(error.cause, Failure::Dynamics(DynamicsError::NonFiniteState));
+        assert_eq!(
+            error.cause,
+            Failure::Dynamics(DynamicsError::NonFiniteState)
+        );
         assert_eq!((error.t, error.q), (0.0, [f64::INFINITY]));
     }
 }

@@ -154,7 +154,14 @@ impl<const NV: usize> NewtonMatrix<NV> {
         for j in 0..NV {
             let direction = std::array::from_fn(|k| f64::from(u8::from(k == j)));
             let dq = difference_step(if NQ == NV { q[j] } else { 0.0 });
-            let shifted = kernel.advance(state, &Rate { dq: direction, dv: [0.0; NV] }, dq);
+            let shifted = kernel.advance(
+                state,
+                &Rate {
+                    dq: direction,
+                    dv: [0.0; NV],
+                },
+                dq,
+            );
             let by_q = kernel.accelerations(t, &shifted.q, &v)?;
             let dv = difference_step(v[j]);
             let mut shifted = v;

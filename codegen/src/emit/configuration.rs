@@ -15,7 +15,9 @@ pub fn emit_configuration(nq: usize) -> TokenStream {
     } else {
         (quote!(v), quote!(h), quote!(q))
     };
-    let updated = (0..nq).map(Literal::usize_unsuffixed).map(|i| quote!(q[#i] + h * v[#i]));
+    let updated = (0..nq)
+        .map(Literal::usize_unsuffixed)
+        .map(|i| quote!(q[#i] + h * v[#i]));
     quote! {
         /// The coordinate rates `q̇ = N(q) v`: the speeds themselves, since
         /// every speed is its coordinate's rate.
@@ -58,6 +60,9 @@ mod tests {
     #[test]
     fn no_coordinates_read_nothing() {
         let emitted = emit_configuration(0).to_string();
-        assert!(emitted.contains("_v : & [f64 ; 0]") && emitted.contains("[]"), "{emitted}");
+        assert!(
+            emitted.contains("_v : & [f64 ; 0]") && emitted.contains("[]"),
+            "{emitted}"
+        );
     }
 }

@@ -351,7 +351,13 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
 
 /// The runtime's traits, forwarding to the inherent functions (and to the
 /// emitted `accelerations` when the system has one).
-fn emit_trait_impls(name: &Ident, nq: usize, nu: usize, nc: usize, has_solver: bool) -> TokenStream {
+fn emit_trait_impls(
+    name: &Ident,
+    nq: usize,
+    nu: usize,
+    nc: usize,
+    has_solver: bool,
+) -> TokenStream {
     let (vector, inputs, rows_out) = (array(nq), array(nu), array(nc));
     let [nq, nu, nc_lit] = [nq, nu, nc].map(Literal::usize_unsuffixed);
     let accelerations = if has_solver {
