@@ -13,12 +13,8 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 
-#[path = "../tests/seeds/mod.rs"]
-mod seeds;
-use seeds::{DoublePendulum, RotatingBar};
-
-mod harness;
-use harness::{per_call, states};
+use dalembert_fixtures::seeds::{DoublePendulum, RotatingBar};
+use dalembert_fixtures::states::{per_call, states};
 
 /// The four per-call benchmarks of one unconstrained system.
 macro_rules! bench_system {
@@ -27,7 +23,8 @@ macro_rules! bench_system {
         let states = states::<$nq, $nu>($seed);
         // Every state must be solvable, or `accelerations` would time an early return.
         for s in &states {
-            dalembert::accelerations(&sys, s.t, &s.q, &s.v, &s.u).expect("solvable state");
+            dalembert::dynamics::cholesky_accelerations(&sys, s.t, &s.q, &s.v, &s.u)
+                .expect("solvable state");
         }
         let mut group = $c.benchmark_group($group);
         group.bench_function("mass_matrix", |b| {
@@ -51,7 +48,13 @@ macro_rules! bench_system {
         group.bench_function("accelerations", |b| {
             b.iter_custom(|iters| {
                 per_call(&states, iters, |s| {
-                    dalembert::accelerations(black_box(&sys), s.t, &s.q, &s.v, &s.u)
+                    dalembert::dynamics::cholesky_accelerations(
+                        black_box(&sys),
+                        s.t,
+                        &s.q,
+                        &s.v,
+                        &s.u,
+                    )
                 })
             })
         });

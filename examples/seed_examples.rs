@@ -12,9 +12,7 @@ use dalembert::{State, Unconstrained, integrate};
 use dalembert_lab::{Series, line_chart, line_chart_log_y};
 use std::path::PathBuf;
 
-#[path = "../tests/seeds/mod.rs"]
-mod seeds;
-use seeds::{
+use dalembert_fixtures::seeds::{
     CHAOTIC, CHAOTIC_END, CHAOTIC_START, ConstrainedPendulum, DoublePendulum, RotatingBar,
 };
 

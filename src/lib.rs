@@ -60,3 +60,8 @@ pub use constrained::Stabilisation;
 pub use dynamics::{DynamicsError, accelerations, energy};
 pub use integrate::{Constrained, IntegrationError, Solution, State, Unconstrained};
 pub use system::{ConstrainedSystem, MultibodySystem};
+
+/// The README's Rust examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -8,7 +8,7 @@
 //! (a quaternion's four numbers for three rotational speeds) make them
 //! differ.
 
-use crate::dynamics::{DynamicsError, solve_mass_matrix};
+use crate::dynamics::{DynamicsError, cholesky_accelerations};
 
 /// A system of equations of motion `M(q) v̇ = f(t, q, v, u)`, `q̇ = N(q) v`.
 ///
@@ -50,8 +50,9 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
     /// The accelerations `v̇` that solve `M(q) v̇ = f(t, q, v, u)`.
     ///
     /// Provided: a Cholesky factorisation of `M` on the stack
-    /// ([`accelerations`](crate::accelerations) documents the checks and
-    /// errors). Generated systems override it with their emitted solver,
+    /// ([`cholesky_accelerations`](crate::dynamics::cholesky_accelerations),
+    /// whose checks and errors [`accelerations`](crate::accelerations)
+    /// documents). Generated systems override it with their emitted solver,
     /// unrolled for their size.
     fn accelerations(
         &self,
@@ -60,7 +61,7 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
         v: &[f64; NV],
         u: &[f64; NU],
     ) -> Result<[f64; NV], DynamicsError> {
-        solve_mass_matrix(self, t, q, v, u)
+        cholesky_accelerations(self, t, q, v, u)
     }
 }
 

@@ -11,10 +11,7 @@ use dalembert::{
     Constrained, Stabilisation, State, Unconstrained, accelerations, energy, integrate,
 };
 
-#[path = "seeds/mod.rs"]
-mod seeds;
-
-use seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
+use dalembert_fixtures::seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
 
 /// The system allocator, counting the allocations of the thread that
 /// counts (the test harness's own threads are left alone).

@@ -10,10 +10,7 @@ use dalembert::{
     integrate,
 };
 
-#[path = "seeds/mod.rs"]
-mod seeds;
-
-use seeds::{ConstrainedPendulum, DoublePendulum};
+use dalembert_fixtures::seeds::{ConstrainedPendulum, DoublePendulum};
 
 const BAD: [f64; 3] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
 

@@ -1,12 +1,9 @@
 //! The three worked examples of the seed document, written exactly as in
-//! DESIGN §3, against the independent SymPy reference values of
+//! the language reference (`docs/language.md`), against the independent SymPy reference values of
 //! `tests/reference/seed_examples.json` (S1–S3) at all 20 stored states.
 
-mod common;
-mod seeds;
-
-use common::{array, assert_close, flat, matrix, reference};
-use seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
+use dalembert_fixtures::reference::{array, assert_close, flat, matrix, reference};
+use dalembert_fixtures::seeds::{ConstrainedPendulum, DoublePendulum, RotatingBar};
 use serde_json::Value;
 
 const TOL: f64 = 1e-12;

@@ -9,15 +9,13 @@
 //!
 //! The charts go to `DIR` (default `target/charts` in the package).
 
-mod models;
-
 use std::error::Error;
 use std::path::PathBuf;
 
 use dalembert::constrained::constraint_drift;
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, energy, integrate};
+use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 use dalembert_lab::{Series, line_chart_log_y};
-use models::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 
 /// The RK4 step, in seconds.
 const STEP: f64 = 1e-3;

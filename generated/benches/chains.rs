@@ -1,10 +1,10 @@
-//! Per-call cost of the generated equations of the benchmark chains (issue
-//! 5), both families, n = 1, 2, 4, 6, 12, 30: `mass_matrix` + `forcing`
+//! Per-call cost of the generated equations of the benchmark chains,
+//! both families, n = 1, 2, 4, 6, 12, 30: `mass_matrix` + `forcing`
 //! (the counterpart of Pinocchio's `crba` + `nonLinearEffects`), the
 //! generated `accelerations` method (unrolled Cholesky, the counterpart of
-//! `aba`) and the runtime's generic `dalembert::accelerations` (nalgebra's
+//! `aba`) and the runtime's generic `dalembert::dynamics::cholesky_accelerations` (nalgebra's
 //! Cholesky). Same method as
-//! `benches/seed_examples.rs` (shared in `benches/harness`): 1000 fixed
+//! `benches/seed_examples.rs` (shared in `dalembert_fixtures::states`): 1000 fixed
 //! pseudo-random states, one call per iteration.
 //!
 //! Run with `cargo bench -p dalembert-generated --bench chains`; see
@@ -17,9 +17,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::{DynamicsError, MultibodySystem};
 use dalembert_generated::*;
 
-#[path = "../../benches/harness/mod.rs"]
-mod harness;
-use harness::{per_call, states};
+use dalembert_fixtures::states::{per_call, states};
 
 /// The generated `accelerations` method of a system.
 type Accelerations<S, const N: usize> =
@@ -35,7 +33,8 @@ fn bench_chain<S: MultibodySystem<N, N, 0>, const N: usize>(
     let states = states::<N, 0>(N as u64);
     // Every state must be solvable, or `accelerations` would time an early return.
     for s in &states {
-        dalembert::accelerations(&system, s.t, &s.q, &s.qd, &s.u).expect("solvable state");
+        dalembert::dynamics::cholesky_accelerations(&system, s.t, &s.q, &s.v, &s.u)
+            .expect("solvable state");
     }
     let mut group = c.benchmark_group(format!("{family}/{N}"));
     group.bench_function("mass_matrix+forcing", |b| {
@@ -44,7 +43,7 @@ fn bench_chain<S: MultibodySystem<N, N, 0>, const N: usize>(
                 let system = black_box(&system);
                 (
                     system.mass_matrix(&s.q),
-                    system.forcing(s.t, &s.q, &s.qd, &s.u),
+                    system.forcing(s.t, &s.q, &s.v, &s.u),
                 )
             })
         })
@@ -52,14 +51,20 @@ fn bench_chain<S: MultibodySystem<N, N, 0>, const N: usize>(
     group.bench_function("accelerations", |b| {
         b.iter_custom(|iters| {
             per_call(&states, iters, |s| {
-                unrolled(black_box(&system), s.t, &s.q, &s.qd, &s.u)
+                unrolled(black_box(&system), s.t, &s.q, &s.v, &s.u)
             })
         })
     });
-    group.bench_function("dalembert::accelerations", |b| {
+    group.bench_function("dalembert::dynamics::cholesky_accelerations", |b| {
         b.iter_custom(|iters| {
             per_call(&states, iters, |s| {
-                dalembert::accelerations(black_box(&system), s.t, &s.q, &s.qd, &s.u)
+                dalembert::dynamics::cholesky_accelerations(
+                    black_box(&system),
+                    s.t,
+                    &s.q,
+                    &s.v,
+                    &s.u,
+                )
             })
         })
     });

@@ -35,9 +35,11 @@ where
 }
 
 /// The runtime's generic solver behind the provided
-/// [`MultibodySystem::accelerations`]: a Cholesky factorisation of `M` on the
-/// stack.
-pub(crate) fn solve_mass_matrix<S, const NQ: usize, const NV: usize, const NU: usize>(
+/// [`MultibodySystem::accelerations`]: nalgebra's Cholesky factorisation of
+/// `M` on the stack, with the checks and errors of [`accelerations`].
+/// Generated systems solve with their own unrolled factorisation; this one
+/// stays callable to compare with it.
+pub fn cholesky_accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     t: f64,
     q: &[f64; NQ],

@@ -4,7 +4,7 @@
 //! the update is `q + h v`.
 
 use proc_macro2::{Literal, TokenStream};
-use quote::quote;
+use quote::{format_ident, quote};
 
 /// `pub fn coordinate_rates(..)` and `pub fn integrate_configuration(..)`
 /// for a system of `nq` coordinates whose speeds are their rates.
@@ -15,9 +15,10 @@ pub fn emit_configuration(nq: usize) -> TokenStream {
     } else {
         (quote!(v), quote!(h), quote!(q))
     };
-    let updated = (0..nq)
-        .map(Literal::usize_unsuffixed)
-        .map(|i| quote!(q[#i] + h * v[#i]));
+    let coordinates: Vec<_> = (0..nq).map(|i| format_ident!("q{}", i)).collect();
+    let speeds: Vec<_> = (0..nq).map(|i| format_ident!("v{}", i)).collect();
+    let destructure =
+        (nq > 0).then(|| quote!(let [#(#coordinates),*] = *q; let [#(#speeds),*] = *v;));
     quote! {
         /// The coordinate rates `q̇ = N(q) v`: the speeds themselves, since
         /// every speed is its coordinate's rate.
@@ -29,7 +30,8 @@ pub fn emit_configuration(nq: usize) -> TokenStream {
         /// constant speeds `v` for the time `h`, here `q + h v`.
         #[inline]
         pub fn integrate_configuration(&self, #q: &[f64; #n], #v: &[f64; #n], #h: f64) -> [f64; #n] {
-            [#(#updated),*]
+            #destructure
+            [#(#coordinates + h * #speeds),*]
         }
     }
 }
@@ -51,7 +53,9 @@ mod tests {
             /// constant speeds `v` for the time `h`, here `q + h v`.
             #[inline]
             pub fn integrate_configuration(&self, q: &[f64; 2], v: &[f64; 2], h: f64) -> [f64; 2] {
-                [q[0] + h * v[0], q[1] + h * v[1]]
+                let [q0, q1] = *q;
+                let [v0, v1] = *v;
+                [q0 + h * v0, q1 + h * v1]
             }
         };
         assert_eq!(emit_configuration(2).to_string(), expected.to_string());
