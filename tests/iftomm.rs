@@ -6,7 +6,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use dalembert::constrained::{ConstraintSolver, constraint_drift};
+use dalembert::constrained::{ConstraintSolver, constrained_accelerations, constraint_drift};
 use dalembert::integrate::{AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4};
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
 use dalembert_fixtures::iftomm::{Bricard, FourBars2, FourBars10, Parallelogram};
@@ -106,6 +106,12 @@ where
     [rk, deviation(&angles)]
 }
 
+/// The number of times the parallelogram reference crosses the horizontal
+/// over `t_end`.
+fn reference_crossings(n: f64, t_end: f64) -> usize {
+    crossings(parallelogram_angles(n, t_end).into_iter())
+}
+
 #[test]
 fn two_four_bars_cross_every_singular_position() {
     let system = FourBars2 {
@@ -113,7 +119,143 @@ fn two_four_bars_cross_every_singular_position() {
         L: 1.0,
         g: 9.81,
     };
-    for (worst, crossed) in four_bar_deviations(&system, 2.0, 20.0) {
-        eprintln!("{worst:e} {crossed}");
+    let expected = reference_crossings(2.0, 20.0);
+    assert!(expected >= 10, "{expected}");
+    let [(rk4, rk4_crossed), (alf, alf_crossed)] = four_bar_deviations(&system, 2.0, 20.0);
+    assert_eq!((rk4_crossed, alf_crossed), (expected, expected));
+    // Two formulations agree: 5 coordinates and 4 rows against 1 coordinate.
+    assert!(rk4 < 1e-8, "RK4 with projection: {rk4:e}");
+    // The benchmark's high precision on the reference point.
+    assert!(alf < 1e-3, "augmented Lagrangian: {alf:e}");
+}
+
+#[test]
+fn ten_four_bars_cross_every_singular_position() {
+    let system = FourBars10 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let expected = reference_crossings(10.0, 2.0);
+    assert!(expected >= 2, "{expected}");
+    let [(rk4, rk4_crossed), (alf, alf_crossed)] = four_bar_deviations(&system, 10.0, 2.0);
+    assert_eq!((rk4_crossed, alf_crossed), (expected, expected));
+    assert!(rk4 < 1e-8, "RK4 with projection: {rk4:e}");
+    assert!(alf < 1e-3, "augmented Lagrangian: {alf:e}");
+}
+
+/// Bricard's mechanism at rest in its cube configuration.
+fn bricard_start() -> State<5, 5> {
+    State {
+        t: 0.0,
+        q: [0.0; 5],
+        v: [0.0; 5],
+    }
+}
+
+const BRICARD: Bricard = Bricard {
+    m: 1.0,
+    L: 1.0,
+    g: 9.81,
+};
+
+#[test]
+fn bricard_keeps_its_energy_and_its_closure_for_ten_seconds() {
+    let dynamics = Constrained::without_inputs(&BRICARD, PROJECTION);
+    let start = bricard_start();
+    let initial = energy(&BRICARD, &start.q, &start.v);
+    let (mut drift, mut residual, mut travel) = (0.0f64, 0.0f64, 0.0f64);
+    rk4(&dynamics, start, 10.0, 20_000, |s| {
+        drift = drift.max((energy(&BRICARD, &s.q, &s.v) - initial).abs());
+        residual = residual.max(constraint_drift(&BRICARD, s));
+        travel = travel.max(s.q[0].abs());
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert!(travel > 0.1, "the mechanism moves: max |q1| = {travel}");
+    assert!(drift < 1e-6, "energy drift {drift:e}");
+    assert!(residual < 1e-10, "constraint residual {residual:e}");
+}
+
+#[test]
+fn bricard_has_rank_four_closure_rows() {
+    // Grübler: 5 coordinates − 5 rows = 0; the rows have rank 4, so the
+    // Schur complement route stops and the rank-revealing one goes on.
+    let start = bricard_start();
+    let schur = ConstraintSolver::SchurComplement.accelerations(&BRICARD, 0.0, &start.q, &start.v, &[]);
+    assert!(matches!(schur, Err(dalembert::DynamicsError::DependentConstraints { .. })), "{schur:?}");
+    let (vdot, _) = ConstraintSolver::RankRevealing
+        .accelerations(&BRICARD, 0.0, &start.q, &start.v, &[])
+        .unwrap();
+    let a = BRICARD.constraint_jacobian(&start.q);
+    for row in a {
+        let achieved: f64 = row.iter().zip(&vdot).map(|(a, x)| a * x).sum();
+        assert!(achieved.abs() < 1e-12, "{achieved:e}");
+    }
+}
+
+dalembert::dalembert! {
+    /// One four-bar window (crank, coupler, rocker; unit rods), closed by
+    /// its x and y rows.
+    pub FourBar {
+        parameters m, L, g;
+        coordinates phi0, phi1, psi1;
+        frame C0 = N.rotate_z(phi0);
+        frame C1 = N.rotate_z(phi1);
+        frame D1 = N.rotate_z(psi1);
+        point B0 = O + L * C0.x;
+        point G0 = O + L/2 * C0.x;
+        point G1 = O + L * N.x + L/2 * C1.x;
+        point H1 = B0 + L/2 * D1.x;
+        body crank { mass: m, center: G0, frame: C0, inertia: [0, 0, m*L^2/12] };
+        body rocker { mass: m, center: G1, frame: C1, inertia: [0, 0, m*L^2/12] };
+        body coupler { mass: m, center: H1, frame: D1, inertia: [0, 0, m*L^2/12] };
+        gravity -g * N.y;
+        constraint L*cos(phi0) + L*cos(psi1) == L + L*cos(phi1);
+        constraint L*sin(phi0) + L*sin(psi1) == L*sin(phi1);
+    }
+}
+
+dalembert::dalembert! {
+    /// The same window with a third, redundant row: the sum of the first two.
+    pub RedundantFourBar {
+        parameters m, L, g;
+        coordinates phi0, phi1, psi1;
+        frame C0 = N.rotate_z(phi0);
+        frame C1 = N.rotate_z(phi1);
+        frame D1 = N.rotate_z(psi1);
+        point B0 = O + L * C0.x;
+        point G0 = O + L/2 * C0.x;
+        point G1 = O + L * N.x + L/2 * C1.x;
+        point H1 = B0 + L/2 * D1.x;
+        body crank { mass: m, center: G0, frame: C0, inertia: [0, 0, m*L^2/12] };
+        body rocker { mass: m, center: G1, frame: C1, inertia: [0, 0, m*L^2/12] };
+        body coupler { mass: m, center: H1, frame: D1, inertia: [0, 0, m*L^2/12] };
+        gravity -g * N.y;
+        constraint L*cos(phi0) + L*cos(psi1) == L + L*cos(phi1);
+        constraint L*sin(phi0) + L*sin(psi1) == L*sin(phi1);
+        constraint L*cos(phi0) + L*cos(psi1) + L*sin(phi0) + L*sin(psi1) == L + L*cos(phi1) + L*sin(phi1);
+    }
+}
+
+#[test]
+fn redundant_row_gets_the_least_norm_share_of_the_multipliers() {
+    let (independent, redundant) = (
+        FourBar { m: 1.0, L: 1.0, g: 9.81 },
+        RedundantFourBar { m: 1.0, L: 1.0, g: 9.81 },
+    );
+    // A parallelogram at 1 rad, moving: closure holds with psi = 0.
+    let (q, v) = ([1.0, 1.0, 0.0], [-0.7, -0.7, 0.0]);
+    let (vdot, [lx, ly]) = ConstraintSolver::SchurComplement
+        .accelerations(&independent, 0.0, &q, &v, &[])
+        .unwrap();
+    let (vdot_redundant, lambda) = constrained_accelerations(&redundant, 0.0, &q, &v, &[]).unwrap();
+    for (a, b) in vdot.iter().zip(&vdot_redundant) {
+        assert!((a - b).abs() < 1e-12, "{vdot:?} {vdot_redundant:?}");
+    }
+    // Every (lx − s, ly − s, s) gives the same force; the least norm has
+    // s = (lx + ly)/3.
+    let s = (lx + ly) / 3.0;
+    for (got, want) in lambda.iter().zip([lx - s, ly - s, s]) {
+        assert!((got - want).abs() < 1e-11 * (1.0 + want.abs()), "{lambda:?} vs ({lx}, {ly})");
     }
 }

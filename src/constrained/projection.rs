@@ -27,8 +27,7 @@ use crate::{ConstrainedSystem, DynamicsError, State};
 /// coordinates exactly.
 ///
 /// Errors: non-finite coordinates or speeds, equations or constraints; a
-/// coordinate free to move without inertia at an iterate; contradictory
-/// speed constraints; and
+/// coordinate free to move without inertia at an iterate; and
 /// [`ProjectionNotConverged`](DynamicsError::ProjectionNotConverged) if
 /// `max_iterations` corrections leave `max |φᵢ| > tolerance` (a state too
 /// far off the manifold, or a `tolerance` below rounding).
@@ -131,7 +130,7 @@ where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let velocity = checked(system.constraint_velocity(t, q, &v))?;
-    let (correction, _) = metric.solve(&SVector::zeros(), &SVector::from(velocity))?;
+    let correction = metric.least_norm(&SVector::from(velocity));
     Ok(std::array::from_fn(|i| v[i] - correction[i]))
 }
 

@@ -48,11 +48,11 @@ pub enum DynamicsError {
     /// The constraints contradict each other: constraint `row` depends on the
     /// rows taken before it by the rank-revealing solver (among them `with`,
     /// the one weighing most in the dependency), but demands a different
-    /// value (`A v̇ = b`, or the velocity form in a projection). Found by
+    /// acceleration (`A v̇ = b`). Found by
     /// [`ConstraintSolver::RankRevealing`](crate::constrained::ConstraintSolver)
     /// when `|Aᵢ x − cᵢ|` exceeds
     /// [`CONSISTENCY_TOLERANCE`](crate::constrained::CONSISTENCY_TOLERANCE)
-    /// times `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|`.
+    /// times the largest `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|` of any row.
     InconsistentConstraints {
         /// The contradicting row (declaration order).
         row: usize,
