@@ -45,6 +45,10 @@ const PROJECTION: Stabilisation = Stabilisation::Projection {
     max_iterations: 10,
 };
 
+/// One integration, reporting every state to the observer it is given.
+type ObservedRun<'a, const NQ: usize> = dyn FnMut(&mut dyn FnMut(&State<NQ, NQ>)) -> Result<Solution<NQ, NQ>, IntegrationError<NQ>>
+    + 'a;
+
 /// A benchmark: its name, file stem, duration and the reference point's
 /// position at the final time from the independent reference.
 struct Benchmark {
@@ -70,7 +74,10 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .default_value("3"),
         )
         .get_matches();
-    let out = options.get_one::<PathBuf>("out").cloned().unwrap_or_default();
+    let out = options
+        .get_one::<PathBuf>("out")
+        .cloned()
+        .unwrap_or_default();
     let repeats = options.get_one::<usize>("repeats").copied().unwrap_or(3);
     std::fs::create_dir_all(&out)?;
     pendulum(&out, repeats)?;
@@ -82,19 +89,50 @@ fn main() -> Result<(), Box<dyn Error>> {
 /// A01: 1 kg on a 1 m massless rod, at rest with the rod horizontal
 /// (`x = 1 m`), 2000 s.
 fn pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
-    let system = CartesianPendulum { m: 1.0, l: 1.0, g: 9.81 };
-    let angle = AnglePendulum { m: 1.0, l: 1.0, g: 9.81 };
+    let system = CartesianPendulum {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
+    let angle = AnglePendulum {
+        m: 1.0,
+        l: 1.0,
+        g: 9.81,
+    };
     let duration = 2000.0;
-    let theta = tight(&Unconstrained::without_inputs(&angle), State { t: 0.0, q: [0.0], v: [0.0] }, duration, 1e-13)?;
+    let theta = tight(
+        &Unconstrained::without_inputs(&angle),
+        State {
+            t: 0.0,
+            q: [0.0],
+            v: [0.0],
+        },
+        duration,
+        1e-13,
+    )?;
     let benchmark = Benchmark {
         name: "A01 simple pendulum (Cartesian coordinates)",
         stem: "iftomm_a01",
         duration,
         reference: [theta.q[0].cos(), theta.q[0].sin()],
     };
-    let start = State { t: 0.0, q: [1.0, 0.0], v: [0.0, 0.0] };
+    let start = State {
+        t: 0.0,
+        q: [1.0, 0.0],
+        v: [0.0, 0.0],
+    };
     let point = |s: &State<2, 2>| s.q;
-    run(out, repeats, &benchmark, &system, start, point, &[2e-3, 1e-3, 5e-4], &[1e-8, 1e-10, 1e-12], &[1e-3, 5e-4, 2.5e-4])
+    run(
+        out,
+        repeats,
+        &benchmark,
+        &system,
+        start,
+        point,
+        &[2e-3, 1e-3, 5e-4],
+        &[1e-8, 1e-10, 1e-12],
+        &[1e-3, 5e-4, 2.5e-4],
+    )
 }
 
 /// A02: unit rods, cranks upright, the tip `B0` of the first crank moving
@@ -102,19 +140,70 @@ fn pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
 fn four_bars(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
     let duration = 20.0;
     for (n, stem) in [(2.0, "iftomm_a02_n2"), (10.0, "iftomm_a02_n10")] {
-        let reduced = Parallelogram { m: 1.0, L: 1.0, g: 9.81, n };
-        let phi = tight(&Unconstrained::without_inputs(&reduced), State { t: 0.0, q: [FRAC_PI_2], v: [-1.0] }, duration, 1e-13)?;
-        let name = if n == 2.0 { "A02 two four-bars" } else { "A02 ten four-bars" };
-        let benchmark = Benchmark { name, stem, duration, reference: [phi.q[0].cos(), phi.q[0].sin()] };
+        let reduced = Parallelogram {
+            m: 1.0,
+            L: 1.0,
+            g: 9.81,
+            n,
+        };
+        let phi = tight(
+            &Unconstrained::without_inputs(&reduced),
+            State {
+                t: 0.0,
+                q: [FRAC_PI_2],
+                v: [-1.0],
+            },
+            duration,
+            1e-13,
+        )?;
+        let name = if n == 2.0 {
+            "A02 two four-bars"
+        } else {
+            "A02 ten four-bars"
+        };
+        let benchmark = Benchmark {
+            name,
+            stem,
+            duration,
+            reference: [phi.q[0].cos(), phi.q[0].sin()],
+        };
         let steps = [2e-3, 1e-3, 5e-4];
         let tolerances = [1e-6, 1e-8, 1e-10];
         let alf = [2e-3, 1e-3, 5e-4];
         if n == 2.0 {
-            let system = FourBars2 { m: 1.0, L: 1.0, g: 9.81 };
-            run(out, repeats, &benchmark, &system, four_bar_start(), crank_tip, &steps, &tolerances, &alf)?;
+            let system = FourBars2 {
+                m: 1.0,
+                L: 1.0,
+                g: 9.81,
+            };
+            run(
+                out,
+                repeats,
+                &benchmark,
+                &system,
+                four_bar_start(),
+                crank_tip,
+                &steps,
+                &tolerances,
+                &alf,
+            )?;
         } else {
-            let system = FourBars10 { m: 1.0, L: 1.0, g: 9.81 };
-            run(out, repeats, &benchmark, &system, four_bar_start(), crank_tip, &steps, &tolerances, &alf)?;
+            let system = FourBars10 {
+                m: 1.0,
+                L: 1.0,
+                g: 9.81,
+            };
+            run(
+                out,
+                repeats,
+                &benchmark,
+                &system,
+                four_bar_start(),
+                crank_tip,
+                &steps,
+                &tolerances,
+                &alf,
+            )?;
         }
     }
     Ok(())
@@ -138,9 +227,17 @@ fn crank_tip<const NQ: usize>(s: &State<NQ, NQ>) -> [f64; 2] {
 /// A04: unit rods along the edges of a cube, at rest, 10 s. The reference
 /// point is the tip of the third rod (its `x` and `y`).
 fn bricard(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
-    let system = Bricard { m: 1.0, L: 1.0, g: 9.81 };
+    let system = Bricard {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
     let duration = 10.0;
-    let start = State { t: 0.0, q: [0.0; 5], v: [0.0; 5] };
+    let start = State {
+        t: 0.0,
+        q: [0.0; 5],
+        v: [0.0; 5],
+    };
     let exact = Stabilisation::Projection {
         tolerance: 1e-14,
         max_iterations: 10,
@@ -159,7 +256,17 @@ fn bricard(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         duration,
         reference: p,
     };
-    run(out, repeats, &benchmark, &system, start, third_rod_tip, &[2e-3, 1e-3, 5e-4], &[1e-6, 1e-8, 1e-10], &[2e-3, 1e-3, 5e-4])
+    run(
+        out,
+        repeats,
+        &benchmark,
+        &system,
+        start,
+        third_rod_tip,
+        &[2e-3, 1e-3, 5e-4],
+        &[1e-6, 1e-8, 1e-10],
+        &[2e-3, 1e-3, 5e-4],
+    )
 }
 
 /// The tip `P3` of the third rod of Bricard's mechanism (unit rods): `x` and
@@ -184,8 +291,19 @@ fn tight<D, const NQ: usize, const NV: usize>(
 where
     D: dalembert::integrate::Dynamics<NQ, NV>,
 {
-    let options = AdaptiveOptions { max_steps: 100_000_000, ..AdaptiveOptions::with_tolerance(tolerance) };
-    Ok(adaptive(dynamics, start, duration, ExplicitPair::Dop853, options, |_| {})?.end)
+    let options = AdaptiveOptions {
+        max_steps: 100_000_000,
+        ..AdaptiveOptions::with_tolerance(tolerance)
+    };
+    Ok(adaptive(
+        dynamics,
+        start,
+        duration,
+        ExplicitPair::Dop853,
+        options,
+        |_| {},
+    )?
+    .end)
 }
 
 /// Simulates `system` over the benchmark by every method at every setting,
@@ -207,58 +325,88 @@ where
     S: ConstrainedSystem<NQ, NQ, 0, NC>,
 {
     println!("\n{} over {} s", benchmark.name, benchmark.duration);
-    println!("{:<32} {:>9} {:>11} {:>11} {:>11} {:>9}", "method", "setting", "energy", "residual", "ref. point", "time [s]");
+    println!(
+        "{:<32} {:>9} {:>11} {:>11} {:>11} {:>9}",
+        "method", "setting", "energy", "residual", "ref. point", "time [s]"
+    );
     let dynamics = Constrained::without_inputs(system, PROJECTION);
     let initial = energy(system, &start.q, &start.v);
     let duration = benchmark.duration;
     let judge = |s: &State<NQ, NQ>| {
         let p = point(s);
         Accuracy {
-            error: (p[0] - benchmark.reference[0]).abs().max((p[1] - benchmark.reference[1]).abs()),
+            error: (p[0] - benchmark.reference[0])
+                .abs()
+                .max((p[1] - benchmark.reference[1]).abs()),
             energy_error: (energy(system, &s.q, &s.v) - initial).abs(),
             drift: constraint_drift(system, s),
         }
     };
     let mut points: Vec<WorkPoint> = Vec::new();
-    let mut record = |method: &str, setting: f64, run: &mut dyn FnMut(&mut dyn FnMut(&State<NQ, NQ>)) -> Result<Solution<NQ, NQ>, IntegrationError<NQ>>| -> Result<(), Box<dyn Error>> {
-        // One observed run for the drift over the whole history, then the
-        // timed repeats.
-        let (mut drift, mut residual) = (0.0f64, 0.0f64);
-        let observed = run(&mut |s| {
-            drift = drift.max((energy(system, &s.q, &s.v) - initial).abs());
-            residual = residual.max(constraint_drift(system, s));
-        });
-        if let Err(error) = observed {
-            println!("{method:<32} {setting:>9.1e} failed: {error}");
-            return Ok(());
-        }
-        let measured = measure(method, setting, repeats, || run(&mut |_| {}), judge)?;
-        println!(
-            "{method:<32} {setting:>9.1e} {drift:>11.2e} {residual:>11.2e} {:>11.2e} {:>9.4}",
-            measured.accuracy.error, measured.seconds
-        );
-        points.push(measured);
-        Ok(())
-    };
+    let mut record =
+        |method: &str, setting: f64, run: &mut ObservedRun<'_, NQ>| -> Result<(), Box<dyn Error>> {
+            // One observed run for the drift over the whole history, then the
+            // timed repeats.
+            let (mut drift, mut residual) = (0.0f64, 0.0f64);
+            let observed = run(&mut |s| {
+                drift = drift.max((energy(system, &s.q, &s.v) - initial).abs());
+                residual = residual.max(constraint_drift(system, s));
+            });
+            if let Err(error) = observed {
+                println!("{method:<32} {setting:>9.1e} failed: {error}");
+                return Ok(());
+            }
+            let measured = measure(method, setting, repeats, || run(&mut |_| {}), judge)?;
+            println!(
+                "{method:<32} {setting:>9.1e} {drift:>11.2e} {residual:>11.2e} {:>11.2e} {:>9.4}",
+                measured.accuracy.error, measured.seconds
+            );
+            points.push(measured);
+            Ok(())
+        };
     for &h in steps {
         let n = (duration / h).round() as u64;
-        record("RK4 + projection", h, &mut |observer| rk4(&dynamics, start, duration, n, observer))?;
+        record("RK4 + projection", h, &mut |observer| {
+            rk4(&dynamics, start, duration, n, observer)
+        })?;
     }
     for &tolerance in tolerances {
-        let options = AdaptiveOptions { max_steps: 100_000_000, ..AdaptiveOptions::with_tolerance(tolerance) };
+        let options = AdaptiveOptions {
+            max_steps: 100_000_000,
+            ..AdaptiveOptions::with_tolerance(tolerance)
+        };
         record("DOP853 + projection", tolerance, &mut |observer| {
-            adaptive(&dynamics, start, duration, ExplicitPair::Dop853, options, observer)
+            adaptive(
+                &dynamics,
+                start,
+                duration,
+                ExplicitPair::Dop853,
+                options,
+                observer,
+            )
         })?;
     }
     for &h in alf_steps {
         let n = (duration / h).round() as u64;
         record("augmented Lagrangian (index 3)", h, &mut |observer| {
-            augmented_lagrangian(&dynamics, start, duration, n, AugmentedLagrangian::for_step(h), observer)
+            augmented_lagrangian(
+                &dynamics,
+                start,
+                duration,
+                n,
+                AugmentedLagrangian::for_step(h),
+                observer,
+            )
         })?;
     }
     std::fs::write(out.join(format!("{}.csv", benchmark.stem)), to_csv(&points))?;
     let chart = out.join(format!("{}.svg", benchmark.stem));
-    work_precision_chart(&chart, &format!("{}: reference point at {} s", benchmark.name, duration), &points, &[])?;
+    work_precision_chart(
+        &chart,
+        &format!("{}: reference point at {} s", benchmark.name, duration),
+        &points,
+        &[],
+    )?;
     println!("wrote {}", chart.display());
     Ok(())
 }

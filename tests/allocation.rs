@@ -169,6 +169,9 @@ fn rank_revealing_solves_and_the_augmented_lagrangian_allocate_nothing() {
         let alf = augmented_lagrangian(&dynamics, start, 1e-2, 10, settings, |_| {}).is_ok();
         (solve, step, alf)
     });
-    assert_eq!(made, 0, "the rank-revealing solver or the augmented Lagrangian allocated");
+    assert_eq!(
+        made, 0,
+        "the rank-revealing solver or the augmented Lagrangian allocated"
+    );
     assert_eq!(result, (true, true, true));
 }

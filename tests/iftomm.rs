@@ -7,7 +7,9 @@
 use std::f64::consts::FRAC_PI_2;
 
 use dalembert::constrained::{ConstraintSolver, constrained_accelerations, constraint_drift};
-use dalembert::integrate::{AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4};
+use dalembert::integrate::{
+    AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
+};
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
 use dalembert_fixtures::iftomm::{Bricard, FourBars2, FourBars10, Parallelogram};
 
@@ -50,9 +52,16 @@ fn parallelogram_angles(n: f64, t_end: f64) -> Vec<f64> {
         let end = if k == 0 {
             start
         } else {
-            adaptive(&dynamics, start, t, ExplicitPair::Dop853, AdaptiveOptions::with_tolerance(1e-13), |_| {})
-                .unwrap()
-                .end
+            adaptive(
+                &dynamics,
+                start,
+                t,
+                ExplicitPair::Dop853,
+                AdaptiveOptions::with_tolerance(1e-13),
+                |_| {},
+            )
+            .unwrap()
+            .end
         };
         angles.push(end.q[0]);
     }
@@ -69,7 +78,11 @@ fn crossings(angles: impl Iterator<Item = f64>) -> usize {
 /// the augmented Lagrangian method, and returns the largest deviation of the
 /// first crank's angle from the parallelogram reference for each, with the
 /// number of singular positions crossed.
-fn four_bar_deviations<S, const NQ: usize, const NC: usize>(system: &S, n: f64, t_end: f64) -> [(f64, usize); 2]
+fn four_bar_deviations<S, const NQ: usize, const NC: usize>(
+    system: &S,
+    n: f64,
+    t_end: f64,
+) -> [(f64, usize); 2]
 where
     S: ConstrainedSystem<NQ, NQ, 0, NC>,
 {
@@ -77,10 +90,13 @@ where
     let steps = (t_end / 1e-3).round() as u64;
     let every = 50;
     let deviation = |angles: &[f64]| {
-        let worst = angles
-            .iter()
-            .zip(&reference)
-            .fold(0.0f64, |m, (a, r)| m.max((a.sin_cos().0 - r.sin_cos().0).abs().max((a.cos() - r.cos()).abs())));
+        let worst = angles.iter().zip(&reference).fold(0.0f64, |m, (a, r)| {
+            m.max(
+                (a.sin_cos().0 - r.sin_cos().0)
+                    .abs()
+                    .max((a.cos() - r.cos()).abs()),
+            )
+        });
         (worst, crossings(angles.iter().copied()))
     };
     let dynamics = Constrained::without_inputs(system, PROJECTION);
@@ -96,12 +112,19 @@ where
     let rk = deviation(&angles);
     angles.clear();
     k = 0;
-    augmented_lagrangian(&dynamics, four_bar_start(), t_end, steps, AugmentedLagrangian::default(), |s| {
-        if k % every == 0 {
-            angles.push(s.q[0]);
-        }
-        k += 1;
-    })
+    augmented_lagrangian(
+        &dynamics,
+        four_bar_start(),
+        t_end,
+        steps,
+        AugmentedLagrangian::default(),
+        |s| {
+            if k % every == 0 {
+                angles.push(s.q[0]);
+            }
+            k += 1;
+        },
+    )
     .unwrap_or_else(|e| panic!("augmented Lagrangian: {e}"));
     [rk, deviation(&angles)]
 }
@@ -181,8 +204,15 @@ fn bricard_has_rank_four_closure_rows() {
     // Grübler: 5 coordinates − 5 rows = 0; the rows have rank 4, so the
     // Schur complement route stops and the rank-revealing one goes on.
     let start = bricard_start();
-    let schur = ConstraintSolver::SchurComplement.accelerations(&BRICARD, 0.0, &start.q, &start.v, &[]);
-    assert!(matches!(schur, Err(dalembert::DynamicsError::DependentConstraints { .. })), "{schur:?}");
+    let schur =
+        ConstraintSolver::SchurComplement.accelerations(&BRICARD, 0.0, &start.q, &start.v, &[]);
+    assert!(
+        matches!(
+            schur,
+            Err(dalembert::DynamicsError::DependentConstraints { .. })
+        ),
+        "{schur:?}"
+    );
     let (vdot, _) = ConstraintSolver::RankRevealing
         .accelerations(&BRICARD, 0.0, &start.q, &start.v, &[])
         .unwrap();
@@ -240,8 +270,16 @@ dalembert::dalembert! {
 #[test]
 fn redundant_row_gets_the_least_norm_share_of_the_multipliers() {
     let (independent, redundant) = (
-        FourBar { m: 1.0, L: 1.0, g: 9.81 },
-        RedundantFourBar { m: 1.0, L: 1.0, g: 9.81 },
+        FourBar {
+            m: 1.0,
+            L: 1.0,
+            g: 9.81,
+        },
+        RedundantFourBar {
+            m: 1.0,
+            L: 1.0,
+            g: 9.81,
+        },
     );
     // A parallelogram at 1 rad, moving: closure holds with psi = 0.
     let (q, v) = ([1.0, 1.0, 0.0], [-0.7, -0.7, 0.0]);
@@ -256,6 +294,9 @@ fn redundant_row_gets_the_least_norm_share_of_the_multipliers() {
     // s = (lx + ly)/3.
     let s = (lx + ly) / 3.0;
     for (got, want) in lambda.iter().zip([lx - s, ly - s, s]) {
-        assert!((got - want).abs() < 1e-11 * (1.0 + want.abs()), "{lambda:?} vs ({lx}, {ly})");
+        assert!(
+            (got - want).abs() < 1e-11 * (1.0 + want.abs()),
+            "{lambda:?} vs ({lx}, {ly})"
+        );
     }
 }

@@ -101,9 +101,9 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
             return Err(DynamicsError::NonFiniteConstraints);
         }
         let a = SMatrix::<f64, NC, NV>::from_fn(|i, j| jacobian[i][j]);
-        let (penalty, pivoting, tolerance) = match solver {
-            ConstraintSolver::SchurComplement => (0.0, false, RELATIVE_PIVOT_TOLERANCE),
-            ConstraintSolver::RankRevealing => (augmentation(mass, &a), true, RANK_TOLERANCE),
+        let penalty = match solver {
+            ConstraintSolver::SchurComplement => 0.0,
+            ConstraintSolver::RankRevealing => augmentation(mass, &a),
         };
         let augmented: [[f64; NV]; NV] = std::array::from_fn(|i| {
             std::array::from_fn(|j| mass[i][j] + penalty * a.column(i).dot(&a.column(j)))
@@ -111,15 +111,15 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
         let mass = factor_mass_matrix(&augmented, names)?;
         let mass_inverse_jacobian_t = mass.solve(&a.transpose());
         let s = a * mass_inverse_jacobian_t;
-        let schur = SchurFactor::new(
-            std::array::from_fn(|i| std::array::from_fn(|j| s[(i, j)])),
-            pivoting,
-            tolerance,
-        )
-        .map_err(|dependent| DynamicsError::DependentConstraints {
-            row: dependent.row,
-            pivot: dependent.pivot,
-        })?;
+        let s = std::array::from_fn(|i| std::array::from_fn(|j| s[(i, j)]));
+        let schur = match solver {
+            ConstraintSolver::SchurComplement => SchurFactor::in_order(s, RELATIVE_PIVOT_TOLERANCE)
+                .map_err(|dependent| DynamicsError::DependentConstraints {
+                    row: dependent.row,
+                    pivot: dependent.pivot,
+                })?,
+            ConstraintSolver::RankRevealing => SchurFactor::pivoted(s, RANK_TOLERANCE),
+        };
         Ok(Self {
             mass,
             penalty,

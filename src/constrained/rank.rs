@@ -31,19 +31,34 @@ pub(crate) struct SchurFactor<const NC: usize> {
 }
 
 impl<const NC: usize> SchurFactor<NC> {
-    /// Factorises the symmetric positive semi-definite `schur`, taking the
-    /// largest remaining pivot first when `pivoting`, and stopping at the
-    /// first pivot not above `tolerance` times the largest diagonal entry:
-    /// the rank with pivoting, the error naming the row without.
-    pub(crate) fn new(
+    /// Factorises the symmetric positive semi-definite `schur` taking the
+    /// largest remaining pivot first, until every remaining pivot is at
+    /// most `tolerance` times the largest diagonal entry: the rank.
+    pub(crate) fn pivoted(schur: [[f64; NC]; NC], tolerance: f64) -> Self {
+        Self::factorise(schur, true, tolerance).0
+    }
+
+    /// Factorises `schur` in declaration order, or names the first row
+    /// whose pivot is at most `tolerance` times the largest diagonal entry.
+    pub(crate) fn in_order(schur: [[f64; NC]; NC], tolerance: f64) -> Result<Self, DependentRow> {
+        match Self::factorise(schur, false, tolerance) {
+            (_, Some(dependent)) => Err(dependent),
+            (factor, None) => Ok(factor),
+        }
+    }
+
+    /// The factorisation, stopped at the first pivot not above the
+    /// threshold; without pivoting that pivot's row is returned too.
+    fn factorise(
         mut schur: [[f64; NC]; NC],
         pivoting: bool,
         tolerance: f64,
-    ) -> Result<Self, DependentRow> {
+    ) -> (Self, Option<DependentRow>) {
         let largest = (0..NC).fold(0.0f64, |m, i| m.max(schur[i][i]));
         let threshold = tolerance * largest;
         let mut order: [usize; NC] = std::array::from_fn(|i| i);
         let mut rank = NC;
+        let mut dependent = None;
         for k in 0..NC {
             if pivoting {
                 let best = (k..NC)
@@ -53,9 +68,9 @@ impl<const NC: usize> SchurFactor<NC> {
                 order.swap(k, best);
             }
             let pivot = schur[k][k];
-            if !(pivot > threshold) {
+            if pivot.is_nan() || pivot <= threshold {
                 if !pivoting {
-                    return Err(DependentRow {
+                    dependent = Some(DependentRow {
                         row: order[k],
                         pivot,
                     });
@@ -65,11 +80,12 @@ impl<const NC: usize> SchurFactor<NC> {
             }
             eliminate(&mut schur, k);
         }
-        Ok(Self {
+        let factor = Self {
             factors: schur,
             order,
             rank,
-        })
+        };
+        (factor, dependent)
     }
 
     /// The number of independent constraint rows.
@@ -128,34 +144,26 @@ impl<const NC: usize> SchurFactor<NC> {
             *column = self.dependency(self.rank + c);
         }
         let dot = |a: &[f64; NC], b: &[f64; NC]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-        // Gram matrix G = ZᵀZ (positive definite: each z has its own unit
-        // entry) and the right-hand side Zᵀλ, solved by Cholesky.
-        let mut gram = [[0.0; NC]; NC];
-        let mut w = [0.0; NC];
-        for i in 0..nullity {
-            for j in 0..=i {
-                gram[i][j] = dot(&basis[i], &basis[j]);
-            }
-            w[i] = dot(&basis[i], lambda);
-        }
-        for k in 0..nullity {
-            let d = gram[k][k].sqrt();
-            gram[k][k] = d;
-            for i in k + 1..nullity {
-                gram[i][k] /= d;
-            }
-            for j in k + 1..nullity {
-                for i in j..nullity {
-                    gram[i][j] -= gram[i][k] * gram[j][k];
+        // The Gram matrix G = ZᵀZ (positive definite on its leading
+        // `nullity` block: each z has its own unit entry, zero elsewhere),
+        // factorised like S, and w = G⁻¹ Zᵀλ.
+        let gram: [[f64; NC]; NC] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| {
+                if i < nullity && j < nullity {
+                    dot(&basis[i], &basis[j])
+                } else {
+                    0.0
                 }
+            })
+        });
+        let projection: [f64; NC] = std::array::from_fn(|i| {
+            if i < nullity {
+                dot(&basis[i], lambda)
+            } else {
+                0.0
             }
-        }
-        for i in 0..nullity {
-            w[i] = (w[i] - (0..i).map(|j| gram[i][j] * w[j]).sum::<f64>()) / gram[i][i];
-        }
-        for i in (0..nullity).rev() {
-            w[i] = (w[i] - (i + 1..nullity).map(|j| gram[j][i] * w[j]).sum::<f64>()) / gram[i][i];
-        }
+        });
+        let w = Self::pivoted(gram, 0.0).solve(&projection);
         std::array::from_fn(|r| lambda[r] - (0..nullity).map(|c| basis[c][r] * w[c]).sum::<f64>())
     }
 
@@ -192,14 +200,13 @@ fn swap_symmetric<const N: usize>(matrix: &mut [[f64; N]; N], a: usize, b: usize
 fn eliminate<const N: usize>(matrix: &mut [[f64; N]; N], k: usize) {
     let d = matrix[k][k].sqrt();
     matrix[k][k] = d;
-    for i in k + 1..N {
-        matrix[i][k] /= d;
+    for row in matrix.iter_mut().skip(k + 1) {
+        row[k] /= d;
     }
-    for i in k + 1..N {
-        let lik = matrix[i][k];
-        for j in k + 1..N {
-            let ljk = matrix[j][k];
-            matrix[i][j] -= lik * ljk;
+    let column: [f64; N] = std::array::from_fn(|i| matrix[i][k]);
+    for (i, row) in matrix.iter_mut().enumerate().skip(k + 1) {
+        for (j, entry) in row.iter_mut().enumerate().skip(k + 1) {
+            *entry -= column[i] * column[j];
         }
     }
 }
@@ -217,7 +224,7 @@ mod tests {
 
     #[test]
     fn pivoting_finds_the_rank_and_the_dependency() {
-        let factor = SchurFactor::new(redundant_schur(), true, 1e-12).unwrap();
+        let factor = SchurFactor::pivoted(redundant_schur(), 1e-12);
         assert_eq!(factor.rank(), 2);
         // Row 2 (largest diagonal) is taken first; the one left over is a
         // combination: z = ±(1, 1, −1) up to the unit entry.
@@ -225,15 +232,13 @@ mod tests {
         let left = factor.row_at(2);
         assert_eq!(z[left], 1.0);
         let a = [[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]];
-        for col in 0..2 {
-            let s: f64 = (0..3).map(|r| z[r] * a[r][col]).sum();
-            assert!(s.abs() < 1e-15, "zᵀA = {s}");
-        }
+        let za = [0, 1].map(|col| z.iter().zip(&a).map(|(z, row)| z * row[col]).sum::<f64>());
+        assert!(za[0].abs() < 1e-15 && za[1].abs() < 1e-15, "zᵀA = {za:?}");
     }
 
     #[test]
     fn least_norm_removes_the_null_space_component() {
-        let factor = SchurFactor::new(redundant_schur(), true, 1e-12).unwrap();
+        let factor = SchurFactor::pivoted(redundant_schur(), 1e-12);
         // λ = (3, 5, 0) and (3 − s, 5 − s, s) give the same Aᵀλ; the least
         // norm has s = (3 + 5)/3.
         let s = 8.0 / 3.0;
@@ -245,7 +250,7 @@ mod tests {
 
     #[test]
     fn without_pivoting_the_first_dependent_row_is_an_error() {
-        let error = SchurFactor::new(redundant_schur(), false, 1e-14)
+        let error = SchurFactor::in_order(redundant_schur(), 1e-14)
             .err()
             .unwrap();
         assert_eq!(error.row, 2);
@@ -255,7 +260,7 @@ mod tests {
     #[test]
     fn basic_solution_solves_the_independent_rows() {
         let schur = [[4.0, 2.0], [2.0, 3.0]];
-        let factor = SchurFactor::new(schur, true, 1e-12).unwrap();
+        let factor = SchurFactor::pivoted(schur, 1e-12);
         let mu = factor.solve(&[1.0, 2.0]);
         // det = 8: μ = (3·1 − 2·2, −2·1 + 4·2)/8.
         assert!((mu[0] + 1.0 / 8.0).abs() < 1e-15 && (mu[1] - 6.0 / 8.0).abs() < 1e-15);
