@@ -138,75 +138,83 @@ fn pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
 /// A02: unit rods, cranks upright, the tip `B0` of the first crank moving
 /// at 1 m/s along `x`, 20 s; N = 2 and N = 10.
 fn four_bars(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
+    let two = FourBars2 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    four_bar(
+        out,
+        repeats,
+        "A02 two four-bars",
+        "iftomm_a02_n2",
+        2.0,
+        &two,
+    )?;
+    let ten = FourBars10 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    four_bar(
+        out,
+        repeats,
+        "A02 ten four-bars",
+        "iftomm_a02_n10",
+        10.0,
+        &ten,
+    )
+}
+
+/// One A02 mechanism of `n` windows, against the parallelogram motion.
+fn four_bar<S, const NQ: usize, const NC: usize>(
+    out: &Path,
+    repeats: usize,
+    name: &'static str,
+    stem: &'static str,
+    n: f64,
+    system: &S,
+) -> Result<(), Box<dyn Error>>
+where
+    S: ConstrainedSystem<NQ, NQ, 0, NC>,
+{
     let duration = 20.0;
-    for (n, stem) in [(2.0, "iftomm_a02_n2"), (10.0, "iftomm_a02_n10")] {
-        let reduced = Parallelogram {
-            m: 1.0,
-            L: 1.0,
-            g: 9.81,
-            n,
-        };
-        let phi = tight(
-            &Unconstrained::without_inputs(&reduced),
-            State {
-                t: 0.0,
-                q: [FRAC_PI_2],
-                v: [-1.0],
-            },
-            duration,
-            1e-13,
-        )?;
-        let name = if n == 2.0 {
-            "A02 two four-bars"
-        } else {
-            "A02 ten four-bars"
-        };
-        let benchmark = Benchmark {
-            name,
-            stem,
-            duration,
-            reference: [phi.q[0].cos(), phi.q[0].sin()],
-        };
-        let steps = [2e-3, 1e-3, 5e-4];
-        let tolerances = [1e-6, 1e-8, 1e-10];
-        let alf = [2e-3, 1e-3, 5e-4];
-        if n == 2.0 {
-            let system = FourBars2 {
-                m: 1.0,
-                L: 1.0,
-                g: 9.81,
-            };
-            run(
-                out,
-                repeats,
-                &benchmark,
-                &system,
-                four_bar_start(),
-                crank_tip,
-                &steps,
-                &tolerances,
-                &alf,
-            )?;
-        } else {
-            let system = FourBars10 {
-                m: 1.0,
-                L: 1.0,
-                g: 9.81,
-            };
-            run(
-                out,
-                repeats,
-                &benchmark,
-                &system,
-                four_bar_start(),
-                crank_tip,
-                &steps,
-                &tolerances,
-                &alf,
-            )?;
-        }
-    }
-    Ok(())
+    let reduced = Parallelogram {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+        n,
+    };
+    let upright = State {
+        t: 0.0,
+        q: [FRAC_PI_2],
+        v: [-1.0],
+    };
+    let phi = tight(
+        &Unconstrained::without_inputs(&reduced),
+        upright,
+        duration,
+        1e-13,
+    )?;
+    let benchmark = Benchmark {
+        name,
+        stem,
+        duration,
+        reference: [phi.q[0].cos(), phi.q[0].sin()],
+    };
+    let steps = [2e-3, 1e-3, 5e-4];
+    let tolerances = [1e-6, 1e-8, 1e-10];
+    run(
+        out,
+        repeats,
+        &benchmark,
+        system,
+        four_bar_start(),
+        crank_tip,
+        &steps,
+        &tolerances,
+        &steps,
+    )
 }
 
 /// The A02 start: cranks upright, couplers level, `phi_k' = −1/s`.

@@ -223,46 +223,42 @@ fn bricard_has_rank_four_closure_rows() {
     }
 }
 
-dalembert::dalembert! {
-    /// One four-bar window (crank, coupler, rocker; unit rods), closed by
-    /// its x and y rows.
-    pub FourBar {
-        parameters m, L, g;
-        coordinates phi0, phi1, psi1;
-        frame C0 = N.rotate_z(phi0);
-        frame C1 = N.rotate_z(phi1);
-        frame D1 = N.rotate_z(psi1);
-        point B0 = O + L * C0.x;
-        point G0 = O + L/2 * C0.x;
-        point G1 = O + L * N.x + L/2 * C1.x;
-        point H1 = B0 + L/2 * D1.x;
-        body crank { mass: m, center: G0, frame: C0, inertia: [0, 0, m*L^2/12] };
-        body rocker { mass: m, center: G1, frame: C1, inertia: [0, 0, m*L^2/12] };
-        body coupler { mass: m, center: H1, frame: D1, inertia: [0, 0, m*L^2/12] };
-        gravity -g * N.y;
-        constraint L*cos(phi0) + L*cos(psi1) == L + L*cos(phi1);
-        constraint L*sin(phi0) + L*sin(psi1) == L*sin(phi1);
-    }
+/// One four-bar window (crank, rocker, coupler; unit rods) named `$name`,
+/// closed by its x and y rows and the rows `$extra`.
+macro_rules! four_bar_window {
+    ($(#[$doc:meta])* $name:ident { $($extra:tt)* }) => {
+        dalembert::dalembert! {
+            $(#[$doc])*
+            pub $name {
+                parameters m, L, g;
+                coordinates phi0, phi1, psi1;
+                frame C0 = N.rotate_z(phi0);
+                frame C1 = N.rotate_z(phi1);
+                frame D1 = N.rotate_z(psi1);
+                point B0 = O + L * C0.x;
+                point G0 = O + L/2 * C0.x;
+                point G1 = O + L * N.x + L/2 * C1.x;
+                point H1 = B0 + L/2 * D1.x;
+                body crank { mass: m, center: G0, frame: C0, inertia: [0, 0, m*L^2/12] };
+                body rocker { mass: m, center: G1, frame: C1, inertia: [0, 0, m*L^2/12] };
+                body coupler { mass: m, center: H1, frame: D1, inertia: [0, 0, m*L^2/12] };
+                gravity -g * N.y;
+                constraint L*cos(phi0) + L*cos(psi1) == L + L*cos(phi1);
+                constraint L*sin(phi0) + L*sin(psi1) == L*sin(phi1);
+                $($extra)*
+            }
+        }
+    };
 }
 
-dalembert::dalembert! {
-    /// The same window with a third, redundant row: the sum of the first two.
-    pub RedundantFourBar {
-        parameters m, L, g;
-        coordinates phi0, phi1, psi1;
-        frame C0 = N.rotate_z(phi0);
-        frame C1 = N.rotate_z(phi1);
-        frame D1 = N.rotate_z(psi1);
-        point B0 = O + L * C0.x;
-        point G0 = O + L/2 * C0.x;
-        point G1 = O + L * N.x + L/2 * C1.x;
-        point H1 = B0 + L/2 * D1.x;
-        body crank { mass: m, center: G0, frame: C0, inertia: [0, 0, m*L^2/12] };
-        body rocker { mass: m, center: G1, frame: C1, inertia: [0, 0, m*L^2/12] };
-        body coupler { mass: m, center: H1, frame: D1, inertia: [0, 0, m*L^2/12] };
-        gravity -g * N.y;
-        constraint L*cos(phi0) + L*cos(psi1) == L + L*cos(phi1);
-        constraint L*sin(phi0) + L*sin(psi1) == L*sin(phi1);
+four_bar_window! {
+    /// The window closed by its x and y rows.
+    FourBar {}
+}
+
+four_bar_window! {
+    /// The window with a third, redundant row: the sum of the first two.
+    RedundantFourBar {
         constraint L*cos(phi0) + L*cos(psi1) + L*sin(phi0) + L*sin(psi1) == L + L*cos(phi1) + L*sin(phi1);
     }
 }
