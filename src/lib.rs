@@ -34,8 +34,8 @@
 //! # Ok::<(), dalembert::IntegrationError<1>>(())
 //! ```
 //!
-//! * [`system`](MultibodySystem): the traits every generated system
-//!   implements;
+//! * [`MultibodySystem`] and [`ConstrainedSystem`]: the traits every
+//!   generated system implements;
 //! * [`dynamics`]: the accelerations `v̇` of `M v̇ = f` and their errors;
 //! * [`constrained`]: accelerations and multipliers of constrained systems,
 //!   projection onto the constraints, drift stabilisation;

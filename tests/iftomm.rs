@@ -226,9 +226,10 @@ fn bricard_has_rank_four_closure_rows() {
 /// One four-bar window (crank, rocker, coupler; unit rods) named `$name`,
 /// closed by its x and y rows and the rows `$extra`.
 macro_rules! four_bar_window {
-    ($(#[$doc:meta])* $name:ident { $($extra:tt)* }) => {
+    ($name:ident { $($extra:tt)* }) => {
         dalembert::dalembert! {
-            $(#[$doc])*
+            /// A four-bar window closed by its x and y rows (and, in
+            /// `RedundantFourBar`, by their sum as a redundant third row).
             pub $name {
                 parameters m, L, g;
                 coordinates phi0, phi1, psi1;
@@ -252,12 +253,10 @@ macro_rules! four_bar_window {
 }
 
 four_bar_window! {
-    /// The window closed by its x and y rows.
     FourBar {}
 }
 
 four_bar_window! {
-    /// The window with a third, redundant row: the sum of the first two.
     RedundantFourBar {
         constraint L*cos(phi0) + L*cos(psi1) + L*sin(phi0) + L*sin(psi1) == L + L*cos(phi1) + L*sin(phi1);
     }

@@ -92,11 +92,6 @@ impl<'a, S, F, const NU: usize> Unconstrained<'a, S, F, NU> {
     {
         Self { system, inputs }
     }
-
-    /// The system.
-    pub fn system(&self) -> &'a S {
-        self.system
-    }
 }
 
 impl<S, F, const NQ: usize, const NV: usize, const NU: usize> Dynamics<NQ, NV>
