@@ -15,7 +15,7 @@ use dalembert::integrate::{
     AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
 };
 use dalembert::{Constrained, Stabilisation, State, Unconstrained};
-use dalembert_fixtures::iftomm::{FourBars10, Parallelogram};
+use dalembert_fixtures::iftomm::{FourBars10, Parallelogram, four_bar_start};
 
 const DURATION: f64 = 20.0;
 const HIGH_PRECISION: f64 = 1e-3;
@@ -28,15 +28,6 @@ const PROJECTION: Stabilisation = Stabilisation::Projection {
     tolerance: 1e-12,
     max_iterations: 10,
 };
-
-/// Cranks upright, couplers level, `B0` at 1 m/s along `x`.
-fn start() -> State<21, 21> {
-    State {
-        t: 0.0,
-        q: std::array::from_fn(|i| if i < 11 { FRAC_PI_2 } else { 0.0 }),
-        v: std::array::from_fn(|i| if i < 11 { -1.0 } else { 0.0 }),
-    }
-}
 
 /// The error of `B0` at the final time against the parallelogram.
 fn error(end: &State<21, 21>) -> f64 {
@@ -79,7 +70,7 @@ fn four_bars(c: &mut Criterion) {
     let alf = || {
         augmented_lagrangian(
             &dynamics,
-            start(),
+            four_bar_start(),
             DURATION,
             alf_steps,
             AugmentedLagrangian::for_step(h),
@@ -89,7 +80,7 @@ fn four_bars(c: &mut Criterion) {
         .map_err(|e| e.to_string())
     };
     let runge_kutta = || {
-        rk4(&dynamics, start(), DURATION, rk4_steps, |_| {})
+        rk4(&dynamics, four_bar_start(), DURATION, rk4_steps, |_| {})
             .map(|s| s.end)
             .map_err(|e| e.to_string())
     };
@@ -97,7 +88,7 @@ fn four_bars(c: &mut Criterion) {
     let dop853 = || {
         adaptive(
             &dynamics,
-            start(),
+            four_bar_start(),
             DURATION,
             ExplicitPair::Dop853,
             options,

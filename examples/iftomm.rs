@@ -34,7 +34,7 @@ use dalembert::{
     Unconstrained, energy,
 };
 use dalembert_fixtures::iftomm::{
-    AnglePendulum, Bricard, CartesianPendulum, FourBars2, FourBars10, Parallelogram,
+    AnglePendulum, Bricard, CartesianPendulum, FourBars2, FourBars10, Parallelogram, four_bar_start,
 };
 use dalembert_lab::clap::{Arg, Command, value_parser};
 use dalembert_lab::{Accuracy, WorkPoint, measure, to_csv, work_precision_chart};
@@ -215,16 +215,6 @@ where
         &tolerances,
         &steps,
     )
-}
-
-/// The A02 start: cranks upright, couplers level, `phi_k' = −1/s`.
-fn four_bar_start<const NQ: usize>() -> State<NQ, NQ> {
-    let cranks = NQ.div_ceil(2);
-    State {
-        t: 0.0,
-        q: std::array::from_fn(|i| if i < cranks { FRAC_PI_2 } else { 0.0 }),
-        v: std::array::from_fn(|i| if i < cranks { -1.0 } else { 0.0 }),
-    }
 }
 
 /// `B0`, the tip of the first crank (unit rods).

@@ -168,6 +168,26 @@ pub Parallelogram {
 }"""
 
 
+FOUR_BAR_START = """/// The A02 start of a mechanism with `NQ = 2N + 1` coordinates and unit
+/// rods: cranks upright, couplers level, the tip `B0` of the first crank
+/// moving at 1 m/s along `N.x` (every crank turning at −1 rad/s).
+pub fn four_bar_start<const NQ: usize>() -> dalembert::State<NQ, NQ> {
+    let cranks = NQ.div_ceil(2);
+    dalembert::State {
+        t: 0.0,
+        q: std::array::from_fn(|i| {
+            if i < cranks {
+                std::f64::consts::FRAC_PI_2
+            } else {
+                0.0
+            }
+        }),
+        v: std::array::from_fn(|i| if i < cranks { -1.0 } else { 0.0 }),
+    }
+}
+"""
+
+
 def rust():
     models = [PENDULUM, ANGLE_PENDULUM, four_bar(2), four_bar(10), PARALLELOGRAM, bricard()]
     out = [
@@ -186,6 +206,7 @@ def rust():
         out += ["    " + line if line else line for line in model.splitlines()]
         out.append("}")
         out.append("")
+    out.append(FOUR_BAR_START)
     return "\n".join(out)
 
 

@@ -11,23 +11,12 @@ use dalembert::integrate::{
     AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
 };
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
-use dalembert_fixtures::iftomm::{Bricard, FourBars2, FourBars10, Parallelogram};
+use dalembert_fixtures::iftomm::{Bricard, FourBars2, FourBars10, Parallelogram, four_bar_start};
 
 const PROJECTION: Stabilisation = Stabilisation::Projection {
     tolerance: 1e-12,
     max_iterations: 10,
 };
-
-/// The A02 start: cranks upright, couplers level, the tip `B0` of the first
-/// crank moving at 1 m/s along `N.x` (`phi_k' = −1/L`).
-fn four_bar_start<const NQ: usize>() -> State<NQ, NQ> {
-    let cranks = NQ.div_ceil(2);
-    State {
-        t: 0.0,
-        q: std::array::from_fn(|i| if i < cranks { FRAC_PI_2 } else { 0.0 }),
-        v: std::array::from_fn(|i| if i < cranks { -1.0 } else { 0.0 }),
-    }
-}
 
 /// The angle of every crank of the parallelogram motion at the times
 /// `0.05 k` s up to `t_end` (DOP853 at 1e-13 on the one-coordinate
