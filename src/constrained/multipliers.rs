@@ -105,9 +105,9 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
             ConstraintSolver::SchurComplement => 0.0,
             ConstraintSolver::RankRevealing => augmentation(mass, &a),
         };
-        let augmented: [[f64; NV]; NV] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| mass[i][j] + penalty * a.column(i).dot(&a.column(j)))
-        });
+        let normal = a.tr_mul(&a) * penalty;
+        let augmented: [[f64; NV]; NV] =
+            std::array::from_fn(|i| std::array::from_fn(|j| mass[i][j] + normal[(i, j)]));
         let mass = factor_mass_matrix(&augmented, names)?;
         let mass_inverse_jacobian_t = mass.solve(&a.transpose());
         let s = a * mass_inverse_jacobian_t;
