@@ -137,3 +137,41 @@ fn generated_functions_and_solvers_allocate_nothing() {
         "{result:?}"
     );
 }
+
+#[test]
+fn rank_revealing_solves_and_the_augmented_lagrangian_allocate_nothing() {
+    use dalembert::constrained::ConstraintSolver;
+    use dalembert::integrate::{AugmentedLagrangian, augmented_lagrangian};
+    use dalembert_fixtures::iftomm::Bricard;
+
+    // Bricard's mechanism: five closure rows of rank four.
+    let bricard = Bricard {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let start = State {
+        t: 0.0,
+        q: [0.0; 5],
+        v: [0.0; 5],
+    };
+    let projection = Stabilisation::Projection {
+        tolerance: 1e-12,
+        max_iterations: 10,
+    };
+    let dynamics = Constrained::without_inputs(&bricard, projection);
+    let (made, result) = allocations(|| {
+        let solve = ConstraintSolver::RankRevealing
+            .accelerations(&bricard, 0.0, &start.q, &start.v, &[])
+            .is_ok();
+        let step = integrate::rk4_step(&dynamics, &start, 1e-3).is_ok();
+        let settings = AugmentedLagrangian::default();
+        let alf = augmented_lagrangian(&dynamics, start, 1e-2, 10, settings, |_| {}).is_ok();
+        (solve, step, alf)
+    });
+    assert_eq!(
+        made, 0,
+        "the rank-revealing solver or the augmented Lagrangian allocated"
+    );
+    assert_eq!(result, (true, true, true));
+}

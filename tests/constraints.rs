@@ -4,11 +4,12 @@
 //! one coordinate, a nonholonomic sleigh, a slider-crank, and the errors for
 //! dependent constraints.
 
-use dalembert::constrained::{constrained_accelerations, constraint_drift};
+use dalembert::constrained::{ConstraintSolver, constrained_accelerations, constraint_drift};
 use dalembert::{
     Constrained, DynamicsError, Stabilisation, State, Unconstrained, energy, integrate,
 };
 use dalembert_fixtures::reference::{array, assert_close, reference};
+use dalembert_fixtures::seeds::ConstrainedPendulum;
 use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK, SliderCrank};
 
 dalembert::dalembert! {
@@ -210,14 +211,36 @@ fn pendulum_in_one_coordinate_and_in_three_follows_the_same_angle() {
 }
 
 #[test]
-fn a_constraint_written_twice_is_an_error_naming_the_row_not_nan() {
+fn a_constraint_written_twice_shares_its_multiplier_or_is_an_error_naming_the_row() {
     let twice = RedundantPendulum {
         m: 1.7,
         l: 1.1,
         g: 9.81,
     };
+    let once = ConstrainedPendulum {
+        m: 1.7,
+        l: 1.1,
+        g: 9.81,
+    };
     let State { q, v: qd, .. } = SEED_3.assembled(0.4, 1.0);
-    let error = constrained_accelerations(&twice, 0.0, &q, &qd, &[]).unwrap_err();
+    // The default, rank-revealing solver: the same motion, and the x row's
+    // multiplier split equally between its two copies (least norm).
+    let (qdd, [x0, y, x2]) = constrained_accelerations(&twice, 0.0, &q, &qd, &[]).unwrap();
+    let (expected, [x, expected_y]) =
+        constrained_accelerations(&once, 0.0, &q, &qd, &[0.0]).unwrap();
+    for (a, b) in qdd.iter().zip(&expected) {
+        assert!((a - b).abs() < 1e-12, "{qdd:?} {expected:?}");
+    }
+    for (got, want) in [(x0, x / 2.0), (x2, x / 2.0), (y, expected_y)] {
+        assert!(
+            (got - want).abs() < 1e-12 * (1.0 + want.abs()),
+            "{got} {want}"
+        );
+    }
+    // The Schur complement stops at the copy.
+    let error = ConstraintSolver::SchurComplement
+        .accelerations(&twice, 0.0, &q, &qd, &[])
+        .unwrap_err();
     assert!(
         matches!(error, DynamicsError::DependentConstraints { row: 2, pivot } if pivot.abs() < 1e-14),
         "{error:?}"
@@ -253,11 +276,19 @@ fn slider_crank_with_rod_equal_to_crank_is_singular_where_both_stand_vertical() 
             .iter()
             .all(|r| r.abs() < 1e-16)
     );
-    let error = constrained_accelerations(&folded, 0.0, &q, &qd, &[0.0]).unwrap_err();
+    let error = ConstraintSolver::SchurComplement
+        .accelerations(&folded, 0.0, &q, &qd, &[0.0])
+        .unwrap_err();
     assert!(
         matches!(error, DynamicsError::DependentConstraints { row: 1, .. }),
         "{error:?}"
     );
+    // The rank-revealing solver goes through: at rest the rows agree.
+    let (qdd, _) = constrained_accelerations(&folded, 0.0, &q, &qd, &[0.0]).unwrap();
+    for row in folded.constraint_jacobian(&q) {
+        let achieved: f64 = row.iter().zip(&qdd).map(|(a, x)| a * x).sum();
+        assert!(achieved.abs() < 1e-12, "{achieved:e}");
+    }
     // The ordinary dead centres of a longer rod are regular in these coordinates.
     let regular = slider_crank(0.3);
     for theta in [0.0, std::f64::consts::PI] {

@@ -4,7 +4,10 @@
 //! Baumgarte stabilisation or by coordinate projection.
 //!
 //! * [`constrained_accelerations`] and [`baumgarte_accelerations`] solve the
-//!   saddle-point system by its Schur complement `A M⁻¹ Aᵀ` on the stack;
+//!   saddle-point system on the stack by a [`ConstraintSolver`] (its docs
+//!   say which solver when): rank-revealing by default, so redundant
+//!   constraints, singular positions and coordinates without inertia of
+//!   their own are handled;
 //! * [`project_onto_constraints`] moves a state back onto the constraint
 //!   manifold (positions, then speeds);
 //! * a [`Stabilisation`] chooses how [`Constrained`](crate::Constrained)
@@ -13,10 +16,15 @@
 
 mod multipliers;
 mod projection;
+mod rank;
 mod stabilisation;
 #[cfg(test)]
-mod test_systems;
+pub(crate) mod test_systems;
 
-pub use multipliers::{baumgarte_accelerations, constrained_accelerations};
+pub use multipliers::{
+    CONSISTENCY_TOLERANCE, ConstraintSolver, RANK_TOLERANCE, baumgarte_accelerations,
+    constrained_accelerations,
+};
+pub(crate) use projection::checked;
 pub use projection::project_onto_constraints;
 pub use stabilisation::{Stabilisation, constraint_drift};

@@ -1,93 +1,224 @@
 //! The accelerations and Lagrange multipliers of a constrained system, from
-//! the saddle-point system `[[M, −Aᵀ], [A, 0]] [q̈; λ] = [f; b]` solved by its
-//! Schur complement.
+//! the saddle-point (KKT) system `[[M, Aᵀ], [A, 0]] [v̇; −λ] = [f; b]`, by
+//! one of two [`ConstraintSolver`]s.
 
 use nalgebra::{Cholesky, Const, SMatrix, SVector};
 
+use super::rank::SchurFactor;
 use crate::ConstrainedSystem;
 use crate::DynamicsError;
-use crate::dynamics::{all_finite, cholesky, factor_mass_matrix, pivot_names};
+use crate::dynamics::{RELATIVE_PIVOT_TOLERANCE, all_finite, factor_mass_matrix, pivot_names};
 
-/// The constraint Jacobian `A` seen through the metric of the mass matrix
-/// `M`, factorised once for several right-hand sides: `Y = M⁻¹ Aᵀ` and the
-/// Cholesky factor of the Schur complement `S = A M⁻¹ Aᵀ`.
+/// A pivot of the Schur complement at most this fraction of its largest
+/// diagonal entry marks its row as dependent in
+/// [`ConstraintSolver::RankRevealing`]: the row is then within about `1e-6`
+/// (relative) of the span of the rows taken before it.
+pub const RANK_TOLERANCE: f64 = 1e-12;
+
+/// A dependent row is consistent when `|Aᵢ x − cᵢ|` is at most this fraction
+/// of the largest `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|` of any row; beyond it the constraints contradict each other
+/// ([`DynamicsError::InconsistentConstraints`]). Loose enough for the rows
+/// that [`RANK_TOLERANCE`] declares dependent near a singular configuration.
+pub const CONSISTENCY_TOLERANCE: f64 = 1e-3;
+
+/// How the saddle-point system `M v̇ = f + Aᵀ λ`, `A v̇ = b` is solved (and
+/// the projections onto the constraints, which are the same problem).
+///
+/// # Which solver when
+///
+/// * [`RankRevealing`](Self::RankRevealing), the default: any mechanism whose
+///   accelerations are determined, that is whose KKT matrix has `M` positive
+///   definite on the null space of `A`. It survives redundant constraints
+///   (Bricard's mechanism, a planar loop written with spatial joints, a
+///   constraint written twice), singular positions where `A` loses rank for
+///   an instant (the N-four-bar mechanism when it lies flat), and
+///   coordinates with no inertia of their own that the constraints tie to
+///   others. It returns the exact `v̇` and the multipliers `λ` of least
+///   Euclidean norm (redundant rows share the load equally), and still
+///   reports truly contradictory rows.
+/// * [`SchurComplement`](Self::SchurComplement): the fastest, about one
+///   Cholesky factorisation cheaper; for mechanisms known to have a positive
+///   definite `M` and independent rows everywhere on their path. It stops
+///   with [`DependentConstraints`](DynamicsError::DependentConstraints) at
+///   the first redundancy or singular position, which also makes it a
+///   check that a model has none.
+/// * For long runs through singular positions at a fixed step, or to match
+///   the reference solutions of the IFToMM benchmarks, integrate with the
+///   index-3 augmented Lagrangian method
+///   ([`augmented_lagrangian`](crate::integrate::augmented_lagrangian)),
+///   which needs neither `A` of full rank nor `M` invertible.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ConstraintSolver {
+    /// `M = L Lᵀ`, then `S = A M⁻¹ Aᵀ` by Cholesky in declaration order:
+    /// `λ = S⁻¹ (b − A M⁻¹ f)`, `v̇ = M⁻¹ (f + Aᵀ λ)`. Needs `M` positive
+    /// definite and `A` of full row rank.
+    SchurComplement,
+    /// The mass matrix augmented by the constraints, `M̄ = M + ρ AᵀA`
+    /// (`ρ` the ratio of the largest diagonal entries of `M` and `AᵀA`),
+    /// which is positive definite whenever the KKT matrix determines `v̇`;
+    /// then `S̄ = A M̄⁻¹ Aᵀ` by Cholesky with symmetric pivoting, which
+    /// reveals the rank of `A` ([`RANK_TOLERANCE`]). The independent rows
+    /// give `v̇` exactly (the dependent ones are checked against it,
+    /// [`CONSISTENCY_TOLERANCE`]), and `λ` is moved to the least-norm member
+    /// of its family `λ + null(Aᵀ)`. Adding `ρ AᵀA` changes no solution:
+    /// on the motions that satisfy `A x = c` it adds the constant `ρ |c|²`
+    /// to the kinetic-energy norm that Gauss's principle minimises.
+    #[default]
+    RankRevealing,
+}
+
+/// The constraint Jacobian `A` seen through the metric of the (augmented)
+/// mass matrix, factorised once for several right-hand sides:
+/// `Y = M̄⁻¹ Aᵀ` and the factor of the Schur complement `S̄ = A M̄⁻¹ Aᵀ`.
 ///
 /// It solves every problem of the form "minimise `½ xᵀ M x − fᵀ x` subject to
 /// `A x = c`": the accelerations (`f` the forcing, `c = b`) and the
 /// M-orthogonal projections onto the constraints (`f = 0`, `c` the residual).
-pub(crate) struct ConstraintMetric<'m, const NV: usize, const NC: usize> {
-    mass: &'m Cholesky<f64, Const<NV>>,
+pub(crate) struct ConstraintMetric<const NV: usize, const NC: usize> {
+    mass: Cholesky<f64, Const<NV>>,
+    penalty: f64,
     jacobian: SMatrix<f64, NC, NV>,
     mass_inverse_jacobian_t: SMatrix<f64, NV, NC>,
-    schur: Cholesky<f64, Const<NC>>,
+    schur: SchurFactor<NC>,
 }
 
-impl<'m, const NV: usize, const NC: usize> ConstraintMetric<'m, NV, NC> {
-    /// Factorises `S = A M⁻¹ Aᵀ` for the factored mass matrix `mass`; fails
-    /// if `A` has a non-finite entry or rows dependent to working precision.
+impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
+    /// Factorises the metric of `mass` and `jacobian` for `solver`; fails if
+    /// an entry is not finite, if the (augmented) mass matrix is not
+    /// positive definite (a coordinate named from `names` moves freely
+    /// without inertia), or, for the Schur complement, if a row depends on
+    /// the rows before it.
     pub(crate) fn new(
-        mass: &'m Cholesky<f64, Const<NV>>,
+        solver: ConstraintSolver,
+        mass: &[[f64; NV]; NV],
+        names: &[&'static str; NV],
         jacobian: &[[f64; NV]; NC],
     ) -> Result<Self, DynamicsError> {
+        if !mass.iter().all(all_finite) {
+            return Err(DynamicsError::NonFiniteEquations);
+        }
         if !jacobian.iter().all(all_finite) {
             return Err(DynamicsError::NonFiniteConstraints);
         }
-        let jacobian = SMatrix::<f64, NC, NV>::from_fn(|i, j| jacobian[i][j]);
-        let mass_inverse_jacobian_t = mass.solve(&jacobian.transpose());
-        let schur = cholesky(jacobian * mass_inverse_jacobian_t).map_err(|pivot| {
-            DynamicsError::DependentConstraints {
-                row: pivot.index,
-                pivot: pivot.value,
-            }
-        })?;
+        let a = SMatrix::<f64, NC, NV>::from_fn(|i, j| jacobian[i][j]);
+        let penalty = match solver {
+            ConstraintSolver::SchurComplement => 0.0,
+            ConstraintSolver::RankRevealing => augmentation(mass, &a),
+        };
+        let normal = a.tr_mul(&a) * penalty;
+        let augmented: [[f64; NV]; NV] =
+            std::array::from_fn(|i| std::array::from_fn(|j| mass[i][j] + normal[(i, j)]));
+        let mass = factor_mass_matrix(&augmented, names)?;
+        let mass_inverse_jacobian_t = mass.solve(&a.transpose());
+        let s = a * mass_inverse_jacobian_t;
+        let s = std::array::from_fn(|i| std::array::from_fn(|j| s[(i, j)]));
+        let schur = match solver {
+            ConstraintSolver::SchurComplement => SchurFactor::in_order(s, RELATIVE_PIVOT_TOLERANCE)
+                .map_err(|dependent| DynamicsError::DependentConstraints {
+                    row: dependent.row,
+                    pivot: dependent.pivot,
+                })?,
+            ConstraintSolver::RankRevealing => SchurFactor::pivoted(s, RANK_TOLERANCE),
+        };
         Ok(Self {
             mass,
-            jacobian,
+            penalty,
+            jacobian: a,
             mass_inverse_jacobian_t,
             schur,
         })
     }
 
-    /// The `x` and `λ` of `M x = f + Aᵀ λ`, `A x = c`:
-    /// `λ = S⁻¹ (c − A M⁻¹ f)` and `x = M⁻¹ f + M⁻¹ Aᵀ λ`.
+    /// The `x` and least-norm `λ` of `M x = f + Aᵀ λ`, `A x = c`. With
+    /// `M̄ = M + ρ AᵀA`: `M̄ x = f + Aᵀ μ` with `μ = λ + ρ c`, so
+    /// `S̄ μ = c − A M̄⁻¹ f` and `x = M̄⁻¹ (f + Aᵀ μ)`.
     pub(crate) fn solve(
         &self,
         f: &SVector<f64, NV>,
         c: &SVector<f64, NC>,
-    ) -> (SVector<f64, NV>, SVector<f64, NC>) {
+    ) -> Result<(SVector<f64, NV>, SVector<f64, NC>), DynamicsError> {
         let unconstrained = self.mass.solve(f);
-        let lambda = self.schur.solve(&(c - self.jacobian * unconstrained));
-        (
-            unconstrained + self.mass_inverse_jacobian_t * lambda,
-            lambda,
-        )
+        let r: [f64; NC] = (c - self.jacobian * unconstrained).into();
+        let mu = SVector::from(self.schur.solve(&r));
+        let x = unconstrained + self.mass_inverse_jacobian_t * mu;
+        self.check_consistency(&x, c)?;
+        let lambda: [f64; NC] = (mu - self.penalty * c).into();
+        Ok((x, SVector::from(self.schur.least_norm(&lambda))))
     }
 
-    /// The smallest correction in the M-norm, `x = M⁻¹ Aᵀ S⁻¹ c`, with
-    /// `A x = c`.
+    /// The smallest correction in the M-norm, `x = M̄⁻¹ Aᵀ S̄⁺ c`, with
+    /// `A x = c` on the independent rows (and on every row when `c` is
+    /// consistent).
     pub(crate) fn least_norm(&self, c: &SVector<f64, NC>) -> SVector<f64, NV> {
-        self.mass_inverse_jacobian_t * self.schur.solve(c)
+        self.mass_inverse_jacobian_t * SVector::from(self.schur.solve(&(*c).into()))
+    }
+
+    /// Fails if a dependent row demands something `x` does not do, beyond
+    /// [`CONSISTENCY_TOLERANCE`] times the largest `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|` of
+    /// any row.
+    fn check_consistency(
+        &self,
+        x: &SVector<f64, NV>,
+        c: &SVector<f64, NC>,
+    ) -> Result<(), DynamicsError> {
+        let scale = (0..NC).fold(0.0f64, |m, i| {
+            let terms: f64 = (0..NV).map(|j| (self.jacobian[(i, j)] * x[j]).abs()).sum();
+            m.max(terms + c[i].abs())
+        });
+        for k in self.schur.rank()..NC {
+            let row = self.schur.row_at(k);
+            let mismatch = (self.jacobian.row(row).dot(&x.transpose()) - c[row]).abs();
+            if mismatch > CONSISTENCY_TOLERANCE * scale {
+                let z = self.schur.dependency(k);
+                let with = (0..NC)
+                    .filter(|&i| i != row)
+                    .max_by(|&i, &j| z[i].abs().total_cmp(&z[j].abs()))
+                    .unwrap_or(row);
+                return Err(DynamicsError::InconsistentConstraints {
+                    row,
+                    with,
+                    mismatch,
+                });
+            }
+        }
+        Ok(())
     }
 }
 
-/// The accelerations `q̈` and the Lagrange multipliers `λ` that solve
-/// `M(q) q̈ = f(t, q, q̇, u) + A(q)ᵀ λ` and `A(q) q̈ = b(t, q, q̇)`.
+/// The weight `ρ` of `AᵀA` in the augmented mass matrix: the ratio of the
+/// largest diagonal entries of `M` and `AᵀA`, so that both terms weigh
+/// alike (`1` if `M` has no positive diagonal, `0` if `A` is zero).
+fn augmentation<const NV: usize, const NC: usize>(
+    mass: &[[f64; NV]; NV],
+    jacobian: &SMatrix<f64, NC, NV>,
+) -> f64 {
+    let largest_mass = (0..NV).fold(0.0f64, |m, i| m.max(mass[i][i]));
+    let largest_row = (0..NV).fold(0.0f64, |m, j| m.max(jacobian.column(j).norm_squared()));
+    match (largest_mass > 0.0, largest_row > 0.0) {
+        (_, false) => 0.0,
+        (true, true) => largest_mass / largest_row,
+        (false, true) => 1.0 / largest_row,
+    }
+}
+
+/// The accelerations `v̇` and the Lagrange multipliers `λ` that solve
+/// `M(q) v̇ = f(t, q, v, u) + A(q)ᵀ λ` and `A(q) v̇ = b(t, q, v)`, by the
+/// default [`ConstraintSolver::RankRevealing`] (see
+/// [`ConstraintSolver::accelerations`] for the other).
 ///
-/// Solved by the Schur complement on the stack (nothing is allocated):
-/// `M = L Lᵀ`, `S = A M⁻¹ Aᵀ`, `λ = S⁻¹ (b − A M⁻¹ f)`, `q̈ = M⁻¹ (f + Aᵀ λ)`.
-/// `λᵢ` is the generalized constraint force of row `i` per unit of its
-/// Jacobian row: `Aᵀ λ` is the force that the constraints add to `f`.
+/// Solved on the stack (nothing is allocated). `λᵢ` is the generalized
+/// constraint force of row `i` per unit of its Jacobian row: `Aᵀ λ` is the
+/// force that the constraints add to `f`; with redundant rows it is the
+/// least-norm choice among the multipliers giving the same `Aᵀ λ`.
 ///
 /// Never returns a non-finite value. Errors: a non-finite state
 /// ([`NonFiniteState`](DynamicsError::NonFiniteState)), mass matrix or forcing
 /// ([`NonFiniteEquations`](DynamicsError::NonFiniteEquations)) or constraint
-/// ([`NonFiniteConstraints`](DynamicsError::NonFiniteConstraints)); a mass
-/// matrix that is not safely positive definite
-/// ([`SingularMassMatrix`](DynamicsError::SingularMassMatrix): the Schur route
-/// needs every coordinate to carry inertia); constraint rows that are
-/// linearly dependent at `q`
-/// ([`DependentConstraints`](DynamicsError::DependentConstraints): redundant or
-/// contradictory constraints, or a singular configuration).
+/// ([`NonFiniteConstraints`](DynamicsError::NonFiniteConstraints)); a
+/// coordinate free to move without inertia
+/// ([`SingularMassMatrix`](DynamicsError::SingularMassMatrix)); constraint
+/// rows that contradict each other
+/// ([`InconsistentConstraints`](DynamicsError::InconsistentConstraints)).
 pub fn constrained_accelerations<
     S,
     const NQ: usize,
@@ -104,9 +235,7 @@ pub fn constrained_accelerations<
 where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    check_state(t, q, v, u)?;
-    let bias = system.constraint_bias(t, q, v);
-    solve_with_bias(system, t, q, v, u, bias)
+    ConstraintSolver::default().accelerations(system, t, q, v, u)
 }
 
 /// Like [`constrained_accelerations`], with the constraints enforced as
@@ -148,29 +277,111 @@ pub fn baumgarte_accelerations<
 where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    check_state(t, q, v, u)?;
-    let bias = system.constraint_bias(t, q, v);
-    let residual = system.constraint_residual(t, q);
-    let velocity = system.constraint_velocity(t, q, v);
-    let stabilised =
-        std::array::from_fn(|i| bias[i] - 2.0 * alpha * velocity[i] - beta * beta * residual[i]);
-    solve_with_bias(system, t, q, v, u, stabilised)
+    ConstraintSolver::default().baumgarte_accelerations(system, t, q, v, u, alpha, beta)
 }
 
-/// The factored mass matrix `M(q)`, which also serves as the metric of the
-/// projections.
-pub(crate) fn factored_mass<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
-    system: &S,
-    q: &[f64; NQ],
-) -> Result<Cholesky<f64, Const<NV>>, DynamicsError>
-where
-    S: ConstrainedSystem<NQ, NV, NU, NC>,
-{
-    let mass = system.mass_matrix(q);
-    if !mass.iter().all(all_finite) {
-        return Err(DynamicsError::NonFiniteEquations);
+impl ConstraintSolver {
+    /// [`constrained_accelerations`] by this solver. The errors are those
+    /// of [`constrained_accelerations`]; [`SchurComplement`](Self::SchurComplement)
+    /// also fails with
+    /// [`DependentConstraints`](DynamicsError::DependentConstraints) where
+    /// the rows are linearly dependent (redundant or contradictory
+    /// constraints, or a singular configuration), and with
+    /// [`SingularMassMatrix`](DynamicsError::SingularMassMatrix) for any
+    /// coordinate without inertia of its own.
+    pub fn accelerations<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+        self,
+        system: &S,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        u: &[f64; NU],
+    ) -> Result<([f64; NV], [f64; NC]), DynamicsError>
+    where
+        S: ConstrainedSystem<NQ, NV, NU, NC>,
+    {
+        check_state(t, q, v, u)?;
+        let bias = system.constraint_bias(t, q, v);
+        self.solve_with_bias(system, t, q, v, u, bias)
     }
-    factor_mass_matrix(&mass, &pivot_names::<S, NQ, NV, NU>())
+
+    /// [`baumgarte_accelerations`] by this solver.
+    #[allow(clippy::too_many_arguments)]
+    pub fn baumgarte_accelerations<
+        S,
+        const NQ: usize,
+        const NV: usize,
+        const NU: usize,
+        const NC: usize,
+    >(
+        self,
+        system: &S,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        u: &[f64; NU],
+        alpha: f64,
+        beta: f64,
+    ) -> Result<([f64; NV], [f64; NC]), DynamicsError>
+    where
+        S: ConstrainedSystem<NQ, NV, NU, NC>,
+    {
+        check_state(t, q, v, u)?;
+        let bias = system.constraint_bias(t, q, v);
+        let residual = system.constraint_residual(t, q);
+        let velocity = system.constraint_velocity(t, q, v);
+        let stabilised = std::array::from_fn(|i| {
+            bias[i] - 2.0 * alpha * velocity[i] - beta * beta * residual[i]
+        });
+        self.solve_with_bias(system, t, q, v, u, stabilised)
+    }
+
+    /// The factorised metric of `system` at `q` for this solver.
+    pub(crate) fn metric<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+        self,
+        system: &S,
+        q: &[f64; NQ],
+    ) -> Result<ConstraintMetric<NV, NC>, DynamicsError>
+    where
+        S: ConstrainedSystem<NQ, NV, NU, NC>,
+    {
+        ConstraintMetric::new(
+            self,
+            &system.mass_matrix(q),
+            &pivot_names::<S, NQ, NV, NU>(),
+            &system.constraint_jacobian(q),
+        )
+    }
+
+    /// `v̇` and `λ` of `M v̇ = f + Aᵀ λ`, `A v̇ = bias`, at a finite state.
+    fn solve_with_bias<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+        self,
+        system: &S,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        u: &[f64; NU],
+        bias: [f64; NC],
+    ) -> Result<([f64; NV], [f64; NC]), DynamicsError>
+    where
+        S: ConstrainedSystem<NQ, NV, NU, NC>,
+    {
+        let forcing = system.forcing(t, q, v, u);
+        if !all_finite(&forcing) {
+            return Err(DynamicsError::NonFiniteEquations);
+        }
+        if !all_finite(&bias) {
+            return Err(DynamicsError::NonFiniteConstraints);
+        }
+        let metric = self.metric(system, q)?;
+        let (vdot, lambda) = metric.solve(&SVector::from(forcing), &SVector::from(bias))?;
+        let (vdot, lambda): ([f64; NV], [f64; NC]) = (vdot.into(), lambda.into());
+        if all_finite(&vdot) && all_finite(&lambda) {
+            Ok((vdot, lambda))
+        } else {
+            Err(DynamicsError::NonFiniteAccelerations)
+        }
+    }
 }
 
 /// Fails unless the time, coordinates, speeds and inputs are all finite.
@@ -187,40 +398,10 @@ fn check_state<const NQ: usize, const NV: usize, const NU: usize>(
     }
 }
 
-/// `q̈` and `λ` of `M q̈ = f + Aᵀ λ`, `A q̈ = bias`, at a finite state.
-fn solve_with_bias<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
-    system: &S,
-    t: f64,
-    q: &[f64; NQ],
-    v: &[f64; NV],
-    u: &[f64; NU],
-    bias: [f64; NC],
-) -> Result<([f64; NV], [f64; NC]), DynamicsError>
-where
-    S: ConstrainedSystem<NQ, NV, NU, NC>,
-{
-    let forcing = system.forcing(t, q, v, u);
-    if !all_finite(&forcing) {
-        return Err(DynamicsError::NonFiniteEquations);
-    }
-    let mass = factored_mass(system, q)?;
-    if !all_finite(&bias) {
-        return Err(DynamicsError::NonFiniteConstraints);
-    }
-    let metric = ConstraintMetric::new(&mass, &system.constraint_jacobian(q))?;
-    let (qdd, lambda) = metric.solve(&SVector::from(forcing), &SVector::from(bias));
-    let (qdd, lambda): ([f64; NV], [f64; NC]) = (qdd.into(), lambda.into());
-    if all_finite(&qdd) && all_finite(&lambda) {
-        Ok((qdd, lambda))
-    } else {
-        Err(DynamicsError::NonFiniteAccelerations)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::constrained::test_systems::PointOnCircle;
+    use crate::constrained::test_systems::{PointOnCircle, TiedMassless};
 
     const PENDULUM: PointOnCircle<1> = PointOnCircle {
         m: 2.0,
@@ -259,14 +440,33 @@ mod tests {
     }
 
     #[test]
-    fn constraint_written_twice_is_a_dependent_row_not_nan() {
+    fn constraint_written_twice_shares_its_multiplier_equally() {
+        let PointOnCircle { m, l, g } = PENDULUM;
+        let twice = PointOnCircle::<2> { m, l, g };
+        let (theta, speed) = (0.4, 1.0);
+        let (q, qd) = on_circle(l, theta, speed);
+        let (qdd, [first, second]) = constrained_accelerations(&twice, 0.0, &q, &qd, &[]).unwrap();
+        let (single, _) = constrained_accelerations(&PENDULUM, 0.0, &q, &qd, &[]).unwrap();
+        assert!((qdd[0] - single[0]).abs() < 1e-13 && (qdd[1] - single[1]).abs() < 1e-13);
+        // The rod tension of the single row, split equally: the least-norm λ.
+        let expected = -(m * speed * speed / l + m * g * theta.cos()) / (2.0 * l);
+        for half in [first, second] {
+            assert!(
+                (half - expected / 2.0).abs() < 1e-12 * expected.abs(),
+                "{half}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_schur_complement_stops_at_a_dependent_row() {
         let twice = PointOnCircle::<2> {
             m: PENDULUM.m,
             l: PENDULUM.l,
             g: PENDULUM.g,
         };
         let (q, qd) = on_circle(twice.l, 0.4, 1.0);
-        match constrained_accelerations(&twice, 0.0, &q, &qd, &[]) {
+        match ConstraintSolver::SchurComplement.accelerations(&twice, 0.0, &q, &qd, &[]) {
             Err(DynamicsError::DependentConstraints { row: 1, pivot }) => {
                 assert!(pivot.abs() < 1e-14, "{pivot}")
             }
@@ -293,8 +493,14 @@ mod tests {
         let (q, qd) = on_circle(PENDULUM.l, 0.4, 1.0);
         let result = constrained_accelerations(&PENDULUM, f64::NAN, &q, &qd, &[]);
         assert_eq!(result, Err(DynamicsError::NonFiniteState));
+        // Without mass the point moves freely along the circle.
         let massless = PointOnCircle::<1> { m: 0.0, ..PENDULUM };
         let result = constrained_accelerations(&massless, 0.0, &q, &qd, &[]);
+        assert!(matches!(
+            result,
+            Err(DynamicsError::SingularMassMatrix { .. })
+        ));
+        let result = ConstraintSolver::SchurComplement.accelerations(&massless, 0.0, &q, &qd, &[]);
         assert!(matches!(
             result,
             Err(DynamicsError::SingularMassMatrix { index: 0, .. })
@@ -302,9 +508,20 @@ mod tests {
     }
 
     #[test]
-    fn constraint_at_its_singular_point_is_a_dependent_row() {
-        // At the centre of the circle the Jacobian [2x, 2y] vanishes.
-        let result = constrained_accelerations(&PENDULUM, 0.0, &[0.0; 2], &[1.0, 0.0], &[]);
+    fn constraint_at_its_singular_point_cannot_be_met() {
+        // At the centre of the circle the Jacobian [2x, 2y] vanishes, yet
+        // moving at unit speed the row demands A q̈ = −2 |q̇|².
+        let (q, qd) = ([0.0; 2], [1.0, 0.0]);
+        let result = constrained_accelerations(&PENDULUM, 0.0, &q, &qd, &[]);
+        assert_eq!(
+            result,
+            Err(DynamicsError::InconsistentConstraints {
+                row: 0,
+                with: 0,
+                mismatch: 2.0
+            })
+        );
+        let result = ConstraintSolver::SchurComplement.accelerations(&PENDULUM, 0.0, &q, &qd, &[]);
         assert!(matches!(
             result,
             Err(DynamicsError::DependentConstraints { row: 0, .. })
@@ -327,5 +544,66 @@ mod tests {
         let unstabilised = baumgarte_accelerations(&PENDULUM, 0.0, &q, &qd, &[], 0.0, 0.0);
         let exact = constrained_accelerations(&PENDULUM, 0.0, &q, &qd, &[]);
         assert_eq!(unstabilised, exact);
+    }
+
+    #[test]
+    fn a_coordinate_without_inertia_tied_by_a_constraint_has_its_acceleration() {
+        let system = TiedMassless {
+            m: 2.0,
+            g: 9.81,
+            push: 5.0,
+        };
+        let (vdot, [lambda]) =
+            constrained_accelerations(&system, 0.0, &[0.3, 0.3], &[1.0, 1.0], &[]).unwrap();
+        let expected = system.push / system.m - system.g;
+        assert!((vdot[0] - expected).abs() < 1e-14 && (vdot[1] - expected).abs() < 1e-14);
+        assert!((lambda + system.push).abs() < 1e-13, "{lambda}");
+        let schur = ConstraintSolver::SchurComplement.accelerations(
+            &system,
+            0.0,
+            &[0.3; 2],
+            &[1.0; 2],
+            &[],
+        );
+        assert!(matches!(
+            schur,
+            Err(DynamicsError::SingularMassMatrix {
+                index: 1,
+                coordinate: "s",
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn contradictory_rows_are_named() {
+        // Rows x = 0 and 2x = 0 agree at position level but, moving, the
+        // second demands a different acceleration: A = [[1, 0], [2, 0]],
+        // b = [0, 1].
+        let a = [[1.0, 0.0], [2.0, 0.0]];
+        let metric = ConstraintMetric::new(
+            ConstraintSolver::RankRevealing,
+            &[[1.0, 0.0], [0.0, 1.0]],
+            &["x", "y"],
+            &a,
+        )
+        .unwrap();
+        let error = metric
+            .solve(&SVector::from([0.0, -9.81]), &SVector::from([0.0, 1.0]))
+            .unwrap_err();
+        // Row 1 is taken first (larger diagonal): row 0 is the one left over.
+        match error {
+            DynamicsError::InconsistentConstraints {
+                row: 0,
+                with: 1,
+                mismatch,
+            } => assert!((mismatch - 0.5).abs() < 1e-15, "{mismatch}"),
+            other => panic!("expected rows 0 and 1 to contradict, got {other:?}"),
+        }
+        assert!(
+            error
+                .to_string()
+                .starts_with("constraint rows 0 and 1 contradict")
+        );
     }
 }

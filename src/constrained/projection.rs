@@ -3,21 +3,23 @@
 //! and speeds by the exact projection onto `ψ(t, q, q̇) = 0`, both along the
 //! shortest path in the metric of the mass matrix.
 
-use nalgebra::{Cholesky, Const, SVector};
+use nalgebra::SVector;
 
-use super::multipliers::{ConstraintMetric, factored_mass};
-use crate::dynamics::all_finite;
+use super::ConstraintSolver;
+use super::multipliers::ConstraintMetric;
+use crate::dynamics::{all_finite, pivot_names};
 use crate::{ConstrainedSystem, DynamicsError, State};
 
 /// `state` moved onto the constraint manifold at its time: first the
 /// coordinates, until the largest holonomic residual `|φᵢ(t, q)|` is at most
-/// `tolerance`, then the speeds, so that the velocity form `ψ(t, q, q̇)` of
-/// every constraint vanishes.
+/// `tolerance`, then the speeds, so that the velocity form `ψ(t, q, v)` of
+/// every constraint vanishes. Solved by the default
+/// [`ConstraintSolver::RankRevealing`], so redundant rows are welcome.
 ///
 /// Both corrections are the smallest in the metric of the mass matrix `M` at
 /// `state.q` (the kinetic-energy norm): the speeds change by
-/// `Δq̇ = −M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ ψ`, exact in one step because `ψ` is linear in
-/// `q̇`, and every Gauss–Newton iteration moves the coordinates by
+/// `Δv = −M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ ψ`, exact in one step because `ψ` is linear in
+/// `v`, and every Gauss–Newton iteration moves the coordinates by
 /// `q ⊕ (−Δ)`, `Δ = M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ φ`, with `A` re-evaluated at each iterate.
 /// Nonholonomic rows have `φ = 0`, so the coordinates move only along
 /// directions that their rows of `A` leave unchanged; their speeds are
@@ -25,7 +27,7 @@ use crate::{ConstrainedSystem, DynamicsError, State};
 /// coordinates exactly.
 ///
 /// Errors: non-finite coordinates or speeds, equations or constraints; a
-/// singular mass matrix or dependent constraints at an iterate; and
+/// coordinate free to move without inertia at an iterate; and
 /// [`ProjectionNotConverged`](DynamicsError::ProjectionNotConverged) if
 /// `max_iterations` corrections leave `max |φᵢ| > tolerance` (a state too
 /// far off the manifold, or a `tolerance` below rounding).
@@ -44,22 +46,52 @@ pub fn project_onto_constraints<
 where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    let State { t, q, v } = *state;
-    if !(t.is_finite() && all_finite(&q) && all_finite(&v)) {
-        return Err(DynamicsError::NonFiniteState);
-    }
-    let metric = factored_mass(system, &q)?;
-    let q = project_coordinates(system, t, q, &metric, tolerance, max_iterations)?;
-    let v = project_speeds(system, t, &q, v, &metric)?;
-    Ok(State { t, q, v })
+    ConstraintSolver::default().project_onto_constraints(system, state, tolerance, max_iterations)
 }
 
-/// Gauss–Newton on `φ(t, q) = 0` in the metric `mass`, from `q`.
+impl ConstraintSolver {
+    /// [`project_onto_constraints`] by this solver
+    /// ([`SchurComplement`](Self::SchurComplement) fails with
+    /// [`DependentConstraints`](DynamicsError::DependentConstraints) at
+    /// redundant rows).
+    pub fn project_onto_constraints<
+        S,
+        const NQ: usize,
+        const NV: usize,
+        const NU: usize,
+        const NC: usize,
+    >(
+        self,
+        system: &S,
+        state: &State<NQ, NV>,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> Result<State<NQ, NV>, DynamicsError>
+    where
+        S: ConstrainedSystem<NQ, NV, NU, NC>,
+    {
+        let State { t, q, v } = *state;
+        if !(t.is_finite() && all_finite(&q) && all_finite(&v)) {
+            return Err(DynamicsError::NonFiniteState);
+        }
+        let mass = system.mass_matrix(&q);
+        let names = pivot_names::<S, NQ, NV, NU>();
+        let metric = |q: &[f64; NQ]| {
+            ConstraintMetric::new(self, &mass, &names, &system.constraint_jacobian(q))
+        };
+        let q = project_coordinates(system, t, q, metric, tolerance, max_iterations)?;
+        let v = project_speeds(system, t, &q, v, &metric(&q)?)?;
+        Ok(State { t, q, v })
+    }
+}
+
+/// Gauss–Newton on `φ(t, q) = 0` from `q`, in the metric that `metric`
+/// factorises at each iterate.
 fn project_coordinates<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: [f64; NQ],
-    mass: &Cholesky<f64, Const<NV>>,
+    metric: impl Fn(&[f64; NQ]) -> Result<ConstraintMetric<NV, NC>, DynamicsError>,
     tolerance: f64,
     max_iterations: usize,
 ) -> Result<[f64; NQ], DynamicsError>
@@ -80,32 +112,30 @@ where
                 residual: largest,
             });
         }
-        let metric = ConstraintMetric::new(mass, &system.constraint_jacobian(&q))?;
-        let correction: [f64; NV] = metric.least_norm(&SVector::from(residual)).into();
+        let correction: [f64; NV] = metric(&q)?.least_norm(&SVector::from(residual)).into();
         q = system.integrate_configuration(&q, &correction, -1.0);
         iterations += 1;
     }
 }
 
-/// The speeds nearest to `v` in the metric `mass` with `ψ(t, q, q̇) = 0`.
+/// The speeds nearest to `v` in `metric` with `ψ(t, q, v) = 0`.
 fn project_speeds<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
     v: [f64; NV],
-    mass: &Cholesky<f64, Const<NV>>,
+    metric: &ConstraintMetric<NV, NC>,
 ) -> Result<[f64; NV], DynamicsError>
 where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let velocity = checked(system.constraint_velocity(t, q, &v))?;
-    let metric = ConstraintMetric::new(mass, &system.constraint_jacobian(q))?;
     let correction = metric.least_norm(&SVector::from(velocity));
     Ok(std::array::from_fn(|i| v[i] - correction[i]))
 }
 
 /// `values`, or an error if one of them is not finite.
-fn checked<const NC: usize>(values: [f64; NC]) -> Result<[f64; NC], DynamicsError> {
+pub(crate) fn checked<const NC: usize>(values: [f64; NC]) -> Result<[f64; NC], DynamicsError> {
     if all_finite(&values) {
         Ok(values)
     } else {
@@ -183,7 +213,7 @@ mod tests {
     }
 
     #[test]
-    fn non_finite_state_and_redundant_rows_are_errors() {
+    fn non_finite_state_is_an_error_and_redundant_rows_need_the_rank_revealing_solver() {
         let mut bad = off_circle();
         bad.v[1] = f64::INFINITY;
         let error = project_onto_constraints(&PENDULUM, &bad, 1e-12, 5);
@@ -193,10 +223,22 @@ mod tests {
             l: PENDULUM.l,
             g: PENDULUM.g,
         };
-        let error = project_onto_constraints(&twice, &off_circle(), 1e-12, 5);
+        let error = ConstraintSolver::SchurComplement.project_onto_constraints(
+            &twice,
+            &off_circle(),
+            1e-12,
+            5,
+        );
         assert!(matches!(
             error,
             Err(DynamicsError::DependentConstraints { row: 1, .. })
         ));
+        // The default solver projects redundant rows like a single one.
+        let once = project_onto_constraints(&PENDULUM, &off_circle(), 1e-14, 10).unwrap();
+        let twice = project_onto_constraints(&twice, &off_circle(), 1e-14, 10).unwrap();
+        for i in 0..2 {
+            assert!((once.q[i] - twice.q[i]).abs() < 1e-15);
+            assert!((once.v[i] - twice.v[i]).abs() < 1e-14);
+        }
     }
 }

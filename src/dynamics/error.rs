@@ -45,6 +45,22 @@ pub enum DynamicsError {
         /// The pivot: zero, negative or tiny.
         pivot: f64,
     },
+    /// The constraints contradict each other: constraint `row` depends on the
+    /// rows taken before it by the rank-revealing solver (among them `with`,
+    /// the one weighing most in the dependency), but demands a different
+    /// acceleration (`A v̇ = b`). Found by
+    /// [`ConstraintSolver::RankRevealing`](crate::constrained::ConstraintSolver)
+    /// when `|Aᵢ x − cᵢ|` exceeds
+    /// [`CONSISTENCY_TOLERANCE`](crate::constrained::CONSISTENCY_TOLERANCE)
+    /// times the largest `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|` of any row.
+    InconsistentConstraints {
+        /// The contradicting row (declaration order).
+        row: usize,
+        /// The independent row weighing most in its dependency.
+        with: usize,
+        /// `|Aᵢ x − cᵢ|`, the part of the demand that no motion can meet.
+        mismatch: f64,
+    },
     /// Coordinate projection did not bring the largest constraint residual
     /// `|φᵢ|` below its tolerance within its iteration budget.
     ProjectionNotConverged {
@@ -79,6 +95,15 @@ impl fmt::Display for DynamicsError {
                 f,
                 "constraint row {row} depends on the rows before it: redundant, contradictory \
                  or at a singular configuration (Schur pivot {pivot:.3e})"
+            ),
+            Self::InconsistentConstraints {
+                row,
+                with,
+                mismatch,
+            } => write!(
+                f,
+                "constraint rows {row} and {with} contradict each other: row {row} depends on \
+                 rows including {with} but demands a value off by {mismatch:.3e}"
             ),
             Self::ProjectionNotConverged {
                 iterations,

@@ -7,7 +7,7 @@ mod error;
 use nalgebra::SVector;
 
 pub use cholesky::RELATIVE_PIVOT_TOLERANCE;
-pub(crate) use cholesky::{cholesky, factor_mass_matrix};
+pub(crate) use cholesky::factor_mass_matrix;
 pub use error::DynamicsError;
 
 use crate::MultibodySystem;

@@ -6,9 +6,7 @@
 use std::marker::PhantomData;
 
 use super::State;
-use crate::constrained::{
-    Stabilisation, baumgarte_accelerations, constrained_accelerations, project_onto_constraints,
-};
+use crate::constrained::{ConstraintSolver, Stabilisation};
 use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
 
 /// Equations of motion `v̇ = a(t, q, v)`, `q̇ = N(q) v` as the integrators
@@ -128,6 +126,7 @@ pub struct Constrained<'a, S, F, const NU: usize, const NC: usize> {
     system: &'a S,
     inputs: F,
     stabilisation: Stabilisation,
+    solver: ConstraintSolver,
     constraints: PhantomData<[(); NC]>,
 }
 
@@ -144,6 +143,7 @@ impl<'a, S, const NU: usize, const NC: usize> Constrained<'a, S, NoInputs, NU, N
             system,
             inputs: NoInputs,
             stabilisation,
+            solver: ConstraintSolver::default(),
             constraints: PhantomData,
         }
     }
@@ -165,8 +165,38 @@ impl<'a, S, F, const NU: usize, const NC: usize> Constrained<'a, S, F, NU, NC> {
             system,
             inputs,
             stabilisation,
+            solver: ConstraintSolver::default(),
             constraints: PhantomData,
         }
+    }
+
+    /// The same dynamics solved by `solver` instead of the default
+    /// [`ConstraintSolver::RankRevealing`] (its docs say which solver when).
+    pub fn with_solver(self, solver: ConstraintSolver) -> Self {
+        Self { solver, ..self }
+    }
+
+    /// The system.
+    pub fn system(&self) -> &'a S {
+        self.system
+    }
+
+    /// The solver of the saddle-point system.
+    pub fn solver(&self) -> ConstraintSolver {
+        self.solver
+    }
+
+    /// The inputs at `(t, q, v)`.
+    pub(crate) fn inputs<const NQ: usize, const NV: usize>(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+    ) -> [f64; NU]
+    where
+        F: InputLaw<NQ, NV, NU>,
+    {
+        self.inputs.inputs(t, q, v)
     }
 }
 
@@ -185,10 +215,11 @@ where
         let u = self.inputs.inputs(t, q, v);
         let solution = match self.stabilisation {
             Stabilisation::Baumgarte { alpha, beta } => {
-                baumgarte_accelerations(self.system, t, q, v, &u, alpha, beta)
+                self.solver
+                    .baumgarte_accelerations(self.system, t, q, v, &u, alpha, beta)
             }
             Stabilisation::None | Stabilisation::Projection { .. } => {
-                constrained_accelerations(self.system, t, q, v, &u)
+                self.solver.accelerations(self.system, t, q, v, &u)
             }
         };
         solution.map(|(vdot, _)| vdot)
@@ -204,7 +235,10 @@ where
             Stabilisation::Projection {
                 tolerance,
                 max_iterations,
-            } => project_onto_constraints(self.system, state, tolerance, max_iterations),
+            } => {
+                self.solver
+                    .project_onto_constraints(self.system, state, tolerance, max_iterations)
+            }
             Stabilisation::None | Stabilisation::Baumgarte { .. } => Ok(*state),
         }
     }

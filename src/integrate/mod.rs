@@ -17,8 +17,10 @@
 //! | [`adaptive`] with [`ExplicitPair::Dop853`] | adaptive | tight tolerances (`1e-10` and below): the least work per digit |
 //! | [`gauss_legendre`] | fixed | long runs of conservative systems: the energy error stays bounded |
 //! | [`sdirk`] | fixed | stiff springs and joints, whose fast modes an explicit method must resolve |
+//! | [`augmented_lagrangian`] | fixed | closed loops with redundant constraints or singular positions at a fixed step: the index-3 formulation of the IFToMM benchmarks' reference solutions (constrained dynamics only) |
 
 mod adaptive;
+mod augmented_lagrangian;
 mod dynamics;
 mod gauss;
 mod lu;
@@ -27,6 +29,7 @@ mod sdirk;
 mod solution;
 
 pub use adaptive::{AdaptiveOptions, ExplicitPair, adaptive};
+pub use augmented_lagrangian::{AugmentedLagrangian, augmented_lagrangian};
 pub use dynamics::{Constrained, Dynamics, InputLaw, NoInputs, Unconstrained};
 pub use gauss::{GaussLegendre, gauss_legendre};
 pub use runge_kutta::{State, rk4, rk4_step};

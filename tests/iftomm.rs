@@ -1,0 +1,286 @@
+//! The IFToMM benchmark mechanisms on the rank-revealing solver and the
+//! augmented Lagrangian integrator: the N-four-bar mechanism (A02) through
+//! every singular position, Bricard's overconstrained mechanism (A04) with
+//! its energy and closure kept, and the least-norm multipliers of a
+//! redundant four-bar against their closed form.
+
+use std::f64::consts::FRAC_PI_2;
+
+use dalembert::constrained::{ConstraintSolver, constrained_accelerations, constraint_drift};
+use dalembert::integrate::{
+    AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
+};
+use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
+use dalembert_fixtures::iftomm::{Bricard, FourBars2, FourBars10, Parallelogram, four_bar_start};
+
+const PROJECTION: Stabilisation = Stabilisation::Projection {
+    tolerance: 1e-12,
+    max_iterations: 10,
+};
+
+/// The angle of every crank of the parallelogram motion at the times
+/// `0.05 k` s up to `t_end` (DOP853 at 1e-13 on the one-coordinate
+/// system: the independent reference).
+fn parallelogram_angles(n: f64, t_end: f64) -> Vec<f64> {
+    let reduced = Parallelogram {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+        n,
+    };
+    let mut angles = Vec::new();
+    let start = State {
+        t: 0.0,
+        q: [FRAC_PI_2],
+        v: [-1.0],
+    };
+    let dynamics = Unconstrained::without_inputs(&reduced);
+    let steps = (t_end / 0.05).round() as u64;
+    for k in 0..=steps {
+        let t = k as f64 * 0.05;
+        let end = if k == 0 {
+            start
+        } else {
+            adaptive(
+                &dynamics,
+                start,
+                t,
+                ExplicitPair::Dop853,
+                AdaptiveOptions::with_tolerance(1e-13),
+                |_| {},
+            )
+            .unwrap()
+            .end
+        };
+        angles.push(end.q[0]);
+    }
+    angles
+}
+
+/// Crossings of the horizontal (`sin phi0` changing sign) in `angles`.
+fn crossings(angles: impl Iterator<Item = f64>) -> usize {
+    let signs: Vec<bool> = angles.map(|a| a.sin() > 0.0).collect();
+    signs.windows(2).filter(|w| w[0] != w[1]).count()
+}
+
+/// Integrates an A02 mechanism over `t_end` with RK4 (projection) and with
+/// the augmented Lagrangian method, and returns the largest deviation of the
+/// first crank's angle from the parallelogram reference for each, with the
+/// number of singular positions crossed.
+fn four_bar_deviations<S, const NQ: usize, const NC: usize>(
+    system: &S,
+    n: f64,
+    t_end: f64,
+) -> [(f64, usize); 2]
+where
+    S: ConstrainedSystem<NQ, NQ, 0, NC>,
+{
+    let reference = parallelogram_angles(n, t_end);
+    let steps = (t_end / 1e-3).round() as u64;
+    let every = 50;
+    let deviation = |angles: &[f64]| {
+        let worst = angles.iter().zip(&reference).fold(0.0f64, |m, (a, r)| {
+            m.max(
+                (a.sin_cos().0 - r.sin_cos().0)
+                    .abs()
+                    .max((a.cos() - r.cos()).abs()),
+            )
+        });
+        (worst, crossings(angles.iter().copied()))
+    };
+    let dynamics = Constrained::without_inputs(system, PROJECTION);
+    let mut angles = Vec::new();
+    let mut k = 0;
+    rk4(&dynamics, four_bar_start(), t_end, steps, |s| {
+        if k % every == 0 {
+            angles.push(s.q[0]);
+        }
+        k += 1;
+    })
+    .unwrap_or_else(|e| panic!("RK4: {e}"));
+    let rk = deviation(&angles);
+    angles.clear();
+    k = 0;
+    augmented_lagrangian(
+        &dynamics,
+        four_bar_start(),
+        t_end,
+        steps,
+        AugmentedLagrangian::default(),
+        |s| {
+            if k % every == 0 {
+                angles.push(s.q[0]);
+            }
+            k += 1;
+        },
+    )
+    .unwrap_or_else(|e| panic!("augmented Lagrangian: {e}"));
+    [rk, deviation(&angles)]
+}
+
+/// The number of times the parallelogram reference crosses the horizontal
+/// over `t_end`.
+fn reference_crossings(n: f64, t_end: f64) -> usize {
+    crossings(parallelogram_angles(n, t_end).into_iter())
+}
+
+#[test]
+fn two_four_bars_cross_every_singular_position() {
+    let system = FourBars2 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let expected = reference_crossings(2.0, 20.0);
+    assert!(expected >= 10, "{expected}");
+    let [(rk4, rk4_crossed), (alf, alf_crossed)] = four_bar_deviations(&system, 2.0, 20.0);
+    assert_eq!((rk4_crossed, alf_crossed), (expected, expected));
+    // Two formulations agree: 5 coordinates and 4 rows against 1 coordinate.
+    assert!(rk4 < 1e-8, "RK4 with projection: {rk4:e}");
+    // The benchmark's high precision on the reference point.
+    assert!(alf < 1e-3, "augmented Lagrangian: {alf:e}");
+}
+
+#[test]
+fn ten_four_bars_cross_every_singular_position() {
+    let system = FourBars10 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let expected = reference_crossings(10.0, 2.0);
+    assert!(expected >= 2, "{expected}");
+    let [(rk4, rk4_crossed), (alf, alf_crossed)] = four_bar_deviations(&system, 10.0, 2.0);
+    assert_eq!((rk4_crossed, alf_crossed), (expected, expected));
+    assert!(rk4 < 1e-8, "RK4 with projection: {rk4:e}");
+    assert!(alf < 1e-3, "augmented Lagrangian: {alf:e}");
+}
+
+/// Bricard's mechanism at rest in its cube configuration.
+fn bricard_start() -> State<5, 5> {
+    State {
+        t: 0.0,
+        q: [0.0; 5],
+        v: [0.0; 5],
+    }
+}
+
+const BRICARD: Bricard = Bricard {
+    m: 1.0,
+    L: 1.0,
+    g: 9.81,
+};
+
+#[test]
+fn bricard_keeps_its_energy_and_its_closure_for_ten_seconds() {
+    let dynamics = Constrained::without_inputs(&BRICARD, PROJECTION);
+    let start = bricard_start();
+    let initial = energy(&BRICARD, &start.q, &start.v);
+    let (mut drift, mut residual, mut travel) = (0.0f64, 0.0f64, 0.0f64);
+    rk4(&dynamics, start, 10.0, 20_000, |s| {
+        drift = drift.max((energy(&BRICARD, &s.q, &s.v) - initial).abs());
+        residual = residual.max(constraint_drift(&BRICARD, s));
+        travel = travel.max(s.q[0].abs());
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert!(travel > 0.1, "the mechanism moves: max |q1| = {travel}");
+    assert!(drift < 1e-6, "energy drift {drift:e}");
+    assert!(residual < 1e-10, "constraint residual {residual:e}");
+}
+
+#[test]
+fn bricard_has_rank_four_closure_rows() {
+    // Grübler: 5 coordinates − 5 rows = 0; the rows have rank 4, so the
+    // Schur complement route stops and the rank-revealing one goes on.
+    let start = bricard_start();
+    let schur =
+        ConstraintSolver::SchurComplement.accelerations(&BRICARD, 0.0, &start.q, &start.v, &[]);
+    assert!(
+        matches!(
+            schur,
+            Err(dalembert::DynamicsError::DependentConstraints { .. })
+        ),
+        "{schur:?}"
+    );
+    let (vdot, _) = ConstraintSolver::RankRevealing
+        .accelerations(&BRICARD, 0.0, &start.q, &start.v, &[])
+        .unwrap();
+    let a = BRICARD.constraint_jacobian(&start.q);
+    for row in a {
+        let achieved: f64 = row.iter().zip(&vdot).map(|(a, x)| a * x).sum();
+        assert!(achieved.abs() < 1e-12, "{achieved:e}");
+    }
+}
+
+/// One four-bar window (crank, rocker, coupler; unit rods) named `$name`,
+/// closed by its x and y rows and the rows `$extra`.
+macro_rules! four_bar_window {
+    ($name:ident { $($extra:tt)* }) => {
+        dalembert::dalembert! {
+            /// A four-bar window closed by its x and y rows (and, in
+            /// `RedundantFourBar`, by their sum as a redundant third row).
+            pub $name {
+                parameters m, L, g;
+                coordinates phi0, phi1, psi1;
+                frame C0 = N.rotate_z(phi0);
+                frame C1 = N.rotate_z(phi1);
+                frame D1 = N.rotate_z(psi1);
+                point B0 = O + L * C0.x;
+                point G0 = O + L/2 * C0.x;
+                point G1 = O + L * N.x + L/2 * C1.x;
+                point H1 = B0 + L/2 * D1.x;
+                body crank { mass: m, center: G0, frame: C0, inertia: [0, 0, m*L^2/12] };
+                body rocker { mass: m, center: G1, frame: C1, inertia: [0, 0, m*L^2/12] };
+                body coupler { mass: m, center: H1, frame: D1, inertia: [0, 0, m*L^2/12] };
+                gravity -g * N.y;
+                constraint L*cos(phi0) + L*cos(psi1) == L + L*cos(phi1);
+                constraint L*sin(phi0) + L*sin(psi1) == L*sin(phi1);
+                $($extra)*
+            }
+        }
+    };
+}
+
+four_bar_window! {
+    FourBar {}
+}
+
+four_bar_window! {
+    RedundantFourBar {
+        constraint L*cos(phi0) + L*cos(psi1) + L*sin(phi0) + L*sin(psi1) == L + L*cos(phi1) + L*sin(phi1);
+    }
+}
+
+#[test]
+fn redundant_row_gets_the_least_norm_share_of_the_multipliers() {
+    let (independent, redundant) = (
+        FourBar {
+            m: 1.0,
+            L: 1.0,
+            g: 9.81,
+        },
+        RedundantFourBar {
+            m: 1.0,
+            L: 1.0,
+            g: 9.81,
+        },
+    );
+    // A parallelogram at 1 rad, moving: closure holds with psi = 0.
+    let (q, v) = ([1.0, 1.0, 0.0], [-0.7, -0.7, 0.0]);
+    let (vdot, [lx, ly]) = ConstraintSolver::SchurComplement
+        .accelerations(&independent, 0.0, &q, &v, &[])
+        .unwrap();
+    let (vdot_redundant, lambda) = constrained_accelerations(&redundant, 0.0, &q, &v, &[]).unwrap();
+    for (a, b) in vdot.iter().zip(&vdot_redundant) {
+        assert!((a - b).abs() < 1e-12, "{vdot:?} {vdot_redundant:?}");
+    }
+    // Every (lx − s, ly − s, s) gives the same force; the least norm has
+    // s = (lx + ly)/3.
+    let s = (lx + ly) / 3.0;
+    for (got, want) in lambda.iter().zip([lx - s, ly - s, s]) {
+        assert!(
+            (got - want).abs() < 1e-11 * (1.0 + want.abs()),
+            "{lambda:?} vs ({lx}, {ly})"
+        );
+    }
+}
