@@ -191,11 +191,31 @@ fn at<'a>(parameters: &'a [f64], t: f64, q: &'a [f64]) -> Values<'a> {
     }
 }
 
+/// The text of the equations panel.
+enum Equations {
+    /// Given by the caller.
+    Given(String),
+    /// To derive from this model text when a page is written.
+    Derived(String),
+}
+
+impl Equations {
+    fn text(&self) -> Result<String, SceneError> {
+        match self {
+            Equations::Given(text) => Ok(text.clone()),
+            Equations::Derived(source) => {
+                dalembert_codegen::equations(source, dalembert_codegen::Style::Unicode)
+                    .map_err(|e| SceneError(format!("cannot derive the equations: {e}")))
+            }
+        }
+    }
+}
+
 /// An animated scene of one system: what to draw and how.
 pub struct Scene {
     kinematics: Kinematics,
     title: String,
-    equations: String,
+    equations: Equations,
     sizes: Vec<Option<[f64; 3]>>,
     max_frames: usize,
 }
@@ -207,8 +227,7 @@ impl Scene {
     /// the system's name.
     pub fn new(source: &str, parameters: &[f64]) -> Result<Scene, SceneError> {
         let kinematics = engine_kinematics(source, parameters)?;
-        let equations = dalembert_codegen::equations(source, dalembert_codegen::Style::Unicode)
-            .map_err(|e| SceneError(format!("cannot derive the equations: {e}")))?;
+        let equations = Equations::Derived(source.to_string());
         let title = kinematics.name.clone();
         let sizes = vec![None; kinematics.layout.bodies.len()];
         Ok(Scene {
@@ -229,7 +248,7 @@ impl Scene {
     /// Sets the text of the equations panel (a generated system's
     /// `EQUATIONS`).
     pub fn equations(mut self, text: &str) -> Scene {
-        self.equations = text.to_string();
+        self.equations = Equations::Given(text.to_string());
         self
     }
 
@@ -307,7 +326,7 @@ impl Scene {
         let kept = self.kept_frames(recording);
         let e0 = recording.energy[0];
         let energy_error: Vec<f64> = kept.iter().map(|&i| recording.energy[i] - e0).collect();
-        let data = self.data(&poses, &energy_error);
+        let data = self.data(&poses, &energy_error)?;
         Ok(TEMPLATE.replacen(DATA_SLOT, &data, 1))
     }
 
@@ -321,10 +340,10 @@ impl Scene {
     }
 
     /// The page's data as compact JSON.
-    fn data(&self, poses: &[(f64, Pose)], energy_error: &[f64]) -> String {
+    fn data(&self, poses: &[(f64, Pose)], energy_error: &[f64]) -> Result<String, SceneError> {
         let layout = &self.kinematics.layout;
-        let extent = Extent::of(poses);
-        let sizes = self.body_sizes(poses, extent.size);
+        let sizes = self.body_sizes(poses, Extent::of(poses, &[]).size);
+        let extent = Extent::of(poses, &sizes);
         let decimals = (DIGITS - 1 - extent.size.log10().floor() as i32).max(0) as usize;
         let number = |x: f64| rounded(x, decimals);
         let mut json = String::from("{");
@@ -335,7 +354,7 @@ impl Scene {
             let _ = write!(json, "{}:{value}", string(name));
         };
         field("title", string(&self.title));
-        field("equations", string(&self.equations));
+        field("equations", string(&self.equations.text()?));
         field("points", list(layout.points.iter().map(|p| string(p))));
         field("bodies", list(layout.bodies.iter().map(|b| string(b))));
         field("particles", list(layout.particles.iter().map(|p| string(p))));
@@ -377,7 +396,7 @@ impl Scene {
             })),
         );
         json.push('}');
-        json
+        Ok(json)
     }
 
     /// Each body's drawn size: given, else its uniform box of equal
@@ -459,25 +478,26 @@ struct Extent {
 }
 
 impl Extent {
-    fn of(poses: &[(f64, Pose)]) -> Extent {
-        let mut low = [f64::INFINITY; 3];
-        let mut high = [f64::NEG_INFINITY; 3];
-        for (_, pose) in poses {
-            for x in pose.points.iter().chain(&pose.centres).chain(&pose.particles) {
-                for i in 0..3 {
-                    low[i] = low[i].min(x[i]);
-                    high[i] = high[i].max(x[i]);
-                }
-            }
-        }
-        let span = [0, 1, 2].map(|i| (high[i] - low[i]).max(0.0));
-        let size = span.iter().fold(0.0_f64, |a, &s| a.max(s));
-        let size = if size > 0.0 && size.is_finite() { size } else { 1.0 };
-        let center = [0, 1, 2].map(|i| if low[i].is_finite() { (low[i] + high[i]) / 2.0 } else { 0.0 });
-        // Planar: no point leaves a plane normal to an axis of N and every
+    /// The region covered by the parts of `poses` with bodies of full
+    /// lengths `sizes` (none: points only), and the plane of the motion.
+    fn of(poses: &[(f64, Pose)], sizes: &[[f64; 3]]) -> Extent {
+        let parts = Bounds::of(poses.iter().flat_map(|(_, pose)| {
+            pose.points.iter().chain(&pose.centres).chain(&pose.particles).copied()
+        }));
+        let corners = poses.iter().flat_map(|(_, pose)| {
+            pose.centres.iter().zip(&pose.rotations).zip(sizes).flat_map(|((c, r), size)| {
+                (0..8).map(move |corner: usize| {
+                    let sign = |axis: usize| if corner >> axis & 1 == 1 { 0.5 } else { -0.5 };
+                    [0, 1, 2].map(|i| c[i] + (0..3).map(|j| r[i][j] * sign(j) * size[j]).sum::<f64>())
+                })
+            })
+        });
+        let all = parts.union(&Bounds::of(corners));
+        let size = all.size();
+        // Planar: no part leaves a plane normal to an axis of N and every
         // body turns about that axis only.
         let normal = (0..3).rev().find(|&k| {
-            span[k] <= STILL * size
+            parts.high[k] - parts.low[k] <= STILL * size
                 && poses.iter().all(|(_, pose)| {
                     pose.rotations
                         .iter()
@@ -485,10 +505,52 @@ impl Extent {
                 })
         });
         Extent {
-            center,
+            center: all.center(),
             size,
             normal,
         }
+    }
+}
+
+/// An axis-aligned box around points.
+struct Bounds {
+    low: [f64; 3],
+    high: [f64; 3],
+}
+
+impl Bounds {
+    fn of(points: impl Iterator<Item = [f64; 3]>) -> Bounds {
+        let mut bounds = Bounds {
+            low: [f64::INFINITY; 3],
+            high: [f64::NEG_INFINITY; 3],
+        };
+        for x in points {
+            for i in 0..3 {
+                bounds.low[i] = bounds.low[i].min(x[i]);
+                bounds.high[i] = bounds.high[i].max(x[i]);
+            }
+        }
+        bounds
+    }
+
+    fn union(&self, other: &Bounds) -> Bounds {
+        Bounds {
+            low: [0, 1, 2].map(|i| self.low[i].min(other.low[i])),
+            high: [0, 1, 2].map(|i| self.high[i].max(other.high[i])),
+        }
+    }
+
+    /// The largest side, or 1 for an empty or single-point box.
+    fn size(&self) -> f64 {
+        let size = (0..3).fold(0.0_f64, |a, i| a.max(self.high[i] - self.low[i]));
+        if size > 0.0 && size.is_finite() { size } else { 1.0 }
+    }
+
+    fn center(&self) -> [f64; 3] {
+        [0, 1, 2].map(|i| {
+            let middle = (self.low[i] + self.high[i]) / 2.0;
+            if middle.is_finite() { middle } else { 0.0 }
+        })
     }
 }
 
