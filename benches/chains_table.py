@@ -2,7 +2,7 @@
 """Merge the `chains` criterion medians with the Pinocchio/MuJoCo peer CSV.
 
 Usage: python3 benches/chains_table.py PEER_CSV [TARGET_DIR]
-  PEER_CSV     output of `bash /work/shared/peers/pinocchio/run.sh --ns ...`
+  PEER_CSV     output of the Pinocchio/MuJoCo peer harness (`run.sh --ns ...`, see BENCHMARKS.md)
   TARGET_DIR   default: $CARGO_TARGET_DIR or target
 
 Writes docs/charts/chains.csv (family,n,tool,ns_per_call: the input of

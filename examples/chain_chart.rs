@@ -1,4 +1,4 @@
-//! Charts of the chain benchmarks (issue 5): nanoseconds per call against
+//! Charts of the chain benchmarks: nanoseconds per call against
 //! the number of links, log scale, for every tool, one SVG per family.
 //!
 //! Reads `docs/charts/chains.csv` (written by `benches/chains_table.py`

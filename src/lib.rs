@@ -34,8 +34,8 @@
 //! # Ok::<(), dalembert::IntegrationError<1>>(())
 //! ```
 //!
-//! * [`system`](MultibodySystem): the traits every generated system
-//!   implements;
+//! * [`MultibodySystem`] and [`ConstrainedSystem`]: the traits every
+//!   generated system implements;
 //! * [`dynamics`]: the accelerations `v̇` of `M v̇ = f` and their errors;
 //! * [`constrained`]: accelerations and multipliers of constrained systems,
 //!   projection onto the constraints, drift stabilisation;
@@ -60,3 +60,8 @@ pub use constrained::Stabilisation;
 pub use dynamics::{DynamicsError, accelerations, energy};
 pub use integrate::{Constrained, IntegrationError, Solution, State, Unconstrained};
 pub use system::{ConstrainedSystem, MultibodySystem};
+
+/// The README's Rust examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -1,5 +1,5 @@
 //! The three worked examples of the seed document, written exactly as in
-//! DESIGN §3, against the independent SymPy reference values of
+//! the language reference (`docs/language.md`), against the independent SymPy reference values of
 //! `tests/reference/seed_examples.json` (S1–S3) at all 20 stored states.
 
 use dalembert_fixtures::reference::{array, assert_close, flat, matrix, reference};

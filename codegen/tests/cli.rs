@@ -78,7 +78,7 @@ fn eom_rotating_bar_matches_the_seed() {
 
 /// Seed example 3, boxed result: m ẍ = λ₁, m ÿ = −mg + λ₂,
 /// (1/12 mℓ²) θ̈ = M − (ℓ/2 Cθ) λ₁ − (ℓ/2 Sθ) λ₂, and the constraint
-/// Jacobian of DESIGN §4. (Dots are combining characters: `x\u{308}`, not
+/// Jacobian of the generated API (`docs/language.md`). (Dots are combining characters: `x\u{308}`, not
 /// the precomposed `ẍ`.)
 #[test]
 fn eom_constrained_pendulum_matches_the_seed() {

@@ -1,5 +1,5 @@
-//! Per-call cost of the generated equations of the benchmark chains (issue
-//! 5), both families, n = 1, 2, 4, 6, 12, 30: `mass_matrix` + `forcing`
+//! Per-call cost of the generated equations of the benchmark chains,
+//! both families, n = 1, 2, 4, 6, 12, 30: `mass_matrix` + `forcing`
 //! (the counterpart of Pinocchio's `crba` + `nonLinearEffects`), the
 //! generated `accelerations` method (unrolled Cholesky, the counterpart of
 //! `aba`) and the runtime's generic `dalembert::dynamics::cholesky_accelerations` (nalgebra's

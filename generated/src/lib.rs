@@ -20,7 +20,7 @@ macro_rules! model {
     };
 }
 
-// Seed examples (DESIGN §3).
+// Seed examples, as docs/language.md writes them.
 model!(
     /// Seed example 1: double pendulum, absolute angles.
     double_pendulum
@@ -34,71 +34,71 @@ model!(
     constrained_pendulum
 );
 
-// Benchmark chains (issue 5): `models/{planar,spatial}_chain_NN.dal`, written by
+// Benchmark chains: `models/{planar,spatial}_chain_NN.dal`, written by
 // `dalembert chain FAMILY N` (`dalembert_codegen::testing::chain`); tests/chains.rs checks
 // them against that generator and against tests/reference/chains.json.
 model!(
-    /// The planar chain of 1 link (issue 5).
+    /// The planar chain of 1 link.
     planar_chain_01
 );
 model!(
-    /// The planar chain of 2 links (issue 5).
+    /// The planar chain of 2 links.
     planar_chain_02
 );
 model!(
-    /// The planar chain of 3 links (issue 5).
+    /// The planar chain of 3 links.
     planar_chain_03
 );
 model!(
-    /// The planar chain of 4 links (issue 5).
+    /// The planar chain of 4 links.
     planar_chain_04
 );
 model!(
-    /// The planar chain of 5 links (issue 5).
+    /// The planar chain of 5 links.
     planar_chain_05
 );
 model!(
-    /// The planar chain of 6 links (issue 5).
+    /// The planar chain of 6 links.
     planar_chain_06
 );
 model!(
-    /// The planar chain of 12 links (issue 5).
+    /// The planar chain of 12 links.
     planar_chain_12
 );
 model!(
-    /// The planar chain of 30 links (issue 5).
+    /// The planar chain of 30 links.
     planar_chain_30
 );
 model!(
-    /// The spatial chain of 1 link (issue 5).
+    /// The spatial chain of 1 link.
     spatial_chain_01
 );
 model!(
-    /// The spatial chain of 2 links (issue 5).
+    /// The spatial chain of 2 links.
     spatial_chain_02
 );
 model!(
-    /// The spatial chain of 3 links (issue 5).
+    /// The spatial chain of 3 links.
     spatial_chain_03
 );
 model!(
-    /// The spatial chain of 4 links (issue 5).
+    /// The spatial chain of 4 links.
     spatial_chain_04
 );
 model!(
-    /// The spatial chain of 5 links (issue 5).
+    /// The spatial chain of 5 links.
     spatial_chain_05
 );
 model!(
-    /// The spatial chain of 6 links (issue 5).
+    /// The spatial chain of 6 links.
     spatial_chain_06
 );
 model!(
-    /// The spatial chain of 12 links (issue 5).
+    /// The spatial chain of 12 links.
     spatial_chain_12
 );
 model!(
-    /// The spatial chain of 30 links (issue 5).
+    /// The spatial chain of 30 links.
     spatial_chain_30
 );
 

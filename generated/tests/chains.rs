@@ -1,4 +1,4 @@
-//! The benchmark chains (issue 5) against Pinocchio's numbers in
+//! The benchmark chains against Pinocchio's numbers in
 //! `tests/reference/chains.json` (both families, n = 1..6, 10 random and 2
 //! special states each): `M`, `f = τ − nle` (our chains have no inputs, so
 //! `forcing = −nle`), `T`, `V` and the accelerations — of the runtime's

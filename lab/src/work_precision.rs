@@ -152,7 +152,6 @@ pub fn work_line(points: &[WorkPoint], method: &str) -> Vec<(f64, f64)> {
 /// Writes the log-log work-precision chart of `points` (final-state error
 /// against median time, one line per method in order of first appearance)
 /// to `path`, with `extra` lines (a baseline, a limit) after them.
-
 pub fn work_precision_chart(
     path: &std::path::Path,
     title: &str,

@@ -17,7 +17,7 @@ pub enum Stabilisation {
     None,
     /// Baumgarte's `φ̈ + 2α φ̇ + β² φ = 0` (velocity level only for
     /// nonholonomic rows): the drift stays bounded at a level set by the step
-    /// and the gains. See [`baumgarte_accelerations`](crate::baumgarte_accelerations) for how to choose them.
+    /// and the gains. See [`baumgarte_accelerations`](super::baumgarte_accelerations) for how to choose them.
     Baumgarte {
         /// Damping rate `α` of the velocity error, in 1/s.
         alpha: f64,
@@ -25,7 +25,7 @@ pub enum Stabilisation {
         beta: f64,
     },
     /// After every step, project the state back onto the manifold with
-    /// [`project_onto_constraints`](crate::project_onto_constraints): `max |φᵢ| ≤ tolerance` and `ψ = 0` to
+    /// [`project_onto_constraints`](super::project_onto_constraints): `max |φᵢ| ≤ tolerance` and `ψ = 0` to
     /// rounding after each step.
     Projection {
         /// Largest holonomic residual `|φᵢ|` accepted.

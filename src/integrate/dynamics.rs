@@ -94,11 +94,6 @@ impl<'a, S, F, const NU: usize> Unconstrained<'a, S, F, NU> {
     {
         Self { system, inputs }
     }
-
-    /// The system.
-    pub fn system(&self) -> &'a S {
-        self.system
-    }
 }
 
 impl<S, F, const NQ: usize, const NV: usize, const NU: usize> Dynamics<NQ, NV>
@@ -172,11 +167,6 @@ impl<'a, S, F, const NU: usize, const NC: usize> Constrained<'a, S, F, NU, NC> {
             stabilisation,
             constraints: PhantomData,
         }
-    }
-
-    /// The system.
-    pub fn system(&self) -> &'a S {
-        self.system
     }
 }
 

@@ -304,6 +304,21 @@ mod tests {
         }
     }
 
+    /// A bar of unit transverse inertia (`m l² / 12 = 1`), one metre from
+    /// its vertical axis.
+    const UNIT_BAR: RotatingBar = RotatingBar {
+        m: 12.0,
+        l: 1.0,
+        d: 1.0,
+    };
+
+    /// [`UNIT_BAR`] level and at rest.
+    const UNIT_BAR_AT_REST: State<2, 2> = State {
+        t: 0.0,
+        q: [0.0; 2],
+        v: [0.0; 2],
+    };
+
     /// The pendulum angle after `duration` in steps of `h`.
     fn pendulum_angle(duration: f64, h: f64) -> f64 {
         let steps = (duration / h).round() as u64;
@@ -370,16 +385,7 @@ mod tests {
     #[test]
     fn inputs_are_evaluated_at_each_stage_state() {
         // A constant torque on the bar's tilt: θ̈ = u / I exactly while φ̇ = 0.
-        let bar = RotatingBar {
-            m: 12.0,
-            l: 1.0,
-            d: 1.0,
-        };
-        let start = State {
-            t: 0.0,
-            q: [0.0; 2],
-            v: [0.0; 2],
-        };
+        let (bar, start) = (UNIT_BAR, UNIT_BAR_AT_REST);
         let torque = |t: f64, _: &[f64; 2], _: &[f64; 2]| [0.0, 2.0 * t];
         let end = rk4_step(&Unconstrained::new(&bar, torque), &start, 0.5).unwrap();
         // θ̈ = 2t (I = 1), so θ = t³/3 and θ̇ = t², which RK4 integrates exactly.
@@ -436,16 +442,7 @@ mod tests {
 
     #[test]
     fn a_closure_input_law_needs_no_annotations() {
-        let bar = RotatingBar {
-            m: 12.0,
-            l: 1.0,
-            d: 1.0,
-        };
-        let start = State {
-            t: 0.0,
-            q: [0.0; 2],
-            v: [0.0; 2],
-        };
+        let (bar, start) = (UNIT_BAR, UNIT_BAR_AT_REST);
         let dynamics = Unconstrained::new(&bar, |_, _, _| [0.0, 1.0]);
         let end = rk4(&dynamics, start, 1.0, 10, |_| {}).unwrap().end;
         // θ̈ = u / I = 1 while φ̇ = 0: θ = t²/2.
