@@ -166,9 +166,15 @@ fn animate_rotating_bar(out: &Path) -> Result<PathBuf, Box<dyn std::error::Error
     };
     let mut recording = Recording::new();
     let steps = (ANIMATION_END / ANIMATION_STEP).round() as u64;
-    integrate::rk4(&Unconstrained::without_inputs(&bar), start, ANIMATION_END, steps, |s| {
-        recording.push(s.t, &s.q, energy(&bar, &s.q, &s.v));
-    })?;
+    integrate::rk4(
+        &Unconstrained::without_inputs(&bar),
+        start,
+        ANIMATION_END,
+        steps,
+        |s| {
+            recording.push(s.t, &s.q, energy(&bar, &s.q, &s.v));
+        },
+    )?;
     let scene = Scene::new(ROTATING_BAR, &[bar.m, bar.l, bar.d])?
         .title("Seed example 2: a bar on a rotating massless frame, coasting (RK4, h = 1 ms)")
         .equations(RotatingBar::EQUATIONS);
@@ -187,9 +193,15 @@ fn animate_constrained_pendulum(out: &Path) -> Result<PathBuf, Box<dyn std::erro
     let dynamics = Constrained::without_inputs(&pendulum, projection);
     let mut recording = Recording::new();
     let steps = (ANIMATION_END / ANIMATION_STEP).round() as u64;
-    integrate::rk4(&dynamics, pendulum.assembled(1.0, 2.0), ANIMATION_END, steps, |s| {
-        recording.push(s.t, &s.q, energy(&pendulum, &s.q, &s.v));
-    })?;
+    integrate::rk4(
+        &dynamics,
+        pendulum.assembled(1.0, 2.0),
+        ANIMATION_END,
+        steps,
+        |s| {
+            recording.push(s.t, &s.q, energy(&pendulum, &s.q, &s.v));
+        },
+    )?;
     let scene = Scene::new(CONSTRAINED_PENDULUM, &[pendulum.m, pendulum.l, pendulum.g])?
         .title("Seed example 3: pendulum in dependent coordinates (RK4, h = 1 ms, projection)")
         .equations(ConstrainedPendulum::EQUATIONS);

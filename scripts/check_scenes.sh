@@ -3,20 +3,22 @@
 # headless Chromium at two instants and checks that the page ran without a
 # script error and that the canvas changed where the bodies are drawn.
 #
-#   scripts/check_scenes.sh [--screenshots DIR] [PAGE.html ...]
+#   scripts/check_scenes.sh [--screenshots DIR] [--at FRACTION] [PAGE.html ...]
 #
 # Pages default to target/charts/*.html (`cargo run --release --example
 # seed_examples` writes them). With --screenshots DIR, a PNG of each page at
-# 30 % of its duration goes to DIR/NAME.png. Without Chromium (Debian:
+# FRACTION of its duration (default 0.45) goes to DIR/NAME.png. Without Chromium (Debian:
 # `apt-get install chromium`) the check is skipped with a message, status 0.
 set -euo pipefail
 
 shots=""
+at=0.45
 pages=()
 while (($#)); do
     case "$1" in
         --screenshots) shots="$2"; shift 2 ;;
-        -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --at) at="$2"; shift 2 ;;
+        -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) pages+=("$1"); shift ;;
     esac
 done
@@ -94,7 +96,7 @@ for page in "${pages[@]}"; do
     if [[ -n "$shots" ]]; then
         mkdir -p "$shots"
         "$browser" "${flags[@]}" --screenshot="$shots/$name.png" \
-            "file://$(realpath "$page")?f=0.3" >/dev/null 2>&1
+            "file://$(realpath "$page")?f=$at" >/dev/null 2>&1
         echo "     screenshot $shots/$name.png"
     fi
 done

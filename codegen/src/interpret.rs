@@ -263,9 +263,15 @@ impl Geometry {
         let kinematics = Kinematics::new(&model, &mut pool);
         // The probes, appended last, name the points and frames in order.
         let probed_points = model.forces[model.forces.len() - names.points.len()..].iter();
-        let point_ids: Vec<PointId> = [ORIGIN].into_iter().chain(probed_points.map(|f| f.at)).collect();
+        let point_ids: Vec<PointId> = [ORIGIN]
+            .into_iter()
+            .chain(probed_points.map(|f| f.at))
+            .collect();
         let probed_frames = model.torques[model.torques.len() - names.frames.len()..].iter();
-        let frame_ids: Vec<FrameId> = [NEWTONIAN].into_iter().chain(probed_frames.map(|t| t.on)).collect();
+        let frame_ids: Vec<FrameId> = [NEWTONIAN]
+            .into_iter()
+            .chain(probed_frames.map(|t| t.on))
+            .collect();
         let segments = point_ids
             .iter()
             .enumerate()
@@ -305,8 +311,14 @@ impl Geometry {
             nq: model.nq(),
             mass_properties,
             pool,
-            points: [String::from("O")].into_iter().chain(names.points).collect(),
-            frames: [String::from("N")].into_iter().chain(names.frames).collect(),
+            points: [String::from("O")]
+                .into_iter()
+                .chain(names.points)
+                .collect(),
+            frames: [String::from("N")]
+                .into_iter()
+                .chain(names.frames)
+                .collect(),
             bodies: names.bodies,
             particles: names.particles,
             segments,
@@ -387,7 +399,12 @@ impl Geometry {
         let values = self.pool.eval_many(&self.mass_properties, at);
         values
             .chunks_exact(10)
-            .map(|r| (r[0], [[r[1], r[2], r[3]], [r[4], r[5], r[6]], [r[7], r[8], r[9]]]))
+            .map(|r| {
+                (
+                    r[0],
+                    [[r[1], r[2], r[3]], [r[4], r[5], r[6]], [r[7], r[8], r[9]]],
+                )
+            })
             .collect()
     }
 }
@@ -433,7 +450,10 @@ impl GeometryNames {
     /// whatever anonymous points the model adds.
     fn probes(&self) -> syn::Result<Vec<Statement>> {
         let forces = self.points.iter().map(|p| format!("force 0 * N.x at {p};"));
-        let torques = self.frames.iter().map(|f| format!("torque 0 * N.x on {f};"));
+        let torques = self
+            .frames
+            .iter()
+            .map(|f| format!("torque 0 * N.x on {f};"));
         let text: String = forces.chain(torques).collect();
         let probe = crate::lex(&format!("Probes {{ {text} }}"))?;
         Ok(crate::language::parse_system(probe)?.statements)

@@ -176,7 +176,14 @@ fn main() -> Result<(), Box<dyn Error>> {
         10.0,
         out.join("constraint_drift_slider_crank.svg"),
     )?;
-    let parameters = [crank.m_crank, crank.r, crank.m_rod, crank.L, crank.m_slider, crank.g];
+    let parameters = [
+        crank.m_crank,
+        crank.r,
+        crank.m_rod,
+        crank.L,
+        crank.m_slider,
+        crank.g,
+    ];
     let animation = Scene::new(SLIDER_CRANK_MODEL, &parameters)?
         .title("Slider-crank at 4 rev/s, unforced (RK4, h = 1 ms, projection)")
         .equations(SliderCrank::EQUATIONS)

@@ -11,8 +11,8 @@ mod chart;
 mod scene;
 mod work_precision;
 
-pub use scene::{Pose, Recording, Scene, SceneError, decimate};
 pub use chart::{ChartError, Series, line_chart, line_chart_log_log, line_chart_log_y};
+pub use scene::{Pose, Recording, Scene, SceneError, decimate};
 pub use work_precision::{
     Accuracy, WorkPoint, measure, seconds_at_error, state_error, to_csv, work_line,
     work_precision_chart,

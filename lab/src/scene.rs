@@ -125,11 +125,17 @@ struct Layout {
     mass_properties: Vec<(f64, [[f64; 3]; 3])>,
 }
 
+/// Where everything is at `(t, q)`.
+type PoseAt = Box<dyn Fn(f64, &[f64]) -> Pose>;
+
+/// The kept samples' indices and their times and poses.
+type KeptPoses = (Vec<usize>, Vec<(f64, Pose)>);
+
 /// The source of positions: the one thing to change when the generator
 /// emits kinematic outputs.
 struct Kinematics {
     layout: Layout,
-    pose: Box<dyn Fn(f64, &[f64]) -> Pose>,
+    pose: PoseAt,
     name: String,
     nq: usize,
 }
@@ -284,37 +290,24 @@ impl Scene {
         let points = &self.kinematics.layout.points;
         match points.iter().position(|p| p == name) {
             Some(i) => Ok(i),
-            None => error(format!("no point `{name}`; the named points are {points:?}")),
+            None => error(format!(
+                "no point `{name}`; the named points are {points:?}"
+            )),
         }
     }
 
     /// The indices of the samples of `recording` a page keeps.
     pub fn kept_frames(&self, recording: &Recording) -> Vec<usize> {
         let layout = &self.kinematics.layout;
-        let per_frame = 3 * (layout.points.len() + layout.particles.len())
-            + 7 * layout.bodies.len()
-            + 2;
+        let per_frame =
+            3 * (layout.points.len() + layout.particles.len()) + 7 * layout.bodies.len() + 2;
         let budget = (NUMBER_BUDGET / per_frame.max(1)).max(MIN_FRAMES);
         decimate(recording.times(), budget.min(self.max_frames))
     }
 
     /// The poses drawn: the kept samples' times and where everything is.
     pub fn poses(&self, recording: &Recording) -> Result<Vec<(f64, Pose)>, SceneError> {
-        if let Some(q) = recording.q.iter().find(|q| q.len() != self.kinematics.nq) {
-            return error(format!(
-                "the model has {} coordinates, a sample has {}",
-                self.kinematics.nq,
-                q.len()
-            ));
-        }
-        Ok(self
-            .kept_frames(recording)
-            .into_iter()
-            .map(|i| {
-                let (t, q) = (recording.t[i], &recording.q[i]);
-                (t, (self.kinematics.pose)(t, q))
-            })
-            .collect())
+        Ok(self.kept_poses(recording)?.1)
     }
 
     /// The page showing `recording`.
@@ -322,16 +315,39 @@ impl Scene {
         if recording.is_empty() {
             return error("the recording has no sample");
         }
-        let poses = self.poses(recording)?;
-        let kept = self.kept_frames(recording);
+        let (kept, poses) = self.kept_poses(recording)?;
         let e0 = recording.energy[0];
         let energy_error: Vec<f64> = kept.iter().map(|&i| recording.energy[i] - e0).collect();
         let data = self.data(&poses, &energy_error)?;
         Ok(TEMPLATE.replacen(DATA_SLOT, &data, 1))
     }
 
+    /// The indices of the kept samples and their poses.
+    fn kept_poses(&self, recording: &Recording) -> Result<KeptPoses, SceneError> {
+        if let Some(q) = recording.q.iter().find(|q| q.len() != self.kinematics.nq) {
+            return error(format!(
+                "the model has {} coordinates, a sample has {}",
+                self.kinematics.nq,
+                q.len()
+            ));
+        }
+        let kept = self.kept_frames(recording);
+        let poses = kept
+            .iter()
+            .map(|&i| {
+                let (t, q) = (recording.t[i], &recording.q[i]);
+                (t, (self.kinematics.pose)(t, q))
+            })
+            .collect();
+        Ok((kept, poses))
+    }
+
     /// Writes the page showing `recording` to `path`.
-    pub fn write(&self, path: impl AsRef<Path>, recording: &Recording) -> Result<PathBuf, SceneError> {
+    pub fn write(
+        &self,
+        path: impl AsRef<Path>,
+        recording: &Recording,
+    ) -> Result<PathBuf, SceneError> {
         let path = path.as_ref();
         let html = self.html(recording)?;
         std::fs::write(path, html)
@@ -357,7 +373,10 @@ impl Scene {
         field("equations", string(&self.equations.text()?));
         field("points", list(layout.points.iter().map(|p| string(p))));
         field("bodies", list(layout.bodies.iter().map(|b| string(b))));
-        field("particles", list(layout.particles.iter().map(|p| string(p))));
+        field(
+            "particles",
+            list(layout.particles.iter().map(|p| string(p))),
+        );
         field(
             "segments",
             list(layout.segments.iter().map(|(i, j)| format!("[{i},{j}]"))),
@@ -372,7 +391,10 @@ impl Scene {
         );
         field("center", list(extent.center.iter().map(|&x| number(x))));
         field("size", number(extent.size));
-        field("t", list(poses.iter().map(|(t, _)| rounded_significant(*t))));
+        field(
+            "t",
+            list(poses.iter().map(|(t, _)| rounded_significant(*t))),
+        );
         field(
             "energy",
             list(energy_error.iter().map(|&e| rounded_significant(e))),
@@ -423,7 +445,8 @@ fn inertia_box((mass, inertia): (f64, [[f64; 3]; 3])) -> Option<[f64; 3]> {
         return None;
     }
     let moment = |i: usize| inertia[i][i];
-    let squares = [0, 1, 2].map(|i| 6.0 * (moment((i + 1) % 3) + moment((i + 2) % 3) - moment(i)) / mass);
+    let squares =
+        [0, 1, 2].map(|i| 6.0 * (moment((i + 1) % 3) + moment((i + 2) % 3) - moment(i)) / mass);
     let scale = squares.iter().fold(0.0_f64, |a, &s| a.max(s.abs()));
     let tolerance = 1e-12 * scale;
     if scale == 0.0 || squares.iter().any(|&s| s < -tolerance) {
@@ -451,9 +474,7 @@ fn fixed_point_span(poses: &[(f64, Pose)], b: usize, scene: f64) -> [f64; 3] {
             (0..3).all(|i| (now[i] - start[i]).abs() <= STILL * scene)
         });
         if fixed {
-            for i in 0..3 {
-                span[i] = span[i].max(2.0 * start[i].abs());
-            }
+            span = [0, 1, 2].map(|i| span[i].max(2.0 * start[i].abs()));
         }
     }
     span
@@ -482,15 +503,25 @@ impl Extent {
     /// lengths `sizes` (none: points only), and the plane of the motion.
     fn of(poses: &[(f64, Pose)], sizes: &[[f64; 3]]) -> Extent {
         let parts = Bounds::of(poses.iter().flat_map(|(_, pose)| {
-            pose.points.iter().chain(&pose.centres).chain(&pose.particles).copied()
+            pose.points
+                .iter()
+                .chain(&pose.centres)
+                .chain(&pose.particles)
+                .copied()
         }));
         let corners = poses.iter().flat_map(|(_, pose)| {
-            pose.centres.iter().zip(&pose.rotations).zip(sizes).flat_map(|((c, r), size)| {
-                (0..8).map(move |corner: usize| {
-                    let sign = |axis: usize| if corner >> axis & 1 == 1 { 0.5 } else { -0.5 };
-                    [0, 1, 2].map(|i| c[i] + (0..3).map(|j| r[i][j] * sign(j) * size[j]).sum::<f64>())
+            pose.centres
+                .iter()
+                .zip(&pose.rotations)
+                .zip(sizes)
+                .flat_map(|((c, r), size)| {
+                    (0..8).map(move |corner: usize| {
+                        let sign = |axis: usize| if corner >> axis & 1 == 1 { 0.5 } else { -0.5 };
+                        [0, 1, 2].map(|i| {
+                            c[i] + (0..3).map(|j| r[i][j] * sign(j) * size[j]).sum::<f64>()
+                        })
+                    })
                 })
-            })
         });
         let all = parts.union(&Bounds::of(corners));
         let size = all.size();
@@ -525,10 +556,8 @@ impl Bounds {
             high: [f64::NEG_INFINITY; 3],
         };
         for x in points {
-            for i in 0..3 {
-                bounds.low[i] = bounds.low[i].min(x[i]);
-                bounds.high[i] = bounds.high[i].max(x[i]);
-            }
+            bounds.low = [0, 1, 2].map(|i| bounds.low[i].min(x[i]));
+            bounds.high = [0, 1, 2].map(|i| bounds.high[i].max(x[i]));
         }
         bounds
     }
@@ -543,7 +572,11 @@ impl Bounds {
     /// The largest side, or 1 for an empty or single-point box.
     fn size(&self) -> f64 {
         let size = (0..3).fold(0.0_f64, |a, i| a.max(self.high[i] - self.low[i]));
-        if size > 0.0 && size.is_finite() { size } else { 1.0 }
+        if size > 0.0 && size.is_finite() {
+            size
+        } else {
+            1.0
+        }
     }
 
     fn center(&self) -> [f64; 3] {
@@ -587,16 +620,36 @@ fn quaternion(r: &[[f64; 3]; 3]) -> [f64; 4] {
     let trace = r[0][0] + r[1][1] + r[2][2];
     let q = if trace > 0.0 {
         let s = 2.0 * (1.0 + trace).sqrt();
-        [s / 4.0, (r[2][1] - r[1][2]) / s, (r[0][2] - r[2][0]) / s, (r[1][0] - r[0][1]) / s]
+        [
+            s / 4.0,
+            (r[2][1] - r[1][2]) / s,
+            (r[0][2] - r[2][0]) / s,
+            (r[1][0] - r[0][1]) / s,
+        ]
     } else if r[0][0] > r[1][1] && r[0][0] > r[2][2] {
         let s = 2.0 * (1.0 + r[0][0] - r[1][1] - r[2][2]).sqrt();
-        [(r[2][1] - r[1][2]) / s, s / 4.0, (r[0][1] + r[1][0]) / s, (r[0][2] + r[2][0]) / s]
+        [
+            (r[2][1] - r[1][2]) / s,
+            s / 4.0,
+            (r[0][1] + r[1][0]) / s,
+            (r[0][2] + r[2][0]) / s,
+        ]
     } else if r[1][1] > r[2][2] {
         let s = 2.0 * (1.0 + r[1][1] - r[0][0] - r[2][2]).sqrt();
-        [(r[0][2] - r[2][0]) / s, (r[0][1] + r[1][0]) / s, s / 4.0, (r[1][2] + r[2][1]) / s]
+        [
+            (r[0][2] - r[2][0]) / s,
+            (r[0][1] + r[1][0]) / s,
+            s / 4.0,
+            (r[1][2] + r[2][1]) / s,
+        ]
     } else {
         let s = 2.0 * (1.0 + r[2][2] - r[0][0] - r[1][1]).sqrt();
-        [(r[1][0] - r[0][1]) / s, (r[0][2] + r[2][0]) / s, (r[1][2] + r[2][1]) / s, s / 4.0]
+        [
+            (r[1][0] - r[0][1]) / s,
+            (r[0][2] + r[2][0]) / s,
+            (r[1][2] + r[2][1]) / s,
+            s / 4.0,
+        ]
     };
     if q[0] < 0.0 { q.map(|x| -x) } else { q }
 }

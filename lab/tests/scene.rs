@@ -117,7 +117,11 @@ fn planar_chain_positions_match_the_hand_kinematics() {
             let length = 0.5 + k as f64 / 20.0;
             let (s, c) = f64::sin_cos(angle);
             assert_close(&format!("J{k}"), &pose.points[k], &joint);
-            let centre = [joint[0] + length / 2.0 * s, joint[1] - length / 2.0 * c, 0.0];
+            let centre = [
+                joint[0] + length / 2.0 * s,
+                joint[1] - length / 2.0 * c,
+                0.0,
+            ];
             assert_close(&format!("link{k}"), &pose.centres[k - 1], &centre);
             assert_rotation(&format!("B{k}"), &pose.rotations[k - 1], &rotation_z(angle));
             joint = [joint[0] + length * s, joint[1] - length * c, 0.0];
@@ -136,7 +140,11 @@ fn spatial_chain_positions_match_the_hand_kinematics() {
         let q = configuration(n, *t);
         let (mut joint, mut r) = ([0.0; 3], rotation_z(0.0));
         for k in 1..=n {
-            let turn = if k % 2 == 1 { rotation_z(q[k - 1]) } else { rotation_y(q[k - 1]) };
+            let turn = if k % 2 == 1 {
+                rotation_z(q[k - 1])
+            } else {
+                rotation_y(q[k - 1])
+            };
             r = mat_mul(&r, &turn);
             let length = 0.5 + k as f64 / 20.0;
             let x_axis = [r[0][0], r[1][0], r[2][0]];
@@ -156,7 +164,10 @@ fn embedded_data(html: &str) -> serde_json::Value {
     assert_eq!(html.matches("<canvas").count(), 1, "one canvas");
     assert!(html.starts_with("<!DOCTYPE html>") && html.trim_end().ends_with("</html>"));
     for external in ["src=", "href=\"http", "https://", "http://"] {
-        assert!(!html.contains(external), "the page loads nothing: {external}");
+        assert!(
+            !html.contains(external),
+            "the page loads nothing: {external}"
+        );
     }
     let start = html.find("const DATA = ").expect("embedded data") + "const DATA = ".len();
     let end = start + html[start..].find(";\n").expect("data ends with `;`");
@@ -179,8 +190,14 @@ fn the_page_embeds_every_kept_frame_as_json() {
     assert_eq!(data["points"], serde_json::json!(["O", "P1", "G1", "G2"]));
     assert_eq!(data["bodies"], serde_json::json!(["link1", "link2"]));
     // O → P1, O → G1, P1 → G2.
-    assert_eq!(data["segments"], serde_json::json!([[0, 1], [0, 2], [1, 3]]));
-    assert_eq!(data["normal"], 2, "a double pendulum moves in the plane z = 0");
+    assert_eq!(
+        data["segments"],
+        serde_json::json!([[0, 1], [0, 2], [1, 3]])
+    );
+    assert_eq!(
+        data["normal"], 2,
+        "a double pendulum moves in the plane z = 0"
+    );
     assert_eq!(data["equations"], "M(q) q̈ = f");
     for frame in frames {
         assert_eq!(frame.as_array().unwrap().len(), 4 * 3 + 2 * 7);
@@ -199,7 +216,10 @@ fn a_spatial_system_gets_the_3d_view() {
     assert_eq!(data["normal"], serde_json::Value::Null);
     // Rods along x, as long as the links (from their inertia: 0.55 m first).
     let first = data["sizes"][0].as_array().unwrap();
-    assert!((first[0].as_f64().unwrap() - 0.55).abs() < 1e-3, "{first:?}");
+    assert!(
+        (first[0].as_f64().unwrap() - 0.55).abs() < 1e-3,
+        "{first:?}"
+    );
 }
 
 #[test]
@@ -233,6 +253,42 @@ fn sixty_seconds_of_a_thirty_link_chain_make_a_page_under_5_mb() {
         assert_eq!(data["t"][frames.len() - 1], 60.0, "the last sample is kept");
         assert_eq!(frames[0].as_array().unwrap().len(), 31 * 3 + 30 * 7);
         assert!(html.len() < 5_000_000, "{family:?}: {} bytes", html.len());
-        eprintln!("{family:?} chain of 30, 60 s: {} frames, {} bytes", frames.len(), html.len());
+        eprintln!(
+            "{family:?} chain of 30, 60 s: {} frames, {} bytes",
+            frames.len(),
+            html.len()
+        );
+    }
+}
+
+/// The model texts the examples animate derive the same equations as the
+/// systems they simulate.
+#[test]
+fn the_animated_model_texts_are_the_simulated_systems() {
+    use dalembert_fixtures::seeds::{ConstrainedPendulum, RotatingBar};
+    use dalembert_fixtures::slider_crank::SliderCrank;
+    let unicode = dalembert_codegen::Style::Unicode;
+    for (text, equations) in [
+        (
+            include_str!("../../examples/slider_crank/slider_crank.dal"),
+            SliderCrank::EQUATIONS,
+        ),
+        (
+            DOUBLE_PENDULUM,
+            dalembert_fixtures::seeds::DoublePendulum::EQUATIONS,
+        ),
+        (
+            include_str!("../../generated/models/rotating_bar.dal"),
+            RotatingBar::EQUATIONS,
+        ),
+        (
+            include_str!("../../generated/models/constrained_pendulum.dal"),
+            ConstrainedPendulum::EQUATIONS,
+        ),
+    ] {
+        assert_eq!(
+            dalembert_codegen::equations(text, unicode).unwrap(),
+            equations
+        );
     }
 }
