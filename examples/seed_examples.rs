@@ -9,7 +9,10 @@
 //!
 //! Charts and animations are written to `DIR` (default `target/charts`).
 
-use dalembert::{Constrained, Stabilisation, State, Unconstrained, energy, integrate};
+use dalembert::{
+    Constrained, IntegrationError, Stabilisation, State, Unconstrained, energy, integrate,
+    integrate::Dynamics,
+};
 use dalembert_lab::{Recording, Scene, Series, line_chart, line_chart_log_y};
 use std::path::{Path, PathBuf};
 
@@ -164,17 +167,9 @@ fn animate_rotating_bar(out: &Path) -> Result<PathBuf, Box<dyn std::error::Error
         q: [0.0, 0.3],
         v: [1.5, 2.0],
     };
-    let mut recording = Recording::new();
-    let steps = (ANIMATION_END / ANIMATION_STEP).round() as u64;
-    integrate::rk4(
-        &Unconstrained::without_inputs(&bar),
-        start,
-        ANIMATION_END,
-        steps,
-        |s| {
-            recording.push(s.t, &s.q, energy(&bar, &s.q, &s.v));
-        },
-    )?;
+    let recording = record(&Unconstrained::without_inputs(&bar), start, |s| {
+        energy(&bar, &s.q, &s.v)
+    })?;
     let scene = Scene::new(ROTATING_BAR, &[bar.m, bar.l, bar.d])?
         .title("Seed example 2: a bar on a rotating massless frame, coasting (RK4, h = 1 ms)")
         .equations(RotatingBar::EQUATIONS);
@@ -191,19 +186,26 @@ fn animate_constrained_pendulum(out: &Path) -> Result<PathBuf, Box<dyn std::erro
         max_iterations: 5,
     };
     let dynamics = Constrained::without_inputs(&pendulum, projection);
-    let mut recording = Recording::new();
-    let steps = (ANIMATION_END / ANIMATION_STEP).round() as u64;
-    integrate::rk4(
-        &dynamics,
-        pendulum.assembled(1.0, 2.0),
-        ANIMATION_END,
-        steps,
-        |s| {
-            recording.push(s.t, &s.q, energy(&pendulum, &s.q, &s.v));
-        },
-    )?;
+    let recording = record(&dynamics, pendulum.assembled(1.0, 2.0), |s| {
+        energy(&pendulum, &s.q, &s.v)
+    })?;
     let scene = Scene::new(CONSTRAINED_PENDULUM, &[pendulum.m, pendulum.l, pendulum.g])?
         .title("Seed example 3: pendulum in dependent coordinates (RK4, h = 1 ms, projection)")
         .equations(ConstrainedPendulum::EQUATIONS);
     Ok(scene.write(out.join("constrained_pendulum.html"), &recording)?)
+}
+
+/// Every state and energy of [`ANIMATION_END`] seconds of RK4 at
+/// [`ANIMATION_STEP`] from `start`.
+fn record<const NQ: usize, const NV: usize>(
+    dynamics: &impl Dynamics<NQ, NV>,
+    start: State<NQ, NV>,
+    energy: impl Fn(&State<NQ, NV>) -> f64,
+) -> Result<Recording, IntegrationError<NQ>> {
+    let mut recording = Recording::new();
+    let steps = (ANIMATION_END / ANIMATION_STEP).round() as u64;
+    integrate::rk4(dynamics, start, ANIMATION_END, steps, |s| {
+        recording.push(s.t, &s.q, energy(s));
+    })?;
+    Ok(recording)
 }

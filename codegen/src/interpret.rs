@@ -410,6 +410,7 @@ impl Geometry {
 }
 
 /// The names a system's statements define, in order.
+#[derive(Default)]
 struct GeometryNames {
     points: Vec<String>,
     frames: Vec<String>,
@@ -419,12 +420,7 @@ struct GeometryNames {
 
 impl GeometryNames {
     fn of(system: &System) -> GeometryNames {
-        let mut names = GeometryNames {
-            points: Vec::new(),
-            frames: Vec::new(),
-            bodies: Vec::new(),
-            particles: Vec::new(),
-        };
+        let mut names = GeometryNames::default();
         for statement in &system.statements {
             match statement {
                 Statement::Frame { name, .. } => names.frames.push(name.to_string()),
@@ -457,5 +453,76 @@ impl GeometryNames {
         let text: String = forces.chain(torques).collect();
         let probe = crate::lex(&format!("Probes {{ {text} }}"))?;
         Ok(crate::language::parse_system(probe)?.statements)
+    }
+}
+
+#[cfg(test)]
+mod geometry_tests {
+    use super::*;
+
+    /// A cart sliding by `s` along a turntable's `x` (turned by `a` about
+    /// `N.z`), a bob on a stick of length `L` across it, and a user's force
+    /// at an anonymous point: names, segments and positions by hand.
+    const CART: &str = "
+        Cart {
+            parameters L;
+            coordinates s, a;
+            frame A = N.rotate_z(a);
+            force 3 * N.x at O + L * N.y;
+            joint prismatic S { parent: A, child: C, axis: x, coordinate: s, at: O };
+            point Tip = S + L * C.y;
+            particle bob { mass: 1, at: Tip };
+            body cart { mass: 2, center: S + 0.5 * C.x, frame: C, inertia: [1, 2, 3] };
+        }";
+
+    #[test]
+    fn names_segments_and_positions_of_a_jointed_model() {
+        let geometry = Interpreter::geometry(CART).unwrap();
+        assert_eq!(geometry.name(), "Cart");
+        assert_eq!((geometry.np(), geometry.nq()), (1, 2));
+        assert_eq!(geometry.points(), ["O", "S", "Tip"]);
+        assert_eq!(geometry.frames(), ["N", "A", "C"]);
+        assert_eq!(geometry.bodies(), ["cart"]);
+        assert_eq!(geometry.particles(), ["bob"]);
+        assert_eq!(geometry.segments(), [(0, 1), (1, 2)]);
+        let (l, s, a) = (0.7, 1.3, 0.4);
+        let at = Values {
+            parameters: &[l],
+            t: 0.0,
+            q: &[s, a],
+            qd: &[],
+            u: &[],
+        };
+        let (sin, cos) = f64::sin_cos(a);
+        let slider = [s * cos, s * sin, 0.0];
+        let tip = [slider[0] - l * sin, slider[1] + l * cos, 0.0];
+        let centre = [slider[0] + 0.5 * cos, slider[1] + 0.5 * sin, 0.0];
+        let expected = [[0.0; 3], slider, tip, centre, tip];
+        assert_close(&geometry.positions(&at), &expected);
+        let turn = [[cos, -sin, 0.0], [sin, cos, 0.0], [0.0, 0.0, 1.0]];
+        let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        // N, A, C, and the cart's frame C.
+        let rotations = geometry.rotations(&at);
+        assert_eq!(rotations.len(), 4);
+        for (got, expected) in rotations.iter().zip([identity, turn, turn, turn]) {
+            assert_close(got, &expected);
+        }
+        let mass_properties = geometry.mass_properties(&at);
+        assert_eq!(
+            mass_properties,
+            [(2.0, [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 3.0]])]
+        );
+    }
+
+    fn assert_close(got: &[[f64; 3]], expected: &[[f64; 3]]) {
+        assert_eq!(got.len(), expected.len());
+        for (got, expected) in got.iter().zip(expected) {
+            for i in 0..3 {
+                assert!(
+                    (got[i] - expected[i]).abs() < 1e-14,
+                    "{got:?} ≠ {expected:?}"
+                );
+            }
+        }
     }
 }

@@ -671,16 +671,24 @@ fn rounded(x: f64, decimals: usize) -> String {
     }
 }
 
-/// `x` to about five significant digits, as JSON.
+/// `x` to five significant digits, as JSON: plain between 1e-3 and 1e6,
+/// else in exponent form.
 fn rounded_significant(x: f64) -> String {
-    if !x.is_finite() {
+    let text = format!("{x:.4e}");
+    let Ok(y) = text.parse::<f64>() else {
+        return "null".into();
+    };
+    if !y.is_finite() {
         return "null".into();
     }
-    let text = format!("{x:.4e}");
-    match text.parse::<f64>() {
-        Ok(y) => format!("{y}"),
-        Err(_) => "null".into(),
+    if y == 0.0 || (1e-3..1e6).contains(&y.abs()) {
+        return format!("{y}");
     }
+    let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+    format!(
+        "{}e{exponent}",
+        mantissa.trim_end_matches('0').trim_end_matches('.')
+    )
 }
 
 /// A JSON string.
@@ -722,6 +730,8 @@ mod tests {
         assert_eq!(rounded(2.0, 3), "2");
         assert_eq!(rounded_significant(1.234_567e-7), "1.2346e-7");
         assert_eq!(rounded_significant(0.5), "0.5");
+        assert_eq!(rounded_significant(-3e-9), "-3e-9");
+        assert_eq!(rounded_significant(60.0), "60");
     }
 
     #[test]

@@ -100,16 +100,21 @@ fn double_pendulum_positions_match_the_closed_form() {
     }
 }
 
+/// The drawn poses of 2 s of the made-up motion of the `family` chain of
+/// `n` links, every sample kept.
+fn chain_poses(family: Family, n: usize) -> Vec<(f64, Pose)> {
+    let scene = Scene::new(&chain(family, n), &[]).unwrap();
+    scene.poses(&recording(n, 2.0, 41)).unwrap()
+}
+
 /// The planar chain: joint `J1` at `O`, `J(k+1) = Jk − L_k Bk.y` with
 /// `Bk` at the absolute angle `q1 + … + qk` about N.z and
 /// `L_k = 1/2 + k/20`; link `k`'s centre halfway.
 #[test]
 fn planar_chain_positions_match_the_hand_kinematics() {
     let n = 6;
-    let scene = Scene::new(&chain(Family::Planar, n), &[]).unwrap();
-    let recording = recording(n, 2.0, 41);
-    for (t, pose) in &scene.poses(&recording).unwrap() {
-        let q = configuration(n, *t);
+    for (t, pose) in chain_poses(Family::Planar, n) {
+        let q = configuration(n, t);
         let (mut joint, mut angle) = ([0.0; 3], 0.0);
         assert_close("O", &pose.points[0], &[0.0; 3]);
         for k in 1..=n {
@@ -134,10 +139,8 @@ fn planar_chain_positions_match_the_hand_kinematics() {
 #[test]
 fn spatial_chain_positions_match_the_hand_kinematics() {
     let n = 5;
-    let scene = Scene::new(&chain(Family::Spatial, n), &[]).unwrap();
-    let recording = recording(n, 2.0, 41);
-    for (t, pose) in &scene.poses(&recording).unwrap() {
-        let q = configuration(n, *t);
+    for (t, pose) in chain_poses(Family::Spatial, n) {
+        let q = configuration(n, t);
         let (mut joint, mut r) = ([0.0; 3], rotation_z(0.0));
         for k in 1..=n {
             let turn = if k % 2 == 1 {
