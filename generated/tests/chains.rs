@@ -3,7 +3,8 @@
 //! special states each): `M`, `f = τ − nle` (our chains have no inputs, so
 //! `forcing = −nle`), `T`, `V` and the accelerations — of the runtime's
 //! `dalembert::dynamics::cholesky_accelerations` and of the generated, unrolled
-//! `accelerations` method, which also agree with each other. And the checked-in
+//! `accelerations` method, which also agree with each other, the latter being
+//! what `dalembert::accelerations` calls. And the checked-in
 //! `models/*_chain_NN.dal` are exactly what `dalembert_codegen::testing::chain` writes.
 
 use dalembert::{DynamicsError, MultibodySystem};
@@ -96,6 +97,13 @@ fn check<S: MultibodySystem<N, N, 0>, const N: usize>(
             &specialised,
             &free,
             ACCELERATION_TOLERANCE,
+        );
+        // The runtime's entry point uses the system's own unrolled solver.
+        assert_eq!(
+            dalembert::accelerations(system, 0.0, &q, &qd, &[]),
+            Ok(specialised),
+            "{}",
+            what("dalembert::accelerations")
         );
     }
     let nan = [f64::NAN; N];
