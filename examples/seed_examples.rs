@@ -1,20 +1,33 @@
 //! The main job: derive the three seed examples at compile time, print the
 //! derived equations beside the seed document's, simulate the double
-//! pendulum and chart its trajectory and energy.
+//! pendulum and chart its trajectory and energy, and write an animation of
+//! each seed example (a page to open in a browser).
 //!
 //! ```text
 //! cargo run --release --example seed_examples [-- --out DIR]
 //! ```
 //!
-//! Charts are written to `DIR` (default `target/charts`).
+//! Charts and animations are written to `DIR` (default `target/charts`).
 
-use dalembert::{State, Unconstrained, integrate};
-use dalembert_lab::{Series, line_chart, line_chart_log_y};
-use std::path::PathBuf;
+use dalembert::{
+    Constrained, IntegrationError, Stabilisation, State, Unconstrained, energy, integrate,
+    integrate::Dynamics,
+};
+use dalembert_lab::{Recording, Scene, Series, line_chart, line_chart_log_y};
+use std::path::{Path, PathBuf};
 
 use dalembert_fixtures::seeds::{
     CHAOTIC, CHAOTIC_END, CHAOTIC_START, ConstrainedPendulum, DoublePendulum, RotatingBar,
 };
+use dalembert_fixtures::slider_crank::SEED_3 as REFERENCE_SEED_3;
+
+/// The seed examples' model texts, which the animations draw.
+const DOUBLE_PENDULUM: &str = include_str!("../generated/models/double_pendulum.dal");
+const ROTATING_BAR: &str = include_str!("../generated/models/rotating_bar.dal");
+const CONSTRAINED_PENDULUM: &str = include_str!("../generated/models/constrained_pendulum.dal");
+/// The animations' length, in seconds, and step.
+const ANIMATION_END: f64 = 10.0;
+const ANIMATION_STEP: f64 = 1e-3;
 
 /// The seed document's boxed results, transcribed.
 const SEED_1: &str = "\
@@ -54,9 +67,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "== {title}\n-- the seed document:\n{seed}\n-- derived by dalembert:\n{derived}\n"
         );
     }
-    let charts = simulate_double_pendulum(&out)?;
-    for chart in charts {
-        println!("wrote {}", chart.display());
+    let mut written = simulate_double_pendulum(&out)?;
+    written.push(animate_rotating_bar(&out)?);
+    written.push(animate_constrained_pendulum(&out)?);
+    for file in written {
+        println!("wrote {}", file.display());
     }
     Ok(())
 }
@@ -86,6 +101,7 @@ fn simulate_double_pendulum(
     let e0 = energy(&initial);
     let mut angles = [Vec::new(), Vec::new()];
     let mut drift = Vec::new();
+    let mut recording = Recording::new();
     for (h, keep_angles) in [(1e-3, true), (1e-2, false)] {
         let mut errors = Vec::new();
         let steps = (CHAOTIC_END / h).round() as u64;
@@ -94,6 +110,7 @@ fn simulate_double_pendulum(
             if keep_angles {
                 angles[0].push((s.t, s.q[0]));
                 angles[1].push((s.t, s.q[1]));
+                recording.push(s.t, &s.q, energy(s));
             }
             errors.push((s.t, (energy(s) - e0).abs()));
         })?;
@@ -130,5 +147,65 @@ fn simulate_double_pendulum(
         "|E − E₀| [J]",
         &series,
     )?;
-    Ok(vec![trajectory, energy_chart])
+    let animation = Scene::new(DOUBLE_PENDULUM, &[pendulum.m, pendulum.L, pendulum.g])?
+        .title("Seed example 1: double pendulum released at θ₁ = θ₂ = 2 rad (RK4, h = 1 ms)")
+        .equations(DoublePendulum::EQUATIONS)
+        .write(out.join("double_pendulum.html"), &recording)?;
+    Ok(vec![trajectory, energy_chart, animation])
+}
+
+/// Seed example 2 (m = l = 1, d = 0.5) coasting without motor torques from
+/// θ = 0.3 rad, φ̇ = 1.5 rad/s, θ̇ = 2 rad/s: 10 s of RK4 at 1 ms, animated.
+fn animate_rotating_bar(out: &Path) -> Result<PathBuf, Box<dyn std::error::Error>> {
+    let bar = RotatingBar {
+        m: 1.0,
+        l: 1.0,
+        d: 0.5,
+    };
+    let start = State {
+        t: 0.0,
+        q: [0.0, 0.3],
+        v: [1.5, 2.0],
+    };
+    let recording = record(&Unconstrained::without_inputs(&bar), start, |s| {
+        energy(&bar, &s.q, &s.v)
+    })?;
+    let scene = Scene::new(ROTATING_BAR, &[bar.m, bar.l, bar.d])?
+        .title("Seed example 2: a bar on a rotating massless frame, coasting (RK4, h = 1 ms)")
+        .equations(RotatingBar::EQUATIONS);
+    Ok(scene.write(out.join("rotating_bar.html"), &recording)?)
+}
+
+/// Seed example 3 with the reference parameters, released at θ = 1 rad
+/// turning at 2 rad/s on its constraints: 10 s of RK4 at 1 ms with
+/// coordinate projection, animated.
+fn animate_constrained_pendulum(out: &Path) -> Result<PathBuf, Box<dyn std::error::Error>> {
+    let pendulum = REFERENCE_SEED_3;
+    let projection = Stabilisation::Projection {
+        tolerance: 1e-12,
+        max_iterations: 5,
+    };
+    let dynamics = Constrained::without_inputs(&pendulum, projection);
+    let recording = record(&dynamics, pendulum.assembled(1.0, 2.0), |s| {
+        energy(&pendulum, &s.q, &s.v)
+    })?;
+    let scene = Scene::new(CONSTRAINED_PENDULUM, &[pendulum.m, pendulum.l, pendulum.g])?
+        .title("Seed example 3: pendulum in dependent coordinates (RK4, h = 1 ms, projection)")
+        .equations(ConstrainedPendulum::EQUATIONS);
+    Ok(scene.write(out.join("constrained_pendulum.html"), &recording)?)
+}
+
+/// Every state and energy of [`ANIMATION_END`] seconds of RK4 at
+/// [`ANIMATION_STEP`] from `start`.
+fn record<const NQ: usize, const NV: usize>(
+    dynamics: &impl Dynamics<NQ, NV>,
+    start: State<NQ, NV>,
+    energy: impl Fn(&State<NQ, NV>) -> f64,
+) -> Result<Recording, IntegrationError<NQ>> {
+    let mut recording = Recording::new();
+    let steps = (ANIMATION_END / ANIMATION_STEP).round() as u64;
+    integrate::rk4(dynamics, start, ANIMATION_END, steps, |s| {
+        recording.push(s.t, &s.q, energy(s));
+    })?;
+    Ok(recording)
 }

@@ -1,26 +1,30 @@
 //! Constraint drift and energy of two systems in dependent coordinates, seed
 //! example 3 (a pendulum in `(x, y, θ)`) and a slider-crank
 //! `(θ, φ, s)`, integrated with RK4 without stabilisation, with Baumgarte's
-//! and with coordinate projection; writes a chart of the drift of each.
+//! and with coordinate projection; writes a chart of the drift of each and
+//! an animation of the slider-crank's projected run.
 //!
 //! ```text
 //! cargo run --release --example slider_crank [-- --out DIR]
 //! ```
 //!
-//! The charts go to `DIR` (default `target/charts` in the package).
+//! The charts and the animation go to `DIR` (default `target/charts` in the package).
 
 use std::error::Error;
 use std::path::PathBuf;
 
 use dalembert::constrained::constraint_drift;
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, energy, integrate};
-use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
-use dalembert_lab::{Series, line_chart_log_y};
+use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK, SliderCrank};
+use dalembert_lab::{Recording, Scene, Series, line_chart_log_y};
 
 /// The RK4 step, in seconds.
 const STEP: f64 = 1e-3;
 /// Every this many steps a point goes into the charts.
 const CHART_STRIDE: usize = 20;
+/// The slider-crank's model text, as `SLIDER_CRANK`'s type is written,
+/// which the animation draws.
+const SLIDER_CRANK_MODEL: &str = include_str!("slider_crank.dal");
 /// Projection after every step: residual bound and iteration budget.
 const PROJECTION: Stabilisation = Stabilisation::Projection {
     tolerance: 1e-12,
@@ -39,6 +43,8 @@ struct Run {
     worst_energy_error: f64,
     /// The final state.
     end: State<3, 3>,
+    /// Every step's configuration and energy.
+    recording: Recording,
 }
 
 /// Integrates `system` unforced from `start` for `steps` steps of [`STEP`]
@@ -56,11 +62,14 @@ fn run<S: ConstrainedSystem<3, 3, 1, 2>>(
         worst_drift: 0.0,
         worst_energy_error: 0.0,
         end: start,
+        recording: Recording::new(),
     };
     let mut step = 0;
     let observe = |s: &State<3, 3>| {
         let drift = constraint_drift(system, s);
-        let energy_error = (energy(system, &s.q, &s.v) - initial_energy) / initial_energy;
+        let energy_now = energy(system, &s.q, &s.v);
+        let energy_error = (energy_now - initial_energy) / initial_energy;
+        run.recording.push(s.t, &s.q, energy_now);
         run.worst_drift = run.worst_drift.max(drift);
         run.worst_energy_error = run.worst_energy_error.max(energy_error.abs());
         if s.t <= 1.0 + STEP / 2.0 {
@@ -167,6 +176,19 @@ fn main() -> Result<(), Box<dyn Error>> {
         10.0,
         out.join("constraint_drift_slider_crank.svg"),
     )?;
+    let parameters = [
+        crank.m_crank,
+        crank.r,
+        crank.m_rod,
+        crank.L,
+        crank.m_slider,
+        crank.g,
+    ];
+    let animation = Scene::new(SLIDER_CRANK_MODEL, &parameters)?
+        .title("Slider-crank at 4 rev/s, unforced (RK4, h = 1 ms, projection)")
+        .equations(SliderCrank::EQUATIONS)
+        .write(out.join("slider_crank.html"), &projected.recording)?;
+    println!("animation: {}", animation.display());
     let revolutions = projected.end.q[0] / std::f64::consts::TAU;
     println!(
         "slider-crank with projection: {revolutions:.1} crank revolutions in {:.0} s, \
