@@ -49,7 +49,7 @@ pub use urdf::Urdf;
 ///   them.
 pub mod testing {
     pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
-    pub use crate::interpret::{Interpreter, Route, Sample, Values};
+    pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
 }
 
 use proc_macro2::TokenStream;
