@@ -63,7 +63,7 @@ pub fn emit(
     };
     quote! {
         #strukt
-        #[allow(non_snake_case, unused_parens, clippy::all)]
+        #[allow(non_snake_case, clippy::all)]
         impl #name {
             #constants
             #(#items)*

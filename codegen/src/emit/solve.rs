@@ -96,19 +96,24 @@ fn fill_pattern(model: &Model, equations: &Equations) -> Vec<Vec<bool>> {
     pattern
 }
 
-/// `start − Σ a·b` over `pairs`, parenthesised if there are any.
+/// `start − Σ a·b` over `pairs`.
 fn minus_products(
     start: TokenStream,
     pairs: impl Iterator<Item = (TokenStream, TokenStream)>,
 ) -> TokenStream {
-    let mut out = start.clone();
+    let mut out = start;
     for (a, b) in pairs {
         out = quote!(#out - #a * #b);
     }
-    if out.to_string() == start.to_string() {
-        start
+    out
+}
+
+/// `value * factor`, with `value` parenthesised if it is not one name.
+fn times(value: TokenStream, factor: &Ident) -> TokenStream {
+    if value.clone().into_iter().count() == 1 {
+        quote!(#value * #factor)
     } else {
-        quote!((#out))
+        quote!((#value) * #factor)
     }
 }
 
@@ -164,8 +169,8 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
                     (quote!(#a), quote!(#b))
                 }),
             );
-            let l = entry(i, j);
-            out.extend(quote!(let #l = #value * #r;));
+            let (l, value) = (entry(i, j), times(value, &r));
+            out.extend(quote!(let #l = #value;));
         }
     }
     out
@@ -184,7 +189,8 @@ fn forward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
             }),
         );
         let (y, r) = (format_ident!("y{}", i), format_ident!("r{}", i));
-        out.extend(quote!(let #y = #value * #r;));
+        let value = times(value, &r);
+        out.extend(quote!(let #y = #value;));
     }
     out
 }
@@ -203,7 +209,8 @@ fn backward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
             }),
         );
         let (x, r) = (format_ident!("x{}", i), format_ident!("r{}", i));
-        out.extend(quote!(let #x = #value * #r;));
+        let value = times(value, &r);
+        out.extend(quote!(let #x = #value;));
     }
     out
 }
