@@ -135,7 +135,7 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
     let shared = |i: usize, j: usize| (0..j).filter(move |&k| pattern[i][k] && pattern[j][k]);
-    for j in 0..nq {
+    for (j, coordinate) in model.coordinates.iter().enumerate().take(nq) {
         let jj = index(j);
         let diagonal = mass(j, j);
         let pivot = minus_products(
@@ -146,7 +146,7 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
             }),
         );
         let (p, r) = (format_ident!("p{}", j), format_ident!("r{}", j));
-        let coordinate = model.coordinates[j].to_string();
+        let coordinate = coordinate.to_string();
         out.extend(quote! {
             let #p = #pivot;
             if !(#p > tolerance) {
