@@ -23,8 +23,8 @@ for path in glob.glob(os.path.join(target, "criterion", "**", "new", "benchmark.
     with open(path) as f:
         bench = json.load(f)
     family, _, n = bench["group_id"].partition("/")
-    if family not in ("planar", "spatial"):
-        continue
+    if family not in ("planar", "spatial") or not n.isdigit():
+        continue  # the spellings bench's groups are FAMILY/SPELLING/N
     with open(path.replace("benchmark.json", "estimates.json")) as f:
         ours[(family, int(n), bench["function_id"])] = json.load(f)["median"]["point_estimate"]
 

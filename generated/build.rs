@@ -1,6 +1,14 @@
 //! Generates one Rust file per `models/*.dal`, and per URDF robot of
 //! `tests/reference/urdf/`, into `OUT_DIR`; `src/lib.rs` includes each into
-//! its own module.
+//! its own module. For the chains spelled with symbolic
+//! parameters it also writes `chain_references.rs`: a `reference()`
+//! constructor per system, holding the reference data's masses, lengths and
+//! gravity.
+
+use std::fmt::Write;
+use std::path::PathBuf;
+
+use dalembert_codegen::testing::{Family, Spelling, chain_parameters};
 
 fn main() {
     dalembert_codegen::Builder::new()
@@ -11,4 +19,45 @@ fn main() {
         .urdf("../tests/reference/urdf/features.urdf")
         .compile()
         .unwrap_or_else(|e| panic!("\n{e}\n"));
+    let mut references = String::new();
+    let mut names: Vec<String> = std::fs::read_dir("models")
+        .expect("models/")
+        .filter_map(|entry| {
+            let path = entry.expect("models/ entry").path();
+            let stem = path.file_stem()?.to_string_lossy().into_owned();
+            (path.extension()? == "dal").then_some(stem)
+        })
+        .collect();
+    names.sort();
+    for name in names {
+        let parts: Vec<&str> = name.split('_').collect();
+        let [spelling, family, "chain", n] = parts.as_slice() else {
+            continue;
+        };
+        let (Some(spelling), Some(family), Ok(n)) = (
+            Spelling::from_name(spelling),
+            Family::from_name(family),
+            n.parse::<usize>(),
+        ) else {
+            continue;
+        };
+        let prefix = match spelling {
+            Spelling::FramesAndPoints => "Seed",
+            _ => "Symbolic",
+        };
+        let fields: Vec<String> = chain_parameters(n)
+            .into_iter()
+            .map(|(name, value)| format!("{name}: {value:?}"))
+            .collect();
+        writeln!(
+            references,
+            "impl {prefix}{} {{\n    /// The system with the reference data's parameters.\n    \
+             pub const fn reference() -> Self {{\n        Self {{ {} }}\n    }}\n}}",
+            family.system_name(n),
+            fields.join(", ")
+        )
+        .expect("writing to a String");
+    }
+    let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    std::fs::write(out.join("chain_references.rs"), references).expect("OUT_DIR is writable");
 }

@@ -155,7 +155,38 @@ fn derive(input: TokenStream) -> syn::Result<(model::Model, equations::Equations
     optimize::optimize(&mut equations, &mut pool);
     model.pool = pool;
     check_timeless(&model, &equations)?;
+    check_inertia(&model, &equations)?;
     Ok((model, equations))
+}
+
+/// Every coordinate must move some mass: a coordinate whose diagonal entry
+/// of `M` is zero (and that no constraint ties) makes `M` singular
+/// everywhere. Reported at the coordinate's declaration.
+fn check_inertia(model: &model::Model, equations: &equations::Equations) -> syn::Result<()> {
+    let mut errors = (0..model.nq()).filter_map(|k| {
+        let massless = model.pool.is_zero(equations.mass_matrix[k][k]);
+        let constrained = equations
+            .constraint_jacobian
+            .iter()
+            .any(|row| !model.pool.is_zero(row[k]));
+        (massless && !constrained).then(|| {
+            let name = &model.coordinates[k];
+            syn::Error::new(
+                name.span(),
+                format!(
+                    "the coordinate `{name}` moves no mass, so the mass matrix is singular \
+                     everywhere: make a body or particle depend on it, or remove it"
+                ),
+            )
+        })
+    });
+    match errors.next() {
+        None => Ok(()),
+        Some(mut first) => {
+            errors.for_each(|e| first.combine(e));
+            Err(first)
+        }
+    }
 }
 
 /// The outputs whose generated functions take no `t` (`M(q)`, `T(q, q̇)`,

@@ -121,6 +121,74 @@ model!(
     features
 );
 
+// The same chains in the other two spellings (`dalembert chain FAMILY N symbolic|seed`);
+// tests/spellings.rs checks them against Pinocchio's numbers and against each other,
+// and `reference()` (written by build.rs) builds each with the reference parameters.
+model!(
+    /// The planar chain of 2 links spelled with `joint`s with symbolic parameters.
+    symbolic_planar_chain_02
+);
+model!(
+    /// The planar chain of 6 links spelled with `joint`s with symbolic parameters.
+    symbolic_planar_chain_06
+);
+model!(
+    /// The planar chain of 12 links spelled with `joint`s with symbolic parameters.
+    symbolic_planar_chain_12
+);
+model!(
+    /// The planar chain of 30 links spelled with `joint`s with symbolic parameters.
+    symbolic_planar_chain_30
+);
+model!(
+    /// The spatial chain of 2 links spelled with `joint`s with symbolic parameters.
+    symbolic_spatial_chain_02
+);
+model!(
+    /// The spatial chain of 6 links spelled with `joint`s with symbolic parameters.
+    symbolic_spatial_chain_06
+);
+model!(
+    /// The spatial chain of 12 links spelled with `joint`s with symbolic parameters.
+    symbolic_spatial_chain_12
+);
+model!(
+    /// The spatial chain of 30 links spelled with `joint`s with symbolic parameters.
+    symbolic_spatial_chain_30
+);
+model!(
+    /// The planar chain of 2 links spelled with the seed's frames and points, symbolic parameters, torque inputs.
+    seed_planar_chain_02
+);
+model!(
+    /// The planar chain of 6 links spelled with the seed's frames and points, symbolic parameters, torque inputs.
+    seed_planar_chain_06
+);
+model!(
+    /// The planar chain of 12 links spelled with the seed's frames and points, symbolic parameters, torque inputs.
+    seed_planar_chain_12
+);
+model!(
+    /// The planar chain of 30 links spelled with the seed's frames and points, symbolic parameters, torque inputs.
+    seed_planar_chain_30
+);
+model!(
+    /// The spatial chain of 2 links spelled with the seed's frames and points, symbolic parameters, torque inputs.
+    seed_spatial_chain_02
+);
+model!(
+    /// The spatial chain of 6 links spelled with the seed's frames and points, symbolic parameters, torque inputs.
+    seed_spatial_chain_06
+);
+model!(
+    /// The spatial chain of 12 links spelled with the seed's frames and points, symbolic parameters, torque inputs.
+    seed_spatial_chain_12
+);
+model!(
+    /// The spatial chain of 30 links spelled with the seed's frames and points, symbolic parameters, torque inputs.
+    seed_spatial_chain_30
+);
+
 pub use constrained_pendulum::ConstrainedPendulum;
 pub use double_pendulum::DoublePendulum;
 pub use features::FeatureTree;
@@ -135,6 +203,14 @@ pub use planar_chain_12::PlanarChain12;
 pub use planar_chain_30::PlanarChain30;
 pub use rotating_bar::RotatingBar;
 pub use solo12::Solo;
+pub use seed_planar_chain_02::SeedPlanarChain2;
+pub use seed_planar_chain_06::SeedPlanarChain6;
+pub use seed_planar_chain_12::SeedPlanarChain12;
+pub use seed_planar_chain_30::SeedPlanarChain30;
+pub use seed_spatial_chain_02::SeedSpatialChain2;
+pub use seed_spatial_chain_06::SeedSpatialChain6;
+pub use seed_spatial_chain_12::SeedSpatialChain12;
+pub use seed_spatial_chain_30::SeedSpatialChain30;
 pub use spatial_chain_01::SpatialChain1;
 pub use spatial_chain_02::SpatialChain2;
 pub use spatial_chain_03::SpatialChain3;
@@ -144,3 +220,14 @@ pub use spatial_chain_06::SpatialChain6;
 pub use spatial_chain_12::SpatialChain12;
 pub use spatial_chain_30::SpatialChain30;
 pub use ur5_robot::Ur5;
+pub use symbolic_planar_chain_02::SymbolicPlanarChain2;
+pub use symbolic_planar_chain_06::SymbolicPlanarChain6;
+pub use symbolic_planar_chain_12::SymbolicPlanarChain12;
+pub use symbolic_planar_chain_30::SymbolicPlanarChain30;
+pub use symbolic_spatial_chain_02::SymbolicSpatialChain2;
+pub use symbolic_spatial_chain_06::SymbolicSpatialChain6;
+pub use symbolic_spatial_chain_12::SymbolicSpatialChain12;
+pub use symbolic_spatial_chain_30::SymbolicSpatialChain30;
+
+// `reference()` of every symbolic chain: its parameters at the reference values.
+include!(concat!(env!("OUT_DIR"), "/chain_references.rs"));

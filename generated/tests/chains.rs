@@ -164,7 +164,11 @@ fn chain_models_are_what_the_generator_writes() {
         let Some((family, n)) = model.name.split_once("_chain_") else {
             continue;
         };
-        let family = Family::from_name(family).expect("a chain family");
+        // The other spellings (`symbolic_planar_chain_06`) are checked by
+        // tests/spellings.rs.
+        let Some(family) = Family::from_name(family) else {
+            continue;
+        };
         let n: usize = n.parse().expect("a link count");
         assert_eq!(
             model.source,

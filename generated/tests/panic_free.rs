@@ -78,7 +78,8 @@ fn generated_code_has_no_panic_path() {
         let mut found = Vec::new();
         panic_paths(code.parse().expect("generated code lexes"), &mut found);
         assert!(found.is_empty(), "{}: {found:?}", path.display());
-        checked += 1;
+        // Besides one file per model, build.rs writes `chain_references.rs`.
+        checked += usize::from(path.file_stem().is_some_and(|s| s != "chain_references"));
     }
     let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
     let models = std::fs::read_dir(crate_dir.join("models")).expect("models/ exists");

@@ -67,7 +67,7 @@ pub fn emit(
     };
     quote! {
         #strukt
-        #[allow(non_snake_case, unused_parens, clippy::all)]
+        #[allow(non_snake_case, clippy::all)]
         impl #name {
             #constants
             #(#items)*
@@ -132,6 +132,22 @@ fn emit_struct(model: &Model, docs: &[String]) -> TokenStream {
     }
 }
 
+/// `text` as a raw string literal, so that its characters (`q̈`'s combining
+/// diaeresis among them) read as themselves in the source and in rustdoc,
+/// not as `\u{308}` escapes.
+fn raw_string(text: &str) -> Literal {
+    let longest = text
+        .split('"')
+        .skip(1)
+        .map(|after| after.chars().take_while(|&c| c == '#').count())
+        .max()
+        .unwrap_or(0);
+    let hashes = "#".repeat(longest + 1);
+    format!("r{hashes}\"{text}\"{hashes}")
+        .parse()
+        .unwrap_or_else(|_| Literal::string(text))
+}
+
 fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
     let [nq, np, nu, nc] = [
         model.nq(),
@@ -145,6 +161,7 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
     let parameters = strings(&model.parameters);
     let inputs = strings(&model.inputs);
     let speeds = coordinates.iter().map(|q| format!("dt({q})"));
+    let equations = raw_string(equations_text);
     quote! {
         /// Number of generalized coordinates.
         pub const NQ: usize = #nq;
@@ -163,7 +180,7 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
         /// Names of the inputs, in index order.
         pub const INPUTS: [&'static str; #nu] = [#(#inputs),*];
         /// The derived equations of motion, in the seed document's style.
-        pub const EQUATIONS: &'static str = #equations_text;
+        pub const EQUATIONS: &'static str = #equations;
     }
 }
 
@@ -431,5 +448,20 @@ fn emit_trait_impls(
                 #name::constraint_velocity(self, t, q, v)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::raw_string;
+
+    #[test]
+    fn raw_strings_keep_their_characters_and_survive_quotes() {
+        assert_eq!(raw_string("q̈₁ = 0").to_string(), "r#\"q̈₁ = 0\"#");
+        assert_eq!(
+            raw_string("a \"# b").to_string(),
+            "r##\"a \"# b\"##",
+            "a quote followed by a hash needs two hashes"
+        );
     }
 }

@@ -1,8 +1,9 @@
 //! The specialised forward dynamics of an unconstrained system: an
-//! `accelerations` method solving `M q̈ = f` by a Cholesky factorisation
-//! `M = L Lᵀ` unrolled for the system's size, which skips every entry of
-//! `L` that the structural zeros of `M` make zero (a tree's branches), with
-//! the same checks and errors as the runtime's `dalembert::accelerations`.
+//! `accelerations` method solving `M q̈ = f` by a square-root-free Cholesky
+//! factorisation `M = L D Lᵀ` unrolled for the system's size, which skips
+//! every entry of `L` that the structural zeros of `M` make zero (a tree's
+//! branches), with the same checks and errors as the runtime's
+//! `dalembert::accelerations` (the pivots `Dⱼ` are the `Lⱼⱼ²` of `L Lᵀ`).
 
 use crate::equations::Equations;
 use crate::model::Model;
@@ -37,8 +38,8 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
     let tolerance = Literal::f64_unsuffixed(RELATIVE_PIVOT_TOLERANCE);
     quote! {
         /// The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a
-        /// Cholesky factorisation unrolled for this system (structural zeros
-        /// of `M` skipped). Same checks and errors as
+        /// square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this
+        /// system (structural zeros of `M` skipped). Same checks and errors as
         /// `dalembert::accelerations`: a non-finite state, equation or result,
         /// or a pivot `Lⱼⱼ²` not above `1e-14` times the largest diagonal
         /// entry of `M`, is an error.
@@ -96,20 +97,16 @@ fn fill_pattern(model: &Model, equations: &Equations) -> Vec<Vec<bool>> {
     pattern
 }
 
-/// `start − Σ a·b` over `pairs`, parenthesised if there are any.
+/// `start − Σ a·b` over `pairs`.
 fn minus_products(
     start: TokenStream,
     pairs: impl Iterator<Item = (TokenStream, TokenStream)>,
 ) -> TokenStream {
-    let mut out = start.clone();
+    let mut out = start;
     for (a, b) in pairs {
         out = quote!(#out - #a * #b);
     }
-    if out.to_string() == start.to_string() {
-        start
-    } else {
-        quote!((#out))
-    }
+    out
 }
 
 /// The name of `Mᵢⱼ`.
@@ -122,28 +119,34 @@ fn index(i: usize) -> Literal {
     Literal::usize_unsuffixed(i)
 }
 
-/// The name of `Lᵢⱼ`.
+/// The name of `Lᵢⱼ` (unit lower triangular factor).
 fn entry(i: usize, j: usize) -> Ident {
     format_ident!("l{}_{}", i, j)
 }
 
-/// The columns of `L`: pivot test, reciprocal of the diagonal, entries.
+/// The name of `Lᵢⱼ Dⱼ`, the entry before its division by the pivot.
+fn unscaled(i: usize, j: usize) -> Ident {
+    format_ident!("w{}_{}", i, j)
+}
+
+/// The columns of `M = L D Lᵀ` (no square roots): the entries `Lᵢⱼ Dⱼ`,
+/// the pivot `Dⱼ` and its test, its reciprocal, then `Lᵢⱼ`.
 fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
-    for j in 0..nq {
-        let row_j = |k: usize| pattern[j][k];
+    let shared = |i: usize, j: usize| (0..j).filter(move |&k| pattern[i][k] && pattern[j][k]);
+    for (j, coordinate) in model.coordinates.iter().enumerate().take(nq) {
         let jj = index(j);
         let diagonal = mass(j, j);
         let pivot = minus_products(
             quote!(#diagonal),
-            (0..j).filter(|&k| row_j(k)).map(|k| {
-                let l = entry(j, k);
-                (quote!(#l), quote!(#l))
+            shared(j, j).map(|k| {
+                let (w, l) = (unscaled(j, k), entry(j, k));
+                (quote!(#w), quote!(#l))
             }),
         );
         let (p, r) = (format_ident!("p{}", j), format_ident!("r{}", j));
-        let coordinate = model.coordinates[j].to_string();
+        let coordinate = coordinate.to_string();
         out.extend(quote! {
             let #p = #pivot;
             if !(#p > tolerance) {
@@ -153,25 +156,25 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
                     pivot: #p,
                 });
             }
-            let #r = 1.0 / #p.sqrt();
+            let #r = 1.0 / #p;
         });
         for i in (j + 1..nq).filter(|&i| pattern[i][j]) {
             let start = mass(i, j);
             let value = minus_products(
                 quote!(#start),
-                (0..j).filter(|&k| pattern[i][k] && row_j(k)).map(|k| {
-                    let (a, b) = (entry(i, k), entry(j, k));
-                    (quote!(#a), quote!(#b))
+                shared(i, j).map(|k| {
+                    let (w, l) = (unscaled(i, k), entry(j, k));
+                    (quote!(#w), quote!(#l))
                 }),
             );
-            let l = entry(i, j);
-            out.extend(quote!(let #l = #value * #r;));
+            let (w, l) = (unscaled(i, j), entry(i, j));
+            out.extend(quote!(let #w = #value; let #l = #w * #r;));
         }
     }
     out
 }
 
-/// `L y = f`.
+/// `L y = f` (`L` has a unit diagonal).
 fn forward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
     let mut out = TokenStream::new();
     for (i, row) in pattern.iter().enumerate() {
@@ -183,27 +186,27 @@ fn forward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
                 (quote!(#l), quote!(#y))
             }),
         );
-        let (y, r) = (format_ident!("y{}", i), format_ident!("r{}", i));
-        out.extend(quote!(let #y = #value * #r;));
+        let y = format_ident!("y{}", i);
+        out.extend(quote!(let #y = #value;));
     }
     out
 }
 
-/// `Lᵀ x = y`.
+/// `D Lᵀ x = y`: `xᵢ = yᵢ / Dᵢ − Σₖ Lₖᵢ xₖ`.
 fn backward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
     for i in (0..nq).rev() {
-        let y = format_ident!("y{}", i);
+        let (y, r) = (format_ident!("y{}", i), format_ident!("r{}", i));
         let value = minus_products(
-            quote!(#y),
+            quote!(#y * #r),
             (i + 1..nq).filter(|&k| pattern[k][i]).map(|k| {
                 let (l, x) = (entry(k, i), format_ident!("x{}", k));
                 (quote!(#l), quote!(#x))
             }),
         );
-        let (x, r) = (format_ident!("x{}", i), format_ident!("r{}", i));
-        out.extend(quote!(let #x = #value * #r;));
+        let x = format_ident!("x{}", i);
+        out.extend(quote!(let #x = #value;));
     }
     out
 }

@@ -1,13 +1,11 @@
-//! Differentiation (partial and total time derivatives, memoised in the
-//! pool) and substitution of symbols.
+//! Differentiation: partial and total time derivatives, memoised in the
+//! pool.
 //!
 //! Both are *derivations*: they follow the same sum, product and chain
 //! rules and differ only at the leaves, so one routine does both. Passes
 //! visit the DAG in post-order with an explicit stack (no recursion on
 //! expression depth) and skip every node that provably lacks the symbols
 //! involved (O(1) via the per-node summaries).
-
-use std::collections::HashMap;
 
 use super::kinds::SymKinds;
 use super::{ExprId, Func, Node, Pool, Sym};
@@ -147,34 +145,6 @@ impl Pool {
             Func::Group => self.one(),
         }
     }
-
-    /// `e` with every symbol `s` for which `map(s)` is `Some(r)` replaced by
-    /// `r`, re-canonicalised. Memoised within the call: shared
-    /// subexpressions are rebuilt once.
-    pub fn substitute(&mut self, e: ExprId, map: &dyn Fn(Sym) -> Option<ExprId>) -> ExprId {
-        let mut rebuilt: HashMap<ExprId, ExprId> = HashMap::new();
-        // Constants cannot change: they are neither visited nor rebuilt.
-        let order = self.post_order(&[e], |n| !self.kinds(n).is_empty());
-        for n in order {
-            let image = |c: ExprId| rebuilt.get(&c).copied().unwrap_or(c);
-            let new = match self.node(n).clone() {
-                Node::Sym(s) => map(s).unwrap_or(n),
-                Node::Add(terms) => {
-                    let terms: Vec<ExprId> = terms.iter().map(|&t| image(t)).collect();
-                    self.sum(terms)
-                }
-                Node::Mul(factors) => {
-                    let factors: Vec<ExprId> = factors.iter().map(|&f| image(f)).collect();
-                    self.product(factors)
-                }
-                Node::Pow(base, exp) => self.powi(image(base), exp),
-                Node::Func(f, arg) => self.func(f, image(arg)),
-                Node::Number(_) => n,
-            };
-            rebuilt.insert(n, new);
-        }
-        rebuilt.get(&e).copied().unwrap_or(e)
-    }
 }
 
 #[cfg(test)]
@@ -288,29 +258,5 @@ mod tests {
             s.e("u0*q1*cos(q0) + u1*sin(q0)"),
             "canonical without expansion"
         );
-    }
-
-    #[test]
-    fn substitute_replaces_and_recanonicalises() {
-        let mut s = Scratch::default();
-        let e = s.e("sin(q0) + q0*q1");
-        let zero = s.pool.zero();
-        assert_eq!(
-            s.pool
-                .substitute(e, &|v| (v == Sym::Coord(0)).then_some(zero)),
-            zero
-        );
-        let minus_y = s.e("-q1");
-        let swapped = s
-            .pool
-            .substitute(e, &|v| (v == Sym::Coord(0)).then_some(minus_y));
-        assert_eq!(swapped, s.e("-sin(q1) - q1^2"));
-        assert_eq!(s.pool.substitute(e, &|_| None), e);
-        let shared = s.e("(q0 + q1)^2 + sin(q0 + q1)");
-        let t = s.e("t");
-        let image = s
-            .pool
-            .substitute(shared, &|v| matches!(v, Sym::Coord(_)).then_some(t));
-        assert_eq!(image, s.e("4*t^2 + sin(2*t)"));
     }
 }

@@ -84,14 +84,6 @@ impl Rational {
         Rational::new(num, den)
     }
 
-    /// `-self`, `None` on overflow.
-    pub fn checked_neg(self) -> Option<Rational> {
-        Some(Rational {
-            num: self.num.checked_neg()?,
-            den: self.den,
-        })
-    }
-
     /// `1 / self`, `None` for zero or on overflow.
     pub fn checked_recip(self) -> Option<Rational> {
         Rational::new(self.den, self.num)
@@ -311,7 +303,6 @@ mod tests {
         assert_eq!(r(5, 7).checked_pow(0), Some(Rational::ONE));
         assert_eq!(Rational::int(i128::MAX).checked_add(Rational::ONE), None);
         assert_eq!(Rational::int(10).checked_pow(40), None);
-        assert_eq!(Rational::int(i128::MIN).checked_neg(), None);
     }
 
     #[test]

@@ -53,11 +53,6 @@ impl Pool {
         self.nodes.len()
     }
 
-    /// Whether the pool is empty (never: `0` and `1` are always there).
-    pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
-    }
-
     /// The id of `node`, interning it if it is new. `node` must already be
     /// canonical: this is the only place nodes are created, and only the
     /// canonicalising constructors call it. Panics only beyond 2³² nodes
@@ -276,7 +271,6 @@ mod tests {
         assert_eq!(p.int(1), p.one());
         assert_eq!(p.rational(4, 2), p.int(2));
         assert_eq!(p.len(), 4);
-        assert!(!p.is_empty());
     }
 
     #[test]

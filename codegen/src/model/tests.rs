@@ -356,7 +356,7 @@ fn derivation_errors(source: &str) -> Vec<(String, usize, usize)> {
 fn a_mass_may_move_with_time_only_if_time_cancels() {
     // A bead carried round by a turning platform: `t` cancels from
     // `T = ½ m l²`, so the timeless `mass_matrix(q)` and energies hold.
-    let platform = "frame R = N.rotate_z(t);\n    particle p { mass: m, at: O + l * R.x };";
+    let platform = "frame R = N.rotate_z(t);\n    particle p { mass: m, at: O + l * R.x };\n    particle bob { mass: m, at: G };";
     assert!(errors(&pendulum(platform)).is_empty());
     assert!(derivation_errors(&pendulum(platform)).is_empty());
     // With gravity in the plane, `V = m g l sin t` keeps `t`.
@@ -367,6 +367,7 @@ fn a_mass_may_move_with_time_only_if_time_cancels() {
         "{found:?}"
     );
     assert_eq!((found[0].1, found[0].2), (8, 13));
+
     let shaken = "point C = G + sin(t) * N.x;\n    body b { mass: m, center: C, frame: B, inertia: [1, 1, 1] };";
     let found = derivation_errors(&pendulum(shaken));
     assert_eq!(found.len(), 1, "{found:?}");
@@ -399,4 +400,23 @@ fn a_constraint_jacobian_may_not_depend_on_time() {
         4,
     );
     assert!(errors(&pendulum("constraint l * sin(theta) == sin(t);")).is_empty());
+}
+
+#[test]
+fn a_coordinate_that_moves_no_mass_is_reported_at_its_declaration() {
+    let found = derivation_errors(
+        "P {
+    parameters m, l, k;
+    coordinates theta, idle;
+    frame B = N.rotate_z(theta);
+    particle bob { mass: m, at: O - l * B.y };
+    potential k * idle^2;
+}",
+    );
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(
+        found[0].0.contains("the coordinate `idle` moves no mass"),
+        "{found:?}"
+    );
+    assert_eq!((found[0].1, found[0].2), (3, 23));
 }

@@ -315,6 +315,9 @@ struct Notation {
     /// Writes a word subscript (`_φ`, `_{\phi}`), then digits if any.
     labelled: fn(&mut String, Option<&Word>, &str),
     call: fn(Func) -> Call,
+    /// Between two factors when one is a name of several letters, which a
+    /// plain space would read as a product of letters (`m ma`).
+    word_times: &'static str,
 }
 
 impl Style {
@@ -337,6 +340,7 @@ const UNICODE: Notation = Notation {
     dotted: unicode_dotted,
     labelled: unicode_labelled,
     call: unicode_call,
+    word_times: "·",
 };
 
 /// LaTeX math.
@@ -349,6 +353,7 @@ const LATEX: Notation = Notation {
     dotted: latex_dotted,
     labelled: latex_labelled,
     call: latex_call,
+    word_times: " ",
 };
 
 /// `²`, `⁻¹`.
@@ -537,7 +542,7 @@ impl Term {
                 Factor { base, exp, flipped }
             })
             .collect();
-        factors.sort_by_key(|f| (f.exp < 0, factor_order(pool, f.base)));
+        factors.sort_by_key(|f| (f.exp < 0, factor_order(pool, f.base, f.exp)));
         Term {
             coefficient,
             factors,
@@ -549,7 +554,7 @@ impl Term {
     fn rate_degree(&self, pool: &Pool) -> i64 {
         self.factors
             .iter()
-            .filter(|f| factor_order(pool, f.base).0 >= FactorClass::Speed)
+            .filter(|f| factor_order(pool, f.base, f.exp).0 >= FactorClass::Speed)
             .map(|f| i64::from(f.exp))
             .sum()
     }
@@ -558,7 +563,7 @@ impl Term {
     fn varying_factors(&self, pool: &Pool) -> usize {
         self.factors
             .iter()
-            .filter(|f| factor_order(pool, f.base).0 != FactorClass::Param)
+            .filter(|f| factor_order(pool, f.base, f.exp).0 != FactorClass::Param)
             .count()
     }
 }
@@ -623,10 +628,12 @@ enum FactorClass {
     Multiplier,
 }
 
-/// The sort key of a factor with base `base`.
-fn factor_order(pool: &Pool, base: ExprId) -> (FactorClass, Option<Sym>, ExprId) {
+/// The sort key of a factor `base^exp`: by class, parameters to the first
+/// power before powers of parameters (so `m r²` and `m L²` print alike,
+/// whatever the declaration order), then symbol, then id.
+fn factor_order(pool: &Pool, base: ExprId, exp: i32) -> (FactorClass, bool, Option<Sym>, ExprId) {
     let Node::Sym(s) = *pool.node(base) else {
-        return (FactorClass::Composite, None, base);
+        return (FactorClass::Composite, false, None, base);
     };
     let class = match s {
         Sym::Param(_) => FactorClass::Param,
@@ -637,7 +644,8 @@ fn factor_order(pool: &Pool, base: ExprId) -> (FactorClass, Option<Sym>, ExprId)
         Sym::Accel(_) => FactorClass::Accel,
         Sym::Multiplier(_) => FactorClass::Multiplier,
     };
-    (class, Some(s), base)
+    let raised = class == FactorClass::Param && exp.abs() > 1;
+    (class, raised, Some(s), base)
 }
 
 /// The printer: one pass over an expression tree, writing into `out`.
@@ -726,10 +734,24 @@ impl<'a> Walker<'a> {
             self.number(c);
         }
         for (i, factor) in term.factors.iter().enumerate() {
-            if i > 0 || !c.is_one() {
+            let after_word = i > 0 && self.is_word(term.factors[i - 1]);
+            if after_word || (i > 0 && self.is_word(*factor)) {
+                self.out.push_str(self.notation.word_times);
+            } else if i > 0 || !c.is_one() {
                 self.out.push(' ');
             }
             self.factor(*factor);
+        }
+    }
+
+    /// Whether `factor` is a symbol named by a word of several letters
+    /// (not a Greek letter's name).
+    fn is_word(&self, factor: Factor) -> bool {
+        match *self.pool.node(factor.base) {
+            Node::Sym(s) => {
+                matches!(&self.names.of(s).0.stem, Word::Text(t) if t.chars().count() > 1)
+            }
+            _ => false,
         }
     }
 
@@ -956,6 +978,19 @@ mod tests {
             both(&names, Sym::Speed(2)),
             ("M\u{307}_φ₂".into(), "\\dot{M}_{\\phi,2}".into())
         );
+    }
+
+    #[test]
+    fn powers_of_parameters_follow_and_words_are_multiplied_visibly() {
+        let mut p = Pool::new();
+        let names = SymbolNames::new(&["r", "m", "ma"], &["q"], &[] as &[&str]);
+        let [r, m, ma] = [0, 1, 2].map(|i| p.sym(Sym::Param(i)));
+        let r2 = p.powi(r, 2);
+        let e = p.product([m, r2]);
+        assert_eq!(unicode(&p, e, &names), "m r²", "declared r before m");
+        let e = p.product([m, ma]);
+        assert_eq!(unicode(&p, e, &names), "m·ma");
+        assert_eq!(latex(&p, e, &names), "m \\mathrm{ma}");
     }
 
     #[test]

@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""Merge the `spellings` criterion medians with the Pinocchio/MuJoCo peer CSV.
+
+Usage: python3 benches/spellings_table.py PEER_CSV [TARGET_DIR]
+  PEER_CSV     output of `bash ../shared/peers/pinocchio/run.sh --ns 2,6,12,30`
+  TARGET_DIR   default: $CARGO_TARGET_DIR or target
+
+Prints the Markdown table of BENCHMARKS.md: per family, spelling and n, the
+median ns per call of `mass_matrix` + `forcing` and of the generated
+`accelerations`, with the ratios to Pinocchio (crba_sym + nle; aba) and to
+MuJoCo (M + f; forward) of the same run, and the slowest-to-fastest spelling
+ratio.
+"""
+import csv
+import glob
+import json
+import os
+import sys
+
+peer_csv = sys.argv[1]
+target = sys.argv[2] if len(sys.argv) > 2 else os.environ.get("CARGO_TARGET_DIR", "target")
+
+ours = {}  # (family, spelling, n, function) -> median ns
+for path in glob.glob(os.path.join(target, "criterion", "**", "new", "benchmark.json"), recursive=True):
+    with open(path) as f:
+        bench = json.load(f)
+    parts = bench["group_id"].split("/")
+    if len(parts) != 3:
+        continue
+    family, spelling, n = parts
+    with open(path.replace("benchmark.json", "estimates.json")) as f:
+        ours[(family, spelling, int(n), bench["function_id"])] = json.load(f)["median"]["point_estimate"]
+
+peer = {}  # (family, n, algo) -> median ns
+with open(peer_csv) as f:
+    for row in csv.DictReader(line for line in f if not line.startswith("#")):
+        peer[(row["family"], int(row["n"]), row["algo"])] = float(row["median_ns"])
+
+spellings = ["joints", "symbolic", "seed"]
+print("| family | n | spelling | M + f (ns) | / Pinocchio crba+nle | / MuJoCo M+f | accelerations (ns) | / Pinocchio aba | / MuJoCo forward |")
+print("|---|---|---|---|---|---|---|---|---|")
+spread = []
+for family in ["planar", "spatial"]:
+    for n in sorted({k[2] for k in ours if k[0] == family}):
+        pin_mf = peer.get((family, n, "pin_crba_sym"), 0) + peer.get((family, n, "pin_nle"), 0)
+        pin_aba = peer.get((family, n, "pin_aba"))
+        mj_mf = peer.get((family, n, "mj_M_f"))
+        mj_fwd = peer.get((family, n, "mj_forward"))
+        row_mf, row_acc = [], []
+        for spelling in spellings:
+            mf = ours.get((family, spelling, n, "mass_matrix+forcing"))
+            acc = ours.get((family, spelling, n, "accelerations"))
+            if mf is None or acc is None:
+                continue
+            row_mf.append(mf)
+            row_acc.append(acc)
+            ratio = lambda a, b: f"{a / b:.2f}" if b else "–"
+            print(f"| {family} | {n} | {spelling} | {mf:.0f} | {ratio(mf, pin_mf)} | {ratio(mf, mj_mf)} "
+                  f"| {acc:.0f} | {ratio(acc, pin_aba)} | {ratio(acc, mj_fwd)} |")
+        if row_mf:
+            spread.append((family, n, max(row_mf) / min(row_mf), max(row_acc) / min(row_acc)))
+print()
+print("| family | n | slowest / fastest spelling, M + f | accelerations |")
+print("|---|---|---|---|")
+for family, n, mf, acc in spread:
+    print(f"| {family} | {n} | {mf:.2f} | {acc:.2f} |")
