@@ -3,7 +3,7 @@
 //! points with torque inputs), both families, n = 2, 6, 12, 30:
 //! `mass_matrix` + `forcing` (the counterpart of Pinocchio's `crba` +
 //! `nonLinearEffects`) and the generated `accelerations` (the counterpart
-//! of `aba`). Same method as `chains.rs`: 1000 fixed pseudo-random states,
+//! of `aba`). Same method as `chains.rs` (`dalembert_fixtures::states`): 1000 fixed pseudo-random states,
 //! one call per iteration.
 //!
 //! Run with `cargo bench -p dalembert-generated --bench spellings`; see
@@ -15,9 +15,7 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert_generated::*;
 
-#[path = "../../benches/harness/mod.rs"]
-mod harness;
-use harness::{per_call, states};
+use dalembert_fixtures::states::{per_call, states};
 
 /// The two benchmarks of one system, in group `FAMILY/SPELLING/n`.
 macro_rules! bench {
@@ -31,7 +29,7 @@ macro_rules! bench {
                     let system = black_box(&system);
                     (
                         system.mass_matrix(&s.q),
-                        system.forcing(s.t, &s.q, &s.qd, &s.u),
+                        system.forcing(s.t, &s.q, &s.v, &s.u),
                     )
                 })
             })
@@ -39,7 +37,7 @@ macro_rules! bench {
         group.bench_function("accelerations", |b| {
             b.iter_custom(|iters| {
                 per_call(&states, iters, |s| {
-                    black_box(&system).accelerations(s.t, &s.q, &s.qd, &s.u)
+                    black_box(&system).accelerations(s.t, &s.q, &s.v, &s.u)
                 })
             })
         });
