@@ -123,7 +123,13 @@ impl Interpreter {
     /// Parses, checks and derives the system in `source` (the text of a
     /// `.dal` file) along `route`; the same errors as [`check`](crate::check).
     pub fn new(source: &str, route: Route) -> syn::Result<Interpreter> {
-        let (mut model, mut equations) = crate::derive(crate::lex(source)?)?;
+        let (mut model, mut pool, mut equations) = crate::derive_unoptimised(crate::lex(source)?)?;
+        // The same checks as the generator, on the optimised equations; the
+        // interpreter evaluates the unoptimised ones.
+        let mut optimised = equations.clone();
+        crate::optimize::optimize(&mut optimised, &mut pool);
+        model.pool = pool;
+        crate::check_equations(&model, &optimised)?;
         let mut pool = std::mem::take(&mut model.pool);
         if route == Route::Lagrange {
             let (mass_matrix, forcing) = lagrange::lagrange(

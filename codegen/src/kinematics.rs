@@ -133,26 +133,15 @@ impl Kinematics {
         c: &Vec3,
     ) -> Vec3 {
         let ancestor = common_ancestor(model, from, to);
-        let up = self.rotation_from_ancestor(pool, model, ancestor, from);
+        let up = self.relative_rotation(pool, model, ancestor, from);
         let in_ancestor = mat_vec(pool, &up, c);
-        let down = self.rotation_from_ancestor(pool, model, ancestor, to);
+        let down = self.relative_rotation(pool, model, ancestor, to);
         transpose_mul(pool, &down, &in_ancestor)
     }
 
     /// The rotation mapping the components of `frame` to those of its
     /// ancestor `ancestor` (`N` included), through the frames between.
     pub fn relative_rotation(
-        &self,
-        pool: &mut Pool,
-        model: &Model,
-        ancestor: FrameId,
-        frame: FrameId,
-    ) -> Mat3 {
-        self.rotation_from_ancestor(pool, model, ancestor, frame)
-    }
-
-    /// The rotation mapping `frame`'s components to those of its ancestor.
-    fn rotation_from_ancestor(
         &self,
         pool: &mut Pool,
         model: &Model,

@@ -148,15 +148,30 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
 /// Parses, checks, derives and optimises: the model (owning the expression
 /// pool) and its equations.
 fn derive(input: TokenStream) -> syn::Result<(model::Model, equations::Equations)> {
+    let (mut model, mut pool, mut equations) = derive_unoptimised(input)?;
+    optimize::optimize(&mut equations, &mut pool);
+    model.pool = pool;
+    check_equations(&model, &equations)?;
+    Ok((model, equations))
+}
+
+/// Parses, checks and derives: the model, the expression pool (taken out of
+/// the model) and the equations as derived, before optimisation. The checks
+/// of the derived equations ([`check_equations`]) need the optimised ones.
+fn derive_unoptimised(
+    input: TokenStream,
+) -> syn::Result<(model::Model, expr::Pool, equations::Equations)> {
     let system = language::parse_system(input)?;
     let mut model = model::resolve(&system)?;
     let mut pool = std::mem::take(&mut model.pool);
-    let mut equations = equations::derive(&model, &mut pool);
-    optimize::optimize(&mut equations, &mut pool);
-    model.pool = pool;
-    check_timeless(&model, &equations)?;
-    check_inertia(&model, &equations)?;
-    Ok((model, equations))
+    let equations = equations::derive(&model, &mut pool);
+    Ok((model, pool, equations))
+}
+
+/// The checks that need the derived (and optimised) equations.
+fn check_equations(model: &model::Model, equations: &equations::Equations) -> syn::Result<()> {
+    check_timeless(model, equations)?;
+    check_inertia(model, equations)
 }
 
 /// Every coordinate must move some mass: a coordinate whose diagonal entry
