@@ -82,12 +82,15 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
         )
     });
     // Measured (10³ s | 10⁴ s): RK4 3.8e-4 → 3.8e-3 | 3.8e-3 → 3.9e-2;
-    // DOP853 3.3e-6 → 3.3e-5 | 3.3e-5 → 3.2e-4: linear drifts, tenfold over
-    // ten times the time. Gauss 4: 9.9e-5 | 1.4e-4 over the whole horizon.
+    // DOP853 3.3e-6 → 3.3e-5 | 3.3e-5 → 3.2e-4 (2.6e-6 → 3.7e-5 with the
+    // L D Lᵀ solver, whose rounding takes the chaotic motion on another path):
+    // linear drifts, about tenfold over ten times the time. The window tells
+    // a linear drift (×10) from a bounded error (×1) and a quadratic one (×100).
+    // Gauss 4: 9.9e-5 | 1.4e-4 over the whole horizon.
     for (name, (first_tenth, all)) in [("RK4", rk4), ("DOP853", dop853)] {
         let growth = all / first_tenth;
         assert!(
-            (6.0..14.0).contains(&growth),
+            (5.0..20.0).contains(&growth),
             "{name}: {first_tenth:e} → {all:e}"
         );
     }
