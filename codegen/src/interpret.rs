@@ -76,20 +76,9 @@ impl Sample {
     /// lengths are), `t` in `[0, 3)`, coordinates in `[−3, 3)`, speeds in
     /// `[−2, 2)`, inputs in `[−5, 5)`.
     pub fn random(interpreter: &Interpreter, seed: u64) -> Sample {
-        // xorshift64 from a scrambled seed: small, fast and deterministic.
-        let mut x = seed
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407)
-            | 1;
+        let mut random = crate::random::Random::new(seed);
         let mut draw = |n: usize, low: f64, width: f64| -> Vec<f64> {
-            (0..n)
-                .map(|_| {
-                    x ^= x << 13;
-                    x ^= x >> 7;
-                    x ^= x << 17;
-                    low + width * ((x >> 11) as f64 / (1u64 << 53) as f64)
-                })
-                .collect()
+            (0..n).map(|_| random.uniform(low, low + width)).collect()
         };
         Sample {
             parameters: draw(interpreter.np(), 0.5, 1.0),

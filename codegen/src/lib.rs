@@ -25,6 +25,7 @@ mod kinematics;
 mod language;
 mod model;
 mod optimize;
+mod random;
 mod render;
 #[cfg(test)]
 mod seeds;
@@ -47,9 +48,15 @@ pub use urdf::Urdf;
 ///   ([`Family`](testing::Family)) as model text, in three
 ///   [`Spelling`](testing::Spelling)s; the `dalembert chain` command prints
 ///   them.
+/// * [`Geometry`](testing::Geometry) gives the positions of a model's points
+///   and the rotations of its frames from the engine's kinematics (what the
+///   animations draw).
+/// * [`Random`](testing::Random) is the one deterministic generator of the
+///   project's random states.
 pub mod testing {
     pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
     pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
+    pub use crate::random::Random;
 }
 
 use proc_macro2::TokenStream;

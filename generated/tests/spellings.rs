@@ -127,22 +127,13 @@ fn symbolic_and_seed_spellings_match_pinocchio() {
     );
 }
 
-/// A pseudo-random number in `[-1, 1)` (xorshift64*).
-fn next(state: &mut u64) -> f64 {
-    *state ^= *state >> 12;
-    *state ^= *state << 25;
-    *state ^= *state >> 27;
-    let bits = state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11;
-    bits as f64 / (1u64 << 52) as f64 - 1.0
-}
-
 /// The three spellings agree at random states.
 macro_rules! spellings_agree {
     ($n:literal, $joints:expr, $symbolic:expr, $seed:expr) => {{
-        let mut state = 0x9E37_79B9_7F4A_7C15_u64 ^ $n;
+        let mut random = dalembert_codegen::testing::Random::new($n);
         for s in 0..8 {
-            let q: [f64; $n] = std::array::from_fn(|_| 3.0 * next(&mut state));
-            let qd: [f64; $n] = std::array::from_fn(|_| 2.0 * next(&mut state));
+            let q: [f64; $n] = std::array::from_fn(|_| random.uniform(-3.0, 3.0));
+            let qd: [f64; $n] = std::array::from_fn(|_| random.uniform(-2.0, 2.0));
             let joints = evaluate!(&$joints, &q, &qd);
             let what = format!("{} state {s}", stringify!($joints));
             assert_agree(

@@ -10,10 +10,6 @@ use crate::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 
-/// A Cholesky pivot at most this fraction of the largest diagonal entry of
-/// `M` counts as zero, as in the runtime's `dalembert::accelerations`.
-const RELATIVE_PIVOT_TOLERANCE: f64 = 1e-14;
-
 /// `pub fn accelerations(..)`, for systems without constraints.
 pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
     let nq = model.nq();
@@ -35,14 +31,13 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
         quote!([#(#row),*])
     });
     let forcing = (0..nq).map(|i| format_ident!("f{}", i));
-    let tolerance = Literal::f64_unsuffixed(RELATIVE_PIVOT_TOLERANCE);
     quote! {
         /// The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a
         /// square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this
         /// system (structural zeros of `M` skipped). Same checks and errors as
         /// `dalembert::accelerations`: a non-finite state, equation or result,
-        /// or a pivot `Lⱼⱼ²` not above `1e-14` times the largest diagonal
-        /// entry of `M`, is an error.
+        /// or a pivot not above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE`
+        /// times the largest diagonal entry of `M`, is an error.
         #[inline]
         pub fn accelerations(
             &self,
@@ -63,7 +58,7 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
             let [#(#rows),*] = m;
             let [#(#forcing),*] = f;
             let tolerance =
-                #tolerance * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
+                ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
             #factor
             #forward
             #backward

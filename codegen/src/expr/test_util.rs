@@ -5,23 +5,9 @@ use std::collections::BTreeMap;
 
 use super::{Env, ExprId, Func, Pool, Sym};
 
-/// A deterministic xorshift generator (tests must not depend on a seed
+/// The project's deterministic generator (tests must not depend on a seed
 /// from the environment).
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Rng {
-        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-
-    /// A uniform value in `[lo, hi)`.
-    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        lo + (hi - lo) * (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+pub use crate::random::Random as Rng;
 
 /// Values of symbols; absent symbols are `NaN` so that a forgotten one
 /// shows.
