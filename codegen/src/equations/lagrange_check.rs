@@ -8,7 +8,7 @@ use crate::seeds::{CONSTRAINED_PENDULUM, DOUBLE_PENDULUM, ROTATING_BAR};
 /// Seed examples 1–3 as in DESIGN §3, and systems that exercise the rest of
 /// the language: 3-D rotations, products of inertia, particles, forces,
 /// reacting torques, potentials, dissipation, constant tilts and joints.
-const SYSTEMS: [&str; 10] = [
+const SYSTEMS: [&str; 11] = [
     DOUBLE_PENDULUM,
     ROTATING_BAR,
     CONSTRAINED_PENDULUM,
@@ -104,6 +104,18 @@ const SYSTEMS: [&str; 10] = [
     }",
     // Constant axes and welded frames of both signs, a slide along a
     // rotated axis, loads in other links' frames.
+    // Two joints through one point (a shoulder): the second hangs from
+    // the first at the first's origin, and the third sits further out.
+    "pub Shoulder {
+        parameters m, L, g;
+        coordinates q1, q2, q3;
+        joint revolute J1 { parent: N, child: A, axis: z, coordinate: q1, at: O + L * N.z };
+        joint revolute J2 { parent: A, child: B, axis: [0, 1, 1], coordinate: q2, at: J1 };
+        joint revolute J3 { parent: B, child: C, axis: x, coordinate: q3, at: J2 + L * B.x };
+        body upper { mass: m, center: J2 + L/2 * B.x, frame: B, inertia: [m/10, m*L^2/12, m*L^2/12] };
+        body lower { mass: m/2, center: J3 + L/2 * C.y, frame: C, inertia: [m*L^2/24, m/20, m*L^2/24, m/50, 0, 0] };
+        gravity -g * N.z;
+    }",
     "pub Tilted {
         parameters m, a, b, g;
         coordinates q1, q2, q3;
@@ -204,6 +216,7 @@ fn the_trees_among_them_take_the_recursive_route() {
             "Tree",
             "SeedChain",
             "CartPole",
+            "Shoulder",
             "Tilted"
         ]
     );

@@ -321,9 +321,8 @@ impl Builder {
         parent: Option<usize>,
         offset: Vector,
     ) -> Option<()> {
-        if self.orientation_of(parent) != self.links[child].parent_orientation {
-            return None;
-        }
+        let wanted = self.links[child].parent_orientation;
+        let (parent, offset) = self.hang(pool, wanted, parent, offset)?;
         let draft = &mut self.links[child];
         match draft.parent {
             None => {
@@ -336,6 +335,28 @@ impl Builder {
                 (placed == parent && moved.parts.is_empty()).then_some(())
             }
         }
+    }
+
+    /// The link with the axes `wanted` that the point at `offset` from the
+    /// origin of `parent` is fixed in, placing joints on the way. A revolute
+    /// joint's origin lies on its axis, so it is fixed in its parent link and
+    /// in its own: when a point of `parent` carries a link that turns from
+    /// other axes, the point is the origin of the joint that turns those axes
+    /// (two or three axes through one point, as in a robot's shoulder or
+    /// wrist; `place` checks it against every other point of that joint).
+    fn hang(
+        &mut self,
+        pool: &mut Pool,
+        wanted: FrameId,
+        parent: Option<usize>,
+        offset: Vector,
+    ) -> Option<(Option<usize>, Vector)> {
+        if self.orientation_of(parent) == wanted {
+            return Some((parent, offset));
+        }
+        let between = self.link_started_by(wanted)?;
+        self.place(pool, between, parent, offset)?;
+        Some((Some(between), Vector::default()))
     }
 
     /// Where a body with centre `center` turning with `frame` is fixed.
