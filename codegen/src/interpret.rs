@@ -176,6 +176,14 @@ impl Interpreter {
         self.pool.eval_many(&self.equations.forcing, at)
     }
 
+    /// `q̈` by the articulated-body recursion (the d'Alembert route's, on
+    /// either route), for kinematic trees without constraints; `None` for
+    /// other systems. Panics as [`mass_matrix`](Self::mass_matrix).
+    pub fn articulated_accelerations(&self, at: &Values<'_>) -> Option<Vec<f64>> {
+        let articulated = self.equations.articulated.as_ref()?;
+        Some(self.pool.eval_many(&articulated.accelerations, at))
+    }
+
     /// `T(q, q̇)`. Panics as [`mass_matrix`](Self::mass_matrix).
     pub fn kinetic_energy(&self, at: &Values<'_>) -> f64 {
         self.pool.eval(self.equations.kinetic_energy, at)

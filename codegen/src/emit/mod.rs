@@ -58,7 +58,7 @@ pub fn emit(
     let constants = emit_constants(model, &documentation.text);
     let traits = match target {
         Target::Std => {
-            let solver = solve::emit_accelerations(model, equations);
+            let solver = solve::emit_accelerations(model, equations, &names);
             let has_solver = !solver.is_empty();
             items.push(solver);
             emit_trait_impls(name, nq, nu, nc, has_solver)

@@ -1,43 +1,59 @@
 //! The specialised forward dynamics of an unconstrained system: an
-//! `accelerations` method solving `M q̈ = f` by a square-root-free Cholesky
-//! factorisation `M = L D Lᵀ` unrolled for the system's size, which skips
-//! every entry of `L` that the structural zeros of `M` make zero (a tree's
-//! branches), with the same checks and errors as the runtime's
+//! `accelerations` method solving `M q̈ = f`, by whichever of two routes
+//! costs fewer operations for the system:
+//!
+//! * a square-root-free Cholesky factorisation `M = L D Lᵀ` unrolled for
+//!   the system's size, which skips every entry of `L` that the structural
+//!   zeros of `M` make zero (a tree's branches): `O(n³)` for a chain, and
+//!   cheapest for few coordinates;
+//! * for kinematic trees, the articulated-body recursion derived with the
+//!   equations (`O(n)`, see `equations::articulated`), which never forms
+//!   `M` and wins for long chains.
+//!
+//! Both have the same checks and errors as the runtime's
 //! `dalembert::accelerations` (the pivots `Dⱼ` are the `Lⱼⱼ²` of `L Lᵀ`).
 
-use crate::equations::Equations;
+use super::body::{Names, straight_line};
+use crate::equations::{Articulated, Equations};
+use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 
+/// Operations charged for the `sin_cos` of a coordinate.
+const SIN_COS_COST: usize = 10;
+
+/// Operations charged for any other elementary function.
+const FUNCTION_COST: usize = 20;
+
 /// `pub fn accelerations(..)`, for systems without constraints.
-pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
+pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
     let nq = model.nq();
     if !model.constraints.is_empty() || nq == 0 {
         return TokenStream::new();
     }
     let pattern = fill_pattern(model, equations);
-    let factor = factorisation(model, &pattern);
-    let forward = forward_substitution(&pattern);
-    let backward = backward_substitution(&pattern);
-    let solution: Vec<Ident> = (0..nq).map(|i| format_ident!("x{}", i)).collect();
-    let (n_lit, nu) = (index(nq), index(model.inputs.len()));
-    let diagonal = (0..nq).map(|i| mass(i, i));
-    let rows = (0..nq).map(|i| {
-        let row = (0..nq).map(|j| match j == i || (j < i && pattern[i][j]) {
-            true => mass(i, j).into_token_stream(),
-            false => quote!(_),
-        });
-        quote!([#(#row),*])
-    });
-    let forcing = (0..nq).map(|i| format_ident!("f{}", i));
+    let (route, body) = match &equations.articulated {
+        Some(articulated) if articulated_is_cheaper(model, equations, articulated, &pattern) => (
+            "the articulated-body recursion over the kinematic tree (`M` is never formed)",
+            articulated_body(model, articulated, names),
+        ),
+        _ => (
+            "a square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this system \
+             (structural zeros of `M` skipped)",
+            factorisation_body(model, &pattern),
+        ),
+    };
+    let n_lit = index(nq);
+    let nu = index(model.inputs.len());
+    let doc = format!(
+        " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by {route}. Same \
+         checks and errors as `dalembert::accelerations`: a non-finite state, equation or \
+         result, or a pivot not above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times \
+         the largest diagonal entry of `M` (the largest pivot, for the recursion), is an error."
+    );
     quote! {
-        /// The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a
-        /// square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this
-        /// system (structural zeros of `M` skipped). Same checks and errors as
-        /// `dalembert::accelerations`: a non-finite state, equation or result,
-        /// or a pivot not above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE`
-        /// times the largest diagonal entry of `M`, is an error.
+        #[doc = #doc]
         #[inline]
         pub fn accelerations(
             &self,
@@ -50,19 +66,7 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
             if !(t.is_finite() && finite(q) && finite(qd) && finite(u)) {
                 return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteState);
             }
-            let m = self.mass_matrix(q);
-            let f = self.forcing(t, q, qd, u);
-            if !(m.iter().all(|row| finite(row)) && finite(&f)) {
-                return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
-            }
-            let [#(#rows),*] = m;
-            let [#(#forcing),*] = f;
-            let tolerance =
-                ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
-            #factor
-            #forward
-            #backward
-            let qdd = [#(#solution),*];
+            #body
             if finite(&qdd) {
                 ::core::result::Result::Ok(qdd)
             } else {
@@ -70,6 +74,140 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
             }
         }
     }
+}
+
+/// The factorisation route, up to `let qdd = [..];`.
+fn factorisation_body(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
+    let nq = model.nq();
+    let factor = factorisation(model, pattern);
+    let forward = forward_substitution(pattern);
+    let backward = backward_substitution(pattern);
+    let solution: Vec<Ident> = (0..nq).map(|i| format_ident!("x{}", i)).collect();
+    let diagonal = (0..nq).map(|i| mass(i, i));
+    let rows = (0..nq).map(|i| {
+        let row = (0..nq).map(|j| match j == i || (j < i && pattern[i][j]) {
+            true => mass(i, j).into_token_stream(),
+            false => quote!(_),
+        });
+        quote!([#(#row),*])
+    });
+    let forcing = (0..nq).map(|i| format_ident!("f{}", i));
+    quote! {
+        let m = self.mass_matrix(q);
+        let f = self.forcing(t, q, qd, u);
+        if !(m.iter().all(|row| finite(row)) && finite(&f)) {
+            return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
+        }
+        let [#(#rows),*] = m;
+        let [#(#forcing),*] = f;
+        let tolerance =
+            ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
+        #factor
+        #forward
+        #backward
+        let qdd = [#(#solution),*];
+    }
+}
+
+/// The articulated-body route, up to `let qdd = [..];`: one straight-line
+/// body computing `f`, the pivots and `q̈`, then the checks.
+fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> TokenStream {
+    let roots: Vec<ExprId> = articulated
+        .forcing
+        .iter()
+        .chain(&articulated.pivots)
+        .chain(&articulated.accelerations)
+        .copied()
+        .collect();
+    let body = straight_line(&model.pool, names, &roots);
+    let nq = model.nq();
+    let statements = &body.statements;
+    let forcing = &body.outputs[..nq];
+    let pivots = &body.outputs[nq..2 * nq];
+    let accelerations = &body.outputs[2 * nq..];
+    quote! {
+        #statements
+        if !finite(&[#(#forcing),*]) {
+            return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
+        }
+        let pivots = [#(#pivots),*];
+        let tolerance = ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE
+            * pivots.into_iter().fold(0.0, ::core::primitive::f64::max);
+        for (index, (pivot, coordinate)) in pivots.into_iter().zip(Self::COORDINATES).enumerate() {
+            if !(pivot > tolerance) {
+                return ::core::result::Result::Err(::dalembert::DynamicsError::SingularMassMatrix {
+                    index,
+                    coordinate,
+                    pivot,
+                });
+            }
+        }
+        let qdd = [#(#accelerations),*];
+    }
+}
+
+/// Whether the recursion costs fewer operations than forming `M` and `f`
+/// and factorising.
+fn articulated_is_cheaper(
+    model: &Model,
+    equations: &Equations,
+    articulated: &Articulated,
+    pattern: &[Vec<bool>],
+) -> bool {
+    let pool = &model.pool;
+    let equations_roots: Vec<ExprId> = equations
+        .mass_matrix
+        .iter()
+        .flatten()
+        .chain(&equations.forcing)
+        .copied()
+        .collect();
+    let recursion_roots: Vec<ExprId> = articulated
+        .forcing
+        .iter()
+        .chain(&articulated.pivots)
+        .chain(&articulated.accelerations)
+        .copied()
+        .collect();
+    let factorised = operations(pool, &equations_roots) + factorisation_operations(pattern);
+    operations(pool, &recursion_roots) < factorised
+}
+
+/// Arithmetic operations (and charged functions) of the code computing
+/// `roots`, each shared node once.
+fn operations(pool: &Pool, roots: &[ExprId]) -> usize {
+    pool.topo_order(roots)
+        .into_iter()
+        .map(|e| match pool.node(e) {
+            Node::Number(_) | Node::Sym(_) | Node::Func(Func::Group, _) => 0,
+            Node::Add(terms) => terms.len() - 1,
+            Node::Mul(factors) => factors.len() - 1,
+            Node::Pow(_, _) => 1,
+            Node::Func(Func::Sin | Func::Cos, arg)
+                if matches!(pool.node(*arg), Node::Sym(Sym::Coord(_))) =>
+            {
+                SIN_COS_COST / 2
+            }
+            Node::Func(_, _) => FUNCTION_COST,
+        })
+        .sum()
+}
+
+/// Multiplications, subtractions and divisions of the unrolled `L D Lᵀ`
+/// solve with fill pattern `pattern`.
+fn factorisation_operations(pattern: &[Vec<bool>]) -> usize {
+    let nq = pattern.len();
+    let shared = |i: usize, j: usize| (0..j).filter(|&k| pattern[i][k] && pattern[j][k]).count();
+    let mut count = 0;
+    for j in 0..nq {
+        count += 2 * shared(j, j) + 1;
+        for i in (j + 1..nq).filter(|&i| pattern[i][j]) {
+            // Lᵢⱼ Dⱼ, then Lᵢⱼ; and its share of both substitutions.
+            count += 2 * shared(i, j) + 1 + 4;
+        }
+        count += 1;
+    }
+    count
 }
 
 /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero — `Mᵢⱼ` is not

@@ -175,6 +175,47 @@ fn dalembert_agrees_with_lagrange_on_every_example_system() {
     }
 }
 
+/// The articulated-body recursion's `q̈` satisfies Lagrange's `M q̈ = f`
+/// on every tree.
+#[test]
+fn the_articulated_recursion_solves_lagranges_equations() {
+    let mut solved = Vec::new();
+    for source in SYSTEMS {
+        let ours = interpreter(source, Route::Dalembert);
+        let theirs = interpreter(source, Route::Lagrange);
+        for seed in 0..5 {
+            let state = Sample::random(&ours, seed);
+            let at = state.values();
+            let Some(qdd) = ours.articulated_accelerations(&at) else {
+                break;
+            };
+            let (m, f) = (theirs.mass_matrix(&at), theirs.forcing(&at));
+            let scale = largest(&f) + largest(&m.concat()) * largest(&qdd);
+            for (k, row) in m.iter().enumerate() {
+                let mq: f64 = row.iter().zip(&qdd).map(|(mkj, a)| mkj * a).sum();
+                let what = format!("{} at state {seed}: (M q̈)[{k}]", ours.name());
+                assert_close(&what, mq, f[k], scale);
+            }
+            if seed == 0 {
+                solved.push(ours.name());
+            }
+        }
+    }
+    assert_eq!(
+        solved,
+        [
+            "RotatingBar",
+            "TiltedRail",
+            "Chain",
+            "Tree",
+            "SeedChain",
+            "CartPole",
+            "Shoulder",
+            "Tilted"
+        ]
+    );
+}
+
 #[test]
 fn the_mass_matrix_is_symmetric_and_its_quadratic_form_is_twice_t() {
     for source in SYSTEMS {

@@ -17,6 +17,7 @@
 use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
+pub use articulated::Articulated;
 
 /// The derived equations of one system, as expressions of the model's pool.
 #[derive(Clone)]
@@ -38,6 +39,10 @@ pub struct Equations {
     /// The velocity form `ψ = A q̇ + ψ₀` of each row: `dφ/dt` of a
     /// holonomic row, the row itself for a nonholonomic one.
     pub constraint_velocity: Vec<ExprId>,
+    /// `q̈ = M⁻¹ f` by the articulated-body recursion, for kinematic trees
+    /// (not among [`Equations::expressions_mut`]: it is code, not a formula
+    /// for the docs).
+    pub articulated: Option<Articulated>,
 }
 
 impl Equations {
@@ -96,9 +101,9 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
         .and_then(|tree| recursive::JointTree::new(model, tree, &kinematics, &inertias, pool));
     // The recursion carries the applied forces and torques; the general
     // route takes them through their partial velocities.
-    let (mass_matrix, bias, loads_done) = match tree {
+    let (mass_matrix, bias, loads_done) = match &tree {
         Some(tree) => {
-            let (mass_matrix, bias) = recursive::inertia_terms(&tree, pool);
+            let (mass_matrix, bias) = recursive::inertia_terms(tree, pool);
             (mass_matrix, bias, true)
         }
         None => {
@@ -112,7 +117,7 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
             (mass_matrix, bias, false)
         }
     };
-    let forcing = (0..nq)
+    let forcing: Vec<ExprId> = (0..nq)
         .map(|k| {
             let mut active = potential_and_dissipation_force(model, pool, k);
             if !loads_done {
@@ -123,6 +128,10 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
         })
         .collect();
     let rows = constraints(model, pool);
+    let articulated = match (&tree, model.constraints.is_empty()) {
+        (Some(tree), true) => articulated::articulated(tree, &forcing, pool),
+        _ => None,
+    };
     Equations {
         mass_matrix,
         forcing,
@@ -132,6 +141,7 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
         constraint_bias: rows.bias,
         constraint_residual: rows.residual,
         constraint_velocity: rows.velocity,
+        articulated,
     }
 }
 
@@ -367,6 +377,7 @@ fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
     rows
 }
 
+mod articulated;
 pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;

@@ -29,7 +29,7 @@ use crate::model::{JointKind, Model, NEWTONIAN, Tree, Vector};
 /// the links, the masses and the loads.
 pub struct JointTree {
     /// The links, parents before children (as in [`Tree::links`]).
-    links: Vec<Link>,
+    pub(super) links: Vec<Link>,
     /// The bodies and particles, each fixed in one link.
     masses: Vec<Mass>,
     /// Applied forces and torques: per link, the resultant and its moment
@@ -40,19 +40,19 @@ pub struct JointTree {
 }
 
 /// A link: the subtree beyond one joint.
-struct Link {
+pub(super) struct Link {
     /// The parent link, `None` for a joint on `N`.
-    parent: Option<usize>,
-    kind: JointKind,
+    pub(super) parent: Option<usize>,
+    pub(super) kind: JointKind,
     /// The joint axis (unit for a revolute joint), in the link's axes.
-    axis: Vec3,
+    pub(super) axis: Vec3,
     /// The joint's coordinate index.
-    coordinate: usize,
+    pub(super) coordinate: usize,
     /// From the parent's origin to this link's, in the parent's axes (with
     /// the slide of a prismatic joint).
-    offset: Vec3,
+    pub(super) offset: Vec3,
     /// Maps the link's components to its parent's.
-    rotation: Mat3,
+    pub(super) rotation: Mat3,
 }
 
 /// A mass fixed in a link.
@@ -76,10 +76,10 @@ struct Motion {
 
 /// A subtree's mass, first moment and inertia about its link's origin.
 #[derive(Clone, Copy)]
-struct Composite {
-    mass: ExprId,
-    moment: Vec3,
-    inertia: Mat3,
+pub(super) struct Composite {
+    pub(super) mass: ExprId,
+    pub(super) moment: Vec3,
+    pub(super) inertia: Mat3,
 }
 
 impl JointTree {
@@ -241,11 +241,11 @@ impl JointTree {
         m
     }
 
-    /// Mass, first moment and inertia of every subtree about its link's
-    /// origin, in its link's axes, leaves first.
-    fn composites(&self, pool: &mut Pool) -> Vec<Composite> {
+    /// Mass, first moment and inertia about its link's origin, in its
+    /// link's axes, of the masses fixed in each link.
+    pub(super) fn link_inertias(&self, pool: &mut Pool) -> Vec<Composite> {
         let zero = pool.zero();
-        let mut composites = vec![
+        let mut inertias = vec![
             Composite {
                 mass: zero,
                 moment: [zero; 3],
@@ -260,8 +260,15 @@ impl JointTree {
                 inertia: mass.inertia,
             };
             let own = shifted(pool, &own, &mass.center, &own.moment);
-            composites[mass.link] = combined(pool, &composites[mass.link], &own);
+            inertias[mass.link] = combined(pool, &inertias[mass.link], &own);
         }
+        inertias
+    }
+
+    /// Mass, first moment and inertia of every subtree about its link's
+    /// origin, in its link's axes, leaves first.
+    fn composites(&self, pool: &mut Pool) -> Vec<Composite> {
+        let mut composites = self.link_inertias(pool);
         for l in (0..self.links.len()).rev() {
             let Some(p) = self.links[l].parent else {
                 continue;
@@ -460,7 +467,7 @@ fn shifted(pool: &mut Pool, c: &Composite, d: &Vec3, moved: &Vec3) -> Composite 
 }
 
 /// `R K Rᵀ`: a tensor given in a child's axes, in the parent's.
-fn rotate_tensor(pool: &mut Pool, r: &Mat3, k: &Mat3) -> Mat3 {
+pub(super) fn rotate_tensor(pool: &mut Pool, r: &Mat3, k: &Mat3) -> Mat3 {
     // Columns of R K, then the rows of (R K) Rᵀ as R times the rows of R K.
     let columns: [Vec3; 3] = [0, 1, 2].map(|j| mat_vec(pool, r, &[k[0][j], k[1][j], k[2][j]]));
     [0, 1, 2].map(|i| mat_vec(pool, r, &[columns[0][i], columns[1][i], columns[2][i]]))

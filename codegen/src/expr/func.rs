@@ -39,15 +39,26 @@ impl Func {
     }
 
     /// The exact value of `self(n)` where it is a rational (or `abs` of any
-    /// number), and the nearest double of the sine, cosine and tangent of
+    /// number), the exact sine and cosine of a whole number of quarter
+    /// turns, and the nearest double of the sine, cosine and tangent of
     /// any other number (a constant rotation costs nothing at run time);
     /// `None` leaves the call symbolic.
     fn fold(self, n: Number) -> Option<Number> {
         match self {
             Func::Sin | Func::Tan if n.is_zero() => Some(Number::ZERO),
             Func::Cos | Func::Exp if n.is_zero() => Some(Number::ONE),
-            Func::Sin => finite(n.to_f64().sin()),
-            Func::Cos => finite(n.to_f64().cos()),
+            Func::Sin | Func::Cos => {
+                let x = n.to_f64();
+                let sine = self == Func::Sin;
+                match quarter_turns(x) {
+                    // cos(k π/2) = sin((k + 1) π/2).
+                    Some(k) => {
+                        let k = if sine { k } else { k + 1 };
+                        Some(Number::ratio([0, 1, 0, -1][k.rem_euclid(4) as usize], 1))
+                    }
+                    None => finite(if sine { x.sin() } else { x.cos() }),
+                }
+            }
             Func::Tan => finite(n.to_f64().tan()),
             Func::Ln if n.is_one() => Some(Number::ZERO),
             Func::Sqrt => n.as_rational()?.sqrt_exact().map(Number::Rational),
@@ -56,6 +67,15 @@ impl Func {
             _ => None,
         }
     }
+}
+
+/// `k` if `x` is the double nearest to `k π/2` (as URDF files write
+/// `1.5707963267948966` for a quarter turn, whose cosine, `6.1e-17`, would
+/// otherwise keep every term it multiplies alive in the equations).
+fn quarter_turns(x: f64) -> Option<i64> {
+    let k = (x / std::f64::consts::FRAC_PI_2).round();
+    let exact = k.abs() < 1e6 && x == k * std::f64::consts::FRAC_PI_2;
+    (exact && k != 0.0).then_some(k as i64)
 }
 
 /// `x` as a number, if finite.
@@ -202,6 +222,26 @@ mod tests {
             );
         }
         assert_eq!(s.e("sin(-1)"), s.e("-sin(1)"));
+    }
+
+    #[test]
+    fn quarter_turns_fold_exactly() {
+        let mut s = Scratch::default();
+        for (text, value) in [
+            ("sin(1.5707963267948966)", "1"),
+            ("cos(1.5707963267948966)", "0"),
+            ("sin(-1.5707963267948966)", "-1"),
+            ("cos(-1.5707963267948966)", "0"),
+            ("sin(3.141592653589793)", "0"),
+            ("cos(3.141592653589793)", "-1"),
+            ("cos(4.71238898038469)", "0"),
+            ("sin(4.71238898038469)", "-1"),
+        ] {
+            assert_eq!(s.e(text), s.e(value), "{text}");
+        }
+        // Near a quarter turn but not the double nearest to it: a float.
+        let e = s.e("cos(1.5708)");
+        assert_eq!(s.pool.as_number(e).map(Number::to_f64), Some(1.5708f64.cos()));
     }
 
     #[test]
