@@ -1,5 +1,5 @@
-//! Generates one Rust file per `models/*.dal`, and per URDF robot of
-//! `tests/reference/urdf/`, into `OUT_DIR`; `src/lib.rs` includes each into
+//! Generates one Rust file per `models/*.dal`, per URDF robot of
+//! `tests/reference/urdf/` and per benchmark tree of `trees/`, into `OUT_DIR`; `src/lib.rs` includes each into
 //! its own module. For the chains spelled with symbolic
 //! parameters it also writes `chain_references.rs`: a `reference()`
 //! constructor per system, holding the reference data's masses, lengths and
@@ -17,6 +17,11 @@ fn main() {
         .urdf("../tests/reference/urdf/ur5_robot.urdf")
         .urdf("../tests/reference/urdf/solo12.urdf")
         .urdf("../tests/reference/urdf/features.urdf")
+        .urdf("trees/cart_pole_1.urdf")
+        .urdf("trees/cart_pole_3.urdf")
+        .urdf("trees/cart_pole_6.urdf")
+        .urdf("trees/limbs.urdf")
+        .urdf("trees/binary_tree.urdf")
         .compile()
         .unwrap_or_else(|e| panic!("\n{e}\n"));
     let mut references = String::new();

@@ -29,6 +29,7 @@ mod random;
 mod render;
 #[cfg(test)]
 mod seeds;
+mod trees;
 mod urdf;
 
 pub use build::{BuildError, Builder, Diagnostic, ModelFile, generate_file};
@@ -57,6 +58,7 @@ pub mod testing {
     pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
     pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
     pub use crate::random::Random;
+    pub use crate::trees::Shape;
 }
 
 use proc_macro2::TokenStream;

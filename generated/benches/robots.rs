@@ -1,5 +1,6 @@
 //! Per-call cost of the generated equations of the URDF robots imported by
-//! `Builder::urdf` (Franka panda, UR5, Solo-12 on a fixed base):
+//! `Builder::urdf` (Franka panda, UR5, Solo-12 on a fixed base, and the
+//! benchmark trees of `trees/`: cart-poles, limbs, binary tree):
 //! `mass_matrix` + `forcing` (the counterpart of Pinocchio's `crba` +
 //! `nonLinearEffects`) and `dalembert::accelerations`, which runs the
 //! emitted solver (the counterpart of `aba`). Same method as `chains.rs`
@@ -17,7 +18,7 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::MultibodySystem;
 use dalembert_fixtures::states::{per_call, states};
-use dalembert_generated::{Panda, Solo, Ur5};
+use dalembert_generated::{BinaryTree, CartPole1, CartPole3, CartPole6, Limbs, Panda, Solo, Ur5};
 
 /// The two per-call benchmarks of one robot (one input per joint), in group
 /// `robots/NAME`.
@@ -57,6 +58,11 @@ fn robots(c: &mut Criterion) {
     bench_robot(c, "panda", Panda {});
     bench_robot(c, "ur5", Ur5 {});
     bench_robot(c, "solo12", Solo {});
+    bench_robot(c, "cart_pole_1", CartPole1 {});
+    bench_robot(c, "cart_pole_3", CartPole3 {});
+    bench_robot(c, "cart_pole_6", CartPole6 {});
+    bench_robot(c, "limbs", Limbs {});
+    bench_robot(c, "binary_tree", BinaryTree {});
 }
 
 criterion_group! {

@@ -121,6 +121,30 @@ model!(
     features
 );
 
+// The benchmark trees (`trees/*.urdf`, written by
+// `dalembert_codegen::testing::Shape`), imported by `Builder::urdf`;
+// tests/trees.rs checks the files against the generator.
+model!(
+    /// A cart carrying an inverted pendulum of one rod.
+    cart_pole_1
+);
+model!(
+    /// A cart carrying an inverted pendulum of three rods.
+    cart_pole_3
+);
+model!(
+    /// A cart carrying an inverted pendulum of six rods.
+    cart_pole_6
+);
+model!(
+    /// A turning torso with four limbs of three rods: 13 joints.
+    limbs
+);
+model!(
+    /// A binary tree of 31 rods.
+    binary_tree
+);
+
 // The same chains in the other two spellings (`dalembert chain FAMILY N symbolic|seed`);
 // tests/spellings.rs checks them against Pinocchio's numbers and against each other,
 // and `reference()` (written by build.rs) builds each with the reference parameters.
@@ -189,9 +213,14 @@ model!(
     seed_spatial_chain_30
 );
 
+pub use binary_tree::BinaryTree;
+pub use cart_pole_1::CartPole1;
+pub use cart_pole_3::CartPole3;
+pub use cart_pole_6::CartPole6;
 pub use constrained_pendulum::ConstrainedPendulum;
 pub use double_pendulum::DoublePendulum;
 pub use features::FeatureTree;
+pub use limbs::Limbs;
 pub use panda::Panda;
 pub use planar_chain_01::PlanarChain1;
 pub use planar_chain_02::PlanarChain2;

@@ -94,7 +94,10 @@ pub fn articulated(tree: &JointTree, forcing: &[ExprId], pool: &mut Pool) -> Opt
         pivots[link.coordinate] = pivot;
         if let Some(p) = link.parent {
             let per = pool.mul(force, reciprocal);
-            let scaled = (scale3(pool, &u.0, reciprocal), scale3(pool, &u.1, reciprocal));
+            let scaled = (
+                scale3(pool, &u.0, reciprocal),
+                scale3(pool, &u.1, reciprocal),
+            );
             let reduced = Spatial {
                 a: minus_outer(pool, &i_a.a, &u.0, &scaled.0, true),
                 b: minus_outer(pool, &i_a.b, &u.0, &scaled.1, false),

@@ -241,7 +241,10 @@ mod tests {
         }
         // Near a quarter turn but not the double nearest to it: a float.
         let e = s.e("cos(1.5708)");
-        assert_eq!(s.pool.as_number(e).map(Number::to_f64), Some(1.5708f64.cos()));
+        assert_eq!(
+            s.pool.as_number(e).map(Number::to_f64),
+            Some(1.5708f64.cos())
+        );
     }
 
     #[test]
