@@ -1,6 +1,7 @@
 //! Generates one Rust file per `models/*.dal`, per URDF robot of
 //! `tests/reference/urdf/` and per benchmark tree of `trees/`, into `OUT_DIR`; `src/lib.rs` includes each into
-//! its own module. For the chains spelled with symbolic
+//! its own module; with the `large` feature, also the 60-link chains
+//! (`dalembert_codegen::testing::chain`). For the chains spelled with symbolic
 //! parameters it also writes `chain_references.rs`: a `reference()`
 //! constructor per system, holding the reference data's masses, lengths and
 //! gravity.
@@ -8,10 +9,21 @@
 use std::fmt::Write;
 use std::path::PathBuf;
 
-use dalembert_codegen::testing::{Family, Spelling, chain_parameters};
+use dalembert_codegen::testing::{Family, Spelling, chain, chain_parameters};
 
 fn main() {
-    dalembert_codegen::Builder::new()
+    let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    let mut builder = dalembert_codegen::Builder::new();
+    if std::env::var_os("CARGO_FEATURE_LARGE").is_some() {
+        // The 60-link chains, for the benches only: their build costs more
+        // than every other model together.
+        for family in [Family::Planar, Family::Spatial] {
+            let path = out.join(format!("{}_chain_60.dal", family.name()));
+            std::fs::write(&path, chain(family, 60)).expect("OUT_DIR is writable");
+            builder.model(path);
+        }
+    }
+    builder
         .model_dir("models")
         .urdf("../tests/reference/urdf/panda.urdf")
         .urdf("../tests/reference/urdf/ur5_robot.urdf")
@@ -63,6 +75,5 @@ fn main() {
         )
         .expect("writing to a String");
     }
-    let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     std::fs::write(out.join("chain_references.rs"), references).expect("OUT_DIR is writable");
 }

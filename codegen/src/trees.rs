@@ -77,30 +77,19 @@ impl Shape {
                     [0.0, 0.0, 1.0],
                     [0.0, 0.0, 1.0],
                 );
-                for (limb, (x, y)) in [(0.3, 0.2), (0.3, -0.2), (-0.3, 0.2), (-0.3, -0.2)]
-                    .into_iter()
-                    .enumerate()
-                {
-                    let hip = format!("limb{limb}_abduction");
-                    robot.joint(&hip, "revolute", "torso", [x, y, 0.0], [1.0, 0.0, 0.0]);
-                    let thigh = format!("limb{limb}_hip");
-                    let length = robot.rod_length();
-                    robot.joint(
-                        &thigh,
-                        "revolute",
-                        &hip,
-                        [0.0, 0.0, length],
-                        [0.0, 1.0, 0.0],
-                    );
-                    let knee = format!("limb{limb}_knee");
-                    let length = robot.rod_length();
-                    robot.joint(
-                        &knee,
-                        "revolute",
-                        &thigh,
-                        [0.0, 0.0, length],
-                        [0.0, 1.0, 0.0],
-                    );
+                let corners = [(0.3, 0.2), (0.3, -0.2), (-0.3, 0.2), (-0.3, -0.2)];
+                for (limb, (x, y)) in corners.into_iter().enumerate() {
+                    let (mut parent, mut at) = ("torso".to_owned(), [x, y, 0.0]);
+                    for (part, axis) in [
+                        ("abduction", [1.0, 0.0, 0.0]),
+                        ("hip", [0.0, 1.0, 0.0]),
+                        ("knee", [0.0, 1.0, 0.0]),
+                    ] {
+                        let name = format!("limb{limb}_{part}");
+                        robot.joint(&name, "revolute", &parent, at, axis);
+                        at = [0.0, 0.0, robot.rod_length()];
+                        parent = name;
+                    }
                 }
             }
             Shape::BinaryTree => robot.binary_tree("world", "b", 5, [0.0; 3], [0.0, 0.0, 1.0]),

@@ -1,13 +1,14 @@
 //! Per-call cost of the generated equations of the benchmark chains,
-//! both families, n = 1, 2, 4, 6, 12, 30: `mass_matrix` + `forcing`
-//! (the counterpart of Pinocchio's `crba` + `nonLinearEffects`), the
-//! generated `accelerations` method (unrolled Cholesky, the counterpart of
+//! both families, n = 1, 2, 4, 6, 12, 30 (and 60 with the `large`
+//! feature): `mass_matrix` + `forcing` (the counterpart of Pinocchio's
+//! `crba` + `nonLinearEffects`), the generated `accelerations` method
+//! (unrolled `L D Lᵀ` or articulated-body recursion, the counterpart of
 //! `aba`) and the runtime's generic `dalembert::dynamics::cholesky_accelerations` (nalgebra's
 //! Cholesky). Same method as
 //! `benches/seed_examples.rs` (shared in `dalembert_fixtures::states`): 1000 fixed
 //! pseudo-random states, one call per iteration.
 //!
-//! Run with `cargo bench -p dalembert-generated --bench chains`; see
+//! Run with `cargo bench -p dalembert-generated --bench chains [--features large]`; see
 //! BENCHMARKS.md.
 
 use std::hint::black_box;
@@ -78,6 +79,8 @@ fn planar(c: &mut Criterion) {
     bench_chain(c, "planar", PlanarChain6 {}, PlanarChain6::accelerations);
     bench_chain(c, "planar", PlanarChain12 {}, PlanarChain12::accelerations);
     bench_chain(c, "planar", PlanarChain30 {}, PlanarChain30::accelerations);
+    #[cfg(feature = "large")]
+    bench_chain(c, "planar", PlanarChain60 {}, PlanarChain60::accelerations);
 }
 
 fn spatial(c: &mut Criterion) {
@@ -96,6 +99,13 @@ fn spatial(c: &mut Criterion) {
         "spatial",
         SpatialChain30 {},
         SpatialChain30::accelerations,
+    );
+    #[cfg(feature = "large")]
+    bench_chain(
+        c,
+        "spatial",
+        SpatialChain60 {},
+        SpatialChain60::accelerations,
     );
 }
 

@@ -102,6 +102,19 @@ model!(
     spatial_chain_30
 );
 
+// The 60-link chains, with the `large` feature only (generated from
+// `dalembert_codegen::testing::chain` by build.rs, for the benches).
+#[cfg(feature = "large")]
+model!(
+    /// The planar chain of 60 links.
+    planar_chain_60
+);
+#[cfg(feature = "large")]
+model!(
+    /// The spatial chain of 60 links.
+    spatial_chain_60
+);
+
 // URDF robots (`tests/reference/urdf/*.urdf`), imported by `Builder::urdf`;
 // tests/urdf.rs checks them against Pinocchio.
 model!(
@@ -230,6 +243,8 @@ pub use planar_chain_05::PlanarChain5;
 pub use planar_chain_06::PlanarChain6;
 pub use planar_chain_12::PlanarChain12;
 pub use planar_chain_30::PlanarChain30;
+#[cfg(feature = "large")]
+pub use planar_chain_60::PlanarChain60;
 pub use rotating_bar::RotatingBar;
 pub use seed_planar_chain_02::SeedPlanarChain2;
 pub use seed_planar_chain_06::SeedPlanarChain6;
@@ -248,6 +263,8 @@ pub use spatial_chain_05::SpatialChain5;
 pub use spatial_chain_06::SpatialChain6;
 pub use spatial_chain_12::SpatialChain12;
 pub use spatial_chain_30::SpatialChain30;
+#[cfg(feature = "large")]
+pub use spatial_chain_60::SpatialChain60;
 pub use symbolic_planar_chain_02::SymbolicPlanarChain2;
 pub use symbolic_planar_chain_06::SymbolicPlanarChain6;
 pub use symbolic_planar_chain_12::SymbolicPlanarChain12;

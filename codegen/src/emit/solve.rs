@@ -20,8 +20,12 @@ use crate::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 
-/// Operations charged for the `sin_cos` of a coordinate.
-const SIN_COS_COST: usize = 10;
+/// Operations charged for the `sin_cos` of a coordinate (a libm call,
+/// about as long as 40 multiplications).
+const SIN_COS_COST: usize = 40;
+
+/// The fewest coordinates for which the recursion may be chosen.
+const MIN_ARTICULATED: usize = 3;
 
 /// Operations charged for any other elementary function.
 const FUNCTION_COST: usize = 20;
@@ -112,14 +116,7 @@ fn factorisation_body(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
 /// The articulated-body route, up to `let qdd = [..];`: one straight-line
 /// body computing `f`, the pivots and `q̈`, then the checks.
 fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> TokenStream {
-    let roots: Vec<ExprId> = articulated
-        .forcing
-        .iter()
-        .chain(&articulated.pivots)
-        .chain(&articulated.accelerations)
-        .copied()
-        .collect();
-    let body = straight_line(&model.pool, names, &roots);
+    let body = straight_line(&model.pool, names, &articulated.roots());
     let nq = model.nq();
     let statements = &body.statements;
     let forcing = &body.outputs[..nq];
@@ -147,7 +144,10 @@ fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> 
 }
 
 /// Whether the recursion costs fewer operations than forming `M` and `f`
-/// and factorising.
+/// and factorising. `mass_matrix` and `forcing` are separate functions, so
+/// that route may evaluate the sines and cosines twice. Tiny systems keep
+/// the factorisation: with one or two coordinates it measured faster at
+/// any operation count.
 fn articulated_is_cheaper(
     model: &Model,
     equations: &Equations,
@@ -155,22 +155,11 @@ fn articulated_is_cheaper(
     pattern: &[Vec<bool>],
 ) -> bool {
     let pool = &model.pool;
-    let equations_roots: Vec<ExprId> = equations
-        .mass_matrix
-        .iter()
-        .flatten()
-        .chain(&equations.forcing)
-        .copied()
-        .collect();
-    let recursion_roots: Vec<ExprId> = articulated
-        .forcing
-        .iter()
-        .chain(&articulated.pivots)
-        .chain(&articulated.accelerations)
-        .copied()
-        .collect();
-    let factorised = operations(pool, &equations_roots) + factorisation_operations(pattern);
-    operations(pool, &recursion_roots) < factorised
+    let mass_matrix: Vec<ExprId> = equations.mass_matrix.iter().flatten().copied().collect();
+    let factorised = operations(pool, &mass_matrix)
+        + operations(pool, &equations.forcing)
+        + factorisation_operations(pattern);
+    model.nq() >= MIN_ARTICULATED && operations(pool, &articulated.roots()) < factorised
 }
 
 /// Arithmetic operations (and charged functions) of the code computing

@@ -42,6 +42,14 @@ pub struct Articulated {
     pub accelerations: Vec<ExprId>,
 }
 
+impl Articulated {
+    /// `f`, the pivots and `q̈`, in this order: what the code computes.
+    pub fn roots(&self) -> Vec<ExprId> {
+        let outputs = [&self.forcing, &self.pivots, &self.accelerations];
+        outputs.into_iter().flatten().copied().collect()
+    }
+}
+
 /// The symmetric spatial inertia `[[A, B], [Bᵀ, C]]`.
 #[derive(Clone, Copy)]
 struct Spatial {

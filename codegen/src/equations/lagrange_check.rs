@@ -135,6 +135,18 @@ const SYSTEMS: [&str; 11] = [
     }",
 ];
 
+/// The kinematic trees among [`SYSTEMS`].
+const TREES: [&str; 8] = [
+    "RotatingBar",
+    "TiltedRail",
+    "Chain",
+    "Tree",
+    "SeedChain",
+    "CartPole",
+    "Shoulder",
+    "Tilted",
+];
+
 fn interpreter(source: &str, route: Route) -> Interpreter {
     Interpreter::new(source, route).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -201,19 +213,7 @@ fn the_articulated_recursion_solves_lagranges_equations() {
             }
         }
     }
-    assert_eq!(
-        solved,
-        [
-            "RotatingBar",
-            "TiltedRail",
-            "Chain",
-            "Tree",
-            "SeedChain",
-            "CartPole",
-            "Shoulder",
-            "Tilted"
-        ]
-    );
+    assert_eq!(solved, TREES);
 }
 
 #[test]
@@ -248,17 +248,5 @@ fn the_trees_among_them_take_the_recursive_route() {
             model.tree.is_some().then(|| model.name.to_string())
         })
         .collect();
-    assert_eq!(
-        trees,
-        [
-            "RotatingBar",
-            "TiltedRail",
-            "Chain",
-            "Tree",
-            "SeedChain",
-            "CartPole",
-            "Shoulder",
-            "Tilted"
-        ]
-    );
+    assert_eq!(trees, TREES);
 }
