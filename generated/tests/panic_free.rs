@@ -89,9 +89,12 @@ fn generated_code_has_no_panic_path() {
             e.as_ref()
                 .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "urdf"))
         });
+    let trees = std::fs::read_dir(crate_dir.join("trees")).expect("trees/ exists");
+    // The 60-link chains of the `large` feature.
+    let large = if cfg!(feature = "large") { 2 } else { 0 };
     assert_eq!(
         checked,
-        models.count() + robots.count(),
-        "one generated file per model and per URDF robot"
+        models.count() + robots.count() + trees.count() + large,
+        "one generated file per model, per URDF robot and per tree"
     );
 }

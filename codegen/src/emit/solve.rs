@@ -37,27 +37,34 @@ pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -
         return TokenStream::new();
     }
     let pattern = fill_pattern(model, equations);
-    let (route, body) = match &equations.articulated {
+    let (doc, body) = match &equations.articulated {
         Some(articulated) if articulated_is_cheaper(model, equations, articulated, &pattern) => (
-            "the articulated-body recursion over the kinematic tree (`M` is never formed)",
+            [
+                " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by the",
+                " articulated-body recursion over the kinematic tree (`M` is never",
+                " formed). Same checks and errors as `dalembert::accelerations`: a",
+                " non-finite state, equation or result, or a pivot `Sᵀ Iᴬ S` not",
+                " above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times the",
+                " largest pivot, is an error.",
+            ],
             articulated_body(model, articulated, names),
         ),
         _ => (
-            "a square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this system \
-             (structural zeros of `M` skipped)",
+            [
+                " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a",
+                " square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this",
+                " system (structural zeros of `M` skipped). Same checks and errors as",
+                " `dalembert::accelerations`: a non-finite state, equation or result,",
+                " or a pivot not above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE`",
+                " times the largest diagonal entry of `M`, is an error.",
+            ],
             factorisation_body(model, &pattern),
         ),
     };
     let n_lit = index(nq);
     let nu = index(model.inputs.len());
-    let doc = format!(
-        " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by {route}. Same \
-         checks and errors as `dalembert::accelerations`: a non-finite state, equation or \
-         result, or a pivot not above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times \
-         the largest diagonal entry of `M` (the largest pivot, for the recursion), is an error."
-    );
     quote! {
-        #[doc = #doc]
+        #(#[doc = #doc])*
         #[inline]
         pub fn accelerations(
             &self,
@@ -187,16 +194,17 @@ fn operations(pool: &Pool, roots: &[ExprId]) -> usize {
 fn factorisation_operations(pattern: &[Vec<bool>]) -> usize {
     let nq = pattern.len();
     let shared = |i: usize, j: usize| (0..j).filter(|&k| pattern[i][k] && pattern[j][k]).count();
-    let mut count = 0;
-    for j in 0..nq {
-        count += 2 * shared(j, j) + 1;
-        for i in (j + 1..nq).filter(|&i| pattern[i][j]) {
-            // Lᵢⱼ Dⱼ, then Lᵢⱼ; and its share of both substitutions.
-            count += 2 * shared(i, j) + 1 + 4;
-        }
-        count += 1;
-    }
-    count
+    (0..nq)
+        .map(|j| {
+            // Lᵢⱼ Dⱼ, then Lᵢⱼ, and its share of both substitutions.
+            let column: usize = (j + 1..nq)
+                .filter(|&i| pattern[i][j])
+                .map(|i| 2 * shared(i, j) + 5)
+                .sum();
+            // The pivot, its reciprocal, and the column.
+            2 * shared(j, j) + 2 + column
+        })
+        .sum()
 }
 
 /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero — `Mᵢⱼ` is not
