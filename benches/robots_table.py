@@ -1,0 +1,54 @@
+#!/usr/bin/env python3
+"""Merge the `robots` criterion medians with the peer harness's URDF CSVs.
+
+Usage: python3 benches/robots_table.py PEER_CSV... [--target TARGET_DIR]
+  PEER_CSV     one output of `bash ../shared/peers/pinocchio/run.sh --urdf ROBOT.urdf`
+               per robot, named ROBOT.csv (e.g. panda.csv, cart_pole_3.csv)
+  TARGET_DIR   default: $CARGO_TARGET_DIR or target
+
+Prints the Markdown table of BENCHMARKS.md: per robot, the median ns per
+call of `mass_matrix` + `forcing` and of `dalembert::accelerations`, and the
+ratios (ours / theirs) to Pinocchio's crba_sym + nle and aba of the same run.
+"""
+import csv
+import glob
+import json
+import os
+import sys
+
+args = sys.argv[1:]
+target = os.environ.get("CARGO_TARGET_DIR", "target")
+if "--target" in args:
+    i = args.index("--target")
+    target = args[i + 1]
+    del args[i : i + 2]
+
+ours = {}  # (robot, function) -> median ns
+for path in glob.glob(os.path.join(target, "criterion", "robots_*", "**", "new", "benchmark.json"), recursive=True) + \
+        glob.glob(os.path.join(target, "criterion", "robots", "**", "new", "benchmark.json"), recursive=True):
+    with open(path) as f:
+        bench = json.load(f)
+    parts = bench["group_id"].split("/")
+    if len(parts) != 2 or parts[0] != "robots":
+        continue
+    with open(path.replace("benchmark.json", "estimates.json")) as f:
+        ours[(parts[1], bench["function_id"])] = json.load(f)["median"]["point_estimate"]
+
+print("| robot | nv | M + f (ns) | Pinocchio crba_sym + nle (ns) | ratio | accelerations (ns) | Pinocchio aba (ns) | ratio |")
+print("|---|---|---|---|---|---|---|---|")
+for peer_csv in args:
+    robot = os.path.splitext(os.path.basename(peer_csv))[0]
+    peer = {}
+    nv = "?"
+    with open(peer_csv) as f:
+        for row in csv.DictReader(line for line in f if not line.startswith("#")):
+            peer[row["algo"]] = float(row["median_ns"])
+            nv = row["nv"]
+    mf = ours.get((robot, "mass_matrix+forcing"))
+    acc = ours.get((robot, "accelerations"))
+    crba, nle, aba = peer.get("pin_crba_sym"), peer.get("pin_nle"), peer.get("pin_aba")
+    if None in (mf, acc, crba, nle, aba):
+        print(f"| {robot} | {nv} | missing figures | | | | | |")
+        continue
+    print(f"| {robot} | {nv} | {mf:.0f} | {crba:.0f} + {nle:.0f} | **{mf / (crba + nle):.2f}** "
+          f"| {acc:.0f} | {aba:.0f} | **{acc / aba:.2f}** |")
