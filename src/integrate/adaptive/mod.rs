@@ -140,17 +140,18 @@ where
         if last {
             next.t = t_end;
         }
+        let weights = scale.weights(&state, &next);
         let error = match &pair.estimate {
             ErrorEstimate::Embedded { e, e_new } => {
                 let new_slope = kernel.rate(&next)?;
                 let estimate = Rate::combination(e, &trial.stages);
                 let estimate = combined_with(&estimate, *e_new, &new_slope);
-                let error = h.abs() * scale.norm(&state, &next, &estimate);
+                let error = h.abs() * weights.norm(&estimate);
                 (error, Some(new_slope))
             }
             ErrorEstimate::FifthAndThird { e5, e3 } => {
-                let fifth = scale.norm(&state, &next, &Rate::combination(e5, &trial.stages));
-                let third = scale.norm(&state, &next, &Rate::combination(e3, &trial.stages));
+                let fifth = weights.norm(&Rate::combination(e5, &trial.stages));
+                let third = weights.norm(&Rate::combination(e3, &trial.stages));
                 let blend = (fifth * fifth + 0.01 * third * third).sqrt();
                 let error = if blend > 0.0 {
                     h.abs() * fifth * fifth / blend
@@ -187,7 +188,7 @@ where
 
 /// The stage slopes and the propagated solution of one trial step.
 struct Trial<const NQ: usize, const NV: usize, const S: usize> {
-    stages: [Rate<NV>; S],
+    stages: [Rate<NQ, NV>; S],
     state: State<NQ, NV>,
 }
 
@@ -196,7 +197,7 @@ fn attempt<D, const NQ: usize, const NV: usize, const S: usize>(
     kernel: &Kernel<'_, D>,
     pair: &EmbeddedPair<S>,
     state: &State<NQ, NV>,
-    slope: &Rate<NV>,
+    slope: &Rate<NQ, NV>,
     h: f64,
 ) -> Result<Trial<NQ, NV, S>, IntegrationError<NQ>>
 where
@@ -208,12 +209,16 @@ where
         let combined = Rate::combination(&pair.a[i], &stages);
         stages[i] = kernel.rate(&kernel.stage(state, &combined, h, pair.c[i]))?;
     }
-    let state = kernel.advance(state, &Rate::combination(&pair.b, &stages), h);
+    let state = kernel.step_end(state, &Rate::combination(&pair.b, &stages), h);
     Ok(Trial { stages, state })
 }
 
 /// `estimate + w · slope`.
-fn combined_with<const NV: usize>(estimate: &Rate<NV>, w: f64, slope: &Rate<NV>) -> Rate<NV> {
+fn combined_with<const NQ: usize, const NV: usize>(
+    estimate: &Rate<NQ, NV>,
+    w: f64,
+    slope: &Rate<NQ, NV>,
+) -> Rate<NQ, NV> {
     Rate::combination(&[1.0, w], &[*estimate, *slope])
 }
 
@@ -240,7 +245,7 @@ fn step_factor<const S: usize>(pair: &EmbeddedPair<S>, error: f64, after_rejecti
 fn initial_step<D, const NQ: usize, const NV: usize>(
     kernel: &Kernel<'_, D>,
     state: &State<NQ, NV>,
-    slope: &Rate<NV>,
+    slope: &Rate<NQ, NV>,
     t_end: f64,
     order: i32,
     scale: &Scale,
@@ -249,11 +254,12 @@ where
     D: Dynamics<NQ, NV>,
 {
     let as_rate = Rate {
-        dq: configuration_size(state),
+        dq: state.q,
         dv: state.v,
     };
-    let size = scale.norm(state, state, &as_rate);
-    let speed = scale.norm(state, state, slope);
+    let weights = scale.weights(state, state);
+    let size = weights.norm(&as_rate);
+    let speed = weights.norm(slope);
     let guess = if size < 1e-5 || speed < 1e-5 {
         1e-6
     } else {
@@ -261,7 +267,7 @@ where
     };
     let guess = guess.min(t_end - state.t);
     let euler = kernel.advance(state, slope, guess);
-    let change = scale.norm(state, state, &kernel.rate(&euler)?.minus(slope)) / guess;
+    let change = weights.norm(&kernel.rate(&euler)?.minus(slope)) / guess;
     let largest = speed.max(change);
     let step = if largest <= 1e-15 {
         (guess * 1e-3).max(1e-6)
@@ -287,32 +293,33 @@ impl From<&AdaptiveOptions> for Scale {
 }
 
 impl Scale {
-    /// The root mean square of `values / scale(from, to)` over the
-    /// configuration's motion and the speeds.
-    fn norm<const NQ: usize, const NV: usize>(
+    /// The reciprocal scales `1 / (atol + rtol max(|from|, |to|))` of the
+    /// entries of a step from `from` to `to`.
+    #[inline]
+    fn weights<const NQ: usize, const NV: usize>(
         &self,
         from: &State<NQ, NV>,
         to: &State<NQ, NV>,
-        values: &Rate<NV>,
-    ) -> f64 {
-        let entry = |value: f64, a: f64, b: f64| {
-            let scale = self.absolute + self.relative * a.abs().max(b.abs());
-            (value / scale).powi(2)
-        };
-        let (from_q, to_q) = (configuration_size(from), configuration_size(to));
-        let sum: f64 = (0..NV)
-            .map(|i| {
-                entry(values.dq[i], from_q[i], to_q[i]) + entry(values.dv[i], from.v[i], to.v[i])
-            })
-            .sum();
-        (sum / (2 * NV) as f64).sqrt()
+    ) -> Rate<NQ, NV> {
+        let weight = |a: f64, b: f64| 1.0 / (self.absolute + self.relative * a.abs().max(b.abs()));
+        Rate {
+            dq: std::array::from_fn(|i| weight(from.q[i], to.q[i])),
+            dv: std::array::from_fn(|i| weight(from.v[i], to.v[i])),
+        }
     }
 }
 
-/// The size of the configuration along each speed, for the relative part of
-/// the error scale: the coordinates themselves when every speed is its
-/// coordinate's rate; zero (an absolute scale) otherwise, where a speed moves
-/// no single coordinate.
-fn configuration_size<const NQ: usize, const NV: usize>(state: &State<NQ, NV>) -> [f64; NV] {
-    std::array::from_fn(|i| if NQ == NV { state.q[i] } else { 0.0 })
+impl<const NQ: usize, const NV: usize> Rate<NQ, NV> {
+    /// The root mean square of `values` times these weights, entry by entry.
+    #[inline]
+    fn norm(&self, values: &Self) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..NQ {
+            sum += (values.dq[i] * self.dq[i]).powi(2);
+        }
+        for i in 0..NV {
+            sum += (values.dv[i] * self.dv[i]).powi(2);
+        }
+        (sum / (NQ + NV) as f64).sqrt()
+    }
 }

@@ -1,0 +1,136 @@
+//! What each integrator costs per evaluation of the accelerations, beside
+//! the floor: a bare loop of the generated `accelerations` (explicit Euler,
+//! one call and four flops per coordinate per iteration).
+//!
+//! Systems: seed example 1 (the chaotic double pendulum of
+//! `tests/reference/chaotic_double_pendulum.json`, θ₁ = θ₂ = 2 rad at rest)
+//! and the planar chain of 12 links (every angle 0.3 rad at rest). Each
+//! benchmark runs one whole integration per iteration and reports the time
+//! **per right-hand-side evaluation** (the run's time divided by its
+//! evaluation count), so every line compares directly with the floor.
+//!
+//! Run with `cargo bench -p dalembert-generated --bench integrators`; see
+//! BENCHMARKS.md.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use dalembert::MultibodySystem;
+use dalembert::integrate::{
+    AdaptiveOptions, ExplicitPair, GaussLegendre, Solution, State, Unconstrained, adaptive,
+    gauss_legendre, rk4,
+};
+use dalembert_generated::{DoublePendulum, PlanarChain12};
+
+/// Simulated time of every run, s.
+const DURATION: f64 = 10.0;
+/// Fixed steps of RK4 and Gauss–Legendre over [`DURATION`].
+const STEPS: u64 = 10_000;
+/// Tolerance of the adaptive runs.
+const TOLERANCE: f64 = 1e-12;
+
+/// `iters` runs of `run`, timed, divided by the evaluations of one run.
+fn per_evaluation(iters: u64, mut run: impl FnMut() -> u64) -> Duration {
+    let mut elapsed = Duration::ZERO;
+    let mut evaluations = 1;
+    for _ in 0..iters {
+        let start = Instant::now();
+        evaluations = black_box(run());
+        elapsed += start.elapsed();
+    }
+    elapsed / u32::try_from(evaluations).expect("fewer than 2³² evaluations")
+}
+
+/// The evaluations an integration made.
+fn evaluations<const N: usize>(solution: Solution<N, N>) -> u64 {
+    solution.statistics.rhs_evaluations
+}
+
+/// The per-evaluation benchmarks of one system from rest at `angles`.
+fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
+    c: &mut Criterion,
+    name: &str,
+    system: S,
+    angles: [f64; N],
+) {
+    let initial = State {
+        t: 0.0,
+        q: angles,
+        v: [0.0; N],
+    };
+    let system = &system;
+    let dynamics = Unconstrained::without_inputs(system);
+    let mut group = c.benchmark_group(format!("integrators/{name}"));
+    group.bench_function("floor: bare accelerations loop", |b| {
+        b.iter_custom(|iters| {
+            per_evaluation(iters, || {
+                let h = DURATION / STEPS as f64;
+                let (mut q, mut v) = (initial.q, initial.v);
+                for k in 0..4 * STEPS {
+                    let a = dalembert::accelerations(black_box(system), k as f64 * h, &q, &v, &[])
+                        .expect("regular");
+                    for i in 0..N {
+                        q[i] += h * v[i];
+                        v[i] += h * a[i];
+                    }
+                }
+                black_box((q, v));
+                4 * STEPS
+            })
+        })
+    });
+    group.bench_function("rk4", |b| {
+        b.iter_custom(|iters| {
+            per_evaluation(iters, || {
+                evaluations(rk4(&dynamics, initial, DURATION, STEPS, |_| {}).unwrap())
+            })
+        })
+    });
+    for (label, pair) in [
+        ("dopri5", ExplicitPair::DormandPrince54),
+        ("dop853", ExplicitPair::Dop853),
+    ] {
+        group.bench_function(label, |b| {
+            let options = AdaptiveOptions::with_tolerance(TOLERANCE);
+            b.iter_custom(|iters| {
+                per_evaluation(iters, || {
+                    evaluations(
+                        adaptive(&dynamics, initial, DURATION, pair, options, |_| {}).unwrap(),
+                    )
+                })
+            })
+        });
+    }
+    group.bench_function("gauss4", |b| {
+        b.iter_custom(|iters| {
+            per_evaluation(iters, || {
+                let method = GaussLegendre::Order4;
+                evaluations(
+                    gauss_legendre(&dynamics, initial, DURATION, STEPS, method, |_| {}).unwrap(),
+                )
+            })
+        })
+    });
+    group.finish();
+}
+
+fn integrators(c: &mut Criterion) {
+    let pendulum = DoublePendulum {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    bench_system(c, "seed_1", pendulum, [2.0, 2.0]);
+    bench_system(c, "planar_12", PlanarChain12 {}, [0.3; 12]);
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .sample_size(20)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
+    targets = integrators
+}
+criterion_main!(benches);
