@@ -28,7 +28,10 @@ mod runge_kutta;
 mod sdirk;
 mod solution;
 
-pub use adaptive::{AdaptiveOptions, ExplicitPair, adaptive};
+pub use adaptive::{
+    AdaptiveOptions, Crossing, DenseStep, Event, ExplicitPair, adaptive, adaptive_dense,
+    adaptive_with_events,
+};
 pub use augmented_lagrangian::{AugmentedLagrangian, augmented_lagrangian};
 pub use dynamics::{Constrained, Dynamics, InputLaw, NoInputs, Unconstrained};
 pub use gauss::{GaussLegendre, gauss_legendre};

@@ -62,6 +62,14 @@ impl<const NQ: usize, const NV: usize> Rate<NQ, NV> {
         }
     }
 
+    /// `self *= s`.
+    #[inline]
+    pub(crate) fn scale(&mut self, s: f64) {
+        for x in self.dq.iter_mut().chain(&mut self.dv) {
+            *x *= s;
+        }
+    }
+
     /// The largest magnitude of any entry.
     pub(crate) fn largest_magnitude(&self) -> f64 {
         self.dq

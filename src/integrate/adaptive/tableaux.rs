@@ -4,8 +4,9 @@
 //! Equations I* (2nd ed., 1993), §II.5 and the codes `dopri5.f`/`dop853.f`.
 
 /// An explicit Runge–Kutta method of `S` stages with an embedded error
-/// estimate and the constants of its step-size controller.
-pub(crate) struct EmbeddedPair<const S: usize> {
+/// estimate, the constants of its step-size controller and its continuous
+/// extension over `T` slopes.
+pub(crate) struct EmbeddedPair<const S: usize, const T: usize> {
     /// Stage times `cᵢ` as fractions of the step.
     pub(crate) c: [f64; S],
     /// Stage coefficients `aᵢⱼ` (strictly lower triangular).
@@ -23,6 +24,22 @@ pub(crate) struct EmbeddedPair<const S: usize> {
     pub(crate) min_factor: f64,
     /// Largest factor by which one step may grow the next.
     pub(crate) max_factor: f64,
+    /// The dense output.
+    pub(crate) dense: DenseOutput<T>,
+}
+
+/// A continuous extension of a step from `y₀` to `y₁` of length `h`, written
+/// in Hairer's nested form
+/// `y(θ) = r₁ + θ (r₂ + θ' (r₃ + θ (r₄ + θ' (r₅ + θ (r₆ + θ' (r₇ + θ r₈))))))`,
+/// `θ' = 1 − θ`, with `r₁ = y₀`, `r₂ = y₁ − y₀`, `r₃ = h k₁ − r₂`,
+/// `r₄ = r₂ − h f(y₁) − r₃` and `r₅…` the rows of `d` applied to the `T`
+/// slopes: the step's stages, the slope at `y₁`, then the extra stages.
+pub(crate) struct DenseOutput<const T: usize> {
+    /// The extra stages: time fraction and coefficients over the slopes
+    /// before them.
+    pub(crate) extra: &'static [(f64, [f64; T])],
+    /// `h` times these rows applied to the slopes are `r₅, r₆, …`.
+    pub(crate) d: &'static [[f64; T]],
 }
 
 /// An embedded local-error estimate.
@@ -47,7 +64,7 @@ pub(crate) enum ErrorEstimate<const S: usize> {
 }
 
 /// Dormand–Prince 5(4), FSAL: six new slopes per step.
-pub(crate) const DOPRI5: EmbeddedPair<6> = EmbeddedPair {
+pub(crate) const DOPRI5: EmbeddedPair<6, 7> = EmbeddedPair {
     c: [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0],
     a: [
         [0.0; 6],
@@ -94,11 +111,24 @@ pub(crate) const DOPRI5: EmbeddedPair<6> = EmbeddedPair {
     exponent: 1.0 / 5.0,
     min_factor: 0.2,
     max_factor: 10.0,
+    // Shampine's fourth-order extension (`contd5` of `dopri5.f`).
+    dense: DenseOutput {
+        extra: &[],
+        d: &[[
+            -12715105075.0 / 11282082432.0,
+            0.0,
+            87487479700.0 / 32700410799.0,
+            -10690763975.0 / 1880347072.0,
+            701980252875.0 / 199316789632.0,
+            -1453857185.0 / 822651844.0,
+            69997945.0 / 29380423.0,
+        ]],
+    },
 };
 
 /// Dormand–Prince 8(5,3): twelve slopes per step, the first being the last
 /// step's slope at its new point.
-pub(crate) const DOP853: EmbeddedPair<12> = EmbeddedPair {
+pub(crate) const DOP853: EmbeddedPair<12, 16> = EmbeddedPair {
     c: [
         0.0,
         0.05260015195876773,
@@ -318,7 +348,123 @@ pub(crate) const DOP853: EmbeddedPair<12> = EmbeddedPair {
     exponent: 1.0 / 8.0,
     min_factor: 1.0 / 3.0,
     max_factor: 6.0,
+    // The seventh-order extension of `dop853.f` (`contd8`): three more
+    // stages at c = 0.1, 0.2 and 7/9.
+    dense: DenseOutput {
+        extra: &[
+            (
+                0.1,
+                dop853_row(&[
+                    (1, 5.61675022830479523392909219681e-2),
+                    (7, 2.53500210216624811088794765333e-1),
+                    (8, -2.46239037470802489917441475441e-1),
+                    (9, -1.24191423263816360469010140626e-1),
+                    (10, 1.5329179827876569731206322685e-1),
+                    (11, 8.20105229563468988491666602057e-3),
+                    (12, 7.56789766054569976138603589584e-3),
+                    (13, -8.298e-3),
+                ]),
+            ),
+            (
+                0.2,
+                dop853_row(&[
+                    (1, 3.18346481635021405060768473261e-2),
+                    (6, 2.83009096723667755288322961402e-2),
+                    (7, 5.35419883074385676223797384372e-2),
+                    (8, -5.49237485713909884646569340306e-2),
+                    (11, -1.08347328697249322858509316994e-4),
+                    (12, 3.82571090835658412954920192323e-4),
+                    (13, -3.40465008687404560802977114492e-4),
+                    (14, 1.41312443674632500278074618366e-1),
+                ]),
+            ),
+            (
+                7.0 / 9.0,
+                dop853_row(&[
+                    (1, -4.28896301583791923408573538692e-1),
+                    (6, -4.69762141536116384314449447206e0),
+                    (7, 7.68342119606259904184240953878e0),
+                    (8, 4.06898981839711007970213554331e0),
+                    (9, 3.56727187455281109270669543021e-1),
+                    (13, -1.39902416515901462129418009734e-3),
+                    (14, 2.9475147891527723389556272149e0),
+                    (15, -9.15095847217987001081870187138e0),
+                ]),
+            ),
+        ],
+        d: &[
+            dop853_row(&[
+                (1, -0.84289382761090128651353491142e+01),
+                (6, 0.56671495351937776962531783590e+00),
+                (7, -0.30689499459498916912797304727e+01),
+                (8, 0.23846676565120698287728149680e+01),
+                (9, 0.21170345824450282767155149946e+01),
+                (10, -0.87139158377797299206789907490e+00),
+                (11, 0.22404374302607882758541771650e+01),
+                (12, 0.63157877876946881815570249290e+00),
+                (13, -0.88990336451333310820698117400e-01),
+                (14, 0.18148505520854727256656404962e+02),
+                (15, -0.91946323924783554000451984436e+01),
+                (16, -0.44360363875948939664310572000e+01),
+            ]),
+            dop853_row(&[
+                (1, 0.10427508642579134603413151009e+02),
+                (6, 0.24228349177525818288430175319e+03),
+                (7, 0.16520045171727028198505394887e+03),
+                (8, -0.37454675472269020279518312152e+03),
+                (9, -0.22113666853125306036270938578e+02),
+                (10, 0.77334326684722638389603898808e+01),
+                (11, -0.30674084731089398182061213626e+02),
+                (12, -0.93321305264302278729567221706e+01),
+                (13, 0.15697238121770843886131091075e+02),
+                (14, -0.31139403219565177677282850411e+02),
+                (15, -0.93529243588444783865713862664e+01),
+                (16, 0.35816841486394083752465898540e+02),
+            ]),
+            dop853_row(&[
+                (1, 0.19985053242002433820987653617e+02),
+                (6, -0.38703730874935176555105901742e+03),
+                (7, -0.18917813819516756882830838328e+03),
+                (8, 0.52780815920542364900561016686e+03),
+                (9, -0.11573902539959630126141871134e+02),
+                (10, 0.68812326946963000169666922661e+01),
+                (11, -0.10006050966910838403183860980e+01),
+                (12, 0.77771377980534432092869265740e+00),
+                (13, -0.27782057523535084065932004339e+01),
+                (14, -0.60196695231264120758267380846e+02),
+                (15, 0.84320405506677161018159903784e+02),
+                (16, 0.11992291136182789328035130030e+02),
+            ]),
+            dop853_row(&[
+                (1, -0.25693933462703749003312586129e+02),
+                (6, -0.15418974869023643374053993627e+03),
+                (7, -0.23152937917604549567536039109e+03),
+                (8, 0.35763911791061412378285349910e+03),
+                (9, 0.93405324183624310003907691704e+02),
+                (10, -0.37458323136451633156875139351e+02),
+                (11, 0.10409964950896230045147246184e+03),
+                (12, 0.29840293426660503123344363579e+02),
+                (13, -0.43533456590011143754432175058e+02),
+                (14, 0.96324553959188282948394950600e+02),
+                (15, -0.39177261675615439165231486172e+02),
+                (16, -0.14972683625798562581422125276e+03),
+            ]),
+        ],
+    },
 };
+
+/// A row over DOP853's sixteen slopes from its non-zero entries, numbered
+/// from 1 as in `dop853.f` (`k₁…k₁₂` the stages, `k₁₃ = f(y₁)`, `k₁₄…k₁₆`
+/// the extra stages of the dense output).
+const fn dop853_row(entries: &[(usize, f64)]) -> [f64; 16] {
+    let mut row = [0.0; 16];
+    let mut i = 0;
+    while i < entries.len() {
+        row[entries[i].0 - 1] = entries[i].1;
+        i += 1;
+    }
+    row
+}
 
 #[cfg(test)]
 mod tests {
@@ -326,13 +472,26 @@ mod tests {
 
     /// `Σ bᵢ = 1` and `Σⱼ aᵢⱼ = cᵢ`: the conditions every consistent
     /// explicit method meets, which catch a mistyped coefficient.
-    fn assert_consistent<const S: usize>(pair: &EmbeddedPair<S>) {
+    fn assert_consistent<const S: usize, const T: usize>(pair: &EmbeddedPair<S, T>) {
         assert!((pair.b.iter().sum::<f64>() - 1.0).abs() < 1e-14);
         for (row, c) in pair.a.iter().zip(pair.c) {
             assert!((row.iter().sum::<f64>() - c).abs() < 1e-13, "{row:?}");
         }
         let order_two: f64 = pair.b.iter().zip(pair.c).map(|(b, c)| b * c).sum();
         assert!((order_two - 0.5).abs() < 1e-14);
+    }
+
+    /// The extra stages of a dense output are consistent too.
+    fn assert_extra_stages_consistent<const S: usize, const T: usize>(pair: &EmbeddedPair<S, T>) {
+        for (c, row) in pair.dense.extra {
+            assert!((row.iter().sum::<f64>() - c).abs() < 1e-13, "{row:?}");
+        }
+    }
+
+    #[test]
+    fn the_dense_outputs_extra_stages_are_consistent() {
+        assert_extra_stages_consistent(&DOPRI5);
+        assert_extra_stages_consistent(&DOP853);
     }
 
     #[test]
