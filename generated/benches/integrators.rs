@@ -11,11 +11,16 @@
 //! **per right-hand-side evaluation** (the run's time divided by its
 //! evaluation count), so every line compares directly with the floor.
 //!
+//! Group `throughput` times fixed-step RK4 at `h = 1 ms` (MuJoCo's step in
+//! the peers' harness) on the planar and spatial chains, n = 2, 6, 12, 30,
+//! **per step**, for the simulated seconds per CPU second against MuJoCo's
+//! `mj_step` with its RK4 integrator.
+//!
 //! Run with `cargo bench -p dalembert-generated --bench integrators`; see
 //! BENCHMARKS.md.
 
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::MultibodySystem;
@@ -23,7 +28,10 @@ use dalembert::integrate::{
     AdaptiveOptions, ExplicitPair, GaussLegendre, Solution, State, Unconstrained, adaptive,
     gauss_legendre, rk4,
 };
-use dalembert_generated::{DoublePendulum, PlanarChain12};
+use dalembert_generated::{
+    DoublePendulum, PlanarChain2, PlanarChain6, PlanarChain12, PlanarChain30, SpatialChain2,
+    SpatialChain6, SpatialChain12, SpatialChain30,
+};
 
 /// Simulated time of every run, s.
 const DURATION: f64 = 10.0;
@@ -32,14 +40,29 @@ const STEPS: u64 = 10_000;
 /// Tolerance of the adaptive runs.
 const TOLERANCE: f64 = 1e-12;
 
-/// `iters` runs of `run`, timed, divided by the evaluations of one run.
-fn per_evaluation(iters: u64, mut run: impl FnMut() -> u64) -> Duration {
+/// The CPU time this thread has used: unlike the wall clock, it does not
+/// count the time other processes of a shared machine hold the core.
+fn thread_time() -> Duration {
+    let mut time = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `clock_gettime` writes the `timespec` it is given and nothing
+    // else; the thread CPU-time clock exists on every Linux.
+    let status = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut time) };
+    assert_eq!(status, 0, "CLOCK_THREAD_CPUTIME_ID");
+    Duration::new(time.tv_sec as u64, time.tv_nsec as u32)
+}
+
+/// `iters` runs of `run`, timed in thread CPU time, divided by the count one
+/// run returns (its evaluations, or its steps).
+fn per_count(iters: u64, mut run: impl FnMut() -> u64) -> Duration {
     let mut elapsed = Duration::ZERO;
     let mut evaluations = 1;
     for _ in 0..iters {
-        let start = Instant::now();
+        let start = thread_time();
         evaluations = black_box(run());
-        elapsed += start.elapsed();
+        elapsed += thread_time() - start;
     }
     elapsed / u32::try_from(evaluations).expect("fewer than 2³² evaluations")
 }
@@ -66,7 +89,7 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
     let mut group = c.benchmark_group(format!("integrators/{name}"));
     group.bench_function("floor: bare accelerations loop", |b| {
         b.iter_custom(|iters| {
-            per_evaluation(iters, || {
+            per_count(iters, || {
                 let h = DURATION / (4 * STEPS) as f64;
                 let (mut q, mut v) = (initial.q, initial.v);
                 for k in 0..4 * STEPS {
@@ -84,7 +107,7 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
     });
     group.bench_function("rk4", |b| {
         b.iter_custom(|iters| {
-            per_evaluation(iters, || {
+            per_count(iters, || {
                 evaluations(rk4(&dynamics, initial, DURATION, STEPS, |_| {}).unwrap())
             })
         })
@@ -96,7 +119,7 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
         group.bench_function(label, |b| {
             let options = AdaptiveOptions::with_tolerance(TOLERANCE);
             b.iter_custom(|iters| {
-                per_evaluation(iters, || {
+                per_count(iters, || {
                     evaluations(
                         adaptive(&dynamics, initial, DURATION, pair, options, |_| {}).unwrap(),
                     )
@@ -106,7 +129,7 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
     }
     group.bench_function("gauss4", |b| {
         b.iter_custom(|iters| {
-            per_evaluation(iters, || {
+            per_count(iters, || {
                 let method = GaussLegendre::Order4;
                 evaluations(
                     gauss_legendre(&dynamics, initial, DURATION, STEPS, method, |_| {}).unwrap(),
@@ -115,6 +138,44 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
         })
     });
     group.finish();
+}
+
+/// Steps of each throughput run (one simulated second at `h = 1 ms`).
+const THROUGHPUT_STEPS: u64 = 1_000;
+
+/// RK4 at `h = 1 ms` on one chain from rest at 0.3 rad, time per step.
+fn bench_throughput<S: MultibodySystem<N, N, 0>, const N: usize>(
+    c: &mut Criterion,
+    family: &str,
+    system: S,
+) {
+    let initial = State {
+        t: 0.0,
+        q: [0.3; N],
+        v: [0.0; N],
+    };
+    let system = &system;
+    let dynamics = Unconstrained::without_inputs(system);
+    let duration = THROUGHPUT_STEPS as f64 * 1e-3;
+    c.bench_function(&format!("throughput/rk4_1ms/{family}/{N}"), |b| {
+        b.iter_custom(|iters| {
+            per_count(iters, || {
+                let run = rk4(&dynamics, initial, duration, THROUGHPUT_STEPS, |_| {});
+                evaluations(run.unwrap()) / 4
+            })
+        })
+    });
+}
+
+fn throughput(c: &mut Criterion) {
+    bench_throughput(c, "planar", PlanarChain2 {});
+    bench_throughput(c, "planar", PlanarChain6 {});
+    bench_throughput(c, "planar", PlanarChain12 {});
+    bench_throughput(c, "planar", PlanarChain30 {});
+    bench_throughput(c, "spatial", SpatialChain2 {});
+    bench_throughput(c, "spatial", SpatialChain6 {});
+    bench_throughput(c, "spatial", SpatialChain12 {});
+    bench_throughput(c, "spatial", SpatialChain30 {});
 }
 
 fn integrators(c: &mut Criterion) {
@@ -133,6 +194,6 @@ criterion_group! {
         .sample_size(20)
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(3));
-    targets = integrators
+    targets = integrators, throughput
 }
 criterion_main!(benches);

@@ -38,21 +38,31 @@ impl<const NQ: usize, const NV: usize> Rate<NQ, NV> {
         dv: [0.0; NV],
     };
 
-    /// `Σⱼ weights[j] · stages[j]`, skipping zero weights (a row of a
-    /// Butcher tableau applied to the stage slopes).
-    #[inline]
+    /// `Σⱼ weights[j] · stages[j]` (a row of a Butcher tableau applied to
+    /// the stage slopes).
+    #[inline(always)]
     pub(crate) fn combination<const S: usize>(weights: &[f64; S], stages: &[Self; S]) -> Self {
+        Self::combination_of_first(S, weights, stages)
+    }
+
+    /// `Σⱼ₍ⱼ₍count₎ weights[j] · stages[j]`: the row of an explicit stage,
+    /// which weighs only the stages before it. Branch-free: testing each
+    /// weight for zero costs more, in mispredictions, than its flops.
+    #[inline(always)]
+    pub(crate) fn combination_of_first<const S: usize>(
+        count: usize,
+        weights: &[f64; S],
+        stages: &[Self; S],
+    ) -> Self {
         let mut sum = Self::ZERO;
-        for (&w, k) in weights.iter().zip(stages) {
-            if w != 0.0 {
-                sum.add_scaled(w, k);
-            }
+        for (&w, k) in weights.iter().zip(stages).take(count) {
+            sum.add_scaled(w, k);
         }
         sum
     }
 
     /// `self += w · other`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn add_scaled(&mut self, w: f64, other: &Self) {
         for i in 0..NQ {
             self.dq[i] += w * other.dq[i];
@@ -63,7 +73,7 @@ impl<const NQ: usize, const NV: usize> Rate<NQ, NV> {
     }
 
     /// `self *= s`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn scale(&mut self, s: f64) {
         for x in self.dq.iter_mut().chain(&mut self.dv) {
             *x *= s;
@@ -90,6 +100,11 @@ impl<const NQ: usize, const NV: usize> Rate<NQ, NV> {
 /// The dynamics as the Runge–Kutta stages use them: slopes evaluated and
 /// counted (the work measure of [`Statistics`]), states moved along slopes,
 /// and the correction after a step.
+///
+/// The small functions of the stages are `#[inline(always)]`: each is a few
+/// flops per entry between two evaluations, and a call or a spilled
+/// temporary there is measurable next to the generated equations
+/// (`generated/benches/integrators.rs`).
 pub(crate) struct Kernel<'a, D> {
     dynamics: &'a D,
     evaluations: Cell<u64>,
@@ -115,7 +130,7 @@ impl<'a, D> Kernel<'a, D> {
     }
 
     /// The accelerations at `(t, q, v)`, counted; a failure names `(t, q)`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn accelerations<const NQ: usize, const NV: usize>(
         &self,
         t: f64,
@@ -132,7 +147,7 @@ impl<'a, D> Kernel<'a, D> {
     }
 
     /// The slope at `state`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn rate<const NQ: usize, const NV: usize>(
         &self,
         state: &State<NQ, NV>,
@@ -147,7 +162,7 @@ impl<'a, D> Kernel<'a, D> {
 
     /// `state` moved on by `dt` along `rate` (an explicit Euler step of both
     /// the coordinates and the speeds).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn advance<const NQ: usize, const NV: usize>(
         &self,
         state: &State<NQ, NV>,
@@ -163,7 +178,7 @@ impl<'a, D> Kernel<'a, D> {
 
     /// The end of a step of length `h` from `state` along the combined slope
     /// `rate`, its configuration put back on the system's manifold.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn step_end<const NQ: usize, const NV: usize>(
         &self,
         state: &State<NQ, NV>,
@@ -182,7 +197,7 @@ impl<'a, D> Kernel<'a, D> {
 
     /// The stage state of a step of length `h` from `state`: moved by `h`
     /// times the combined slope `rate`, at the stage time `t + c h`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn stage<const NQ: usize, const NV: usize>(
         &self,
         state: &State<NQ, NV>,

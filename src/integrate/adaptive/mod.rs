@@ -276,7 +276,7 @@ where
     let mut stages = [Rate::ZERO; S];
     stages[0] = *slope;
     for i in 1..S {
-        let combined = Rate::combination(&pair.a[i], &stages);
+        let combined = Rate::combination_of_first(i, &pair.a[i], &stages);
         stages[i] = kernel.rate(&kernel.stage(state, &combined, h, pair.c[i]))?;
     }
     let state = kernel.step_end(state, &Rate::combination(&pair.b, &stages), h);
