@@ -103,10 +103,7 @@ where
         options,
         dense: false,
     };
-    match pair {
-        ExplicitPair::DormandPrince54 => integrate(run, &DOPRI5, on_step),
-        ExplicitPair::Dop853 => integrate(run, &DOP853, on_step),
-    }
+    integrate_with(run, pair, on_step)
 }
 
 /// [`adaptive`] with the continuous extension of every step: `on_step`
@@ -133,6 +130,18 @@ where
         options,
         dense: true,
     };
+    integrate_with(run, pair, on_step)
+}
+
+/// [`adaptive_dense`] of `run` with the tableau of `pair`.
+fn integrate_with<D, const NQ: usize, const NV: usize>(
+    run: Run<'_, D, NQ, NV>,
+    pair: ExplicitPair,
+    on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
     match pair {
         ExplicitPair::DormandPrince54 => integrate(run, &DOPRI5, on_step),
         ExplicitPair::Dop853 => integrate(run, &DOP853, on_step),
