@@ -191,9 +191,11 @@ where
             let combined = Rate::combination(&scheme.a[i], &stages);
             *slope = kernel.rate(&kernel.stage(state, &combined, h, scheme.c[i]))?;
         }
-        let change = updated.iter().zip(&stages).fold(0.0f64, |m, (new, old)| {
-            m.max(new.minus(old).largest_magnitude())
-        }) * h.abs();
+        let change = updated
+            .iter()
+            .zip(&stages)
+            .fold(0.0f64, |m, (new, old)| m.max(new.largest_difference(old)))
+            * h.abs();
         stages = updated;
         if change <= f64::EPSILON * size {
             return Ok(stages);

@@ -17,8 +17,7 @@ use crate::integrate::runge_kutta::{Kernel, Rate};
 use crate::integrate::{Dynamics, IntegrationError, Solution, State};
 
 /// The coefficients `r₂…r₈` of the nested interpolant of one step (see
-/// `tableaux::DenseOutput`); all but `r₂` zero when the step was not asked
-/// for its extension (the linear interpolant, never shown to a user).
+/// `tableaux::DenseOutput`).
 pub(super) struct Interpolant<const NQ: usize, const NV: usize> {
     start: State<NQ, NV>,
     h: f64,
@@ -26,18 +25,6 @@ pub(super) struct Interpolant<const NQ: usize, const NV: usize> {
 }
 
 impl<const NQ: usize, const NV: usize> Interpolant<NQ, NV> {
-    /// The straight line from `start` to `end` over the step `h`.
-    #[inline]
-    pub(super) fn none(start: &State<NQ, NV>, end: &State<NQ, NV>, h: f64) -> Self {
-        let mut r = [Rate::ZERO; 7];
-        r[0] = difference(end, start);
-        Self {
-            start: *start,
-            h,
-            r,
-        }
-    }
-
     /// The continuous extension of `pair` over the step of length `h` from
     /// `start` (slope `stages[0]`) to `end` (slope `end_slope`), evaluating
     /// the pair's extra stages.
@@ -60,8 +47,13 @@ impl<const NQ: usize, const NV: usize> Interpolant<NQ, NV> {
             let combined = Rate::combination(a, &slopes);
             slopes[S + 1 + k] = kernel.rate(&kernel.stage(start, &combined, h, *c))?;
         }
-        let mut interpolant = Self::none(start, end, h);
+        let mut interpolant = Self {
+            start: *start,
+            h,
+            r: [Rate::ZERO; 7],
+        };
         let r = &mut interpolant.r;
+        r[0] = difference(end, start);
         let mut r3 = stages[0];
         r3.scale(h);
         r3.add_scaled(-1.0, &r[0]);
@@ -76,7 +68,8 @@ impl<const NQ: usize, const NV: usize> Interpolant<NQ, NV> {
     }
 
     /// The interpolated state at the fraction `theta` of the step (the
-    /// configuration not yet put back on its manifold).
+    /// configuration not yet put back on its manifold; the time that of
+    /// the start).
     fn at(&self, theta: f64) -> State<NQ, NV> {
         let other = 1.0 - theta;
         let mut sum = self.r[6];
@@ -86,16 +79,19 @@ impl<const NQ: usize, const NV: usize> Interpolant<NQ, NV> {
             sum.add_scaled(1.0, r);
         }
         sum.scale(theta);
-        self.start_plus(&sum)
+        offset_from(&self.start, &sum)
     }
+}
 
-    /// `start + offset`.
-    fn start_plus(&self, offset: &Rate<NQ, NV>) -> State<NQ, NV> {
-        State {
-            t: self.start.t,
-            q: std::array::from_fn(|i| self.start.q[i] + offset.dq[i]),
-            v: std::array::from_fn(|i| self.start.v[i] + offset.dv[i]),
-        }
+/// `start + offset` (coordinates and speeds).
+fn offset_from<const NQ: usize, const NV: usize>(
+    start: &State<NQ, NV>,
+    offset: &Rate<NQ, NV>,
+) -> State<NQ, NV> {
+    State {
+        t: start.t,
+        q: std::array::from_fn(|i| start.q[i] + offset.dq[i]),
+        v: std::array::from_fn(|i| start.v[i] + offset.dv[i]),
     }
 }
 
@@ -114,31 +110,36 @@ fn difference<const NQ: usize, const NV: usize>(
 /// extension: the state at any time between its start and its end.
 pub struct DenseStep<'a, const NQ: usize, const NV: usize, D> {
     dynamics: &'a D,
-    interpolant: &'a Interpolant<NQ, NV>,
+    start: &'a State<NQ, NV>,
     end: &'a State<NQ, NV>,
+    /// `None` when the integration did not ask for the extension (then the
+    /// step is only shown by its ends).
+    interpolant: Option<&'a Interpolant<NQ, NV>>,
 }
 
 impl<'a, const NQ: usize, const NV: usize, D> DenseStep<'a, NQ, NV, D>
 where
     D: Dynamics<NQ, NV>,
 {
-    /// The step described by `interpolant`, ending (after the dynamics'
-    /// correction) at `end`.
+    /// The step from `start` that ended (after the dynamics' correction) at
+    /// `end`, with its continuous extension if it was asked for.
     pub(super) fn new(
         dynamics: &'a D,
-        interpolant: &'a Interpolant<NQ, NV>,
+        start: &'a State<NQ, NV>,
         end: &'a State<NQ, NV>,
+        interpolant: Option<&'a Interpolant<NQ, NV>>,
     ) -> Self {
         Self {
             dynamics,
-            interpolant,
+            start,
             end,
+            interpolant,
         }
     }
 
     /// The state the step started from.
     pub fn start(&self) -> &State<NQ, NV> {
-        &self.interpolant.start
+        self.start
     }
 
     /// The state the step ended at, after the dynamics'
@@ -152,8 +153,15 @@ where
     /// configuration put back on the system's manifold). Outside the step
     /// the polynomial is extrapolated.
     pub fn state_at(&self, t: f64) -> State<NQ, NV> {
-        let start = &self.interpolant.start;
-        let state = self.interpolant.at((t - start.t) / self.interpolant.h);
+        let (start, end) = (self.start, self.end);
+        let state = match self.interpolant {
+            Some(interpolant) => interpolant.at((t - start.t) / interpolant.h),
+            None => {
+                let mut line = difference(end, start);
+                line.scale((t - start.t) / (end.t - start.t));
+                offset_from(start, &line)
+            }
+        };
         State {
             t,
             q: self.dynamics.renormalise(&state.q),

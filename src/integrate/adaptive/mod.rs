@@ -241,11 +241,14 @@ where
                 kernel.rate(&settled)?
             };
             let interpolant = if dense {
-                Interpolant::new(&kernel, pair, &state, &next, &trial.stages, &end_slope, h)?
+                let stages = &trial.stages;
+                Some(Interpolant::new(
+                    &kernel, pair, &state, &next, stages, &end_slope, h,
+                )?)
             } else {
-                Interpolant::none(&state, &next, h)
+                None
             };
-            let step = DenseStep::new(dynamics, &interpolant, &settled);
+            let step = DenseStep::new(dynamics, &state, &settled, interpolant.as_ref());
             if let ControlFlow::Break(end) = on_step(&step) {
                 state = end;
                 break;
