@@ -45,7 +45,7 @@ impl<const NQ: usize, const NV: usize> Rate<NQ, NV> {
         Self::combination_of_first(S, weights, stages)
     }
 
-    /// `Σⱼ₍ⱼ₍count₎ weights[j] · stages[j]`: the row of an explicit stage,
+    /// `Σⱼ weights[j] · stages[j]` over `j < count`: the row of an explicit stage,
     /// which weighs only the stages before it. Branch-free: testing each
     /// weight for zero costs more, in mispredictions, than its flops.
     #[inline(always)]
