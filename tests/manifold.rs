@@ -7,12 +7,15 @@
 //! `q̇ = ½ q ⊗ (ω, 0)` and puts it back on the unit sphere after each step
 //! through the system's `q ⊕ 0`. Checked: energy and the angular momentum
 //! in the inertial axes conserved; the axisymmetric body against its closed
-//! form (free precession); each method's order of convergence.
+//! form (free precession), at the steps and between them; each method's
+//! order of convergence.
+
+use std::ops::ControlFlow;
 
 use dalembert::MultibodySystem;
 use dalembert::integrate::{
-    AdaptiveOptions, ExplicitPair, GaussLegendre, State, Unconstrained, adaptive, gauss_legendre,
-    rk4, sdirk,
+    AdaptiveOptions, ExplicitPair, GaussLegendre, State, Unconstrained, adaptive, adaptive_dense,
+    gauss_legendre, rk4, sdirk,
 };
 
 /// A quaternion `(x, y, z, w)`, Pinocchio's order.
@@ -353,4 +356,34 @@ fn renormalising_costs_less_than_the_drift_it_removes() {
     println!("|q| − 1 without renormalising: {drift:.2e}; change to the state: {change:.2e}");
     assert!(drift > 0.0 && drift < 1e-6, "{drift}");
     assert!(change < 1e-6, "{change}");
+}
+
+#[test]
+fn dense_output_follows_free_precession_between_steps() {
+    let start = top_start();
+    let dynamics = Unconstrained::without_inputs(&TOP);
+    let options = AdaptiveOptions::with_tolerance(1e-12);
+    let (mut worst, mut unit) = (0.0f64, 0.0f64);
+    adaptive_dense(
+        &dynamics,
+        start,
+        5.0,
+        ExplicitPair::Dop853,
+        options,
+        |step| {
+            let (a, b) = (step.start().t, step.end().t);
+            for k in 1..4 {
+                let s = step.state_at(a + (b - a) * f64::from(k) / 4.0);
+                worst = worst.max(distance(&s, &top_at(&start, s.t)));
+                unit = unit.max((norm(&s.q) - 1.0).abs());
+            }
+            ControlFlow::Continue(())
+        },
+    )
+    .unwrap();
+    assert!(worst < 1e-10, "{worst:e}");
+    assert!(
+        unit < 1e-15,
+        "the interpolated quaternion is renormalised: {unit:e}"
+    );
 }
