@@ -238,7 +238,11 @@ const MAX_ROOT_ITERATIONS: usize = 200;
 /// the step's continuous extension to a few units in the last place of the
 /// time and given to `on_event` as the interpolated state there; a stopping
 /// event ends the integration at its first zero, and the [`Solution`] ends
-/// there. Allocates nothing.
+/// there. A zero at the initial state itself is not an event (the function
+/// must leave zero and come back). Two zeros inside one step (a step longer
+/// than the time between them) count as none, or as the first only when
+/// the signs at the step's ends differ: keep the tolerance, or the initial
+/// step, small against the time between zeros. Allocates nothing.
 pub fn adaptive_with_events<D, G, const NQ: usize, const NV: usize>(
     dynamics: &D,
     initial: State<NQ, NV>,
