@@ -234,13 +234,13 @@ impl<G> Event<G> {
 const MAX_ROOT_ITERATIONS: usize = 200;
 
 /// [`adaptive`](super::adaptive) watching the event `event`: every zero of
-/// its function on the way (at most one per step: the first) is located on
+/// its function on the way (at most one per step) is located on
 /// the step's continuous extension to a few units in the last place of the
 /// time and given to `on_event` as the interpolated state there; a stopping
 /// event ends the integration at its first zero, and the [`Solution`] ends
 /// there. A zero at the initial state itself is not an event (the function
 /// must leave zero and come back). Two zeros inside one step (a step longer
-/// than the time between them) count as none, or as the first only when
+/// than the time between them) count as none, or as one of them when
 /// the signs at the step's ends differ: keep the tolerance, or the initial
 /// step, small against the time between zeros. Allocates nothing.
 pub fn adaptive_with_events<D, G, const NQ: usize, const NV: usize>(
