@@ -239,10 +239,10 @@ const MAX_ROOT_ITERATIONS: usize = 200;
 /// time and given to `on_event` as the interpolated state there; a stopping
 /// event ends the integration at its first zero, and the [`Solution`] ends
 /// there. A zero at the initial state itself is not an event (the function
-/// must leave zero and come back). Two zeros inside one step (a step longer
-/// than the time between them) count as none, or as one of them when
-/// the signs at the step's ends differ: keep the tolerance, or the initial
-/// step, small against the time between zeros. Allocates nothing.
+/// must leave zero and come back). Several zeros inside one step (a step
+/// longer than the time between them) count as none when the signs at the
+/// step's ends agree, as one of them otherwise: keep the tolerance small
+/// against the time between zeros. Allocates nothing.
 pub fn adaptive_with_events<D, G, const NQ: usize, const NV: usize>(
     dynamics: &D,
     initial: State<NQ, NV>,
