@@ -195,20 +195,25 @@ fn by_rk4(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> State<
     rk4(&dynamics, start, t_end, steps, |_| {}).unwrap().end
 }
 
-fn by_gauss4(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> State<4, 3> {
+fn by_gauss(
+    method: GaussLegendre,
+    body: &FreeBody,
+    start: State<4, 3>,
+    t_end: f64,
+    steps: u64,
+) -> State<4, 3> {
     let dynamics = Unconstrained::without_inputs(body);
-    let method = GaussLegendre::Order4;
     gauss_legendre(&dynamics, start, t_end, steps, method, |_| {})
         .unwrap()
         .end
 }
 
+fn by_gauss4(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> State<4, 3> {
+    by_gauss(GaussLegendre::Order4, body, start, t_end, steps)
+}
+
 fn by_gauss6(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> State<4, 3> {
-    let dynamics = Unconstrained::without_inputs(body);
-    let method = GaussLegendre::Order6;
-    gauss_legendre(&dynamics, start, t_end, steps, method, |_| {})
-        .unwrap()
-        .end
+    by_gauss(GaussLegendre::Order6, body, start, t_end, steps)
 }
 
 fn by_sdirk(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> State<4, 3> {
