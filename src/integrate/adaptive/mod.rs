@@ -230,23 +230,27 @@ where
         let factor = step_factor(pair, error, after_rejection);
         if error <= 1.0 {
             statistics.accepted_steps += 1;
-            let end_slope = match new_slope {
-                Some(new_slope) => new_slope,
-                None => kernel.rate(&next)?,
-            };
             let settled = kernel.settle(&next)?;
-            slope = if settled == next {
-                end_slope
-            } else {
-                kernel.rate(&settled)?
+            // The slope at the unsettled end: the error estimate's, or one
+            // evaluation when the next step (not settled) or the dense
+            // output needs it.
+            let end_slope = match new_slope {
+                Some(new_slope) => Some(new_slope),
+                None if dense || settled == next => Some(kernel.rate(&next)?),
+                None => None,
             };
-            let interpolant = if dense {
-                let stages = &trial.stages;
-                Some(Interpolant::new(
-                    &kernel, pair, &state, &next, stages, &end_slope, h,
-                )?)
-            } else {
-                None
+            slope = match end_slope {
+                Some(end_slope) if settled == next => end_slope,
+                _ => kernel.rate(&settled)?,
+            };
+            let interpolant = match (dense, &end_slope) {
+                (true, Some(end_slope)) => {
+                    let stages = &trial.stages;
+                    Some(Interpolant::new(
+                        &kernel, pair, &state, &next, stages, end_slope, h,
+                    )?)
+                }
+                _ => None,
             };
             let step = DenseStep::new(dynamics, &state, &settled, interpolant.as_ref());
             if let ControlFlow::Break(end) = on_step(&step) {
