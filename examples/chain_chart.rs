@@ -1,11 +1,15 @@
-//! Charts of the chain benchmarks: nanoseconds per call against
-//! the number of links, log scale, for every tool, one SVG per family.
+//! Charts of the chain benchmarks against the number of links, log scale,
+//! for every tool, one SVG per family.
 //!
-//! Reads `docs/charts/chains.csv` (written by `benches/chains_table.py`
-//! from the criterion medians and the peer harness) and writes
-//! `docs/charts/chains_planar.svg` and `docs/charts/chains_spatial.svg`.
+//! By default: nanoseconds per call, from `docs/charts/chains.csv` (written
+//! by `benches/chains_table.py` from the criterion medians and the peer
+//! harness) to `docs/charts/chains_planar.svg` and
+//! `docs/charts/chains_spatial.svg`. With the argument `throughput`:
+//! simulated seconds per CPU second of fixed-step RK4, from
+//! `docs/charts/throughput.csv` (BENCHMARKS.md, "Simulation throughput") to
+//! `docs/charts/throughput_planar.svg` and `docs/charts/throughput_spatial.svg`.
 //!
-//! Run with `cargo run --example chain_chart`.
+//! Run with `cargo run --example chain_chart [-- throughput]`.
 
 use std::collections::BTreeMap;
 use std::error::Error;
@@ -13,11 +17,38 @@ use std::path::Path;
 
 use dalembert_lab::{Series, line_chart_log_y};
 
-/// Points `(n, ns per call)` per tool, in the CSV's order of tools.
+/// Points `(n, value)` per tool, in the CSV's order of tools.
 type Tools = Vec<(String, Vec<(f64, f64)>)>;
 
+/// What one family of charts shows.
+struct Measure {
+    /// `docs/charts/{name}.csv` in, `docs/charts/{name}_{family}.svg` out.
+    name: &'static str,
+    /// The title after the family's name.
+    title: &'static str,
+    /// The y axis.
+    unit: &'static str,
+}
+
+const TIME_PER_CALL: Measure = Measure {
+    name: "chains",
+    title: "time per call (lower is better)",
+    unit: "ns per call",
+};
+
+const THROUGHPUT: Measure = Measure {
+    name: "throughput",
+    title: "RK4 at h = 1 ms, simulated time per CPU time (higher is better)",
+    unit: "simulated s per CPU s",
+};
+
 fn main() -> Result<(), Box<dyn Error>> {
-    let text = std::fs::read_to_string("docs/charts/chains.csv")?;
+    let measure = match std::env::args().nth(1).as_deref() {
+        None => TIME_PER_CALL,
+        Some("throughput") => THROUGHPUT,
+        Some(other) => return Err(format!("unknown chart {other}: expected throughput").into()),
+    };
+    let text = std::fs::read_to_string(format!("docs/charts/{}.csv", measure.name))?;
     let mut families: BTreeMap<String, Tools> = BTreeMap::new();
     for line in text.lines().skip(1) {
         let fields: Vec<&str> = line.split(',').collect();
@@ -36,12 +67,12 @@ fn main() -> Result<(), Box<dyn Error>> {
             .iter()
             .map(|(name, points)| Series { name, points })
             .collect();
-        let path = format!("docs/charts/chains_{family}.svg");
+        let path = format!("docs/charts/{}_{family}.svg", measure.name);
         line_chart_log_y(
             Path::new(&path),
-            &format!("{family} chains: time per call (lower is better)"),
+            &format!("{family} chains: {}", measure.title),
             "number of links n",
-            "ns per call",
+            measure.unit,
             &series,
         )?;
         println!("wrote {path}");

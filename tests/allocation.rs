@@ -175,3 +175,44 @@ fn rank_revealing_solves_and_the_augmented_lagrangian_allocate_nothing() {
     );
     assert_eq!(result, (true, true, true));
 }
+
+#[test]
+fn adaptive_pairs_dense_output_and_events_allocate_nothing() {
+    let pendulum = DoublePendulum {
+        m: 1.0,
+        L: 1.2,
+        g: 9.81,
+    };
+    let dynamics = Unconstrained::without_inputs(&pendulum);
+    let start = State {
+        t: 0.0,
+        q: [0.3, -0.4],
+        v: [0.5, 0.1],
+    };
+    let options = integrate::AdaptiveOptions::with_tolerance(1e-10);
+    let pair = integrate::ExplicitPair::Dop853;
+    let (made, result) = allocations(|| {
+        let plain = integrate::adaptive(&dynamics, start, 1.0, pair, options, |_| {});
+        let mut middle = 0.0;
+        let dense = integrate::adaptive_dense(&dynamics, start, 1.0, pair, options, |step| {
+            middle += step.state_at(0.5 * (step.start().t + step.end().t)).q[0];
+            std::ops::ControlFlow::Continue(())
+        });
+        let upright = integrate::Event::record(
+            |_, q: &[f64; 2], _: &[f64; 2]| q[0],
+            integrate::Crossing::Either,
+        );
+        let mut crossings = 0;
+        let events =
+            integrate::adaptive_with_events(&dynamics, start, 1.0, pair, options, upright, |_| {
+                crossings += 1
+            });
+        (plain.is_ok(), dense.is_ok(), events.is_ok(), crossings)
+    });
+    assert_eq!(made, 0, "the adaptive integrators allocated");
+    assert!(result.0 && result.1 && result.2, "{result:?}");
+    assert!(
+        result.3 > 0,
+        "the pendulum crosses θ₁ = 0 within 1 s: {result:?}"
+    );
+}

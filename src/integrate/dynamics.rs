@@ -20,9 +20,25 @@ pub trait Dynamics<const NQ: usize, const NV: usize> {
         v: &[f64; NV],
     ) -> Result<[f64; NV], DynamicsError>;
 
+    /// The coordinates' rates `q̇ = N(q) v`.
+    fn coordinate_rates(&self, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NQ];
+
     /// `q ⊕ h v`: the configuration reached from `q` at the constant speeds
     /// `v` after the time `h`.
     fn integrate_configuration(&self, q: &[f64; NQ], v: &[f64; NV], h: f64) -> [f64; NQ];
+
+    /// `q` put back on its manifold after a step: `q ⊕ 0`, the system's own
+    /// configuration update with no motion, which renormalises a quaternion
+    /// when the system's update does (see the module's docs). The identity
+    /// when every speed is a coordinate's rate.
+    #[inline]
+    fn renormalise(&self, q: &[f64; NQ]) -> [f64; NQ] {
+        if NQ == NV {
+            *q
+        } else {
+            self.integrate_configuration(q, &[0.0; NV], 0.0)
+        }
+    }
 
     /// The state to continue from after a step ended at `state`: `state`
     /// itself unless the dynamics correct it (coordinate projection).
@@ -109,6 +125,11 @@ where
     ) -> Result<[f64; NV], DynamicsError> {
         self.system
             .accelerations(t, q, v, &self.inputs.inputs(t, q, v))
+    }
+
+    #[inline]
+    fn coordinate_rates(&self, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NQ] {
+        self.system.coordinate_rates(q, v)
     }
 
     #[inline]
@@ -223,6 +244,11 @@ where
             }
         };
         solution.map(|(vdot, _)| vdot)
+    }
+
+    #[inline]
+    fn coordinate_rates(&self, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NQ] {
+        self.system.coordinate_rates(q, v)
     }
 
     #[inline]

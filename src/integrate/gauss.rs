@@ -160,7 +160,7 @@ where
     let step = |state: &State<NQ, NV>, h: f64| {
         let stages = solve_stages(&kernel, scheme, state, h, guess)?;
         guess = std::array::from_fn(|i| Rate::combination(&extrapolation[i], &stages));
-        Ok(kernel.advance(state, &Rate::combination(&scheme.b, &stages), h))
+        Ok(kernel.step_end(state, &Rate::combination(&scheme.b, &stages), h))
     };
     kernel.fixed_steps(initial, t_end, steps, step, observer)
 }
@@ -172,8 +172,8 @@ fn solve_stages<D, const NQ: usize, const NV: usize, const S: usize>(
     scheme: &Collocation<S>,
     state: &State<NQ, NV>,
     h: f64,
-    guess: [Rate<NV>; S],
-) -> Result<[Rate<NV>; S], IntegrationError<NQ>>
+    guess: [Rate<NQ, NV>; S],
+) -> Result<[Rate<NQ, NV>; S], IntegrationError<NQ>>
 where
     D: Dynamics<NQ, NV>,
 {
@@ -191,9 +191,11 @@ where
             let combined = Rate::combination(&scheme.a[i], &stages);
             *slope = kernel.rate(&kernel.stage(state, &combined, h, scheme.c[i]))?;
         }
-        let change = updated.iter().zip(&stages).fold(0.0f64, |m, (new, old)| {
-            m.max(new.minus(old).largest_magnitude())
-        }) * h.abs();
+        let change = updated
+            .iter()
+            .zip(&stages)
+            .fold(0.0f64, |m, (new, old)| m.max(new.largest_difference(old)))
+            * h.abs();
         stages = updated;
         if change <= f64::EPSILON * size {
             return Ok(stages);

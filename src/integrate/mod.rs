@@ -5,16 +5,45 @@
 //! [`Unconstrained::new(&system, |t, q, v| u)`](Unconstrained::new) (or
 //! [`Unconstrained::without_inputs`]), or a constrained one with its drift
 //! [`Stabilisation`](crate::Stabilisation) ([`Constrained`]). Every one
-//! allocates nothing, moves the configuration through the system's
-//! `integrate_configuration` (`q ⊕ h v`), lets an observer see the initial
-//! state and every step, and returns the final state with the work done
-//! ([`Solution`]) or an [`IntegrationError`] naming where and why it stopped.
+//! allocates nothing, lets an observer see the initial state and every step,
+//! and returns the final state with the work done ([`Solution`]) or an
+//! [`IntegrationError`] naming where and why it stopped.
+//!
+//! # Configurations on a manifold
+//!
+//! When the speeds are not the coordinates' rates (a unit quaternion and an
+//! angular velocity: `NQ = 4`, `NV = 3`), the Runge–Kutta methods integrate
+//! the coordinates' rates `q̇ = N(q) v` of the system's `coordinate_rates`
+//! beside `v̇`, so each keeps its full order, and put the configuration back
+//! on its manifold after every step through the system's own update with no
+//! motion, `q ⊕ 0` (`integrate_configuration(q, 0, 0)`), which renormalises
+//! a quaternion when the system's exponential map returns a unit quaternion.
+//! Measured on a torque-free rigid body in quaternions (`tests/manifold.rs`):
+//! RK4, Gauss 4, Gauss 6 and SDIRK reach their orders 4.00, 4.00, 6.00 and
+//! 3.00; DOPRI5 and DOP853 need 9.4 and 7.1 times the steps for a tolerance
+//! 10⁵ and 10⁸ times smaller (10 expected at their orders). Renormalising
+//! costs nothing measurable: RK4 at `h = 5 ms` over 20 s leaves `|q|` 6e-13
+//! off one without it and changes the final state by 5e-13. Stepping the
+//! configuration by `q ⊕ h Σ aᵢⱼ vⱼ` instead would lose the commutators of
+//! the exponential map's derivative and fall to order 2 on a non-abelian
+//! group. The augmented Lagrangian method, second order, moves `q` by the
+//! system's update `q ⊕ Δ`, which keeps its order.
+//!
+//! # Between steps
+//!
+//! The adaptive pairs give the state at any time inside a step
+//! ([`adaptive_dense`], [`DenseStep::state_at`]: DOPRI5's fourth-order and
+//! DOP853's seventh-order continuous extensions) and locate the zeros of a
+//! function `g(t, q, v)` on it to a few units in the last place of the
+//! time, recording them or stopping there ([`adaptive_with_events`],
+//! [`Event`]).
 //!
 //! | method | steps | use it for |
 //! |---|---|---|
 //! | [`rk4`] | fixed, `steps` to `t_end` | real-time loops, reproducible runs, a cheap default ([`rk4_step`]: one step at a time) |
 //! | [`adaptive`] with [`ExplicitPair::DormandPrince54`] | adaptive | moderate tolerances (`1e-6`…`1e-9`) on non-stiff systems |
 //! | [`adaptive`] with [`ExplicitPair::Dop853`] | adaptive | tight tolerances (`1e-10` and below): the least work per digit |
+//! | [`adaptive_dense`], [`adaptive_with_events`] | adaptive | output at any time, impacts, switching, stopping at a condition |
 //! | [`gauss_legendre`] | fixed | long runs of conservative systems: the energy error stays bounded |
 //! | [`sdirk`] | fixed | stiff springs and joints, whose fast modes an explicit method must resolve |
 //! | [`augmented_lagrangian`] | fixed | closed loops with redundant constraints or singular positions at a fixed step: the index-3 formulation of the IFToMM benchmarks' reference solutions (constrained dynamics only) |
@@ -28,7 +57,10 @@ mod runge_kutta;
 mod sdirk;
 mod solution;
 
-pub use adaptive::{AdaptiveOptions, ExplicitPair, adaptive};
+pub use adaptive::{
+    AdaptiveOptions, Crossing, DenseStep, Event, ExplicitPair, adaptive, adaptive_dense,
+    adaptive_with_events,
+};
 pub use augmented_lagrangian::{AugmentedLagrangian, augmented_lagrangian};
 pub use dynamics::{Constrained, Dynamics, InputLaw, NoInputs, Unconstrained};
 pub use gauss::{GaussLegendre, gauss_legendre};

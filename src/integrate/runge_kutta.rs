@@ -1,8 +1,9 @@
 //! The Runge–Kutta kernel shared by every integrator: the [`State`], the
-//! slope of a stage ([`Rate`]: speeds and accelerations, both in the speeds'
-//! space), stages moved on through the system's configuration update
-//! `q ⊕ h v`, evaluations counted, and the fixed-step march that ends
-//! exactly at the final time; with it, the classical fourth-order method.
+//! slope of a stage ([`Rate`]: the coordinates' rates `q̇ = N(q) v` and the
+//! accelerations), stages moved along slopes, each step's end put back on
+//! the configuration manifold, evaluations counted, and the fixed-step march
+//! that ends exactly at the final time; with it, the classical fourth-order
+//! method.
 
 use std::cell::Cell;
 
@@ -20,55 +21,76 @@ pub struct State<const NQ: usize, const NV: usize> {
     pub v: [f64; NV],
 }
 
-/// The slope of one stage of a Runge–Kutta method: the speeds (the
-/// configuration's motion, in the speeds' space) and the accelerations.
+/// The slope of one stage of a Runge–Kutta method: the coordinates' rates
+/// `q̇ = N(q) v` and the accelerations `v̇`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Rate<const NV: usize> {
-    /// The speeds `v`, which move the configuration.
-    pub(crate) dq: [f64; NV],
+pub(crate) struct Rate<const NQ: usize, const NV: usize> {
+    /// The coordinates' rates `q̇`.
+    pub(crate) dq: [f64; NQ],
     /// The accelerations `v̇`.
     pub(crate) dv: [f64; NV],
 }
 
-impl<const NV: usize> Rate<NV> {
+impl<const NQ: usize, const NV: usize> Rate<NQ, NV> {
     /// No motion: the placeholder of a stage not yet evaluated.
     pub(crate) const ZERO: Self = Self {
-        dq: [0.0; NV],
+        dq: [0.0; NQ],
         dv: [0.0; NV],
     };
 
-    /// `Σⱼ weights[j] · stages[j]`, skipping zero weights (a row of a
-    /// Butcher tableau applied to the stage slopes).
+    /// `Σⱼ weights[j] · stages[j]` (a row of a Butcher tableau applied to
+    /// the stage slopes).
+    #[inline(always)]
     pub(crate) fn combination<const S: usize>(weights: &[f64; S], stages: &[Self; S]) -> Self {
+        Self::combination_of_first(S, weights, stages)
+    }
+
+    /// `Σⱼ weights[j] · stages[j]` over `j < count`: the row of an explicit stage,
+    /// which weighs only the stages before it. Branch-free: testing each
+    /// weight for zero costs more, in mispredictions, than its flops.
+    #[inline(always)]
+    pub(crate) fn combination_of_first<const S: usize>(
+        count: usize,
+        weights: &[f64; S],
+        stages: &[Self; S],
+    ) -> Self {
         let mut sum = Self::ZERO;
-        for (&w, k) in weights.iter().zip(stages).filter(|(w, _)| **w != 0.0) {
-            for i in 0..NV {
-                sum.dq[i] += w * k.dq[i];
-                sum.dv[i] += w * k.dv[i];
-            }
+        for (&w, k) in weights.iter().zip(stages).take(count) {
+            sum.add_scaled(w, k);
         }
         sum
     }
 
-    /// `Σ wᵢ kᵢ / denominator`.
-    fn weighted_sum<const K: usize>(terms: [(f64, &Self); K], denominator: f64) -> Self {
-        let sum = |part: fn(&Self) -> &[f64; NV]| {
-            std::array::from_fn(|i| {
-                terms.iter().map(|(w, k)| w * part(k)[i]).sum::<f64>() / denominator
-            })
-        };
-        Self {
-            dq: sum(|k| &k.dq),
-            dv: sum(|k| &k.dv),
+    /// `self += w · other`.
+    #[inline(always)]
+    pub(crate) fn add_scaled(&mut self, w: f64, other: &Self) {
+        for i in 0..NQ {
+            self.dq[i] += w * other.dq[i];
+        }
+        for i in 0..NV {
+            self.dv[i] += w * other.dv[i];
         }
     }
 
-    /// The largest magnitude of any entry.
-    pub(crate) fn largest_magnitude(&self) -> f64 {
-        self.dq
-            .iter()
-            .chain(&self.dv)
-            .fold(0.0, |m, x| m.max(x.abs()))
+    /// `self *= s`.
+    #[inline(always)]
+    pub(crate) fn scale(&mut self, s: f64) {
+        for x in self.dq.iter_mut().chain(&mut self.dv) {
+            *x *= s;
+        }
+    }
+
+    /// The largest magnitude of any entry of `self − other`, in four
+    /// independent running maxima (one chain of `max` over every entry would
+    /// cost its latency per entry).
+    #[inline(always)]
+    pub(crate) fn largest_difference(&self, other: &Self) -> f64 {
+        let mut largest = [0.0f64; 4];
+        let differences = (self.dq.iter().zip(&other.dq)).chain(self.dv.iter().zip(&other.dv));
+        for (i, (a, b)) in differences.enumerate() {
+            largest[i % 4] = largest[i % 4].max((a - b).abs());
+        }
+        largest[0].max(largest[1]).max(largest[2].max(largest[3]))
     }
 
     /// `self − other`, entry by entry.
@@ -83,6 +105,11 @@ impl<const NV: usize> Rate<NV> {
 /// The dynamics as the Runge–Kutta stages use them: slopes evaluated and
 /// counted (the work measure of [`Statistics`]), states moved along slopes,
 /// and the correction after a step.
+///
+/// The small functions of the stages are `#[inline(always)]`: each is a few
+/// flops per entry between two evaluations, and a call or a spilled
+/// temporary there is measurable next to the generated equations
+/// (`generated/benches/integrators.rs`).
 pub(crate) struct Kernel<'a, D> {
     dynamics: &'a D,
     evaluations: Cell<u64>,
@@ -97,13 +124,18 @@ impl<'a, D> Kernel<'a, D> {
         }
     }
 
+    /// The dynamics.
+    pub(crate) fn dynamics(&self) -> &'a D {
+        self.dynamics
+    }
+
     /// Evaluations of the accelerations so far.
     pub(crate) fn evaluations(&self) -> u64 {
         self.evaluations.get()
     }
 
     /// The accelerations at `(t, q, v)`, counted; a failure names `(t, q)`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn accelerations<const NQ: usize, const NV: usize>(
         &self,
         t: f64,
@@ -120,52 +152,64 @@ impl<'a, D> Kernel<'a, D> {
     }
 
     /// The slope at `state`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn rate<const NQ: usize, const NV: usize>(
         &self,
         state: &State<NQ, NV>,
-    ) -> Result<Rate<NV>, IntegrationError<NQ>>
+    ) -> Result<Rate<NQ, NV>, IntegrationError<NQ>>
     where
         D: Dynamics<NQ, NV>,
     {
         let dv = self.accelerations(state.t, &state.q, &state.v)?;
-        Ok(Rate { dq: state.v, dv })
+        let dq = self.dynamics.coordinate_rates(&state.q, &state.v);
+        Ok(Rate { dq, dv })
     }
 
-    /// `state` moved on by `dt` along `rate` (an explicit Euler step, the
-    /// configuration through `q ⊕ dt · rate.dq`).
-    #[inline]
+    /// `state` moved on by `dt` along `rate` (an explicit Euler step of both
+    /// the coordinates and the speeds).
+    #[inline(always)]
     pub(crate) fn advance<const NQ: usize, const NV: usize>(
         &self,
         state: &State<NQ, NV>,
-        rate: &Rate<NV>,
+        rate: &Rate<NQ, NV>,
         dt: f64,
+    ) -> State<NQ, NV> {
+        State {
+            t: state.t + dt,
+            q: std::array::from_fn(|i| state.q[i] + dt * rate.dq[i]),
+            v: std::array::from_fn(|i| state.v[i] + dt * rate.dv[i]),
+        }
+    }
+
+    /// The end of a step of length `h` from `state` along the combined slope
+    /// `rate`, its configuration put back on the system's manifold.
+    #[inline(always)]
+    pub(crate) fn step_end<const NQ: usize, const NV: usize>(
+        &self,
+        state: &State<NQ, NV>,
+        rate: &Rate<NQ, NV>,
+        h: f64,
     ) -> State<NQ, NV>
     where
         D: Dynamics<NQ, NV>,
     {
+        let end = self.advance(state, rate, h);
         State {
-            t: state.t + dt,
-            q: self
-                .dynamics
-                .integrate_configuration(&state.q, &rate.dq, dt),
-            v: std::array::from_fn(|i| state.v[i] + dt * rate.dv[i]),
+            q: self.dynamics.renormalise(&end.q),
+            ..end
         }
     }
 
     /// The stage state of a step of length `h` from `state`: moved by `h`
     /// times the combined slope `rate`, at the stage time `t + c h`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn stage<const NQ: usize, const NV: usize>(
         &self,
         state: &State<NQ, NV>,
-        rate: &Rate<NV>,
+        rate: &Rate<NQ, NV>,
         h: f64,
         c: f64,
-    ) -> State<NQ, NV>
-    where
-        D: Dynamics<NQ, NV>,
-    {
+    ) -> State<NQ, NV> {
         State {
             t: state.t + c * h,
             ..self.advance(state, rate, h)
@@ -265,6 +309,9 @@ where
     kernel.settle(&rk4_stages(&kernel, state, h)?)
 }
 
+/// The weights of the classical RK4 stages.
+const RK4_WEIGHTS: [f64; 4] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0];
+
 /// The four stages of a classical RK4 step of length `h` from `state`.
 fn rk4_stages<D, const NQ: usize, const NV: usize>(
     kernel: &Kernel<'_, D>,
@@ -278,8 +325,8 @@ where
     let k2 = kernel.rate(&kernel.advance(state, &k1, h / 2.0))?;
     let k3 = kernel.rate(&kernel.advance(state, &k2, h / 2.0))?;
     let k4 = kernel.rate(&kernel.advance(state, &k3, h))?;
-    let weighted = Rate::weighted_sum([(1.0, &k1), (2.0, &k2), (2.0, &k3), (1.0, &k4)], 6.0);
-    Ok(kernel.advance(state, &weighted, h))
+    let weighted = Rate::combination(&RK4_WEIGHTS, &[k1, k2, k3, k4]);
+    Ok(kernel.step_end(state, &weighted, h))
 }
 
 #[cfg(test)]

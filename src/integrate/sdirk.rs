@@ -11,7 +11,9 @@
 //! two cores, so it would have to sit behind a feature that CI skips. Our
 //! systems are small and second order, which makes a hand-written SDIRK
 //! short and allocation-free: each stage is one `NV × NV` Newton system in
-//! the stage speeds `V` (the configuration follows as `Q = q ⊕ h (Σ aᵢⱼ Vⱼ)`),
+//! the stage speeds `V` (the configuration follows as
+//! `Q = q + h (Σ aᵢⱼ N(Qⱼ) Vⱼ)`, the coordinates' rates `N(q) v` integrated
+//! like the speeds),
 //! with the matrix `I − hγ ∂v̇/∂v − (hγ)² ∂v̇/∂q` built once per step from a
 //! forward-difference Jacobian (`2 NV` evaluations) and factored on the
 //! stack (by the partial-pivoting LU of `lu.rs`: nalgebra's `LU` needs a
@@ -40,6 +42,10 @@ const A: [[f64; 3]; 3] = [
     [TAU - GAMMA, GAMMA, 0.0],
     [B1, B2, GAMMA],
 ];
+/// Passes of the fixed-point iteration for a stage configuration
+/// `Q = q + h (… + γ N(Q) V)` when `N` depends on `Q`: each gains the factor
+/// `hγ ‖∂(N v)/∂q‖`, small at any step the Newton iteration converges for.
+const MAX_CONFIGURATION_ITERATIONS: usize = 8;
 /// Newton iterations allowed per stage (the Jacobian is that of the step's
 /// start, so the convergence is linear, not quadratic).
 const MAX_NEWTON_ITERATIONS: usize = 25;
@@ -96,13 +102,13 @@ where
             h,
         };
         speeds = newton.solve_stage(kernel, &stage, hg, speeds)?;
-        let explicit_speeds = kernel.advance(state, &explicit, h).v;
+        let (q, explicit_speeds) = stage.at(kernel, &speeds);
         stages[i] = Rate {
-            dq: speeds,
+            dq: kernel.dynamics().coordinate_rates(&q, &speeds),
             dv: std::array::from_fn(|k| (speeds[k] - explicit_speeds[k]) / hg),
         };
     }
-    Ok(kernel.advance(state, &Rate::combination(&A[2], &stages), h))
+    Ok(kernel.step_end(state, &Rate::combination(&A[2], &stages), h))
 }
 
 /// A stage of a step: its time, the step's start and the explicit part
@@ -110,22 +116,36 @@ where
 struct Stage<'s, const NQ: usize, const NV: usize> {
     t: f64,
     start: &'s State<NQ, NV>,
-    explicit: &'s Rate<NV>,
+    explicit: &'s Rate<NQ, NV>,
     h: f64,
 }
 
 impl<const NQ: usize, const NV: usize> Stage<'_, NQ, NV> {
     /// The stage configuration and speeds given the stage speeds `V`:
-    /// `Q = q ⊕ h (Σ aᵢⱼ Vⱼ + γ V)`, `V̂ = v + h Σ aᵢⱼ v̇ⱼ`.
+    /// `Q = q + h (Σ aᵢⱼ Q̇ⱼ + γ N(Q) V)` (by fixed-point iteration, exact at
+    /// the first pass when `N` does not depend on `Q`),
+    /// `V̂ = v + h Σ aᵢⱼ v̇ⱼ`.
     fn at<D>(&self, kernel: &Kernel<'_, D>, speeds: &[f64; NV]) -> ([f64; NQ], [f64; NV])
     where
         D: Dynamics<NQ, NV>,
     {
-        let motion = Rate {
-            dq: std::array::from_fn(|k| self.explicit.dq[k] + GAMMA * speeds[k]),
-            dv: self.explicit.dv,
+        let dynamics = kernel.dynamics();
+        let along = |rates: [f64; NQ]| {
+            let motion = Rate {
+                dq: std::array::from_fn(|k| self.explicit.dq[k] + GAMMA * rates[k]),
+                dv: self.explicit.dv,
+            };
+            kernel.advance(self.start, &motion, self.h)
         };
-        let moved = kernel.advance(self.start, &motion, self.h);
+        let mut moved = along(dynamics.coordinate_rates(&self.start.q, speeds));
+        for _ in 0..MAX_CONFIGURATION_ITERATIONS {
+            let next = along(dynamics.coordinate_rates(&moved.q, speeds));
+            let settled = next.q == moved.q;
+            moved = next;
+            if settled {
+                break;
+            }
+        }
         (moved.q, moved.v)
     }
 }
@@ -154,15 +174,10 @@ impl<const NV: usize> NewtonMatrix<NV> {
         for j in 0..NV {
             let direction = std::array::from_fn(|k| f64::from(u8::from(k == j)));
             let dq = difference_step(if NQ == NV { q[j] } else { 0.0 });
-            let shifted = kernel.advance(
-                state,
-                &Rate {
-                    dq: direction,
-                    dv: [0.0; NV],
-                },
-                dq,
-            );
-            let by_q = kernel.accelerations(t, &shifted.q, &v)?;
+            let shifted = kernel
+                .dynamics()
+                .integrate_configuration(&q, &direction, dq);
+            let by_q = kernel.accelerations(t, &shifted, &v)?;
             let dv = difference_step(v[j]);
             let mut shifted = v;
             shifted[j] += dv;

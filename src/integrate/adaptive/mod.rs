@@ -14,11 +14,16 @@
 //! from Hairer's codes (`tableaux.rs`), and so is the controller: an error
 //! norm `‖err / (atol + rtol max(|y₀|, |y₁|))‖` (root mean square), the next
 //! step `h · clamp(0.9 err^(−1/(q̂+1)), min, max)`, no growth right after a
-//! rejection, and Hairer's initial-step heuristic. No dense output: the
-//! observer sees the accepted steps.
+//! rejection, and Hairer's initial-step heuristic. The continuous
+//! extensions (dense output) and the location of events are in `dense.rs`.
 
+mod dense;
 mod tableaux;
 
+use std::ops::ControlFlow;
+
+use dense::Interpolant;
+pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
 use tableaux::{DOP853, DOPRI5, EmbeddedPair, ErrorEstimate};
 
 use super::runge_kutta::{Kernel, Rate};
@@ -81,34 +86,96 @@ pub fn adaptive<D, const NQ: usize, const NV: usize>(
     t_end: f64,
     pair: ExplicitPair,
     options: AdaptiveOptions,
-    observer: impl FnMut(&State<NQ, NV>),
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
-where
-    D: Dynamics<NQ, NV>,
-{
-    match pair {
-        ExplicitPair::DormandPrince54 => {
-            integrate(dynamics, initial, t_end, &DOPRI5, options, observer)
-        }
-        ExplicitPair::Dop853 => integrate(dynamics, initial, t_end, &DOP853, options, observer),
-    }
-}
-
-/// [`adaptive`] with the tableau `pair`.
-fn integrate<D, const NQ: usize, const NV: usize, const S: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    pair: &EmbeddedPair<S>,
-    options: AdaptiveOptions,
     mut observer: impl FnMut(&State<NQ, NV>),
 ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
     D: Dynamics<NQ, NV>,
 {
+    observer(&initial);
+    let on_step = |step: &DenseStep<'_, NQ, NV, D>| {
+        observer(step.end());
+        ControlFlow::Continue(())
+    };
+    let run = Run {
+        dynamics,
+        initial,
+        t_end,
+        options,
+        dense: false,
+    };
+    integrate_with(run, pair, on_step)
+}
+
+/// [`adaptive`] with the continuous extension of every step: `on_step`
+/// sees each accepted step as a [`DenseStep`], which gives the state at any
+/// time inside it (DOPRI5: Shampine's fourth-order interpolant, no extra
+/// evaluation; DOP853: its seventh-order one, three more evaluations a
+/// step), and may end the integration there by returning
+/// [`ControlFlow::Break`] with the state to end at.
+pub fn adaptive_dense<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
+    t_end: f64,
+    pair: ExplicitPair,
+    options: AdaptiveOptions,
+    on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
+    let run = Run {
+        dynamics,
+        initial,
+        t_end,
+        options,
+        dense: true,
+    };
+    integrate_with(run, pair, on_step)
+}
+
+/// [`adaptive_dense`] of `run` with the tableau of `pair`.
+fn integrate_with<D, const NQ: usize, const NV: usize>(
+    run: Run<'_, D, NQ, NV>,
+    pair: ExplicitPair,
+    on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
+    match pair {
+        ExplicitPair::DormandPrince54 => integrate(run, &DOPRI5, on_step),
+        ExplicitPair::Dop853 => integrate(run, &DOP853, on_step),
+    }
+}
+
+/// What an adaptive integration is asked to do.
+struct Run<'a, D, const NQ: usize, const NV: usize> {
+    dynamics: &'a D,
+    initial: State<NQ, NV>,
+    t_end: f64,
+    options: AdaptiveOptions,
+    /// Whether the steps need their continuous extension.
+    dense: bool,
+}
+
+/// [`adaptive_dense`] with the tableau `pair`.
+fn integrate<D, const NQ: usize, const NV: usize, const S: usize, const T: usize>(
+    run: Run<'_, D, NQ, NV>,
+    pair: &EmbeddedPair<S, T>,
+    mut on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
+    let Run {
+        dynamics,
+        initial,
+        t_end,
+        options,
+        dense,
+    } = run;
     let kernel = Kernel::new(dynamics);
     let scale = Scale::from(&options);
-    observer(&initial);
     let mut state = initial;
     let mut slope = kernel.rate(&state)?;
     let mut h = match options.initial_step {
@@ -140,17 +207,17 @@ where
         if last {
             next.t = t_end;
         }
-        let error = match &pair.estimate {
+        let weights = scale.weights(&state, &next);
+        let (error, new_slope) = match &pair.estimate {
             ErrorEstimate::Embedded { e, e_new } => {
                 let new_slope = kernel.rate(&next)?;
                 let estimate = Rate::combination(e, &trial.stages);
                 let estimate = combined_with(&estimate, *e_new, &new_slope);
-                let error = h.abs() * scale.norm(&state, &next, &estimate);
-                (error, Some(new_slope))
+                (h.abs() * weights.norm(&estimate), Some(new_slope))
             }
             ErrorEstimate::FifthAndThird { e5, e3 } => {
-                let fifth = scale.norm(&state, &next, &Rate::combination(e5, &trial.stages));
-                let third = scale.norm(&state, &next, &Rate::combination(e3, &trial.stages));
+                let fifth = weights.norm(&Rate::combination(e5, &trial.stages));
+                let third = weights.norm(&Rate::combination(e3, &trial.stages));
                 let blend = (fifth * fifth + 0.01 * third * third).sqrt();
                 let error = if blend > 0.0 {
                     h.abs() * fifth * fifth / blend
@@ -160,17 +227,37 @@ where
                 (error, None)
             }
         };
-        let (error, new_slope) = error;
         let factor = step_factor(pair, error, after_rejection);
         if error <= 1.0 {
             statistics.accepted_steps += 1;
             let settled = kernel.settle(&next)?;
-            slope = match new_slope {
-                Some(new_slope) if settled == next => new_slope,
+            // The slope at the unsettled end: the error estimate's, or one
+            // evaluation when the next step (not settled) or the dense
+            // output needs it.
+            let end_slope = match new_slope {
+                Some(new_slope) => Some(new_slope),
+                None if dense || settled == next => Some(kernel.rate(&next)?),
+                None => None,
+            };
+            slope = match end_slope {
+                Some(end_slope) if settled == next => end_slope,
                 _ => kernel.rate(&settled)?,
             };
+            let interpolant = match (dense, &end_slope) {
+                (true, Some(end_slope)) => {
+                    let stages = &trial.stages;
+                    Some(Interpolant::new(
+                        &kernel, pair, &state, &next, stages, end_slope, h,
+                    )?)
+                }
+                _ => None,
+            };
+            let step = DenseStep::new(dynamics, &state, &settled, interpolant.as_ref());
+            if let ControlFlow::Break(end) = on_step(&step) {
+                state = end;
+                break;
+            }
             state = settled;
-            observer(&state);
             after_rejection = false;
         } else {
             statistics.rejected_steps += 1;
@@ -187,16 +274,16 @@ where
 
 /// The stage slopes and the propagated solution of one trial step.
 struct Trial<const NQ: usize, const NV: usize, const S: usize> {
-    stages: [Rate<NV>; S],
+    stages: [Rate<NQ, NV>; S],
     state: State<NQ, NV>,
 }
 
 /// One trial step of length `h` from `state`, whose slope is `slope`.
-fn attempt<D, const NQ: usize, const NV: usize, const S: usize>(
+fn attempt<D, const NQ: usize, const NV: usize, const S: usize, const T: usize>(
     kernel: &Kernel<'_, D>,
-    pair: &EmbeddedPair<S>,
+    pair: &EmbeddedPair<S, T>,
     state: &State<NQ, NV>,
-    slope: &Rate<NV>,
+    slope: &Rate<NQ, NV>,
     h: f64,
 ) -> Result<Trial<NQ, NV, S>, IntegrationError<NQ>>
 where
@@ -205,22 +292,30 @@ where
     let mut stages = [Rate::ZERO; S];
     stages[0] = *slope;
     for i in 1..S {
-        let combined = Rate::combination(&pair.a[i], &stages);
+        let combined = Rate::combination_of_first(i, &pair.a[i], &stages);
         stages[i] = kernel.rate(&kernel.stage(state, &combined, h, pair.c[i]))?;
     }
-    let state = kernel.advance(state, &Rate::combination(&pair.b, &stages), h);
+    let state = kernel.step_end(state, &Rate::combination(&pair.b, &stages), h);
     Ok(Trial { stages, state })
 }
 
 /// `estimate + w · slope`.
-fn combined_with<const NV: usize>(estimate: &Rate<NV>, w: f64, slope: &Rate<NV>) -> Rate<NV> {
+fn combined_with<const NQ: usize, const NV: usize>(
+    estimate: &Rate<NQ, NV>,
+    w: f64,
+    slope: &Rate<NQ, NV>,
+) -> Rate<NQ, NV> {
     Rate::combination(&[1.0, w], &[*estimate, *slope])
 }
 
 /// The factor from this step to the next: Hairer's controller. A non-finite
 /// error estimate (an overflowing trial) rejects the step with the smallest
 /// factor.
-fn step_factor<const S: usize>(pair: &EmbeddedPair<S>, error: f64, after_rejection: bool) -> f64 {
+fn step_factor<const S: usize, const T: usize>(
+    pair: &EmbeddedPair<S, T>,
+    error: f64,
+    after_rejection: bool,
+) -> f64 {
     let max_factor = if after_rejection || error > 1.0 {
         1.0
     } else {
@@ -240,7 +335,7 @@ fn step_factor<const S: usize>(pair: &EmbeddedPair<S>, error: f64, after_rejecti
 fn initial_step<D, const NQ: usize, const NV: usize>(
     kernel: &Kernel<'_, D>,
     state: &State<NQ, NV>,
-    slope: &Rate<NV>,
+    slope: &Rate<NQ, NV>,
     t_end: f64,
     order: i32,
     scale: &Scale,
@@ -249,11 +344,12 @@ where
     D: Dynamics<NQ, NV>,
 {
     let as_rate = Rate {
-        dq: configuration_size(state),
+        dq: state.q,
         dv: state.v,
     };
-    let size = scale.norm(state, state, &as_rate);
-    let speed = scale.norm(state, state, slope);
+    let weights = scale.weights(state, state);
+    let size = weights.norm(&as_rate);
+    let speed = weights.norm(slope);
     let guess = if size < 1e-5 || speed < 1e-5 {
         1e-6
     } else {
@@ -261,7 +357,7 @@ where
     };
     let guess = guess.min(t_end - state.t);
     let euler = kernel.advance(state, slope, guess);
-    let change = scale.norm(state, state, &kernel.rate(&euler)?.minus(slope)) / guess;
+    let change = weights.norm(&kernel.rate(&euler)?.minus(slope)) / guess;
     let largest = speed.max(change);
     let step = if largest <= 1e-15 {
         (guess * 1e-3).max(1e-6)
@@ -287,32 +383,33 @@ impl From<&AdaptiveOptions> for Scale {
 }
 
 impl Scale {
-    /// The root mean square of `values / scale(from, to)` over the
-    /// configuration's motion and the speeds.
-    fn norm<const NQ: usize, const NV: usize>(
+    /// The reciprocal scales `1 / (atol + rtol max(|from|, |to|))` of the
+    /// entries of a step from `from` to `to`.
+    #[inline]
+    fn weights<const NQ: usize, const NV: usize>(
         &self,
         from: &State<NQ, NV>,
         to: &State<NQ, NV>,
-        values: &Rate<NV>,
-    ) -> f64 {
-        let entry = |value: f64, a: f64, b: f64| {
-            let scale = self.absolute + self.relative * a.abs().max(b.abs());
-            (value / scale).powi(2)
-        };
-        let (from_q, to_q) = (configuration_size(from), configuration_size(to));
-        let sum: f64 = (0..NV)
-            .map(|i| {
-                entry(values.dq[i], from_q[i], to_q[i]) + entry(values.dv[i], from.v[i], to.v[i])
-            })
-            .sum();
-        (sum / (2 * NV) as f64).sqrt()
+    ) -> Rate<NQ, NV> {
+        let weight = |a: f64, b: f64| 1.0 / (self.absolute + self.relative * a.abs().max(b.abs()));
+        Rate {
+            dq: std::array::from_fn(|i| weight(from.q[i], to.q[i])),
+            dv: std::array::from_fn(|i| weight(from.v[i], to.v[i])),
+        }
     }
 }
 
-/// The size of the configuration along each speed, for the relative part of
-/// the error scale: the coordinates themselves when every speed is its
-/// coordinate's rate; zero (an absolute scale) otherwise, where a speed moves
-/// no single coordinate.
-fn configuration_size<const NQ: usize, const NV: usize>(state: &State<NQ, NV>) -> [f64; NV] {
-    std::array::from_fn(|i| if NQ == NV { state.q[i] } else { 0.0 })
+impl<const NQ: usize, const NV: usize> Rate<NQ, NV> {
+    /// The root mean square of `values` times these weights, entry by entry.
+    #[inline]
+    fn norm(&self, values: &Self) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..NQ {
+            sum += (values.dq[i] * self.dq[i]).powi(2);
+        }
+        for i in 0..NV {
+            sum += (values.dv[i] * self.dv[i]).powi(2);
+        }
+        (sum / (NQ + NV) as f64).sqrt()
+    }
 }

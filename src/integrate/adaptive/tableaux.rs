@@ -4,8 +4,9 @@
 //! Equations I* (2nd ed., 1993), §II.5 and the codes `dopri5.f`/`dop853.f`.
 
 /// An explicit Runge–Kutta method of `S` stages with an embedded error
-/// estimate and the constants of its step-size controller.
-pub(crate) struct EmbeddedPair<const S: usize> {
+/// estimate, the constants of its step-size controller and its continuous
+/// extension over `T` slopes.
+pub(crate) struct EmbeddedPair<const S: usize, const T: usize> {
     /// Stage times `cᵢ` as fractions of the step.
     pub(crate) c: [f64; S],
     /// Stage coefficients `aᵢⱼ` (strictly lower triangular).
@@ -23,6 +24,22 @@ pub(crate) struct EmbeddedPair<const S: usize> {
     pub(crate) min_factor: f64,
     /// Largest factor by which one step may grow the next.
     pub(crate) max_factor: f64,
+    /// The dense output.
+    pub(crate) dense: DenseOutput<T>,
+}
+
+/// A continuous extension of a step from `y₀` to `y₁` of length `h`, written
+/// in Hairer's nested form
+/// `y(θ) = r₁ + θ (r₂ + θ' (r₃ + θ (r₄ + θ' (r₅ + θ (r₆ + θ' (r₇ + θ r₈))))))`,
+/// `θ' = 1 − θ`, with `r₁ = y₀`, `r₂ = y₁ − y₀`, `r₃ = h k₁ − r₂`,
+/// `r₄ = r₂ − h f(y₁) − r₃` and `r₅…` the rows of `d` applied to the `T`
+/// slopes: the step's stages, the slope at `y₁`, then the extra stages.
+pub(crate) struct DenseOutput<const T: usize> {
+    /// The extra stages: time fraction and coefficients over the slopes
+    /// before them.
+    pub(crate) extra: &'static [(f64, [f64; T])],
+    /// `h` times these rows applied to the slopes are `r₅, r₆, …`.
+    pub(crate) d: &'static [[f64; T]],
 }
 
 /// An embedded local-error estimate.
@@ -47,7 +64,7 @@ pub(crate) enum ErrorEstimate<const S: usize> {
 }
 
 /// Dormand–Prince 5(4), FSAL: six new slopes per step.
-pub(crate) const DOPRI5: EmbeddedPair<6> = EmbeddedPair {
+pub(crate) const DOPRI5: EmbeddedPair<6, 7> = EmbeddedPair {
     c: [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0],
     a: [
         [0.0; 6],
@@ -94,11 +111,24 @@ pub(crate) const DOPRI5: EmbeddedPair<6> = EmbeddedPair {
     exponent: 1.0 / 5.0,
     min_factor: 0.2,
     max_factor: 10.0,
+    // Shampine's fourth-order extension (`contd5` of `dopri5.f`).
+    dense: DenseOutput {
+        extra: &[],
+        d: &[[
+            -12715105075.0 / 11282082432.0,
+            0.0,
+            87487479700.0 / 32700410799.0,
+            -10690763975.0 / 1880347072.0,
+            701980252875.0 / 199316789632.0,
+            -1453857185.0 / 822651844.0,
+            69997945.0 / 29380423.0,
+        ]],
+    },
 };
 
 /// Dormand–Prince 8(5,3): twelve slopes per step, the first being the last
 /// step's slope at its new point.
-pub(crate) const DOP853: EmbeddedPair<12> = EmbeddedPair {
+pub(crate) const DOP853: EmbeddedPair<12, 16> = EmbeddedPair {
     c: [
         0.0,
         0.05260015195876773,
@@ -318,7 +348,123 @@ pub(crate) const DOP853: EmbeddedPair<12> = EmbeddedPair {
     exponent: 1.0 / 8.0,
     min_factor: 1.0 / 3.0,
     max_factor: 6.0,
+    // The seventh-order extension of `dop853.f` (`contd8`): three more
+    // stages at c = 0.1, 0.2 and 7/9.
+    dense: DenseOutput {
+        extra: &[
+            (
+                0.1,
+                dop853_row(&[
+                    (1, 0.056167502283047954),
+                    (7, 0.25350021021662483),
+                    (8, -0.2462390374708025),
+                    (9, -0.12419142326381637),
+                    (10, 0.15329179827876568),
+                    (11, 0.00820105229563469),
+                    (12, 0.007567897660545699),
+                    (13, -8.298e-3),
+                ]),
+            ),
+            (
+                0.2,
+                dop853_row(&[
+                    (1, 0.03183464816350214),
+                    (6, 0.028300909672366776),
+                    (7, 0.053541988307438566),
+                    (8, -0.05492374857139099),
+                    (11, -0.00010834732869724932),
+                    (12, 0.0003825710908356584),
+                    (13, -0.00034046500868740456),
+                    (14, 0.1413124436746325),
+                ]),
+            ),
+            (
+                7.0 / 9.0,
+                dop853_row(&[
+                    (1, -0.42889630158379194),
+                    (6, -4.697621415361164),
+                    (7, 7.683421196062599),
+                    (8, 4.06898981839711),
+                    (9, 0.3567271874552811),
+                    (13, -0.0013990241651590145),
+                    (14, 2.9475147891527724),
+                    (15, -9.15095847217987),
+                ]),
+            ),
+        ],
+        d: &[
+            dop853_row(&[
+                (1, -8.428938276109013),
+                (6, 0.5667149535193777),
+                (7, -3.0689499459498917),
+                (8, 2.38466765651207),
+                (9, 2.117034582445028),
+                (10, -0.871391583777973),
+                (11, 2.2404374302607883),
+                (12, 0.6315787787694688),
+                (13, -0.08899033645133331),
+                (14, 18.148505520854727),
+                (15, -9.194632392478356),
+                (16, -4.436036387594894),
+            ]),
+            dop853_row(&[
+                (1, 10.427508642579134),
+                (6, 242.28349177525817),
+                (7, 165.20045171727028),
+                (8, -374.5467547226902),
+                (9, -22.113666853125306),
+                (10, 7.733432668472264),
+                (11, -30.674084731089398),
+                (12, -9.332130526430229),
+                (13, 15.697238121770845),
+                (14, -31.139403219565178),
+                (15, -9.35292435884448),
+                (16, 35.81684148639408),
+            ]),
+            dop853_row(&[
+                (1, 19.985053242002433),
+                (6, -387.0373087493518),
+                (7, -189.17813819516758),
+                (8, 527.8081592054236),
+                (9, -11.57390253995963),
+                (10, 6.8812326946963),
+                (11, -1.0006050966910838),
+                (12, 0.7777137798053443),
+                (13, -2.778205752353508),
+                (14, -60.19669523126412),
+                (15, 84.32040550667716),
+                (16, 11.99229113618279),
+            ]),
+            dop853_row(&[
+                (1, -25.69393346270375),
+                (6, -154.18974869023643),
+                (7, -231.5293791760455),
+                (8, 357.6391179106141),
+                (9, 93.40532418362432),
+                (10, -37.45832313645163),
+                (11, 104.0996495089623),
+                (12, 29.8402934266605),
+                (13, -43.53345659001114),
+                (14, 96.32455395918828),
+                (15, -39.17726167561544),
+                (16, -149.72683625798564),
+            ]),
+        ],
+    },
 };
+
+/// A row over DOP853's sixteen slopes from its non-zero entries, numbered
+/// from 1 as in `dop853.f` (`k₁…k₁₂` the stages, `k₁₃ = f(y₁)`, `k₁₄…k₁₆`
+/// the extra stages of the dense output).
+const fn dop853_row(entries: &[(usize, f64)]) -> [f64; 16] {
+    let mut row = [0.0; 16];
+    let mut i = 0;
+    while i < entries.len() {
+        row[entries[i].0 - 1] = entries[i].1;
+        i += 1;
+    }
+    row
+}
 
 #[cfg(test)]
 mod tests {
@@ -326,13 +472,26 @@ mod tests {
 
     /// `Σ bᵢ = 1` and `Σⱼ aᵢⱼ = cᵢ`: the conditions every consistent
     /// explicit method meets, which catch a mistyped coefficient.
-    fn assert_consistent<const S: usize>(pair: &EmbeddedPair<S>) {
+    fn assert_consistent<const S: usize, const T: usize>(pair: &EmbeddedPair<S, T>) {
         assert!((pair.b.iter().sum::<f64>() - 1.0).abs() < 1e-14);
         for (row, c) in pair.a.iter().zip(pair.c) {
             assert!((row.iter().sum::<f64>() - c).abs() < 1e-13, "{row:?}");
         }
         let order_two: f64 = pair.b.iter().zip(pair.c).map(|(b, c)| b * c).sum();
         assert!((order_two - 0.5).abs() < 1e-14);
+    }
+
+    /// The extra stages of a dense output are consistent too.
+    fn assert_extra_stages_consistent<const S: usize, const T: usize>(pair: &EmbeddedPair<S, T>) {
+        for (c, row) in pair.dense.extra {
+            assert!((row.iter().sum::<f64>() - c).abs() < 1e-13, "{row:?}");
+        }
+    }
+
+    #[test]
+    fn the_dense_outputs_extra_stages_are_consistent() {
+        assert_extra_stages_consistent(&DOPRI5);
+        assert_extra_stages_consistent(&DOP853);
     }
 
     #[test]
