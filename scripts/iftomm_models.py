@@ -4,10 +4,11 @@
     scripts/iftomm_models.py rust > fixtures/src/iftomm.rs   # the fixtures module
     scripts/iftomm_models.py four-bar N > four_bar.dal       # A02 with N windows
 
-The closure rows of Bricard's mechanism (A04) are the components, in N's
-axes, of the chain's end point and of its last joint axis, multiplied out
-here with SymPy from the chain of rotations (the language has no dot product
-yet, so a loop closure is written as coordinate equations).
+Every loop is closed by a `closure` statement. For an independent check of
+those statements, A02 (N = 2) and A04 are also written with the same rows
+as hand-written coordinate equations: for A04 the components, in N's axes,
+of the chain's end point and of its last joint axis, multiplied out here
+with SymPy from the chain of rotations.
 """
 
 import sys
@@ -15,19 +16,26 @@ import sys
 import sympy as sp
 
 
-def four_bar(n, name=None):
+def four_bar(n, equations=False):
     """A02: n four-bar windows, 2n + 1 rods of length L and mass m.
 
     Crank k (k = 0..n) turns about the ground pivot A_k = (k L, 0) by the
     angle phi_k from N.x; its tip is B_k. Coupler j (j = 1..n) hangs from
-    B_(j-1) at the angle psi_j from N.x; its far end E_j is closed on B_j.
+    B_(j-1) at the angle psi_j from N.x; its far end E_j is closed on B_j,
+    by a `closure` statement or, with `equations`, by the same two rows
+    written as coordinate equations.
     """
-    name = name or f"FourBars{n}"
+    if equations:
+        name = f"FourBarsEquations{n}"
+        closed = "by its two rows written as\n/// coordinate equations (the check of the `closure` statement)."
+    else:
+        name = f"FourBars{n}"
+        closed = "by a `closure` statement\n/// (two rows: the planar model drops the third)."
     lines = [
         f"/// IFToMM benchmark A02 with N = {n}: {n} four-bar windows, {2 * n + 1} uniform",
         "/// rods of length `L` and mass `m`. Crank `k` turns about `(k L, 0)` by",
-        "/// `phi_k` from `N.x`; coupler `j` hangs from the tip of crank `j - 1` at",
-        "/// `psi_j` and is closed on the tip of crank `j` by two constraint rows.",
+        "/// `phi_k` from `N.x`; coupler `j` hangs from the tip `B_(j-1)` of crank",
+        f"/// `j - 1` at `psi_j`, and its far end `E_j` is closed on the tip `B_j` {closed}",
         f"pub {name} {{",
         "    parameters m, L, g;",
         "    coordinates " + ", ".join([f"phi{k}" for k in range(n + 1)] + [f"psi{j}" for j in range(1, n + 1)]) + ";",
@@ -48,10 +56,16 @@ def four_bar(n, name=None):
         ]
     lines.append("    gravity -g * N.y;")
     for j in range(1, n + 1):
-        lines += [
-            f"    constraint L*cos(phi{j - 1}) + L*cos(psi{j}) == L + L*cos(phi{j});",
-            f"    constraint L*sin(phi{j - 1}) + L*sin(psi{j}) == L*sin(phi{j});",
-        ]
+        if equations:
+            lines += [
+                f"    constraint L*cos(phi{j - 1}) + L*cos(psi{j}) == L + L*cos(phi{j});",
+                f"    constraint L*sin(phi{j - 1}) + L*sin(psi{j}) == L*sin(phi{j});",
+            ]
+        else:
+            lines += [
+                f"    point E{j} = B{j - 1} + L * D{j}.x;",
+                f"    closure window{j} {{ at: E{j}, to: B{j} }};",
+            ]
     lines.append("}")
     return "\n".join(lines)
 
@@ -92,7 +106,12 @@ def bricard_closure():
     return [f"    constraint {language(lhs)} == {rhs};" for lhs, rhs in rows]
 
 
-def bricard():
+def bricard(equations=False):
+    name, closed = (
+        ("BricardEquations", "as coordinate equations (the check of the `closure` statement)")
+        if equations
+        else ("Bricard", "by a revolute `closure`")
+    )
     lines = [
         "/// IFToMM benchmark A04: Bricard's mechanism, five uniform slender rods of",
         "/// length `L` and mass `m` joined by revolute joints into a closed loop with",
@@ -102,8 +121,9 @@ def bricard():
         "/// `-y` to the ground joint at `(0, 0, L)` with axis `N.x`; consecutive joint",
         "/// axes are perpendicular. Five closure rows (the tip on the ground joint, the",
         "/// last axis along `N.x`) on five coordinates: Grübler counts 0 degrees of",
-        "/// freedom; the rows have rank 4 and the mechanism moves with 1.",
-        "pub Bricard {",
+        "/// freedom; the rows have rank 4 and the mechanism moves with 1. The loop is",
+        f"/// closed {closed}.",
+        f"pub {name} {{",
         "    parameters m, L, g;",
         "    coordinates q1, q2, q3, q4, q5;",
         "    frame F1 = N.rotate_y(q1);",
@@ -127,7 +147,14 @@ def bricard():
         "    body rod5 { mass: m, center: G5, frame: F5, inertia: [m*L^2/12, 0, m*L^2/12] };",
         "    gravity -g * N.y;",
     ]
-    lines += bricard_closure()
+    if equations:
+        lines += bricard_closure()
+    else:
+        lines += [
+            "    point P5 = P4 - L * F5.y;",
+            "    point J = O + L * N.z;",
+            "    closure ground { at: P5, to: J, axis: F5.x, along: N.x };",
+        ]
     lines.append("}")
     return "\n".join(lines)
 
@@ -189,12 +216,22 @@ pub fn four_bar_start<const NQ: usize>() -> dalembert::State<NQ, NQ> {
 
 
 def rust():
-    models = [PENDULUM, ANGLE_PENDULUM, four_bar(2), four_bar(10), PARALLELOGRAM, bricard()]
+    models = [
+        PENDULUM,
+        ANGLE_PENDULUM,
+        four_bar(2),
+        four_bar(2, equations=True),
+        four_bar(10),
+        PARALLELOGRAM,
+        bricard(),
+        bricard(equations=True),
+    ]
     out = [
         "//! The IFToMM benchmark problems A01, A02 and A04 (González, Dopico, Lugrís,",
-        "//! Cuadrado, Multibody System Dynamics 15, 2006) written in the language with",
-        "//! explicit constraint statements, and the one-coordinate systems that serve",
-        "//! as their independent references.",
+        "//! Cuadrado, Multibody System Dynamics 15, 2006) written in the language,",
+        "//! their loops closed by `closure` statements; the same loops written as",
+        "//! coordinate equations, to check those statements; and the one-coordinate",
+        "//! systems that serve as independent references.",
         "//!",
         "//! Written by `scripts/iftomm_models.py rust`; edit the script, not this file.",
         "",

@@ -2,7 +2,8 @@
 //! augmented Lagrangian integrator: the N-four-bar mechanism (A02) through
 //! every singular position, Bricard's overconstrained mechanism (A04) with
 //! its energy and closure kept, and the least-norm multipliers of a
-//! redundant four-bar against their closed form.
+//! redundant four-bar against their closed form; the `closure` statements
+//! against the same rows written as coordinate equations.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -11,7 +12,11 @@ use dalembert::integrate::{
     AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
 };
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
-use dalembert_fixtures::iftomm::{Bricard, FourBars2, FourBars10, Parallelogram, four_bar_start};
+use dalembert_fixtures::iftomm::{
+    Bricard, BricardEquations, FourBars2, FourBars10, FourBarsEquations2, Parallelogram,
+    four_bar_start,
+};
+use dalembert_fixtures::states::states;
 
 const PROJECTION: Stabilisation = Stabilisation::Projection {
     tolerance: 1e-12,
@@ -283,4 +288,50 @@ fn redundant_row_gets_the_least_norm_share_of_the_multipliers() {
             "{lambda:?} vs ({lx}, {ly})"
         );
     }
+}
+
+/// The largest difference between the rows (`A`, `b` and the residual) of
+/// `closed` and of `written` over a table of pseudo-random states.
+fn largest_row_difference<S, W, const NQ: usize, const NC: usize>(closed: &S, written: &W) -> f64
+where
+    S: ConstrainedSystem<NQ, NQ, 0, NC>,
+    W: ConstrainedSystem<NQ, NQ, 0, NC>,
+{
+    let mut largest = 0.0f64;
+    let mut compare = |a: &[f64], b: &[f64]| {
+        for (x, y) in a.iter().zip(b) {
+            largest = largest.max((x - y).abs());
+        }
+    };
+    for sample in states::<NQ, 0>(14) {
+        let (t, q, v) = (sample.t, &sample.q, &sample.v);
+        for (a, b) in closed
+            .constraint_jacobian(q)
+            .iter()
+            .zip(&written.constraint_jacobian(q))
+        {
+            compare(a, b);
+        }
+        compare(
+            &closed.constraint_bias(t, q, v),
+            &written.constraint_bias(t, q, v),
+        );
+        compare(
+            &closed.constraint_residual(t, q),
+            &written.constraint_residual(t, q),
+        );
+    }
+    largest
+}
+
+#[test]
+fn closure_statements_give_the_rows_written_as_coordinate_equations() {
+    let (m, l, g) = (1.3, 0.7, 9.81);
+    let four_bars = largest_row_difference(
+        &FourBars2 { m, L: l, g },
+        &FourBarsEquations2 { m, L: l, g },
+    );
+    assert!(four_bars < 1e-13, "A02: {four_bars:e}");
+    let bricard = largest_row_difference(&Bricard { m, L: l, g }, &BricardEquations { m, L: l, g });
+    assert!(bricard < 1e-13, "A04: {bricard:e}");
 }

@@ -90,10 +90,7 @@ pub fn closure_rows(
                 let components = components_in(&kinematics, model, pool, (frame, i), welded);
                 rows.push(ClosureRow {
                     residual: components[j],
-                    what: format!(
-                        "`frame`.{} · `welded`.{}",
-                        AXIS_NAMES[i], AXIS_NAMES[j]
-                    ),
+                    what: format!("`frame`.{} · `welded`.{}", AXIS_NAMES[i], AXIS_NAMES[j]),
                 });
             }
         }

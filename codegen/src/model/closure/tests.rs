@@ -124,7 +124,11 @@ fn a_spatial_weld_gives_the_three_small_rotations() {
         // and N.x · G.y vanishes identically (no rotation about z): its row
         // is dropped.
         let (sa, ca, sb, cb) = (a.sin(), a.cos(), b.sin(), b.cos());
-        let g = [[cb, 0.0, sb], [sa * sb, ca, -sa * cb], [-ca * sb, sa, ca * cb]];
+        let g = [
+            [cb, 0.0, sb],
+            [sa * sb, ca, -sa * cb],
+            [-ca * sb, sa, ca * cb],
+        ];
         assert_eq!(g[0][1], 0.0);
         vec![r[0], r[1] - h, r[2], g[1][2], g[2][0]]
     });
