@@ -3,7 +3,9 @@
 //! every singular position, Bricard's overconstrained mechanism (A04) with
 //! its energy and closure kept, and the least-norm multipliers of a
 //! redundant four-bar against their closed form; the `closure` statements
-//! against the same rows written as coordinate equations.
+//! against the same rows written as coordinate equations; Andrews' squeezer
+//! (A03) against the closed forms of Hairer and Wanner and by two
+//! formulations and integrators agreeing.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -13,8 +15,8 @@ use dalembert::integrate::{
 };
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
 use dalembert_fixtures::iftomm::{
-    Bricard, BricardEquations, FourBars2, FourBars10, FourBarsEquations2, Parallelogram,
-    four_bar_start,
+    ANDREWS, ANDREWS_EQUATIONS, Andrews, Bricard, BricardEquations, FourBars2, FourBars10,
+    FourBarsEquations2, Parallelogram, andrews_start, four_bar_start,
 };
 use dalembert_fixtures::states::states;
 
@@ -334,4 +336,108 @@ fn closure_statements_give_the_rows_written_as_coordinate_equations() {
     assert!(four_bars < 1e-13, "A02: {four_bars:e}");
     let bricard = largest_row_difference(&Bricard { m, L: l, g }, &BricardEquations { m, L: l, g });
     assert!(bricard < 1e-13, "A04: {bricard:e}");
+}
+
+/// Hairer and Wanner's mass matrix and forces of Andrews' squeezer (Solving
+/// ODEs II, section VII.7), written out by hand: the independent check of
+/// the model in the language.
+fn andrews_closed_form(p: &Andrews, q: &[f64; 7], v: &[f64; 7]) -> ([[f64; 7]; 7], [f64; 7]) {
+    let [_beta, theta, gamma, phi, _delta, omega, _epsilon] = *q;
+    let [bd, td, _gd, pd, dd, od, ed] = *v;
+    let (ee, zz) = (p.e - p.ea, p.zf - p.fa);
+    let mut m = [[0.0; 7]; 7];
+    m[0][0] = p.m1 * p.ra.powi(2)
+        + p.m2 * (p.rr.powi(2) - 2.0 * p.da * p.rr * theta.cos() + p.da.powi(2))
+        + p.I1
+        + p.I2;
+    m[0][1] = p.m2 * (p.da.powi(2) - p.da * p.rr * theta.cos()) + p.I2;
+    m[1][1] = p.m2 * p.da.powi(2) + p.I2;
+    m[2][2] = p.m3 * (p.sa.powi(2) + p.sb.powi(2)) + p.I3;
+    m[3][3] = p.m4 * ee.powi(2) + p.I4;
+    m[3][4] = p.m4 * (ee.powi(2) + p.zt * ee * phi.sin()) + p.I4;
+    m[4][4] = p.m4 * (p.zt.powi(2) + 2.0 * p.zt * ee * phi.sin() + ee.powi(2))
+        + p.m5 * (p.ta.powi(2) + p.tb.powi(2))
+        + p.I4
+        + p.I5;
+    m[5][5] = p.m6 * zz.powi(2) + p.I6;
+    m[5][6] = p.m6 * (zz.powi(2) - p.u * zz * omega.sin()) + p.I6;
+    m[6][6] = p.m6 * (zz.powi(2) - 2.0 * p.u * zz * omega.sin() + p.u.powi(2))
+        + p.m7 * (p.ua.powi(2) + p.ub.powi(2))
+        + p.I6
+        + p.I7;
+    for (i, j) in [(0, 1), (3, 4), (5, 6)] {
+        m[j][i] = m[i][j];
+    }
+    let xd = p.sd * gamma.cos() + p.sc * gamma.sin() + p.xb;
+    let yd = p.sd * gamma.sin() - p.sc * gamma.cos() + p.yb;
+    let length = ((xd - p.xc).powi(2) + (yd - p.yc).powi(2)).sqrt();
+    let force = -p.c0 * (length - p.l0) / length;
+    let (fx, fy) = (force * (xd - p.xc), force * (yd - p.yc));
+    let f = [
+        p.mom - p.m2 * p.da * p.rr * td * (td + 2.0 * bd) * theta.sin(),
+        p.m2 * p.da * p.rr * bd.powi(2) * theta.sin(),
+        fx * (p.sc * gamma.cos() - p.sd * gamma.sin())
+            + fy * (p.sd * gamma.cos() + p.sc * gamma.sin()),
+        p.m4 * p.zt * ee * dd.powi(2) * phi.cos(),
+        -p.m4 * p.zt * ee * pd * (pd + 2.0 * dd) * phi.cos(),
+        -p.m6 * p.u * zz * ed.powi(2) * omega.cos(),
+        p.m6 * p.u * zz * od * (od + 2.0 * ed) * omega.cos(),
+    ];
+    (m, f)
+}
+
+#[test]
+fn andrews_squeezer_has_hairer_and_wanners_equations() {
+    for sample in states::<7, 0>(3) {
+        let (q, v) = (&sample.q, &sample.v);
+        let (m, f) = andrews_closed_form(&ANDREWS, q, v);
+        let (mass, forcing) = (ANDREWS.mass_matrix(q), ANDREWS.forcing(0.0, q, v, &[]));
+        for i in 0..7 {
+            for j in 0..7 {
+                assert!((mass[i][j] - m[i][j]).abs() < 1e-15, "M[{i}][{j}]");
+            }
+            let scale = 1.0 + f[i].abs();
+            assert!(
+                (forcing[i] - f[i]).abs() < 1e-12 * scale,
+                "f[{i}]: {forcing:?} {f:?}"
+            );
+        }
+    }
+    let closures = largest_row_difference(&ANDREWS, &ANDREWS_EQUATIONS);
+    assert!(closures < 1e-15, "A03 closure rows: {closures:e}");
+    let start = andrews_start();
+    for residual in ANDREWS.constraint_residual(0.0, &start.q) {
+        assert!(
+            residual.abs() < 1e-15,
+            "the start closes the loops: {residual:e}"
+        );
+    }
+}
+
+#[test]
+fn andrews_squeezer_by_two_formulations_and_integrators_agrees_to_1e_8() {
+    // The loops closed by `closure` statements, DOP853 with projection...
+    let closed = adaptive(
+        &Constrained::without_inputs(&ANDREWS, PROJECTION),
+        andrews_start(),
+        0.03,
+        ExplicitPair::Dop853,
+        AdaptiveOptions::with_tolerance(1e-12),
+        |_| {},
+    )
+    .unwrap_or_else(|e| panic!("DOP853: {e}"))
+    .end;
+    // ... against the coordinate equations, RK4 at a fixed step.
+    let mut written = andrews_start();
+    rk4(
+        &Constrained::without_inputs(&ANDREWS_EQUATIONS, PROJECTION),
+        andrews_start(),
+        0.03,
+        30_000,
+        |s| written = *s,
+    )
+    .unwrap_or_else(|e| panic!("RK4: {e}"));
+    for (a, b) in closed.q.iter().zip(&written.q) {
+        assert!((a - b).abs() < 1e-8, "{:?} vs {:?}", closed.q, written.q);
+    }
 }
