@@ -335,6 +335,7 @@ def rust():
         four_bar(2),
         four_bar(2, equations=True),
         four_bar(10),
+        four_bar(40),
         PARALLELOGRAM,
         andrews(),
         andrews(equations=True),
