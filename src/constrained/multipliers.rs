@@ -133,13 +133,10 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
 
     /// The smallest correction in the metric of `M` with `A x = c` (on the
     /// independent rows).
-    pub(crate) fn least_norm(
-        &self,
-        c: &SVector<f64, NC>,
-    ) -> Result<SVector<f64, NV>, DynamicsError> {
+    pub(crate) fn least_norm(&self, c: &SVector<f64, NC>) -> SVector<f64, NV> {
         match self {
-            Self::Dense(metric) => Ok(metric.least_norm(c)),
-            Self::Sparse(metric) => metric.least_norm(&(*c).into()).map(SVector::from),
+            Self::Dense(metric) => metric.least_norm(c),
+            Self::Sparse(metric) => SVector::from(metric.least_norm(&(*c).into())),
         }
     }
 }

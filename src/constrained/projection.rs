@@ -112,7 +112,7 @@ where
                 residual: largest,
             });
         }
-        let correction: [f64; NV] = metric(&q)?.least_norm(&SVector::from(residual))?.into();
+        let correction: [f64; NV] = metric(&q)?.least_norm(&SVector::from(residual)).into();
         q = system.integrate_configuration(&q, &correction, -1.0);
         iterations += 1;
     }
@@ -130,7 +130,7 @@ where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let velocity = checked(system.constraint_velocity(t, q, &v))?;
-    let correction = metric.least_norm(&SVector::from(velocity))?;
+    let correction = metric.least_norm(&SVector::from(velocity));
     Ok(std::array::from_fn(|i| v[i] - correction[i]))
 }
 

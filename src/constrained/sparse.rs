@@ -21,16 +21,22 @@ pub const STIFFNESS: f64 = 1e6;
 /// the largest `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|` of any row.
 const CONVERGED: f64 = 1e-13;
 
-/// At most this many multiplier iterations; a violation left beyond
-/// [`CONSISTENCY_TOLERANCE`] then means contradictory rows.
-const MAX_ITERATIONS: usize = 200;
+/// The multiplier iteration has stalled (at the rounding of the stiff
+/// factorisation) when an iteration leaves more than this fraction of the
+/// violation before it; a violation then left beyond
+/// [`CONSISTENCY_TOLERANCE`] means contradictory rows.
+const STALLED: f64 = 0.99;
+
+/// At most this many multiplier iterations (rows close to dependent
+/// converge slowly).
+const MAX_ITERATIONS: usize = 100;
 
 /// `M̄ = L D Lᵀ` in an elimination order that keeps `L` sparse: at every
 /// step the coordinate with the fewest remaining couplings (the structural
 /// nonzeros of `M̄` at this `q`, with the fill-in of earlier steps).
 struct SparseFactor<const N: usize> {
-    /// Below the diagonal, in the column of each eliminated coordinate `p`,
-    /// the entries `Lᵢₚ` for `i` in `couplings[p]`.
+    /// In the column of each eliminated coordinate `p`, the entries `Lᵢₚ`
+    /// for `i` in `couplings[p]` (the rest is the matrix as eliminated).
     l: [[f64; N]; N],
     d: [f64; N],
     order: [usize; N],
@@ -41,26 +47,27 @@ struct SparseFactor<const N: usize> {
 impl<const N: usize> SparseFactor<N> {
     /// Factorises the symmetric `matrix`, or names the first coordinate
     /// whose pivot is not safely positive.
-    fn new(mut w: [[f64; N]; N], names: &[&'static str; N]) -> Result<Self, DynamicsError> {
-        let largest = (0..N).fold(0.0f64, |m, i| m.max(w[i][i]));
+    fn new(matrix: [[f64; N]; N], names: &[&'static str; N]) -> Result<Self, DynamicsError> {
+        let largest = (0..N).fold(0.0f64, |m, i| m.max(matrix[i][i]));
         let tolerance = RELATIVE_PIVOT_TOLERANCE * largest;
         let mut coupled = [[false; N]; N];
         let mut degree = [0usize; N];
         for i in 0..N {
             for j in 0..N {
-                if i != j && w[i][j] != 0.0 {
+                if i != j && matrix[i][j] != 0.0 {
                     coupled[i][j] = true;
                     degree[i] += 1;
                 }
             }
         }
         let mut factor = SparseFactor {
-            l: [[0.0; N]; N],
+            l: matrix,
             d: [0.0; N],
             order: [0; N],
             couplings: [[0; N]; N],
             count: [0; N],
         };
+        let w = &mut factor.l;
         let mut done = [false; N];
         for step in 0..N {
             let p = (0..N)
@@ -82,15 +89,16 @@ impl<const N: usize> SparseFactor<N> {
             for i in 0..N {
                 if !done[i] && coupled[p][i] {
                     factor.couplings[p][n] = i as u16;
-                    factor.l[i][p] = w[i][p] / pivot;
                     degree[i] -= 1;
                     n += 1;
                 }
             }
             factor.count[p] = n as u16;
+            // Row `p` keeps `M̄ₚⱼ = Lⱼₚ dₚ` for the update; column `p` takes `L`.
             let neighbours = &factor.couplings[p][..n];
             for &i in neighbours {
-                let (i, li) = (usize::from(i), factor.l[i as usize][p]);
+                let i = usize::from(i);
+                let li = w[i][p] / pivot;
                 for &j in neighbours {
                     let j = usize::from(j);
                     w[i][j] -= li * w[p][j];
@@ -99,6 +107,10 @@ impl<const N: usize> SparseFactor<N> {
                         degree[i] += 1;
                     }
                 }
+            }
+            for &i in neighbours {
+                let i = usize::from(i);
+                w[i][p] /= pivot;
             }
         }
         Ok(factor)
@@ -233,54 +245,71 @@ impl<const NV: usize, const NC: usize> SparseMetric<NV, NC> {
     }
 
     /// The `x` and the least-norm `λ` of `M x = f + Aᵀ λ`, `A x = c`, by
-    /// the method of multipliers: `M̄ xₖ = f + Aᵀ μₖ`, `μₖ₊₁ = μₖ + ρ (c − A xₖ)`
-    /// from `μ₀ = ρ c`, so that `λ = μ − ρ c` stays in the range of `A` (the
-    /// least-norm member of its family).
+    /// the method of multipliers (see [`iterate`](Self::iterate)); fails if
+    /// rows are left violated beyond [`CONSISTENCY_TOLERANCE`]
+    /// (contradictory rows).
     pub(crate) fn solve(
         &self,
         f: &[f64; NV],
         c: &[f64; NC],
     ) -> Result<([f64; NV], [f64; NC]), DynamicsError> {
+        let solution = self.iterate(f, c);
+        if solution.mismatch > CONSISTENCY_TOLERANCE * solution.scale {
+            return Err(DynamicsError::InconsistentConstraints {
+                row: solution.worst,
+                with: solution.second,
+                mismatch: solution.mismatch,
+            });
+        }
+        let lambda = std::array::from_fn(|i| solution.mu[i] - self.penalty * c[i]);
+        Ok((solution.x, lambda))
+    }
+
+    /// The smallest correction in the metric of `M` with `A x = c` (as
+    /// nearly as the rows allow: a projection iterates anyway).
+    pub(crate) fn least_norm(&self, c: &[f64; NC]) -> [f64; NV] {
+        self.iterate(&[0.0; NV], c).x
+    }
+
+    /// The method of multipliers: `M̄ xₖ = f + Aᵀ μₖ`,
+    /// `μₖ₊₁ = μₖ + ρ (c − A xₖ)` from `μ₀ = ρ c`, so that `λ = μ − ρ c`
+    /// stays in the range of `A` (the least-norm member of its family).
+    /// Stops when the rows hold, or when the violation no longer shrinks
+    /// (the rounding of the stiff factorisation, or rows that contradict),
+    /// with the best iterate.
+    fn iterate(&self, f: &[f64; NV], c: &[f64; NC]) -> Multipliers<NV, NC> {
         let mut mu: [f64; NC] = std::array::from_fn(|i| self.penalty * c[i]);
-        let mut iterations = 0;
-        loop {
-            let x = self
-                .factor
-                .solve(self.rows.plus_transpose_times(f, &mu));
+        let mut best: Option<Multipliers<NV, NC>> = None;
+        for _ in 0..MAX_ITERATIONS {
+            let x = self.factor.solve(self.rows.plus_transpose_times(f, &mu));
             let achieved = self.rows.times(&x);
-            let (worst, second, mismatch, scale) = self.violation(&x, &achieved, c);
-            iterations += 1;
-            if mismatch <= CONVERGED * scale || iterations == MAX_ITERATIONS {
-                if mismatch > CONSISTENCY_TOLERANCE * scale {
-                    return Err(DynamicsError::InconsistentConstraints {
-                        row: worst,
-                        with: second,
-                        mismatch,
-                    });
+            let current = self.violation(x, mu, &achieved, c);
+            let converged = current.mismatch <= CONVERGED * current.scale;
+            match &best {
+                Some(previous) if !(current.mismatch < STALLED * previous.mismatch) => {
+                    return best.unwrap_or(current);
                 }
-                let lambda = std::array::from_fn(|i| mu[i] - self.penalty * c[i]);
-                return Ok((x, lambda));
+                _ if converged => return current,
+                _ => {}
             }
             for i in 0..NC {
                 mu[i] += self.penalty * (c[i] - achieved[i]);
             }
+            best = Some(current);
         }
+        best.unwrap_or_else(|| self.violation([0.0; NV], mu, &[0.0; NC], c))
     }
 
-    /// The smallest correction in the metric of `M` with `A x = c`.
-    pub(crate) fn least_norm(&self, c: &[f64; NC]) -> Result<[f64; NV], DynamicsError> {
-        self.solve(&[0.0; NV], c).map(|(x, _)| x)
-    }
-
-    /// The rows most and second most violated, the largest violation
-    /// `|cᵢ − Aᵢ x|` and the scale it is measured against, the largest
-    /// `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|`.
+    /// `x` and `μ` with the rows most and second most violated, the
+    /// largest violation `|cᵢ − Aᵢ x|` and the scale it is measured against,
+    /// the largest `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|`.
     fn violation(
         &self,
-        x: &[f64; NV],
+        x: [f64; NV],
+        mu: [f64; NC],
         achieved: &[f64; NC],
         c: &[f64; NC],
-    ) -> (usize, usize, f64, f64) {
+    ) -> Multipliers<NV, NC> {
         let (mut worst, mut second) = (0, 0);
         let mut violations = [0.0f64; NC];
         let mut scale = 0.0f64;
@@ -294,8 +323,25 @@ impl<const NV: usize, const NC: usize> SparseMetric<NV, NC> {
                 second = i;
             }
         }
-        (worst, second, violations[worst], scale)
+        Multipliers {
+            x,
+            mu,
+            worst,
+            second,
+            mismatch: violations.iter().fold(0.0, |m: f64, &v| m.max(v)),
+            scale,
+        }
     }
+}
+
+/// An iterate of the method of multipliers and how far it is off.
+struct Multipliers<const NV: usize, const NC: usize> {
+    x: [f64; NV],
+    mu: [f64; NC],
+    worst: usize,
+    second: usize,
+    mismatch: f64,
+    scale: f64,
 }
 
 #[cfg(test)]
@@ -343,11 +389,17 @@ mod tests {
                 .accelerations(&twice, 0.0, &q, &v, &[])
                 .unwrap();
             for (a, b) in dense.0.iter().zip(&sparse.0) {
-                assert!((a - b).abs() < 1e-10 * (1.0 + a.abs()), "{dense:?} {sparse:?}");
+                assert!(
+                    (a - b).abs() < 1e-10 * (1.0 + a.abs()),
+                    "{dense:?} {sparse:?}"
+                );
             }
             // The least-norm multipliers: the rod tension shared equally.
             for (a, b) in dense.1.iter().zip(&sparse.1) {
-                assert!((a - b).abs() < 1e-9 * (1.0 + a.abs()), "{dense:?} {sparse:?}");
+                assert!(
+                    (a - b).abs() < 1e-9 * (1.0 + a.abs()),
+                    "{dense:?} {sparse:?}"
+                );
             }
         }
     }
