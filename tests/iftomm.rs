@@ -16,7 +16,7 @@ use dalembert::integrate::{
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
 use dalembert_fixtures::iftomm::{
     ANDREWS, ANDREWS_EQUATIONS, Andrews, Bricard, BricardEquations, FourBars2, FourBars10,
-    FourBarsEquations2, Parallelogram, andrews_start, four_bar_start,
+    FourBars40, FourBarsEquations2, Parallelogram, andrews_start, four_bar_start,
 };
 use dalembert_fixtures::states::states;
 
@@ -161,6 +161,54 @@ fn ten_four_bars_cross_every_singular_position() {
     assert_eq!((rk4_crossed, alf_crossed), (expected, expected));
     assert!(rk4 < 1e-8, "RK4 with projection: {rk4:e}");
     assert!(alf < 1e-3, "augmented Lagrangian: {alf:e}");
+}
+
+#[test]
+fn forty_four_bars_cross_every_singular_position_on_the_sparse_solver() {
+    // The benchmark's size: 81 coordinates, 80 closure rows, 20 s. The
+    // solvers' arrays of 81 × 81 entries, copied freely by a debug build,
+    // need more than a test thread's 2 MB of stack.
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(forty_four_bars)
+        .expect("a thread")
+        .join()
+        .expect("the run passes");
+}
+
+fn forty_four_bars() {
+    let system = FourBars40 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let reference = parallelogram_angles(40.0, 20.0);
+    let dynamics =
+        Constrained::without_inputs(&system, PROJECTION).with_solver(ConstraintSolver::Sparse);
+    let mut angles = vec![FRAC_PI_2];
+    let mut start = four_bar_start();
+    for k in 1..reference.len() {
+        start = adaptive(
+            &dynamics,
+            start,
+            k as f64 * 0.05,
+            ExplicitPair::Dop853,
+            AdaptiveOptions::with_tolerance(1e-6),
+            |_| {},
+        )
+        .unwrap_or_else(|e| panic!("DOP853 before {} s: {e}", k as f64 * 0.05))
+        .end;
+        angles.push(start.q[0]);
+    }
+    let expected = crossings(reference.iter().copied());
+    assert!(expected >= 10, "{expected}");
+    assert_eq!(crossings(angles.iter().copied()), expected);
+    // The benchmark's high precision on the reference point B0 at 20 s.
+    let (b0, phi) = (angles[angles.len() - 1], reference[reference.len() - 1]);
+    let error = (b0.cos() - phi.cos())
+        .abs()
+        .max((b0.sin() - phi.sin()).abs());
+    assert!(error < 1e-3, "B0 off by {error:e}");
 }
 
 /// Bricard's mechanism at rest in its cube configuration.

@@ -76,7 +76,8 @@ pub enum ConstraintSolver {
     /// N = 40: 81 coordinates, 80 rows), where it is many times faster than
     /// [`RankRevealing`](Self::RankRevealing); its accelerations hold the
     /// rows to `1e-13` (relative) but carry the rounding of the stiff
-    /// factorisation, about `1e-9` relative.
+    /// factorisation, about `1e-9` relative. Its work arrays are on the
+    /// heap (a few allocations per call).
     Sparse,
 }
 

@@ -2,7 +2,9 @@
 //! (the N-four-bar mechanism, chains closed into loops): the augmented mass
 //! matrix `M̄ = M + ρ AᵀA` factorised by a sparse `L D Lᵀ` in a minimum-degree
 //! order, and the multipliers found by the method of multipliers, so that no
-//! dense `A M̄⁻¹ Aᵀ` is ever formed. Everything lives on the stack.
+//! dense `A M̄⁻¹ Aᵀ` is ever formed. Unlike the dense solvers it keeps its
+//! work arrays on the heap (a few allocations per call), which keeps the
+//! stack small for mechanisms of a hundred coordinates.
 
 use super::multipliers::CONSISTENCY_TOLERANCE;
 use crate::DynamicsError;
@@ -37,20 +39,20 @@ const MAX_ITERATIONS: usize = 100;
 struct SparseFactor<const N: usize> {
     /// In the column of each eliminated coordinate `p`, the entries `Lᵢₚ`
     /// for `i` in `couplings[p]` (the rest is the matrix as eliminated).
-    l: [[f64; N]; N],
+    l: Vec<[f64; N]>,
     d: [f64; N],
     order: [usize; N],
-    couplings: [[u16; N]; N],
+    couplings: Vec<[u16; N]>,
     count: [u16; N],
 }
 
 impl<const N: usize> SparseFactor<N> {
     /// Factorises the symmetric `matrix`, or names the first coordinate
     /// whose pivot is not safely positive.
-    fn new(matrix: [[f64; N]; N], names: &[&'static str; N]) -> Result<Self, DynamicsError> {
+    fn new(matrix: Vec<[f64; N]>, names: &[&'static str; N]) -> Result<Self, DynamicsError> {
         let largest = (0..N).fold(0.0f64, |m, i| m.max(matrix[i][i]));
         let tolerance = RELATIVE_PIVOT_TOLERANCE * largest;
-        let mut coupled = [[false; N]; N];
+        let mut coupled = vec![[false; N]; N];
         let mut degree = [0usize; N];
         for i in 0..N {
             for j in 0..N {
@@ -64,7 +66,7 @@ impl<const N: usize> SparseFactor<N> {
             l: matrix,
             d: [0.0; N],
             order: [0; N],
-            couplings: [[0; N]; N],
+            couplings: vec![[0; N]; N],
             count: [0; N],
         };
         let w = &mut factor.l;
@@ -146,39 +148,32 @@ impl<const N: usize> SparseFactor<N> {
 /// The rows of `A` by their nonzero entries, for products with `A` and `Aᵀ`
 /// at the cost of the nonzeros.
 struct SparseRows<const NV: usize, const NC: usize> {
-    columns: [[u16; NV]; NC],
-    values: [[f64; NV]; NC],
-    count: [u16; NC],
+    /// `(j, Aᵢⱼ)` of every nonzero, row after row.
+    entries: Vec<(usize, f64)>,
+    /// Row `i` is `entries[ends[i - 1]..ends[i]]` (from 0 for row 0).
+    ends: [usize; NC],
 }
 
 impl<const NV: usize, const NC: usize> SparseRows<NV, NC> {
     fn new(jacobian: &[[f64; NV]; NC]) -> Self {
-        let mut rows = SparseRows {
-            columns: [[0; NV]; NC],
-            values: [[0.0; NV]; NC],
-            count: [0; NC],
-        };
-        for (i, row) in jacobian.iter().enumerate() {
-            let mut n = 0;
-            for (j, &a) in row.iter().enumerate() {
-                if a != 0.0 {
-                    rows.columns[i][n] = j as u16;
-                    rows.values[i][n] = a;
-                    n += 1;
-                }
-            }
-            rows.count[i] = n as u16;
+        let mut entries = Vec::new();
+        let mut ends = [0; NC];
+        for (row, end) in jacobian.iter().zip(&mut ends) {
+            entries.extend(
+                row.iter()
+                    .enumerate()
+                    .filter(|(_, a)| **a != 0.0)
+                    .map(|(j, &a)| (j, a)),
+            );
+            *end = entries.len();
         }
-        rows
+        SparseRows { entries, ends }
     }
 
     /// The nonzero `(j, Aᵢⱼ)` of row `i`.
     fn row(&self, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
-        let n = usize::from(self.count[i]);
-        self.columns[i][..n]
-            .iter()
-            .zip(&self.values[i][..n])
-            .map(|(&j, &a)| (usize::from(j), a))
+        let start = if i == 0 { 0 } else { self.ends[i - 1] };
+        self.entries[start..self.ends[i]].iter().copied()
     }
 
     /// `A x`.
@@ -229,7 +224,7 @@ impl<const NV: usize, const NC: usize> SparseMetric<NV, NC> {
             (true, true) => STIFFNESS * largest_mass / largest_row,
             (false, true) => STIFFNESS / largest_row,
         };
-        let mut augmented = *mass;
+        let mut augmented = mass.to_vec();
         for i in 0..NC {
             for (j, a) in rows.row(i) {
                 for (k, b) in rows.row(i) {
@@ -363,7 +358,7 @@ mod tests {
                 (m[0][i], m[i][0]) = (1.0, 1.0);
             }
         }
-        let factor = SparseFactor::new(m, &["q"; N]).unwrap();
+        let factor = SparseFactor::new(m.to_vec(), &["q"; N]).unwrap();
         let total_couplings: usize = factor.count.iter().map(|&c| usize::from(c)).sum();
         assert_eq!(total_couplings, N - 1, "no fill-in");
         let b = [1.0, -2.0, 3.0, 0.5, -1.5, 2.5];
