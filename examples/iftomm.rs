@@ -147,11 +147,8 @@ fn pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
 /// A02: unit rods, cranks upright, the tip `B0` of the first crank moving
 /// at 1 m/s along `x`, 20 s; N = 2 and N = 10.
 fn four_bars(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
-    let two = FourBars2 {
-        m: 1.0,
-        L: 1.0,
-        g: 9.81,
-    };
+    let (m, l, g) = (1.0, 1.0, 9.81);
+    let two = FourBars2 { m, L: l, g };
     four_bar(
         out,
         repeats,
@@ -160,11 +157,7 @@ fn four_bars(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         2.0,
         &two,
     )?;
-    let ten = FourBars10 {
-        m: 1.0,
-        L: 1.0,
-        g: 9.81,
-    };
+    let ten = FourBars10 { m, L: l, g };
     four_bar(
         out,
         repeats,
@@ -173,11 +166,7 @@ fn four_bars(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         10.0,
         &ten,
     )?;
-    let forty = FourBars40 {
-        m: 1.0,
-        L: 1.0,
-        g: 9.81,
-    };
+    let forty = FourBars40 { m, L: l, g };
     four_bar(
         out,
         repeats,

@@ -43,6 +43,12 @@ pub const CONSISTENCY_TOLERANCE: f64 = 1e-3;
 ///   with [`DependentConstraints`](DynamicsError::DependentConstraints) at
 ///   the first redundancy or singular position, which also makes it a
 ///   check that a model has none.
+/// * [`Sparse`](Self::Sparse): large mechanisms whose rows and bodies each
+///   couple a few coordinates (long closed chains, the N-four-bar mechanism
+///   with N = 40): it handles what the rank-revealing solver handles at a
+///   cost that grows with the nonzeros instead of the cube of the size (14
+///   times faster at 81 coordinates and 80 rows), to about `1e-9` relative
+///   instead of the rounding.
 /// * For long runs through singular positions at a fixed step, or to match
 ///   the reference solutions of the IFToMM benchmarks, integrate with the
 ///   index-3 augmented Lagrangian method
@@ -96,24 +102,25 @@ pub(crate) enum ConstraintMetric<const NV: usize, const NC: usize> {
 }
 
 impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
-    /// Factorises the metric of `mass` and `jacobian` for `solver` (see
-    /// [`DenseMetric::new`] for the errors).
+    /// Factorises the metric of `mass` and `jacobian` for `solver`; fails if
+    /// an entry is not finite, if the (augmented) mass matrix is not
+    /// positive definite (a coordinate named from `names` moves freely
+    /// without inertia), or, for the Schur complement, if a row depends on
+    /// the rows before it.
     pub(crate) fn new(
         solver: ConstraintSolver,
         mass: &[[f64; NV]; NV],
         names: &[&'static str; NV],
         jacobian: &[[f64; NV]; NC],
     ) -> Result<Self, DynamicsError> {
+        if !mass.iter().all(all_finite) {
+            return Err(DynamicsError::NonFiniteEquations);
+        }
+        if !jacobian.iter().all(all_finite) {
+            return Err(DynamicsError::NonFiniteConstraints);
+        }
         match solver {
-            ConstraintSolver::Sparse => {
-                if !mass.iter().all(all_finite) {
-                    return Err(DynamicsError::NonFiniteEquations);
-                }
-                if !jacobian.iter().all(all_finite) {
-                    return Err(DynamicsError::NonFiniteConstraints);
-                }
-                SparseMetric::new(mass, names, jacobian).map(Self::Sparse)
-            }
+            ConstraintSolver::Sparse => SparseMetric::new(mass, names, jacobian).map(Self::Sparse),
             _ => DenseMetric::new(solver, mass, names, jacobian).map(Self::Dense),
         }
     }
@@ -152,23 +159,14 @@ pub(crate) struct DenseMetric<const NV: usize, const NC: usize> {
 }
 
 impl<const NV: usize, const NC: usize> DenseMetric<NV, NC> {
-    /// Factorises the metric of `mass` and `jacobian` for `solver`; fails if
-    /// an entry is not finite, if the (augmented) mass matrix is not
-    /// positive definite (a coordinate named from `names` moves freely
-    /// without inertia), or, for the Schur complement, if a row depends on
-    /// the rows before it.
-    pub(crate) fn new(
+    /// Factorises the metric of the finite `mass` and `jacobian` for
+    /// `solver` (see [`ConstraintMetric::new`]).
+    fn new(
         solver: ConstraintSolver,
         mass: &[[f64; NV]; NV],
         names: &[&'static str; NV],
         jacobian: &[[f64; NV]; NC],
     ) -> Result<Self, DynamicsError> {
-        if !mass.iter().all(all_finite) {
-            return Err(DynamicsError::NonFiniteEquations);
-        }
-        if !jacobian.iter().all(all_finite) {
-            return Err(DynamicsError::NonFiniteConstraints);
-        }
         let a = SMatrix::<f64, NC, NV>::from_fn(|i, j| jacobian[i][j]);
         let penalty = match solver {
             ConstraintSolver::SchurComplement => 0.0,
