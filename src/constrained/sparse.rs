@@ -77,7 +77,7 @@ impl<const N: usize> SparseFactor<N> {
                 .min_by_key(|&i| degree[i])
                 .unwrap_or(0);
             let pivot = w[p][p];
-            if !(pivot > tolerance) {
+            if pivot.is_nan() || pivot <= tolerance {
                 return Err(DynamicsError::SingularMassMatrix {
                     index: p,
                     coordinate: names[p],
@@ -281,7 +281,10 @@ impl<const NV: usize, const NC: usize> SparseMetric<NV, NC> {
             let current = self.violation(x, mu, &achieved, c);
             let converged = current.mismatch <= CONVERGED * current.scale;
             match &best {
-                Some(previous) if !(current.mismatch < STALLED * previous.mismatch) => {
+                Some(previous)
+                    if current.mismatch.is_nan()
+                        || current.mismatch >= STALLED * previous.mismatch =>
+                {
                     return best.unwrap_or(current);
                 }
                 _ if converged => return current,
@@ -351,13 +354,13 @@ mod tests {
     #[test]
     fn an_arrow_matrix_is_solved_without_fill() {
         const N: usize = 6;
-        let mut m = [[0.0; N]; N];
-        for i in 0..N {
-            m[i][i] = 4.0 + i as f64;
-            if i > 0 {
-                (m[0][i], m[i][0]) = (1.0, 1.0);
-            }
-        }
+        let m: [[f64; N]; N] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| match (i, j) {
+                _ if i == j => 4.0 + i as f64,
+                (0, _) | (_, 0) => 1.0,
+                _ => 0.0,
+            })
+        });
         let factor = SparseFactor::new(m.to_vec(), &["q"; N]).unwrap();
         let total_couplings: usize = factor.count.iter().map(|&c| usize::from(c)).sum();
         assert_eq!(total_couplings, N - 1, "no fill-in");
