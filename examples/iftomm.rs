@@ -389,10 +389,10 @@ struct Settings<'a> {
 /// The constraint solvers of the Runge–Kutta lines, by the suffix of their
 /// name.
 const DENSE: &[(&str, ConstraintSolver)] = &[("", ConstraintSolver::RankRevealing)];
-const SPARSE: &[(&str, ConstraintSolver)] = &[(", sparse", ConstraintSolver::Sparse)];
+const SPARSE: &[(&str, ConstraintSolver)] = &[(" (sparse)", ConstraintSolver::Sparse)];
 const BOTH: &[(&str, ConstraintSolver)] = &[
     ("", ConstraintSolver::RankRevealing),
-    (", sparse", ConstraintSolver::Sparse),
+    (" (sparse)", ConstraintSolver::Sparse),
 ];
 
 /// Simulates `system` over the benchmark by every method at every setting,
