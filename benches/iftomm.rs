@@ -82,41 +82,36 @@ fn time_runs<const NQ: usize>(
     }
 }
 
-/// DOP853 with projection at `tolerance`, by `solver`.
-fn dop853<S, const NQ: usize, const NC: usize>(
-    system: &S,
-    solver: ConstraintSolver,
-    tolerance: f64,
-) -> Result<State<NQ, NQ>, String>
-where
-    S: ConstrainedSystem<NQ, NQ, 0, NC>,
-{
-    let dynamics = Constrained::without_inputs(system, PROJECTION).with_solver(solver);
-    adaptive(
-        &dynamics,
-        four_bar_start(),
-        DURATION,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(tolerance),
-        |_| {},
-    )
-    .map(|s| s.end)
-    .map_err(|e| e.to_string())
+/// A projected Runge–Kutta method: DOP853 at a tolerance or RK4 with a
+/// number of steps.
+#[derive(Clone, Copy)]
+enum Method {
+    Dop853(f64),
+    Rk4(u64),
 }
 
-/// RK4 with projection, `steps` steps, by `solver`.
-fn runge_kutta<S, const NQ: usize, const NC: usize>(
+/// The end of 20 s of `system` by `method` with projection, by `solver`.
+fn simulate<S, const NQ: usize, const NC: usize>(
     system: &S,
     solver: ConstraintSolver,
-    steps: u64,
+    method: Method,
 ) -> Result<State<NQ, NQ>, String>
 where
     S: ConstrainedSystem<NQ, NQ, 0, NC>,
 {
     let dynamics = Constrained::without_inputs(system, PROJECTION).with_solver(solver);
-    rk4(&dynamics, four_bar_start(), DURATION, steps, |_| {})
-        .map(|s| s.end)
-        .map_err(|e| e.to_string())
+    let solution = match method {
+        Method::Dop853(tolerance) => adaptive(
+            &dynamics,
+            four_bar_start(),
+            DURATION,
+            ExplicitPair::Dop853,
+            AdaptiveOptions::with_tolerance(tolerance),
+            |_| {},
+        ),
+        Method::Rk4(steps) => rk4(&dynamics, four_bar_start(), DURATION, steps, |_| {}),
+    };
+    solution.map(|s| s.end).map_err(|e| e.to_string())
 }
 
 fn ten_four_bars(c: &mut Criterion) {
@@ -144,15 +139,15 @@ fn ten_four_bars(c: &mut Criterion) {
         ("augmented_lagrangian_h2ms".into(), Box::new(alf)),
         (
             "rk4_projection_h20ms".into(),
-            Box::new(move || runge_kutta(&system, dense, 1_000)),
+            Box::new(move || simulate(&system, dense, Method::Rk4(1_000))),
         ),
         (
             "dop853_projection_tol1e-6".into(),
-            Box::new(move || dop853(&system, dense, 1e-6)),
+            Box::new(move || simulate(&system, dense, Method::Dop853(1e-6))),
         ),
         (
             "dop853_sparse_projection_tol1e-6".into(),
-            Box::new(move || dop853(&system, ConstraintSolver::Sparse, 1e-6)),
+            Box::new(move || simulate(&system, ConstraintSolver::Sparse, Method::Dop853(1e-6))),
         ),
     ];
     let mut group = c.benchmark_group("a02_ten_four_bars_20s");
@@ -171,15 +166,21 @@ fn forty_four_bars(c: &mut Criterion) {
     let runs: [Run<'_, 81>; 3] = [
         (
             "dop853_sparse_projection_tol1e-6".into(),
-            Box::new(move || dop853(&system, sparse, 1e-6)),
+            Box::new(move || simulate(&system, sparse, Method::Dop853(1e-6))),
         ),
         (
             "rk4_sparse_projection_h20ms".into(),
-            Box::new(move || runge_kutta(&system, sparse, 1_000)),
+            Box::new(move || simulate(&system, sparse, Method::Rk4(1_000))),
         ),
         (
             "dop853_projection_tol1e-6".into(),
-            Box::new(move || dop853(&system, ConstraintSolver::RankRevealing, 1e-6)),
+            Box::new(move || {
+                simulate(
+                    &system,
+                    ConstraintSolver::RankRevealing,
+                    Method::Dop853(1e-6),
+                )
+            }),
         ),
     ];
     let mut group = c.benchmark_group("a02_forty_four_bars_20s");
