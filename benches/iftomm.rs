@@ -1,41 +1,42 @@
-//! Time of a whole IFToMM A02 simulation (the N-four-bar mechanism with
-//! N = 10, 20 s, through every singular position) at the cheapest settings
-//! found to reach the benchmark's "high precision", `1e-3` m on the
-//! reference point `B0` at the final time; the setup checks that error
-//! against the one-coordinate parallelogram reference before timing.
+//! Time of a whole IFToMM A02 simulation (the N-four-bar mechanism, 20 s,
+//! through every singular position) at the cheapest settings found to reach
+//! the benchmark's "high precision", `1e-3` m on the reference point `B0` at
+//! the final time; the setup checks that error against the one-coordinate
+//! parallelogram reference before timing. N = 10 with the dense
+//! rank-revealing solver, N = 40 (the benchmark's size: 81 coordinates, 80
+//! rows) with the sparse one and, for comparison, the dense one.
 //!
 //! Run with `cargo bench --bench iftomm`; see BENCHMARKS.md.
 
 use std::f64::consts::FRAC_PI_2;
 use std::hint::black_box;
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{
+    BenchmarkGroup, Criterion, criterion_group, criterion_main, measurement::WallTime,
+};
 
+use dalembert::constrained::ConstraintSolver;
 use dalembert::integrate::{
     AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
 };
-use dalembert::{Constrained, Stabilisation, State, Unconstrained};
-use dalembert_fixtures::iftomm::{FourBars10, Parallelogram, four_bar_start};
+use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained};
+use dalembert_fixtures::iftomm::{FourBars10, FourBars40, Parallelogram, four_bar_start};
 
 const DURATION: f64 = 20.0;
 const HIGH_PRECISION: f64 = 1e-3;
-const SYSTEM: FourBars10 = FourBars10 {
-    m: 1.0,
-    L: 1.0,
-    g: 9.81,
-};
 const PROJECTION: Stabilisation = Stabilisation::Projection {
     tolerance: 1e-12,
     max_iterations: 10,
 };
 
-/// The error of `B0` at the final time against the parallelogram.
-fn error(end: &State<21, 21>) -> f64 {
+/// The error of `B0` at the final time against the parallelogram of `n`
+/// windows.
+fn error<const NQ: usize>(end: &State<NQ, NQ>, n: f64) -> f64 {
     let reduced = Parallelogram {
         m: 1.0,
         L: 1.0,
         g: 9.81,
-        n: 10.0,
+        n,
     };
     let first = State {
         t: 0.0,
@@ -61,70 +62,132 @@ fn error(end: &State<21, 21>) -> f64 {
         .max((b0.sin() - phi.sin()).abs())
 }
 
-fn four_bars(c: &mut Criterion) {
-    let dynamics = Constrained::without_inputs(&SYSTEM, PROJECTION);
+/// One timed run: its name and the simulation returning the final state.
+type Run<'a, const NQ: usize> = (String, Box<dyn Fn() -> Result<State<NQ, NQ>, String> + 'a>);
+
+/// Checks every run's error on `B0`, then times them.
+fn time_runs<const NQ: usize>(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    n: f64,
+    runs: &[Run<'_, NQ>],
+) {
+    for (name, run) in runs {
+        let end = run().expect("the run crosses every singular position");
+        let error = error(&end, n);
+        assert!(error < HIGH_PRECISION, "{name}: B0 off by {error:e}");
+        eprintln!("N = {n}, {name}: B0 off by {error:.1e} m at {DURATION} s");
+    }
+    for (name, run) in runs {
+        group.bench_function(name.as_str(), |b| b.iter(|| black_box(run())));
+    }
+}
+
+/// A projected Runge–Kutta method: DOP853 at a tolerance or RK4 with a
+/// number of steps.
+#[derive(Clone, Copy)]
+enum Method {
+    Dop853(f64),
+    Rk4(u64),
+}
+
+/// The end of 20 s of `system` by `method` with projection, by `solver`.
+fn simulate<S, const NQ: usize, const NC: usize>(
+    system: &S,
+    solver: ConstraintSolver,
+    method: Method,
+) -> Result<State<NQ, NQ>, String>
+where
+    S: ConstrainedSystem<NQ, NQ, 0, NC>,
+{
+    let dynamics = Constrained::without_inputs(system, PROJECTION).with_solver(solver);
+    let solution = match method {
+        Method::Dop853(tolerance) => adaptive(
+            &dynamics,
+            four_bar_start(),
+            DURATION,
+            ExplicitPair::Dop853,
+            AdaptiveOptions::with_tolerance(tolerance),
+            |_| {},
+        ),
+        Method::Rk4(steps) => rk4(&dynamics, four_bar_start(), DURATION, steps, |_| {}),
+    };
+    solution.map(|s| s.end).map_err(|e| e.to_string())
+}
+
+fn ten_four_bars(c: &mut Criterion) {
+    let system = FourBars10 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
     let alf_steps = 10_000;
-    let rk4_steps = 1_000;
-    let tolerance = 1e-6;
-    let h = DURATION / alf_steps as f64;
-    let alf = || {
+    let alf = move || {
+        let dynamics = Constrained::without_inputs(&system, PROJECTION);
         augmented_lagrangian(
             &dynamics,
             four_bar_start(),
             DURATION,
             alf_steps,
-            AugmentedLagrangian::for_step(h),
+            AugmentedLagrangian::for_step(DURATION / alf_steps as f64),
             |_| {},
         )
         .map(|s| s.end)
         .map_err(|e| e.to_string())
     };
-    let runge_kutta = || {
-        rk4(&dynamics, four_bar_start(), DURATION, rk4_steps, |_| {})
-            .map(|s| s.end)
-            .map_err(|e| e.to_string())
-    };
-    let options = AdaptiveOptions::with_tolerance(tolerance);
-    let dop853 = || {
-        adaptive(
-            &dynamics,
-            four_bar_start(),
-            DURATION,
-            ExplicitPair::Dop853,
-            options,
-            |_| {},
-        )
-        .map(|s| s.end)
-        .map_err(|e| e.to_string())
-    };
-    for (name, end) in [
-        ("augmented Lagrangian", alf()),
-        ("RK4", runge_kutta()),
-        ("DOP853", dop853()),
-    ] {
-        let end = end.expect("the run crosses every singular position");
-        let error = error(&end);
-        assert!(error < HIGH_PRECISION, "{name}: B0 off by {error:e}");
-        eprintln!("{name}: B0 off by {error:.1e} m at {DURATION} s");
-    }
+    let dense = ConstraintSolver::RankRevealing;
+    let runs: [Run<'_, 21>; 4] = [
+        ("augmented_lagrangian_h2ms".into(), Box::new(alf)),
+        (
+            "rk4_projection_h20ms".into(),
+            Box::new(move || simulate(&system, dense, Method::Rk4(1_000))),
+        ),
+        (
+            "dop853_projection_tol1e-6".into(),
+            Box::new(move || simulate(&system, dense, Method::Dop853(1e-6))),
+        ),
+        (
+            "dop853_sparse_projection_tol1e-6".into(),
+            Box::new(move || simulate(&system, ConstraintSolver::Sparse, Method::Dop853(1e-6))),
+        ),
+    ];
     let mut group = c.benchmark_group("a02_ten_four_bars_20s");
     group.sample_size(10);
-    group.bench_function(
-        format!(
-            "augmented_lagrangian_h{}ms",
-            1e3 * DURATION / alf_steps as f64
-        ),
-        |b| b.iter(|| black_box(alf())),
-    );
-    group.bench_function(
-        format!("rk4_projection_h{}ms", 1e3 * DURATION / rk4_steps as f64),
-        |b| b.iter(|| black_box(runge_kutta())),
-    );
-    group.bench_function(format!("dop853_projection_tol{tolerance:e}"), |b| {
-        b.iter(|| black_box(dop853()))
-    });
+    time_runs(&mut group, 10.0, &runs);
     group.finish();
 }
 
-criterion_group!(benches, four_bars);
+fn forty_four_bars(c: &mut Criterion) {
+    let system = FourBars40 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let sparse = ConstraintSolver::Sparse;
+    let runs: [Run<'_, 81>; 3] = [
+        (
+            "dop853_sparse_projection_tol1e-6".into(),
+            Box::new(move || simulate(&system, sparse, Method::Dop853(1e-6))),
+        ),
+        (
+            "rk4_sparse_projection_h20ms".into(),
+            Box::new(move || simulate(&system, sparse, Method::Rk4(1_000))),
+        ),
+        (
+            "dop853_projection_tol1e-6".into(),
+            Box::new(move || {
+                simulate(
+                    &system,
+                    ConstraintSolver::RankRevealing,
+                    Method::Dop853(1e-6),
+                )
+            }),
+        ),
+    ];
+    let mut group = c.benchmark_group("a02_forty_four_bars_20s");
+    group.sample_size(10);
+    time_runs(&mut group, 40.0, &runs);
+    group.finish();
+}
+
+criterion_group!(benches, forty_four_bars, ten_four_bars);
 criterion_main!(benches);

@@ -1,8 +1,9 @@
 //! The IFToMM benchmark problems A01 (simple pendulum in Cartesian
-//! coordinates), A02 (N-four-bar mechanism, N = 2 and 10) and A04 (Bricard's
-//! overconstrained mechanism), each simulated over the benchmark's duration
-//! with the rank-revealing constraint solver (RK4 and DOP853, projected after
-//! every step) and with the index-3 augmented Lagrangian method: energy
+//! coordinates), A02 (N-four-bar mechanism, N = 2, 10 and 40), A03 (Andrews'
+//! squeezer) and A04 (Bricard's overconstrained mechanism), each simulated
+//! over the benchmark's duration with the rank-revealing and the sparse
+//! constraint solvers (RK4 and DOP853, projected after every step) and with
+//! the index-3 augmented Lagrangian method: energy
 //! drift, largest constraint residual and the error of the benchmark's
 //! reference point against an independent reference, then a work-precision
 //! chart per benchmark (error of the reference point at the final time
@@ -18,14 +19,17 @@
 //! coordinate, no constraint); A02 is the one-coordinate parallelogram
 //! motion (every crank parallel, couplers level), which the mechanism
 //! follows from its symmetric start; both are integrated by DOP853 at
-//! `1e-13`. A04 has no reduced form here: its reference is DOP853 at `1e-13`
-//! with projection, checked against RK4 at `h = 1e-4 s` with projection.
+//! `1e-13`. A03's reference is its loops written as coordinate equations
+//! (a model independent of the `closure` statements simulated), by DOP853 at
+//! `1e-13` with projection, checked against RK4 at `h = 1e-7 s`. A04 has no
+//! reduced form here: its reference is DOP853 at `1e-13` with projection,
+//! checked against RK4 at `h = 1e-4 s` with projection.
 
 use std::error::Error;
 use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 
-use dalembert::constrained::constraint_drift;
+use dalembert::constrained::{ConstraintSolver, constraint_drift};
 use dalembert::integrate::{
     AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
 };
@@ -34,7 +38,8 @@ use dalembert::{
     Unconstrained, energy,
 };
 use dalembert_fixtures::iftomm::{
-    AnglePendulum, Bricard, CartesianPendulum, FourBars2, FourBars10, Parallelogram, four_bar_start,
+    ANDREWS, ANDREWS_EQUATIONS, AnglePendulum, Bricard, CartesianPendulum, FourBars2, FourBars10,
+    FourBars40, Parallelogram, andrews_start, four_bar_start,
 };
 use dalembert_lab::clap::{Arg, Command, value_parser};
 use dalembert_lab::{Accuracy, WorkPoint, measure, to_csv, work_precision_chart};
@@ -60,7 +65,7 @@ struct Benchmark {
 
 fn main() -> Result<(), Box<dyn Error>> {
     let options = Command::new("iftomm")
-        .about("The IFToMM benchmarks A01, A02 and A04: accuracy, drift and work-precision charts")
+        .about("The IFToMM benchmarks A01 to A04: accuracy, drift and work-precision charts")
         .arg(
             Arg::new("out")
                 .long("out")
@@ -82,6 +87,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     std::fs::create_dir_all(&out)?;
     pendulum(&out, repeats)?;
     four_bars(&out, repeats)?;
+    andrews(&out, repeats)?;
     bricard(&out, repeats)?;
     Ok(())
 }
@@ -129,20 +135,20 @@ fn pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         &system,
         start,
         point,
-        &[2e-3, 1e-3, 5e-4],
-        &[1e-8, 1e-10, 1e-12],
-        &[1e-3, 5e-4, 2.5e-4],
+        &Settings {
+            steps: &[2e-3, 1e-3, 5e-4],
+            tolerances: &[1e-8, 1e-10, 1e-12],
+            alf_steps: &[1e-3, 5e-4, 2.5e-4],
+            solvers: DENSE,
+        },
     )
 }
 
 /// A02: unit rods, cranks upright, the tip `B0` of the first crank moving
 /// at 1 m/s along `x`, 20 s; N = 2 and N = 10.
 fn four_bars(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
-    let two = FourBars2 {
-        m: 1.0,
-        L: 1.0,
-        g: 9.81,
-    };
+    let (m, l, g) = (1.0, 1.0, 9.81);
+    let two = FourBars2 { m, L: l, g };
     four_bar(
         out,
         repeats,
@@ -151,11 +157,7 @@ fn four_bars(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         2.0,
         &two,
     )?;
-    let ten = FourBars10 {
-        m: 1.0,
-        L: 1.0,
-        g: 9.81,
-    };
+    let ten = FourBars10 { m, L: l, g };
     four_bar(
         out,
         repeats,
@@ -163,6 +165,15 @@ fn four_bars(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         "iftomm_a02_n10",
         10.0,
         &ten,
+    )?;
+    let forty = FourBars40 { m, L: l, g };
+    four_bar(
+        out,
+        repeats,
+        "A02 forty four-bars",
+        "iftomm_a02_n40",
+        40.0,
+        &forty,
     )
 }
 
@@ -202,8 +213,23 @@ where
         duration,
         reference: [phi.q[0].cos(), phi.q[0].sin()],
     };
-    let steps = [2e-3, 1e-3, 5e-4];
-    let tolerances = [1e-6, 1e-8, 1e-10];
+    // The dense solver costs the cube of the size: at N = 40 only the
+    // sparse one, with coarser steps.
+    let settings = if NQ > 50 {
+        Settings {
+            steps: &[2e-2, 1e-2, 5e-3],
+            tolerances: &[1e-4, 1e-5, 1e-6, 1e-8, 1e-10],
+            alf_steps: &[],
+            solvers: SPARSE,
+        }
+    } else {
+        Settings {
+            steps: &[2e-3, 1e-3, 5e-4],
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            alf_steps: &[2e-3, 1e-3, 5e-4],
+            solvers: BOTH,
+        }
+    };
     run(
         out,
         repeats,
@@ -211,9 +237,52 @@ where
         system,
         four_bar_start(),
         crank_tip,
-        &steps,
-        &tolerances,
-        &steps,
+        &settings,
+    )
+}
+
+/// A03: Andrews' squeezer with Hairer and Wanner's data, from rest, 0.03 s.
+/// The reference point is the crank angle `beta` and the coupler angle
+/// `Theta` (in rad).
+fn andrews(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
+    let duration = 0.03;
+    let exact = Stabilisation::Projection {
+        tolerance: 1e-14,
+        max_iterations: 10,
+    };
+    let written = Constrained::without_inputs(&ANDREWS_EQUATIONS, exact);
+    let reference = tight(&written, andrews_start(), duration, 1e-13)?;
+    let check = rk4(&written, andrews_start(), duration, 300_000, |_| {})?.end;
+    let largest = |a: &State<7, 7>, b: &State<7, 7>| {
+        a.q.iter()
+            .zip(&b.q)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+    };
+    println!(
+        "A03 reference (coordinate equations): DOP853 (1e-13) and RK4 (h = 1e-7 s) differ by {:.1e} rad at most\n\
+         A03 reference at 0.03 s: q = {:?}",
+        largest(&reference, &check),
+        reference.q
+    );
+    let benchmark = Benchmark {
+        name: "A03 Andrews' squeezer",
+        stem: "iftomm_a03",
+        duration,
+        reference: [reference.q[0], reference.q[1]],
+    };
+    run(
+        out,
+        repeats,
+        &benchmark,
+        &ANDREWS,
+        andrews_start(),
+        |s| [s.q[0], s.q[1]],
+        &Settings {
+            steps: &[2e-5, 1e-5, 5e-6],
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            alf_steps: &[2e-5, 1e-5, 5e-6],
+            solvers: DENSE,
+        },
     )
 }
 
@@ -261,9 +330,12 @@ fn bricard(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         &system,
         start,
         third_rod_tip,
-        &[2e-3, 1e-3, 5e-4],
-        &[1e-6, 1e-8, 1e-10],
-        &[2e-3, 1e-3, 5e-4],
+        &Settings {
+            steps: &[2e-3, 1e-3, 5e-4],
+            tolerances: &[1e-6, 1e-8, 1e-10],
+            alf_steps: &[2e-3, 1e-3, 5e-4],
+            solvers: DENSE,
+        },
     )
 }
 
@@ -304,10 +376,28 @@ where
     .end)
 }
 
+/// The methods' settings on one benchmark: RK4 steps, DOP853 tolerances
+/// (each with every solver of `solvers`) and the augmented Lagrangian
+/// method's steps.
+struct Settings<'a> {
+    steps: &'a [f64],
+    tolerances: &'a [f64],
+    alf_steps: &'a [f64],
+    solvers: &'a [(&'a str, ConstraintSolver)],
+}
+
+/// The constraint solvers of the Runge–Kutta lines, by the suffix of their
+/// name.
+const DENSE: &[(&str, ConstraintSolver)] = &[("", ConstraintSolver::RankRevealing)];
+const SPARSE: &[(&str, ConstraintSolver)] = &[(" (sparse)", ConstraintSolver::Sparse)];
+const BOTH: &[(&str, ConstraintSolver)] = &[
+    ("", ConstraintSolver::RankRevealing),
+    (" (sparse)", ConstraintSolver::Sparse),
+];
+
 /// Simulates `system` over the benchmark by every method at every setting,
 /// prints energy drift, residual and reference-point error, and writes the
 /// work-precision chart and CSV.
-#[allow(clippy::too_many_arguments)]
 fn run<S, const NQ: usize, const NC: usize>(
     out: &Path,
     repeats: usize,
@@ -315,9 +405,7 @@ fn run<S, const NQ: usize, const NC: usize>(
     system: &S,
     start: State<NQ, NQ>,
     point: impl Fn(&State<NQ, NQ>) -> [f64; 2] + Copy,
-    steps: &[f64],
-    tolerances: &[f64],
-    alf_steps: &[f64],
+    settings: &Settings<'_>,
 ) -> Result<(), Box<dyn Error>>
 where
     S: ConstrainedSystem<NQ, NQ, 0, NC>,
@@ -362,29 +450,36 @@ where
             points.push(measured);
             Ok(())
         };
-    for &h in steps {
-        let n = (duration / h).round() as u64;
-        record("RK4 + projection", h, &mut |observer| {
-            rk4(&dynamics, start, duration, n, observer)
-        })?;
+    for &(suffix, solver) in settings.solvers {
+        let dynamics = Constrained::without_inputs(system, PROJECTION).with_solver(solver);
+        for &h in settings.steps {
+            let n = (duration / h).round() as u64;
+            record(&format!("RK4 + projection{suffix}"), h, &mut |observer| {
+                rk4(&dynamics, start, duration, n, observer)
+            })?;
+        }
+        for &tolerance in settings.tolerances {
+            let options = AdaptiveOptions {
+                max_steps: 100_000_000,
+                ..AdaptiveOptions::with_tolerance(tolerance)
+            };
+            record(
+                &format!("DOP853 + projection{suffix}"),
+                tolerance,
+                &mut |observer| {
+                    adaptive(
+                        &dynamics,
+                        start,
+                        duration,
+                        ExplicitPair::Dop853,
+                        options,
+                        observer,
+                    )
+                },
+            )?;
+        }
     }
-    for &tolerance in tolerances {
-        let options = AdaptiveOptions {
-            max_steps: 100_000_000,
-            ..AdaptiveOptions::with_tolerance(tolerance)
-        };
-        record("DOP853 + projection", tolerance, &mut |observer| {
-            adaptive(
-                &dynamics,
-                start,
-                duration,
-                ExplicitPair::Dop853,
-                options,
-                observer,
-            )
-        })?;
-    }
-    for &h in alf_steps {
+    for &h in settings.alf_steps {
         let n = (duration / h).round() as u64;
         record("augmented Lagrangian (index 3)", h, &mut |observer| {
             augmented_lagrangian(

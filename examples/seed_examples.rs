@@ -1,7 +1,8 @@
 //! The main job: derive the three seed examples at compile time, print the
 //! derived equations beside the seed document's, simulate the double
 //! pendulum and chart its trajectory and energy, and write an animation of
-//! each seed example (a page to open in a browser).
+//! each seed example and of a URDF robot falling under gravity (pages to
+//! open in a browser).
 //!
 //! ```text
 //! cargo run --release --example seed_examples [-- --out DIR]
@@ -20,11 +21,17 @@ use dalembert_fixtures::seeds::{
     CHAOTIC, CHAOTIC_END, CHAOTIC_START, ConstrainedPendulum, DoublePendulum, RotatingBar,
 };
 use dalembert_fixtures::slider_crank::SEED_3 as REFERENCE_SEED_3;
+use dalembert_generated::Ur5;
 
 /// The seed examples' model texts, which the animations draw.
 const DOUBLE_PENDULUM: &str = include_str!("../generated/models/double_pendulum.dal");
 const ROTATING_BAR: &str = include_str!("../generated/models/rotating_bar.dal");
 const CONSTRAINED_PENDULUM: &str = include_str!("../generated/models/constrained_pendulum.dal");
+/// The URDF robot `dalembert_generated::Ur5` is imported from.
+const UR5_URDF: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/reference/urdf/ur5_robot.urdf"
+);
 /// The animations' length, in seconds, and step.
 const ANIMATION_END: f64 = 10.0;
 const ANIMATION_STEP: f64 = 1e-3;
@@ -70,6 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut written = simulate_double_pendulum(&out)?;
     written.push(animate_rotating_bar(&out)?);
     written.push(animate_constrained_pendulum(&out)?);
+    written.push(animate_ur5(&out)?);
     for file in written {
         println!("wrote {}", file.display());
     }
@@ -193,6 +201,43 @@ fn animate_constrained_pendulum(out: &Path) -> Result<PathBuf, Box<dyn std::erro
         .title("Seed example 3: pendulum in dependent coordinates (RK4, h = 1 ms, projection)")
         .equations(ConstrainedPendulum::EQUATIONS);
     Ok(scene.write(out.join("constrained_pendulum.html"), &recording)?)
+}
+
+/// The UR5 arm (imported from its URDF at build time) released from a bent
+/// pose at rest with no joint torque, falling under gravity: 10 s of RK4 at
+/// 1 ms, animated from the same import's model text.
+fn animate_ur5(out: &Path) -> Result<PathBuf, Box<dyn std::error::Error>> {
+    let robot = Ur5 {};
+    let start = State {
+        t: 0.0,
+        q: [0.0, -1.2, 1.5, -0.8, 1.0, 0.0],
+        v: [0.0; 6],
+    };
+    let recording = record(&Unconstrained::without_inputs(&robot), start, |s| {
+        energy(&robot, &s.q, &s.v)
+    })?;
+    let model = dalembert_codegen::Urdf::read(UR5_URDF)?.model()?;
+    let mut scene = Scene::new(&model, &[])?
+        .title("UR5 (URDF) falling under gravity without joint torques (RK4, h = 1 ms)")
+        .equations(Ur5::EQUATIONS);
+    // The arm as the segments between its joints, each link a small box.
+    let links = [
+        "shoulder",
+        "upper_arm",
+        "forearm",
+        "wrist_1",
+        "wrist_2",
+        "wrist_3",
+    ];
+    let mut previous = "O".to_string();
+    for link in links {
+        let origin = format!("{link}_link_origin");
+        scene = scene
+            .segment(&previous, &origin)?
+            .body_size(&format!("{link}_link_body"), [0.08; 3])?;
+        previous = origin;
+    }
+    Ok(scene.write(out.join("ur5.html"), &recording)?)
 }
 
 /// Every state and energy of [`ANIMATION_END`] seconds of RK4 at

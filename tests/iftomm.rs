@@ -2,7 +2,10 @@
 //! augmented Lagrangian integrator: the N-four-bar mechanism (A02) through
 //! every singular position, Bricard's overconstrained mechanism (A04) with
 //! its energy and closure kept, and the least-norm multipliers of a
-//! redundant four-bar against their closed form.
+//! redundant four-bar against their closed form; the `closure` statements
+//! against the same rows written as coordinate equations; Andrews' squeezer
+//! (A03) against the closed forms of Hairer and Wanner and by two
+//! formulations and integrators agreeing.
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -11,7 +14,11 @@ use dalembert::integrate::{
     AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
 };
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
-use dalembert_fixtures::iftomm::{Bricard, FourBars2, FourBars10, Parallelogram, four_bar_start};
+use dalembert_fixtures::iftomm::{
+    ANDREWS, ANDREWS_EQUATIONS, Andrews, Bricard, BricardEquations, FourBars2, FourBars10,
+    FourBars40, FourBarsEquations2, Parallelogram, andrews_start, four_bar_start,
+};
+use dalembert_fixtures::states::states;
 
 const PROJECTION: Stabilisation = Stabilisation::Projection {
     tolerance: 1e-12,
@@ -156,6 +163,54 @@ fn ten_four_bars_cross_every_singular_position() {
     assert!(alf < 1e-3, "augmented Lagrangian: {alf:e}");
 }
 
+#[test]
+fn forty_four_bars_cross_every_singular_position_on_the_sparse_solver() {
+    // The benchmark's size: 81 coordinates, 80 closure rows, 20 s. The
+    // solvers' arrays of 81 × 81 entries, copied freely by a debug build,
+    // need more than a test thread's 2 MB of stack.
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(forty_four_bars)
+        .expect("a thread")
+        .join()
+        .expect("the run passes");
+}
+
+fn forty_four_bars() {
+    let system = FourBars40 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let reference = parallelogram_angles(40.0, 20.0);
+    let dynamics =
+        Constrained::without_inputs(&system, PROJECTION).with_solver(ConstraintSolver::Sparse);
+    let mut angles = vec![FRAC_PI_2];
+    let mut start = four_bar_start();
+    for k in 1..reference.len() {
+        start = adaptive(
+            &dynamics,
+            start,
+            k as f64 * 0.05,
+            ExplicitPair::Dop853,
+            AdaptiveOptions::with_tolerance(1e-6),
+            |_| {},
+        )
+        .unwrap_or_else(|e| panic!("DOP853 before {} s: {e}", k as f64 * 0.05))
+        .end;
+        angles.push(start.q[0]);
+    }
+    let expected = crossings(reference.iter().copied());
+    assert!(expected >= 10, "{expected}");
+    assert_eq!(crossings(angles.iter().copied()), expected);
+    // The benchmark's high precision on the reference point B0 at 20 s.
+    let (b0, phi) = (angles[angles.len() - 1], reference[reference.len() - 1]);
+    let error = (b0.cos() - phi.cos())
+        .abs()
+        .max((b0.sin() - phi.sin()).abs());
+    assert!(error < 1e-3, "B0 off by {error:e}");
+}
+
 /// Bricard's mechanism at rest in its cube configuration.
 fn bricard_start() -> State<5, 5> {
     State {
@@ -282,5 +337,155 @@ fn redundant_row_gets_the_least_norm_share_of_the_multipliers() {
             (got - want).abs() < 1e-11 * (1.0 + want.abs()),
             "{lambda:?} vs ({lx}, {ly})"
         );
+    }
+}
+
+/// The largest difference between the rows (`A`, `b` and the residual) of
+/// `closed` and of `written` over a table of pseudo-random states.
+fn largest_row_difference<S, W, const NQ: usize, const NC: usize>(closed: &S, written: &W) -> f64
+where
+    S: ConstrainedSystem<NQ, NQ, 0, NC>,
+    W: ConstrainedSystem<NQ, NQ, 0, NC>,
+{
+    let mut largest = 0.0f64;
+    let mut compare = |a: &[f64], b: &[f64]| {
+        for (x, y) in a.iter().zip(b) {
+            largest = largest.max((x - y).abs());
+        }
+    };
+    for sample in states::<NQ, 0>(14) {
+        let (t, q, v) = (sample.t, &sample.q, &sample.v);
+        for (a, b) in closed
+            .constraint_jacobian(q)
+            .iter()
+            .zip(&written.constraint_jacobian(q))
+        {
+            compare(a, b);
+        }
+        compare(
+            &closed.constraint_bias(t, q, v),
+            &written.constraint_bias(t, q, v),
+        );
+        compare(
+            &closed.constraint_residual(t, q),
+            &written.constraint_residual(t, q),
+        );
+    }
+    largest
+}
+
+#[test]
+fn closure_statements_give_the_rows_written_as_coordinate_equations() {
+    let (m, l, g) = (1.3, 0.7, 9.81);
+    let four_bars = largest_row_difference(
+        &FourBars2 { m, L: l, g },
+        &FourBarsEquations2 { m, L: l, g },
+    );
+    assert!(four_bars < 1e-13, "A02: {four_bars:e}");
+    let bricard = largest_row_difference(&Bricard { m, L: l, g }, &BricardEquations { m, L: l, g });
+    assert!(bricard < 1e-13, "A04: {bricard:e}");
+}
+
+/// Hairer and Wanner's mass matrix and forces of Andrews' squeezer (Solving
+/// ODEs II, section VII.7), written out by hand: the independent check of
+/// the model in the language.
+fn andrews_closed_form(p: &Andrews, q: &[f64; 7], v: &[f64; 7]) -> ([[f64; 7]; 7], [f64; 7]) {
+    let [_beta, theta, gamma, phi, _delta, omega, _epsilon] = *q;
+    let [bd, td, _gd, pd, dd, od, ed] = *v;
+    let (ee, zz) = (p.e - p.ea, p.zf - p.fa);
+    let mut m = [[0.0; 7]; 7];
+    m[0][0] = p.m1 * p.ra.powi(2)
+        + p.m2 * (p.rr.powi(2) - 2.0 * p.da * p.rr * theta.cos() + p.da.powi(2))
+        + p.I1
+        + p.I2;
+    m[0][1] = p.m2 * (p.da.powi(2) - p.da * p.rr * theta.cos()) + p.I2;
+    m[1][1] = p.m2 * p.da.powi(2) + p.I2;
+    m[2][2] = p.m3 * (p.sa.powi(2) + p.sb.powi(2)) + p.I3;
+    m[3][3] = p.m4 * ee.powi(2) + p.I4;
+    m[3][4] = p.m4 * (ee.powi(2) + p.zt * ee * phi.sin()) + p.I4;
+    m[4][4] = p.m4 * (p.zt.powi(2) + 2.0 * p.zt * ee * phi.sin() + ee.powi(2))
+        + p.m5 * (p.ta.powi(2) + p.tb.powi(2))
+        + p.I4
+        + p.I5;
+    m[5][5] = p.m6 * zz.powi(2) + p.I6;
+    m[5][6] = p.m6 * (zz.powi(2) - p.u * zz * omega.sin()) + p.I6;
+    m[6][6] = p.m6 * (zz.powi(2) - 2.0 * p.u * zz * omega.sin() + p.u.powi(2))
+        + p.m7 * (p.ua.powi(2) + p.ub.powi(2))
+        + p.I6
+        + p.I7;
+    for (i, j) in [(0, 1), (3, 4), (5, 6)] {
+        m[j][i] = m[i][j];
+    }
+    let xd = p.sd * gamma.cos() + p.sc * gamma.sin() + p.xb;
+    let yd = p.sd * gamma.sin() - p.sc * gamma.cos() + p.yb;
+    let length = ((xd - p.xc).powi(2) + (yd - p.yc).powi(2)).sqrt();
+    let force = -p.c0 * (length - p.l0) / length;
+    let (fx, fy) = (force * (xd - p.xc), force * (yd - p.yc));
+    let f = [
+        p.mom - p.m2 * p.da * p.rr * td * (td + 2.0 * bd) * theta.sin(),
+        p.m2 * p.da * p.rr * bd.powi(2) * theta.sin(),
+        fx * (p.sc * gamma.cos() - p.sd * gamma.sin())
+            + fy * (p.sd * gamma.cos() + p.sc * gamma.sin()),
+        p.m4 * p.zt * ee * dd.powi(2) * phi.cos(),
+        -p.m4 * p.zt * ee * pd * (pd + 2.0 * dd) * phi.cos(),
+        -p.m6 * p.u * zz * ed.powi(2) * omega.cos(),
+        p.m6 * p.u * zz * od * (od + 2.0 * ed) * omega.cos(),
+    ];
+    (m, f)
+}
+
+#[test]
+fn andrews_squeezer_has_hairer_and_wanners_equations() {
+    for sample in states::<7, 0>(3) {
+        let (q, v) = (&sample.q, &sample.v);
+        let (m, f) = andrews_closed_form(&ANDREWS, q, v);
+        let (mass, forcing) = (ANDREWS.mass_matrix(q), ANDREWS.forcing(0.0, q, v, &[]));
+        for i in 0..7 {
+            for j in 0..7 {
+                assert!((mass[i][j] - m[i][j]).abs() < 1e-15, "M[{i}][{j}]");
+            }
+            let scale = 1.0 + f[i].abs();
+            assert!(
+                (forcing[i] - f[i]).abs() < 1e-12 * scale,
+                "f[{i}]: {forcing:?} {f:?}"
+            );
+        }
+    }
+    let closures = largest_row_difference(&ANDREWS, &ANDREWS_EQUATIONS);
+    assert!(closures < 1e-15, "A03 closure rows: {closures:e}");
+    let start = andrews_start();
+    for residual in ANDREWS.constraint_residual(0.0, &start.q) {
+        assert!(
+            residual.abs() < 1e-15,
+            "the start closes the loops: {residual:e}"
+        );
+    }
+}
+
+#[test]
+fn andrews_squeezer_by_two_formulations_and_integrators_agrees_to_1e_8() {
+    // The loops closed by `closure` statements, DOP853 with projection...
+    let closed = adaptive(
+        &Constrained::without_inputs(&ANDREWS, PROJECTION),
+        andrews_start(),
+        0.03,
+        ExplicitPair::Dop853,
+        AdaptiveOptions::with_tolerance(1e-12),
+        |_| {},
+    )
+    .unwrap_or_else(|e| panic!("DOP853: {e}"))
+    .end;
+    // ... against the coordinate equations, RK4 at a fixed step.
+    let mut written = andrews_start();
+    rk4(
+        &Constrained::without_inputs(&ANDREWS_EQUATIONS, PROJECTION),
+        andrews_start(),
+        0.03,
+        30_000,
+        |s| written = *s,
+    )
+    .unwrap_or_else(|e| panic!("RK4: {e}"));
+    for (a, b) in closed.q.iter().zip(&written.q) {
+        assert!((a - b).abs() < 1e-8, "{:?} vs {:?}", closed.q, written.q);
     }
 }

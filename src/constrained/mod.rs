@@ -17,6 +17,7 @@
 mod multipliers;
 mod projection;
 mod rank;
+mod sparse;
 mod stabilisation;
 #[cfg(test)]
 pub(crate) mod test_systems;
@@ -27,4 +28,5 @@ pub use multipliers::{
 };
 pub(crate) use projection::checked;
 pub use projection::project_onto_constraints;
+pub use sparse::STIFFNESS;
 pub use stabilisation::{Stabilisation, constraint_drift};

@@ -110,6 +110,14 @@ pub enum Statement {
         /// The right-hand side.
         rhs: Expr,
     },
+    /// `closure NAME { at: P, to: Q, ... };`: closes a loop by joining two
+    /// points (and, with `axis`/`along` or `frame`/`welded`, two frames).
+    Closure {
+        /// The closure's name.
+        name: Ident,
+        /// The fields in braces, in source order (unchecked).
+        fields: Vec<Field>,
+    },
 }
 
 /// `name: value` inside the braces of `body`, `particle` and `joint`.

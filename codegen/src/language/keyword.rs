@@ -32,10 +32,12 @@ pub const POTENTIAL: &str = "potential";
 pub const DISSIPATION: &str = "dissipation";
 /// `constraint lhs == rhs;`
 pub const CONSTRAINT: &str = "constraint";
+/// `closure NAME { at: P, to: Q, ... };`
+pub const CLOSURE: &str = "closure";
 
 /// The statement keywords, in the order the "expected one of" message
 /// lists them.
-pub const STATEMENTS: [&str; 14] = [
+pub const STATEMENTS: [&str; 15] = [
     PARAMETERS,
     COORDINATES,
     INPUTS,
@@ -50,6 +52,7 @@ pub const STATEMENTS: [&str; 14] = [
     POTENTIAL,
     DISSIPATION,
     CONSTRAINT,
+    CLOSURE,
 ];
 
 /// `force <vec> at P;`: the point of application.

@@ -195,6 +195,10 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
             value: expression(cursor)?,
         },
         keyword::CONSTRAINT => constraint(cursor, keyword)?,
+        keyword::CLOSURE => {
+            let (name, fields) = named_fields(cursor, &keyword)?;
+            Statement::Closure { name, fields }
+        }
         _ => {
             return Err(syn::Error::new(
                 keyword.span(),
@@ -227,8 +231,8 @@ fn definition(cursor: &mut Cursor, keyword: &Ident) -> syn::Result<(Ident, Expr)
     Ok((name, expression(cursor)?))
 }
 
-/// Parses `NAME { field: value, ... }` after `body`, `particle` or
-/// `joint KIND`.
+/// Parses `NAME { field: value, ... }` after `body`, `particle`,
+/// `joint KIND` or `closure`.
 fn named_fields(cursor: &mut Cursor, keyword: &Ident) -> syn::Result<(Ident, Vec<Field>)> {
     let name = cursor.expect_ident(format!("the {keyword}'s name"))?;
     let Some(block) = cursor.eat_group(Delimiter::Brace) else {
@@ -490,7 +494,7 @@ mod tests {
             [(
                 "unknown statement `bodyy`; expected one of `parameters`, `coordinates`, \
                  `inputs`, `frame`, `point`, `body`, `particle`, `joint`, `gravity`, \
-                 `force`, `torque`, `potential`, `dissipation`, `constraint`"
+                 `force`, `torque`, `potential`, `dissipation`, `constraint`, `closure`"
                     .to_owned(),
                 2,
                 2

@@ -6,6 +6,7 @@
 //! here, once, and all violations are reported together, each at the user's
 //! token. Later layers trust the model and report nothing.
 
+mod closure;
 mod errors;
 mod resolve;
 mod tree;

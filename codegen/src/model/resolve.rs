@@ -3,6 +3,7 @@
 //! (scalar, vector, point, frame) and checks each rule of the language where
 //! the offending token is at hand.
 
+use super::closure::{ClosureKind, FrameAxis, closure_rows};
 use super::{
     Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Model, NEWTONIAN, ORIGIN,
     Particle, Point, PointId, Torque, Tree, Vector, unit_axis,
@@ -53,6 +54,7 @@ enum Binding {
     Point(PointId),
     Body,
     Particle,
+    Closure,
     /// A name whose definition had an error (already reported): later uses
     /// stay silent instead of repeating it.
     Invalid,
@@ -69,6 +71,7 @@ impl Binding {
             Binding::Point(_) => "a point",
             Binding::Body => "a body",
             Binding::Particle => "a particle",
+            Binding::Closure => "a loop closure",
             Binding::Invalid => "a name with an error",
         }
     }
@@ -260,6 +263,7 @@ impl Resolver {
             Statement::Constraint {
                 keyword, lhs, rhs, ..
             } => self.constraint(keyword, lhs, rhs),
+            Statement::Closure { name, fields } => self.closure(name, fields),
         }
     }
 
@@ -500,6 +504,107 @@ impl Resolver {
         });
     }
 
+    /// `closure NAME { at: P, to: Q };` (spherical), with `axis: F.z,
+    /// along: G.z` (revolute) or `frame: F, welded: G` (welded): ordinary
+    /// holonomic rows, those that vanish identically dropped (see
+    /// [`closure_rows`]).
+    fn closure(&mut self, name: &Ident, fields: &[Field]) {
+        let has = |pair: [&str; 2]| fields.iter().any(|f| pair.iter().any(|n| f.name == n));
+        let (revolute, welded) = (has(["axis", "along"]), has(["frame", "welded"]));
+        self.define(name, Binding::Closure);
+        if revolute && welded {
+            self.errors.push(
+                name.span(),
+                format!(
+                    "closure `{name}` mixes the fields of a revolute closure (`axis`, `along`) \
+                     and of a welded one (`frame`, `welded`); give one pair, or neither for a \
+                     spherical closure"
+                ),
+            );
+            return;
+        }
+        let (at, to, kind) = if revolute {
+            let [at, to, axis, along] = self.fields(
+                name,
+                "revolute closure",
+                fields,
+                ["at", "to", "axis", "along"],
+            );
+            let axis = axis.and_then(|e| self.frame_axis(e));
+            let along = along.and_then(|e| self.frame_axis(e));
+            let kind = axis
+                .zip(along)
+                .map(|(axis, along)| ClosureKind::Revolute { axis, along });
+            (at, to, kind)
+        } else if welded {
+            let [at, to, frame, welded] = self.fields(
+                name,
+                "welded closure",
+                fields,
+                ["at", "to", "frame", "welded"],
+            );
+            let frame = frame.and_then(|e| self.frame(e));
+            let welded = welded.and_then(|e| self.frame(e));
+            let kind = frame
+                .zip(welded)
+                .map(|(frame, welded)| ClosureKind::Welded { frame, welded });
+            (at, to, kind)
+        } else {
+            let [at, to] = self.fields(name, "closure", fields, ["at", "to"]);
+            (at, to, Some(ClosureKind::Spherical))
+        };
+        let at = at.and_then(|e| self.point(e, GEOMETRY));
+        let to = to.and_then(|e| self.point(e, GEOMETRY));
+        let (Some(at), Some(to), Some(kind)) = (at, to, kind) else {
+            return;
+        };
+        let (mut added, mut rejected) = (0, 0);
+        for row in closure_rows(&self.model, &mut self.pool, at, to, kind) {
+            if self.pool.is_zero(row.residual) {
+                continue;
+            }
+            if !self.pool.kinds(row.residual).intersects(SymKinds::COORD) {
+                self.errors.push(
+                    name.span(),
+                    format!(
+                        "closure `{name}` can never hold: {} involves no coordinate and is \
+                         not identically zero; join points (and frames) that the coordinates move",
+                        row.what
+                    ),
+                );
+                rejected += 1;
+                continue;
+            }
+            if self.jacobian_depends_on_time(row.residual, false) {
+                self.errors.push(
+                    name.span(),
+                    format!(
+                        "the Jacobian of closure `{name}` depends on time `t` ({}), but the \
+                         generated `constraint_jacobian(q)` has no `t`: close the loop between \
+                         points and frames that move with the coordinates only",
+                        row.what
+                    ),
+                );
+                rejected += 1;
+                continue;
+            }
+            self.model.constraints.push(Constraint {
+                residual: row.residual,
+                nonholonomic: false,
+            });
+            added += 1;
+        }
+        if added + rejected == 0 {
+            self.errors.push(
+                name.span(),
+                format!(
+                    "closure `{name}` constrains nothing: what it joins coincides in every \
+                     configuration"
+                ),
+            );
+        }
+    }
+
     /// Whether a row of `A` (the derivatives of a holonomic residual by
     /// the coordinates, or the coefficients of the speeds of a
     /// nonholonomic one) depends on time.
@@ -703,6 +808,20 @@ impl Resolver {
         self.errors.push(
             e.range(),
             "expected a joint axis: `x`, `y` or `z` (an axis of the parent frame), or a constant direction `[ax, ay, az]`",
+        );
+        None
+    }
+
+    /// A unit vector of a frame, `F.x`, `F.y` or `F.z` (closure axes).
+    fn frame_axis(&mut self, e: &Expr) -> Option<FrameAxis> {
+        if let Expr::Member { base, member } = e {
+            if let Some(axis) = AXES.iter().position(|a| member == a) {
+                return self.frame_name(base).map(|frame| (frame, axis));
+            }
+        }
+        self.errors.push(
+            e.range(),
+            "expected a unit vector of a frame: `F.x`, `F.y` or `F.z`",
         );
         None
     }
@@ -962,7 +1081,7 @@ impl Resolver {
             Binding::Frame(f) => Some(Value::Frame(f)),
             Binding::Point(p) => Some(Value::Point(p, Vector::default())),
             Binding::Invalid => None,
-            other @ (Binding::Body | Binding::Particle) => {
+            other @ (Binding::Body | Binding::Particle | Binding::Closure) => {
                 self.errors.push(
                     ident.span(),
                     format!(
@@ -1157,7 +1276,8 @@ fn defined_names(system: &System) -> HashMap<String, Span> {
             Statement::Frame { name, .. }
             | Statement::Point { name, .. }
             | Statement::Body { name, .. }
-            | Statement::Particle { name, .. } => add(name),
+            | Statement::Particle { name, .. }
+            | Statement::Closure { name, .. } => add(name),
             Statement::Joint { name, fields, .. } => {
                 add(name);
                 for field in fields {

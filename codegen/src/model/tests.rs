@@ -420,3 +420,47 @@ fn a_coordinate_that_moves_no_mass_is_reported_at_its_declaration() {
     );
     assert_eq!((found[0].1, found[0].2), (3, 23));
 }
+
+#[test]
+fn closures_report_bad_fields_at_the_token() {
+    assert_error(
+        &pendulum("closure c { at: G, to: O, axis: B.z, welded: N };"),
+        "mixes the fields of a revolute closure",
+        7,
+        12,
+    );
+    assert_error(
+        &pendulum("closure c { at: G, to: O, axis: z, along: N.z };"),
+        "expected a unit vector of a frame",
+        7,
+        36,
+    );
+    assert_error(
+        &pendulum("closure c { at: G, to: O, axis: B.z };"),
+        "revolute closure `c` is missing the field `along`",
+        7,
+        12,
+    );
+    assert_error(
+        &pendulum("closure c { at: G, to: B };"),
+        "expected a point, found a frame",
+        7,
+        27,
+    );
+}
+
+#[test]
+fn closures_that_cannot_hold_or_constrain_nothing_say_so() {
+    assert_error(
+        &pendulum("closure c { at: G, to: G };"),
+        "closure `c` constrains nothing",
+        7,
+        12,
+    );
+    assert_error(
+        &pendulum("point H = O + l * N.x; closure c { at: O, to: H };"),
+        "closure `c` can never hold: the x-component of `at − to` involves no coordinate",
+        7,
+        35,
+    );
+}
