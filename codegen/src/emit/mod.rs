@@ -12,7 +12,7 @@ mod solve;
 use crate::equations::Equations;
 use crate::expr::{ExprId, Sym};
 use crate::model::Model;
-use crate::outputs::{Argument, Function, Shape};
+use crate::outputs::{Argument, Function, NameList, Shape};
 use body::{Names, straight_line};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -42,6 +42,7 @@ pub fn emit(
     model: &Model,
     equations: &Equations,
     functions: &[Function],
+    constants_of_outputs: &[NameList],
     documentation: &Documentation,
     target: Target,
 ) -> TokenStream {
@@ -56,7 +57,8 @@ pub fn emit(
         .collect();
     items.push(configuration::emit_configuration(model.nq()));
     let strukt = emit_struct(model, &documentation.docs);
-    let constants = emit_constants(model, &documentation.text);
+    let mut constants = emit_constants(model, &documentation.text);
+    constants.extend(constants_of_outputs.iter().map(emit_name_list));
     let traits = match target {
         Target::Std => {
             let solver = solve::emit_accelerations(model, equations);
@@ -187,6 +189,17 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
         pub const INPUTS: [&'static str; #nu] = [#(#inputs),*];
         /// The derived equations of motion, in the seed document's style.
         pub const EQUATIONS: &'static str = #equations;
+    }
+}
+
+/// `pub const NAME: [&'static str; n]`, with its docs.
+fn emit_name_list(list: &NameList) -> TokenStream {
+    let docs = list.docs.iter().map(|line| raw_string(line));
+    let (name, names) = (&list.name, &list.names);
+    let n = Literal::usize_unsuffixed(names.len());
+    quote! {
+        #(#[doc = #docs])*
+        pub const #name: [&'static str; #n] = [#(#names),*];
     }
 }
 

@@ -415,3 +415,4 @@ pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;
 mod recursive;
+pub mod regressor;

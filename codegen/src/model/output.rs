@@ -57,7 +57,7 @@ pub enum Availability {
 /// whether it is generated.
 pub const KINDS: [(&str, Subject, Availability); 11] = [
     ("inverse_dynamics", Subject::None, Availability::Ready),
-    ("regressor", Subject::None, Availability::NotYet),
+    ("regressor", Subject::None, Availability::Ready),
     (
         "accelerations_jacobian",
         Subject::None,

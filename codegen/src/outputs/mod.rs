@@ -184,18 +184,45 @@ pub fn standard(model: &Model, equations: &Equations) -> Vec<Function> {
     functions
 }
 
-/// The functions the model's `outputs` statement asks for, in the order
-/// written.
-pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Vec<Function> {
+/// A constant list of names (`BASE_PARAMETERS`).
+pub struct NameList {
+    /// The constant's name.
+    pub name: Ident,
+    /// Its doc comment, one entry a line.
+    pub docs: Vec<String>,
+    /// The names.
+    pub names: Vec<String>,
+}
+
+/// What the model's `outputs` statement asks for: functions, and the
+/// constants that name their entries.
+#[derive(Default)]
+pub struct Requested {
+    /// The functions, in the order asked for.
+    pub functions: Vec<Function>,
+    /// The constants.
+    pub constants: Vec<NameList>,
+}
+
+/// What the model's `outputs` statement asks for, in the order written;
+/// an error at an output the model cannot give.
+pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::Result<Requested> {
     let kinematics = crate::kinematics::Kinematics::new(model, pool);
-    model
-        .outputs
-        .iter()
-        .map(|output| match output.kind {
-            OutputKind::InverseDynamics | OutputKind::Regressor => {
-                dynamics::inverse_dynamics(model, equations, pool)
+    let mut requested = Requested::default();
+    for output in &model.outputs {
+        match output.kind {
+            OutputKind::InverseDynamics => requested
+                .functions
+                .push(dynamics::inverse_dynamics(model, equations, pool)),
+            OutputKind::Regressor => {
+                let (functions, names) = dynamics::regressor(model, equations, pool, output)?;
+                requested.functions.extend(functions);
+                requested.constants.push(names);
             }
-            _ => kinematic::function(model, &kinematics, pool, output),
-        })
-        .collect()
+            _ => requested
+                .functions
+                .push(kinematic::function(model, &kinematics, pool, output)),
+        }
+    }
+    Ok(requested)
 }
