@@ -120,8 +120,17 @@ fn grouped(pool: &mut Pool, products: Vec<(Monomial, Vec<Vec<ExprId>>)>) -> Regr
             }
         }
     }
-    // Each base parameter's first product enters with coefficient 1, so
-    // that `π` does not depend on which term of a column comes first.
+    // Products in order within a base parameter, base parameters in the
+    // order of their first products: an order that does not depend on the
+    // pool's history. Each first product enters with coefficient 1, so that
+    // `π` does not depend on which term of a column comes first either.
+    let mut groups: Vec<(Vec<ExprId>, Vec<(Number, Monomial)>)> =
+        columns.into_iter().zip(combinations).collect();
+    for (_, combination) in &mut groups {
+        combination.sort_by(|a, b| a.1.cmp(&b.1));
+    }
+    groups.sort_by(|a, b| a.1[0].1.cmp(&b.1[0].1));
+    let (mut columns, mut combinations): (Vec<_>, Vec<_>) = groups.into_iter().unzip();
     for (column, combination) in columns.iter_mut().zip(&mut combinations) {
         let first = combination[0].0;
         let inverse = first.powi(-1);

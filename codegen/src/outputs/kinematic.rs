@@ -29,14 +29,18 @@ pub fn function(
             (
                 &[Time, Coordinates],
                 Value::vector(r.to_vec()),
-                "position from `O`",
+                "The position of `{P}` from `O`, in `{F}`'s axes.",
             )
         }
         OutputKind::Velocity(p) => {
             let v = kinematics.velocity(pool, p);
             let v = axes.from_newtonian(pool, &v);
             let arguments = &[Time, Coordinates, Speeds];
-            (arguments, Value::vector(v.to_vec()), "velocity in `N`")
+            (
+                arguments,
+                Value::vector(v.to_vec()),
+                "The velocity of `{P}` in `N`, in `{F}`'s axes.",
+            )
         }
         OutputKind::Acceleration(p) => {
             let mut a = kinematics.acceleration_bias(pool, p);
@@ -50,7 +54,7 @@ pub fn function(
             }
             let a = axes.from_newtonian(pool, &a);
             let arguments = &[Time, Coordinates, Speeds, Accelerations];
-            let what = "acceleration in `N` (`J v̇ + J̇ v`)";
+            let what = "The acceleration of `{P}` in `N` (`J v̇ + J̇ v`), in `{F}`'s axes.";
             (arguments, Value::vector(a.to_vec()), what)
         }
         OutputKind::Jacobian(p) => {
@@ -60,8 +64,8 @@ pub fn function(
                     axes.from_newtonian(pool, &partial)
                 })
                 .collect();
-            let what = "velocity's Jacobian by the speeds, `J` with `v_P = J v`\n\
-                        (row `i`: the partials of component `i`)";
+            let what = "The Jacobian `J` of `{P}`'s velocity by the speeds (`v = J q̇`), in\n\
+                        `{F}`'s axes: row `i` holds the partials of component `i`.";
             (&[Time, Coordinates], transposed(&columns, nv), what)
         }
         OutputKind::Rotation(f) => {
@@ -72,7 +76,7 @@ pub fn function(
                     axes.from(pool, f, &unit)
                 })
                 .collect();
-            let what = "rotation matrix, mapping the frame's components";
+            let what = "The rotation matrix of `{P}`: it maps `{P}`'s components to `{F}`'s.";
             (&[Time, Coordinates], transposed(&columns, 3), what)
         }
         OutputKind::AngularVelocity(f) => {
@@ -81,7 +85,7 @@ pub fn function(
             (
                 arguments,
                 Value::vector(omega.to_vec()),
-                "angular velocity in `N`",
+                "The angular velocity of `{P}` in `N`, in `{F}`'s axes.",
             )
         }
         OutputKind::AngularJacobian(f) => {
@@ -91,8 +95,8 @@ pub fn function(
                     axes.from(pool, f, &partial)
                 })
                 .collect();
-            let what = "angular velocity's Jacobian by the speeds, `J` with `ω = J v`\n\
-                        (row `i`: the partials of component `i`)";
+            let what = "The Jacobian `J` of `{P}`'s angular velocity by the speeds (`ω = J q̇`),\n\
+                        in `{F}`'s axes: row `i` holds the partials of component `i`.";
             (&[Time, Coordinates], transposed(&columns, nv), what)
         }
         OutputKind::InverseDynamics | OutputKind::Regressor => {
@@ -100,10 +104,9 @@ pub fn function(
         }
     };
     let subject = output.subject.as_deref().unwrap_or_default();
-    let docs = format!(
-        "The {what}\nof `{subject}`, in `{}`'s axes (`outputs` asked for it).",
-        output.axes_name
-    );
+    let docs = what
+        .replace("{P}", subject)
+        .replace("{F}", &output.axes_name);
     Function {
         name: output.function.clone(),
         docs: doc_lines(&docs),
