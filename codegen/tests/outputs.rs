@@ -16,23 +16,13 @@ use dalembert_codegen::testing::{
     Family, Interpreter, Random, Route, Sample, Spelling, Values, chain_spelled,
 };
 use dalembert_codegen::{Urdf, check};
+use dalembert_fixtures::reference::{reference, reference_path};
 use serde_json::Value;
 
-fn reference_dir() -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/reference")
-}
-
-fn reference(file: &str) -> Value {
-    let text = std::fs::read_to_string(reference_dir().join(file)).unwrap();
-    serde_json::from_str(&text).unwrap()
-}
-
+/// A JSON array of numbers.
 fn vector(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
+    let numbers = v.as_array().unwrap().iter();
+    numbers.map(|x| x.as_f64().unwrap()).collect()
 }
 
 /// The largest |a − b| over the largest |b| (over 1 if all |b| < 1).
@@ -53,7 +43,8 @@ fn asking(source: &str, outputs: &str) -> String {
 
 /// The generated models' source, by file name.
 fn model(name: &str) -> String {
-    let path = reference_dir().join(format!("../../generated/models/{name}.dal"));
+    let models = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../generated/models");
+    let path = models.join(format!("{name}.dal"));
     std::fs::read_to_string(path).unwrap()
 }
 

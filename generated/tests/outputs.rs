@@ -32,6 +32,17 @@ fn parameters(arm: &TwoLinkArm) -> [f64; 9] {
     ]
 }
 
+/// The interpreter's values of `arm`'s parameters `p` at `(q, v, u)`.
+fn values<'a>(p: &'a [f64; 9], q: &'a [f64; 2], v: &'a [f64; 2], u: &'a [f64; 2]) -> Values<'a> {
+    Values {
+        parameters: p,
+        t: 0.0,
+        q,
+        qd: v,
+        u,
+    }
+}
+
 /// A random state `(q, v, v̇, u)`.
 fn state(random: &mut Random) -> [[f64; 2]; 4] {
     let mut pair = |low: f64, high: f64| [random.uniform(low, high), random.uniform(low, high)];
@@ -186,13 +197,7 @@ fn emitted_outputs_equal_the_interpreted_ones() {
         let arm = arm(&mut random);
         let [q, v, vdot, u] = state(&mut random);
         let p = parameters(&arm);
-        let at = Values {
-            parameters: &p,
-            t: 0.0,
-            q: &q,
-            qd: &v,
-            u: &u,
-        };
+        let at = values(&p, &q, &v, &u);
         let interpreted = |name: &str| interpreter.output(name, &at, &vdot).unwrap();
         let emitted: [(&str, Vec<f64>); 10] = [
             (
@@ -242,13 +247,7 @@ fn the_scene_draws_the_tip_where_position_puts_it() {
         let arm = arm(&mut random);
         let [q, v, _, u] = state(&mut random);
         let p = parameters(&arm);
-        let at = Values {
-            parameters: &p,
-            t: 0.0,
-            q: &q,
-            qd: &v,
-            u: &u,
-        };
+        let at = values(&p, &q, &v, &u);
         let drawn = geometry.positions(&at)[tip];
         assert_close("tip", &arm.position_tip(0.0, &q), &drawn, 1e-12);
     }

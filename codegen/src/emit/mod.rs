@@ -370,7 +370,39 @@ fn emit_trait_impls(
 
 #[cfg(test)]
 mod tests {
-    use super::raw_string;
+    use super::{Target, emit_function, names, raw_string};
+    use crate::expr::Sym;
+    use crate::outputs::{Argument, Function, Value, doc_lines};
+    use quote::quote;
+
+    #[test]
+    fn one_function_returns_its_results_as_a_tuple_sharing_subexpressions() {
+        let source = "S { parameters m; coordinates q; particle p { mass: m, at: O + q * N.x }; }";
+        let system = crate::language::parse_system(source.parse().unwrap()).unwrap();
+        let mut model = crate::model::resolve(&system).unwrap();
+        let pool = &mut model.pool;
+        let (m, q) = (pool.sym(Sym::Param(0)), pool.sym(Sym::Coord(0)));
+        let sine = pool.sin(q);
+        let product = pool.mul(m, sine);
+        let function = Function {
+            name: quote::format_ident!("both"),
+            docs: doc_lines("Both."),
+            arguments: vec![Argument::Coordinates, Argument::Speeds],
+            results: vec![Value::vector(vec![product]), Value::scalar(sine)],
+        };
+        let emitted = emit_function(&model, &names(&model, Target::Std), &function);
+        let expected = quote! {
+            /// Both.
+            #[inline]
+            #[must_use]
+            pub fn both(&self, q: &[f64; 1], _qd: &[f64; 1]) -> ([f64; 1], f64) {
+                let (m, [q]) = (self.m, *q);
+                let sin_q = q.sin();
+                ([m * sin_q], sin_q)
+            }
+        };
+        assert_eq!(emitted.to_string(), expected.to_string());
+    }
 
     #[test]
     fn raw_strings_keep_their_characters_and_survive_quotes() {

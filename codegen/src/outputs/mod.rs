@@ -207,8 +207,11 @@ pub struct Requested {
 /// What the model's `outputs` statement asks for, in the order written;
 /// an error at an output the model cannot give.
 pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::Result<Requested> {
-    let kinematics = crate::kinematics::Kinematics::new(model, pool);
     let mut requested = Requested::default();
+    if model.outputs.is_empty() {
+        return Ok(requested);
+    }
+    let kinematics = crate::kinematics::Kinematics::new(model, pool);
     for output in &model.outputs {
         match output.kind {
             OutputKind::InverseDynamics => requested
