@@ -459,7 +459,7 @@ fn bad_outputs_are_reported_together_at_their_tokens() {
         ("`P` is a point; expected a frame", 7),
         ("unknown name `Q`", 7),
         ("unknown output `speed`", 7),
-        ("the output `position_P` is asked for twice", 8),
+        ("this output is already asked for, as `position_P`", 8),
         ("`inverse_dynamics` takes no point or frame", 8),
         ("`P` is a point; expected a frame", 8),
         ("`rotation` needs a frame", 8),
