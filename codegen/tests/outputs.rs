@@ -127,9 +127,7 @@ fn inverse_dynamics_is_pinocchios_rnea_on_the_chains() {
 fn inverse_dynamics_is_pinocchios_rnea_on_the_robots() {
     let robots = reference("urdf/pinocchio.json");
     for entry in robots["models"].as_array().unwrap() {
-        let path = reference_dir()
-            .join("urdf")
-            .join(entry["urdf"].as_str().unwrap());
+        let path = reference_path(&format!("urdf/{}", entry["urdf"].as_str().unwrap()));
         let source = asking(
             &Urdf::read(path).unwrap().model().unwrap(),
             "outputs inverse_dynamics;",

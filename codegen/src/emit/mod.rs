@@ -392,7 +392,7 @@ mod tests {
         };
         let emitted = emit_function(&model, &names(&model, Target::Std), &function);
         let expected = quote! {
-            /// Both.
+            #[doc = r#" Both."#]
             #[inline]
             #[must_use]
             pub fn both(&self, q: &[f64; 1], _qd: &[f64; 1]) -> ([f64; 1], f64) {
