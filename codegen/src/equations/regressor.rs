@@ -23,12 +23,15 @@ const BUDGET: usize = 4000;
 /// A product of parameters: `(parameter index, exponent)`, by index.
 pub type Monomial = Vec<(u32, i32)>;
 
+/// A base parameter: `Σ cᵢ μᵢ` over products of parameters `μᵢ`.
+pub type Combination = Vec<(Number, Monomial)>;
+
 /// `Y` and the base parameters `π` of `M v̇ − f = Y π`.
 pub struct Regressor {
     /// `Y`, row by row (one row per speed, one column per base parameter).
     pub rows: Vec<Vec<ExprId>>,
     /// Each base parameter as a combination `Σ cᵢ μᵢ` of parameter products.
-    pub combinations: Vec<Vec<(Number, Monomial)>>,
+    pub combinations: Vec<Combination>,
 }
 
 /// Why a model has no regressor.
@@ -99,7 +102,7 @@ fn split_parameters(pool: &mut Pool, term: ExprId) -> (Monomial, ExprId) {
 /// in the order of their first product.
 fn grouped(pool: &mut Pool, products: Vec<(Monomial, Vec<Vec<ExprId>>)>) -> Regressor {
     let mut columns: Vec<Vec<ExprId>> = Vec::new();
-    let mut combinations: Vec<Vec<(Number, Monomial)>> = Vec::new();
+    let mut combinations: Vec<Combination> = Vec::new();
     let mut index: HashMap<Vec<ExprId>, usize> = HashMap::new();
     for (monomial, rows) in products {
         let column: Vec<ExprId> = rows.into_iter().map(|terms| pool.sum(terms)).collect();
@@ -124,7 +127,7 @@ fn grouped(pool: &mut Pool, products: Vec<(Monomial, Vec<Vec<ExprId>>)>) -> Regr
     // order of their first products: an order that does not depend on the
     // pool's history. Each first product enters with coefficient 1, so that
     // `π` does not depend on which term of a column comes first either.
-    let mut groups: Vec<(Vec<ExprId>, Vec<(Number, Monomial)>)> =
+    let mut groups: Vec<(Vec<ExprId>, Combination)> =
         columns.into_iter().zip(combinations).collect();
     for (_, combination) in &mut groups {
         combination.sort_by(|a, b| a.1.cmp(&b.1));

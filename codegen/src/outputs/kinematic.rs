@@ -25,7 +25,7 @@ pub fn function(
     };
     let (arguments, value, what): (&[Argument], Value, &str) = match output.kind {
         OutputKind::Position(p) => {
-            let r = axes.from_newtonian(pool, &kinematics.position(p));
+            let r = axes.convert_newtonian(pool, &kinematics.position(p));
             (
                 &[Time, Coordinates],
                 Value::vector(r.to_vec()),
@@ -34,7 +34,7 @@ pub fn function(
         }
         OutputKind::Velocity(p) => {
             let v = kinematics.velocity(pool, p);
-            let v = axes.from_newtonian(pool, &v);
+            let v = axes.convert_newtonian(pool, &v);
             let arguments = &[Time, Coordinates, Speeds];
             (
                 arguments,
@@ -52,7 +52,7 @@ pub fn function(
                     pool.add(a[i], term)
                 });
             }
-            let a = axes.from_newtonian(pool, &a);
+            let a = axes.convert_newtonian(pool, &a);
             let arguments = &[Time, Coordinates, Speeds, Accelerations];
             let what = "The acceleration of `{P}` in `N` (`J v̇ + J̇ v`), in `{F}`'s axes.";
             (arguments, Value::vector(a.to_vec()), what)
@@ -61,7 +61,7 @@ pub fn function(
             let columns: Vec<Vec3> = (0..nv)
                 .map(|k| {
                     let partial = kinematics.partial_velocity(pool, p, k);
-                    axes.from_newtonian(pool, &partial)
+                    axes.convert_newtonian(pool, &partial)
                 })
                 .collect();
             let what = "The Jacobian `J` of `{P}`'s velocity by the speeds (`v = J q̇`), in\n\
@@ -73,14 +73,14 @@ pub fn function(
                 .map(|j| {
                     let mut unit = [pool.zero(); 3];
                     unit[j] = pool.one();
-                    axes.from(pool, f, &unit)
+                    axes.convert(pool, f, &unit)
                 })
                 .collect();
             let what = "The rotation matrix of `{P}`: it maps `{P}`'s components to `{F}`'s.";
             (&[Time, Coordinates], transposed(&columns, 3), what)
         }
         OutputKind::AngularVelocity(f) => {
-            let omega = axes.from(pool, f, &kinematics.angular_velocity(f));
+            let omega = axes.convert(pool, f, &kinematics.angular_velocity(f));
             let arguments = &[Time, Coordinates, Speeds];
             (
                 arguments,
@@ -92,7 +92,7 @@ pub fn function(
             let columns: Vec<Vec3> = (0..nv)
                 .map(|k| {
                     let partial = kinematics.partial_angular_velocity(pool, f, k);
-                    axes.from(pool, f, &partial)
+                    axes.convert(pool, f, &partial)
                 })
                 .collect();
             let what = "The Jacobian `J` of `{P}`'s angular velocity by the speeds (`ω = J q̇`),\n\
@@ -132,12 +132,12 @@ struct Axes<'a> {
 
 impl Axes<'_> {
     /// Components given in `N`'s axes, in the output's.
-    fn from_newtonian(&self, pool: &mut Pool, c: &Vec3) -> Vec3 {
-        self.from(pool, NEWTONIAN, c)
+    fn convert_newtonian(&self, pool: &mut Pool, c: &Vec3) -> Vec3 {
+        self.convert(pool, NEWTONIAN, c)
     }
 
     /// Components given in `frame`'s axes, in the output's.
-    fn from(&self, pool: &mut Pool, frame: FrameId, c: &Vec3) -> Vec3 {
+    fn convert(&self, pool: &mut Pool, frame: FrameId, c: &Vec3) -> Vec3 {
         if frame == self.to {
             return *c;
         }
