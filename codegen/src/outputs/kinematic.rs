@@ -10,13 +10,13 @@ use crate::model::{FrameId, Model, NEWTONIAN, Output, OutputKind};
 
 use Argument::{Accelerations, Coordinates, Speeds, Time};
 
-/// The function computing a kinematic `output`.
+/// The function computing `output`, if it is a kinematic one.
 pub fn function(
     model: &Model,
     kinematics: &Kinematics,
     pool: &mut Pool,
     output: &Output,
-) -> Function {
+) -> Option<Function> {
     let nv = model.nq();
     let axes = Axes {
         model,
@@ -99,20 +99,18 @@ pub fn function(
                         in `{F}`'s axes: row `i` holds the partials of component `i`.";
             (&[Time, Coordinates], transposed(&columns, nv), what)
         }
-        OutputKind::InverseDynamics | OutputKind::Regressor => {
-            unreachable!("dynamic outputs are not kinematic")
-        }
+        OutputKind::InverseDynamics | OutputKind::Regressor => return None,
     };
     let subject = output.subject.as_deref().unwrap_or_default();
     let docs = what
         .replace("{P}", subject)
         .replace("{F}", &output.axes_name);
-    Function {
+    Some(Function {
         name: output.function.clone(),
         docs: doc_lines(&docs),
         arguments: arguments.to_vec(),
         results: vec![value],
-    }
+    })
 }
 
 /// A `3 × n` matrix from its `n` columns.

@@ -224,7 +224,7 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
             }
             _ => requested
                 .functions
-                .push(kinematic::function(model, &kinematics, pool, output)),
+                .extend(kinematic::function(model, &kinematics, pool, output)),
         }
     }
     Ok(requested)
