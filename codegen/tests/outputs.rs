@@ -244,7 +244,7 @@ fn regressor_times_base_parameters_is_the_inverse_dynamics() {
         let interpreter = interpreter(&source, Route::Dalembert);
         let mut stacked = Vec::new();
         let mut nb = 0;
-        for seed in 0..12 {
+        for seed in 0..16 {
             let mut sample = Sample::random(&interpreter, seed);
             sample.u.iter_mut().for_each(|u| *u = 0.0);
             let rates = random_rates(&interpreter, seed + 100);

@@ -1,24 +1,31 @@
 //! The regressor of the inverse dynamics: `M v̇ − f = Y π` at zero inputs,
 //! with `π` the *base parameters*, found symbolically.
 //!
-//! Every entry of `M v̇ − f` is expanded into a sum of monomials, and each
-//! monomial split into its product of parameters (`m₂ l₁²`, `g m₁ c₁`; `1`
-//! for none) and the rest (numbers, functions of `q`, `v`, `v̇`, and
-//! parameters inside functions or sums, which stay in `Y`). The distinct
-//! parameter products are the parameters that enter linearly; the rest,
-//! summed per product and per row, are the columns of `Y`. Products whose
-//! columns are equal up to a constant factor cannot be told apart by any
-//! motion, so they are regrouped into one base parameter, their
-//! combination: for a two-link arm `I₁ + m₁ c₁² + m₂ l₁²`. Columns that
-//! vanish never appear. Terms with an input are left out (`Y π` is the
-//! force the motion needs beyond the inputs); time must not appear.
+//! Every entry of `M v̇ − f` is expanded as a polynomial in the parameters
+//! only — the parameter-free parts stay shared DAGs, so the expansion is as
+//! large as the number of parameter products, not of trigonometric terms:
+//! `Σ μ · Y_μ(q, v, v̇)`, with `μ` a product of parameters (`m₂ l₁²`,
+//! `g m₁ c₁`; `1` for none). A parameter inside a function or under a
+//! negative power of a sum is not a polynomial one there: that part stays
+//! in `Y` (read from the struct). The distinct products are the parameters
+//! that enter linearly; the `Y_μ` are the columns of `Y`. Products whose
+//! columns are equal up to a constant factor — compared in expanded,
+//! trigonometrically recombined form — cannot be told apart by any motion,
+//! so they are regrouped into one base parameter, their combination: for a
+//! two-link arm `m₁ c₁² + m₂ l₁² + I₁`. Columns that vanish never appear; a
+//! column too large to expand stays a base parameter of its own. Inputs are
+//! set to zero (`Y π` is the force the motion needs beyond the inputs);
+//! time must not appear.
 
-use crate::expr::{ExprId, Node, Number, Pool, Sym, SymKinds};
+use crate::expr::{ExprId, Func, Node, Number, Pool, Sym, SymKinds};
 use crate::render::trig::readable;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
-/// Most monomials an entry of `M v̇ − f` may expand to.
-const BUDGET: usize = 4000;
+/// Most monomials an entry of a column may expand to for regrouping.
+const BUDGET: usize = 2000;
+
+/// Most parameter products one expression may hold.
+const MOST_PRODUCTS: usize = 5000;
 
 /// A product of parameters: `(parameter index, exponent)`, by index.
 pub type Monomial = Vec<(u32, i32)>;
@@ -36,76 +43,206 @@ pub struct Regressor {
 
 /// Why a model has no regressor.
 pub enum Failure {
-    /// An entry of `M v̇ − f` expands to more than the budget's monomials.
+    /// `M v̇ − f` holds too many products of parameters.
     TooLarge,
     /// `M v̇ − f` depends on time outside the inputs' terms.
     TimeDependent,
 }
 
+/// An expression as a polynomial in the parameters: the coefficient of
+/// each product, free of polynomial parameters.
+type Polynomial = BTreeMap<Monomial, ExprId>;
+
 /// The regressor of `inverse_dynamics` (`M q̈ − f`, in the symbols `q̈`).
 pub fn regressor(pool: &mut Pool, inverse_dynamics: &[ExprId]) -> Result<Regressor, Failure> {
     let nv = inverse_dynamics.len();
-    let plain = pool.ungroup(inverse_dynamics);
-    let mut products: Vec<(Monomial, Vec<Vec<ExprId>>)> = Vec::new();
-    let mut index: HashMap<Monomial, usize> = HashMap::new();
-    for (row, &entry) in plain.iter().enumerate() {
-        let expanded = readable(pool, entry, BUDGET).ok_or(Failure::TooLarge)?;
-        let terms = match pool.node(expanded) {
-            Node::Add(terms) => terms.to_vec(),
-            _ if pool.is_zero(expanded) => Vec::new(),
-            _ => vec![expanded],
-        };
-        for term in terms {
-            let (monomial, rest) = split_parameters(pool, term);
-            let kinds = pool.kinds(rest);
-            if kinds.intersects(SymKinds::INPUT) {
-                continue;
-            }
-            if kinds.intersects(SymKinds::TIME) {
+    let mut polynomials: HashMap<ExprId, Polynomial> = HashMap::new();
+    for e in pool.topo_order(inverse_dynamics) {
+        let p = polynomial(pool, e, &polynomials).ok_or(Failure::TooLarge)?;
+        polynomials.insert(e, p);
+    }
+    let mut columns: BTreeMap<Monomial, Vec<ExprId>> = BTreeMap::new();
+    for (row, entry) in inverse_dynamics.iter().enumerate() {
+        for (monomial, &coefficient) in &polynomials[entry] {
+            if pool.kinds(coefficient).intersects(SymKinds::TIME) {
                 return Err(Failure::TimeDependent);
             }
-            let column = *index.entry(monomial.clone()).or_insert_with(|| {
-                products.push((monomial, vec![Vec::new(); nv]));
-                products.len() - 1
-            });
-            products[column].1[row].push(rest);
+            let column = columns
+                .entry(monomial.clone())
+                .or_insert_with(|| vec![pool.zero(); nv]);
+            column[row] = coefficient;
         }
     }
-    Ok(grouped(pool, products))
+    Ok(grouped(pool, columns.into_iter().collect()))
 }
 
-/// `term` as its product of parameters and the rest (with the number).
-fn split_parameters(pool: &mut Pool, term: ExprId) -> (Monomial, ExprId) {
-    let (coefficient, body) = pool.split_coefficient(term);
-    let factors = match pool.node(body) {
-        Node::Mul(factors) => factors.to_vec(),
-        _ if body == pool.one() => Vec::new(),
-        _ => vec![body],
+/// The polynomial of `e`, from those of its children; `None` past
+/// [`MOST_PRODUCTS`].
+fn polynomial(
+    pool: &mut Pool,
+    e: ExprId,
+    known: &HashMap<ExprId, Polynomial>,
+) -> Option<Polynomial> {
+    let kinds = pool.kinds(e);
+    if !kinds.intersects(SymKinds::PARAM.union(SymKinds::INPUT)) {
+        return Some(constant(pool, e));
+    }
+    let p = match pool.node(e).clone() {
+        Node::Number(_) => constant(pool, e),
+        Node::Sym(Sym::Param(i)) => BTreeMap::from([(vec![(i, 1)], pool.one())]),
+        // The inputs are zero.
+        Node::Sym(Sym::Input(_)) => Polynomial::new(),
+        Node::Sym(_) => constant(pool, e),
+        Node::Add(terms) => {
+            let mut sum = Polynomial::new();
+            for term in terms.iter() {
+                add_into(pool, &mut sum, &known[term]);
+            }
+            sum
+        }
+        Node::Mul(factors) => {
+            let mut product = constant(pool, pool.one());
+            for factor in factors.iter() {
+                product = multiply(pool, &product, &known[factor]);
+                if product.len() > MOST_PRODUCTS {
+                    return None;
+                }
+            }
+            product
+        }
+        Node::Pow(base, n) => power(pool, e, &known[&base], n)?,
+        Node::Func(Func::Group, arg) => known[&arg].clone(),
+        Node::Func(f, arg) => match as_constant(pool, &known[&arg]) {
+            Some(argument) => {
+                let value = pool.func(f, argument);
+                constant(pool, value)
+            }
+            None => opaque(pool, e, &known[&arg]),
+        },
     };
-    let mut monomial = Monomial::new();
-    let mut rest = vec![pool.number(coefficient)];
-    for factor in factors {
-        match pool.node(factor) {
-            Node::Sym(Sym::Param(i)) => monomial.push((*i, 1)),
-            Node::Pow(base, n) => match pool.node(*base) {
-                Node::Sym(Sym::Param(i)) => monomial.push((*i, *n)),
-                _ => rest.push(factor),
-            },
-            _ => rest.push(factor),
-        }
-    }
-    monomial.sort_unstable();
-    (monomial, pool.product(rest))
+    Some(p)
 }
 
-/// Columns equal up to a constant factor merged into one base parameter,
-/// in the order of their first product.
-fn grouped(pool: &mut Pool, products: Vec<(Monomial, Vec<Vec<ExprId>>)>) -> Regressor {
+/// `{1: e}` (the empty map for zero).
+fn constant(pool: &Pool, e: ExprId) -> Polynomial {
+    match pool.is_zero(e) {
+        true => Polynomial::new(),
+        false => BTreeMap::from([(Monomial::new(), e)]),
+    }
+}
+
+/// The value of a polynomial without parameter products, if it is one.
+fn as_constant(pool: &Pool, p: &Polynomial) -> Option<ExprId> {
+    match p.len() {
+        0 => Some(pool.zero()),
+        1 => p.get(&Monomial::new()).copied(),
+        _ => None,
+    }
+}
+
+/// `e` kept whole (a parameter inside a function stays in `Y`), with the
+/// inputs in its argument set to zero by rebuilding it from `argument`.
+fn opaque(pool: &mut Pool, e: ExprId, argument: &Polynomial) -> Polynomial {
+    let Node::Func(f, _) = *pool.node(e) else {
+        return constant(pool, e);
+    };
+    let terms: Vec<ExprId> = argument
+        .iter()
+        .map(|(monomial, &c)| {
+            let product = monomial_expr(pool, monomial);
+            pool.mul(c, product)
+        })
+        .collect();
+    let argument = pool.sum(terms);
+    let value = pool.func(f, argument);
+    constant(pool, value)
+}
+
+/// `base ^ n`: each product's exponents times `n` for a single product,
+/// multiplied out for a sum and `n > 0`, kept whole otherwise.
+fn power(pool: &mut Pool, e: ExprId, base: &Polynomial, n: i32) -> Option<Polynomial> {
+    if base.len() == 1 {
+        let (monomial, &c) = base.iter().next()?;
+        let scaled: Monomial = monomial.iter().map(|&(i, k)| (i, k * n)).collect();
+        let c = pool.powi(c, n);
+        return Some(BTreeMap::from([(scaled, c)]));
+    }
+    match usize::try_from(n) {
+        Ok(count) if count <= 8 => {
+            let mut product = constant(pool, pool.one());
+            for _ in 0..count {
+                product = multiply(pool, &product, base);
+                if product.len() > MOST_PRODUCTS {
+                    return None;
+                }
+            }
+            Some(product)
+        }
+        _ => Some(constant(pool, e)),
+    }
+}
+
+/// `sum += p`.
+fn add_into(pool: &mut Pool, sum: &mut Polynomial, p: &Polynomial) {
+    for (monomial, &c) in p {
+        let total = match sum.get(monomial) {
+            Some(&previous) => pool.add(previous, c),
+            None => c,
+        };
+        if pool.is_zero(total) {
+            sum.remove(monomial);
+        } else {
+            sum.insert(monomial.clone(), total);
+        }
+    }
+}
+
+/// `a · b`.
+fn multiply(pool: &mut Pool, a: &Polynomial, b: &Polynomial) -> Polynomial {
+    let mut product = Polynomial::new();
+    for (ma, &ca) in a {
+        for (mb, &cb) in b {
+            let c = pool.mul(ca, cb);
+            let term = BTreeMap::from([(merged(ma, mb), c)]);
+            add_into(pool, &mut product, &term);
+        }
+    }
+    product
+}
+
+/// The product of two parameter products.
+fn merged(a: &Monomial, b: &Monomial) -> Monomial {
+    let mut exponents: BTreeMap<u32, i32> = a.iter().copied().collect();
+    for &(i, k) in b {
+        *exponents.entry(i).or_default() += k;
+    }
+    exponents.into_iter().filter(|&(_, k)| k != 0).collect()
+}
+
+/// A product of parameters as an expression.
+fn monomial_expr(pool: &mut Pool, monomial: &Monomial) -> ExprId {
+    let factors: Vec<ExprId> = monomial
+        .iter()
+        .map(|&(i, n)| {
+            let p = pool.sym(Sym::Param(i));
+            pool.powi(p, n)
+        })
+        .collect();
+    pool.product(factors)
+}
+
+/// Columns equal up to a constant factor merged into one base parameter.
+/// Each column is compared in its expanded, recombined form (kept as it is
+/// if too large to expand).
+fn grouped(pool: &mut Pool, products: Vec<(Monomial, Vec<ExprId>)>) -> Regressor {
     let mut columns: Vec<Vec<ExprId>> = Vec::new();
     let mut combinations: Vec<Combination> = Vec::new();
     let mut index: HashMap<Vec<ExprId>, usize> = HashMap::new();
-    for (monomial, rows) in products {
-        let column: Vec<ExprId> = rows.into_iter().map(|terms| pool.sum(terms)).collect();
+    for (monomial, column) in products {
+        let plain = pool.ungroup(&column);
+        let expanded: Option<Vec<ExprId>> =
+            plain.iter().map(|&e| readable(pool, e, BUDGET)).collect();
+        let column = expanded.unwrap_or(column);
         let Some(scale) = leading_coefficient(pool, &column) else {
             continue;
         };
