@@ -238,7 +238,13 @@ fn column_rank(rows: &[Vec<f64>]) -> usize {
 
 #[test]
 fn regressor_times_base_parameters_is_the_inverse_dynamics() {
-    for source in test_systems() {
+    let mut systems = test_systems();
+    for family in [Family::Planar, Family::Spatial] {
+        for n in [5, 6] {
+            systems.push(chain_spelled(family, n, Spelling::SymbolicJoints));
+        }
+    }
+    for source in systems {
         let source = source.replace("    outputs inverse_dynamics, regressor;\n", "");
         let source = asking(&source, "outputs inverse_dynamics, regressor;");
         let interpreter = interpreter(&source, Route::Dalembert);

@@ -1,28 +1,27 @@
 //! The regressor of the inverse dynamics: `M v̇ − f = Y π` at zero inputs,
-//! with `π` the *base parameters*, found symbolically.
+//! with `π` the *base parameters*.
 //!
-//! Every entry of `M v̇ − f` is expanded as a polynomial in the parameters
-//! only — the parameter-free parts stay shared DAGs, so the expansion is as
-//! large as the number of parameter products, not of trigonometric terms:
-//! `Σ μ · Y_μ(q, v, v̇)`, with `μ` a product of parameters (`m₂ l₁²`,
-//! `g m₁ c₁`; `1` for none). A parameter inside a function or under a
-//! negative power of a sum is not a polynomial one there: that part stays
-//! in `Y` (read from the struct). The distinct products are the parameters
-//! that enter linearly; the `Y_μ` are the columns of `Y`. Products whose
-//! columns are equal up to a constant factor — compared in expanded,
-//! trigonometrically recombined form — cannot be told apart by any motion,
-//! so they are regrouped into one base parameter, their combination: for a
-//! two-link arm `m₁ c₁² + m₂ l₁² + I₁`. Columns that vanish never appear; a
-//! column too large to expand stays a base parameter of its own. Inputs are
-//! set to zero (`Y π` is the force the motion needs beyond the inputs);
-//! time must not appear.
+//! Every entry of `M v̇ − f` is expanded, symbolically, as a polynomial in
+//! the parameters only — the parameter-free parts stay shared DAGs, so the
+//! expansion is as large as the number of parameter products, not of
+//! trigonometric terms: `Σ μ · Y_μ(q, v, v̇)`, with `μ` a product of
+//! parameters (`m₂ l₁²`, `g m₁ c₁`; `1` for none). A parameter inside a
+//! function or under a negative power of a sum is not a polynomial one
+//! there: that part stays in `Y` (read from the struct). The distinct
+//! products are the parameters that enter linearly; the `Y_μ` are the
+//! candidate columns of `Y`.
+//!
+//! A column that is a constant combination `Σ xⱼ Yⱼ` of earlier ones cannot
+//! be told apart from them by any motion: it is removed, and its product
+//! joins each base parameter `πⱼ` with the exact rational factor `xⱼ` — for
+//! a two-link arm `π = m₁ c₁² + m₂ l₁² + I₁`. Dependence is decided by
+//! polynomial identity testing (the columns' values at random points, a QR
+//! factorisation, the factors recovered as small rationals and checked);
+//! columns that vanish are left out. Inputs are set to zero (`Y π` is the
+//! force the motion needs beyond the inputs); time must not appear.
 
 use crate::expr::{ExprId, Func, Node, Number, Pool, Sym, SymKinds};
-use crate::render::trig::readable;
 use std::collections::{BTreeMap, HashMap};
-
-/// Most monomials an entry of a column may expand to for regrouping.
-const BUDGET: usize = 2000;
 
 /// Most parameter products one expression may hold.
 const MOST_PRODUCTS: usize = 5000;
@@ -231,85 +230,169 @@ fn monomial_expr(pool: &mut Pool, monomial: &Monomial) -> ExprId {
     pool.product(factors)
 }
 
-/// Columns equal up to a constant factor merged into one base parameter.
-/// Each column is compared in its expanded, recombined form (kept as it is
-/// if too large to expand).
+/// The columns reduced to independent ones. A column that is a
+/// combination `Σ xⱼ Yⱼ` of earlier independent columns, with constant
+/// rational `xⱼ`, cannot be told apart from them by any motion: its product
+/// `μ` joins each `πⱼ` as `xⱼ μ`. Dependence is decided on the columns'
+/// values at random points (polynomial identity testing: expressions of
+/// the engine's functions that differ agree at random points with
+/// probability zero), the `xⱼ` recovered as exact small rationals and
+/// checked against every value.
 fn grouped(pool: &mut Pool, products: Vec<(Monomial, Vec<ExprId>)>) -> Regressor {
+    let nv = products.first().map_or(0, |(_, column)| column.len());
+    let points = (2 * products.len()).div_ceil(nv.max(1)) as u64 + 2;
+    let mut basis = Basis::default();
     let mut columns: Vec<Vec<ExprId>> = Vec::new();
     let mut combinations: Vec<Combination> = Vec::new();
-    let mut index: HashMap<Vec<ExprId>, usize> = HashMap::new();
-    for (monomial, column) in products {
-        let plain = pool.ungroup(&column);
-        let expanded: Option<Vec<ExprId>> =
-            plain.iter().map(|&e| readable(pool, e, BUDGET)).collect();
-        let column = expanded.unwrap_or(column);
-        let Some(scale) = leading_coefficient(pool, &column) else {
+    let sampled: Vec<Vec<f64>> = products
+        .iter()
+        .map(|(_, column)| sampled(pool, column, points))
+        .collect();
+    // A column that cancels symbolically may leave rounding: it vanishes
+    // next to the largest column.
+    let largest = sampled.iter().map(|v| norm(v)).fold(0.0, f64::max);
+    for ((monomial, column), values) in products.into_iter().zip(sampled) {
+        if norm(&values) <= 1e-12 * largest {
             continue;
-        };
-        let inverse = pool.number(scale.powi(-1));
-        let normalised: Vec<ExprId> = column
-            .iter()
-            .map(|&e| termwise_product(pool, inverse, e))
-            .collect();
-        match index.get(&normalised) {
-            Some(&group) => combinations[group].push((scale, monomial)),
+        }
+        match basis.dependence(&values) {
+            Some(coefficients) => {
+                for (group, c) in coefficients {
+                    combinations[group].push((c, monomial.clone()));
+                }
+            }
             None => {
-                index.insert(normalised.clone(), columns.len());
-                columns.push(normalised);
-                combinations.push(vec![(scale, monomial)]);
+                // Independent, or dependent only with coefficients that
+                // are not constants: a base parameter of its own.
+                basis.push(values, columns.len());
+                columns.push(column);
+                combinations.push(vec![(Number::ONE, monomial)]);
             }
         }
     }
-    // Products in order within a base parameter, base parameters in the
-    // order of their first products: an order that does not depend on the
-    // pool's history. Each first product enters with coefficient 1, so that
-    // `π` does not depend on which term of a column comes first either.
-    let mut groups: Vec<(Vec<ExprId>, Combination)> =
-        columns.into_iter().zip(combinations).collect();
-    for (_, combination) in &mut groups {
-        combination.sort_by(|a, b| a.1.cmp(&b.1));
-    }
-    groups.sort_by(|a, b| a.1[0].1.cmp(&b.1[0].1));
-    let (mut columns, mut combinations): (Vec<_>, Vec<_>) = groups.into_iter().unzip();
-    for (column, combination) in columns.iter_mut().zip(&mut combinations) {
-        let first = combination[0].0;
-        let inverse = first.powi(-1);
-        combination.iter_mut().for_each(|(c, _)| *c = *c * inverse);
-        let first = pool.number(first);
-        column
-            .iter_mut()
-            .for_each(|e| *e = termwise_product(pool, first, *e));
-    }
-    let nv = columns.first().map_or(0, Vec::len);
     let rows = (0..nv)
         .map(|k| columns.iter().map(|column| column[k]).collect())
         .collect();
     Regressor { rows, combinations }
 }
 
-/// `c e` with `c` multiplied into each term of a sum `e`, so that
-/// proportional sums of monomials become the same expression.
-fn termwise_product(pool: &mut Pool, c: ExprId, e: ExprId) -> ExprId {
-    match pool.node(e) {
-        Node::Add(terms) => {
-            let terms = terms.to_vec();
-            let scaled: Vec<ExprId> = terms.into_iter().map(|t| pool.mul(c, t)).collect();
-            pool.sum(scaled)
-        }
-        _ => pool.mul(c, e),
+/// The values of `column` at `points` random points: parameters in
+/// `[0.5, 1.5)`, coordinates, speeds and their rates in `[−3, 3)`, time and
+/// inputs zero.
+fn sampled(pool: &Pool, column: &[ExprId], points: u64) -> Vec<f64> {
+    (0..points)
+        .flat_map(|seed| pool.eval_many(column, &RandomPoint(seed)))
+        .collect()
+}
+
+/// A random value for every symbol, fixed by a seed.
+struct RandomPoint(u64);
+
+impl crate::expr::Env for RandomPoint {
+    fn value(&self, sym: Sym) -> f64 {
+        let (kind, index, low, high) = match sym {
+            Sym::Param(i) => (1, i, 0.5, 1.5),
+            Sym::Coord(i) => (2, i, -3.0, 3.0),
+            Sym::Speed(i) => (3, i, -3.0, 3.0),
+            Sym::Accel(i) => (4, i, -3.0, 3.0),
+            Sym::Time | Sym::Input(_) | Sym::Multiplier(_) => return 0.0,
+        };
+        let seed = (self.0 << 40) ^ (kind << 32) ^ u64::from(index);
+        crate::random::Random::new(seed).uniform(low, high)
     }
 }
 
-/// The numeric coefficient of the first term of the first nonzero entry:
-/// the scale that makes proportional columns equal. `None` for a zero
-/// column.
-fn leading_coefficient(pool: &Pool, column: &[ExprId]) -> Option<Number> {
-    let first = *column.iter().find(|&&e| !pool.is_zero(e))?;
-    let term = match pool.node(first) {
-        Node::Add(terms) => terms[0],
-        _ => first,
-    };
-    Some(pool.split_coefficient(term).0)
+/// Independent sampled columns, as a QR factorisation by modified
+/// Gram–Schmidt: `columns = Q R`.
+#[derive(Default)]
+struct Basis {
+    /// Orthonormal columns.
+    q: Vec<Vec<f64>>,
+    /// `R` by columns: `r[j]` has `j + 1` entries.
+    r: Vec<Vec<f64>>,
+    /// The sampled columns themselves.
+    columns: Vec<Vec<f64>>,
+    /// The base parameter of each column.
+    groups: Vec<usize>,
+}
+
+impl Basis {
+    /// `Qᵀ v` and what of `v` is left outside the basis.
+    fn project(&self, v: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let mut rest = v.to_vec();
+        let coordinates = self
+            .q
+            .iter()
+            .map(|q| {
+                let c: f64 = q.iter().zip(&rest).map(|(a, b)| a * b).sum();
+                rest.iter_mut().zip(q).for_each(|(x, q)| *x -= c * q);
+                c
+            })
+            .collect();
+        (coordinates, rest)
+    }
+
+    /// The exact rationals `xⱼ ≠ 0` with `v = Σ xⱼ columnⱼ`, by the base
+    /// parameter of each column, if `v` is such a combination.
+    fn dependence(&self, v: &[f64]) -> Option<Vec<(usize, Number)>> {
+        let scale = norm(v);
+        let (coordinates, rest) = self.project(v);
+        if self.q.is_empty() || norm(&rest) > 1e-9 * scale {
+            return None;
+        }
+        // R x = Qᵀ v, by back substitution.
+        let n = self.q.len();
+        let mut x = vec![0.0; n];
+        for i in (0..n).rev() {
+            let above: f64 = (i + 1..n).map(|j| self.r[j][i] * x[j]).sum();
+            x[i] = (coordinates[i] - above) / self.r[i][i];
+        }
+        let exact: Vec<Number> = x
+            .iter()
+            .map(|&c| small_rational(c))
+            .collect::<Option<_>>()?;
+        let fits = v.iter().enumerate().all(|(k, &value)| {
+            let combined: f64 = exact
+                .iter()
+                .zip(&self.columns)
+                .map(|(c, column)| c.to_f64() * column[k])
+                .sum();
+            (combined - value).abs() <= 1e-10 * scale
+        });
+        let nonzero = self.groups.iter().zip(exact).filter(|(_, c)| !c.is_zero());
+        fits.then(|| nonzero.map(|(&g, c)| (g, c)).collect())
+    }
+
+    /// Adds `v`, the column of base parameter `group`, if it is
+    /// independent of the basis.
+    fn push(&mut self, v: Vec<f64>, group: usize) {
+        let (mut coordinates, rest) = self.project(&v);
+        let left = norm(&rest);
+        if left <= 1e-9 * norm(&v) {
+            return;
+        }
+        coordinates.push(left);
+        self.q.push(rest.iter().map(|x| x / left).collect());
+        self.r.push(coordinates);
+        self.columns.push(v);
+        self.groups.push(group);
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// `c` as an exact rational with a denominator up to 1000, if it is one
+/// (to 1e-8 relative); zero below 1e-10.
+fn small_rational(c: f64) -> Option<Number> {
+    if c.abs() < 1e-10 {
+        return Some(Number::ZERO);
+    }
+    (1..=1000_i128).find_map(|den| {
+        let num = (c * den as f64).round();
+        ((num / den as f64 - c).abs() <= 1e-8 * c.abs()).then(|| Number::ratio(num as i128, den))
+    })
 }
 
 impl Regressor {
