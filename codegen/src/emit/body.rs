@@ -15,6 +15,8 @@ pub struct Names {
     pub coordinates: Vec<Ident>,
     /// Speed names, by index.
     pub speeds: Vec<Ident>,
+    /// Names of the speeds' rates, by index.
+    pub accelerations: Vec<Ident>,
     /// Input names, by index.
     pub inputs: Vec<Ident>,
     /// Prefix of temporaries, chosen to collide with no other name.
@@ -31,6 +33,7 @@ impl Names {
             .iter()
             .chain(&self.coordinates)
             .chain(&self.speeds)
+            .chain(&self.accelerations)
             .chain(&self.inputs)
             .any(|ident| ident == name)
     }
@@ -44,7 +47,7 @@ impl Names {
             Sym::Coord(i) => self.coordinates[i as usize].clone(),
             Sym::Speed(i) => self.speeds[i as usize].clone(),
             Sym::Input(i) => self.inputs[i as usize].clone(),
-            Sym::Accel(i) => format_ident!("qdd{}", i),
+            Sym::Accel(i) => self.accelerations[i as usize].clone(),
             Sym::Multiplier(i) => format_ident!("lambda{}", i),
         }
     }
@@ -62,9 +65,10 @@ impl Names {
                 values.push(quote!(self.#name));
             }
         }
-        let arrays: [ArrayArgument<'_>; 3] = [
+        let arrays: [ArrayArgument<'_>; 4] = [
             ("q", &self.coordinates, Sym::Coord),
             ("qd", &self.speeds, Sym::Speed),
+            ("qdd", &self.accelerations, Sym::Accel),
             ("u", &self.inputs, Sym::Input),
         ];
         for (array, names, sym) in arrays {

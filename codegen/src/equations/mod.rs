@@ -145,6 +145,50 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
     }
 }
 
+/// `M q̈ − f` for the symbols `q̈`, and whether it was found by the
+/// Newton–Euler sweeps with the accelerations carried outwards (where the
+/// model is a tree) rather than through the derived `M` and `f`.
+pub fn inverse_dynamics(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+) -> (Vec<ExprId>, bool) {
+    let nq = model.nq();
+    let kinematics = Kinematics::new(model, pool);
+    let inertias = inertias(model);
+    let tree = model
+        .tree
+        .as_ref()
+        .and_then(|tree| recursive::JointTree::new(model, tree, &kinematics, &inertias, pool));
+    match tree {
+        Some(tree) => {
+            let inertial = recursive::inverse_dynamics(&tree, pool);
+            let forces = (0..nq)
+                .map(|k| {
+                    let active = potential_and_dissipation_force(model, pool, k);
+                    pool.sub(inertial[k], active)
+                })
+                .collect();
+            (forces, true)
+        }
+        None => {
+            let forces = (0..nq)
+                .map(|k| {
+                    let mut terms: Vec<ExprId> = (0..nq)
+                        .map(|j| {
+                            let qdd = pool.sym(Sym::Accel(j as u32));
+                            pool.mul(equations.mass_matrix[k][j], qdd)
+                        })
+                        .collect();
+                    terms.push(pool.neg(equations.forcing[k]));
+                    pool.sum(terms)
+                })
+                .collect();
+            (forces, false)
+        }
+    }
+}
+
 fn inertias(model: &Model) -> Vec<Inertia<'_>> {
     let bodies = model.bodies.iter().map(|b| Inertia {
         mass: b.mass,
@@ -382,3 +426,4 @@ pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;
 mod recursive;
+pub mod regressor;

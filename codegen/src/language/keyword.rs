@@ -34,10 +34,12 @@ pub const DISSIPATION: &str = "dissipation";
 pub const CONSTRAINT: &str = "constraint";
 /// `closure NAME { at: P, to: Q, ... };`
 pub const CLOSURE: &str = "closure";
+/// `outputs inverse_dynamics, position(P), ...;`
+pub const OUTPUTS: &str = "outputs";
 
 /// The statement keywords, in the order the "expected one of" message
 /// lists them.
-pub const STATEMENTS: [&str; 15] = [
+pub const STATEMENTS: [&str; 16] = [
     PARAMETERS,
     COORDINATES,
     INPUTS,
@@ -53,6 +55,7 @@ pub const STATEMENTS: [&str; 15] = [
     DISSIPATION,
     CONSTRAINT,
     CLOSURE,
+    OUTPUTS,
 ];
 
 /// `force <vec> at P;`: the point of application.
@@ -61,6 +64,8 @@ pub const AT: &str = "at";
 pub const ON: &str = "on";
 /// `torque <vec> on F reacting G;`: the frame that takes the reaction.
 pub const REACTING: &str = "reacting";
+/// `outputs position(P in F);`: the frame whose axes the output is in.
+pub const IN: &str = "in";
 
 /// `pub Name { ... }`: the generated struct is public.
 pub const PUB: &str = "pub";

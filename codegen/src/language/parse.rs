@@ -8,7 +8,7 @@
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use syn::Lit;
 
-use super::ast::{Expr, Field, Statement, System};
+use super::ast::{Expr, Field, OutputRequest, Statement, System};
 use super::cursor::Cursor;
 use super::expression::expression;
 use super::keyword::{self, STATEMENTS};
@@ -199,6 +199,7 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
             let (name, fields) = named_fields(cursor, &keyword)?;
             Statement::Closure { name, fields }
         }
+        keyword::OUTPUTS => Statement::Outputs(outputs(cursor)?),
         _ => {
             return Err(syn::Error::new(
                 keyword.span(),
@@ -294,6 +295,46 @@ fn constraint(cursor: &mut Cursor, keyword: Ident) -> syn::Result<Statement> {
         .ok_or_else(|| cursor.expected("`==` in a constraint"))?;
     let rhs = expression(cursor)?;
     Ok(Statement::Constraint { keyword, lhs, rhs })
+}
+
+/// Parses `name, name(P), name(P in F), ...` after `outputs`; a trailing
+/// comma is allowed.
+fn outputs(cursor: &mut Cursor) -> syn::Result<Vec<OutputRequest>> {
+    let mut requests = vec![output(cursor)?];
+    while cursor.eat_punct(',').is_some() {
+        if cursor.peek_ident().is_none() {
+            break;
+        }
+        requests.push(output(cursor)?);
+    }
+    Ok(requests)
+}
+
+/// Parses one `name`, `name(P)` or `name(P in F)`.
+fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
+    let name =
+        cursor.expect_ident("the name of an output (`inverse_dynamics`, `position(P)`, ...)")?;
+    let Some(group) = cursor.eat_group(Delimiter::Parenthesis) else {
+        return Ok(OutputRequest {
+            name,
+            of: None,
+            axes: None,
+        });
+    };
+    let mut inside = Cursor::group(&group);
+    let of = inside.expect_ident(format!("a point or frame in `{name}(..)`"))?;
+    let axes = match inside.eat_keyword(keyword::IN) {
+        Some(_) => Some(inside.expect_ident("a frame after `in`")?),
+        None => None,
+    };
+    if !inside.is_end() {
+        return Err(inside.expected(format!("`)` after `{name}({of}`, or `in` and a frame")));
+    }
+    Ok(OutputRequest {
+        name,
+        of: Some(of),
+        axes,
+    })
 }
 
 #[cfg(test)]
@@ -494,7 +535,8 @@ mod tests {
             [(
                 "unknown statement `bodyy`; expected one of `parameters`, `coordinates`, \
                  `inputs`, `frame`, `point`, `body`, `particle`, `joint`, `gravity`, \
-                 `force`, `torque`, `potential`, `dissipation`, `constraint`, `closure`"
+                 `force`, `torque`, `potential`, `dissipation`, `constraint`, `closure`, \
+                 `outputs`"
                     .to_owned(),
                 2,
                 2
@@ -729,5 +771,55 @@ mod tests {
             }
         }
         assert!(parsed > 1000, "only {parsed} inputs lexed");
+    }
+
+    #[test]
+    fn parses_outputs_with_subjects_and_axes() {
+        let system = system(
+            "S { coordinates q; outputs inverse_dynamics, position(P), velocity(P in B),; }",
+        );
+        let Statement::Outputs(requests) = &system.statements[1] else {
+            panic!("expected outputs second");
+        };
+        let written: Vec<(String, Option<String>, Option<String>)> = requests
+            .iter()
+            .map(|r| {
+                (
+                    r.name.to_string(),
+                    r.of.as_ref().map(Ident::to_string),
+                    r.axes.as_ref().map(Ident::to_string),
+                )
+            })
+            .collect();
+        let owned = |s: &str| Some(s.to_owned());
+        assert_eq!(
+            written,
+            [
+                ("inverse_dynamics".to_owned(), None, None),
+                ("position".to_owned(), owned("P"), None),
+                ("velocity".to_owned(), owned("P"), owned("B")),
+            ]
+        );
+    }
+
+    #[test]
+    fn a_malformed_output_is_reported_at_its_token() {
+        assert_eq!(
+            errors("S {\n  outputs position(P B);\n  outputs 3;\n}"),
+            [
+                (
+                    "expected `)` after `position(P`, or `in` and a frame, found `B`".to_owned(),
+                    2,
+                    21
+                ),
+                (
+                    "expected the name of an output (`inverse_dynamics`, `position(P)`, ...), \
+                     found `3`"
+                        .to_owned(),
+                    3,
+                    10
+                ),
+            ]
+        );
     }
 }

@@ -8,11 +8,13 @@
 
 mod closure;
 mod errors;
+mod output;
 mod resolve;
 mod tree;
 mod vector;
 
 pub use errors::Errors;
+pub use output::{Output, OutputKind};
 pub use resolve::resolve;
 pub use tree::{JointKind, Tree};
 pub use vector::{FrameId, NEWTONIAN, Vector};
@@ -69,6 +71,9 @@ pub struct Model {
     /// The kinematic tree, if the model is one (see [`Tree`]): decided
     /// once, here, for every spelling.
     pub tree: Option<Tree>,
+    /// The outputs asked for beyond `M`, `f`, the energies and the
+    /// constraints, in the order written.
+    pub outputs: Vec<Output>,
     /// The expressions of everything above.
     pub pool: Pool,
 }

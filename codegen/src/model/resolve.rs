@@ -9,7 +9,7 @@ use super::{
     Particle, Point, PointId, Torque, Tree, Vector, unit_axis,
 };
 use crate::expr::{ExprId, Func, Number, Pool, Sym, SymKinds};
-use crate::language::ast::{BinOp, Expr, Field, SpanRange, Statement, System};
+use crate::language::ast::{BinOp, Expr, Field, OutputRequest, SpanRange, Statement, System};
 use proc_macro2::{Ident, Span};
 use std::collections::HashMap;
 
@@ -192,6 +192,7 @@ impl Resolver {
                 constraints: Vec::new(),
                 moving_masses: Vec::new(),
                 tree: None,
+                outputs: Vec::new(),
                 pool: Pool::default(),
             },
         }
@@ -264,6 +265,7 @@ impl Resolver {
                 keyword, lhs, rhs, ..
             } => self.constraint(keyword, lhs, rhs),
             Statement::Closure { name, fields } => self.closure(name, fields),
+            Statement::Outputs(requests) => requests.iter().for_each(|r| self.output(r)),
         }
     }
 
@@ -447,6 +449,90 @@ impl Resolver {
             let offset = offset.add(&slide, &mut self.pool);
             self.define_point(name, Some((base, offset)));
         }
+    }
+
+    /// One item of `outputs`: a known name, with a point or a frame in
+    /// parentheses when it needs one, asked for once.
+    fn output(&mut self, request: &OutputRequest) {
+        use super::output::{Availability, KINDS, Subject, function_name, kind, kind_list};
+        let name = &request.name;
+        let Some(&(_, subject, availability)) = KINDS.iter().find(|(k, ..)| name == k) else {
+            self.errors.push(
+                name.span(),
+                format!("unknown output `{name}`; expected one of {}", kind_list()),
+            );
+            return;
+        };
+        if availability == Availability::NotYet {
+            self.errors.push(
+                name.span(),
+                format!("the output `{name}` is not generated yet; remove it from `outputs`"),
+            );
+            return;
+        }
+        let (mut point, mut frame) = (None, None);
+        match (subject, &request.of) {
+            (Subject::None, None) => {}
+            (Subject::None, Some(of)) => {
+                let message = format!("`{name}` takes no point or frame: write `{name}` alone");
+                self.errors.push(of.span(), message);
+                return;
+            }
+            (_, None) => {
+                let what = if subject == Subject::Point {
+                    "a point: `(P)`"
+                } else {
+                    "a frame: `(B)`"
+                };
+                self.errors
+                    .push(name.span(), format!("`{name}` needs {what} after its name"));
+                return;
+            }
+            (Subject::Point, Some(of)) => match self.lookup(of) {
+                Some(Binding::Point(p)) => point = Some(p),
+                Some(other) => {
+                    let message =
+                        format!("`{of}` is {}; `{name}` expects a point", other.describe());
+                    self.errors.push(of.span(), message);
+                }
+                None => {}
+            },
+            (Subject::Frame, Some(of)) => frame = self.frame_name(of),
+        }
+        let axes = match &request.axes {
+            Some(f) => self.frame_name(f),
+            None => Some(NEWTONIAN),
+        };
+        let (Some(kind), Some(axes)) = (kind(&name.to_string(), point, frame), axes) else {
+            return;
+        };
+        if request.axes.is_some() && subject == Subject::None {
+            self.errors.push(
+                name.span(),
+                format!("`{name}` has no axes to choose: remove `in`"),
+            );
+            return;
+        }
+        let function = function_name(name, request.of.as_ref(), request.axes.as_ref());
+        let same = |o: &&super::Output| o.function == function || (o.kind, o.axes) == (kind, axes);
+        if let Some(earlier) = self.model.outputs.iter().find(same) {
+            let message = format!(
+                "this output is already asked for, as `{}`; ask for it once",
+                earlier.function
+            );
+            self.errors.push(name.span(), message);
+            return;
+        }
+        self.model.outputs.push(super::Output {
+            kind,
+            axes,
+            function,
+            subject: request.of.as_ref().map(Ident::to_string),
+            axes_name: request
+                .axes
+                .as_ref()
+                .map_or("N".to_string(), Ident::to_string),
+        });
     }
 
     fn torque(&mut self, value: &Expr, on: &Expr, reacting: Option<&Expr>) {

@@ -1,0 +1,231 @@
+//! The generated functions as values: each output of a system (the mass
+//! matrix, the forcing, the energies, the constraint rows, and what the
+//! model's `outputs` statement asks for) is a [`Function`] — its name,
+//! docs, arguments and the expressions it returns — that one routine of
+//! the emitter writes. A new output is one more value here, not a new
+//! emitter; the results of one function are computed by one straight-line
+//! body, so they share their subexpressions.
+
+mod dynamics;
+mod kinematic;
+
+use crate::equations::Equations;
+use crate::expr::{ExprId, Pool};
+use crate::model::{Model, OutputKind};
+use proc_macro2::Ident;
+
+/// One generated inherent function.
+pub struct Function {
+    /// Its name.
+    pub name: Ident,
+    /// Its doc comment, one entry a line (each with its leading space).
+    pub docs: Vec<String>,
+    /// The arguments it takes after `&self`, in order.
+    pub arguments: Vec<Argument>,
+    /// What it returns: one value, or a tuple of several.
+    pub results: Vec<Value>,
+}
+
+/// An argument of a generated function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Argument {
+    /// `t: f64`.
+    Time,
+    /// `q: &[f64; NQ]`.
+    Coordinates,
+    /// `qd: &[f64; NV]`, the speeds.
+    Speeds,
+    /// `qdd: &[f64; NV]`, the speeds' rates.
+    Accelerations,
+    /// `u: &[f64; NU]`.
+    Inputs,
+}
+
+/// A returned value: a scalar, an array or an array of rows.
+pub struct Value {
+    /// How the expressions are arranged.
+    pub shape: Shape,
+    /// The entries, row by row.
+    pub expressions: Vec<ExprId>,
+}
+
+/// The arrangement of a returned value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// `f64`.
+    Scalar,
+    /// `[f64; n]`.
+    Vector,
+    /// `[[f64; columns]; rows]`.
+    Matrix {
+        /// Entries per row.
+        columns: usize,
+    },
+}
+
+impl Value {
+    /// A scalar.
+    pub fn scalar(e: ExprId) -> Value {
+        Value {
+            shape: Shape::Scalar,
+            expressions: vec![e],
+        }
+    }
+
+    /// An array.
+    pub fn vector(entries: Vec<ExprId>) -> Value {
+        Value {
+            shape: Shape::Vector,
+            expressions: entries,
+        }
+    }
+
+    /// An array of rows, each of `columns` entries.
+    pub fn matrix(rows: &[Vec<ExprId>], columns: usize) -> Value {
+        Value {
+            shape: Shape::Matrix { columns },
+            expressions: rows.iter().flatten().copied().collect(),
+        }
+    }
+}
+
+impl Function {
+    /// A function of `arguments` returning one value.
+    fn new(name: &str, docs: &str, arguments: &[Argument], result: Value) -> Function {
+        Function {
+            name: Ident::new(name, proc_macro2::Span::call_site()),
+            docs: doc_lines(docs),
+            arguments: arguments.to_vec(),
+            results: vec![result],
+        }
+    }
+
+    /// Every expression it returns, in order, for passes that rewrite them.
+    pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut ExprId> {
+        self.results
+            .iter_mut()
+            .flat_map(|v| v.expressions.iter_mut())
+    }
+}
+
+/// `text`'s lines, each with a leading space (as `///` comments give).
+pub fn doc_lines(text: &str) -> Vec<String> {
+    text.lines().map(|line| format!(" {line}")).collect()
+}
+
+use Argument::{Coordinates, Inputs, Speeds, Time};
+
+/// The functions every system has: `M`, `f`, `T`, `V`, and with
+/// constraints `A`, `b`, the residuals and the velocity forms.
+pub fn standard(model: &Model, equations: &Equations) -> Vec<Function> {
+    let nq = model.nq();
+    let mut functions = vec![
+        Function::new(
+            "mass_matrix",
+            "The mass matrix `M(q)` (symmetric, positive definite where the\n\
+             coordinates are independent).",
+            &[Coordinates],
+            Value::matrix(&equations.mass_matrix, nq),
+        ),
+        Function::new(
+            "forcing",
+            "The forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`: applied and\n\
+             gravity forces, minus the velocity-dependent inertia terms.",
+            &[Time, Coordinates, Speeds, Inputs],
+            Value::vector(equations.forcing.clone()),
+        ),
+        Function::new(
+            "kinetic_energy",
+            "The kinetic energy `T(q, q̇)`.",
+            &[Coordinates, Speeds],
+            Value::scalar(equations.kinetic_energy),
+        ),
+        Function::new(
+            "potential_energy",
+            "The potential energy `V(q)`: gravity (from `O`) and the\n\
+             `potential` statements.",
+            &[Coordinates],
+            Value::scalar(equations.potential_energy),
+        ),
+    ];
+    if model.constraints.is_empty() {
+        return functions;
+    }
+    functions.extend([
+        Function::new(
+            "constraint_jacobian",
+            "The constraint Jacobian `A(q)` of `M q̈ = f + Aᵀλ`, `A q̈ = b`;\n\
+             rows in declaration order.",
+            &[Coordinates],
+            Value::matrix(&equations.constraint_jacobian, nq),
+        ),
+        Function::new(
+            "constraint_bias",
+            "The constraint bias `b(t, q, q̇)` of `A q̈ = b`.",
+            &[Time, Coordinates, Speeds],
+            Value::vector(equations.constraint_bias.clone()),
+        ),
+        Function::new(
+            "constraint_residual",
+            "The residual `lhs − rhs` of each holonomic constraint (0 for\n\
+             nonholonomic rows).",
+            &[Time, Coordinates],
+            Value::vector(equations.constraint_residual.clone()),
+        ),
+        Function::new(
+            "constraint_velocity",
+            "The velocity form of each constraint, `A q̇ + ψ₀(t, q)`: the time\n\
+             derivative of a holonomic row's residual, a nonholonomic row\n\
+             itself. Zero on the constraint manifold.",
+            &[Time, Coordinates, Speeds],
+            Value::vector(equations.constraint_velocity.clone()),
+        ),
+    ]);
+    functions
+}
+
+/// A constant list of names (`BASE_PARAMETERS`).
+pub struct NameList {
+    /// The constant's name.
+    pub name: Ident,
+    /// Its doc comment, one entry a line.
+    pub docs: Vec<String>,
+    /// The names.
+    pub names: Vec<String>,
+}
+
+/// What the model's `outputs` statement asks for: functions, and the
+/// constants that name their entries.
+#[derive(Default)]
+pub struct Requested {
+    /// The functions, in the order asked for.
+    pub functions: Vec<Function>,
+    /// The constants.
+    pub constants: Vec<NameList>,
+}
+
+/// What the model's `outputs` statement asks for, in the order written;
+/// an error at an output the model cannot give.
+pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::Result<Requested> {
+    let mut requested = Requested::default();
+    if model.outputs.is_empty() {
+        return Ok(requested);
+    }
+    let kinematics = crate::kinematics::Kinematics::new(model, pool);
+    for output in &model.outputs {
+        match output.kind {
+            OutputKind::InverseDynamics => requested
+                .functions
+                .push(dynamics::inverse_dynamics(model, equations, pool)),
+            OutputKind::Regressor => {
+                let (functions, names) = dynamics::regressor(model, equations, pool, output)?;
+                requested.functions.extend(functions);
+                requested.constants.push(names);
+            }
+            _ => requested
+                .functions
+                .extend(kinematic::function(model, &kinematics, pool, output)),
+        }
+    }
+    Ok(requested)
+}
