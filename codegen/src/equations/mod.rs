@@ -367,6 +367,7 @@ fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
     rows
 }
 
+pub mod derivatives;
 pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;
