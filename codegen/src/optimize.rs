@@ -28,6 +28,11 @@ pub fn optimize(equations: &mut Equations, pool: &mut Pool) {
     for e in equations.expressions_mut() {
         *e = *chosen.entry(*e).or_insert_with(|| cheaper_form(pool, *e));
     }
+    for jacobian in &mut equations.residual_jacobian {
+        for e in jacobian.expressions_mut() {
+            *e = *chosen.entry(*e).or_insert_with(|| cheaper_form(pool, *e));
+        }
+    }
 }
 
 /// `e`, or its compact form if that costs fewer operations.

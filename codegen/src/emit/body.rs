@@ -17,6 +17,8 @@ pub struct Names {
     pub speeds: Vec<Ident>,
     /// Input names, by index.
     pub inputs: Vec<Ident>,
+    /// Acceleration names (`q̈` as a symbol: the derivatives), by index.
+    pub accelerations: Vec<Ident>,
     /// Prefix of temporaries, chosen to collide with no other name.
     pub temporary: String,
     /// Whether elementary functions are called through `libm` (for
@@ -32,6 +34,7 @@ impl Names {
             .chain(&self.coordinates)
             .chain(&self.speeds)
             .chain(&self.inputs)
+            .chain(&self.accelerations)
             .any(|ident| ident == name)
     }
 }
@@ -44,7 +47,7 @@ impl Names {
             Sym::Coord(i) => self.coordinates[i as usize].clone(),
             Sym::Speed(i) => self.speeds[i as usize].clone(),
             Sym::Input(i) => self.inputs[i as usize].clone(),
-            Sym::Accel(i) => format_ident!("qdd{}", i),
+            Sym::Accel(i) => self.accelerations[i as usize].clone(),
             Sym::Multiplier(i) => format_ident!("lambda{}", i),
         }
     }
@@ -62,9 +65,10 @@ impl Names {
                 values.push(quote!(self.#name));
             }
         }
-        let arrays: [ArrayArgument<'_>; 3] = [
+        let arrays: [ArrayArgument<'_>; 4] = [
             ("q", &self.coordinates, Sym::Coord),
             ("qd", &self.speeds, Sym::Speed),
+            ("vdot", &self.accelerations, Sym::Accel),
             ("u", &self.inputs, Sym::Input),
         ];
         for (array, names, sym) in arrays {

@@ -7,6 +7,7 @@
 
 mod body;
 mod configuration;
+mod derivatives;
 mod solve;
 
 use crate::equations::Equations;
@@ -54,6 +55,11 @@ pub fn emit(
         emit_constraints(model, equations, &names),
         configuration::emit_configuration(model.nq()),
     ];
+    if let Some(jacobian) = &equations.residual_jacobian {
+        items.push(derivatives::emit_inverse_dynamics_jacobian(
+            model, equations, jacobian, &names,
+        ));
+    }
     let strukt = emit_struct(model, &documentation.docs);
     let constants = emit_constants(model, &documentation.text);
     let traits = match target {
@@ -61,6 +67,11 @@ pub fn emit(
             let solver = solve::emit_accelerations(model, equations);
             let has_solver = !solver.is_empty();
             items.push(solver);
+            if let Some(jacobian) = &equations.residual_jacobian {
+                items.push(derivatives::emit_accelerations_jacobian(
+                    model, equations, jacobian, &names,
+                ));
+            }
             emit_trait_impls(name, nq, nu, nc, has_solver)
         }
         Target::NoStd => TokenStream::new(),
@@ -84,19 +95,22 @@ fn names(model: &Model, target: Target) -> Names {
         .chain(&model.inputs)
         .map(|i| i.to_string())
         .collect();
-    let speeds = model
-        .coordinates
-        .iter()
-        .enumerate()
-        .map(|(i, q)| {
-            let preferred = format!("{q}_dot");
-            if taken.contains(&preferred) {
-                format_ident!("qd_{}", i)
-            } else {
-                Ident::new(&preferred, q.span())
-            }
-        })
-        .collect();
+    let rates = |suffix: &str, fallback: &str| -> Vec<Ident> {
+        model
+            .coordinates
+            .iter()
+            .enumerate()
+            .map(|(i, q)| {
+                let preferred = format!("{q}_{suffix}");
+                if taken.contains(&preferred) {
+                    format_ident!("{}_{}", fallback, i)
+                } else {
+                    Ident::new(&preferred, q.span())
+                }
+            })
+            .collect()
+    };
+    let (speeds, accelerations) = (rates("dot", "qd"), rates("ddot", "qdd"));
     let mut temporary = "x".to_string();
     while taken.iter().any(|n| {
         n.strip_prefix(&temporary)
@@ -109,6 +123,7 @@ fn names(model: &Model, target: Target) -> Names {
         coordinates: model.coordinates.clone(),
         speeds,
         inputs: model.inputs.clone(),
+        accelerations,
         temporary,
         libm: target == Target::NoStd,
     }

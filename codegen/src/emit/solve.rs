@@ -12,25 +12,17 @@ use quote::{ToTokens, format_ident, quote};
 
 /// `pub fn accelerations(..)`, for systems without constraints.
 pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
-    let nq = model.nq();
-    if !model.constraints.is_empty() || nq == 0 {
+    let Some(factorised) = factorised(model, equations) else {
         return TokenStream::new();
-    }
-    let pattern = fill_pattern(model, equations);
-    let factor = factorisation(model, &pattern);
-    let forward = forward_substitution(&pattern);
-    let backward = backward_substitution(&pattern);
-    let solution: Vec<Ident> = (0..nq).map(|i| format_ident!("x{}", i)).collect();
+    };
+    let Factorised {
+        prelude,
+        substitutions,
+        solution,
+        ..
+    } = &factorised;
+    let nq = model.nq();
     let (n_lit, nu) = (index(nq), index(model.inputs.len()));
-    let diagonal = (0..nq).map(|i| mass(i, i));
-    let rows = (0..nq).map(|i| {
-        let row = (0..nq).map(|j| match j == i || (j < i && pattern[i][j]) {
-            true => mass(i, j).into_token_stream(),
-            false => quote!(_),
-        });
-        quote!([#(#row),*])
-    });
-    let forcing = (0..nq).map(|i| format_ident!("f{}", i));
     quote! {
         /// The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a
         /// square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this
@@ -46,22 +38,8 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
             qd: &[f64; #n_lit],
             u: &[f64; #nu],
         ) -> ::core::result::Result<[f64; #n_lit], ::dalembert::DynamicsError> {
-            let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
-            if !(t.is_finite() && finite(q) && finite(qd) && finite(u)) {
-                return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteState);
-            }
-            let m = self.mass_matrix(q);
-            let f = self.forcing(t, q, qd, u);
-            if !(m.iter().all(|row| finite(row)) && finite(&f)) {
-                return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
-            }
-            let [#(#rows),*] = m;
-            let [#(#forcing),*] = f;
-            let tolerance =
-                ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
-            #factor
-            #forward
-            #backward
+            #prelude
+            #substitutions
             let qdd = [#(#solution),*];
             if finite(&qdd) {
                 ::core::result::Result::Ok(qdd)
@@ -70,6 +48,66 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
             }
         }
     }
+}
+
+/// The pieces of a solve of `M x = f` for an unconstrained system.
+pub struct Factorised {
+    /// The checks of the state (`t`, `q`, `qd`, `u`), `M` and `f` evaluated
+    /// and checked, unpacked into `m{i}_{j}` and `f{i}`, and factorised
+    /// (`l{i}_{j}`, the reciprocal pivots `r{j}`), returning the runtime's
+    /// errors; binds the closure `finite(&[f64]) -> bool`.
+    pub prelude: TokenStream,
+    /// Forward and backward substitution from `f{i}` to `x{i}`.
+    pub substitutions: TokenStream,
+    /// The names `f{i}` of the right-hand side.
+    pub right_hand_side: Vec<Ident>,
+    /// The names `x{i}` of the solution.
+    pub solution: Vec<Ident>,
+}
+
+/// The factorisation and substitutions of `M x = f`; `None` for a system
+/// with constraints or no coordinates.
+pub fn factorised(model: &Model, equations: &Equations) -> Option<Factorised> {
+    let nq = model.nq();
+    if !model.constraints.is_empty() || nq == 0 {
+        return None;
+    }
+    let pattern = fill_pattern(model, equations);
+    let factor = factorisation(model, &pattern);
+    let forward = forward_substitution(&pattern);
+    let backward = backward_substitution(&pattern);
+    let solution: Vec<Ident> = (0..nq).map(|i| format_ident!("x{}", i)).collect();
+    let diagonal = (0..nq).map(|i| mass(i, i));
+    let rows = (0..nq).map(|i| {
+        let row = (0..nq).map(|j| match j == i || (j < i && pattern[i][j]) {
+            true => mass(i, j).into_token_stream(),
+            false => quote!(_),
+        });
+        quote!([#(#row),*])
+    });
+    let forcing: Vec<Ident> = (0..nq).map(|i| format_ident!("f{}", i)).collect();
+    let prelude = quote! {
+        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+        if !(t.is_finite() && finite(q) && finite(qd) && finite(u)) {
+            return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteState);
+        }
+        let m = self.mass_matrix(q);
+        let f = self.forcing(t, q, qd, u);
+        if !(m.iter().all(|row| finite(row)) && finite(&f)) {
+            return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
+        }
+        let [#(#rows),*] = m;
+        let [#(#forcing),*] = f;
+        let tolerance =
+            ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
+        #factor
+    };
+    Some(Factorised {
+        prelude,
+        substitutions: quote!(#forward #backward),
+        right_hand_side: forcing,
+        solution,
+    })
 }
 
 /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero — `Mᵢⱼ` is not

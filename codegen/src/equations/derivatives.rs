@@ -16,6 +16,12 @@
 //! tree is linear in the number of links where `M v̇` is quadratic.
 
 use crate::expr::{ExprId, Pool, Sym};
+use crate::model::Model;
+
+/// Whether `model` asks for an output that needs the derivatives.
+pub fn requested(_model: &Model) -> bool {
+    false
+}
 
 /// The partial derivatives of a residual `r` of the equations of motion:
 /// entry `[i][j]` is `∂rᵢ/∂xⱼ`.
@@ -70,6 +76,18 @@ pub fn residual_jacobian(
     }
 }
 
+impl ResidualJacobian {
+    /// Every entry, in a fixed order (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, each row by
+    /// row), for passes that rewrite them.
+    pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut ExprId> {
+        self.coordinates
+            .iter_mut()
+            .chain(&mut self.speeds)
+            .chain(&mut self.inputs)
+            .flatten()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -100,17 +118,24 @@ mod tests {
         }
     }
 
-    fn derived(source: &str) -> (crate::model::Model, Pool, crate::equations::Equations) {
-        crate::derive_unoptimised(source.parse().expect("tokens")).expect("a valid model")
+    /// The model, pool and equations of `source`, with the derivatives.
+    fn derived(source: &str) -> (Model, Pool, super::super::Equations) {
+        let system =
+            crate::language::parse_system(source.parse().expect("tokens")).expect("parses");
+        let mut model = crate::model::resolve(&system).expect("a valid model");
+        let mut pool = std::mem::take(&mut model.pool);
+        let equations = super::super::derive_with(&model, &mut pool, true);
+        (model, pool, equations)
     }
 
-    /// Every partial of the residual of `source` against central
-    /// differences of the residual itself, at random points.
+    /// Every partial of the residual of `source` (as derived: by a
+    /// Newton–Euler sweep for a tree) against central differences of
+    /// `M q̈ − f`, at random points.
     fn check_against_differences(source: &str) {
         let (model, mut pool, equations) = derived(source);
         let (nq, nu, np) = (model.nq(), model.inputs.len(), model.parameters.len());
         let r = residual(&mut pool, &equations.mass_matrix, &equations.forcing);
-        let jacobian = residual_jacobian(&mut pool, &r, nq, nu);
+        let jacobian = equations.residual_jacobian.expect("asked for");
         let mut random = Random::new(17);
         let mut draw =
             |n: usize| -> Vec<f64> { (0..n).map(|_| random.uniform(-2.0, 2.0)).collect() };

@@ -17,6 +17,7 @@
 use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
+use derivatives::ResidualJacobian;
 
 /// The derived equations of one system, as expressions of the model's pool.
 #[derive(Clone)]
@@ -38,6 +39,9 @@ pub struct Equations {
     /// The velocity form `ψ = A q̇ + ψ₀` of each row: `dφ/dt` of a
     /// holonomic row, the row itself for a nonholonomic one.
     pub constraint_velocity: Vec<ExprId>,
+    /// The partial derivatives of the residual `M q̈ − f`, with `q̈` as
+    /// symbols, when the model asks for derivatives.
+    pub residual_jacobian: Option<ResidualJacobian>,
 }
 
 impl Equations {
@@ -85,8 +89,15 @@ struct Inertia<'a> {
     rotation: Option<(FrameId, &'a [[ExprId; 3]; 3])>,
 }
 
-/// Derives every equation of `model`.
+/// Derives every equation of `model` (with the derivatives if it asks for
+/// them).
 pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
+    derive_with(model, pool, derivatives::requested(model))
+}
+
+/// Derives every equation of `model`, and the residual's derivatives if
+/// `with_derivatives`.
+fn derive_with(model: &Model, pool: &mut Pool, with_derivatives: bool) -> Equations {
     let kinematics = Kinematics::new(model, pool);
     let nq = model.nq();
     let inertias = inertias(model);
@@ -96,7 +107,7 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
         .and_then(|tree| recursive::JointTree::new(model, tree, &kinematics, &inertias, pool));
     // The recursion carries the applied forces and torques; the general
     // route takes them through their partial velocities.
-    let (mass_matrix, bias, loads_done) = match tree {
+    let (mass_matrix, bias, loads_done) = match &tree {
         Some(tree) => {
             let (mass_matrix, bias) = recursive::inertia_terms(&tree, pool);
             (mass_matrix, bias, true)
@@ -112,7 +123,7 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
             (mass_matrix, bias, false)
         }
     };
-    let forcing = (0..nq)
+    let forcing: Vec<ExprId> = (0..nq)
         .map(|k| {
             let mut active = potential_and_dissipation_force(model, pool, k);
             if !loads_done {
@@ -122,6 +133,22 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
             pool.sub(active, bias[k])
         })
         .collect();
+    let residual_jacobian = with_derivatives.then(|| {
+        let residual = match &tree {
+            // The Newton–Euler sweep holds `M q̈` and every load but the
+            // potential and dissipation forces.
+            Some(tree) => recursive::inverse_dynamics(tree, pool)
+                .into_iter()
+                .enumerate()
+                .map(|(k, swept)| {
+                    let active = potential_and_dissipation_force(model, pool, k);
+                    pool.sub(swept, active)
+                })
+                .collect(),
+            None => derivatives::residual(pool, &mass_matrix, &forcing),
+        };
+        derivatives::residual_jacobian(pool, &residual, nq, model.inputs.len())
+    });
     let rows = constraints(model, pool);
     Equations {
         mass_matrix,
@@ -132,6 +159,7 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
         constraint_bias: rows.bias,
         constraint_residual: rows.residual,
         constraint_velocity: rows.velocity,
+        residual_jacobian,
     }
 }
 
