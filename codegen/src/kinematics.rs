@@ -124,7 +124,7 @@ impl Kinematics {
     }
 
     /// Components `c` given in `from`'s axes, re-expressed in `to`'s axes.
-    fn rotate_between(
+    pub fn rotate_between(
         &self,
         pool: &mut Pool,
         model: &Model,

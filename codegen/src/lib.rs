@@ -25,6 +25,7 @@ mod kinematics;
 mod language;
 mod model;
 mod optimize;
+mod outputs;
 mod random;
 mod render;
 #[cfg(test)]
@@ -143,10 +144,15 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
     }
     let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool);
     docs.extend(equation_lines);
+    let mut functions = outputs::standard(&model, &equations);
+    let mut requested = outputs::requested(&model, &equations, &mut pool);
+    optimize::optimize_functions(&mut requested, &mut pool);
+    functions.extend(requested);
     model.pool = pool;
     Ok(emit::emit(
         &model,
         &equations,
+        &functions,
         &emit::Documentation { docs, text },
         target,
     ))

@@ -12,6 +12,7 @@
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool};
+use crate::outputs::Function;
 use crate::render::trig::readable;
 use std::collections::{HashMap, HashSet};
 
@@ -24,14 +25,22 @@ const FUNCTION_COST: usize = 20;
 
 /// Replaces each output of `equations` by its compact form where cheaper.
 pub fn optimize(equations: &mut Equations, pool: &mut Pool) {
+    optimize_all(equations.expressions_mut(), pool);
+}
+
+/// Replaces each result of `functions` by its compact form where cheaper.
+pub fn optimize_functions(functions: &mut [Function], pool: &mut Pool) {
+    optimize_all(
+        functions.iter_mut().flat_map(Function::expressions_mut),
+        pool,
+    );
+}
+
+/// Replaces each of `expressions` by its compact form where cheaper.
+fn optimize_all<'a>(expressions: impl Iterator<Item = &'a mut ExprId>, pool: &mut Pool) {
     let mut chosen: HashMap<ExprId, ExprId> = HashMap::new();
-    for e in equations.expressions_mut() {
+    for e in expressions {
         *e = *chosen.entry(*e).or_insert_with(|| cheaper_form(pool, *e));
-    }
-    for jacobian in &mut equations.residual_jacobian {
-        for e in jacobian.expressions_mut() {
-            *e = *chosen.entry(*e).or_insert_with(|| cheaper_form(pool, *e));
-        }
     }
 }
 

@@ -15,10 +15,10 @@ pub struct Names {
     pub coordinates: Vec<Ident>,
     /// Speed names, by index.
     pub speeds: Vec<Ident>,
+    /// Names of the speeds' rates, by index.
+    pub accelerations: Vec<Ident>,
     /// Input names, by index.
     pub inputs: Vec<Ident>,
-    /// Acceleration names (`q̈` as a symbol: the derivatives), by index.
-    pub accelerations: Vec<Ident>,
     /// Prefix of temporaries, chosen to collide with no other name.
     pub temporary: String,
     /// Whether elementary functions are called through `libm` (for
@@ -33,8 +33,8 @@ impl Names {
             .iter()
             .chain(&self.coordinates)
             .chain(&self.speeds)
-            .chain(&self.inputs)
             .chain(&self.accelerations)
+            .chain(&self.inputs)
             .any(|ident| ident == name)
     }
 }
@@ -68,7 +68,7 @@ impl Names {
         let arrays: [ArrayArgument<'_>; 4] = [
             ("q", &self.coordinates, Sym::Coord),
             ("qd", &self.speeds, Sym::Speed),
-            ("vdot", &self.accelerations, Sym::Accel),
+            ("qdd", &self.accelerations, Sym::Accel),
             ("u", &self.inputs, Sym::Input),
         ];
         for (array, names, sym) in arrays {

@@ -1,16 +1,16 @@
-//! The exact derivatives as Rust: `inverse_dynamics_jacobian` (the partials
-//! of `τ = M v̇ − f`), `accelerations_jacobian` (`∂v̇/∂q`, `∂v̇/∂v`,
-//! `∂v̇/∂u` from `M ∂v̇/∂x = −∂τ/∂x`, every column through the one
-//! `L D Lᵀ` factorisation that solved for `v̇`) and `linearize` (the
-//! state-space matrices `A`, `B` of `ẋ = (q̇, v̇)` about a state).
+//! The outputs that solve through the mass matrix: `accelerations_jacobian`
+//! (`∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the partials of the inverse dynamics at the
+//! solved `v̇`, every column through the one `L D Lᵀ` factorisation that
+//! solved for `v̇`) and `linearize` (the state-space matrices `A`, `B` of
+//! `ẋ = (q̇, v̇)` about a state).
 
 use super::body::{Names, Straight, straight_line};
 use super::solve::{Factorised, factorised};
-use super::{argument, array};
+use super::{array, raw_string};
 use crate::equations::Equations;
-use crate::equations::derivatives::ResidualJacobian;
-use crate::expr::{ExprId, Sym};
+use crate::expr::ExprId;
 use crate::model::Model;
+use crate::outputs::Function;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
@@ -20,78 +20,22 @@ fn matrix(rows: usize, columns: usize) -> TokenStream {
     quote!([#row; #rows])
 }
 
-/// The entries of `block` column by column (the right-hand sides of the
-/// solves).
-fn by_columns(block: &[Vec<ExprId>], columns: usize) -> Vec<ExprId> {
+/// The entries of a row-major `rows × columns` block, column by column
+/// (the right-hand sides of the solves).
+fn by_columns(block: &[ExprId], columns: usize) -> Vec<ExprId> {
     (0..columns)
-        .flat_map(|j| block.iter().map(move |row| row[j]))
+        .flat_map(|j| block.iter().skip(j).step_by(columns).copied())
         .collect()
 }
 
-/// `pub fn inverse_dynamics_jacobian(..)`: `∂τ/∂q`, `∂τ/∂v` and
-/// `∂τ/∂v̇ = M` at a state and acceleration.
-pub fn emit_inverse_dynamics_jacobian(
-    model: &Model,
-    equations: &Equations,
-    jacobian: &ResidualJacobian,
-    names: &Names,
-) -> TokenStream {
-    let nq = model.nq();
-    let roots: Vec<ExprId> = jacobian
-        .coordinates
-        .iter()
-        .chain(&jacobian.speeds)
-        .chain(&equations.mass_matrix)
-        .flatten()
-        .copied()
-        .collect();
-    let body = straight_line(&model.pool, names, &roots);
-    let used = |f: fn(&Sym) -> bool| body.used.iter().any(f);
-    let t = argument("t", used(|s| matches!(s, Sym::Time)));
-    let q = argument("q", used(|s| matches!(s, Sym::Coord(_))));
-    let qd = argument("qd", used(|s| matches!(s, Sym::Speed(_))));
-    let vdot = argument("vdot", used(|s| matches!(s, Sym::Accel(_))));
-    let u = argument("u", used(|s| matches!(s, Sym::Input(_))));
-    let (vector, inputs, square) = (array(nq), array(model.inputs.len()), matrix(nq, nq));
-    let rows: Vec<TokenStream> = body
-        .outputs
-        .chunks(nq)
-        .map(|row| quote!([#(#row),*]))
-        .collect();
-    let [by_q, by_v, mass] = [0, 1, 2].map(|k| {
-        let block = &rows[k * nq..(k + 1) * nq];
-        quote!([#(#block),*])
-    });
-    let statements = &body.statements;
-    quote! {
-        /// The derivatives of the inverse dynamics `τ(t, q, v, v̇, u) = M v̇ − f`
-        /// at a state and acceleration: `(∂τ/∂q, ∂τ/∂v, ∂τ/∂v̇ = M)`, entry
-        /// `[i][j]` the derivative of `τᵢ` by the `j`-th variable. Exact:
-        /// the equations differentiated symbolically, their shared
-        /// subexpressions computed once.
-        #[inline]
-        #[must_use]
-        pub fn inverse_dynamics_jacobian(
-            &self,
-            #t: f64,
-            #q: &#vector,
-            #qd: &#vector,
-            #vdot: &#vector,
-            #u: &#inputs,
-        ) -> (#square, #square, #square) {
-            #statements
-            (#by_q, #by_v, #mass)
-        }
-    }
-}
-
-/// `pub fn accelerations_jacobian(..)` and `pub fn linearize(..)`, for a
-/// system without constraints; nothing for one with.
+/// `pub fn accelerations_jacobian(..)` from `function`, whose results are
+/// `∂τ/∂q`, `∂τ/∂v`, `∂τ/∂u`; nothing for a system with constraints
+/// (which the model rejects).
 pub fn emit_accelerations_jacobian(
     model: &Model,
     equations: &Equations,
-    jacobian: &ResidualJacobian,
     names: &Names,
+    function: &Function,
 ) -> TokenStream {
     let Some(Factorised {
         prelude,
@@ -105,12 +49,12 @@ pub fn emit_accelerations_jacobian(
     let (nq, nu) = (model.nq(), model.inputs.len());
     // ∂τ/∂q, ∂τ/∂v and ∂τ/∂u by columns: solved, then negated as they are
     // transposed into rows.
-    let roots: Vec<ExprId> = [
-        by_columns(&jacobian.coordinates, nq),
-        by_columns(&jacobian.speeds, nq),
-        by_columns(&jacobian.inputs, nu),
-    ]
-    .concat();
+    let roots: Vec<ExprId> = function
+        .results
+        .iter()
+        .zip([nq, nq, nu])
+        .flat_map(|(value, columns)| by_columns(&value.expressions, columns))
+        .collect();
     let Straight {
         statements,
         outputs,
@@ -163,18 +107,14 @@ pub fn emit_accelerations_jacobian(
         Ident::new(rhs_u, Span::call_site()),
         Ident::new(by_u, Span::call_site()),
     );
-    let linearize = emit_linearize(nq, nu);
+    let (name, docs) = (
+        &function.name,
+        function.docs.iter().map(|line| raw_string(line)),
+    );
     quote! {
-        /// The derivatives of the accelerations `v̇(t, q, v, u)` at a state:
-        /// `(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u)`, entry `[i][j]` the derivative of `v̇ᵢ` by
-        /// the `j`-th variable. Exact: differentiating `M v̇ = f` gives
-        /// `M ∂v̇/∂x = −∂(M v̇ − f)/∂x` at the solved `v̇`, whose right-hand
-        /// sides are the symbolic partials of the equations and whose
-        /// columns all go through the `L D Lᵀ` factorisation of `M` that
-        /// solved for `v̇`. The errors of `accelerations`, and
-        /// `NonFiniteEquations` for a non-finite partial derivative.
+        #(#[doc = #docs])*
         #[inline]
-        pub fn accelerations_jacobian(
+        pub fn #name(
             &self,
             t: f64,
             q: &#vector,
@@ -186,8 +126,8 @@ pub fn emit_accelerations_jacobian(
                 #substitutions
                 [#(#solution),*]
             };
-            let vdot = solve([#(#right_hand_side),*]);
-            if !finite(&vdot) {
+            let qdd = solve([#(#right_hand_side),*]);
+            if !finite(&qdd) {
                 return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations);
             }
             let (rhs_q, rhs_v, #rhs_u_name): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) = {
@@ -205,13 +145,13 @@ pub fn emit_accelerations_jacobian(
                 ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations)
             }
         }
-
-        #linearize
     }
 }
 
-/// `pub fn linearize(..)` from `accelerations_jacobian`, for `q̇ = v`.
-fn emit_linearize(nq: usize, nu: usize) -> TokenStream {
+/// `pub fn linearize(..)` from `accelerations_jacobian`, for `q̇ = v`, with
+/// the docs of `function`.
+pub fn emit_linearize(model: &Model, function: &Function) -> TokenStream {
+    let (nq, nu) = (model.nq(), model.inputs.len());
     let (vector, inputs) = (array(nq), array(nu));
     let (a, b) = (matrix(2 * nq, 2 * nq), matrix(2 * nq, nu));
     let literal = Literal::usize_unsuffixed;
@@ -244,13 +184,9 @@ fn emit_linearize(nq: usize, nu: usize) -> TokenStream {
     let nu = literal(nu);
     let zero_row = quote!([0.0; #nu]);
     let zero_rows = (0..nq).map(|_| zero_row.clone());
+    let docs = function.docs.iter().map(|line| raw_string(line));
     quote! {
-        /// The linearisation `δẋ = A δx + B δu` of the equations of motion
-        /// about a state `x = (q, v)` and input `u`: with `q̇ = v`,
-        /// `A = [[0, I], [∂v̇/∂q, ∂v̇/∂v]]` and `B = [[0], [∂v̇/∂u]]`, from
-        /// `accelerations_jacobian` (and its errors). About an equilibrium
-        /// (`v = 0`, `v̇ = 0`) the eigenvalues of `A` are the small-motion
-        /// exponents.
+        #(#[doc = #docs])*
         #[inline]
         pub fn linearize(
             &self,

@@ -11,8 +11,10 @@ mod derivatives;
 mod solve;
 
 use crate::equations::Equations;
+use crate::expr::{ExprId, Sym};
 use crate::model::Model;
-use body::{Names, Straight, straight_line};
+use crate::outputs::{Argument, Body, Function, Shape};
+use body::{Names, straight_line};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
@@ -40,6 +42,7 @@ pub enum Target {
 pub fn emit(
     model: &Model,
     equations: &Equations,
+    functions: &[Function],
     documentation: &Documentation,
     target: Target,
 ) -> TokenStream {
@@ -48,18 +51,19 @@ pub fn emit(
     let nq = model.nq();
     let nu = model.inputs.len();
     let nc = model.constraints.len();
-    let mut items = vec![
-        emit_mass_matrix(model, equations, &names),
-        emit_forcing(model, equations, &names),
-        emit_energies(model, equations, &names),
-        emit_constraints(model, equations, &names),
-        configuration::emit_configuration(model.nq()),
-    ];
-    if let Some(jacobian) = &equations.residual_jacobian {
-        items.push(derivatives::emit_inverse_dynamics_jacobian(
-            model, equations, jacobian, &names,
-        ));
-    }
+    let mut items: Vec<TokenStream> = functions
+        .iter()
+        .map(|function| match (function.body, target) {
+            (Body::Explicit, _) => emit_function(model, &names, function),
+            // Both return the runtime's errors.
+            (_, Target::NoStd) => TokenStream::new(),
+            (Body::AccelerationsJacobian, Target::Std) => {
+                derivatives::emit_accelerations_jacobian(model, equations, &names, function)
+            }
+            (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, function),
+        })
+        .collect();
+    items.push(configuration::emit_configuration(model.nq()));
     let strukt = emit_struct(model, &documentation.docs);
     let constants = emit_constants(model, &documentation.text);
     let traits = match target {
@@ -67,11 +71,6 @@ pub fn emit(
             let solver = solve::emit_accelerations(model, equations);
             let has_solver = !solver.is_empty();
             items.push(solver);
-            if let Some(jacobian) = &equations.residual_jacobian {
-                items.push(derivatives::emit_accelerations_jacobian(
-                    model, equations, jacobian, &names,
-                ));
-            }
             emit_trait_impls(name, nq, nu, nc, has_solver)
         }
         Target::NoStd => TokenStream::new(),
@@ -110,7 +109,8 @@ fn names(model: &Model, target: Target) -> Names {
             })
             .collect()
     };
-    let (speeds, accelerations) = (rates("dot", "qd"), rates("ddot", "qdd"));
+    let speeds = rates("dot", "qd");
+    let accelerations = rates("ddot", "qdd");
     let mut temporary = "x".to_string();
     while taken.iter().any(|n| {
         n.strip_prefix(&temporary)
@@ -122,8 +122,8 @@ fn names(model: &Model, target: Target) -> Names {
         parameters: model.parameters.clone(),
         coordinates: model.coordinates.clone(),
         speeds,
-        inputs: model.inputs.clone(),
         accelerations,
+        inputs: model.inputs.clone(),
         temporary,
         libm: target == Target::NoStd,
     }
@@ -206,30 +206,11 @@ fn array(n: usize) -> TokenStream {
 }
 
 /// An argument name, with a leading underscore when the body ignores it.
-fn argument(name: &str, used: bool) -> Ident {
+fn argument_name(name: &str, used: bool) -> Ident {
     if used {
         Ident::new(name, Span::call_site())
     } else {
         format_ident!("_{}", name)
-    }
-}
-
-/// Which of `t, q, qd, u` a body reads.
-struct Reads {
-    t: Ident,
-    q: Ident,
-    qd: Ident,
-    u: Ident,
-}
-
-fn reads(body: &Straight) -> Reads {
-    use crate::expr::Sym;
-    let any = |f: fn(&Sym) -> bool| body.used.iter().any(f);
-    Reads {
-        t: argument("t", any(|s| matches!(s, Sym::Time))),
-        q: argument("q", any(|s| matches!(s, Sym::Coord(_)))),
-        qd: argument("qd", any(|s| matches!(s, Sym::Speed(_)))),
-        u: argument("u", any(|s| matches!(s, Sym::Input(_)))),
     }
 }
 
@@ -241,142 +222,59 @@ fn rows(outputs: &[TokenStream], width: usize) -> Vec<TokenStream> {
         .collect()
 }
 
-fn emit_mass_matrix(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let nq = model.nq();
-    let roots: Vec<_> = equations.mass_matrix.iter().flatten().copied().collect();
-    let body = straight_line(&model.pool, names, &roots);
-    let Reads { q, .. } = reads(&body);
-    let (vector, statements, rows) = (array(nq), &body.statements, rows(&body.outputs, nq));
-    let nq = Literal::usize_unsuffixed(nq);
-    quote! {
-        /// The mass matrix `M(q)` (symmetric, positive definite where the
-        /// coordinates are independent).
-        #[inline]
-        #[must_use]
-        pub fn mass_matrix(&self, #q: &#vector) -> [#vector; #nq] {
-            #statements
-            [#(#rows),*]
-        }
-    }
-}
-
-fn emit_forcing(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let body = straight_line(&model.pool, names, &equations.forcing);
-    let Reads { t, q, qd, u } = reads(&body);
-    let (vector, inputs) = (array(model.nq()), array(model.inputs.len()));
-    let (statements, outputs) = (&body.statements, &body.outputs);
-    quote! {
-        /// The forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`: applied and
-        /// gravity forces, minus the velocity-dependent inertia terms.
-        #[inline]
-        #[must_use]
-        pub fn forcing(&self, #t: f64, #q: &#vector, #qd: &#vector, #u: &#inputs) -> #vector {
-            #statements
-            [#(#outputs),*]
-        }
-    }
-}
-
-fn emit_energies(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let vector = array(model.nq());
-    let kinetic = straight_line(&model.pool, names, &[equations.kinetic_energy]);
-    let potential = straight_line(&model.pool, names, &[equations.potential_energy]);
-    let Reads { q: kq, qd: kqd, .. } = reads(&kinetic);
-    let Reads { q: vq, .. } = reads(&potential);
-    let (ks, kv) = (&kinetic.statements, &kinetic.outputs[0]);
-    let (vs, vv) = (&potential.statements, &potential.outputs[0]);
-    quote! {
-        /// The kinetic energy `T(q, q̇)`.
-        #[inline]
-        #[must_use]
-        pub fn kinetic_energy(&self, #kq: &#vector, #kqd: &#vector) -> f64 {
-            #ks
-            #kv
-        }
-
-        /// The potential energy `V(q)`: gravity (from `O`) and the
-        /// `potential` statements.
-        #[inline]
-        #[must_use]
-        pub fn potential_energy(&self, #vq: &#vector) -> f64 {
-            #vs
-            #vv
-        }
-    }
-}
-
-fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let nc = model.constraints.len();
-    if nc == 0 {
-        return TokenStream::new();
-    }
-    let nq = model.nq();
-    let vector = array(nq);
-    let rows_out = array(nc);
-    let roots: Vec<_> = equations
-        .constraint_jacobian
+/// One function: its docs, its signature (an argument it does not read is
+/// named with a leading `_`) and a straight-line body computing all its
+/// results, which share their subexpressions.
+fn emit_function(model: &Model, names: &Names, function: &Function) -> TokenStream {
+    let roots: Vec<ExprId> = function
+        .results
         .iter()
-        .flatten()
-        .copied()
+        .flat_map(|value| value.expressions.iter().copied())
         .collect();
-    let jacobian = straight_line(&model.pool, names, &roots);
-    let Reads { q: jq, .. } = reads(&jacobian);
-    let (js, jr) = (&jacobian.statements, rows(&jacobian.outputs, nq));
-    let nc = Literal::usize_unsuffixed(nc);
-    let bias = straight_line(&model.pool, names, &equations.constraint_bias);
-    let Reads {
-        t: bt,
-        q: bq,
-        qd: bqd,
-        ..
-    } = reads(&bias);
-    let (bs, bo) = (&bias.statements, &bias.outputs);
-    let residual = straight_line(&model.pool, names, &equations.constraint_residual);
-    let Reads { t: rt, q: rq, .. } = reads(&residual);
-    let (rs, ro) = (&residual.statements, &residual.outputs);
-    let velocity = straight_line(&model.pool, names, &equations.constraint_velocity);
-    let Reads {
-        t: vt,
-        q: vq,
-        qd: vqd,
-        ..
-    } = reads(&velocity);
-    let (vs, vo) = (&velocity.statements, &velocity.outputs);
+    let body = straight_line(&model.pool, names, &roots);
+    let reads = |kind: fn(&Sym) -> bool| body.used.iter().any(kind);
+    let (nq, nu) = (array(model.nq()), array(model.inputs.len()));
+    let arguments = function.arguments.iter().map(|argument| {
+        let (name, ty, used) = match argument {
+            Argument::Time => ("t", quote!(f64), reads(|s| matches!(s, Sym::Time))),
+            Argument::Coordinates => ("q", quote!(&#nq), reads(|s| matches!(s, Sym::Coord(_)))),
+            Argument::Speeds => ("qd", quote!(&#nq), reads(|s| matches!(s, Sym::Speed(_)))),
+            Argument::Accelerations => ("qdd", quote!(&#nq), reads(|s| matches!(s, Sym::Accel(_)))),
+            Argument::Inputs => ("u", quote!(&#nu), reads(|s| matches!(s, Sym::Input(_)))),
+        };
+        let name = argument_name(name, used);
+        quote!(#name: #ty)
+    });
+    let mut outputs = body.outputs.into_iter();
+    let (mut types, mut values) = (Vec::new(), Vec::new());
+    for result in &function.results {
+        let n = result.expressions.len();
+        let entries: Vec<TokenStream> = outputs.by_ref().take(n).collect();
+        let (ty, value) = match result.shape {
+            Shape::Scalar => (quote!(f64), quote!(#(#entries)*)),
+            Shape::Vector => (array(n), quote!([#(#entries),*])),
+            Shape::Matrix { columns } => {
+                let height = Literal::usize_unsuffixed(n / columns.max(1));
+                let (row, rows) = (array(columns), rows(&entries, columns));
+                (quote!([#row; #height]), quote!([#(#rows),*]))
+            }
+        };
+        types.push(ty);
+        values.push(value);
+    }
+    let (ty, value) = match (types.as_slice(), values.as_slice()) {
+        ([ty], [value]) => (ty.clone(), value.clone()),
+        _ => (quote!((#(#types),*)), quote!((#(#values),*))),
+    };
+    let docs = function.docs.iter().map(|line| raw_string(line));
+    let (name, statements) = (&function.name, &body.statements);
     quote! {
-        /// The constraint Jacobian `A(q)` of `M q̈ = f + Aᵀλ`, `A q̈ = b`;
-        /// rows in declaration order.
+        #(#[doc = #docs])*
         #[inline]
         #[must_use]
-        pub fn constraint_jacobian(&self, #jq: &#vector) -> [#vector; #nc] {
-            #js
-            [#(#jr),*]
-        }
-
-        /// The constraint bias `b(t, q, q̇)` of `A q̈ = b`.
-        #[inline]
-        #[must_use]
-        pub fn constraint_bias(&self, #bt: f64, #bq: &#vector, #bqd: &#vector) -> #rows_out {
-            #bs
-            [#(#bo),*]
-        }
-
-        /// The residual `lhs − rhs` of each holonomic constraint (0 for
-        /// nonholonomic rows).
-        #[inline]
-        #[must_use]
-        pub fn constraint_residual(&self, #rt: f64, #rq: &#vector) -> #rows_out {
-            #rs
-            [#(#ro),*]
-        }
-
-        /// The velocity form of each constraint, `A q̇ + ψ₀(t, q)`: the time
-        /// derivative of a holonomic row's residual, a nonholonomic row
-        /// itself. Zero on the constraint manifold.
-        #[inline]
-        #[must_use]
-        pub fn constraint_velocity(&self, #vt: f64, #vq: &#vector, #vqd: &#vector) -> #rows_out {
-            #vs
-            [#(#vo),*]
+        pub fn #name(&self, #(#arguments),*) -> #ty {
+            #statements
+            #value
         }
     }
 }

@@ -12,16 +12,10 @@
 //! columns share is computed once. `∂r/∂v̇ = M`.
 //!
 //! The residual can come from any derivation of the same equations: built
-//! from `M` and `f` ([`residual`]) or from a Newton–Euler sweep, which for a
+//! from `M` and `f` or from a Newton–Euler sweep, which for a
 //! tree is linear in the number of links where `M v̇` is quadratic.
 
 use crate::expr::{ExprId, Pool, Sym};
-use crate::model::Model;
-
-/// Whether `model` asks for an output that needs the derivatives.
-pub fn requested(_model: &Model) -> bool {
-    false
-}
 
 /// The partial derivatives of a residual `r` of the equations of motion:
 /// entry `[i][j]` is `∂rᵢ/∂xⱼ`.
@@ -33,26 +27,6 @@ pub struct ResidualJacobian {
     pub speeds: Vec<Vec<ExprId>>,
     /// `∂r/∂u`, `nv × nu`.
     pub inputs: Vec<Vec<ExprId>>,
-}
-
-/// The residual `M v̇ − f`, with `v̇` as [`Sym::Accel`] symbols.
-pub fn residual(pool: &mut Pool, mass_matrix: &[Vec<ExprId>], forcing: &[ExprId]) -> Vec<ExprId> {
-    let accelerations: Vec<ExprId> = (0..forcing.len())
-        .map(|j| pool.sym(Sym::Accel(j as u32)))
-        .collect();
-    mass_matrix
-        .iter()
-        .zip(forcing)
-        .map(|(row, &f)| {
-            let mut terms: Vec<ExprId> = row
-                .iter()
-                .zip(&accelerations)
-                .map(|(&m, &a)| pool.mul(m, a))
-                .collect();
-            terms.push(pool.neg(f));
-            pool.sum(terms)
-        })
-        .collect()
 }
 
 /// `∂r/∂q`, `∂r/∂v` and `∂r/∂u` of `residual`, for `nq` coordinates (the
@@ -73,18 +47,6 @@ pub fn residual_jacobian(
         coordinates: by(Sym::Coord, nq),
         speeds: by(Sym::Speed, nq),
         inputs: by(Sym::Input, nu),
-    }
-}
-
-impl ResidualJacobian {
-    /// Every entry, in a fixed order (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, each row by
-    /// row), for passes that rewrite them.
-    pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut ExprId> {
-        self.coordinates
-            .iter_mut()
-            .chain(&mut self.speeds)
-            .chain(&mut self.inputs)
-            .flatten()
     }
 }
 
@@ -118,24 +80,24 @@ mod tests {
         }
     }
 
-    /// The model, pool and equations of `source`, with the derivatives.
-    fn derived(source: &str) -> (Model, Pool, super::super::Equations) {
+    /// Every partial of the inverse dynamics of `source` (as derived: by a
+    /// Newton–Euler sweep for a tree) against central differences of
+    /// `M q̈ − f` evaluated numerically, at random points.
+    fn check_against_differences(source: &str) {
         let system =
             crate::language::parse_system(source.parse().expect("tokens")).expect("parses");
         let mut model = crate::model::resolve(&system).expect("a valid model");
         let mut pool = std::mem::take(&mut model.pool);
-        let equations = super::super::derive_with(&model, &mut pool, true);
-        (model, pool, equations)
-    }
-
-    /// Every partial of the residual of `source` (as derived: by a
-    /// Newton–Euler sweep for a tree) against central differences of
-    /// `M q̈ − f`, at random points.
-    fn check_against_differences(source: &str) {
-        let (model, mut pool, equations) = derived(source);
+        let equations = super::super::derive(&model, &mut pool);
+        let (tau, _) = super::super::inverse_dynamics(&model, &equations, &mut pool);
         let (nq, nu, np) = (model.nq(), model.inputs.len(), model.parameters.len());
-        let r = residual(&mut pool, &equations.mass_matrix, &equations.forcing);
-        let jacobian = equations.residual_jacobian.expect("asked for");
+        let jacobian = residual_jacobian(&mut pool, &tau, nq, nu);
+        let residual = |pool: &Pool, point: &Point, i: usize| -> f64 {
+            let inertial: f64 = (0..nq)
+                .map(|j| pool.eval(equations.mass_matrix[i][j], point) * point.a[j])
+                .sum();
+            inertial - pool.eval(equations.forcing[i], point)
+        };
         let mut random = Random::new(17);
         let mut draw =
             |n: usize| -> Vec<f64> { (0..n).map(|_| random.uniform(-2.0, 2.0)).collect() };
@@ -160,7 +122,7 @@ mod tests {
                         let mut at = |delta: f64| {
                             let saved = coordinate(&mut point)[j];
                             coordinate(&mut point)[j] = saved + delta;
-                            let value = pool.eval(r[i], &point);
+                            let value = residual(&pool, &point, i);
                             coordinate(&mut point)[j] = saved;
                             value
                         };
@@ -189,5 +151,7 @@ mod tests {
         for family in [Family::Planar, Family::Spatial] {
             check_against_differences(&chain(family, 3));
         }
+        // A slide, then a hinge, with an applied force.
+        check_against_differences(include_str!("../../../generated/models/cart_pole.dal"));
     }
 }

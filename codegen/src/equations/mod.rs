@@ -17,7 +17,6 @@
 use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
-use derivatives::ResidualJacobian;
 
 /// The derived equations of one system, as expressions of the model's pool.
 #[derive(Clone)]
@@ -39,9 +38,6 @@ pub struct Equations {
     /// The velocity form `ψ = A q̇ + ψ₀` of each row: `dφ/dt` of a
     /// holonomic row, the row itself for a nonholonomic one.
     pub constraint_velocity: Vec<ExprId>,
-    /// The partial derivatives of the residual `M q̈ − f`, with `q̈` as
-    /// symbols, when the model asks for derivatives.
-    pub residual_jacobian: Option<ResidualJacobian>,
 }
 
 impl Equations {
@@ -89,15 +85,8 @@ struct Inertia<'a> {
     rotation: Option<(FrameId, &'a [[ExprId; 3]; 3])>,
 }
 
-/// Derives every equation of `model` (with the derivatives if it asks for
-/// them).
+/// Derives every equation of `model`.
 pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
-    derive_with(model, pool, derivatives::requested(model))
-}
-
-/// Derives every equation of `model`, and the residual's derivatives if
-/// `with_derivatives`.
-fn derive_with(model: &Model, pool: &mut Pool, with_derivatives: bool) -> Equations {
     let kinematics = Kinematics::new(model, pool);
     let nq = model.nq();
     let inertias = inertias(model);
@@ -107,7 +96,7 @@ fn derive_with(model: &Model, pool: &mut Pool, with_derivatives: bool) -> Equati
         .and_then(|tree| recursive::JointTree::new(model, tree, &kinematics, &inertias, pool));
     // The recursion carries the applied forces and torques; the general
     // route takes them through their partial velocities.
-    let (mass_matrix, bias, loads_done) = match &tree {
+    let (mass_matrix, bias, loads_done) = match tree {
         Some(tree) => {
             let (mass_matrix, bias) = recursive::inertia_terms(&tree, pool);
             (mass_matrix, bias, true)
@@ -123,7 +112,7 @@ fn derive_with(model: &Model, pool: &mut Pool, with_derivatives: bool) -> Equati
             (mass_matrix, bias, false)
         }
     };
-    let forcing: Vec<ExprId> = (0..nq)
+    let forcing = (0..nq)
         .map(|k| {
             let mut active = potential_and_dissipation_force(model, pool, k);
             if !loads_done {
@@ -133,22 +122,6 @@ fn derive_with(model: &Model, pool: &mut Pool, with_derivatives: bool) -> Equati
             pool.sub(active, bias[k])
         })
         .collect();
-    let residual_jacobian = with_derivatives.then(|| {
-        let residual = match &tree {
-            // The Newton–Euler sweep holds `M q̈` and every load but the
-            // potential and dissipation forces.
-            Some(tree) => recursive::inverse_dynamics(tree, pool)
-                .into_iter()
-                .enumerate()
-                .map(|(k, swept)| {
-                    let active = potential_and_dissipation_force(model, pool, k);
-                    pool.sub(swept, active)
-                })
-                .collect(),
-            None => derivatives::residual(pool, &mass_matrix, &forcing),
-        };
-        derivatives::residual_jacobian(pool, &residual, nq, model.inputs.len())
-    });
     let rows = constraints(model, pool);
     Equations {
         mass_matrix,
@@ -159,7 +132,50 @@ fn derive_with(model: &Model, pool: &mut Pool, with_derivatives: bool) -> Equati
         constraint_bias: rows.bias,
         constraint_residual: rows.residual,
         constraint_velocity: rows.velocity,
-        residual_jacobian,
+    }
+}
+
+/// `M q̈ − f` for the symbols `q̈`, and whether it was found by the
+/// Newton–Euler sweeps with the accelerations carried outwards (where the
+/// model is a tree) rather than through the derived `M` and `f`.
+pub fn inverse_dynamics(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+) -> (Vec<ExprId>, bool) {
+    let nq = model.nq();
+    let kinematics = Kinematics::new(model, pool);
+    let inertias = inertias(model);
+    let tree = model
+        .tree
+        .as_ref()
+        .and_then(|tree| recursive::JointTree::new(model, tree, &kinematics, &inertias, pool));
+    match tree {
+        Some(tree) => {
+            let inertial = recursive::inverse_dynamics(&tree, pool);
+            let forces = (0..nq)
+                .map(|k| {
+                    let active = potential_and_dissipation_force(model, pool, k);
+                    pool.sub(inertial[k], active)
+                })
+                .collect();
+            (forces, true)
+        }
+        None => {
+            let forces = (0..nq)
+                .map(|k| {
+                    let mut terms: Vec<ExprId> = (0..nq)
+                        .map(|j| {
+                            let qdd = pool.sym(Sym::Accel(j as u32));
+                            pool.mul(equations.mass_matrix[k][j], qdd)
+                        })
+                        .collect();
+                    terms.push(pool.neg(equations.forcing[k]));
+                    pool.sum(terms)
+                })
+                .collect();
+            (forces, false)
+        }
     }
 }
 

@@ -199,15 +199,16 @@ fn constant_in_newtonian(
 /// generalized forces of the applied forces and torques.
 pub fn inertia_terms(tree: &JointTree, pool: &mut Pool) -> (Vec<Vec<ExprId>>, Vec<ExprId>) {
     let mass_matrix = tree.mass_matrix(pool);
-    let bias = tree.bias(pool, false);
+    let motions = tree.motions(pool, false);
+    let bias = tree.projected_wrenches(pool, &motions);
     (mass_matrix, bias)
 }
 
-/// `M q̈` plus the terms of [`inertia_terms`]' bias, by one Newton–Euler
-/// sweep with the accelerations as the symbols [`Sym::Accel`]: linear in
-/// the number of links, where `M q̈` is quadratic.
+/// `M q̈` plus the terms of [`inertia_terms`]' bias: the same Newton–Euler
+/// sweeps with the joints' accelerations `q̈` carried outwards.
 pub fn inverse_dynamics(tree: &JointTree, pool: &mut Pool) -> Vec<ExprId> {
-    tree.bias(pool, true)
+    let motions = tree.motions(pool, true);
+    tree.projected_wrenches(pool, &motions)
 }
 
 impl JointTree {
@@ -290,13 +291,11 @@ impl JointTree {
         composites
     }
 
-    /// The Newton–Euler sweeps: motions from the root out, then the
-    /// resultant and moment about each link's origin of the inertia forces
-    /// minus the applied loads beyond it (gravity as an upward acceleration
-    /// of the base), projected on the joint. At `q̈ = 0`, or `with_accelerations`
-    /// as symbols.
-    fn bias(&self, pool: &mut Pool, with_accelerations: bool) -> Vec<ExprId> {
-        let motions = self.motions(pool, with_accelerations);
+    /// The Newton–Euler sweep inwards: given the `motions` of the links,
+    /// the resultant and moment about each link's origin of the inertia
+    /// forces minus the applied loads beyond it (gravity as an upward
+    /// acceleration of the base), projected on the joint.
+    fn projected_wrenches(&self, pool: &mut Pool, motions: &[Motion]) -> Vec<ExprId> {
         let mut force: Vec<Vec3> = Vec::with_capacity(self.links.len());
         let mut moment: Vec<Vec3> = Vec::with_capacity(self.links.len());
         for (f, n) in &self.loads {
@@ -327,10 +326,10 @@ impl JointTree {
         bias
     }
 
-    /// `ω`, `α` and the origin's acceleration of every link at `q̈ = 0` (or
-    /// `with_accelerations` as symbols), each in its link's axes; the base
-    /// accelerates at `−g`.
-    fn motions(&self, pool: &mut Pool, with_accelerations: bool) -> Vec<Motion> {
+    /// `ω`, `α` and the origin's acceleration of every link, each in its
+    /// link's axes, at `q̈ = 0` or (`accelerations`) at the symbols `q̈`;
+    /// the base accelerates at `−g`.
+    fn motions(&self, pool: &mut Pool, accelerations: bool) -> Vec<Motion> {
         let zero = pool.zero();
         let base = Motion {
             omega: [zero; 3],
@@ -344,6 +343,11 @@ impl JointTree {
             let d = &link.offset;
             let qd = pool.sym(Sym::Speed(link.coordinate as u32));
             let rate = link.axis.map(|e| pool.mul(qd, e));
+            let qdd = pool.sym(Sym::Accel(link.coordinate as u32));
+            let joint_acceleration = match accelerations {
+                true => link.axis.map(|e| pool.mul(qdd, e)),
+                false => [zero; 3],
+            };
             // a_J = a_p + α_p × d + ω_p × (ω_p × d) (+ 2 ω_p × ḋ for a slide),
             // then into the link's axes.
             let tangential = cross(pool, &parent.alpha, d);
@@ -353,27 +357,18 @@ impl JointTree {
             let mut accel = add3(pool, &accel, &centripetal);
             let carried = transpose_mul(pool, r, &parent.omega);
             let alpha = transpose_mul(pool, r, &parent.alpha);
-            // q̈ e: the joint's own acceleration, if asked for.
-            let driven = match with_accelerations {
-                true => {
-                    let qdd = pool.sym(Sym::Accel(link.coordinate as u32));
-                    link.axis.map(|e| pool.mul(qdd, e))
-                }
-                false => [pool.zero(); 3],
-            };
             let (omega, alpha) = match link.kind {
                 JointKind::Revolute => {
-                    // ω = Rᵀ ω_p + q̇ e;  α = Rᵀ α_p + (Rᵀ ω_p) × q̇ e (+ q̈ e).
+                    // ω = Rᵀ ω_p + q̇ e;  α = Rᵀ α_p + (Rᵀ ω_p) × q̇ e.
                     let coriolis = cross(pool, &carried, &rate);
-                    let alpha = add3(pool, &alpha, &coriolis);
-                    (add3(pool, &carried, &rate), add3(pool, &alpha, &driven))
+                    let alpha = add3(pool, &alpha, &joint_acceleration);
+                    (add3(pool, &carried, &rate), add3(pool, &alpha, &coriolis))
                 }
                 JointKind::Prismatic => {
-                    // (R = 1, so e in the parent's axes is e in the link's.)
                     let coriolis = cross(pool, &parent.omega, &rate);
                     let twice = coriolis.map(|x| pool.add(x, x));
                     accel = add3(pool, &accel, &twice);
-                    accel = add3(pool, &accel, &driven);
+                    accel = add3(pool, &accel, &joint_acceleration);
                     (carried, alpha)
                 }
             };

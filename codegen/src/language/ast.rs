@@ -110,6 +110,20 @@ pub enum Statement {
         /// The right-hand side.
         rhs: Expr,
     },
+    /// `outputs inverse_dynamics, position(P), rotation(B in F), ...;`
+    Outputs(Vec<OutputRequest>),
+}
+
+/// One item of an `outputs` statement: `name`, `name(P)` or `name(P in F)`
+/// (unchecked: the model knows which names and arguments exist).
+#[derive(Clone, Debug)]
+pub struct OutputRequest {
+    /// The output's name (`inverse_dynamics`, `position`, ...).
+    pub name: Ident,
+    /// The point or frame in parentheses, if any.
+    pub of: Option<Ident>,
+    /// The frame after `in`, whose axes the output is expressed in.
+    pub axes: Option<Ident>,
 }
 
 /// `name: value` inside the braces of `body`, `particle` and `joint`.

@@ -32,10 +32,12 @@ pub const POTENTIAL: &str = "potential";
 pub const DISSIPATION: &str = "dissipation";
 /// `constraint lhs == rhs;`
 pub const CONSTRAINT: &str = "constraint";
+/// `outputs inverse_dynamics, position(P), ...;`
+pub const OUTPUTS: &str = "outputs";
 
 /// The statement keywords, in the order the "expected one of" message
 /// lists them.
-pub const STATEMENTS: [&str; 14] = [
+pub const STATEMENTS: [&str; 15] = [
     PARAMETERS,
     COORDINATES,
     INPUTS,
@@ -50,6 +52,7 @@ pub const STATEMENTS: [&str; 14] = [
     POTENTIAL,
     DISSIPATION,
     CONSTRAINT,
+    OUTPUTS,
 ];
 
 /// `force <vec> at P;`: the point of application.
@@ -58,6 +61,8 @@ pub const AT: &str = "at";
 pub const ON: &str = "on";
 /// `torque <vec> on F reacting G;`: the frame that takes the reaction.
 pub const REACTING: &str = "reacting";
+/// `outputs position(P in F);`: the frame whose axes the output is in.
+pub const IN: &str = "in";
 
 /// `pub Name { ... }`: the generated struct is public.
 pub const PUB: &str = "pub";

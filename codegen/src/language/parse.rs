@@ -8,7 +8,7 @@
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use syn::Lit;
 
-use super::ast::{Expr, Field, Statement, System};
+use super::ast::{Expr, Field, OutputRequest, Statement, System};
 use super::cursor::Cursor;
 use super::expression::expression;
 use super::keyword::{self, STATEMENTS};
@@ -195,6 +195,7 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
             value: expression(cursor)?,
         },
         keyword::CONSTRAINT => constraint(cursor, keyword)?,
+        keyword::OUTPUTS => Statement::Outputs(outputs(cursor)?),
         _ => {
             return Err(syn::Error::new(
                 keyword.span(),
@@ -290,6 +291,46 @@ fn constraint(cursor: &mut Cursor, keyword: Ident) -> syn::Result<Statement> {
         .ok_or_else(|| cursor.expected("`==` in a constraint"))?;
     let rhs = expression(cursor)?;
     Ok(Statement::Constraint { keyword, lhs, rhs })
+}
+
+/// Parses `name, name(P), name(P in F), ...` after `outputs`; a trailing
+/// comma is allowed.
+fn outputs(cursor: &mut Cursor) -> syn::Result<Vec<OutputRequest>> {
+    let mut requests = vec![output(cursor)?];
+    while cursor.eat_punct(',').is_some() {
+        if cursor.peek_ident().is_none() {
+            break;
+        }
+        requests.push(output(cursor)?);
+    }
+    Ok(requests)
+}
+
+/// Parses one `name`, `name(P)` or `name(P in F)`.
+fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
+    let name =
+        cursor.expect_ident("the name of an output (`inverse_dynamics`, `position(P)`, ...)")?;
+    let Some(group) = cursor.eat_group(Delimiter::Parenthesis) else {
+        return Ok(OutputRequest {
+            name,
+            of: None,
+            axes: None,
+        });
+    };
+    let mut inside = Cursor::group(&group);
+    let of = inside.expect_ident(format!("a point or frame in `{name}(..)`"))?;
+    let axes = match inside.eat_keyword(keyword::IN) {
+        Some(_) => Some(inside.expect_ident("a frame after `in`")?),
+        None => None,
+    };
+    if !inside.is_end() {
+        return Err(inside.expected(format!("`)` after `{name}({of}`, or `in` and a frame")));
+    }
+    Ok(OutputRequest {
+        name,
+        of: Some(of),
+        axes,
+    })
 }
 
 #[cfg(test)]
@@ -490,7 +531,7 @@ mod tests {
             [(
                 "unknown statement `bodyy`; expected one of `parameters`, `coordinates`, \
                  `inputs`, `frame`, `point`, `body`, `particle`, `joint`, `gravity`, \
-                 `force`, `torque`, `potential`, `dissipation`, `constraint`"
+                 `force`, `torque`, `potential`, `dissipation`, `constraint`, `outputs`"
                     .to_owned(),
                 2,
                 2

@@ -7,11 +7,13 @@
 //! token. Later layers trust the model and report nothing.
 
 mod errors;
+mod output;
 mod resolve;
 mod tree;
 mod vector;
 
 pub use errors::Errors;
+pub use output::{Output, OutputKind};
 pub use resolve::resolve;
 pub use tree::{JointKind, Tree};
 pub use vector::{FrameId, NEWTONIAN, Vector};
@@ -68,6 +70,9 @@ pub struct Model {
     /// The kinematic tree, if the model is one (see [`Tree`]): decided
     /// once, here, for every spelling.
     pub tree: Option<Tree>,
+    /// The outputs asked for beyond `M`, `f`, the energies and the
+    /// constraints, in the order written.
+    pub outputs: Vec<Output>,
     /// The expressions of everything above.
     pub pool: Pool,
 }

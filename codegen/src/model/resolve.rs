@@ -8,7 +8,7 @@ use super::{
     Particle, Point, PointId, Torque, Tree, Vector, unit_axis,
 };
 use crate::expr::{ExprId, Func, Number, Pool, Sym, SymKinds};
-use crate::language::ast::{BinOp, Expr, Field, SpanRange, Statement, System};
+use crate::language::ast::{BinOp, Expr, Field, OutputRequest, SpanRange, Statement, System};
 use proc_macro2::{Ident, Span};
 use std::collections::HashMap;
 
@@ -189,6 +189,7 @@ impl Resolver {
                 constraints: Vec::new(),
                 moving_masses: Vec::new(),
                 tree: None,
+                outputs: Vec::new(),
                 pool: Pool::default(),
             },
         }
@@ -201,6 +202,7 @@ impl Resolver {
                 "a system needs at least one generalized coordinate: add `coordinates q1, ...;`",
             );
         }
+        self.check_solved_outputs();
         self.model.tree = Tree::of(&self.model, &mut self.pool);
         self.model.pool = self.pool;
         self.errors.finish(self.model)
@@ -260,6 +262,7 @@ impl Resolver {
             Statement::Constraint {
                 keyword, lhs, rhs, ..
             } => self.constraint(keyword, lhs, rhs),
+            Statement::Outputs(requests) => requests.iter().for_each(|r| self.output(r)),
         }
     }
 
@@ -442,6 +445,112 @@ impl Resolver {
             .scale(coordinate, &mut self.pool);
             let offset = offset.add(&slide, &mut self.pool);
             self.define_point(name, Some((base, offset)));
+        }
+    }
+
+    /// One item of `outputs`: a known name, with a point or a frame in
+    /// parentheses when it needs one, asked for once.
+    fn output(&mut self, request: &OutputRequest) {
+        use super::output::{Availability, KINDS, Subject, function_name, kind, kind_list};
+        let name = &request.name;
+        let Some(&(_, subject, availability)) = KINDS.iter().find(|(k, ..)| name == k) else {
+            self.errors.push(
+                name.span(),
+                format!("unknown output `{name}`; expected one of {}", kind_list()),
+            );
+            return;
+        };
+        if availability == Availability::NotYet {
+            self.errors.push(
+                name.span(),
+                format!("the output `{name}` is not generated yet; remove it from `outputs`"),
+            );
+            return;
+        }
+        let (mut point, mut frame) = (None, None);
+        match (subject, &request.of) {
+            (Subject::None, None) => {}
+            (Subject::None, Some(of)) => {
+                let message = format!("`{name}` takes no point or frame: write `{name}` alone");
+                self.errors.push(of.span(), message);
+                return;
+            }
+            (_, None) => {
+                let what = if subject == Subject::Point {
+                    "a point: `(P)`"
+                } else {
+                    "a frame: `(B)`"
+                };
+                self.errors
+                    .push(name.span(), format!("`{name}` needs {what} after its name"));
+                return;
+            }
+            (Subject::Point, Some(of)) => match self.lookup(of) {
+                Some(Binding::Point(p)) => point = Some(p),
+                Some(other) => {
+                    let message =
+                        format!("`{of}` is {}; `{name}` expects a point", other.describe());
+                    self.errors.push(of.span(), message);
+                }
+                None => {}
+            },
+            (Subject::Frame, Some(of)) => frame = self.frame_name(of),
+        }
+        let axes = match &request.axes {
+            Some(f) => self.frame_name(f),
+            None => Some(NEWTONIAN),
+        };
+        let (Some(kind), Some(axes)) = (kind(&name.to_string(), point, frame), axes) else {
+            return;
+        };
+        if request.axes.is_some() && subject == Subject::None {
+            self.errors.push(
+                name.span(),
+                format!("`{name}` has no axes to choose: remove `in`"),
+            );
+            return;
+        }
+        let function = function_name(name, request.of.as_ref(), request.axes.as_ref());
+        if self.model.outputs.iter().any(|o| o.function == function) {
+            self.errors.push(
+                name.span(),
+                format!("the output `{function}` is asked for twice; ask for it once"),
+            );
+            return;
+        }
+        self.model.outputs.push(super::Output {
+            kind,
+            axes,
+            function,
+            subject: request.of.as_ref().map(Ident::to_string),
+            axes_name: request
+                .axes
+                .as_ref()
+                .map_or("N".to_string(), Ident::to_string),
+        });
+    }
+
+    /// `accelerations_jacobian` and `linearize` solve `M v̇ = f`: with
+    /// constraints, the accelerations and their derivatives live on the
+    /// constraint manifold, which these outputs do not handle yet.
+    fn check_solved_outputs(&mut self) {
+        use super::OutputKind::{AccelerationsJacobian, Linearize};
+        if self.model.constraints.is_empty() {
+            return;
+        }
+        for output in &self.model.outputs {
+            if matches!(output.kind, AccelerationsJacobian | Linearize) {
+                let name = &output.function;
+                self.errors.push(
+                    name.span(),
+                    format!(
+                        "`{name}` is not available for a system with constraints yet \
+                         (the derivatives would have to be taken on the constraint manifold): \
+                         remove it from `outputs`, or describe the system with independent \
+                         coordinates and no `constraint` statements"
+                    ),
+                );
+            }
         }
     }
 

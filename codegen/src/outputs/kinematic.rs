@@ -1,0 +1,149 @@
+//! Kinematic outputs: where a point is and how it moves, how a frame is
+//! turned and how fast it turns, and their Jacobians with respect to the
+//! speeds — every vector measured in `N` and given in the axes the request
+//! names (`N`'s unless `in F`).
+
+use super::{Argument, Body, Function, Value, doc_lines};
+use crate::expr::{ExprId, Pool, Sym};
+use crate::kinematics::{Kinematics, Vec3};
+use crate::model::{FrameId, Model, NEWTONIAN, Output, OutputKind};
+
+use Argument::{Accelerations, Coordinates, Speeds, Time};
+
+/// The function computing a kinematic `output`.
+pub fn function(
+    model: &Model,
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    output: &Output,
+) -> Function {
+    let nv = model.nq();
+    let axes = Axes {
+        model,
+        kinematics,
+        to: output.axes,
+    };
+    let (arguments, value, what): (&[Argument], Value, &str) = match output.kind {
+        OutputKind::Position(p) => {
+            let r = axes.from_newtonian(pool, &kinematics.position(p));
+            (
+                &[Time, Coordinates],
+                Value::vector(r.to_vec()),
+                "position from `O`",
+            )
+        }
+        OutputKind::Velocity(p) => {
+            let v = kinematics.velocity(pool, p);
+            let v = axes.from_newtonian(pool, &v);
+            let arguments = &[Time, Coordinates, Speeds];
+            (arguments, Value::vector(v.to_vec()), "velocity in `N`")
+        }
+        OutputKind::Acceleration(p) => {
+            let mut a = kinematics.acceleration_bias(pool, p);
+            for k in 0..nv {
+                let partial = kinematics.partial_velocity(pool, p, k);
+                let rate = pool.sym(Sym::Accel(k as u32));
+                a = [0, 1, 2].map(|i| {
+                    let term = pool.mul(partial[i], rate);
+                    pool.add(a[i], term)
+                });
+            }
+            let a = axes.from_newtonian(pool, &a);
+            let arguments = &[Time, Coordinates, Speeds, Accelerations];
+            let what = "acceleration in `N` (`J v̇ + J̇ v`)";
+            (arguments, Value::vector(a.to_vec()), what)
+        }
+        OutputKind::Jacobian(p) => {
+            let columns: Vec<Vec3> = (0..nv)
+                .map(|k| {
+                    let partial = kinematics.partial_velocity(pool, p, k);
+                    axes.from_newtonian(pool, &partial)
+                })
+                .collect();
+            let what = "velocity's Jacobian by the speeds, `J` with `v_P = J v`\n\
+                        (row `i`: the partials of component `i`)";
+            (&[Time, Coordinates], transposed(&columns, nv), what)
+        }
+        OutputKind::Rotation(f) => {
+            let columns: Vec<Vec3> = (0..3)
+                .map(|j| {
+                    let mut unit = [pool.zero(); 3];
+                    unit[j] = pool.one();
+                    axes.from(pool, f, &unit)
+                })
+                .collect();
+            let what = "rotation matrix, mapping the frame's components";
+            (&[Time, Coordinates], transposed(&columns, 3), what)
+        }
+        OutputKind::AngularVelocity(f) => {
+            let omega = axes.from(pool, f, &kinematics.angular_velocity(f));
+            let arguments = &[Time, Coordinates, Speeds];
+            (
+                arguments,
+                Value::vector(omega.to_vec()),
+                "angular velocity in `N`",
+            )
+        }
+        OutputKind::AngularJacobian(f) => {
+            let columns: Vec<Vec3> = (0..nv)
+                .map(|k| {
+                    let partial = kinematics.partial_angular_velocity(pool, f, k);
+                    axes.from(pool, f, &partial)
+                })
+                .collect();
+            let what = "angular velocity's Jacobian by the speeds, `J` with `ω = J v`\n\
+                        (row `i`: the partials of component `i`)";
+            (&[Time, Coordinates], transposed(&columns, nv), what)
+        }
+        OutputKind::InverseDynamics
+        | OutputKind::Regressor
+        | OutputKind::InverseDynamicsJacobian
+        | OutputKind::AccelerationsJacobian
+        | OutputKind::Linearize => {
+            unreachable!("dynamic outputs are not kinematic")
+        }
+    };
+    let subject = output.subject.as_deref().unwrap_or_default();
+    let docs = format!(
+        "The {what}\nof `{subject}`, in `{}`'s axes (`outputs` asked for it).",
+        output.axes_name
+    );
+    Function {
+        name: output.function.clone(),
+        docs: doc_lines(&docs),
+        arguments: arguments.to_vec(),
+        results: vec![value],
+        body: Body::Explicit,
+    }
+}
+
+/// A `3 × n` matrix from its `n` columns.
+fn transposed(columns: &[Vec3], n: usize) -> Value {
+    let rows: Vec<Vec<ExprId>> = (0..3)
+        .map(|i| columns.iter().map(|c| c[i]).collect())
+        .collect();
+    Value::matrix(&rows, n)
+}
+
+/// The axes an output is given in.
+struct Axes<'a> {
+    model: &'a Model,
+    kinematics: &'a Kinematics,
+    to: FrameId,
+}
+
+impl Axes<'_> {
+    /// Components given in `N`'s axes, in the output's.
+    fn from_newtonian(&self, pool: &mut Pool, c: &Vec3) -> Vec3 {
+        self.from(pool, NEWTONIAN, c)
+    }
+
+    /// Components given in `frame`'s axes, in the output's.
+    fn from(&self, pool: &mut Pool, frame: FrameId, c: &Vec3) -> Vec3 {
+        if frame == self.to {
+            return *c;
+        }
+        self.kinematics
+            .rotate_between(pool, self.model, frame, self.to, c)
+    }
+}

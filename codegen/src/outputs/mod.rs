@@ -1,0 +1,233 @@
+//! The generated functions as values: each output of a system (the mass
+//! matrix, the forcing, the energies, the constraint rows, and what the
+//! model's `outputs` statement asks for) is a [`Function`] — its name,
+//! docs, arguments and the expressions it returns — that one routine of
+//! the emitter writes. A new output is one more value here, not a new
+//! emitter; the results of one function are computed by one straight-line
+//! body, so they share their subexpressions.
+
+mod derivatives;
+mod dynamics;
+mod kinematic;
+
+use crate::equations::Equations;
+use crate::expr::{ExprId, Pool};
+use crate::model::{Model, OutputKind};
+use proc_macro2::Ident;
+
+/// One generated inherent function.
+pub struct Function {
+    /// Its name.
+    pub name: Ident,
+    /// Its doc comment, one entry a line (each with its leading space).
+    pub docs: Vec<String>,
+    /// The arguments it takes after `&self`, in order.
+    pub arguments: Vec<Argument>,
+    /// What it returns: one value, or a tuple of several.
+    pub results: Vec<Value>,
+    /// How it computes them.
+    pub body: Body,
+}
+
+/// How a generated function computes what it returns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Body {
+    /// Its results, by one straight-line body.
+    Explicit,
+    /// `accelerations_jacobian`: its results are the partials `∂τ/∂q`,
+    /// `∂τ/∂v`, `∂τ/∂u` of the inverse dynamics, evaluated at the
+    /// accelerations solved from `M v̇ = f`, and it returns
+    /// `−M⁻¹` times each (the factorisation that solved for `v̇` reused).
+    AccelerationsJacobian,
+    /// `linearize`: no results of its own; `A` and `B` assembled from
+    /// `accelerations_jacobian`.
+    Linearize,
+}
+
+/// An argument of a generated function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Argument {
+    /// `t: f64`.
+    Time,
+    /// `q: &[f64; NQ]`.
+    Coordinates,
+    /// `qd: &[f64; NV]`, the speeds.
+    Speeds,
+    /// `qdd: &[f64; NV]`, the speeds' rates.
+    Accelerations,
+    /// `u: &[f64; NU]`.
+    Inputs,
+}
+
+/// A returned value: a scalar, an array or an array of rows.
+pub struct Value {
+    /// How the expressions are arranged.
+    pub shape: Shape,
+    /// The entries, row by row.
+    pub expressions: Vec<ExprId>,
+}
+
+/// The arrangement of a returned value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// `f64`.
+    Scalar,
+    /// `[f64; n]`.
+    Vector,
+    /// `[[f64; columns]; rows]`.
+    Matrix {
+        /// Entries per row.
+        columns: usize,
+    },
+}
+
+impl Value {
+    /// A scalar.
+    pub fn scalar(e: ExprId) -> Value {
+        Value {
+            shape: Shape::Scalar,
+            expressions: vec![e],
+        }
+    }
+
+    /// An array.
+    pub fn vector(entries: Vec<ExprId>) -> Value {
+        Value {
+            shape: Shape::Vector,
+            expressions: entries,
+        }
+    }
+
+    /// An array of rows, each of `columns` entries.
+    pub fn matrix(rows: &[Vec<ExprId>], columns: usize) -> Value {
+        Value {
+            shape: Shape::Matrix { columns },
+            expressions: rows.iter().flatten().copied().collect(),
+        }
+    }
+}
+
+impl Function {
+    /// A function of `arguments` returning one value.
+    fn new(name: &str, docs: &str, arguments: &[Argument], result: Value) -> Function {
+        Function {
+            name: Ident::new(name, proc_macro2::Span::call_site()),
+            docs: doc_lines(docs),
+            arguments: arguments.to_vec(),
+            results: vec![result],
+            body: Body::Explicit,
+        }
+    }
+
+    /// Every expression it returns, in order, for passes that rewrite them.
+    pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut ExprId> {
+        self.results
+            .iter_mut()
+            .flat_map(|v| v.expressions.iter_mut())
+    }
+}
+
+/// `text`'s lines, each with a leading space (as `///` comments give).
+pub fn doc_lines(text: &str) -> Vec<String> {
+    text.lines().map(|line| format!(" {line}")).collect()
+}
+
+use Argument::{Coordinates, Inputs, Speeds, Time};
+
+/// The functions every system has: `M`, `f`, `T`, `V`, and with
+/// constraints `A`, `b`, the residuals and the velocity forms.
+pub fn standard(model: &Model, equations: &Equations) -> Vec<Function> {
+    let nq = model.nq();
+    let mut functions = vec![
+        Function::new(
+            "mass_matrix",
+            "The mass matrix `M(q)` (symmetric, positive definite where the\n\
+             coordinates are independent).",
+            &[Coordinates],
+            Value::matrix(&equations.mass_matrix, nq),
+        ),
+        Function::new(
+            "forcing",
+            "The forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`: applied and\n\
+             gravity forces, minus the velocity-dependent inertia terms.",
+            &[Time, Coordinates, Speeds, Inputs],
+            Value::vector(equations.forcing.clone()),
+        ),
+        Function::new(
+            "kinetic_energy",
+            "The kinetic energy `T(q, q̇)`.",
+            &[Coordinates, Speeds],
+            Value::scalar(equations.kinetic_energy),
+        ),
+        Function::new(
+            "potential_energy",
+            "The potential energy `V(q)`: gravity (from `O`) and the\n\
+             `potential` statements.",
+            &[Coordinates],
+            Value::scalar(equations.potential_energy),
+        ),
+    ];
+    if model.constraints.is_empty() {
+        return functions;
+    }
+    functions.extend([
+        Function::new(
+            "constraint_jacobian",
+            "The constraint Jacobian `A(q)` of `M q̈ = f + Aᵀλ`, `A q̈ = b`;\n\
+             rows in declaration order.",
+            &[Coordinates],
+            Value::matrix(&equations.constraint_jacobian, nq),
+        ),
+        Function::new(
+            "constraint_bias",
+            "The constraint bias `b(t, q, q̇)` of `A q̈ = b`.",
+            &[Time, Coordinates, Speeds],
+            Value::vector(equations.constraint_bias.clone()),
+        ),
+        Function::new(
+            "constraint_residual",
+            "The residual `lhs − rhs` of each holonomic constraint (0 for\n\
+             nonholonomic rows).",
+            &[Time, Coordinates],
+            Value::vector(equations.constraint_residual.clone()),
+        ),
+        Function::new(
+            "constraint_velocity",
+            "The velocity form of each constraint, `A q̇ + ψ₀(t, q)`: the time\n\
+             derivative of a holonomic row's residual, a nonholonomic row\n\
+             itself. Zero on the constraint manifold.",
+            &[Time, Coordinates, Speeds],
+            Value::vector(equations.constraint_velocity.clone()),
+        ),
+    ]);
+    functions
+}
+
+/// The functions the model's `outputs` statement asks for, in the order
+/// written (`linearize` brings `accelerations_jacobian`, which it calls).
+pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Vec<Function> {
+    let kinematics = crate::kinematics::Kinematics::new(model, pool);
+    let asked = |kind: OutputKind| model.outputs.iter().any(|o| o.kind == kind);
+    let mut functions = Vec::new();
+    for output in &model.outputs {
+        match output.kind {
+            OutputKind::InverseDynamics | OutputKind::Regressor => {
+                functions.push(dynamics::inverse_dynamics(model, equations, pool))
+            }
+            OutputKind::InverseDynamicsJacobian => functions.push(
+                derivatives::inverse_dynamics_jacobian(model, equations, pool),
+            ),
+            OutputKind::AccelerationsJacobian => {
+                functions.push(derivatives::accelerations_jacobian(model, equations, pool))
+            }
+            OutputKind::Linearize => {
+                if !asked(OutputKind::AccelerationsJacobian) {
+                    functions.push(derivatives::accelerations_jacobian(model, equations, pool));
+                }
+                functions.push(derivatives::linearize());
+            }
+            _ => functions.push(kinematic::function(model, &kinematics, pool, output)),
+        }
+    }
+    functions
+}
