@@ -126,8 +126,8 @@ pub fn emit_accelerations_jacobian(
                 #substitutions
                 [#(#solution),*]
             };
-            let qdd = solve([#(#right_hand_side),*]);
-            if !finite(&qdd) {
+            let qdd = &solve([#(#right_hand_side),*]);
+            if !finite(qdd) {
                 return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations);
             }
             let (rhs_q, rhs_v, #rhs_u_name): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) = {
