@@ -112,3 +112,48 @@ pub fn linearize() -> Function {
         Body::Linearize,
     )
 }
+
+#[cfg(test)]
+mod tests {
+    /// Seed example 3 with `outputs` added before its closing brace.
+    fn constrained_pendulum_asking_for(outputs: &str) -> String {
+        let source = crate::seeds::CONSTRAINED_PENDULUM;
+        let end = source.rfind('}').expect("a closing brace");
+        format!(
+            "{}    outputs {outputs};\n{}",
+            &source[..end],
+            &source[end..]
+        )
+    }
+
+    #[test]
+    fn a_constrained_system_is_not_linearised_and_the_error_says_where() {
+        let source = constrained_pendulum_asking_for("inverse_dynamics_jacobian, linearize");
+        let error = crate::check(&source).expect_err("constraints");
+        let message = error.to_string();
+        assert!(
+            message.contains("`linearize` is not available for a system with constraints"),
+            "{message}"
+        );
+        let line = source
+            .lines()
+            .position(|l| l.contains("outputs"))
+            .expect("the line")
+            + 1;
+        let start = error.span().start();
+        assert_eq!(start.line, line, "{message}");
+        let column = source
+            .lines()
+            .nth(line - 1)
+            .and_then(|l| l.find("linearize"));
+        assert_eq!(Some(start.column), column, "{message}");
+    }
+
+    #[test]
+    fn a_constrained_system_has_its_inverse_dynamics_jacobian() {
+        let source = constrained_pendulum_asking_for("inverse_dynamics_jacobian");
+        let code = crate::generate(&source).expect("generates");
+        assert!(code.contains("pub fn inverse_dynamics_jacobian("));
+        assert!(!code.contains("pub fn accelerations_jacobian("));
+    }
+}
