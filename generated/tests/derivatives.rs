@@ -1,15 +1,19 @@
 //! The exact derivatives (`accelerations_jacobian`, `linearize`,
 //! `inverse_dynamics_jacobian`) of the models of `dalembert_generated::derivatives`
 //! and the cart-pole: against central differences of the emitted
-//! `accelerations`, `mass_matrix` and `forcing` at random states; and the
-//! linearisation of seed example 1 at its hanging equilibrium against the
-//! closed form of its two normal modes.
+//! `accelerations`, `mass_matrix` and `forcing` at random states; the
+//! chains' and robots' against Pinocchio's `computeABADerivatives` and
+//! `computeRNEADerivatives` (`tests/reference/derivatives.json`, written by
+//! `scripts/derivatives_reference.py`); and the linearisation of seed
+//! example 1 at its hanging equilibrium against the closed form of its two
+//! normal modes.
 
 use dalembert::MultibodySystem;
 use dalembert_codegen::testing::Random;
 use dalembert_generated::CartPole;
 use dalembert_generated::derivatives::*;
 use nalgebra::SMatrix;
+use serde_json::Value;
 
 /// Relative agreement required of the central differences.
 const TOLERANCE: f64 = 1e-6;
@@ -253,4 +257,104 @@ fn double_pendulum_hanging_has_the_closed_form_normal_modes() {
             "ω {im}, closed form {want}"
         );
     }
+}
+
+/// Relative agreement required with Pinocchio, against the largest entry.
+const PINOCCHIO_TOLERANCE: f64 = 1e-9;
+
+/// The entries of a JSON number or nested array of numbers, in order.
+fn numbers(v: &Value) -> Vec<f64> {
+    match v {
+        Value::Array(items) => items.iter().flat_map(numbers).collect(),
+        other => vec![other.as_f64().expect("a number")],
+    }
+}
+
+/// `max |got − want| ≤ PINOCCHIO_TOLERANCE · max |want|`.
+fn assert_agrees(what: &str, got: &[f64], want: &Value) {
+    let want = numbers(want);
+    assert_eq!(got.len(), want.len(), "{what}: length");
+    let scale = want.iter().fold(f64::MIN_POSITIVE, |m, w| m.max(w.abs()));
+    let error = got
+        .iter()
+        .zip(&want)
+        .fold(0.0_f64, |m, (g, w)| m.max((g - w).abs()));
+    assert!(
+        error <= PINOCCHIO_TOLERANCE * scale,
+        "{what}: off by {:e} relative",
+        error / scale
+    );
+}
+
+/// The reference states of `model` in `derivatives.json`.
+fn reference_states(model: &str) -> Vec<Value> {
+    let text = include_str!("../../tests/reference/derivatives.json");
+    let document: Value = serde_json::from_str(text).expect("derivatives.json parses");
+    let entry = document["models"]
+        .as_array()
+        .expect("models")
+        .iter()
+        .find(|m| m["model"] == model)
+        .unwrap_or_else(|| panic!("{model} in derivatives.json"));
+    entry["states"].as_array().expect("states").clone()
+}
+
+/// Both Jacobians of `system` against Pinocchio's at every reference state
+/// of `model` (the torques are the inputs, if the system has any).
+fn check_against_pinocchio<S: MultibodySystem<N, N, NU>, const N: usize, const NU: usize>(
+    model: &str,
+    system: &S,
+    accelerations_jacobian: AccelerationsJacobian<S, N, NU>,
+    inverse_dynamics_jacobian: InverseDynamicsJacobian<S, N, NU>,
+) {
+    let array = |v: &Value| -> [f64; N] { numbers(v).try_into().expect("N numbers") };
+    for state in reference_states(model) {
+        let (q, v, a) = (
+            array(&state["q"]),
+            array(&state["qd"]),
+            array(&state["vdot"]),
+        );
+        let u: [f64; NU] = match NU {
+            0 => [0.0; NU],
+            _ => numbers(&state["tau"]).try_into().expect("NU torques"),
+        };
+        let (by_q, by_v, by_u) = accelerations_jacobian(system, 0.0, &q, &v, &u).expect("solvable");
+        let flat = |m: &[[f64; N]; N]| -> Vec<f64> { m.iter().flatten().copied().collect() };
+        assert_agrees(&format!("{model} ∂q̈/∂q"), &flat(&by_q), &state["ddq_dq"]);
+        assert_agrees(&format!("{model} ∂q̈/∂v"), &flat(&by_v), &state["ddq_dv"]);
+        if NU == N {
+            let by_u: Vec<f64> = by_u.iter().flatten().copied().collect();
+            assert_agrees(&format!("{model} ∂q̈/∂τ"), &by_u, &state["ddq_dtau"]);
+        }
+        let (tau_q, tau_v, mass) = inverse_dynamics_jacobian(system, 0.0, &q, &v, &a, &u);
+        assert_agrees(&format!("{model} ∂τ/∂q"), &flat(&tau_q), &state["dtau_dq"]);
+        assert_agrees(&format!("{model} ∂τ/∂v"), &flat(&tau_v), &state["dtau_dv"]);
+        assert_agrees(&format!("{model} ∂τ/∂a"), &flat(&mass), &state["dtau_da"]);
+    }
+}
+
+/// Checks every listed system against Pinocchio (by its module in `derivatives`).
+macro_rules! check_against_pinocchio {
+    ($($module:ident :: $system:ident),* $(,)?) => {$(
+        check_against_pinocchio(
+            stringify!($module),
+            &$module::$system {},
+            $module::$system::accelerations_jacobian,
+            $module::$system::inverse_dynamics_jacobian,
+        );
+    )*};
+}
+
+#[test]
+fn chains_and_robots_match_pinocchio() {
+    check_against_pinocchio!(
+        planar_chain_02::PlanarChain2,
+        planar_chain_06::PlanarChain6,
+        planar_chain_12::PlanarChain12,
+        spatial_chain_02::SpatialChain2,
+        spatial_chain_06::SpatialChain6,
+        spatial_chain_12::SpatialChain12,
+        panda::Panda,
+        ur5_robot::Ur5,
+    );
 }
