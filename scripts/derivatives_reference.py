@@ -13,7 +13,6 @@ usage (in a Python environment with `pin` and `numpy`, e.g. the peers' venv):
     python scripts/derivatives_reference.py [--out tests/reference/derivatives.json]
 """
 import argparse
-import json
 import math
 import os
 import sys
@@ -22,7 +21,7 @@ import numpy as np
 import pinocchio as pin
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from urdf_reference import ROBOTS, file_order_coordinates  # noqa: E402
+from urdf_reference import ROBOTS, file_order_coordinates, write_document  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STATES = 5
@@ -118,23 +117,18 @@ def main():
     rng = np.random.default_rng(SEED)
     models = [chain_entry(f, n, rng) for f in ["planar", "spatial"] for n in LINKS]
     models += [robot_entry(f, rng) for f in ["panda.urdf", "ur5_robot.urdf"]]
-    document = {
-        "schema": "derivatives/1",
-        "generator": "scripts/derivatives_reference.py (Pinocchio Python bindings)",
-        "pinocchio_version": pin.__version__,
-        "units": "SI: kg, m, s, rad, N m",
-        "seed": SEED,
-        "notes": "Per state: q, qd, tau (zero for the chains), qdd = aba(q, qd, tau); "
-                 "ddq_dq, ddq_dv, ddq_dtau = M^-1 from computeABADerivatives at (q, qd, tau); "
-                 "dtau_dq, dtau_dv, dtau_da = M from computeRNEADerivatives at (q, qd, vdot). "
-                 "Matrices row by row, entry [i][j] the derivative of component i by variable j, "
-                 "in dalembert's coordinate order.",
-        "models": models,
-    }
-    with open(args.out, "w") as out:
-        json.dump(document, out, indent=1)
-        out.write("\n")
-    print(f"wrote {args.out}")
+    write_document(
+        args.out,
+        "derivatives/1",
+        "scripts/derivatives_reference.py (Pinocchio Python bindings)",
+        SEED,
+        "Per state: q, qd, tau (zero for the chains), qdd = aba(q, qd, tau); "
+        "ddq_dq, ddq_dv, ddq_dtau = M^-1 from computeABADerivatives at (q, qd, tau); "
+        "dtau_dq, dtau_dv, dtau_da = M from computeRNEADerivatives at (q, qd, vdot). "
+        "Matrices row by row, entry [i][j] the derivative of component i by variable j, "
+        "in dalembert's coordinate order.",
+        models,
+    )
 
 
 if __name__ == "__main__":

@@ -17,28 +17,19 @@ use dalembert_generated::derivatives::*;
 
 use dalembert_fixtures::states::{per_call, states};
 
-/// `accelerations_jacobian(t, q, v, u)` of a system.
-type AccelerationsJacobian<S, const N: usize, const NU: usize> =
-    fn(
-        &S,
-        f64,
-        &[f64; N],
-        &[f64; N],
-        &[f64; NU],
-    ) -> Result<([[f64; N]; N], [[f64; N]; N], [[f64; NU]; N]), dalembert::DynamicsError>;
-
 /// `accelerations` and `accelerations_jacobian` of one system, in group
 /// `derivatives/NAME`.
-fn bench_system<S: MultibodySystem<N, N, NU>, const N: usize, const NU: usize>(
+fn bench_system<S: MultibodySystem<N, N, NU>, R, const N: usize, const NU: usize>(
     c: &mut Criterion,
     name: &str,
     system: S,
-    jacobian: AccelerationsJacobian<S, N, NU>,
+    jacobian: fn(&S, f64, &[f64; N], &[f64; N], &[f64; NU]) -> R,
 ) {
     let states = states::<N, NU>(N as u64);
-    // Every state must be solvable, or the calls would time an early return.
+    // Every state must be solvable (both functions factorise the same `M`),
+    // or the calls would time an early return.
     for s in &states {
-        jacobian(&system, s.t, &s.q, &s.v, &s.u).expect("solvable state");
+        dalembert::accelerations(&system, s.t, &s.q, &s.v, &s.u).expect("solvable state");
     }
     let mut group = c.benchmark_group(format!("derivatives/{name}"));
     group.bench_function("accelerations", |b| {
@@ -58,29 +49,19 @@ fn bench_system<S: MultibodySystem<N, N, NU>, const N: usize, const NU: usize>(
     group.finish();
 }
 
-/// Benchmarks every listed system (by its module in `derivatives`).
-macro_rules! bench {
-    ($c:expr; $($module:ident :: $system:ident),* $(,)?) => {$(
-        bench_system(
-            $c,
-            stringify!($module),
-            $module::$system {},
-            $module::$system::accelerations_jacobian,
-        );
-    )*};
-}
-
 fn derivatives(c: &mut Criterion) {
-    bench!(c;
-        planar_chain_02::PlanarChain2,
-        planar_chain_06::PlanarChain6,
-        planar_chain_12::PlanarChain12,
-        spatial_chain_02::SpatialChain2,
-        spatial_chain_06::SpatialChain6,
-        spatial_chain_12::SpatialChain12,
-        panda::Panda,
-        ur5_robot::Ur5,
-    );
+    /// Benchmarks every listed system (by its module in `derivatives`).
+    macro_rules! bench {
+        ($($module:ident :: $system:ident),* $(,)?) => {$(
+            bench_system(
+                c,
+                stringify!($module),
+                $module::$system {},
+                $module::$system::accelerations_jacobian,
+            );
+        )*};
+    }
+    dalembert_generated::chains_and_robots_with_derivatives!(bench);
 }
 
 criterion_group! {

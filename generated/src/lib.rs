@@ -263,6 +263,25 @@ pub mod derivatives {
     );
 }
 
+/// Calls `$callback!` with the chains and robots of [`derivatives`], as
+/// `module::System` paths (what the derivatives' tests and bench compare
+/// with Pinocchio).
+#[macro_export]
+macro_rules! chains_and_robots_with_derivatives {
+    ($callback:ident) => {
+        $callback!(
+            planar_chain_02::PlanarChain2,
+            planar_chain_06::PlanarChain6,
+            planar_chain_12::PlanarChain12,
+            spatial_chain_02::SpatialChain2,
+            spatial_chain_06::SpatialChain6,
+            spatial_chain_12::SpatialChain12,
+            panda::Panda,
+            ur5_robot::Ur5,
+        )
+    };
+}
+
 pub use cart_pole::CartPole;
 
 // `reference()` of every symbolic chain: its parameters at the reference values.

@@ -347,14 +347,5 @@ macro_rules! check_against_pinocchio {
 
 #[test]
 fn chains_and_robots_match_pinocchio() {
-    check_against_pinocchio!(
-        planar_chain_02::PlanarChain2,
-        planar_chain_06::PlanarChain6,
-        planar_chain_12::PlanarChain12,
-        spatial_chain_02::SpatialChain2,
-        spatial_chain_06::SpatialChain6,
-        spatial_chain_12::SpatialChain12,
-        panda::Panda,
-        ur5_robot::Ur5,
-    );
+    dalembert_generated::chains_and_robots_with_derivatives!(check_against_pinocchio);
 }
