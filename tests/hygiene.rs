@@ -37,6 +37,8 @@ dalembert::dalembert! {
         force self_force * N.x at C;
         dissipation qd * dt(s)^2 / 2;
         constraint s - q * sin(theta) == 0;
+        outputs inverse_dynamics, regressor, position(C), velocity(C in B), acceleration(C);
+        outputs jacobian(C), rotation(B), angular_velocity(B), angular_jacobian(B in B);
     }
 }
 

@@ -101,11 +101,28 @@ impl Sample {
     }
 }
 
+/// [`Values`] and the speeds' rates `v̇`, for the outputs that read them.
+struct WithRates<'a> {
+    values: &'a Values<'a>,
+    rates: &'a [f64],
+}
+
+impl Env for WithRates<'_> {
+    fn value(&self, sym: Sym) -> f64 {
+        match sym {
+            Sym::Accel(i) => self.rates[i as usize],
+            other => self.values.value(other),
+        }
+    }
+}
+
 /// A system's equations, ready to evaluate at any [`Values`].
 pub struct Interpreter {
     model: Model,
     pool: Pool,
     equations: Equations,
+    /// The functions the model's `outputs` statement asks for, unoptimised.
+    outputs: Vec<crate::outputs::Function>,
 }
 
 impl Interpreter {
@@ -130,11 +147,33 @@ impl Interpreter {
             equations.mass_matrix = mass_matrix;
             equations.forcing = forcing;
         }
+        let outputs = crate::outputs::requested(&model, &equations, &mut pool)?.functions;
         Ok(Interpreter {
             model,
             pool,
             equations,
+            outputs,
         })
+    }
+
+    /// The value of the generated function `name` that the model's
+    /// `outputs` statement asks for (`inverse_dynamics`, `position_P`,
+    /// `regressor`, `base_parameters`, ...), its results flattened row by
+    /// row, at `at` with the speeds' rates `rates` (read by
+    /// `inverse_dynamics`, `acceleration_P` and `regressor`); `None` if the
+    /// model does not ask for it. Panics as
+    /// [`mass_matrix`](Self::mass_matrix).
+    pub fn output(&self, name: &str, at: &Values<'_>, rates: &[f64]) -> Option<Vec<f64>> {
+        let function = self.outputs.iter().find(|f| f.name == name)?;
+        let roots: Vec<ExprId> = function
+            .results
+            .iter()
+            .flat_map(|value| value.expressions.iter().copied())
+            .collect();
+        Some(
+            self.pool
+                .eval_many(&roots, &WithRates { values: at, rates }),
+        )
     }
 
     /// The system's name.

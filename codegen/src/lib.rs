@@ -145,14 +145,15 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
     let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool);
     docs.extend(equation_lines);
     let mut functions = outputs::standard(&model, &equations);
-    let mut requested = outputs::requested(&model, &equations, &mut pool);
-    optimize::optimize_functions(&mut requested, &mut pool);
-    functions.extend(requested);
+    let mut requested = outputs::requested(&model, &equations, &mut pool)?;
+    optimize::optimize_functions(&mut requested.functions, &mut pool);
+    functions.extend(requested.functions);
     model.pool = pool;
     Ok(emit::emit(
         &model,
         &equations,
         &functions,
+        &requested.constants,
         &emit::Documentation { docs, text },
         target,
     ))

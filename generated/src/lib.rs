@@ -33,6 +33,11 @@ model!(
     /// Seed example 3: pendulum in dependent coordinates (Lagrange multipliers).
     constrained_pendulum
 );
+model!(
+    /// A two-link arm asking for the control outputs (kinematics, inverse
+    /// dynamics, regressor).
+    two_link_arm
+);
 
 // Benchmark chains: `models/{planar,spatial}_chain_NN.dal`, written by
 // `dalembert chain FAMILY N` (`dalembert_codegen::testing::chain`); tests/chains.rs checks

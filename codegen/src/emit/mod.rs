@@ -13,7 +13,7 @@ mod solve;
 use crate::equations::Equations;
 use crate::expr::{ExprId, Sym};
 use crate::model::Model;
-use crate::outputs::{Argument, Body, Function, Shape};
+use crate::outputs::{Argument, Body, Function, NameList, Shape};
 use body::{Names, straight_line};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -43,6 +43,7 @@ pub fn emit(
     model: &Model,
     equations: &Equations,
     functions: &[Function],
+    constants_of_outputs: &[NameList],
     documentation: &Documentation,
     target: Target,
 ) -> TokenStream {
@@ -65,7 +66,8 @@ pub fn emit(
         .collect();
     items.push(configuration::emit_configuration(model.nq()));
     let strukt = emit_struct(model, &documentation.docs);
-    let constants = emit_constants(model, &documentation.text);
+    let mut constants = emit_constants(model, &documentation.text);
+    constants.extend(constants_of_outputs.iter().map(emit_name_list));
     let traits = match target {
         Target::Std => {
             let solver = solve::emit_accelerations(model, equations);
@@ -196,6 +198,17 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
         pub const INPUTS: [&'static str; #nu] = [#(#inputs),*];
         /// The derived equations of motion, in the seed document's style.
         pub const EQUATIONS: &'static str = #equations;
+    }
+}
+
+/// `pub const NAME: [&'static str; n]`, with its docs.
+fn emit_name_list(list: &NameList) -> TokenStream {
+    let docs = list.docs.iter().map(|line| raw_string(line));
+    let (name, names) = (&list.name, &list.names);
+    let n = Literal::usize_unsuffixed(names.len());
+    quote! {
+        #(#[doc = #docs])*
+        pub const #name: [&'static str; #n] = [#(#names),*];
     }
 }
 
@@ -366,7 +379,39 @@ fn emit_trait_impls(
 
 #[cfg(test)]
 mod tests {
-    use super::raw_string;
+    use super::{Target, emit_function, names, raw_string};
+    use crate::expr::Sym;
+    use crate::outputs::{Argument, Function, Value, doc_lines};
+    use quote::quote;
+
+    #[test]
+    fn one_function_returns_its_results_as_a_tuple_sharing_subexpressions() {
+        let source = "S { parameters m; coordinates q; particle p { mass: m, at: O + q * N.x }; }";
+        let system = crate::language::parse_system(source.parse().unwrap()).unwrap();
+        let mut model = crate::model::resolve(&system).unwrap();
+        let pool = &mut model.pool;
+        let (m, q) = (pool.sym(Sym::Param(0)), pool.sym(Sym::Coord(0)));
+        let sine = pool.sin(q);
+        let product = pool.mul(m, sine);
+        let function = Function {
+            name: quote::format_ident!("both"),
+            docs: doc_lines("Both."),
+            arguments: vec![Argument::Coordinates, Argument::Speeds],
+            results: vec![Value::vector(vec![product]), Value::scalar(sine)],
+        };
+        let emitted = emit_function(&model, &names(&model, Target::Std), &function);
+        let expected = quote! {
+            #[doc = r#" Both."#]
+            #[inline]
+            #[must_use]
+            pub fn both(&self, q: &[f64; 1], _qd: &[f64; 1]) -> ([f64; 1], f64) {
+                let (m, [q]) = (self.m, *q);
+                let sin_q = q.sin();
+                ([m * sin_q], sin_q)
+            }
+        };
+        assert_eq!(emitted.to_string(), expected.to_string());
+    }
 
     #[test]
     fn raw_strings_keep_their_characters_and_survive_quotes() {

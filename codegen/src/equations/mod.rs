@@ -416,3 +416,4 @@ pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;
 mod recursive;
+pub mod regressor;

@@ -767,4 +767,54 @@ mod tests {
         }
         assert!(parsed > 1000, "only {parsed} inputs lexed");
     }
+
+    #[test]
+    fn parses_outputs_with_subjects_and_axes() {
+        let system = system(
+            "S { coordinates q; outputs inverse_dynamics, position(P), velocity(P in B),; }",
+        );
+        let Statement::Outputs(requests) = &system.statements[1] else {
+            panic!("expected outputs second");
+        };
+        let written: Vec<(String, Option<String>, Option<String>)> = requests
+            .iter()
+            .map(|r| {
+                (
+                    r.name.to_string(),
+                    r.of.as_ref().map(Ident::to_string),
+                    r.axes.as_ref().map(Ident::to_string),
+                )
+            })
+            .collect();
+        let owned = |s: &str| Some(s.to_owned());
+        assert_eq!(
+            written,
+            [
+                ("inverse_dynamics".to_owned(), None, None),
+                ("position".to_owned(), owned("P"), None),
+                ("velocity".to_owned(), owned("P"), owned("B")),
+            ]
+        );
+    }
+
+    #[test]
+    fn a_malformed_output_is_reported_at_its_token() {
+        assert_eq!(
+            errors("S {\n  outputs position(P B);\n  outputs 3;\n}"),
+            [
+                (
+                    "expected `)` after `position(P`, or `in` and a frame, found `B`".to_owned(),
+                    2,
+                    21
+                ),
+                (
+                    "expected the name of an output (`inverse_dynamics`, `position(P)`, ...), \
+                     found `3`"
+                        .to_owned(),
+                    3,
+                    10
+                ),
+            ]
+        );
+    }
 }

@@ -64,7 +64,7 @@ pub enum Availability {
 /// whether it is generated.
 pub const KINDS: [(&str, Subject, Availability); 12] = [
     ("inverse_dynamics", Subject::None, Availability::Ready),
-    ("regressor", Subject::None, Availability::NotYet),
+    ("regressor", Subject::None, Availability::Ready),
     ("accelerations_jacobian", Subject::None, Availability::Ready),
     ("linearize", Subject::None, Availability::Ready),
     (

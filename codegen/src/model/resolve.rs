@@ -511,11 +511,13 @@ impl Resolver {
             return;
         }
         let function = function_name(name, request.of.as_ref(), request.axes.as_ref());
-        if self.model.outputs.iter().any(|o| o.function == function) {
-            self.errors.push(
-                name.span(),
-                format!("the output `{function}` is asked for twice; ask for it once"),
+        let same = |o: &&super::Output| o.function == function || (o.kind, o.axes) == (kind, axes);
+        if let Some(earlier) = self.model.outputs.iter().find(same) {
+            let message = format!(
+                "this output is already asked for, as `{}`; ask for it once",
+                earlier.function
             );
+            self.errors.push(name.span(), message);
             return;
         }
         self.model.outputs.push(super::Output {

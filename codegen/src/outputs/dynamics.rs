@@ -1,9 +1,11 @@
 //! Dynamic outputs: the inverse dynamics `M v̇ − f` and its regressor.
 
-use super::{Argument, Function, Value};
+use super::{Argument, Function, NameList, Value, doc_lines};
+use crate::equations::regressor::{Failure, regressor as derive_regressor};
 use crate::equations::{Equations, inverse_dynamics as derive_inverse_dynamics};
 use crate::expr::Pool;
-use crate::model::Model;
+use crate::model::{Model, Output};
+use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
 
@@ -27,4 +29,75 @@ pub fn inverse_dynamics(model: &Model, equations: &Equations, pool: &mut Pool) -
         &[Time, Coordinates, Speeds, Accelerations, Inputs],
         Value::vector(tau),
     )
+}
+
+/// `regressor(q, v, v̇)`, `base_parameters()` and `BASE_PARAMETERS`; an
+/// error at `regressor` if the model has none.
+pub fn regressor(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+    output: &Output,
+) -> syn::Result<(Vec<Function>, NameList)> {
+    let (tau, _) = derive_inverse_dynamics(model, equations, pool);
+    let regressor = derive_regressor(pool, &tau).map_err(|failure| {
+        let why = match failure {
+            Failure::TooLarge => "`M v̇ − f` is too large to expand into monomials",
+            Failure::TimeDependent => "`M v̇ − f` depends on time `t` (outside the inputs)",
+        };
+        syn::Error::new(
+            output.function.span(),
+            format!("this model has no regressor: {why}; remove `regressor` from `outputs`"),
+        )
+    })?;
+    let names = regressor.names(&model.parameters);
+    let nb = names.len();
+    let list: String = names
+        .iter()
+        .enumerate()
+        .map(|(j, name)| format!("\n* `π{}` = `{name}`", subscript(j)))
+        .collect();
+    let regressor_docs = format!(
+        "The regressor `Y(q, v, v̇)` of the inverse dynamics: `M v̇ − f = Y π` at\n\
+         zero inputs, that is `inverse_dynamics(t, q, v, v̇, 0)`, where `π` are\n\
+         the {nb} base parameters that `base_parameters()` computes and\n\
+         `BASE_PARAMETERS` names: the products of parameters that `M v̇ − f` is\n\
+         linear in, those whose columns are proportional regrouped into one\n\
+         (no motion tells them apart), those whose columns vanish left out.\n\
+         The number of columns is the number of base parameters, not of the\n\
+         struct's parameters:{list}"
+    );
+    let pi = regressor.base_parameters(pool);
+    let functions = vec![
+        Function::new(
+            "regressor",
+            &regressor_docs,
+            &[Coordinates, Speeds, Accelerations],
+            Value::matrix(&regressor.rows, nb),
+        ),
+        Function::new(
+            "base_parameters",
+            "The base parameters `π` of `regressor`, from the struct's values (see\n\
+             `BASE_PARAMETERS`).",
+            &[],
+            Value::vector(pi),
+        ),
+    ];
+    let constant = NameList {
+        name: Ident::new("BASE_PARAMETERS", Span::call_site()),
+        docs: doc_lines(
+            "The base parameters of `regressor`, as combinations of the struct's\n\
+             parameters, in column order.",
+        ),
+        names,
+    };
+    Ok((functions, constant))
+}
+
+/// `j` in subscript digits.
+fn subscript(j: usize) -> String {
+    j.to_string()
+        .chars()
+        .map(|d| char::from_u32(0x2080 + d.to_digit(10).unwrap_or(0)).unwrap_or(d))
+        .collect()
 }

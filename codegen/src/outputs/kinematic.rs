@@ -10,13 +10,13 @@ use crate::model::{FrameId, Model, NEWTONIAN, Output, OutputKind};
 
 use Argument::{Accelerations, Coordinates, Speeds, Time};
 
-/// The function computing a kinematic `output`.
+/// The function computing `output`, if it is a kinematic one.
 pub fn function(
     model: &Model,
     kinematics: &Kinematics,
     pool: &mut Pool,
     output: &Output,
-) -> Function {
+) -> Option<Function> {
     let nv = model.nq();
     let axes = Axes {
         model,
@@ -25,18 +25,22 @@ pub fn function(
     };
     let (arguments, value, what): (&[Argument], Value, &str) = match output.kind {
         OutputKind::Position(p) => {
-            let r = axes.from_newtonian(pool, &kinematics.position(p));
+            let r = axes.convert_newtonian(pool, &kinematics.position(p));
             (
                 &[Time, Coordinates],
                 Value::vector(r.to_vec()),
-                "position from `O`",
+                "The position of `{P}` from `O`, in `{F}`'s axes.",
             )
         }
         OutputKind::Velocity(p) => {
             let v = kinematics.velocity(pool, p);
-            let v = axes.from_newtonian(pool, &v);
+            let v = axes.convert_newtonian(pool, &v);
             let arguments = &[Time, Coordinates, Speeds];
-            (arguments, Value::vector(v.to_vec()), "velocity in `N`")
+            (
+                arguments,
+                Value::vector(v.to_vec()),
+                "The velocity of `{P}` in `N`, in `{F}`'s axes.",
+            )
         }
         OutputKind::Acceleration(p) => {
             let mut a = kinematics.acceleration_bias(pool, p);
@@ -48,20 +52,20 @@ pub fn function(
                     pool.add(a[i], term)
                 });
             }
-            let a = axes.from_newtonian(pool, &a);
+            let a = axes.convert_newtonian(pool, &a);
             let arguments = &[Time, Coordinates, Speeds, Accelerations];
-            let what = "acceleration in `N` (`J v̇ + J̇ v`)";
+            let what = "The acceleration of `{P}` in `N` (`J v̇ + J̇ v`), in `{F}`'s axes.";
             (arguments, Value::vector(a.to_vec()), what)
         }
         OutputKind::Jacobian(p) => {
             let columns: Vec<Vec3> = (0..nv)
                 .map(|k| {
                     let partial = kinematics.partial_velocity(pool, p, k);
-                    axes.from_newtonian(pool, &partial)
+                    axes.convert_newtonian(pool, &partial)
                 })
                 .collect();
-            let what = "velocity's Jacobian by the speeds, `J` with `v_P = J v`\n\
-                        (row `i`: the partials of component `i`)";
+            let what = "The Jacobian `J` of `{P}`'s velocity by the speeds (`v = J q̇`), in\n\
+                        `{F}`'s axes: row `i` holds the partials of component `i`.";
             (&[Time, Coordinates], transposed(&columns, nv), what)
         }
         OutputKind::Rotation(f) => {
@@ -69,52 +73,49 @@ pub fn function(
                 .map(|j| {
                     let mut unit = [pool.zero(); 3];
                     unit[j] = pool.one();
-                    axes.from(pool, f, &unit)
+                    axes.convert(pool, f, &unit)
                 })
                 .collect();
-            let what = "rotation matrix, mapping the frame's components";
+            let what = "The rotation matrix of `{P}`: it maps `{P}`'s components to `{F}`'s.";
             (&[Time, Coordinates], transposed(&columns, 3), what)
         }
         OutputKind::AngularVelocity(f) => {
-            let omega = axes.from(pool, f, &kinematics.angular_velocity(f));
+            let omega = axes.convert(pool, f, &kinematics.angular_velocity(f));
             let arguments = &[Time, Coordinates, Speeds];
             (
                 arguments,
                 Value::vector(omega.to_vec()),
-                "angular velocity in `N`",
+                "The angular velocity of `{P}` in `N`, in `{F}`'s axes.",
             )
         }
         OutputKind::AngularJacobian(f) => {
             let columns: Vec<Vec3> = (0..nv)
                 .map(|k| {
                     let partial = kinematics.partial_angular_velocity(pool, f, k);
-                    axes.from(pool, f, &partial)
+                    axes.convert(pool, f, &partial)
                 })
                 .collect();
-            let what = "angular velocity's Jacobian by the speeds, `J` with `ω = J v`\n\
-                        (row `i`: the partials of component `i`)";
+            let what = "The Jacobian `J` of `{P}`'s angular velocity by the speeds (`ω = J q̇`),\n\
+                        in `{F}`'s axes: row `i` holds the partials of component `i`.";
             (&[Time, Coordinates], transposed(&columns, nv), what)
         }
         OutputKind::InverseDynamics
         | OutputKind::Regressor
         | OutputKind::InverseDynamicsJacobian
         | OutputKind::AccelerationsJacobian
-        | OutputKind::Linearize => {
-            unreachable!("dynamic outputs are not kinematic")
-        }
+        | OutputKind::Linearize => return None,
     };
     let subject = output.subject.as_deref().unwrap_or_default();
-    let docs = format!(
-        "The {what}\nof `{subject}`, in `{}`'s axes (`outputs` asked for it).",
-        output.axes_name
-    );
-    Function {
+    let docs = what
+        .replace("{P}", subject)
+        .replace("{F}", &output.axes_name);
+    Some(Function {
         name: output.function.clone(),
         docs: doc_lines(&docs),
         arguments: arguments.to_vec(),
         results: vec![value],
         body: Body::Explicit,
-    }
+    })
 }
 
 /// A `3 × n` matrix from its `n` columns.
@@ -134,12 +135,12 @@ struct Axes<'a> {
 
 impl Axes<'_> {
     /// Components given in `N`'s axes, in the output's.
-    fn from_newtonian(&self, pool: &mut Pool, c: &Vec3) -> Vec3 {
-        self.from(pool, NEWTONIAN, c)
+    fn convert_newtonian(&self, pool: &mut Pool, c: &Vec3) -> Vec3 {
+        self.convert(pool, NEWTONIAN, c)
     }
 
     /// Components given in `frame`'s axes, in the output's.
-    fn from(&self, pool: &mut Pool, frame: FrameId, c: &Vec3) -> Vec3 {
+    fn convert(&self, pool: &mut Pool, frame: FrameId, c: &Vec3) -> Vec3 {
         if frame == self.to {
             return *c;
         }

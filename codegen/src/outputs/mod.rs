@@ -203,31 +203,64 @@ pub fn standard(model: &Model, equations: &Equations) -> Vec<Function> {
     functions
 }
 
-/// The functions the model's `outputs` statement asks for, in the order
-/// written (`linearize` brings `accelerations_jacobian`, which it calls).
-pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Vec<Function> {
+/// A constant list of names (`BASE_PARAMETERS`).
+pub struct NameList {
+    /// The constant's name.
+    pub name: Ident,
+    /// Its doc comment, one entry a line.
+    pub docs: Vec<String>,
+    /// The names.
+    pub names: Vec<String>,
+}
+
+/// What the model's `outputs` statement asks for: functions, and the
+/// constants that name their entries.
+#[derive(Default)]
+pub struct Requested {
+    /// The functions, in the order asked for.
+    pub functions: Vec<Function>,
+    /// The constants.
+    pub constants: Vec<NameList>,
+}
+
+/// What the model's `outputs` statement asks for, in the order written
+/// (`linearize` brings `accelerations_jacobian`, which it calls); an error
+/// at an output the model cannot give.
+pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::Result<Requested> {
+    let mut requested = Requested::default();
+    if model.outputs.is_empty() {
+        return Ok(requested);
+    }
     let kinematics = crate::kinematics::Kinematics::new(model, pool);
     let asked = |kind: OutputKind| model.outputs.iter().any(|o| o.kind == kind);
-    let mut functions = Vec::new();
     for output in &model.outputs {
         match output.kind {
-            OutputKind::InverseDynamics | OutputKind::Regressor => {
-                functions.push(dynamics::inverse_dynamics(model, equations, pool))
+            OutputKind::InverseDynamics => requested
+                .functions
+                .push(dynamics::inverse_dynamics(model, equations, pool)),
+            OutputKind::Regressor => {
+                let (functions, names) = dynamics::regressor(model, equations, pool, output)?;
+                requested.functions.extend(functions);
+                requested.constants.push(names);
             }
-            OutputKind::InverseDynamicsJacobian => functions.push(
+            OutputKind::InverseDynamicsJacobian => requested.functions.push(
                 derivatives::inverse_dynamics_jacobian(model, equations, pool),
             ),
-            OutputKind::AccelerationsJacobian => {
-                functions.push(derivatives::accelerations_jacobian(model, equations, pool))
-            }
+            OutputKind::AccelerationsJacobian => requested
+                .functions
+                .push(derivatives::accelerations_jacobian(model, equations, pool)),
             OutputKind::Linearize => {
                 if !asked(OutputKind::AccelerationsJacobian) {
-                    functions.push(derivatives::accelerations_jacobian(model, equations, pool));
+                    requested
+                        .functions
+                        .push(derivatives::accelerations_jacobian(model, equations, pool));
                 }
-                functions.push(derivatives::linearize());
+                requested.functions.push(derivatives::linearize());
             }
-            _ => functions.push(kinematic::function(model, &kinematics, pool, output)),
+            _ => requested
+                .functions
+                .extend(kinematic::function(model, &kinematics, pool, output)),
         }
     }
-    functions
+    Ok(requested)
 }
