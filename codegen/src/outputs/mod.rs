@@ -243,9 +243,13 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 requested.functions.extend(functions);
                 requested.constants.push(names);
             }
-            OutputKind::InverseDynamicsJacobian => requested.functions.push(
-                derivatives::inverse_dynamics_jacobian(model, equations, pool),
-            ),
+            OutputKind::InverseDynamicsJacobian => {
+                requested
+                    .functions
+                    .push(derivatives::inverse_dynamics_jacobian(
+                        model, equations, pool,
+                    ))
+            }
             OutputKind::AccelerationsJacobian => requested
                 .functions
                 .push(derivatives::accelerations_jacobian(model, equations, pool)),
