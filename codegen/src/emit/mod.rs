@@ -381,7 +381,7 @@ fn emit_trait_impls(
 mod tests {
     use super::{Target, emit_function, names, raw_string};
     use crate::expr::Sym;
-    use crate::outputs::{Argument, Function, Value, doc_lines};
+    use crate::outputs::{Argument, Body, Function, Value, doc_lines};
     use quote::quote;
 
     #[test]
@@ -398,6 +398,7 @@ mod tests {
             docs: doc_lines("Both."),
             arguments: vec![Argument::Coordinates, Argument::Speeds],
             results: vec![Value::vector(vec![product]), Value::scalar(sine)],
+            body: Body::Explicit,
         };
         let emitted = emit_function(&model, &names(&model, Target::Std), &function);
         let expected = quote! {
