@@ -4,12 +4,59 @@
 //! (`dalembert_codegen::testing::chain`). For the chains spelled with symbolic
 //! parameters it also writes `chain_references.rs`: a `reference()`
 //! constructor per system, holding the reference data's masses, lengths and
-//! gravity.
+//! gravity. Into `OUT_DIR/derivatives/` it writes a copy of some of those
+//! models (seed examples, chains, two robots) asking for the exact
+//! derivatives, and their code, which `src/lib.rs` includes in the module
+//! `derivatives`.
 
 use std::fmt::Write;
 use std::path::PathBuf;
 
 use dalembert_codegen::testing::{Family, Spelling, chain, chain_parameters};
+
+/// The models whose copy asks for the derivatives: `models/NAME.dal`, or a
+/// URDF robot by its file name.
+const WITH_DERIVATIVES: [&str; 10] = [
+    "double_pendulum",
+    "rotating_bar",
+    "planar_chain_02",
+    "planar_chain_06",
+    "planar_chain_12",
+    "spatial_chain_02",
+    "spatial_chain_06",
+    "spatial_chain_12",
+    "panda.urdf",
+    "ur5_robot.urdf",
+];
+
+/// The statement the copies add.
+const DERIVATIVES: &str = "outputs accelerations_jacobian, linearize, inverse_dynamics_jacobian;";
+
+/// Writes and generates the copies of [`WITH_DERIVATIVES`].
+fn with_derivatives(out: &std::path::Path) {
+    let dir = out.join("derivatives");
+    std::fs::create_dir_all(&dir).expect("OUT_DIR is writable");
+    let mut builder = dalembert_codegen::Builder::new();
+    builder.out_dir(&dir).emit_rerun_if_changed(false);
+    for name in WITH_DERIVATIVES {
+        let source = match name.strip_suffix(".urdf") {
+            Some(robot) => {
+                dalembert_codegen::Urdf::read(format!("../tests/reference/urdf/{robot}.urdf"))
+                    .and_then(|urdf| urdf.model())
+                    .unwrap_or_else(|e| panic!("\n{e}\n"))
+            }
+            None => std::fs::read_to_string(format!("models/{name}.dal")).expect("a model"),
+        };
+        let end = source.rfind('}').expect("a system ends with `}`");
+        let copy = format!("{}    {DERIVATIVES}\n{}", &source[..end], &source[end..]);
+        let path = dir.join(format!("{}.dal", name.trim_end_matches(".urdf")));
+        if std::fs::read_to_string(&path).ok().as_deref() != Some(copy.as_str()) {
+            std::fs::write(&path, copy).expect("OUT_DIR is writable");
+        }
+        builder.model(path);
+    }
+    builder.compile().unwrap_or_else(|e| panic!("\n{e}\n"));
+}
 
 fn main() {
     let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
@@ -76,4 +123,5 @@ fn main() {
         .expect("writing to a String");
     }
     std::fs::write(out.join("chain_references.rs"), references).expect("OUT_DIR is writable");
+    with_derivatives(&out);
 }

@@ -127,27 +127,39 @@ def robot_entry(file, rng):
     }
 
 
+def write_document(path, schema, generator, seed, notes, models):
+    """Writes a reference document: its header (Pinocchio's version, the units) and models."""
+    document = {
+        "schema": schema,
+        "generator": generator,
+        "pinocchio_version": pin.__version__,
+        "units": "SI: kg, m, s, rad, N m",
+        "seed": seed,
+        "notes": notes,
+        "models": models,
+    }
+    with open(path, "w") as out:
+        json.dump(document, out, indent=1)
+        out.write("\n")
+    print(f"wrote {path}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=os.path.join(ROBOTS, "pinocchio.json"))
     args = parser.parse_args()
     rng = np.random.default_rng(SEED)
-    document = {
-        "schema": "urdf/1 (states as chains/1)",
-        "generator": "scripts/urdf_reference.py (Pinocchio Python bindings, its URDF parser)",
-        "pinocchio_version": pin.__version__,
-        "units": "SI: kg, m, s, rad, N m",
-        "seed": SEED,
-        "notes": "See README.md beside this file. q in dalembert's coordinate order "
-                 "(`coordinates`); continuous joints as one angle; fixed base; mimic joints "
-                 "independent; M full symmetric; nle = C(q,qd) qd + g(q); f = tau - nle; "
-                 "M qdd = f; V leaves out the masses fixed to the ground.",
-        "models": [robot_entry(file, rng) for file in FILES],
-    }
-    with open(args.out, "w") as out:
-        json.dump(document, out, indent=1)
-        out.write("\n")
-    print(f"wrote {args.out}")
+    write_document(
+        args.out,
+        "urdf/1 (states as chains/1)",
+        "scripts/urdf_reference.py (Pinocchio Python bindings, its URDF parser)",
+        SEED,
+        "See README.md beside this file. q in dalembert's coordinate order "
+        "(`coordinates`); continuous joints as one angle; fixed base; mimic joints "
+        "independent; M full symmetric; nle = C(q,qd) qd + g(q); f = tau - nle; "
+        "M qdd = f; V leaves out the masses fixed to the ground.",
+        [robot_entry(file, rng) for file in FILES],
+    )
 
 
 if __name__ == "__main__":

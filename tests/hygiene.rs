@@ -70,3 +70,46 @@ fn generated_code_is_hygienic() {
     let residual = system.constraint_residual(0.0, &q);
     assert!((residual[0] - (0.1 - 0.5 * 0.2f64.sin())).abs() < 1e-15);
 }
+
+dalembert::dalembert! {
+    /// The same cart and pendulum, unconstrained, asking for the derivatives,
+    /// with user names spelled like the locals of `accelerations_jacobian`.
+    pub HygienicDerivatives {
+        parameters qdd, solve, rhs_q, by_q, finite, jacobian, m, f;
+        coordinates s, theta;
+        inputs r0;
+        frame B = N.rotate_z(theta);
+        point C = O + s * N.x;
+        particle cart { mass: qdd, at: C };
+        body rod { mass: solve, center: C - rhs_q * B.y, frame: B, inertia: [0, 0, solve * rhs_q^2 / 3] };
+        gravity -by_q * N.y;
+        force r0 * N.x at C;
+        dissipation finite * dt(s)^2 / 2 + jacobian * dt(theta)^2 / 2;
+        potential m * s^2 / 2 + f * theta^2 / 2;
+        outputs linearize, inverse_dynamics_jacobian;
+    }
+}
+
+#[test]
+fn generated_derivatives_are_hygienic() {
+    let system = HygienicDerivatives {
+        qdd: 1.0,
+        solve: 2.0,
+        rhs_q: 0.5,
+        by_q: 9.81,
+        finite: 0.1,
+        jacobian: 0.2,
+        m: 3.0,
+        f: 0.4,
+    };
+    let (a, b) = system
+        .linearize(0.0, &[0.0; 2], &[0.0; 2], &[0.0])
+        .expect("regular");
+    // The force `r0` pushes the cart forwards.
+    assert_eq!(a[0], [0.0, 0.0, 1.0, 0.0]);
+    assert!(b[2][0] > 0.0, "{b:?}");
+    let (by_q, _, mass) =
+        system.inverse_dynamics_jacobian(0.0, &[0.1, 0.2], &[0.3, 0.4], &[0.5, 0.6], &[0.7]);
+    assert_eq!(mass, system.mass_matrix(&[0.1, 0.2]));
+    assert!(by_q[0][0] == 3.0, "the spring m s: {by_q:?}");
+}

@@ -7,12 +7,13 @@
 
 mod body;
 mod configuration;
+mod derivatives;
 mod solve;
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Sym};
 use crate::model::Model;
-use crate::outputs::{Argument, Function, NameList, Shape};
+use crate::outputs::{Argument, Body, Function, NameList, Shape};
 use body::{Names, straight_line};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -53,7 +54,15 @@ pub fn emit(
     let nc = model.constraints.len();
     let mut items: Vec<TokenStream> = functions
         .iter()
-        .map(|function| emit_function(model, &names, function))
+        .map(|function| match (function.body, target) {
+            (Body::Explicit, _) => emit_function(model, &names, function),
+            // Both return the runtime's errors.
+            (_, Target::NoStd) => TokenStream::new(),
+            (Body::AccelerationsJacobian, Target::Std) => {
+                derivatives::emit_accelerations_jacobian(model, equations, &names, function)
+            }
+            (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, function),
+        })
         .collect();
     items.push(configuration::emit_configuration(model.nq()));
     let strukt = emit_struct(model, &documentation.docs);
@@ -372,7 +381,7 @@ fn emit_trait_impls(
 mod tests {
     use super::{Target, emit_function, names, raw_string};
     use crate::expr::Sym;
-    use crate::outputs::{Argument, Function, Value, doc_lines};
+    use crate::outputs::{Argument, Body, Function, Value, doc_lines};
     use quote::quote;
 
     #[test]
@@ -389,6 +398,7 @@ mod tests {
             docs: doc_lines("Both."),
             arguments: vec![Argument::Coordinates, Argument::Speeds],
             results: vec![Value::vector(vec![product]), Value::scalar(sine)],
+            body: Body::Explicit,
         };
         let emitted = emit_function(&model, &names(&model, Target::Std), &function);
         let expected = quote! {

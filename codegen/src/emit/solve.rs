@@ -32,34 +32,45 @@ const FUNCTION_COST: usize = 20;
 
 /// `pub fn accelerations(..)`, for systems without constraints.
 pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let nq = model.nq();
-    if !model.constraints.is_empty() || nq == 0 {
+    let Some(factorised) = factorised(model, equations) else {
         return TokenStream::new();
-    }
-    let pattern = fill_pattern(model, equations);
+    };
+    let nq = model.nq();
     let (doc, body) = match &equations.articulated {
-        Some(articulated) if articulated_is_cheaper(model, equations, articulated, &pattern) => (
-            [
-                " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by the",
-                " articulated-body recursion over the kinematic tree (`M` is never",
-                " formed). Same checks and errors as `dalembert::accelerations`: a",
-                " non-finite state, equation or result, or a pivot `Sᵀ Iᴬ S` not",
-                " above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times the",
-                " largest pivot, is an error.",
-            ],
-            articulated_body(model, articulated, names),
-        ),
-        _ => (
-            [
-                " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a",
-                " square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this",
-                " system (structural zeros of `M` skipped). Same checks and errors as",
-                " `dalembert::accelerations`: a non-finite state, equation or result,",
-                " or a pivot not above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE`",
-                " times the largest diagonal entry of `M`, is an error.",
-            ],
-            factorisation_body(model, &pattern),
-        ),
+        Some(articulated)
+            if articulated_is_cheaper(model, equations, articulated, &factorised.pattern) =>
+        {
+            (
+                [
+                    " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by the",
+                    " articulated-body recursion over the kinematic tree (`M` is never",
+                    " formed). Same checks and errors as `dalembert::accelerations`: a",
+                    " non-finite state, equation or result, or a pivot `Sᵀ Iᴬ S` not",
+                    " above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times the",
+                    " largest pivot, is an error.",
+                ],
+                articulated_body(model, articulated, names),
+            )
+        }
+        _ => {
+            let Factorised {
+                prelude,
+                substitutions,
+                solution,
+                ..
+            } = &factorised;
+            (
+                [
+                    " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a",
+                    " square-root-free Cholesky factorisation `L D Lᵀ` unrolled for this",
+                    " system (structural zeros of `M` skipped). Same checks and errors as",
+                    " `dalembert::accelerations`: a non-finite state, equation or result,",
+                    " or a pivot not above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE`",
+                    " times the largest diagonal entry of `M`, is an error.",
+                ],
+                quote!(#prelude #substitutions let qdd = [#(#solution),*];),
+            )
+        }
     };
     let n_lit = index(nq);
     let nu = index(model.inputs.len());
@@ -73,10 +84,6 @@ pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -
             qd: &[f64; #n_lit],
             u: &[f64; #nu],
         ) -> ::core::result::Result<[f64; #n_lit], ::dalembert::DynamicsError> {
-            let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
-            if !(t.is_finite() && finite(q) && finite(qd) && finite(u)) {
-                return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteState);
-            }
             #body
             if finite(&qdd) {
                 ::core::result::Result::Ok(qdd)
@@ -87,12 +94,45 @@ pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -
     }
 }
 
-/// The factorisation route, up to `let qdd = [..];`.
-fn factorisation_body(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
+/// Binds the closure `finite(&[f64]) -> bool` and returns the runtime's
+/// error for a non-finite `t`, `q`, `qd` or `u`.
+fn state_check() -> TokenStream {
+    quote! {
+        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+        if !(t.is_finite() && finite(q) && finite(qd) && finite(u)) {
+            return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteState);
+        }
+    }
+}
+
+/// The pieces of a solve of `M x = f` for an unconstrained system.
+pub struct Factorised {
+    /// The checks of the state (`t`, `q`, `qd`, `u`), `M` and `f` evaluated
+    /// and checked, unpacked into `m{i}_{j}` and `f{i}`, and factorised
+    /// (`l{i}_{j}`, the reciprocal pivots `r{j}`), returning the runtime's
+    /// errors; binds the closure `finite(&[f64]) -> bool`.
+    pub prelude: TokenStream,
+    /// Forward and backward substitution from `f{i}` to `x{i}`.
+    pub substitutions: TokenStream,
+    /// The names `f{i}` of the right-hand side.
+    pub right_hand_side: Vec<Ident>,
+    /// The names `x{i}` of the solution.
+    pub solution: Vec<Ident>,
+    /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero.
+    pub pattern: Vec<Vec<bool>>,
+}
+
+/// The factorisation and substitutions of `M x = f`; `None` for a system
+/// with constraints or no coordinates.
+pub fn factorised(model: &Model, equations: &Equations) -> Option<Factorised> {
     let nq = model.nq();
-    let factor = factorisation(model, pattern);
-    let forward = forward_substitution(pattern);
-    let backward = backward_substitution(pattern);
+    if !model.constraints.is_empty() || nq == 0 {
+        return None;
+    }
+    let pattern = fill_pattern(model, equations);
+    let factor = factorisation(model, &pattern);
+    let forward = forward_substitution(&pattern);
+    let backward = backward_substitution(&pattern);
     let solution: Vec<Ident> = (0..nq).map(|i| format_ident!("x{}", i)).collect();
     let diagonal = (0..nq).map(|i| mass(i, i));
     let rows = (0..nq).map(|i| {
@@ -102,8 +142,10 @@ fn factorisation_body(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
         });
         quote!([#(#row),*])
     });
-    let forcing = (0..nq).map(|i| format_ident!("f{}", i));
-    quote! {
+    let forcing: Vec<Ident> = (0..nq).map(|i| format_ident!("f{}", i)).collect();
+    let check = state_check();
+    let prelude = quote! {
+        #check
         let m = self.mass_matrix(q);
         let f = self.forcing(t, q, qd, u);
         if !(m.iter().all(|row| finite(row)) && finite(&f)) {
@@ -114,10 +156,14 @@ fn factorisation_body(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
         let tolerance =
             ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
         #factor
-        #forward
-        #backward
-        let qdd = [#(#solution),*];
-    }
+    };
+    Some(Factorised {
+        prelude,
+        substitutions: quote!(#forward #backward),
+        right_hand_side: forcing,
+        solution,
+        pattern,
+    })
 }
 
 /// The articulated-body route, up to `let qdd = [..];`: one straight-line
@@ -129,7 +175,9 @@ fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> 
     let forcing = &body.outputs[..nq];
     let pivots = &body.outputs[nq..2 * nq];
     let accelerations = &body.outputs[2 * nq..];
+    let check = state_check();
     quote! {
+        #check
         #statements
         if !finite(&[#(#forcing),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);

@@ -422,6 +422,7 @@ fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
 }
 
 mod articulated;
+pub mod derivatives;
 pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;

@@ -83,6 +83,13 @@ impl Pool {
                 let (k, inverse) = (self.int(i64::from(exp)), self.powi(base, -1));
                 self.product([k, n, inverse, db])
             }
+            // A group's derivative stays one operand: the derivative of a
+            // recursion's grouped running totals is then a recursion of the
+            // same shape, not its steps flattened into one another.
+            Node::Func(Func::Group, arg) => {
+                let darg = self.known_derivative(arg, d);
+                self.group(darg)
+            }
             Node::Func(f, arg) => {
                 let darg = self.known_derivative(arg, d);
                 if self.is_zero(darg) {

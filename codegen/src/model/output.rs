@@ -17,6 +17,13 @@ pub enum OutputKind {
     InverseDynamics,
     /// `regressor`: `Y` with `M v̇ − f = Y π`, `π` the base parameters.
     Regressor,
+    /// `inverse_dynamics_jacobian`: `∂τ/∂q`, `∂τ/∂v` and `∂τ/∂v̇ = M` of the
+    /// inverse dynamics `τ = M v̇ − f`.
+    InverseDynamicsJacobian,
+    /// `accelerations_jacobian`: `∂v̇/∂q`, `∂v̇/∂v`, `∂v̇/∂u`.
+    AccelerationsJacobian,
+    /// `linearize`: the state-space matrices `A`, `B` about a state.
+    Linearize,
     /// `position(P)`: where a point is, from `O`.
     Position(PointId),
     /// `velocity(P)`: its velocity in `N`.
@@ -55,15 +62,16 @@ pub enum Availability {
 
 /// Every output name of the language, what it needs in parentheses and
 /// whether it is generated.
-pub const KINDS: [(&str, Subject, Availability); 11] = [
+pub const KINDS: [(&str, Subject, Availability); 12] = [
     ("inverse_dynamics", Subject::None, Availability::Ready),
     ("regressor", Subject::None, Availability::Ready),
+    ("accelerations_jacobian", Subject::None, Availability::Ready),
+    ("linearize", Subject::None, Availability::Ready),
     (
-        "accelerations_jacobian",
+        "inverse_dynamics_jacobian",
         Subject::None,
-        Availability::NotYet,
+        Availability::Ready,
     ),
-    ("linearize", Subject::None, Availability::NotYet),
     ("position", Subject::Point, Availability::Ready),
     ("velocity", Subject::Point, Availability::Ready),
     ("acceleration", Subject::Point, Availability::Ready),
@@ -92,6 +100,9 @@ pub fn kind(name: &str, point: Option<PointId>, frame: Option<FrameId>) -> Optio
     Some(match (name, point, frame) {
         ("inverse_dynamics", ..) => OutputKind::InverseDynamics,
         ("regressor", ..) => OutputKind::Regressor,
+        ("inverse_dynamics_jacobian", ..) => OutputKind::InverseDynamicsJacobian,
+        ("accelerations_jacobian", ..) => OutputKind::AccelerationsJacobian,
+        ("linearize", ..) => OutputKind::Linearize,
         ("position", Some(p), _) => OutputKind::Position(p),
         ("velocity", Some(p), _) => OutputKind::Velocity(p),
         ("acceleration", Some(p), _) => OutputKind::Acceleration(p),

@@ -205,6 +205,7 @@ impl Resolver {
                 "a system needs at least one generalized coordinate: add `coordinates q1, ...;`",
             );
         }
+        self.check_solved_outputs();
         self.model.tree = Tree::of(&self.model, &mut self.pool);
         self.model.pool = self.pool;
         self.errors.finish(self.model)
@@ -533,6 +534,30 @@ impl Resolver {
                 .as_ref()
                 .map_or("N".to_string(), Ident::to_string),
         });
+    }
+
+    /// `accelerations_jacobian` and `linearize` solve `M v̇ = f`: with
+    /// constraints, the accelerations and their derivatives live on the
+    /// constraint manifold, which these outputs do not handle yet.
+    fn check_solved_outputs(&mut self) {
+        use super::OutputKind::{AccelerationsJacobian, Linearize};
+        if self.model.constraints.is_empty() {
+            return;
+        }
+        for output in &self.model.outputs {
+            if matches!(output.kind, AccelerationsJacobian | Linearize) {
+                let name = &output.function;
+                self.errors.push(
+                    name.span(),
+                    format!(
+                        "`{name}` is not available for a system with constraints yet \
+                         (the derivatives would have to be taken on the constraint manifold): \
+                         remove it from `outputs`, or describe the system with independent \
+                         coordinates and no `constraint` statements"
+                    ),
+                );
+            }
+        }
     }
 
     fn torque(&mut self, value: &Expr, on: &Expr, reacting: Option<&Expr>) {

@@ -3,7 +3,7 @@
 //! speeds — every vector measured in `N` and given in the axes the request
 //! names (`N`'s unless `in F`).
 
-use super::{Argument, Function, Value, doc_lines};
+use super::{Argument, Body, Function, Value, doc_lines};
 use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3};
 use crate::model::{FrameId, Model, NEWTONIAN, Output, OutputKind};
@@ -99,7 +99,11 @@ pub fn function(
                         in `{F}`'s axes: row `i` holds the partials of component `i`.";
             (&[Time, Coordinates], transposed(&columns, nv), what)
         }
-        OutputKind::InverseDynamics | OutputKind::Regressor => return None,
+        OutputKind::InverseDynamics
+        | OutputKind::Regressor
+        | OutputKind::InverseDynamicsJacobian
+        | OutputKind::AccelerationsJacobian
+        | OutputKind::Linearize => return None,
     };
     let subject = output.subject.as_deref().unwrap_or_default();
     let docs = what
@@ -110,6 +114,7 @@ pub fn function(
         docs: doc_lines(&docs),
         arguments: arguments.to_vec(),
         results: vec![value],
+        body: Body::Explicit,
     })
 }
 

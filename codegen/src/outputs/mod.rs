@@ -6,6 +6,7 @@
 //! emitter; the results of one function are computed by one straight-line
 //! body, so they share their subexpressions.
 
+mod derivatives;
 mod dynamics;
 mod kinematic;
 
@@ -24,6 +25,23 @@ pub struct Function {
     pub arguments: Vec<Argument>,
     /// What it returns: one value, or a tuple of several.
     pub results: Vec<Value>,
+    /// How it computes them.
+    pub body: Body,
+}
+
+/// How a generated function computes what it returns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Body {
+    /// Its results, by one straight-line body.
+    Explicit,
+    /// `accelerations_jacobian`: its results are the partials `∂τ/∂q`,
+    /// `∂τ/∂v`, `∂τ/∂u` of the inverse dynamics, evaluated at the
+    /// accelerations solved from `M v̇ = f`, and it returns
+    /// `−M⁻¹` times each (the factorisation that solved for `v̇` reused).
+    AccelerationsJacobian,
+    /// `linearize`: no results of its own; `A` and `B` assembled from
+    /// `accelerations_jacobian`.
+    Linearize,
 }
 
 /// An argument of a generated function.
@@ -97,6 +115,7 @@ impl Function {
             docs: doc_lines(docs),
             arguments: arguments.to_vec(),
             results: vec![result],
+            body: Body::Explicit,
         }
     }
 
@@ -204,14 +223,16 @@ pub struct Requested {
     pub constants: Vec<NameList>,
 }
 
-/// What the model's `outputs` statement asks for, in the order written;
-/// an error at an output the model cannot give.
+/// What the model's `outputs` statement asks for, in the order written
+/// (`linearize` brings `accelerations_jacobian`, which it calls); an error
+/// at an output the model cannot give.
 pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::Result<Requested> {
     let mut requested = Requested::default();
     if model.outputs.is_empty() {
         return Ok(requested);
     }
     let kinematics = crate::kinematics::Kinematics::new(model, pool);
+    let asked = |kind: OutputKind| model.outputs.iter().any(|o| o.kind == kind);
     for output in &model.outputs {
         match output.kind {
             OutputKind::InverseDynamics => requested
@@ -221,6 +242,24 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 let (functions, names) = dynamics::regressor(model, equations, pool, output)?;
                 requested.functions.extend(functions);
                 requested.constants.push(names);
+            }
+            OutputKind::InverseDynamicsJacobian => {
+                requested
+                    .functions
+                    .push(derivatives::inverse_dynamics_jacobian(
+                        model, equations, pool,
+                    ))
+            }
+            OutputKind::AccelerationsJacobian => requested
+                .functions
+                .push(derivatives::accelerations_jacobian(model, equations, pool)),
+            OutputKind::Linearize => {
+                if !asked(OutputKind::AccelerationsJacobian) {
+                    requested
+                        .functions
+                        .push(derivatives::accelerations_jacobian(model, equations, pool));
+                }
+                requested.functions.push(derivatives::linearize());
             }
             _ => requested
                 .functions

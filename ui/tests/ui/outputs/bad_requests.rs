@@ -1,7 +1,6 @@
 //! Every bad output request is reported, together, at its token: an unknown
 //! output, a frame where a point is expected and the reverse, an output
-//! without the point it needs or with one it does not take, and the outputs
-//! of the language that are not generated yet.
+//! without the point it needs or with one it does not take.
 
 use dalembert_macros::dalembert;
 
@@ -14,7 +13,6 @@ dalembert! {
         particle pin { mass: mass, at: P };
         outputs speed(P), velocity(B), rotation(P), position(P in P);
         outputs position, inverse_dynamics(P);
-        outputs linearize, accelerations_jacobian;
     }
 }
 

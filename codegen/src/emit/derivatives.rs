@@ -1,0 +1,206 @@
+//! The outputs that solve through the mass matrix: `accelerations_jacobian`
+//! (`∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the partials of the inverse dynamics at the
+//! solved `v̇`, every column through the one `L D Lᵀ` factorisation that
+//! solved for `v̇`) and `linearize` (the state-space matrices `A`, `B` of
+//! `ẋ = (q̇, v̇)` about a state).
+
+use super::body::{Names, Straight, straight_line};
+use super::solve::{Factorised, factorised};
+use super::{array, raw_string};
+use crate::equations::Equations;
+use crate::expr::ExprId;
+use crate::model::Model;
+use crate::outputs::Function;
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+
+/// `[[f64; columns]; rows]` as tokens.
+fn matrix(rows: usize, columns: usize) -> TokenStream {
+    let (row, rows) = (array(columns), Literal::usize_unsuffixed(rows));
+    quote!([#row; #rows])
+}
+
+/// The entries of a row-major `rows × columns` block, column by column
+/// (the right-hand sides of the solves).
+fn by_columns(block: &[ExprId], columns: usize) -> Vec<ExprId> {
+    (0..columns)
+        .flat_map(|j| block.iter().skip(j).step_by(columns).copied())
+        .collect()
+}
+
+/// `pub fn accelerations_jacobian(..)` from `function`, whose results are
+/// `∂τ/∂q`, `∂τ/∂v`, `∂τ/∂u`; nothing for a system with constraints
+/// (which the model rejects).
+pub fn emit_accelerations_jacobian(
+    model: &Model,
+    equations: &Equations,
+    names: &Names,
+    function: &Function,
+) -> TokenStream {
+    let Some(Factorised {
+        prelude,
+        substitutions,
+        right_hand_side,
+        solution,
+        ..
+    }) = factorised(model, equations)
+    else {
+        return TokenStream::new();
+    };
+    let (nq, nu) = (model.nq(), model.inputs.len());
+    // ∂τ/∂q, ∂τ/∂v and ∂τ/∂u by columns: solved, then negated as they are
+    // transposed into rows.
+    let roots: Vec<ExprId> = function
+        .results
+        .iter()
+        .zip([nq, nq, nu])
+        .flat_map(|(value, columns)| by_columns(&value.expressions, columns))
+        .collect();
+    let Straight {
+        statements,
+        outputs,
+        ..
+    } = straight_line(&model.pool, names, &roots);
+    let columns: Vec<TokenStream> = outputs
+        .chunks(nq)
+        .map(|column| quote!([#(#column),*]))
+        .collect();
+    let (q_columns, rest) = columns.split_at(nq);
+    let (v_columns, u_columns) = rest.split_at(nq);
+    let literal = Literal::usize_unsuffixed;
+    let solved = |name: &str, columns: usize| -> TokenStream {
+        let name = Ident::new(name, Span::call_site());
+        let solves = (0..columns).map(|j| {
+            let j = literal(j);
+            quote!(solve(#name[#j]))
+        });
+        quote!([#(#solves),*])
+    };
+    // `∂v̇/∂x = −M⁻¹ ∂τ/∂x`, row by row.
+    let transposed = |name: &str, columns: usize| -> TokenStream {
+        let name = Ident::new(name, Span::call_site());
+        let rows = (0..nq).map(|i| {
+            let i = literal(i);
+            let row = (0..columns).map(|j| {
+                let j = literal(j);
+                quote!(-#name[#j][#i])
+            });
+            quote!([#(#row),*])
+        });
+        quote!([#(#rows),*])
+    };
+    // Without inputs, the input columns are empty arrays nothing reads.
+    let (rhs_u, by_u) = match nu {
+        0 => ("_rhs_u", "_by_u"),
+        _ => ("rhs_u", "by_u"),
+    };
+    let (solved_q, solved_v, solved_u) =
+        (solved("rhs_q", nq), solved("rhs_v", nq), solved(rhs_u, nu));
+    let (dq, dv, du) = (
+        transposed("by_q", nq),
+        transposed("by_v", nq),
+        transposed(by_u, nu),
+    );
+    let (vector, inputs) = (array(nq), array(nu));
+    let (square, wide) = (matrix(nq, nq), matrix(nq, nu));
+    let (n, nu_lit) = (literal(nq), literal(nu));
+    let (rhs_u_name, by_u_name) = (
+        Ident::new(rhs_u, Span::call_site()),
+        Ident::new(by_u, Span::call_site()),
+    );
+    let (name, docs) = (
+        &function.name,
+        function.docs.iter().map(|line| raw_string(line)),
+    );
+    quote! {
+        #(#[doc = #docs])*
+        #[inline]
+        pub fn #name(
+            &self,
+            t: f64,
+            q: &#vector,
+            qd: &#vector,
+            u: &#inputs,
+        ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
+            #prelude
+            let solve = |[#(#right_hand_side),*]: #vector| -> #vector {
+                #substitutions
+                [#(#solution),*]
+            };
+            let qdd = &solve([#(#right_hand_side),*]);
+            if !finite(qdd) {
+                return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations);
+            }
+            let (rhs_q, rhs_v, #rhs_u_name): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) = {
+                #statements
+                ([#(#q_columns),*], [#(#v_columns),*], [#(#u_columns),*])
+            };
+            let (by_q, by_v, #by_u_name): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) =
+                (#solved_q, #solved_v, #solved_u);
+            let jacobian: (#square, #square, #wide) = (#dq, #dv, #du);
+            if jacobian.0.iter().chain(&jacobian.1).all(|row| finite(row))
+                && jacobian.2.iter().all(|row| finite(row))
+            {
+                ::core::result::Result::Ok(jacobian)
+            } else {
+                ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations)
+            }
+        }
+    }
+}
+
+/// `pub fn linearize(..)` from `accelerations_jacobian`, for `q̇ = v`, with
+/// the docs of `function`.
+pub fn emit_linearize(model: &Model, function: &Function) -> TokenStream {
+    let (nq, nu) = (model.nq(), model.inputs.len());
+    let (vector, inputs) = (array(nq), array(nu));
+    let (a, b) = (matrix(2 * nq, 2 * nq), matrix(2 * nq, nu));
+    let literal = Literal::usize_unsuffixed;
+    let kinematic_rows = (0..nq).map(|i| {
+        let row = (0..2 * nq).map(|j| {
+            if j == nq + i {
+                quote!(1.0)
+            } else {
+                quote!(0.0)
+            }
+        });
+        quote!([#(#row),*])
+    });
+    let dynamic_rows = (0..nq).map(|i| {
+        let i = literal(i);
+        let by_q = (0..nq).map(|j| {
+            let j = literal(j);
+            quote!(dq[#i][#j])
+        });
+        let by_v = (0..nq).map(|j| {
+            let j = literal(j);
+            quote!(dv[#i][#j])
+        });
+        quote!([#(#by_q,)* #(#by_v),*])
+    });
+    let input_rows = (0..nq).map(|i| {
+        let i = literal(i);
+        quote!(du[#i])
+    });
+    let nu = literal(nu);
+    let zero_row = quote!([0.0; #nu]);
+    let zero_rows = (0..nq).map(|_| zero_row.clone());
+    let docs = function.docs.iter().map(|line| raw_string(line));
+    quote! {
+        #(#[doc = #docs])*
+        #[inline]
+        pub fn linearize(
+            &self,
+            t: f64,
+            q: &#vector,
+            qd: &#vector,
+            u: &#inputs,
+        ) -> ::core::result::Result<(#a, #b), ::dalembert::DynamicsError> {
+            let (dq, dv, du) = self.accelerations_jacobian(t, q, qd, u)?;
+            ::core::result::Result::Ok((
+                [#(#kinematic_rows,)* #(#dynamic_rows),*],
+                [#(#zero_rows,)* #(#input_rows),*],
+            ))
+        }
+    }
+}
