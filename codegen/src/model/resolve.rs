@@ -4,8 +4,8 @@
 //! the offending token is at hand.
 
 use super::{
-    Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Model, NEWTONIAN, ORIGIN,
-    Particle, Point, PointId, Torque, Tree, Vector, unit_axis,
+    Ball, Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Model, NEWTONIAN,
+    ORIGIN, Particle, Point, PointId, Speed, Torque, Tree, Vector, quaternion, unit_axis,
 };
 use crate::expr::{ExprId, Func, Number, Pool, Sym, SymKinds};
 use crate::language::ast::{BinOp, Expr, Field, SpanRange, Statement, System};
@@ -176,6 +176,8 @@ impl Resolver {
                 name: system.name.clone(),
                 parameters: Vec::new(),
                 coordinates: Vec::new(),
+                speeds: Vec::new(),
+                balls: Vec::new(),
                 inputs: Vec::new(),
                 frames: vec![Frame { placement: None }],
                 points: vec![Point { placement: None }],
@@ -273,7 +275,30 @@ impl Resolver {
             let index = list.len() as u32;
             list.push(name.clone());
             self.define(name, Binding::Scalar(sym(index)));
+            if let Sym::Coord(_) = sym(0) {
+                let k = self.add_speed(name, true);
+                // While every rate is its own speed, the pool needs no rates
+                // (and the speed's symbol is made when first used).
+                if k != index || !self.pool.rates_are_speeds() {
+                    let speed = self.pool.sym(Sym::Speed(k));
+                    self.pool.set_rate(index, speed);
+                }
+            }
         }
+    }
+
+    /// Adds a speed: the rate `dt(name)` of the coordinate `name`, or a
+    /// speed of its own called `name`; its index.
+    fn add_speed(&mut self, name: &Ident, rate_of_coordinate: bool) -> u32 {
+        let k = self.model.speeds.len() as u32;
+        self.model.speeds.push(Speed {
+            name: name.clone(),
+            rate_of_coordinate,
+        });
+        if !rate_of_coordinate {
+            self.define(name, Binding::Scalar(Sym::Speed(k)));
+        }
+        k
     }
 
     fn frame_statement(&mut self, name: &Ident, value: &Expr) {
@@ -340,7 +365,7 @@ impl Resolver {
         };
         match (parent, rotation) {
             (Some(parent), Some((axis, angle))) => {
-                self.define_frame(name, parent, axis, angle);
+                self.define_frame(name, parent, axis, angle, None);
             }
             _ => {
                 self.define(name, Binding::Invalid);
@@ -392,10 +417,15 @@ impl Resolver {
         let revolute = match kind.to_string().as_str() {
             "revolute" => true,
             "prismatic" => false,
+            "free" => return self.ball_joint(name, fields, true),
+            "spherical" => return self.ball_joint(name, fields, false),
             _ => {
                 self.errors.push(
                     kind.span(),
-                    format!("unknown joint kind `{kind}`; expected `revolute` or `prismatic`"),
+                    format!(
+                        "unknown joint kind `{kind}`; expected `revolute`, `prismatic`, \
+                         `spherical` or `free`"
+                    ),
                 );
                 return;
             }
@@ -430,12 +460,12 @@ impl Resolver {
             return;
         };
         if revolute {
-            if self.define_frame(child, parent, axis, coordinate) {
+            if self.define_frame(child, parent, axis, coordinate, None) {
                 self.define_point(name, Some((base, offset)));
             }
         } else {
             let zero = self.pool.zero();
-            self.define_frame(child, parent, axis, zero);
+            self.define_frame(child, parent, axis, zero, None);
             let slide = Vector {
                 parts: vec![(parent, axis)],
             }
@@ -443,6 +473,141 @@ impl Resolver {
             let offset = offset.add(&slide, &mut self.pool);
             self.define_point(name, Some((base, offset)));
         }
+    }
+
+    /// `joint spherical J { parent: F, child: B, at: P };` turns `B` from
+    /// `F` by the unit quaternion `(J_qx, J_qy, J_qz, J_qw)` about the point
+    /// `J = P`, with the speeds `J_wx, J_wy, J_wz` (angular velocity in
+    /// `B`'s axes); `joint free J { parent: N, child: B, at: P };` also
+    /// moves the point `J = P + J_x N.x + J_y N.y + J_z N.z`, first in the
+    /// coordinates, with the speeds `J_vx, J_vy, J_vz` (its velocity in
+    /// `B`'s axes) before the angular ones.
+    fn ball_joint(&mut self, name: &Ident, fields: &[Field], free: bool) {
+        let what = if free {
+            "free joint"
+        } else {
+            "spherical joint"
+        };
+        let [parent_field, child, at] =
+            self.fields(name, what, fields, ["parent", "child", "at"]);
+        let parent = parent_field.and_then(|e| self.frame(e));
+        let at_value = at.and_then(|e| self.point_value(e, GEOMETRY));
+        if let (true, Some(parent), Some(e)) = (free, parent, parent_field)
+            && parent != NEWTONIAN
+        {
+            self.errors.push(
+                e.range(),
+                "a free joint joins a floating body to the ground: its parent must be `N` \
+                 (a body on another body needs a spherical joint, or a free joint and a \
+                 constraint)",
+            );
+        }
+        if let (true, Some((base, offset)), Some(e)) = (free, &at_value, at)
+            && self.point_moves(*base, offset)
+        {
+            self.errors.push(
+                e.range(),
+                "a free joint's `at` must be a point fixed in `N` (its origin's position \
+                 is measured from there)",
+            );
+        }
+        let child = child.and_then(|e| match e {
+            Expr::Name(ident) => Some(ident),
+            other => {
+                self.errors
+                    .push(other.range(), "expected the name of the new child frame");
+                None
+            }
+        });
+        let (Some(parent), Some((base, offset)), Some(child)) = (parent, at_value, child) else {
+            self.define(name, Binding::Invalid);
+            if let Some(Expr::Name(child)) =
+                fields.iter().find(|f| f.name == "child").map(|f| &f.value)
+            {
+                self.define(child, Binding::Invalid);
+            }
+            return;
+        };
+        let named = |suffix: &str| Ident::new(&format!("{name}_{suffix}"), name.span());
+        let position = free.then(|| ["x", "y", "z"].map(|c| self.joint_coordinate(&named(c))));
+        let quaternion = ["qx", "qy", "qz", "qw"].map(|c| self.joint_coordinate(&named(c)));
+        let velocity = free.then(|| ["vx", "vy", "vz"].map(|c| self.add_speed(&named(c), false)));
+        let angular = ["wx", "wy", "wz"].map(|c| self.add_speed(&named(c), false));
+        let q = quaternion.map(|i| self.pool.sym(Sym::Coord(i)));
+        let omega = angular.map(|k| self.pool.sym(Sym::Speed(k)));
+        let rates = quaternion::rates(&mut self.pool, q, omega);
+        for (&i, rate) in quaternion.iter().zip(rates) {
+            self.pool.set_rate(i, rate);
+        }
+        let mut origin = offset;
+        if let (Some(position), Some(velocity)) = (position, velocity) {
+            // ṙ = R v: the origin's velocity, given in the child's axes.
+            let r = quaternion::rotation(&mut self.pool, q);
+            let v = velocity.map(|k| self.pool.sym(Sym::Speed(k)));
+            for (i, &coordinate) in position.iter().enumerate() {
+                let terms: Vec<ExprId> = (0..3).map(|j| self.pool.mul(r[i][j], v[j])).collect();
+                let rate = self.pool.sum(terms);
+                self.pool.set_rate(coordinate, rate);
+            }
+            let components = position.map(|i| self.pool.sym(Sym::Coord(i)));
+            let moved = Vector {
+                parts: vec![(parent, components)],
+            };
+            origin = origin.add(&moved, &mut self.pool);
+        }
+        let ball = self.model.balls.len();
+        let axis = unit_axis(&self.pool, 0);
+        let zero = self.pool.zero();
+        if self.define_frame(child, parent, axis, zero, Some(ball))
+            && self.define_point(name, Some((base, origin)))
+        {
+            let as_index = |a: [u32; 3]| a.map(|i| i as usize);
+            self.model.balls.push(Ball {
+                frame: FrameId(self.model.frames.len() - 1),
+                origin: PointId(self.model.points.len() - 1),
+                quaternion: quaternion.map(|i| i as usize),
+                angular: as_index(angular),
+                translation: position.zip(velocity).map(|(p, v)| (as_index(p), as_index(v))),
+            });
+        }
+    }
+
+    /// Declares a coordinate a joint makes (its speed comes with the joint).
+    fn joint_coordinate(&mut self, name: &Ident) -> u32 {
+        let index = self.model.coordinates.len() as u32;
+        self.model.coordinates.push(name.clone());
+        self.define(name, Binding::Scalar(Sym::Coord(index)));
+        index
+    }
+
+    /// Whether the point `base + offset` moves in `N` (depends on a
+    /// coordinate or `t`, or lies along a frame that turns).
+    fn point_moves(&mut self, base: PointId, offset: &Vector) -> bool {
+        let moving = SymKinds::COORD | SymKinds::TIME;
+        let mut parts = offset.parts.clone();
+        let mut point = base;
+        while let Some((next, offset)) = &self.model.points[point.0].placement {
+            parts.extend(offset.parts.iter().cloned());
+            point = *next;
+        }
+        parts.iter().any(|(frame, components)| {
+            components
+                .iter()
+                .any(|&c| self.pool.kinds(c).intersects(moving))
+                || self.frame_turns(*frame)
+        })
+    }
+
+    /// Whether `frame` turns in `N`.
+    fn frame_turns(&self, mut frame: FrameId) -> bool {
+        while let Some(placement) = &self.model.frames[frame.0].placement {
+            let kinds = self.pool.kinds(placement.angle);
+            if placement.ball.is_some() || !SymKinds::PARAM.contains(kinds) {
+                return true;
+            }
+            frame = placement.parent;
+        }
+        false
     }
 
     fn torque(&mut self, value: &Expr, on: &Expr, reacting: Option<&Expr>) {
@@ -504,7 +669,12 @@ impl Resolver {
     /// the coordinates, or the coefficients of the speeds of a
     /// nonholonomic one) depends on time.
     fn jacobian_depends_on_time(&mut self, residual: ExprId, nonholonomic: bool) -> bool {
-        (0..self.model.coordinates.len() as u32).any(|i| {
+        let count = if nonholonomic {
+            self.model.speeds.len()
+        } else {
+            self.model.coordinates.len()
+        };
+        (0..count as u32).any(|i| {
             let by = if nonholonomic {
                 Sym::Speed(i)
             } else {
@@ -572,7 +742,7 @@ impl Resolver {
     }
 
     fn linear_in_speeds(&mut self, residual: ExprId) -> bool {
-        (0..self.model.coordinates.len() as u32).all(|i| {
+        (0..self.model.speeds.len() as u32).all(|i| {
             let coefficient = self.pool.diff(residual, Sym::Speed(i));
             !self.pool.kinds(coefficient).intersects(SymKinds::SPEED)
         })
@@ -774,6 +944,7 @@ impl Resolver {
         parent: FrameId,
         axis: [ExprId; 3],
         angle: ExprId,
+        ball: Option<usize>,
     ) -> bool {
         let id = FrameId(self.model.frames.len());
         let new = self.define(name, Binding::Frame(id));
@@ -783,6 +954,7 @@ impl Resolver {
                     parent,
                     axis,
                     angle,
+                    ball,
                 }),
             });
         }
