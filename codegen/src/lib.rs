@@ -181,22 +181,28 @@ fn check_equations(model: &model::Model, equations: &equations::Equations) -> sy
     check_inertia(model, equations)
 }
 
-/// Every coordinate must move some mass: a coordinate whose diagonal entry
+/// Every speed must move some mass: a coordinate (or speed) whose diagonal entry
 /// of `M` is zero (and that no constraint ties) makes `M` singular
 /// everywhere. Reported at the coordinate's declaration.
 fn check_inertia(model: &model::Model, equations: &equations::Equations) -> syn::Result<()> {
-    let mut errors = (0..model.nq()).filter_map(|k| {
+    let mut errors = (0..model.nv()).filter_map(|k| {
         let massless = model.pool.is_zero(equations.mass_matrix[k][k]);
         let constrained = equations
             .constraint_jacobian
             .iter()
             .any(|row| !model.pool.is_zero(row[k]));
         (massless && !constrained).then(|| {
-            let name = &model.coordinates[k];
+            let speed = &model.speeds[k];
+            let name = &speed.name;
+            let what = if speed.rate_of_coordinate {
+                "coordinate"
+            } else {
+                "speed"
+            };
             syn::Error::new(
                 name.span(),
                 format!(
-                    "the coordinate `{name}` moves no mass, so the mass matrix is singular \
+                    "the {what} `{name}` moves no mass, so the mass matrix is singular \
                      everywhere: make a body or particle depend on it, or remove it"
                 ),
             )

@@ -44,7 +44,7 @@ pub fn emit(
 ) -> TokenStream {
     let names = names(model, target);
     let name = &model.name;
-    let nq = model.nq();
+    let (nq, nv) = (model.nq(), model.nv());
     let nu = model.inputs.len();
     let nc = model.constraints.len();
     let mut items = vec![
@@ -52,7 +52,7 @@ pub fn emit(
         emit_forcing(model, equations, &names),
         emit_energies(model, equations, &names),
         emit_constraints(model, equations, &names),
-        configuration::emit_configuration(model.nq()),
+        configuration::emit_configuration(model, &names),
     ];
     let strukt = emit_struct(model, &documentation.docs);
     let constants = emit_constants(model, &documentation.text);
@@ -61,7 +61,7 @@ pub fn emit(
             let solver = solve::emit_accelerations(model, equations);
             let has_solver = !solver.is_empty();
             items.push(solver);
-            emit_trait_impls(name, nq, nu, nc, has_solver)
+            emit_trait_impls(name, [nq, nv, nu, nc], has_solver)
         }
         Target::NoStd => TokenStream::new(),
     };
@@ -77,20 +77,25 @@ pub fn emit(
 }
 
 fn names(model: &Model, target: Target) -> Names {
+    let own_speeds = model.speeds.iter().filter(|s| !s.rate_of_coordinate);
     let taken: Vec<String> = model
         .parameters
         .iter()
         .chain(&model.coordinates)
         .chain(&model.inputs)
+        .chain(own_speeds.map(|s| &s.name))
         .map(|i| i.to_string())
         .collect();
     let speeds = model
-        .coordinates
+        .speeds
         .iter()
         .enumerate()
-        .map(|(i, q)| {
+        .map(|(i, speed)| {
+            let q = &speed.name;
             let preferred = format!("{q}_dot");
-            if taken.contains(&preferred) {
+            if !speed.rate_of_coordinate {
+                q.clone()
+            } else if taken.contains(&preferred) {
                 format_ident!("qd_{}", i)
             } else {
                 Ident::new(&preferred, q.span())
@@ -149,8 +154,9 @@ fn raw_string(text: &str) -> Literal {
 }
 
 fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
-    let [nq, np, nu, nc] = [
+    let [nq, nv, np, nu, nc] = [
         model.nq(),
+        model.nv(),
         model.parameters.len(),
         model.inputs.len(),
         model.constraints.len(),
@@ -160,13 +166,13 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
     let coordinates = strings(&model.coordinates);
     let parameters = strings(&model.parameters);
     let inputs = strings(&model.inputs);
-    let speeds = coordinates.iter().map(|q| format!("dt({q})"));
+    let speeds = model.speeds.iter().map(|s| s.written());
     let equations = raw_string(equations_text);
     quote! {
         /// Number of generalized coordinates.
         pub const NQ: usize = #nq;
-        /// Number of speeds (the coordinates' rates).
-        pub const NV: usize = #nq;
+        /// Number of speeds.
+        pub const NV: usize = #nv;
         /// Number of inputs.
         pub const NU: usize = #nu;
         /// Number of constraints.
@@ -174,7 +180,7 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
         /// Names of the generalized coordinates, in index order.
         pub const COORDINATES: [&'static str; #nq] = [#(#coordinates),*];
         /// Names of the speeds, in index order.
-        pub const SPEEDS: [&'static str; #nq] = [#(#speeds),*];
+        pub const SPEEDS: [&'static str; #nv] = [#(#speeds),*];
         /// Names of the parameters, in field order.
         pub const PARAMETERS: [&'static str; #np] = [#(#parameters),*];
         /// Names of the inputs, in index order.
@@ -227,18 +233,19 @@ fn rows(outputs: &[TokenStream], width: usize) -> Vec<TokenStream> {
 }
 
 fn emit_mass_matrix(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let nq = model.nq();
+    let nv = model.nv();
     let roots: Vec<_> = equations.mass_matrix.iter().flatten().copied().collect();
     let body = straight_line(&model.pool, names, &roots);
     let Reads { q, .. } = reads(&body);
-    let (vector, statements, rows) = (array(nq), &body.statements, rows(&body.outputs, nq));
-    let nq = Literal::usize_unsuffixed(nq);
+    let (coordinates, statements, rows) =
+        (array(model.nq()), &body.statements, rows(&body.outputs, nv));
+    let (vector, nv) = (array(nv), Literal::usize_unsuffixed(nv));
     quote! {
         /// The mass matrix `M(q)` (symmetric, positive definite where the
         /// coordinates are independent).
         #[inline]
         #[must_use]
-        pub fn mass_matrix(&self, #q: &#vector) -> [#vector; #nq] {
+        pub fn mass_matrix(&self, #q: &#coordinates) -> [#vector; #nv] {
             #statements
             [#(#rows),*]
         }
@@ -248,14 +255,15 @@ fn emit_mass_matrix(model: &Model, equations: &Equations, names: &Names) -> Toke
 fn emit_forcing(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
     let body = straight_line(&model.pool, names, &equations.forcing);
     let Reads { t, q, qd, u } = reads(&body);
-    let (vector, inputs) = (array(model.nq()), array(model.inputs.len()));
+    let (coordinates, inputs) = (array(model.nq()), array(model.inputs.len()));
+    let vector = array(model.nv());
     let (statements, outputs) = (&body.statements, &body.outputs);
     quote! {
         /// The forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`: applied and
         /// gravity forces, minus the velocity-dependent inertia terms.
         #[inline]
         #[must_use]
-        pub fn forcing(&self, #t: f64, #q: &#vector, #qd: &#vector, #u: &#inputs) -> #vector {
+        pub fn forcing(&self, #t: f64, #q: &#coordinates, #qd: &#vector, #u: &#inputs) -> #vector {
             #statements
             [#(#outputs),*]
         }
@@ -263,7 +271,7 @@ fn emit_forcing(model: &Model, equations: &Equations, names: &Names) -> TokenStr
 }
 
 fn emit_energies(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let vector = array(model.nq());
+    let (vector, speeds) = (array(model.nq()), array(model.nv()));
     let kinetic = straight_line(&model.pool, names, &[equations.kinetic_energy]);
     let potential = straight_line(&model.pool, names, &[equations.potential_energy]);
     let Reads { q: kq, qd: kqd, .. } = reads(&kinetic);
@@ -274,7 +282,7 @@ fn emit_energies(model: &Model, equations: &Equations, names: &Names) -> TokenSt
         /// The kinetic energy `T(q, q̇)`.
         #[inline]
         #[must_use]
-        pub fn kinetic_energy(&self, #kq: &#vector, #kqd: &#vector) -> f64 {
+        pub fn kinetic_energy(&self, #kq: &#vector, #kqd: &#speeds) -> f64 {
             #ks
             #kv
         }
@@ -295,8 +303,8 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
     if nc == 0 {
         return TokenStream::new();
     }
-    let nq = model.nq();
-    let vector = array(nq);
+    let nv = model.nv();
+    let (vector, speeds) = (array(model.nq()), array(nv));
     let rows_out = array(nc);
     let roots: Vec<_> = equations
         .constraint_jacobian
@@ -306,7 +314,7 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
         .collect();
     let jacobian = straight_line(&model.pool, names, &roots);
     let Reads { q: jq, .. } = reads(&jacobian);
-    let (js, jr) = (&jacobian.statements, rows(&jacobian.outputs, nq));
+    let (js, jr) = (&jacobian.statements, rows(&jacobian.outputs, nv));
     let nc = Literal::usize_unsuffixed(nc);
     let bias = straight_line(&model.pool, names, &equations.constraint_bias);
     let Reads {
@@ -332,7 +340,7 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
         /// rows in declaration order.
         #[inline]
         #[must_use]
-        pub fn constraint_jacobian(&self, #jq: &#vector) -> [#vector; #nc] {
+        pub fn constraint_jacobian(&self, #jq: &#vector) -> [#speeds; #nc] {
             #js
             [#(#jr),*]
         }
@@ -340,7 +348,7 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
         /// The constraint bias `b(t, q, q̇)` of `A q̈ = b`.
         #[inline]
         #[must_use]
-        pub fn constraint_bias(&self, #bt: f64, #bq: &#vector, #bqd: &#vector) -> #rows_out {
+        pub fn constraint_bias(&self, #bt: f64, #bq: &#vector, #bqd: &#speeds) -> #rows_out {
             #bs
             [#(#bo),*]
         }
@@ -359,7 +367,7 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
         /// itself. Zero on the constraint manifold.
         #[inline]
         #[must_use]
-        pub fn constraint_velocity(&self, #vt: f64, #vq: &#vector, #vqd: &#vector) -> #rows_out {
+        pub fn constraint_velocity(&self, #vt: f64, #vq: &#vector, #vqd: &#speeds) -> #rows_out {
             #vs
             [#(#vo),*]
         }
@@ -368,22 +376,18 @@ fn emit_constraints(model: &Model, equations: &Equations, names: &Names) -> Toke
 
 /// The runtime's traits, forwarding to the inherent functions (and to the
 /// emitted `accelerations` when the system has one).
-fn emit_trait_impls(
-    name: &Ident,
-    nq: usize,
-    nu: usize,
-    nc: usize,
-    has_solver: bool,
-) -> TokenStream {
-    let (vector, inputs, rows_out) = (array(nq), array(nu), array(nc));
-    let [nq, nu, nc_lit] = [nq, nu, nc].map(Literal::usize_unsuffixed);
+fn emit_trait_impls(name: &Ident, sizes: [usize; 4], has_solver: bool) -> TokenStream {
+    let [nq, nv, nu, nc] = sizes;
+    let (coordinates, vector) = (array(nq), array(nv));
+    let (inputs, rows_out) = (array(nu), array(nc));
+    let [nq, nv, nu, nc_lit] = [nq, nv, nu, nc].map(Literal::usize_unsuffixed);
     let accelerations = if has_solver {
         quote! {
             #[inline]
             fn accelerations(
                 &self,
                 t: f64,
-                q: &#vector,
+                q: &#coordinates,
                 v: &#vector,
                 u: &#inputs,
             ) -> ::core::result::Result<#vector, ::dalembert::DynamicsError> {
@@ -394,32 +398,32 @@ fn emit_trait_impls(
         TokenStream::new()
     };
     let system = quote! {
-        impl ::dalembert::MultibodySystem<#nq, #nq, #nu> for #name {
+        impl ::dalembert::MultibodySystem<#nq, #nv, #nu> for #name {
             const COORDINATES: [&'static str; #nq] = #name::COORDINATES;
-            const SPEEDS: [&'static str; #nq] = #name::SPEEDS;
+            const SPEEDS: [&'static str; #nv] = #name::SPEEDS;
             const INPUTS: [&'static str; #nu] = #name::INPUTS;
             #[inline]
-            fn mass_matrix(&self, q: &#vector) -> [#vector; #nq] {
+            fn mass_matrix(&self, q: &#coordinates) -> [#vector; #nv] {
                 #name::mass_matrix(self, q)
             }
             #[inline]
-            fn forcing(&self, t: f64, q: &#vector, v: &#vector, u: &#inputs) -> #vector {
+            fn forcing(&self, t: f64, q: &#coordinates, v: &#vector, u: &#inputs) -> #vector {
                 #name::forcing(self, t, q, v, u)
             }
             #[inline]
-            fn kinetic_energy(&self, q: &#vector, v: &#vector) -> f64 {
+            fn kinetic_energy(&self, q: &#coordinates, v: &#vector) -> f64 {
                 #name::kinetic_energy(self, q, v)
             }
             #[inline]
-            fn potential_energy(&self, q: &#vector) -> f64 {
+            fn potential_energy(&self, q: &#coordinates) -> f64 {
                 #name::potential_energy(self, q)
             }
             #[inline]
-            fn coordinate_rates(&self, q: &#vector, v: &#vector) -> #vector {
+            fn coordinate_rates(&self, q: &#coordinates, v: &#vector) -> #coordinates {
                 #name::coordinate_rates(self, q, v)
             }
             #[inline]
-            fn integrate_configuration(&self, q: &#vector, v: &#vector, h: f64) -> #vector {
+            fn integrate_configuration(&self, q: &#coordinates, v: &#vector, h: f64) -> #coordinates {
                 #name::integrate_configuration(self, q, v, h)
             }
             #accelerations
@@ -430,21 +434,21 @@ fn emit_trait_impls(
     }
     quote! {
         #system
-        impl ::dalembert::ConstrainedSystem<#nq, #nq, #nu, #nc_lit> for #name {
+        impl ::dalembert::ConstrainedSystem<#nq, #nv, #nu, #nc_lit> for #name {
             #[inline]
-            fn constraint_jacobian(&self, q: &#vector) -> [#vector; #nc_lit] {
+            fn constraint_jacobian(&self, q: &#coordinates) -> [#vector; #nc_lit] {
                 #name::constraint_jacobian(self, q)
             }
             #[inline]
-            fn constraint_bias(&self, t: f64, q: &#vector, v: &#vector) -> #rows_out {
+            fn constraint_bias(&self, t: f64, q: &#coordinates, v: &#vector) -> #rows_out {
                 #name::constraint_bias(self, t, q, v)
             }
             #[inline]
-            fn constraint_residual(&self, t: f64, q: &#vector) -> #rows_out {
+            fn constraint_residual(&self, t: f64, q: &#coordinates) -> #rows_out {
                 #name::constraint_residual(self, t, q)
             }
             #[inline]
-            fn constraint_velocity(&self, t: f64, q: &#vector, v: &#vector) -> #rows_out {
+            fn constraint_velocity(&self, t: f64, q: &#coordinates, v: &#vector) -> #rows_out {
                 #name::constraint_velocity(self, t, q, v)
             }
         }

@@ -12,7 +12,7 @@ use quote::{ToTokens, format_ident, quote};
 
 /// `pub fn accelerations(..)`, for systems without constraints.
 pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
-    let nq = model.nq();
+    let nq = model.nv();
     if !model.constraints.is_empty() || nq == 0 {
         return TokenStream::new();
     }
@@ -22,6 +22,7 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
     let backward = backward_substitution(&pattern);
     let solution: Vec<Ident> = (0..nq).map(|i| format_ident!("x{}", i)).collect();
     let (n_lit, nu) = (index(nq), index(model.inputs.len()));
+    let coordinates = index(model.nq());
     let diagonal = (0..nq).map(|i| mass(i, i));
     let rows = (0..nq).map(|i| {
         let row = (0..nq).map(|j| match j == i || (j < i && pattern[i][j]) {
@@ -42,7 +43,7 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
         pub fn accelerations(
             &self,
             t: f64,
-            q: &[f64; #n_lit],
+            q: &[f64; #coordinates],
             qd: &[f64; #n_lit],
             u: &[f64; #nu],
         ) -> ::core::result::Result<[f64; #n_lit], ::dalembert::DynamicsError> {
@@ -75,7 +76,7 @@ pub fn emit_accelerations(model: &Model, equations: &Equations) -> TokenStream {
 /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero — `Mᵢⱼ` is not
 /// structurally zero, or fill-in through an earlier column.
 fn fill_pattern(model: &Model, equations: &Equations) -> Vec<Vec<bool>> {
-    let nq = model.nq();
+    let nq = model.nv();
     let mut pattern: Vec<Vec<bool>> = (0..nq)
         .map(|i| {
             (0..=i)

@@ -50,6 +50,12 @@ impl Pool {
         }
     }
 
+    /// The rates set by [`set_rate`](Pool::set_rate), by coordinate (empty
+    /// while every rate is its own speed).
+    pub fn rates(&self) -> &[ExprId] {
+        &self.rates
+    }
+
     /// Whether every coordinate's rate is its own speed (`q̇ᵢ = vᵢ`): no
     /// [`set_rate`](Pool::set_rate) so far.
     pub fn rates_are_speeds(&self) -> bool {

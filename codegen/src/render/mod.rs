@@ -100,7 +100,13 @@ struct Section {
 impl Document {
     /// Renders every part of `equations` in `style`.
     fn new(model: &Model, equations: &Equations, pool: &mut Pool, style: Style) -> Document {
-        let names = SymbolNames::new(&model.parameters, &model.coordinates, &model.inputs);
+        let mut names = SymbolNames::new(&model.parameters, &model.coordinates, &model.inputs);
+        if !pool.rates_are_speeds() {
+            let speeds = model.speeds.iter();
+            names = names.with_speeds(
+                speeds.map(|s| (&s.name as &dyn std::fmt::Display, s.rate_of_coordinate)),
+            );
+        }
         let equations = &equations.ungrouped(pool);
         let forms = readable_forms(pool, &entries(equations));
         let mut renderer = Renderer {
