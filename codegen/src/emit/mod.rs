@@ -167,11 +167,16 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
     let parameters = strings(&model.parameters);
     let inputs = strings(&model.inputs);
     let speeds = model.speeds.iter().map(|s| s.written());
+    let nv_doc = if model.pool.rates_are_speeds() {
+        " Number of speeds (the coordinates' rates)."
+    } else {
+        " Number of speeds (`v`, with `q̇ = N(q) v`)."
+    };
     let equations = raw_string(equations_text);
     quote! {
         /// Number of generalized coordinates.
         pub const NQ: usize = #nq;
-        /// Number of speeds.
+        #[doc = #nv_doc]
         pub const NV: usize = #nv;
         /// Number of inputs.
         pub const NU: usize = #nu;
