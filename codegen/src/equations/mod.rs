@@ -379,4 +379,6 @@ fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
 pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;
+#[cfg(test)]
+mod quaternion_check;
 mod recursive;

@@ -119,7 +119,8 @@ mod tests {
 
     #[test]
     fn rates_turn_the_frame_at_omega_in_its_axes() {
-        // Ṙ = R [ω]×, with Ṙ by the chain rule through q̇ = rates(q, ω).
+        // Ṙ = R [ω]×, with Ṙ by the chain rule through q̇ = rates(q, ω),
+        // for a quaternion that is not unit too.
         let mut pool = Pool::new();
         let q = [0, 1, 2, 3].map(|i| pool.sym(Sym::Coord(i)));
         let omega = [0, 1, 2].map(|i| pool.sym(Sym::Speed(i)));
@@ -136,9 +137,9 @@ mod tests {
                         at(&pool, d) * at(&pool, qd[c])
                     })
                     .sum();
-                // (R [ω]×)ᵢⱼ = Σₖ Rᵢₖ εₖₘⱼ ωₘ
+                // (R [ω]×)ᵢⱼ = Rᵢₐ ω_b − R_ib ωₐ for (j, a, b) cyclic.
                 let (a, b) = ((j + 1) % 3, (j + 2) % 3);
-                let expected = at(&pool, r[i][b]) * w[a] - at(&pool, r[i][a]) * w[b];
+                let expected = at(&pool, r[i][a]) * w[b] - at(&pool, r[i][b]) * w[a];
                 assert!((rate - expected).abs() < 1e-14, "Ṙ[{i}][{j}]");
             }
         }
