@@ -131,7 +131,14 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
     let shared = |i: usize, j: usize| (0..j).filter(move |&k| pattern[i][k] && pattern[j][k]);
-    for (j, coordinate) in model.coordinates.iter().enumerate().take(nq) {
+    // The pivot's name, as the runtime's solver reports it: the coordinate
+    // when every speed is its coordinate's rate, else the speed.
+    let names: Vec<String> = if model.nq() == model.nv() {
+        model.coordinates.iter().map(|c| c.to_string()).collect()
+    } else {
+        model.speeds.iter().map(|s| s.written()).collect()
+    };
+    for (j, coordinate) in names.iter().enumerate().take(nq) {
         let jj = index(j);
         let diagonal = mass(j, j);
         let pivot = minus_products(
@@ -142,7 +149,6 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
             }),
         );
         let (p, r) = (format_ident!("p{}", j), format_ident!("r{}", j));
-        let coordinate = coordinate.to_string();
         out.extend(quote! {
             let #p = #pivot;
             if !(#p > tolerance) {

@@ -174,7 +174,9 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
             Statement::Particle { name, fields }
         }
         keyword::JOINT => {
-            let kind = cursor.expect_ident("the joint's kind (`revolute` or `prismatic`)")?;
+            let kind = cursor.expect_ident(
+                "the joint's kind (`revolute`, `prismatic`, `spherical` or `free`)",
+            )?;
             let (name, fields) = named_fields(cursor, &keyword)?;
             Statement::Joint { kind, name, fields }
         }
@@ -563,7 +565,7 @@ mod tests {
             ),
             (
                 "S { joint { }; }",
-                "expected the joint's kind (`revolute` or `prismatic`), found `{`",
+                "expected the joint's kind (`revolute`, `prismatic`, `spherical` or `free`), found `{`",
                 10,
             ),
             (
