@@ -120,6 +120,11 @@ model!(
     /// A small robot with every feature of the URDF import.
     features
 );
+model!(
+    /// Solo12 on a floating base (`dalembert urdf solo12.urdf --floating`,
+    /// checked in as `models/floating_solo12.dal`): 19 coordinates, 18 speeds.
+    floating_solo12
+);
 
 // The same chains in the other two spellings (`dalembert chain FAMILY N symbolic|seed`);
 // tests/spellings.rs checks them against Pinocchio's numbers and against each other,
@@ -210,6 +215,7 @@ pub use seed_spatial_chain_02::SeedSpatialChain2;
 pub use seed_spatial_chain_06::SeedSpatialChain6;
 pub use seed_spatial_chain_12::SeedSpatialChain12;
 pub use seed_spatial_chain_30::SeedSpatialChain30;
+pub use floating_solo12::FloatingSolo;
 pub use solo12::Solo;
 pub use spatial_chain_01::SpatialChain1;
 pub use spatial_chain_02::SpatialChain2;

@@ -5,7 +5,7 @@
 //! accelerations of the generated `accelerations` method (ABA's `q̈`).
 //! And the imported model text, for review, as insta snapshots.
 
-use dalembert_generated::{FeatureTree, Panda, Solo, Ur5};
+use dalembert_generated::{FeatureTree, FloatingSolo, Panda, Solo, Ur5};
 use serde_json::Value;
 
 /// Relative agreement required, against the largest entry of the quantity.
@@ -98,6 +98,27 @@ fn ur5_matches_pinocchio() {
 #[test]
 fn solo12_matches_pinocchio() {
     check!(Solo, "solo12");
+}
+
+#[test]
+fn floating_solo12_matches_pinocchio_free_flyer() {
+    check!(FloatingSolo, "solo12_floating");
+}
+
+/// The checked-in floating model is what the importer writes today.
+#[test]
+fn floating_solo12_is_the_imported_model() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let model = dalembert_codegen::Urdf::read(root.join("../tests/reference/urdf/solo12.urdf"))
+        .map(|urdf| urdf.floating(true).name("FloatingSolo"))
+        .and_then(|urdf| urdf.model())
+        .expect("imports");
+    let checked_in = std::fs::read_to_string(root.join("models/floating_solo12.dal"))
+        .expect("models/floating_solo12.dal");
+    assert_eq!(
+        model, checked_in,
+        "regenerate with `dalembert urdf tests/reference/urdf/solo12.urdf --floating --name FloatingSolo`"
+    );
 }
 
 #[test]
