@@ -23,6 +23,11 @@ fn numbers(v: &Value) -> Vec<f64> {
     }
 }
 
+/// The numbers of `v` as an array of the length the caller needs.
+fn array<const N: usize>(v: &Value) -> [f64; N] {
+    numbers(v).try_into().expect("as many entries as the system has")
+}
+
 /// Checks `max |got − want| ≤ TOLERANCE · max |want|`; returns the ratio.
 fn assert_close(what: &str, got: &[f64], want: &[f64]) -> f64 {
     assert_eq!(got.len(), want.len(), "{what}: length");
@@ -60,8 +65,11 @@ macro_rules! check {
         let mut worst = [0.0_f64; 5];
         for (index, state) in model["states"].as_array().unwrap().iter().enumerate() {
             let what = |field: &str| format!("{} state {index} {field}", $robot);
-            let array = |field: &str| numbers(&state[field]).try_into().expect("n entries");
-            let (q, qd, tau) = (array("q"), array("qd"), array("tau"));
+            let (q, qd, tau) = (
+                array(&state["q"]),
+                array(&state["qd"]),
+                array(&state["tau"]),
+            );
             let mass = system.mass_matrix(&q);
             let f = system.forcing(0.0, &q, &qd, &tau);
             let t = system.kinetic_energy(&q, &qd);
