@@ -39,6 +39,29 @@ dalembert::dalembert! {
     }
 }
 
+dalembert::dalembert! {
+    /// A heavy top on a ball joint at `O`, its centre off its symmetry axis.
+    pub QuaternionTop {
+        parameters m, a, c, I1, I2, I3, g;
+        joint spherical ball { parent: N, child: B, at: O };
+        body top { mass: m, center: ball + a * B.z + c * B.x, frame: B, inertia: [I1, I2, I3] };
+        gravity -g * N.z;
+    }
+}
+
+dalembert::dalembert! {
+    /// The same top in Z-Y-X Euler angles.
+    pub EulerTop {
+        parameters m, a, c, I1, I2, I3, g;
+        coordinates psi, theta, phi;
+        frame A = N.rotate_z(psi);
+        frame C = A.rotate_y(theta);
+        frame B = C.rotate_x(phi);
+        body top { mass: m, center: O + a * B.z + c * B.x, frame: B, inertia: [I1, I2, I3] };
+        gravity -g * N.z;
+    }
+}
+
 /// `R(q)` for a unit quaternion `(x, y, z, w)`: body to `N` components.
 fn rotation([x, y, z, w]: [f64; 4]) -> [[f64; 3]; 3] {
     [
@@ -268,4 +291,62 @@ fn euler_angles_stop_at_gimbal_lock_naming_the_coordinate() {
     let (s, c) = (std::f64::consts::FRAC_PI_4).sin_cos();
     let q = [0.0, s, 0.0, c];
     assert!(accelerations(&DZHANIBEKOV, 0.0, &q, &[0.1, 0.2, 0.3], &[]).is_ok());
+}
+
+/// `a ⊗ b` for quaternions `(x, y, z, w)`.
+fn product(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    [
+        a[3] * b[0] + b[3] * a[0] + a[1] * b[2] - a[2] * b[1],
+        a[3] * b[1] + b[3] * a[1] + a[2] * b[0] - a[0] * b[2],
+        a[3] * b[2] + b[3] * a[2] + a[0] * b[1] - a[1] * b[0],
+        a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2],
+    ]
+}
+
+#[test]
+fn a_heavy_top_in_quaternions_moves_as_in_euler_angles() {
+    let (m, a, c, i1, i2, i3, g) = (1.3, 0.4, 0.15, 0.02, 0.025, 0.012, 9.81);
+    let quaternions = QuaternionTop { m, a, c, I1: i1, I2: i2, I3: i3, g };
+    let euler = EulerTop { m, a, c, I1: i1, I2: i2, I3: i3, g };
+    for (angles, rates) in [
+        ([0.3, 0.5, -0.7], [2.0, -1.0, 15.0]),
+        ([-1.2, -0.9, 2.5], [0.5, 3.0, -8.0]),
+        ([2.8, 1.2, 0.1], [-4.0, 0.7, 1.0]),
+    ] {
+        let [psi, theta, phi] = angles;
+        let [dpsi, dtheta, dphi] = rates;
+        // The attitude R_z(ψ) R_y(θ) R_x(φ) as a quaternion.
+        let half = |x: f64| (x / 2.0).sin_cos();
+        let ((sz, cz), (sy, cy), (sx, cx)) = (half(psi), half(theta), half(phi));
+        let q = product(product([0.0, 0.0, sz, cz], [0.0, sy, 0.0, cy]), [sx, 0.0, 0.0, cx]);
+        // Body rates ω = W(θ, φ) (ψ̇, θ̇, φ̇) and their derivative.
+        let ((st, ct), (sp, cp)) = (theta.sin_cos(), phi.sin_cos());
+        let omega = [
+            dphi - dpsi * st,
+            dtheta * cp + dpsi * ct * sp,
+            -dtheta * sp + dpsi * ct * cp,
+        ];
+        let e = dalembert::accelerations(&euler, 0.0, &angles, &rates, &[]).expect("no gimbal lock");
+        let [ddpsi, ddtheta, ddphi] = e;
+        let expected = [
+            ddphi - ddpsi * st - dpsi * dtheta * ct,
+            ddtheta * cp - dtheta * dphi * sp + ddpsi * ct * sp - dpsi * dtheta * st * sp
+                + dpsi * dphi * ct * cp,
+            -ddtheta * sp - dtheta * dphi * cp + ddpsi * ct * cp - dpsi * dtheta * st * cp
+                - dpsi * dphi * ct * sp,
+        ];
+        let got = dalembert::accelerations(&quaternions, 0.0, &q, &omega, &[]).expect("solvable");
+        let scale = norm(&expected);
+        for i in 0..3 {
+            assert!(
+                (got[i] - expected[i]).abs() <= 1e-10 * scale,
+                "ω̇[{i}]: {} vs {}",
+                got[i],
+                expected[i]
+            );
+        }
+        let (t1, t2) = (quaternions.kinetic_energy(&q, &omega), euler.kinetic_energy(&angles, &rates));
+        let (v1, v2) = (quaternions.potential_energy(&q), euler.potential_energy(&angles));
+        assert!((t1 - t2).abs() <= 1e-12 * t2.abs() && (v1 - v2).abs() <= 1e-12 * v2.abs().max(1.0));
+    }
 }
