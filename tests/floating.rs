@@ -65,9 +65,21 @@ dalembert::dalembert! {
 /// `R(q)` for a unit quaternion `(x, y, z, w)`: body to `N` components.
 fn rotation([x, y, z, w]: [f64; 4]) -> [[f64; 3]; 3] {
     [
-        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
-        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
-        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y - w * z),
+            2.0 * (x * z + w * y),
+        ],
+        [
+            2.0 * (x * y + w * z),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z - w * x),
+        ],
+        [
+            2.0 * (x * z - w * y),
+            2.0 * (y * z + w * x),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
     ]
 }
 
@@ -105,11 +117,15 @@ fn the_api_has_seven_coordinates_and_six_speeds() {
     assert_eq!((Thrown::NQ, Thrown::NV), (7, 6));
     assert_eq!(
         Thrown::COORDINATES,
-        ["base_x", "base_y", "base_z", "base_qx", "base_qy", "base_qz", "base_qw"]
+        [
+            "base_x", "base_y", "base_z", "base_qx", "base_qy", "base_qz", "base_qw"
+        ]
     );
     assert_eq!(
         Thrown::SPEEDS,
-        ["base_vx", "base_vy", "base_vz", "base_wx", "base_wy", "base_wz"]
+        [
+            "base_vx", "base_vy", "base_vz", "base_wx", "base_wy", "base_wz"
+        ]
     );
     assert_eq!(Tumbler::SPEEDS, ["ball_wx", "ball_wy", "ball_wz"]);
 }
@@ -121,14 +137,14 @@ fn the_emitted_equations_are_newton_and_euler_in_body_axes() {
     let Thrown { m, I1, I3, g } = THROWN;
     let mass = THROWN.mass_matrix(&q);
     let inertia = [I1, I1, I3];
-    for k in 0..6 {
-        for j in 0..6 {
+    for (k, row) in mass.iter().enumerate() {
+        for (j, entry) in row.iter().enumerate() {
             let expected = match k == j {
                 true if k < 3 => m,
                 true => inertia[k - 3],
                 false => 0.0,
             };
-            assert!((mass[k][j] - expected).abs() < 1e-14, "M[{k}][{j}]");
+            assert!((entry - expected).abs() < 1e-14, "M[{k}][{j}]");
         }
     }
     // f = (m Rᵀ g − m ω × v, −ω × I ω)
@@ -177,7 +193,12 @@ fn the_configuration_update_is_exact_and_keeps_the_quaternion_unit() {
         q = THROWN.integrate_configuration(&q, &start.v, 2e-3);
     }
     for i in 0..7 {
-        assert!((once[i] - q[i]).abs() < 1e-12, "q[{i}]: {} vs {}", once[i], q[i]);
+        assert!(
+            (once[i] - q[i]).abs() < 1e-12,
+            "q[{i}]: {} vs {}",
+            once[i],
+            q[i]
+        );
     }
     assert!((norm(&once[3..]) - 1.0).abs() < 1e-15);
     // A quaternion that is not unit in a call is normalised by the update
@@ -185,8 +206,8 @@ fn the_configuration_update_is_exact_and_keeps_the_quaternion_unit() {
     let mut long = start.q;
     long[3..].iter_mut().for_each(|c| *c *= 3.0);
     let still = THROWN.integrate_configuration(&long, &[0.0; 6], 0.1);
-    for i in 0..7 {
-        assert!((still[i] - start.q[i]).abs() < 1e-15, "q[{i}]");
+    for (i, (got, expected)) in still.iter().zip(start.q).enumerate() {
+        assert!((got - expected).abs() < 1e-15, "q[{i}]");
     }
 }
 
@@ -211,10 +232,14 @@ fn a_thrown_body_follows_the_parabola_and_precesses_about_its_axis() {
         .end;
     // The centre: r₀ + v₀ t − ½ g t² N.z, with v₀ = R₀ v.
     let v0 = mat_vec(&rotation(quaternion(&start.q[3..])), [1.0, 0.5, 3.0]);
-    for i in 0..3 {
+    for (i, v0) in v0.into_iter().enumerate() {
         let gravity = if i == 2 { -0.5 * THROWN.g * t * t } else { 0.0 };
-        let expected = start.q[i] + v0[i] * t + gravity;
-        assert!((end.q[i] - expected).abs() < 1e-9, "r[{i}] {} vs {expected}", end.q[i]);
+        let expected = start.q[i] + v0 * t + gravity;
+        assert!(
+            (end.q[i] - expected).abs() < 1e-9,
+            "r[{i}] {} vs {expected}",
+            end.q[i]
+        );
     }
     // Torque-free and axisymmetric: ω₃ constant, (ω₁, ω₂) turning at
     // λ = (I₃ − I₁) ω₃ / I₁ in body axes.
@@ -222,8 +247,8 @@ fn a_thrown_body_follows_the_parabola_and_precesses_about_its_axis() {
     let lambda = (THROWN.I3 - THROWN.I1) * w3 / THROWN.I1;
     let (s, c) = (lambda * t).sin_cos();
     let expected = [w1 * c - w2 * s, w1 * s + w2 * c, w3];
-    for i in 0..3 {
-        assert!((end.v[3 + i] - expected[i]).abs() < 1e-9, "ω[{i}]");
+    for (i, expected) in expected.into_iter().enumerate() {
+        assert!((end.v[3 + i] - expected).abs() < 1e-9, "ω[{i}]");
     }
 }
 
@@ -235,7 +260,11 @@ const DZHANIBEKOV: Tumbler = Tumbler {
 
 /// The angular momentum `R I ω` in `N`'s axes.
 fn momentum(q: &[f64; 4], v: &[f64; 3]) -> [f64; 3] {
-    let body = [DZHANIBEKOV.I1 * v[0], DZHANIBEKOV.I2 * v[1], DZHANIBEKOV.I3 * v[2]];
+    let body = [
+        DZHANIBEKOV.I1 * v[0],
+        DZHANIBEKOV.I2 * v[1],
+        DZHANIBEKOV.I3 * v[2],
+    ];
     mat_vec(&rotation(*q), body)
 }
 
@@ -251,21 +280,31 @@ fn dzhanibekov_flips_while_energy_and_momentum_stay() {
         v: [1e-3, 2.0, 1e-3],
     };
     let dynamics = Unconstrained::without_inputs(&DZHANIBEKOV);
-    let (e0, l0) = (energy(&DZHANIBEKOV, &start.q, &start.v), momentum(&start.q, &start.v));
+    let (e0, l0) = (
+        energy(&DZHANIBEKOV, &start.q, &start.v),
+        momentum(&start.q, &start.v),
+    );
     let (mut worst_energy, mut worst_momentum) = (0.0_f64, 0.0_f64);
     let mut flips = 0;
     let mut sign = 1.0;
-    adaptive(&dynamics, start, 100.0, ExplicitPair::Dop853, tight(), |s| {
-        let e = energy(&DZHANIBEKOV, &s.q, &s.v);
-        worst_energy = worst_energy.max((e - e0).abs() / e0);
-        let l = momentum(&s.q, &s.v);
-        let drift = [0, 1, 2].map(|i| l[i] - l0[i]);
-        worst_momentum = worst_momentum.max(norm(&drift) / norm(&l0));
-        if s.v[1] * sign < 0.0 {
-            flips += 1;
-            sign = -sign;
-        }
-    })
+    adaptive(
+        &dynamics,
+        start,
+        100.0,
+        ExplicitPair::Dop853,
+        tight(),
+        |s| {
+            let e = energy(&DZHANIBEKOV, &s.q, &s.v);
+            worst_energy = worst_energy.max((e - e0).abs() / e0);
+            let l = momentum(&s.q, &s.v);
+            let drift = [0, 1, 2].map(|i| l[i] - l0[i]);
+            worst_momentum = worst_momentum.max(norm(&drift) / norm(&l0));
+            if s.v[1] * sign < 0.0 {
+                flips += 1;
+                sign = -sign;
+            }
+        },
+    )
     .expect("integrates");
     println!("relative drift: energy {worst_energy:e}, momentum {worst_momentum:e}; {flips} flips");
     assert!(flips >= 4, "{flips} flips in 100 s");
@@ -306,8 +345,24 @@ fn product(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
 #[test]
 fn a_heavy_top_in_quaternions_moves_as_in_euler_angles() {
     let (m, a, c, i1, i2, i3, g) = (1.3, 0.4, 0.15, 0.02, 0.025, 0.012, 9.81);
-    let quaternions = QuaternionTop { m, a, c, I1: i1, I2: i2, I3: i3, g };
-    let euler = EulerTop { m, a, c, I1: i1, I2: i2, I3: i3, g };
+    let quaternions = QuaternionTop {
+        m,
+        a,
+        c,
+        I1: i1,
+        I2: i2,
+        I3: i3,
+        g,
+    };
+    let euler = EulerTop {
+        m,
+        a,
+        c,
+        I1: i1,
+        I2: i2,
+        I3: i3,
+        g,
+    };
     for (angles, rates) in [
         ([0.3, 0.5, -0.7], [2.0, -1.0, 15.0]),
         ([-1.2, -0.9, 2.5], [0.5, 3.0, -8.0]),
@@ -318,7 +373,10 @@ fn a_heavy_top_in_quaternions_moves_as_in_euler_angles() {
         // The attitude R_z(ψ) R_y(θ) R_x(φ) as a quaternion.
         let half = |x: f64| (x / 2.0).sin_cos();
         let ((sz, cz), (sy, cy), (sx, cx)) = (half(psi), half(theta), half(phi));
-        let q = product(product([0.0, 0.0, sz, cz], [0.0, sy, 0.0, cy]), [sx, 0.0, 0.0, cx]);
+        let q = product(
+            product([0.0, 0.0, sz, cz], [0.0, sy, 0.0, cy]),
+            [sx, 0.0, 0.0, cx],
+        );
         // Body rates ω = W(θ, φ) (ψ̇, θ̇, φ̇) and their derivative.
         let ((st, ct), (sp, cp)) = (theta.sin_cos(), phi.sin_cos());
         let omega = [
@@ -326,13 +384,15 @@ fn a_heavy_top_in_quaternions_moves_as_in_euler_angles() {
             dtheta * cp + dpsi * ct * sp,
             -dtheta * sp + dpsi * ct * cp,
         ];
-        let e = dalembert::accelerations(&euler, 0.0, &angles, &rates, &[]).expect("no gimbal lock");
+        let e =
+            dalembert::accelerations(&euler, 0.0, &angles, &rates, &[]).expect("no gimbal lock");
         let [ddpsi, ddtheta, ddphi] = e;
         let expected = [
             ddphi - ddpsi * st - dpsi * dtheta * ct,
             ddtheta * cp - dtheta * dphi * sp + ddpsi * ct * sp - dpsi * dtheta * st * sp
                 + dpsi * dphi * ct * cp,
-            -ddtheta * sp - dtheta * dphi * cp + ddpsi * ct * cp - dpsi * dtheta * st * cp
+            -ddtheta * sp - dtheta * dphi * cp + ddpsi * ct * cp
+                - dpsi * dtheta * st * cp
                 - dpsi * dphi * ct * sp,
         ];
         let got = dalembert::accelerations(&quaternions, 0.0, &q, &omega, &[]).expect("solvable");
@@ -345,8 +405,16 @@ fn a_heavy_top_in_quaternions_moves_as_in_euler_angles() {
                 expected[i]
             );
         }
-        let (t1, t2) = (quaternions.kinetic_energy(&q, &omega), euler.kinetic_energy(&angles, &rates));
-        let (v1, v2) = (quaternions.potential_energy(&q), euler.potential_energy(&angles));
-        assert!((t1 - t2).abs() <= 1e-12 * t2.abs() && (v1 - v2).abs() <= 1e-12 * v2.abs().max(1.0));
+        let (t1, t2) = (
+            quaternions.kinetic_energy(&q, &omega),
+            euler.kinetic_energy(&angles, &rates),
+        );
+        let (v1, v2) = (
+            quaternions.potential_energy(&q),
+            euler.potential_energy(&angles),
+        );
+        assert!(
+            (t1 - t2).abs() <= 1e-12 * t2.abs() && (v1 - v2).abs() <= 1e-12 * v2.abs().max(1.0)
+        );
     }
 }

@@ -61,7 +61,9 @@ impl Kinematics {
                     let carried =
                         transpose_mul(pool, &relative, &kinematics.angular_velocity[p.parent.0]);
                     let own = match p.ball {
-                        Some(b) => model.balls[b].angular.map(|k| pool.sym(Sym::Speed(k as u32))),
+                        Some(b) => model.balls[b]
+                            .angular
+                            .map(|k| pool.sym(Sym::Speed(k as u32))),
                         None => {
                             let spin = pool.time_derivative(p.angle);
                             p.axis.map(|e| pool.mul(spin, e))
@@ -105,7 +107,9 @@ impl Kinematics {
     /// `∂v_p/∂vₖ = Σᵢ (∂r_p/∂qᵢ) (∂q̇ᵢ/∂vₖ)`, in `N`'s axes.
     pub fn partial_velocity(&self, pool: &mut Pool, p: PointId, k: usize) -> Vec3 {
         let position = self.position[p.0];
-        self.through_rates(pool, k, |pool, i| position.map(|x| pool.diff(x, Sym::Coord(i))))
+        self.through_rates(pool, k, |pool, i| {
+            position.map(|x| pool.diff(x, Sym::Coord(i)))
+        })
     }
 
     /// `Σᵢ (∂q̇ᵢ/∂vₖ) gradient(i)`, where `gradient(i)` is a derivative by

@@ -197,6 +197,7 @@ model!(
 pub use constrained_pendulum::ConstrainedPendulum;
 pub use double_pendulum::DoublePendulum;
 pub use features::FeatureTree;
+pub use floating_solo12::FloatingSolo;
 pub use panda::Panda;
 pub use planar_chain_01::PlanarChain1;
 pub use planar_chain_02::PlanarChain2;
@@ -215,7 +216,6 @@ pub use seed_spatial_chain_02::SeedSpatialChain2;
 pub use seed_spatial_chain_06::SeedSpatialChain6;
 pub use seed_spatial_chain_12::SeedSpatialChain12;
 pub use seed_spatial_chain_30::SeedSpatialChain30;
-pub use floating_solo12::FloatingSolo;
 pub use solo12::Solo;
 pub use spatial_chain_01::SpatialChain1;
 pub use spatial_chain_02::SpatialChain2;

@@ -25,7 +25,9 @@ fn numbers(v: &Value) -> Vec<f64> {
 
 /// The numbers of `v` as an array of the length the caller needs.
 fn array<const N: usize>(v: &Value) -> [f64; N] {
-    numbers(v).try_into().expect("as many entries as the system has")
+    numbers(v)
+        .try_into()
+        .expect("as many entries as the system has")
 }
 
 /// Checks `max |got − want| ≤ TOLERANCE · max |want|`; returns the ratio.

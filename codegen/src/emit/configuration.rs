@@ -88,13 +88,21 @@ fn emit_ball(ball: &Ball, libm: bool) -> TokenStream {
     };
     let [qx, qy, qz, qw] = ball.quaternion.map(index);
     let [wx, wy, wz] = ball.angular.map(index);
-    let norm = call("sqrt", quote!((q[#qx] * q[#qx] + q[#qy] * q[#qy] + q[#qz] * q[#qz] + q[#qw] * q[#qw])));
+    let norm = call(
+        "sqrt",
+        quote!((q[#qx] * q[#qx] + q[#qy] * q[#qy] + q[#qz] * q[#qz] + q[#qw] * q[#qw])),
+    );
     let speed = call("sqrt", quote!(oo));
     let (sin_half, cos_half) = (call("sin", quote!(half)), call("cos", quote!(half)));
     let (sin, cos) = (call("sin", quote!(theta)), call("cos", quote!(theta)));
     let norm_turned = call(
         "sqrt",
-        quote!((turned[0] * turned[0] + turned[1] * turned[1] + turned[2] * turned[2] + turned[3] * turned[3])),
+        quote!(
+            (turned[0] * turned[0]
+                + turned[1] * turned[1]
+                + turned[2] * turned[2]
+                + turned[3] * turned[3])
+        ),
     );
     let translation = ball.translation.map(|(position, velocity)| {
         let [x, y, z] = position.map(index);

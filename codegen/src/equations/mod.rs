@@ -286,8 +286,9 @@ fn potential_and_dissipation_force(
     pool: &mut Pool,
     k: usize,
 ) -> ExprId {
-    let [potential] =
-        kinematics.through_rates(pool, k, |pool, i| [pool.diff(model.potential, Sym::Coord(i))]);
+    let [potential] = kinematics.through_rates(pool, k, |pool, i| {
+        [pool.diff(model.potential, Sym::Coord(i))]
+    });
     let dissipation = pool.diff(model.dissipation, Sym::Speed(k as u32));
     let terms = [pool.neg(potential), pool.neg(dissipation)];
     pool.sum(terms)

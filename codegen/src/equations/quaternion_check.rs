@@ -70,7 +70,12 @@ impl State {
         };
         let mut q = draw(model.nq(), -1.0, 1.0);
         for ball in &model.balls {
-            let norm = ball.quaternion.iter().map(|&i| q[i] * q[i]).sum::<f64>().sqrt();
+            let norm = ball
+                .quaternion
+                .iter()
+                .map(|&i| q[i] * q[i])
+                .sum::<f64>()
+                .sqrt();
             ball.quaternion.iter().for_each(|&i| q[i] /= norm);
         }
         State {
@@ -95,9 +100,21 @@ impl State {
 /// `R(q)` for a unit `(x, y, z, w)`, mapping child components to parent.
 fn rotation([x, y, z, w]: [f64; 4]) -> [[f64; 3]; 3] {
     [
-        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
-        [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
-        [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y - w * z),
+            2.0 * (x * z + w * y),
+        ],
+        [
+            2.0 * (x * y + w * z),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z - w * x),
+        ],
+        [
+            2.0 * (x * z - w * y),
+            2.0 * (y * z + w * x),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
     ]
 }
 

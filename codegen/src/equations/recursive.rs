@@ -401,7 +401,9 @@ impl JointTree {
                     .collect();
                 match parts.as_slice() {
                     [one] => *one,
-                    _ => parts.iter().fold([pool.zero(); 3], |a, b| add3(pool, &a, b)),
+                    _ => parts
+                        .iter()
+                        .fold([pool.zero(); 3], |a, b| add3(pool, &a, b)),
                 }
             });
             // a_J = a_p + α_p × d + ω_p × (ω_p × d) (+ 2 ω_p × ḋ for a slide),

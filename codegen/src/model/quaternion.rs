@@ -109,10 +109,10 @@ mod tests {
         let (s, c) = (angle / 2.0).sin_cos();
         let values = Values([axis[0] * s, axis[1] * s, axis[2] * s, c, 0.0, 0.0, 0.0]);
         let expected = rodrigues(axis, angle);
-        for i in 0..3 {
-            for j in 0..3 {
-                let got = pool.eval(r[i][j], &values);
-                assert!((got - expected[i][j]).abs() < 1e-15, "R[{i}][{j}]");
+        for (i, (row, expected)) in r.iter().zip(expected).enumerate() {
+            for (j, (&entry, expected)) in row.iter().zip(expected).enumerate() {
+                let got = pool.eval(entry, &values);
+                assert!((got - expected).abs() < 1e-15, "R[{i}][{j}]");
             }
         }
     }
@@ -129,17 +129,17 @@ mod tests {
         let values = Values([0.3, -0.5, 0.2, 0.7, 1.1, -0.4, 2.0]);
         let w = [1.1, -0.4, 2.0];
         let at = |pool: &Pool, e| pool.eval(e, &values);
-        for i in 0..3 {
-            for j in 0..3 {
+        for (i, row) in r.iter().enumerate() {
+            for (j, &entry) in row.iter().enumerate() {
                 let rate: f64 = (0..4)
                     .map(|c| {
-                        let d = pool.diff(r[i][j], Sym::Coord(c as u32));
+                        let d = pool.diff(entry, Sym::Coord(c as u32));
                         at(&pool, d) * at(&pool, qd[c])
                     })
                     .sum();
                 // (R [ω]×)ᵢⱼ = Rᵢₐ ω_b − R_ib ωₐ for (j, a, b) cyclic.
                 let (a, b) = ((j + 1) % 3, (j + 2) % 3);
-                let expected = at(&pool, r[i][a]) * w[b] - at(&pool, r[i][b]) * w[a];
+                let expected = at(&pool, row[a]) * w[b] - at(&pool, row[b]) * w[a];
                 assert!((rate - expected).abs() < 1e-14, "Ṙ[{i}][{j}]");
             }
         }

@@ -488,8 +488,7 @@ impl Resolver {
         } else {
             "spherical joint"
         };
-        let [parent_field, child, at] =
-            self.fields(name, what, fields, ["parent", "child", "at"]);
+        let [parent_field, child, at] = self.fields(name, what, fields, ["parent", "child", "at"]);
         let parent = parent_field.and_then(|e| self.frame(e));
         let at_value = at.and_then(|e| self.point_value(e, GEOMETRY));
         if let (true, Some(parent), Some(e)) = (free, parent, parent_field)
@@ -567,7 +566,9 @@ impl Resolver {
                 origin: PointId(self.model.points.len() - 1),
                 quaternion: quaternion.map(|i| i as usize),
                 angular: as_index(angular),
-                translation: position.zip(velocity).map(|(p, v)| (as_index(p), as_index(v))),
+                translation: position
+                    .zip(velocity)
+                    .map(|(p, v)| (as_index(p), as_index(v))),
             });
         }
     }

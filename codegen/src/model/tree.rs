@@ -107,9 +107,10 @@ impl Tree {
         builder.frames(model, pool)?;
         for (i, point) in model.points.iter().enumerate().skip(1) {
             let (base, offset) = point.placement.as_ref()?;
-            let free = model.balls.iter().find(|b| {
-                b.origin == PointId(i) && b.translation.is_some()
-            });
+            let free = model
+                .balls
+                .iter()
+                .find(|b| b.origin == PointId(i) && b.translation.is_some());
             let attachment = match free {
                 Some(ball) => builder.free_origin(pool, ball.frame, *base, offset)?,
                 None => builder.point(pool, *base, offset)?,

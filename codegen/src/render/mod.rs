@@ -215,7 +215,8 @@ fn form(style: Style, constrained: bool, speeds_are_rates: bool) -> String {
         (true, _) => form.to_string(),
         (false, Style::Unicode) => form.replace("q̈", "v̇").replace("q̇", "v") + " with q̇ = N(q) v",
         (false, Style::Latex) => {
-            form.replace("\\ddot{q}", "\\dot{v}").replace("\\dot{q}", "v")
+            form.replace("\\ddot{q}", "\\dot{v}")
+                .replace("\\dot{q}", "v")
                 + " \\text{ with } \\dot{q} = N(q) v"
         }
     }
