@@ -7,6 +7,7 @@
 
 use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive};
 use dalembert::{DynamicsError, State, Unconstrained, accelerations, energy};
+use dalembert_codegen::testing::{mat_vec, quaternion_rotation as rotation};
 
 dalembert::dalembert! {
     /// An axisymmetric body thrown under gravity.
@@ -60,31 +61,6 @@ dalembert::dalembert! {
         body top { mass: m, center: O + a * B.z + c * B.x, frame: B, inertia: [I1, I2, I3] };
         gravity -g * N.z;
     }
-}
-
-/// `R(q)` for a unit quaternion `(x, y, z, w)`: body to `N` components.
-fn rotation([x, y, z, w]: [f64; 4]) -> [[f64; 3]; 3] {
-    [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    ]
-}
-
-fn mat_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| (0..3).map(|j| m[i][j] * v[j]).sum())
 }
 
 fn norm(v: &[f64]) -> f64 {

@@ -27,6 +27,7 @@ mod model;
 mod optimize;
 mod random;
 mod render;
+mod rigid;
 #[cfg(test)]
 mod seeds;
 mod urdf;
@@ -53,10 +54,15 @@ pub use urdf::Urdf;
 ///   animations draw).
 /// * [`Random`](testing::Random) is the one deterministic generator of the
 ///   project's random states.
+/// * [`quaternion_rotation`](testing::quaternion_rotation), [`cross`](testing::cross),
+///   [`mat_vec`](testing::mat_vec) and [`transpose_vec`](testing::transpose_vec):
+///   numeric rigid-body closed forms for free and spherical joints, written
+///   apart from the symbolic engine.
 pub mod testing {
     pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
     pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
     pub use crate::random::Random;
+    pub use crate::rigid::{cross, mat_vec, quaternion_rotation, transpose_vec};
 }
 
 use proc_macro2::TokenStream;

@@ -8,6 +8,7 @@ use crate::expr::Pool;
 use crate::interpret::Values;
 use crate::model::{Model, resolve};
 use crate::random::Random;
+use crate::rigid::{cross, mat_vec, quaternion_rotation as rotation, transpose_vec};
 
 /// A free body, centred on its joint: `M = diag(m, m, m, I)` and
 /// `f = (m Rᵀ g − m ω × v, −ω × I ω)`.
@@ -95,43 +96,6 @@ impl State {
             u: &self.u,
         }
     }
-}
-
-/// `R(q)` for a unit `(x, y, z, w)`, mapping child components to parent.
-fn rotation([x, y, z, w]: [f64; 4]) -> [[f64; 3]; 3] {
-    [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    ]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn mat_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| (0..3).map(|j| m[i][j] * v[j]).sum())
-}
-
-fn transpose_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| (0..3).map(|j| m[j][i] * v[j]).sum())
 }
 
 fn assert_close(what: &str, got: f64, expected: f64) {

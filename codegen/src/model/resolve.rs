@@ -440,24 +440,11 @@ impl Resolver {
         let axis = axis.and_then(|e| self.axis_name(e));
         let coordinate = coordinate.and_then(|e| self.scalar(e, GEOMETRY));
         let at = at.and_then(|e| self.point_value(e, GEOMETRY));
-        let child = child.and_then(|e| match e {
-            Expr::Name(ident) => Some(ident),
-            other => {
-                self.errors
-                    .push(other.range(), "expected the name of the new child frame");
-                None
-            }
-        });
+        let child = child.and_then(|e| self.child_name(e));
         let (Some(parent), Some(axis), Some(coordinate), Some((base, offset)), Some(child)) =
             (parent, axis, coordinate, at, child)
         else {
-            self.define(name, Binding::Invalid);
-            if let Some(Expr::Name(child)) =
-                fields.iter().find(|f| f.name == "child").map(|f| &f.value)
-            {
-                self.define(child, Binding::Invalid);
-            }
-            return;
+            return self.invalid_joint(name, fields);
         };
         if revolute {
             if self.define_frame(child, parent, axis, coordinate, None) {
@@ -510,22 +497,9 @@ impl Resolver {
                  is measured from there)",
             );
         }
-        let child = child.and_then(|e| match e {
-            Expr::Name(ident) => Some(ident),
-            other => {
-                self.errors
-                    .push(other.range(), "expected the name of the new child frame");
-                None
-            }
-        });
+        let child = child.and_then(|e| self.child_name(e));
         let (Some(parent), Some((base, offset)), Some(child)) = (parent, at_value, child) else {
-            self.define(name, Binding::Invalid);
-            if let Some(Expr::Name(child)) =
-                fields.iter().find(|f| f.name == "child").map(|f| &f.value)
-            {
-                self.define(child, Binding::Invalid);
-            }
-            return;
+            return self.invalid_joint(name, fields);
         };
         let named = |suffix: &str| Ident::new(&format!("{name}_{suffix}"), name.span());
         let position = free.then(|| ["x", "y", "z"].map(|c| self.joint_coordinate(&named(c))));
@@ -570,6 +544,28 @@ impl Resolver {
                     .zip(velocity)
                     .map(|(p, v)| (as_index(p), as_index(v))),
             });
+        }
+    }
+
+    /// The name of a joint's new child frame.
+    fn child_name<'a>(&mut self, e: &'a Expr) -> Option<&'a Ident> {
+        match e {
+            Expr::Name(ident) => Some(ident),
+            other => {
+                self.errors
+                    .push(other.range(), "expected the name of the new child frame");
+                None
+            }
+        }
+    }
+
+    /// Defines the names of a joint with errors (already reported) as
+    /// invalid, so that their uses stay silent.
+    fn invalid_joint(&mut self, name: &Ident, fields: &[Field]) {
+        self.define(name, Binding::Invalid);
+        if let Some(Expr::Name(child)) = fields.iter().find(|f| f.name == "child").map(|f| &f.value)
+        {
+            self.define(child, Binding::Invalid);
         }
     }
 
