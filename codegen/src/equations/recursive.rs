@@ -10,7 +10,11 @@
 //! `Σᵢ (mᵢ a_Gᵢ · ∂v_Gᵢ/∂q̇ₖ + Mᵢ · ∂ωᵢ/∂q̇ₖ)` minus the applied loads' share
 //! is `eₖ` dotted with the moment about `Jₖ` (revolute) or the resultant
 //! (prismatic) of the inertia forces minus the loads beyond joint `k`,
-//! which a sweep from the leaves to the root accumulates in `O(n)`. Every
+//! which a sweep from the leaves to the root accumulates in `O(n)`. A
+//! spherical joint is three such turning speeds about its link's axes
+//! (its angular velocity), a free joint three sliding speeds along them
+//! first: each speed is a column of its link's motion subspace, and the
+//! sweeps project on every column. Every
 //! vector lives in the axes of its own link, so a planar chain meets only
 //! 2×2 rotations and its zeros fold away at construction.
 //!

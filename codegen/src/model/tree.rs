@@ -17,6 +17,9 @@
 //! * a body whose frame starts a child link and whose centre is fixed in the
 //!   parent link sits on that child's joint (a massless frame between, as in
 //!   seed example 2, is a link of its own).
+//! * a frame turned by a quaternion joint starts a **spherical** link, placed
+//!   like a revolute one; a **free** joint's link hangs from the ground at its
+//!   origin point, which its three position coordinates move.
 //!
 //! Both spellings meet here: `joint` statements make exactly such frames
 //! and points, and so do `frame B2 = B1.rotate_z(q2); point P2 = P1 - L * B2.y`.
