@@ -46,6 +46,7 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
             _ => None,
         });
     let balls = model.balls.iter().map(|ball| emit_ball(ball, names.libm));
+    let own = emit_own_rates(model, &nq);
     quote! {
         /// The coordinate rates `q̇ = N(q) v` (a quaternion's from its
         /// joint's angular velocity, a free joint's position's from the
@@ -60,14 +61,54 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
         /// constant speeds `v` for the time `h`. Each quaternion is
         /// normalised, then turned exactly (it comes out unit); a free
         /// joint's origin follows the screw motion of its constant speeds;
-        /// other coordinates move by `h v`.
+        /// the coordinates of `speeds` statements take one classical RK4
+        /// step of `q̇ = N(q) v`; other coordinates move by `h v`.
         #[inline]
         #[must_use]
         pub fn integrate_configuration(&self, q: &[f64; #nq], v: &[f64; #nv], h: f64) -> [f64; #nq] {
             let mut next = *q;
             #(#slides)*
             #(#balls)*
+            #own
             next
+        }
+    }
+}
+
+/// The coordinates whose rates a `speeds` statement gives (neither a
+/// speed nor a quaternion joint's): one classical Runge–Kutta step of
+/// `q̇ = N(q) v` at constant `v`, the other coordinates held.
+fn emit_own_rates(model: &Model, nq: &Literal) -> TokenStream {
+    let in_ball = |i: usize| {
+        model.balls.iter().any(|b| {
+            b.quaternion.contains(&i) || b.translation.is_some_and(|(p, _)| p.contains(&i))
+        })
+    };
+    let own: Vec<Literal> = (0..model.nq())
+        .filter(|&i| {
+            let plain = matches!(
+                model.pool.rates().get(i).map(|&r| model.pool.node(r)),
+                None | Some(Node::Sym(Sym::Speed(_)))
+            );
+            !plain && !in_ball(i)
+        })
+        .map(index)
+        .collect();
+    if own.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        {
+            let stage = |rates: &[f64; #nq], c: f64| {
+                let mut stage = *q;
+                #(stage[#own] = q[#own] + c * h * rates[#own];)*
+                stage
+            };
+            let k1 = self.coordinate_rates(q, v);
+            let k2 = self.coordinate_rates(&stage(&k1, 0.5), v);
+            let k3 = self.coordinate_rates(&stage(&k2, 0.5), v);
+            let k4 = self.coordinate_rates(&stage(&k3, 1.0), v);
+            #(next[#own] = q[#own] + h / 6.0 * (k1[#own] + 2.0 * k2[#own] + 2.0 * k3[#own] + k4[#own]);)*
         }
     }
 }

@@ -110,6 +110,16 @@ pub enum Statement {
         /// The right-hand side.
         rhs: Expr,
     },
+    /// `speeds w1, w2 { q1: rate1, q2: rate2 };`: speeds of the user's own
+    /// with the kinematic differential equations `dt(qᵢ) = rateᵢ`.
+    Speeds {
+        /// The `speeds` token.
+        keyword: Ident,
+        /// The new speeds, in order.
+        names: Vec<Ident>,
+        /// `coordinate: rate` for each coordinate whose speeds they replace.
+        rates: Vec<Field>,
+    },
 }
 
 /// `name: value` inside the braces of `body`, `particle` and `joint`.

@@ -32,10 +32,12 @@ pub const POTENTIAL: &str = "potential";
 pub const DISSIPATION: &str = "dissipation";
 /// `constraint lhs == rhs;`
 pub const CONSTRAINT: &str = "constraint";
+/// `speeds w1, w2 { q1: rate, q2: rate };`
+pub const SPEEDS: &str = "speeds";
 
 /// The statement keywords, in the order the "expected one of" message
 /// lists them.
-pub const STATEMENTS: [&str; 14] = [
+pub const STATEMENTS: [&str; 15] = [
     PARAMETERS,
     COORDINATES,
     INPUTS,
@@ -50,6 +52,7 @@ pub const STATEMENTS: [&str; 14] = [
     POTENTIAL,
     DISSIPATION,
     CONSTRAINT,
+    SPEEDS,
 ];
 
 /// `force <vec> at P;`: the point of application.

@@ -197,6 +197,19 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
             value: expression(cursor)?,
         },
         keyword::CONSTRAINT => constraint(cursor, keyword)?,
+        keyword::SPEEDS => {
+            let names = names(cursor, &keyword)?;
+            let Some(block) = cursor.eat_group(Delimiter::Brace) else {
+                return Err(cursor.expected(
+                    "`{` with each coordinate's rate in the new speeds, `q: rate`",
+                ));
+            };
+            Statement::Speeds {
+                keyword,
+                names,
+                rates: fields(&block)?,
+            }
+        }
         _ => {
             return Err(syn::Error::new(
                 keyword.span(),
@@ -492,7 +505,7 @@ mod tests {
             [(
                 "unknown statement `bodyy`; expected one of `parameters`, `coordinates`, \
                  `inputs`, `frame`, `point`, `body`, `particle`, `joint`, `gravity`, \
-                 `force`, `torque`, `potential`, `dissipation`, `constraint`"
+                 `force`, `torque`, `potential`, `dissipation`, `constraint`, `speeds`"
                     .to_owned(),
                 2,
                 2

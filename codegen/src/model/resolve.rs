@@ -118,6 +118,12 @@ const CONSTRAINT: Use = Use {
         .union(SymKinds::SPEED),
     role: "a constraint, which may not depend on inputs",
 };
+const KINEMATICS: Use = Use {
+    allowed: SymKinds::PARAM
+        .union(SymKinds::COORD)
+        .union(SymKinds::SPEED),
+    role: "a coordinate's rate, which may depend on coordinates, parameters and the new speeds only",
+};
 const AXIS: Use = Use {
     allowed: SymKinds::PARAM,
     role: "a rotation axis, which must be constant (numbers and parameters)",
@@ -153,6 +159,9 @@ struct Resolver {
     bindings: HashMap<String, (Binding, Span)>,
     /// Every name some statement defines, for "used before its definition".
     defined_anywhere: HashMap<String, Span>,
+    /// Whether a `dt(..)` has been read (a `speeds` statement must come
+    /// before: it changes what `dt` of its coordinates means).
+    used_dt: bool,
     model: Model,
 }
 
@@ -170,6 +179,7 @@ impl Resolver {
             errors: Errors::default(),
             bindings,
             defined_anywhere: defined_names(system),
+            used_dt: false,
             model: Model {
                 docs: system.docs.clone(),
                 public: system.public,
@@ -262,6 +272,11 @@ impl Resolver {
             Statement::Constraint {
                 keyword, lhs, rhs, ..
             } => self.constraint(keyword, lhs, rhs),
+            Statement::Speeds {
+                keyword,
+                names,
+                rates,
+            } => self.speeds_statement(keyword, names, rates),
         }
     }
 
@@ -567,6 +582,113 @@ impl Resolver {
         {
             self.define(child, Binding::Invalid);
         }
+    }
+
+    /// `speeds w1, w2 { q1: rate1, q2: rate2 };`: the speeds `w` replace
+    /// those of the coordinates named (`dt(q)`), taking their places in `v`
+    /// in order, and `dt(qᵢ) = rateᵢ`, linear in the new speeds.
+    fn speeds_statement(&mut self, keyword: &Ident, names: &[Ident], rates: &[Field]) {
+        if self.used_dt {
+            self.errors.push(
+                keyword.span(),
+                "a `speeds` statement must come before every `dt(..)`: it changes what \
+                 the speeds of its coordinates are",
+            );
+        }
+        let mut replaced: Vec<(u32, usize)> = Vec::new();
+        for field in rates {
+            match self.replaceable_speed(&field.name) {
+                Some(pair) if replaced.iter().all(|&(i, _)| i != pair.0) => replaced.push(pair),
+                Some(_) => self.errors.push(
+                    field.name.span(),
+                    format!("the rate of `{}` is given twice", field.name),
+                ),
+                None => self.errors.push(
+                    field.name.span(),
+                    format!(
+                        "`{}` is not a coordinate whose speed is still `dt({})`: a `speeds` \
+                         statement gives the rates of coordinates of `coordinates` \
+                         statements, once",
+                        field.name, field.name
+                    ),
+                ),
+            }
+        }
+        if names.len() != rates.len() {
+            self.errors.push(
+                keyword.span(),
+                format!(
+                    "{} new speeds for the rates of {} coordinates: a `speeds` statement \
+                     replaces as many speeds as it names",
+                    names.len(),
+                    rates.len()
+                ),
+            );
+        }
+        if names.len() != replaced.len() {
+            names.iter().for_each(|name| {
+                self.define(name, Binding::Invalid);
+            });
+            return;
+        }
+        let mut slots: Vec<usize> = replaced.iter().map(|&(_, k)| k).collect();
+        slots.sort_unstable();
+        for (name, &k) in names.iter().zip(&slots) {
+            self.model.speeds[k] = Speed {
+                name: name.clone(),
+                rate_of_coordinate: false,
+            };
+            self.define(name, Binding::Scalar(Sym::Speed(k as u32)));
+        }
+        for (field, &(i, _)) in rates.iter().zip(&replaced) {
+            let read_dt = std::mem::replace(&mut self.used_dt, false);
+            let rate = self.scalar(&field.value, KINEMATICS);
+            if std::mem::replace(&mut self.used_dt, read_dt) {
+                self.errors.push(
+                    field.value.range(),
+                    "a rate is written in the new speeds, without `dt(..)`",
+                );
+                continue;
+            }
+            let Some(rate) = rate else { continue };
+            let foreign = self.pool.free_symbols(rate).into_iter().any(|sym| {
+                matches!(sym, Sym::Speed(k) if !slots.contains(&(k as usize)))
+            });
+            let linear = slots.iter().all(|&k| {
+                let d = self.pool.diff(rate, Sym::Speed(k as u32));
+                !self.pool.kinds(d).intersects(SymKinds::SPEED)
+            });
+            if foreign || !linear {
+                let written: Vec<String> = names.iter().map(ToString::to_string).collect();
+                let written: Vec<&str> = written.iter().map(String::as_str).collect();
+                self.errors.push(
+                    field.value.range(),
+                    format!(
+                        "the rate of `{}` must be linear in the speeds of this statement ({}), \
+                         with coefficients of coordinates and parameters",
+                        field.name,
+                        list(&written)
+                    ),
+                );
+                continue;
+            }
+            self.pool.set_rate(i, rate);
+        }
+    }
+
+    /// The coordinate `name` and its speed, if the speed is still its rate
+    /// `dt(name)`.
+    fn replaceable_speed(&self, name: &Ident) -> Option<(u32, usize)> {
+        let Some((Binding::Scalar(Sym::Coord(i)), _)) = self.bindings.get(&name.to_string())
+        else {
+            return None;
+        };
+        let k = self
+            .model
+            .speeds
+            .iter()
+            .position(|s| s.rate_of_coordinate && s.name == *name)?;
+        Some((*i, k))
     }
 
     /// Declares a coordinate a joint makes (its speed comes with the joint).
@@ -1192,6 +1314,7 @@ impl Resolver {
             );
             return None;
         }
+        self.used_dt = true;
         Some(Value::Scalar(self.pool.time_derivative(x)))
     }
 
@@ -1335,6 +1458,7 @@ fn defined_names(system: &System) -> HashMap<String, Span> {
                     }
                 }
             }
+            Statement::Speeds { names, .. } => names.iter().for_each(&mut add),
             _ => {}
         }
     }
