@@ -65,7 +65,11 @@ fn thrusts(t: f64) -> [f64; 4] {
         s if (half..2.0 * half).contains(&s) => -ROLL_THRUST / 2.0,
         _ => 0.0,
     };
-    let climb = if (HOVER..CLIMB).contains(&t) { 3.0 } else { 0.0 };
+    let climb = if (HOVER..CLIMB).contains(&t) {
+        3.0
+    } else {
+        0.0
+    };
     [
         weight + climb,
         weight + climb + roll,

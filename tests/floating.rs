@@ -63,6 +63,24 @@ dalembert::dalembert! {
     }
 }
 
+dalembert::dalembert! {
+    /// The tumbling body in Z-Y-X Euler angles with its body-axis angular
+    /// velocity as speeds.
+    pub BodyRates {
+        parameters I1, I2, I3;
+        coordinates psi, theta, phi;
+        speeds wx, wy, wz {
+            psi: (sin(phi) * wy + cos(phi) * wz) / cos(theta),
+            theta: cos(phi) * wy - sin(phi) * wz,
+            phi: wx + tan(theta) * (sin(phi) * wy + cos(phi) * wz)
+        };
+        frame A = N.rotate_z(psi);
+        frame C = A.rotate_y(theta);
+        frame B = C.rotate_x(phi);
+        body b { mass: 1, center: O, frame: B, inertia: [I1, I2, I3] };
+    }
+}
+
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
@@ -393,4 +411,61 @@ fn a_heavy_top_in_quaternions_moves_as_in_euler_angles() {
             (t1 - t2).abs() <= 1e-12 * t2.abs() && (v1 - v2).abs() <= 1e-12 * v2.abs().max(1.0)
         );
     }
+}
+
+#[test]
+fn body_rates_move_as_the_quaternion_body_and_their_rates_blow_up_at_gimbal_lock() {
+    let body = BodyRates {
+        I1: 1.0,
+        I2: 2.0,
+        I3: 3.0,
+    };
+    assert_eq!(BodyRates::SPEEDS, ["wx", "wy", "wz"]);
+    let (angles, omega) = ([0.3, 0.5, -0.7], [0.4, -1.1, 2.0]);
+    // The same attitude as a quaternion: the same body rates, the same ω̇.
+    let half = |x: f64| (x / 2.0).sin_cos();
+    let ((sz, cz), (sy, cy), (sx, cx)) = (half(angles[0]), half(angles[1]), half(angles[2]));
+    let q = product(
+        product([0.0, 0.0, sz, cz], [0.0, sy, 0.0, cy]),
+        [sx, 0.0, 0.0, cx],
+    );
+    let euler = accelerations(&body, 0.0, &angles, &omega, &[]).expect("solvable");
+    let quaternion = accelerations(&DZHANIBEKOV, 0.0, &q, &omega, &[]).expect("solvable");
+    for i in 0..3 {
+        assert!(
+            (euler[i] - quaternion[i]).abs() < 1e-12,
+            "ω̇[{i}]: {euler:?} vs {quaternion:?}"
+        );
+    }
+    // q̇ = W(q)⁻¹ ω, checked through ω = W q̇.
+    let [dpsi, dtheta, dphi] = body.coordinate_rates(&angles, &omega);
+    let ((st, ct), (sp, cp)) = (angles[1].sin_cos(), angles[2].sin_cos());
+    let back = [
+        dphi - dpsi * st,
+        dtheta * cp + dpsi * ct * sp,
+        -dtheta * sp + dpsi * ct * cp,
+    ];
+    for i in 0..3 {
+        assert!((back[i] - omega[i]).abs() < 1e-14, "ω[{i}]");
+    }
+    // The update: one RK4 step of q̇ = N(q) ω, fourth order in h.
+    let error = |h: f64| {
+        let once = body.integrate_configuration(&angles, &omega, h);
+        let mut fine = angles;
+        for _ in 0..1000 {
+            fine = body.integrate_configuration(&fine, &omega, h / 1000.0);
+        }
+        norm(&[once[0] - fine[0], once[1] - fine[1], once[2] - fine[2]])
+    };
+    let ratio = error(0.1) / error(0.05);
+    assert!(
+        (24.0..40.0).contains(&ratio),
+        "error ratio {ratio} for h halved"
+    );
+    // Documented behaviour at gimbal lock (cos θ = 0): the equations in the
+    // body rates are regular (M = I), the coordinate rates are not.
+    let locked = [0.3, std::f64::consts::FRAC_PI_2, -0.2];
+    assert!(accelerations(&body, 0.0, &locked, &omega, &[]).is_ok());
+    let rates = body.coordinate_rates(&locked, &omega);
+    assert!(rates[0].abs() > 1e12, "ψ̇ = {} at gimbal lock", rates[0]);
 }

@@ -464,6 +464,27 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], has_solver: bool) -> TokenS
 mod tests {
     use super::raw_string;
 
+    /// `a / x²` is `a / (x * x)`, not `a / x * x` (which is `a`).
+    #[test]
+    fn a_square_below_a_division_is_parenthesised() {
+        let source = "pub S {
+            parameters m, k;
+            coordinates x;
+            particle p { mass: m, at: O + x * N.x };
+            potential k * x / (2 + sin(x))^2;
+        }";
+        let code = crate::generate(source).expect("generates");
+        let words: Vec<&str> = code.split_whitespace().collect();
+        for w in words.windows(4) {
+            assert!(
+                !(w[0] == "/" && w[2] == "*" && w[1] == w[3].trim_end_matches([';', ')', ','])),
+                "unparenthesised square below a division: {}",
+                w.join(" ")
+            );
+        }
+        assert!(code.contains("/ ("), "{code}");
+    }
+
     #[test]
     fn raw_strings_keep_their_characters_and_survive_quotes() {
         assert_eq!(raw_string("q̈₁ = 0").to_string(), "r#\"q̈₁ = 0\"#");

@@ -236,7 +236,8 @@ fn both_routes_agree_on_a_loaded_floating_tree() {
 
 #[test]
 fn body_rates_of_euler_angles_follow_euler_equations() {
-    let system = crate::language::parse_system(BODY_RATES.parse().expect("tokens")).expect("parses");
+    let system =
+        crate::language::parse_system(BODY_RATES.parse().expect("tokens")).expect("parses");
     let mut model = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
     let written: Vec<String> = model.speeds.iter().map(|s| s.written()).collect();
     assert_eq!(written, ["wx", "wy", "wz"]);
@@ -254,7 +255,11 @@ fn body_rates_of_euler_angles_follow_euler_equations() {
         let (mass, forcing) = evaluate(&pool, &equations, &state);
         for k in 0..3 {
             for j in 0..3 {
-                assert_close(&format!("seed {seed}: M[{k}][{j}]"), mass[k][j], inertia[k][j]);
+                assert_close(
+                    &format!("seed {seed}: M[{k}][{j}]"),
+                    mass[k][j],
+                    inertia[k][j],
+                );
             }
             assert_close(&format!("seed {seed}: f[{k}]"), forcing[k], -gyroscopic[k]);
         }

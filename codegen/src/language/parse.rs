@@ -200,9 +200,9 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
         keyword::SPEEDS => {
             let names = names(cursor, &keyword)?;
             let Some(block) = cursor.eat_group(Delimiter::Brace) else {
-                return Err(cursor.expected(
-                    "`{` with each coordinate's rate in the new speeds, `q: rate`",
-                ));
+                return Err(
+                    cursor.expected("`{` with each coordinate's rate in the new speeds, `q: rate`")
+                );
             };
             Statement::Speeds {
                 keyword,

@@ -651,9 +651,11 @@ impl Resolver {
                 continue;
             }
             let Some(rate) = rate else { continue };
-            let foreign = self.pool.free_symbols(rate).into_iter().any(|sym| {
-                matches!(sym, Sym::Speed(k) if !slots.contains(&(k as usize)))
-            });
+            let foreign = self
+                .pool
+                .free_symbols(rate)
+                .into_iter()
+                .any(|sym| matches!(sym, Sym::Speed(k) if !slots.contains(&(k as usize))));
             let linear = slots.iter().all(|&k| {
                 let d = self.pool.diff(rate, Sym::Speed(k as u32));
                 !self.pool.kinds(d).intersects(SymKinds::SPEED)
@@ -679,8 +681,7 @@ impl Resolver {
     /// The coordinate `name` and its speed, if the speed is still its rate
     /// `dt(name)`.
     fn replaceable_speed(&self, name: &Ident) -> Option<(u32, usize)> {
-        let Some((Binding::Scalar(Sym::Coord(i)), _)) = self.bindings.get(&name.to_string())
-        else {
+        let Some((Binding::Scalar(Sym::Coord(i)), _)) = self.bindings.get(&name.to_string()) else {
             return None;
         };
         let k = self
