@@ -47,6 +47,19 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
         });
     let balls = model.balls.iter().map(|ball| emit_ball(ball, names.libm));
     let own = emit_own_rates(model, &nq);
+    let mut update_doc = vec![
+        " `q ⊕ h v`: the configuration reached from `q` moving at the",
+        " constant speeds `v` for the time `h`. Each quaternion is",
+        " normalised, then turned exactly (it comes out unit); a free",
+        " joint's origin follows the screw motion of its constant speeds;",
+    ];
+    if !own.is_empty() {
+        update_doc.extend([
+            " the coordinates of `speeds` statements take one classical RK4",
+            " step of `q̇ = N(q) v`;",
+        ]);
+    }
+    update_doc.push(" other coordinates move by `h v`.");
     quote! {
         /// The coordinate rates `q̇ = N(q) v` (a quaternion's from its
         /// joint's angular velocity, a free joint's position's from the
@@ -57,12 +70,7 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
             #statements
             [#(#outputs),*]
         }
-        /// `q ⊕ h v`: the configuration reached from `q` moving at the
-        /// constant speeds `v` for the time `h`. Each quaternion is
-        /// normalised, then turned exactly (it comes out unit); a free
-        /// joint's origin follows the screw motion of its constant speeds;
-        /// the coordinates of `speeds` statements take one classical RK4
-        /// step of `q̇ = N(q) v`; other coordinates move by `h v`.
+        #(#[doc = #update_doc])*
         #[inline]
         #[must_use]
         pub fn integrate_configuration(&self, q: &[f64; #nq], v: &[f64; #nv], h: f64) -> [f64; #nq] {
