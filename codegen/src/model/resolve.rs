@@ -618,8 +618,8 @@ impl Resolver {
             self.errors.push(
                 keyword.span(),
                 format!(
-                    "{} new speeds for the rates of {} coordinates: a `speeds` statement \
-                     replaces as many speeds as it names",
+                    "{} new speed(s) for the rates of {} coordinate(s): a `speeds` \
+                     statement replaces as many speeds as it names",
                     names.len(),
                     rates.len()
                 ),
