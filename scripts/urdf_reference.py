@@ -13,6 +13,13 @@ XML independently of Pinocchio, and matched to Pinocchio's joints by name.
 Continuous joints, which Pinocchio stores as (cos, sin) in q, are written as
 one angle.
 
+With --floating the robots of FLOATING are also written on Pinocchio's free
+flyer (pinocchio.JointModelFreeFlyer) as "<robot>_floating": q starts with the
+base position and unit quaternion (x, y, z, qx, qy, qz, qw), v with the base's
+linear and angular velocity in its own axes (dalembert's `--floating`
+convention); `tau` holds the joint torques only (the base has no input) and f,
+M, qdd cover every speed.
+
 usage (in a Python environment with `pin` and `numpy`):
     python scripts/urdf_reference.py [--out tests/reference/urdf/pinocchio.json]
 """
@@ -28,6 +35,8 @@ import pinocchio as pin
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROBOTS = os.path.join(ROOT, "tests", "reference", "urdf")
 FILES = ["panda.urdf", "ur5_robot.urdf", "solo12.urdf", "features.urdf"]
+FLOATING = ["solo12.urdf"]
+FREE = ["root_joint_" + c for c in ["x", "y", "z", "qx", "qy", "qz", "qw"]]
 STATES = 10
 SEED = 20261123
 
@@ -142,11 +151,66 @@ def write_document(path, schema, generator, seed, notes, models):
         json.dump(document, out, indent=1)
         out.write("\n")
     print(f"wrote {path}")
+def floating_state(model, data, order, rng):
+    """Pinocchio's quantities at one random state of the free-flyer model, in
+    dalembert's order: the base first, then the joints of `order`."""
+    q = pin.neutral(model)
+    q[:3] = rng.uniform(-1.0, 1.0, 3)
+    quaternion = rng.normal(size=4)
+    q[3:7] = quaternion / np.linalg.norm(quaternion)
+    idx_q, idx_v = [], list(range(6))
+    for name in order:
+        joint = model.joints[model.getJointId(name)]
+        assert joint.nq == 1, name
+        idx_q.append(joint.idx_q)
+        idx_v.append(joint.idx_v)
+    angles = rng.uniform(-math.pi, math.pi, len(order))
+    q[idx_q] = angles
+    perm = np.array(idx_v)
+    v = rng.uniform(-2.0, 2.0, model.nv)
+    tau_joints = rng.uniform(-10.0, 10.0, len(order))
+    vp = np.zeros(model.nv)
+    vp[perm] = v
+    taup = np.zeros(model.nv)
+    taup[perm[6:]] = tau_joints
+    M = pin.crba(model, data, q).copy()
+    M = np.triu(M) + np.triu(M, 1).T
+    nle = pin.nonLinearEffects(model, data, q, vp).copy()
+    qdd = pin.aba(model, data, q, vp, taup).copy()
+    T = pin.computeKineticEnergy(model, data, q, vp)
+    V = pin.computePotentialEnergy(model, data, q)
+    M = M[np.ix_(perm, perm)]
+    nle, qdd, tau = nle[perm], qdd[perm], taup[perm]
+    f = tau - nle
+    assert abs(T - 0.5 * v @ M @ v) <= 1e-12 * max(1.0, abs(T))
+    assert np.allclose(M @ qdd, f, rtol=1e-9, atol=1e-9 * np.abs(f).max())
+    floats = lambda a: [float(x) for x in a]
+    return {
+        "q": floats(list(q[:7]) + list(angles)), "qd": floats(v), "tau": floats(tau_joints),
+        "M": [floats(row) for row in M], "nle": floats(nle), "f": floats(f),
+        "qdd": floats(qdd), "T": float(T), "V": float(V),
+    }
+
+
+def floating_entry(file, rng):
+    path = os.path.join(ROBOTS, file)
+    model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
+    data = model.createData()
+    order = file_order_coordinates(path)
+    assert len(order) + 6 == model.nv, (order, model.nv)
+    return {
+        "robot": os.path.splitext(file)[0] + "_floating", "urdf": file, "name": model.name,
+        "nq": model.nq, "nv": model.nv, "gravity": [float(x) for x in model.gravity.linear],
+        "coordinates": FREE + order, "pinocchio_order": list(model.names)[1:],
+        "states": [floating_state(model, data, order, rng) for _ in range(STATES)],
+    }
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=os.path.join(ROBOTS, "pinocchio.json"))
+    parser.add_argument("--floating", action="store_true",
+                        help="also write the FLOATING robots on a free flyer")
     args = parser.parse_args()
     rng = np.random.default_rng(SEED)
     write_document(
@@ -158,7 +222,9 @@ def main():
         "(`coordinates`); continuous joints as one angle; fixed base; mimic joints "
         "independent; M full symmetric; nle = C(q,qd) qd + g(q); f = tau - nle; "
         "M qdd = f; V leaves out the masses fixed to the ground.",
-        [robot_entry(file, rng) for file in FILES],
+        [robot_entry(file, rng) for file in FILES]
+        # Drawn after the fixed-base states, which therefore do not change.
+        + ([floating_entry(file, rng) for file in FLOATING] if args.floating else []),
     )
 
 

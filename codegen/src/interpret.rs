@@ -16,7 +16,8 @@ use crate::model::{FrameId, Model, NEWTONIAN, ORIGIN, PointId, Vector};
 pub enum Route {
     /// d'Alembert's principle, as the generator derives them.
     Dalembert,
-    /// Lagrange's equations: `M` as the Hessian of `T` in the speeds and
+    /// Lagrange's equations (for systems whose speeds are the coordinates'
+    /// rates): `M` as the Hessian of `T` in the speeds and
     /// `f` from the derivatives of `T`, `V` and the dissipation function,
     /// with the generalized forces through partial velocities taken another
     /// way. Energies and constraints are the same as on the other route.
@@ -84,7 +85,7 @@ impl Sample {
             parameters: draw(interpreter.np(), 0.5, 1.0),
             t: draw(1, 0.0, 3.0)[0],
             q: draw(interpreter.nq(), -3.0, 6.0),
-            qd: draw(interpreter.nq(), -2.0, 4.0),
+            qd: draw(interpreter.nv(), -2.0, 4.0),
             u: draw(interpreter.nu(), -5.0, 10.0),
         }
     }
@@ -137,6 +138,13 @@ impl Interpreter {
         model.pool = pool;
         crate::check_equations(&model, &optimised)?;
         let mut pool = std::mem::take(&mut model.pool);
+        if route == Route::Lagrange && !pool.rates_are_speeds() {
+            return Err(syn::Error::new(
+                model.name.span(),
+                "the Lagrange route needs every speed to be its coordinate's rate; this system \
+                 has speeds of its own (a free or spherical joint)",
+            ));
+        }
         if route == Route::Lagrange {
             let (mass_matrix, forcing) = lagrange::lagrange(
                 &model,
@@ -189,6 +197,11 @@ impl Interpreter {
     /// The number of coordinates.
     pub fn nq(&self) -> usize {
         self.model.nq()
+    }
+
+    /// The number of speeds.
+    pub fn nv(&self) -> usize {
+        self.model.nv()
     }
 
     /// The number of inputs.

@@ -6,12 +6,17 @@
 //! Conventions: a point's position, velocity and partial velocities are
 //! measured in `N`'s axes; a frame's angular velocity, its partials and its
 //! angular acceleration in the frame's own axes (where its inertia is
-//! given). Partial velocities use `∂v/∂q̇ₖ = ∂r/∂qₖ`, and accelerations split
-//! as `a = Σₖ (∂v/∂q̇ₖ) q̈ₖ + rate(v)`, where `rate` differentiates in time
-//! at constant speeds; so no expression ever holds a `q̈`.
+//! given). Velocities are linear in the speeds `v` (through the kinematic
+//! differential equations `q̇ = N(q) v` of the pool); partial velocities are
+//! `∂v_P/∂vₖ = Σᵢ (∂r/∂qᵢ) (∂q̇ᵢ/∂vₖ)` (`∂r/∂qₖ` when `q̇ = v`), and
+//! accelerations split as `a = Σₖ (∂v/∂vₖ) v̇ₖ + rate(v)`, where `rate`
+//! differentiates in time at constant speeds; so no expression ever holds
+//! a `v̇`.
 
 use crate::expr::{ExprId, Pool, Sym};
-use crate::model::{FrameId, Model, NEWTONIAN, PointId, Vector, principal_axis};
+use crate::model::{
+    FrameId, FramePlacement, Model, NEWTONIAN, PointId, Vector, principal_axis, quaternion,
+};
 
 /// A column of three components.
 pub type Vec3 = [ExprId; 3];
@@ -28,6 +33,9 @@ pub struct Kinematics {
     position: Vec<Vec3>,
     /// Number of generalized coordinates.
     nq: u32,
+    /// `∂q̇ᵢ/∂vₖ`, for each speed `k`, over the coordinates `i` it moves;
+    /// `None` when every `q̇ᵢ = vᵢ`.
+    rate_partials: Option<Vec<Vec<(u32, ExprId)>>>,
 }
 
 impl Kinematics {
@@ -39,22 +47,29 @@ impl Kinematics {
             angular_velocity: Vec::with_capacity(model.frames.len()),
             position: Vec::with_capacity(model.points.len()),
             nq: model.nq() as u32,
+            rate_partials: (!pool.rates_are_speeds()).then(|| rate_partials(model, pool)),
         };
         for frame in &model.frames {
             let (rotation, omega) = match &frame.placement {
                 None => (identity(pool), [pool.zero(); 3]),
                 Some(p) => {
-                    let relative = axis_rotation(pool, &p.axis, p.angle);
+                    let relative = placement_rotation(pool, model, p);
                     let rotation = mat_mul(pool, &kinematics.rotation[p.parent.0], &relative);
-                    // ω_F = ω_parent (in F's axes) + (dθ/dt) ê, where the
-                    // axis ê has the same components in F as in its parent.
+                    // ω_F = ω_parent (in F's axes) + the relative rate:
+                    // (dθ/dt) ê, where the axis ê has the same components in
+                    // F as in its parent, or a quaternion joint's speeds.
                     let carried =
                         transpose_mul(pool, &relative, &kinematics.angular_velocity[p.parent.0]);
-                    let spin = pool.time_derivative(p.angle);
-                    let omega = [0, 1, 2].map(|i| {
-                        let own = pool.mul(spin, p.axis[i]);
-                        pool.add(carried[i], own)
-                    });
+                    let own = match p.ball {
+                        Some(b) => model.balls[b]
+                            .angular
+                            .map(|k| pool.sym(Sym::Speed(k as u32))),
+                        None => {
+                            let spin = pool.time_derivative(p.angle);
+                            p.axis.map(|e| pool.mul(spin, e))
+                        }
+                    };
+                    let omega = [0, 1, 2].map(|i| pool.add(carried[i], own[i]));
                     (rotation, omega)
                 }
             };
@@ -89,12 +104,36 @@ impl Kinematics {
         self.position[p.0].map(|x| pool.time_derivative(x))
     }
 
-    /// `∂v_p/∂q̇ₖ = ∂r_p/∂qₖ`, in `N`'s axes.
+    /// `∂v_p/∂vₖ = Σᵢ (∂r_p/∂qᵢ) (∂q̇ᵢ/∂vₖ)`, in `N`'s axes.
     pub fn partial_velocity(&self, pool: &mut Pool, p: PointId, k: usize) -> Vec3 {
-        self.position[p.0].map(|x| pool.diff(x, Sym::Coord(k as u32)))
+        let position = self.position[p.0];
+        self.through_rates(pool, k, |pool, i| {
+            position.map(|x| pool.diff(x, Sym::Coord(i)))
+        })
     }
 
-    /// `∂ω_f/∂q̇ₖ`, in `f`'s axes.
+    /// `Σᵢ (∂q̇ᵢ/∂vₖ) gradient(i)`, where `gradient(i)` is a derivative by
+    /// `qᵢ`: the chain rule from a coordinate to the speed `k`.
+    pub fn through_rates<const N: usize>(
+        &self,
+        pool: &mut Pool,
+        k: usize,
+        mut gradient: impl FnMut(&mut Pool, u32) -> [ExprId; N],
+    ) -> [ExprId; N] {
+        let Some(rate_partials) = &self.rate_partials else {
+            return gradient(pool, k as u32);
+        };
+        let mut terms = [(); N].map(|_| Vec::new());
+        for &(i, coefficient) in &rate_partials[k] {
+            let g = gradient(pool, i);
+            for (terms, g) in terms.iter_mut().zip(g) {
+                terms.push(pool.mul(g, coefficient));
+            }
+        }
+        terms.map(|t| pool.sum(t))
+    }
+
+    /// `∂ω_f/∂vₖ`, in `f`'s axes.
     pub fn partial_angular_velocity(&self, pool: &mut Pool, f: FrameId, k: usize) -> Vec3 {
         self.angular_velocity[f.0].map(|x| pool.diff(x, Sym::Speed(k as u32)))
     }
@@ -157,7 +196,7 @@ impl Kinematics {
             let Some(p) = &model.frames[f.0].placement else {
                 break;
             };
-            chain.push(axis_rotation(pool, &p.axis, p.angle));
+            chain.push(placement_rotation(pool, model, p));
             f = p.parent;
         }
         chain
@@ -167,18 +206,48 @@ impl Kinematics {
     }
 }
 
-/// `∂e/∂t + Σⱼ (∂e/∂qⱼ) q̇ⱼ`: the time derivative of `e` with the speeds
-/// held constant (the acceleration terms that do not multiply a `q̈`).
+/// `∂e/∂t + Σⱼ (∂e/∂qⱼ) q̇ⱼ` over the `nq` coordinates, with `q̇ⱼ` in the
+/// speeds: the time derivative of `e` with the speeds held constant (the
+/// acceleration terms that do not multiply a `v̇`).
 pub fn rate_at_constant_speeds(pool: &mut Pool, e: ExprId, nq: u32) -> ExprId {
     let mut terms = vec![pool.diff(e, Sym::Time)];
     for j in 0..nq {
         let d = pool.diff(e, Sym::Coord(j));
         if !pool.is_zero(d) {
-            let qd = pool.sym(Sym::Speed(j));
-            terms.push(pool.mul(d, qd));
+            let rate = pool.rate(j);
+            terms.push(pool.mul(d, rate));
         }
     }
     pool.sum(terms)
+}
+
+/// `∂q̇ᵢ/∂vₖ` for each speed `k`, over the coordinates `i` it moves.
+fn rate_partials(model: &Model, pool: &mut Pool) -> Vec<Vec<(u32, ExprId)>> {
+    (0..model.nv() as u32)
+        .map(|k| {
+            (0..model.nq() as u32)
+                .filter_map(|i| {
+                    let rate = pool.rate(i);
+                    let d = pool.diff(rate, Sym::Speed(k));
+                    (!pool.is_zero(d)).then_some((i, d))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The rotation of a frame from its parent: about a constant axis, or by a
+/// joint's quaternion.
+fn placement_rotation(pool: &mut Pool, model: &Model, p: &FramePlacement) -> Mat3 {
+    match p.ball {
+        Some(b) => {
+            let q = model.balls[b]
+                .quaternion
+                .map(|i| pool.sym(Sym::Coord(i as u32)));
+            quaternion::rotation(pool, q)
+        }
+        None => axis_rotation(pool, &p.axis, p.angle),
+    }
 }
 
 /// The frames from `f` up to `N`, `f` first.

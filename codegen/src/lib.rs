@@ -28,6 +28,7 @@ mod optimize;
 mod outputs;
 mod random;
 mod render;
+mod rigid;
 #[cfg(test)]
 mod seeds;
 mod trees;
@@ -55,11 +56,16 @@ pub use urdf::Urdf;
 ///   animations draw).
 /// * [`Random`](testing::Random) is the one deterministic generator of the
 ///   project's random states.
+/// * [`quaternion_rotation`](testing::quaternion_rotation), [`cross`](testing::cross),
+///   [`mat_vec`](testing::mat_vec) and [`transpose_vec`](testing::transpose_vec):
+///   numeric rigid-body closed forms for free and spherical joints, written
+///   apart from the symbolic engine.
 pub mod testing {
     pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
     pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
     pub use crate::random::Random;
     pub use crate::trees::Shape;
+    pub use crate::rigid::{cross, mat_vec, quaternion_rotation, transpose_vec};
 }
 
 use proc_macro2::TokenStream;
@@ -190,22 +196,28 @@ fn check_equations(model: &model::Model, equations: &equations::Equations) -> sy
     check_inertia(model, equations)
 }
 
-/// Every coordinate must move some mass: a coordinate whose diagonal entry
+/// Every speed must move some mass: a coordinate (or speed) whose diagonal entry
 /// of `M` is zero (and that no constraint ties) makes `M` singular
 /// everywhere. Reported at the coordinate's declaration.
 fn check_inertia(model: &model::Model, equations: &equations::Equations) -> syn::Result<()> {
-    let mut errors = (0..model.nq()).filter_map(|k| {
+    let mut errors = (0..model.nv()).filter_map(|k| {
         let massless = model.pool.is_zero(equations.mass_matrix[k][k]);
         let constrained = equations
             .constraint_jacobian
             .iter()
             .any(|row| !model.pool.is_zero(row[k]));
         (massless && !constrained).then(|| {
-            let name = &model.coordinates[k];
+            let speed = &model.speeds[k];
+            let name = &speed.name;
+            let what = if speed.rate_of_coordinate {
+                "coordinate"
+            } else {
+                "speed"
+            };
             syn::Error::new(
                 name.span(),
                 format!(
-                    "the coordinate `{name}` moves no mass, so the mass matrix is singular \
+                    "the {what} `{name}` moves no mass, so the mass matrix is singular \
                      everywhere: make a body or particle depend on it, or remove it"
                 ),
             )

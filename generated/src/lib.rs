@@ -138,6 +138,11 @@ model!(
     /// A small robot with every feature of the URDF import.
     features
 );
+model!(
+    /// Solo12 on a floating base (`dalembert urdf solo12.urdf --floating`,
+    /// checked in as `models/floating_solo12.dal`): 19 coordinates, 18 speeds.
+    floating_solo12
+);
 
 // The benchmark trees (`trees/*.urdf`, written by
 // `dalembert_codegen::testing::Shape`), imported by `Builder::urdf`;
@@ -239,6 +244,7 @@ pub use constrained_pendulum::ConstrainedPendulum;
 pub use double_pendulum::DoublePendulum;
 pub use features::FeatureTree;
 pub use limbs::Limbs;
+pub use floating_solo12::FloatingSolo;
 pub use panda::Panda;
 pub use planar_chain_01::PlanarChain1;
 pub use planar_chain_02::PlanarChain2;

@@ -5,7 +5,7 @@
 //! accelerations of the generated `accelerations` method (ABA's `q̈`).
 //! And the imported model text, for review, as insta snapshots.
 
-use dalembert_generated::{FeatureTree, Panda, Solo, Ur5};
+use dalembert_generated::{FeatureTree, FloatingSolo, Panda, Solo, Ur5};
 use serde_json::Value;
 
 /// Relative agreement required, against the largest entry of the quantity.
@@ -21,6 +21,13 @@ fn numbers(v: &Value) -> Vec<f64> {
         Value::Array(items) => items.iter().flat_map(numbers).collect(),
         other => vec![other.as_f64().expect("a number")],
     }
+}
+
+/// The numbers of `v` as an array of the length the caller needs.
+fn array<const N: usize>(v: &Value) -> [f64; N] {
+    numbers(v)
+        .try_into()
+        .expect("as many entries as the system has")
 }
 
 /// Checks `max |got − want| ≤ TOLERANCE · max |want|`; returns the ratio.
@@ -60,8 +67,11 @@ macro_rules! check {
         let mut worst = [0.0_f64; 5];
         for (index, state) in model["states"].as_array().unwrap().iter().enumerate() {
             let what = |field: &str| format!("{} state {index} {field}", $robot);
-            let array = |field: &str| numbers(&state[field]).try_into().expect("n entries");
-            let (q, qd, tau) = (array("q"), array("qd"), array("tau"));
+            let (q, qd, tau) = (
+                array(&state["q"]),
+                array(&state["qd"]),
+                array(&state["tau"]),
+            );
             let mass = system.mass_matrix(&q);
             let f = system.forcing(0.0, &q, &qd, &tau);
             let t = system.kinetic_energy(&q, &qd);
@@ -98,6 +108,27 @@ fn ur5_matches_pinocchio() {
 #[test]
 fn solo12_matches_pinocchio() {
     check!(Solo, "solo12");
+}
+
+#[test]
+fn floating_solo12_matches_pinocchio_free_flyer() {
+    check!(FloatingSolo, "solo12_floating");
+}
+
+/// The checked-in floating model is what the importer writes today.
+#[test]
+fn floating_solo12_is_the_imported_model() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let model = dalembert_codegen::Urdf::read(root.join("../tests/reference/urdf/solo12.urdf"))
+        .map(|urdf| urdf.floating(true).name("FloatingSolo"))
+        .and_then(|urdf| urdf.model())
+        .expect("imports");
+    let checked_in = std::fs::read_to_string(root.join("models/floating_solo12.dal"))
+        .expect("models/floating_solo12.dal");
+    assert_eq!(
+        model, checked_in,
+        "regenerate with `dalembert urdf tests/reference/urdf/solo12.urdf --floating --name FloatingSolo`"
+    );
 }
 
 #[test]

@@ -464,10 +464,14 @@ impl Writer<'_> {
     fn product_of(&self, coefficient: Number, factors: &[ExprId]) -> TokenStream {
         let mut numerator = Vec::new();
         let mut denominator = Vec::new();
+        // Whether the denominator is a product (`x * x` from `x⁻²` is one
+        // even alone), which needs parentheses below the `/`.
+        let mut product_below = false;
         for &f in factors {
             match self.pool.node(f) {
                 // `i32::MIN` has no positive counterpart: it stays a `powi`.
                 Node::Pow(base, n) if *n < 0 && *n != i32::MIN && !self.bound.contains_key(&f) => {
+                    product_below |= matches!(n, -3 | -2);
                     denominator.push(self.power(*base, -n))
                 }
                 _ => numerator.push(self.factor(f)),
@@ -481,7 +485,7 @@ impl Writer<'_> {
         let mut out = join(&numerator, quote!(*));
         if !denominator.is_empty() {
             let below = join(&denominator, quote!(*));
-            out = if denominator.len() == 1 {
+            out = if denominator.len() == 1 && !product_below {
                 quote!(#out / #below)
             } else {
                 quote!(#out / (#below))

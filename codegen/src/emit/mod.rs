@@ -49,7 +49,7 @@ pub fn emit(
 ) -> TokenStream {
     let names = names(model, target);
     let name = &model.name;
-    let nq = model.nq();
+    let (nq, nv) = (model.nq(), model.nv());
     let nu = model.inputs.len();
     let nc = model.constraints.len();
     let mut items: Vec<TokenStream> = functions
@@ -64,7 +64,7 @@ pub fn emit(
             (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, function),
         })
         .collect();
-    items.push(configuration::emit_configuration(model.nq()));
+    items.push(configuration::emit_configuration(model, &names));
     let strukt = emit_struct(model, &documentation.docs);
     let mut constants = emit_constants(model, &documentation.text);
     constants.extend(constants_of_outputs.iter().map(emit_name_list));
@@ -73,7 +73,7 @@ pub fn emit(
             let solver = solve::emit_accelerations(model, equations, &names);
             let has_solver = !solver.is_empty();
             items.push(solver);
-            emit_trait_impls(name, nq, nu, nc, has_solver)
+            emit_trait_impls(name, [nq, nv, nu, nc], has_solver)
         }
         Target::NoStd => TokenStream::new(),
     };
@@ -89,30 +89,39 @@ pub fn emit(
 }
 
 fn names(model: &Model, target: Target) -> Names {
+    let own_speeds = model.speeds.iter().filter(|s| !s.rate_of_coordinate);
     let taken: Vec<String> = model
         .parameters
         .iter()
         .chain(&model.coordinates)
         .chain(&model.inputs)
+        .chain(own_speeds.map(|s| &s.name))
         .map(|i| i.to_string())
         .collect();
-    let rates = |suffix: &str, fallback: &str| -> Vec<Ident> {
+    // A speed that is its coordinate's rate is `q_dot` (its rate `q_ddot`);
+    // a speed of the user's own keeps its name (its rate `w_dot`).
+    let rates = |suffix: &str, own: &str, fallback: &str| -> Vec<Ident> {
         model
-            .coordinates
+            .speeds
             .iter()
             .enumerate()
-            .map(|(i, q)| {
-                let preferred = format!("{q}_{suffix}");
+            .map(|(i, speed)| {
+                let name = &speed.name;
+                let preferred = match speed.rate_of_coordinate {
+                    true => format!("{name}_{suffix}"),
+                    false if own.is_empty() => return name.clone(),
+                    false => format!("{name}_{own}"),
+                };
                 if taken.contains(&preferred) {
                     format_ident!("{}_{}", fallback, i)
                 } else {
-                    Ident::new(&preferred, q.span())
+                    Ident::new(&preferred, name.span())
                 }
             })
             .collect()
     };
-    let speeds = rates("dot", "qd");
-    let accelerations = rates("ddot", "qdd");
+    let speeds = rates("dot", "", "qd");
+    let accelerations = rates("ddot", "dot", "qdd");
     let mut temporary = "x".to_string();
     while taken.iter().any(|n| {
         n.strip_prefix(&temporary)
@@ -166,8 +175,9 @@ fn raw_string(text: &str) -> Literal {
 }
 
 fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
-    let [nq, np, nu, nc] = [
+    let [nq, nv, np, nu, nc] = [
         model.nq(),
+        model.nv(),
         model.parameters.len(),
         model.inputs.len(),
         model.constraints.len(),
@@ -177,13 +187,18 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
     let coordinates = strings(&model.coordinates);
     let parameters = strings(&model.parameters);
     let inputs = strings(&model.inputs);
-    let speeds = coordinates.iter().map(|q| format!("dt({q})"));
+    let speeds = model.speeds.iter().map(|s| s.written());
+    let nv_doc = if model.pool.rates_are_speeds() {
+        " Number of speeds (the coordinates' rates)."
+    } else {
+        " Number of speeds (`v`, with `q̇ = N(q) v`)."
+    };
     let equations = raw_string(equations_text);
     quote! {
         /// Number of generalized coordinates.
         pub const NQ: usize = #nq;
-        /// Number of speeds (the coordinates' rates).
-        pub const NV: usize = #nq;
+        #[doc = #nv_doc]
+        pub const NV: usize = #nv;
         /// Number of inputs.
         pub const NU: usize = #nu;
         /// Number of constraints.
@@ -191,7 +206,7 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
         /// Names of the generalized coordinates, in index order.
         pub const COORDINATES: [&'static str; #nq] = [#(#coordinates),*];
         /// Names of the speeds, in index order.
-        pub const SPEEDS: [&'static str; #nq] = [#(#speeds),*];
+        pub const SPEEDS: [&'static str; #nv] = [#(#speeds),*];
         /// Names of the parameters, in field order.
         pub const PARAMETERS: [&'static str; #np] = [#(#parameters),*];
         /// Names of the inputs, in index order.
@@ -246,13 +261,13 @@ fn emit_function(model: &Model, names: &Names, function: &Function) -> TokenStre
         .collect();
     let body = straight_line(&model.pool, names, &roots);
     let reads = |kind: fn(&Sym) -> bool| body.used.iter().any(kind);
-    let (nq, nu) = (array(model.nq()), array(model.inputs.len()));
+    let (nq, nv, nu) = (array(model.nq()), array(model.nv()), array(model.inputs.len()));
     let arguments = function.arguments.iter().map(|argument| {
         let (name, ty, used) = match argument {
             Argument::Time => ("t", quote!(f64), reads(|s| matches!(s, Sym::Time))),
             Argument::Coordinates => ("q", quote!(&#nq), reads(|s| matches!(s, Sym::Coord(_)))),
-            Argument::Speeds => ("qd", quote!(&#nq), reads(|s| matches!(s, Sym::Speed(_)))),
-            Argument::Accelerations => ("qdd", quote!(&#nq), reads(|s| matches!(s, Sym::Accel(_)))),
+            Argument::Speeds => ("qd", quote!(&#nv), reads(|s| matches!(s, Sym::Speed(_)))),
+            Argument::Accelerations => ("qdd", quote!(&#nv), reads(|s| matches!(s, Sym::Accel(_)))),
             Argument::Inputs => ("u", quote!(&#nu), reads(|s| matches!(s, Sym::Input(_)))),
         };
         let name = argument_name(name, used);
@@ -294,22 +309,18 @@ fn emit_function(model: &Model, names: &Names, function: &Function) -> TokenStre
 
 /// The runtime's traits, forwarding to the inherent functions (and to the
 /// emitted `accelerations` when the system has one).
-fn emit_trait_impls(
-    name: &Ident,
-    nq: usize,
-    nu: usize,
-    nc: usize,
-    has_solver: bool,
-) -> TokenStream {
-    let (vector, inputs, rows_out) = (array(nq), array(nu), array(nc));
-    let [nq, nu, nc_lit] = [nq, nu, nc].map(Literal::usize_unsuffixed);
+fn emit_trait_impls(name: &Ident, sizes: [usize; 4], has_solver: bool) -> TokenStream {
+    let [nq, nv, nu, nc] = sizes;
+    let (coordinates, vector) = (array(nq), array(nv));
+    let (inputs, rows_out) = (array(nu), array(nc));
+    let [nq, nv, nu, nc_lit] = [nq, nv, nu, nc].map(Literal::usize_unsuffixed);
     let accelerations = if has_solver {
         quote! {
             #[inline]
             fn accelerations(
                 &self,
                 t: f64,
-                q: &#vector,
+                q: &#coordinates,
                 v: &#vector,
                 u: &#inputs,
             ) -> ::core::result::Result<#vector, ::dalembert::DynamicsError> {
@@ -320,32 +331,32 @@ fn emit_trait_impls(
         TokenStream::new()
     };
     let system = quote! {
-        impl ::dalembert::MultibodySystem<#nq, #nq, #nu> for #name {
+        impl ::dalembert::MultibodySystem<#nq, #nv, #nu> for #name {
             const COORDINATES: [&'static str; #nq] = #name::COORDINATES;
-            const SPEEDS: [&'static str; #nq] = #name::SPEEDS;
+            const SPEEDS: [&'static str; #nv] = #name::SPEEDS;
             const INPUTS: [&'static str; #nu] = #name::INPUTS;
             #[inline]
-            fn mass_matrix(&self, q: &#vector) -> [#vector; #nq] {
+            fn mass_matrix(&self, q: &#coordinates) -> [#vector; #nv] {
                 #name::mass_matrix(self, q)
             }
             #[inline]
-            fn forcing(&self, t: f64, q: &#vector, v: &#vector, u: &#inputs) -> #vector {
+            fn forcing(&self, t: f64, q: &#coordinates, v: &#vector, u: &#inputs) -> #vector {
                 #name::forcing(self, t, q, v, u)
             }
             #[inline]
-            fn kinetic_energy(&self, q: &#vector, v: &#vector) -> f64 {
+            fn kinetic_energy(&self, q: &#coordinates, v: &#vector) -> f64 {
                 #name::kinetic_energy(self, q, v)
             }
             #[inline]
-            fn potential_energy(&self, q: &#vector) -> f64 {
+            fn potential_energy(&self, q: &#coordinates) -> f64 {
                 #name::potential_energy(self, q)
             }
             #[inline]
-            fn coordinate_rates(&self, q: &#vector, v: &#vector) -> #vector {
+            fn coordinate_rates(&self, q: &#coordinates, v: &#vector) -> #coordinates {
                 #name::coordinate_rates(self, q, v)
             }
             #[inline]
-            fn integrate_configuration(&self, q: &#vector, v: &#vector, h: f64) -> #vector {
+            fn integrate_configuration(&self, q: &#coordinates, v: &#vector, h: f64) -> #coordinates {
                 #name::integrate_configuration(self, q, v, h)
             }
             #accelerations
@@ -356,21 +367,21 @@ fn emit_trait_impls(
     }
     quote! {
         #system
-        impl ::dalembert::ConstrainedSystem<#nq, #nq, #nu, #nc_lit> for #name {
+        impl ::dalembert::ConstrainedSystem<#nq, #nv, #nu, #nc_lit> for #name {
             #[inline]
-            fn constraint_jacobian(&self, q: &#vector) -> [#vector; #nc_lit] {
+            fn constraint_jacobian(&self, q: &#coordinates) -> [#vector; #nc_lit] {
                 #name::constraint_jacobian(self, q)
             }
             #[inline]
-            fn constraint_bias(&self, t: f64, q: &#vector, v: &#vector) -> #rows_out {
+            fn constraint_bias(&self, t: f64, q: &#coordinates, v: &#vector) -> #rows_out {
                 #name::constraint_bias(self, t, q, v)
             }
             #[inline]
-            fn constraint_residual(&self, t: f64, q: &#vector) -> #rows_out {
+            fn constraint_residual(&self, t: f64, q: &#coordinates) -> #rows_out {
                 #name::constraint_residual(self, t, q)
             }
             #[inline]
-            fn constraint_velocity(&self, t: f64, q: &#vector, v: &#vector) -> #rows_out {
+            fn constraint_velocity(&self, t: f64, q: &#coordinates, v: &#vector) -> #rows_out {
                 #name::constraint_velocity(self, t, q, v)
             }
         }
@@ -412,6 +423,27 @@ mod tests {
             }
         };
         assert_eq!(emitted.to_string(), expected.to_string());
+    }
+
+    /// `a / x²` is `a / (x * x)`, not `a / x * x` (which is `a`).
+    #[test]
+    fn a_square_below_a_division_is_parenthesised() {
+        let source = "pub S {
+            parameters m, k;
+            coordinates x;
+            particle p { mass: m, at: O + x * N.x };
+            potential k * x / (2 + sin(x))^2;
+        }";
+        let code = crate::generate(source).expect("generates");
+        let words: Vec<&str> = code.split_whitespace().collect();
+        for w in words.windows(4) {
+            assert!(
+                !(w[0] == "/" && w[2] == "*" && w[1] == w[3].trim_end_matches([';', ')', ','])),
+                "unparenthesised square below a division: {}",
+                w.join(" ")
+            );
+        }
+        assert!(code.contains("/ ("), "{code}");
     }
 
     #[test]

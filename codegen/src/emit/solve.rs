@@ -35,7 +35,7 @@ pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -
     let Some(factorised) = factorised(model, equations) else {
         return TokenStream::new();
     };
-    let nq = model.nq();
+    let nv = model.nv();
     let (doc, body) = match &equations.articulated {
         Some(articulated)
             if articulated_is_cheaper(model, equations, articulated, &factorised.pattern) =>
@@ -72,15 +72,15 @@ pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -
             )
         }
     };
-    let n_lit = index(nq);
-    let nu = index(model.inputs.len());
+    let (n_lit, nu) = (index(nv), index(model.inputs.len()));
+    let coordinates = index(model.nq());
     quote! {
         #(#[doc = #doc])*
         #[inline]
         pub fn accelerations(
             &self,
             t: f64,
-            q: &[f64; #n_lit],
+            q: &[f64; #coordinates],
             qd: &[f64; #n_lit],
             u: &[f64; #nu],
         ) -> ::core::result::Result<[f64; #n_lit], ::dalembert::DynamicsError> {
@@ -125,7 +125,7 @@ pub struct Factorised {
 /// The factorisation and substitutions of `M x = f`; `None` for a system
 /// with constraints or no coordinates.
 pub fn factorised(model: &Model, equations: &Equations) -> Option<Factorised> {
-    let nq = model.nq();
+    let nq = model.nv();
     if !model.constraints.is_empty() || nq == 0 {
         return None;
     }
@@ -170,7 +170,7 @@ pub fn factorised(model: &Model, equations: &Equations) -> Option<Factorised> {
 /// body computing `f`, the pivots and `q̈`, then the checks.
 fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> TokenStream {
     let body = straight_line(&model.pool, names, &articulated.roots());
-    let nq = model.nq();
+    let nq = model.nv();
     let statements = &body.statements;
     let forcing = &body.outputs[..nq];
     let pivots = &body.outputs[nq..2 * nq];
@@ -258,7 +258,7 @@ fn factorisation_operations(pattern: &[Vec<bool>]) -> usize {
 /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero — `Mᵢⱼ` is not
 /// structurally zero, or fill-in through an earlier column.
 fn fill_pattern(model: &Model, equations: &Equations) -> Vec<Vec<bool>> {
-    let nq = model.nq();
+    let nq = model.nv();
     let mut pattern: Vec<Vec<bool>> = (0..nq)
         .map(|i| {
             (0..=i)
@@ -313,7 +313,14 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
     let shared = |i: usize, j: usize| (0..j).filter(move |&k| pattern[i][k] && pattern[j][k]);
-    for (j, coordinate) in model.coordinates.iter().enumerate().take(nq) {
+    // The pivot's name, as the runtime's solver reports it: the coordinate
+    // when every speed is its coordinate's rate, else the speed.
+    let names: Vec<String> = if model.nq() == model.nv() {
+        model.coordinates.iter().map(|c| c.to_string()).collect()
+    } else {
+        model.speeds.iter().map(|s| s.written()).collect()
+    };
+    for (j, coordinate) in names.iter().enumerate().take(nq) {
         let jj = index(j);
         let diagonal = mass(j, j);
         let pivot = minus_products(
@@ -324,7 +331,6 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
             }),
         );
         let (p, r) = (format_ident!("p{}", j), format_ident!("r{}", j));
-        let coordinate = coordinate.to_string();
         out.extend(quote! {
             let #p = #pivot;
             if !(#p > tolerance) {

@@ -29,7 +29,6 @@
 use super::recursive::{Composite, JointTree, rotate_tensor};
 use crate::expr::{ExprId, Pool};
 use crate::kinematics::{Mat3, Vec3, add3, cross, dot, mat_vec, transpose_mul};
-use crate::model::JointKind;
 
 /// The tree's accelerations, per coordinate.
 #[derive(Clone, Debug)]
@@ -89,17 +88,20 @@ pub fn articulated(tree: &JointTree, forcing: &[ExprId], pool: &mut Pool) -> Opt
     let mut steps: Vec<Pivot> = Vec::with_capacity(n);
     for l in (0..n).rev() {
         let link = &tree.links[l];
+        let [column] = link.columns.as_slice() else {
+            return None;
+        };
         let i_a = grouped(pool, &inertia[l]);
         let delta = group_pair(pool, &bias[l]);
-        let u = motion_subspace_image(pool, link.kind, &link.axis, &i_a);
+        let u = motion_subspace_image(pool, column.turns, &column.axis, &i_a);
         let u = group_pair(pool, &u);
-        let pivot = project(pool, link.kind, &link.axis, &u);
+        let pivot = project(pool, column.turns, &column.axis, &u);
         let pivot = pool.group(pivot);
-        let share = project(pool, link.kind, &link.axis, &delta);
-        let force = pool.sub(forcing[link.coordinate], share);
+        let share = project(pool, column.turns, &column.axis, &delta);
+        let force = pool.sub(forcing[column.speed], share);
         let force = pool.group(force);
         let reciprocal = pool.powi(pivot, -1);
-        pivots[link.coordinate] = pivot;
+        pivots[column.speed] = pivot;
         if let Some(p) = link.parent {
             let per = pool.mul(force, reciprocal);
             let scaled = (
@@ -135,6 +137,9 @@ pub fn articulated(tree: &JointTree, forcing: &[ExprId], pool: &mut Pool) -> Opt
     let mut motions: Vec<Pair> = Vec::with_capacity(n);
     let mut accelerations = vec![zero; n];
     for (link, step) in tree.links.iter().zip(&steps) {
+        let [column] = link.columns.as_slice() else {
+            return None;
+        };
         let (omega, v) = match link.parent {
             Some(p) => from_parent(pool, &link.rotation, &link.offset, &motions[p]),
             None => ([zero; 3], [zero; 3]),
@@ -144,11 +149,11 @@ pub fn articulated(tree: &JointTree, forcing: &[ExprId], pool: &mut Pool) -> Opt
         let free = pool.sub(step.force, coupling);
         let qdd = pool.mul(free, step.reciprocal);
         let qdd = pool.group(qdd);
-        accelerations[link.coordinate] = qdd;
-        let rate = scale3(pool, &link.axis, qdd);
-        let motion = match link.kind {
-            JointKind::Revolute => (add3(pool, &omega, &rate), v),
-            JointKind::Prismatic => (omega, add3(pool, &v, &rate)),
+        accelerations[column.speed] = qdd;
+        let rate = scale3(pool, &column.axis, qdd);
+        let motion = match column.turns {
+            true => (add3(pool, &omega, &rate), v),
+            false => (omega, add3(pool, &v, &rate)),
         };
         motions.push(group_pair(pool, &motion));
     }
@@ -186,19 +191,19 @@ fn skew(pool: &mut Pool, v: &Vec3) -> Mat3 {
 
 /// `I S` for the joint's unit motion `S`: `(A e, Bᵀ e)` about a revolute
 /// axis, `(B e, C e)` along a prismatic one.
-fn motion_subspace_image(pool: &mut Pool, kind: JointKind, e: &Vec3, i: &Spatial) -> Pair {
-    match kind {
-        JointKind::Revolute => (mat_vec(pool, &i.a, e), transpose_mul(pool, &i.b, e)),
-        JointKind::Prismatic => (mat_vec(pool, &i.b, e), mat_vec(pool, &i.c, e)),
+fn motion_subspace_image(pool: &mut Pool, turns: bool, e: &Vec3, i: &Spatial) -> Pair {
+    match turns {
+        true => (mat_vec(pool, &i.a, e), transpose_mul(pool, &i.b, e)),
+        false => (mat_vec(pool, &i.b, e), mat_vec(pool, &i.c, e)),
     }
 }
 
 /// `Sᵀ w` of a wrench `w`: its moment about a revolute axis, its resultant
 /// along a prismatic one.
-fn project(pool: &mut Pool, kind: JointKind, e: &Vec3, w: &Pair) -> ExprId {
-    match kind {
-        JointKind::Revolute => dot(pool, e, &w.0),
-        JointKind::Prismatic => dot(pool, e, &w.1),
+fn project(pool: &mut Pool, turns: bool, e: &Vec3, w: &Pair) -> ExprId {
+    match turns {
+        true => dot(pool, e, &w.0),
+        false => dot(pool, e, &w.1),
     }
 }
 

@@ -1,13 +1,15 @@
 //! d'Alembert's principle assembled into the equations of motion:
 //!
 //! ```text
-//! Σᵢ mᵢ a_Gᵢ · ∂v_Gᵢ/∂q̇ₖ + Σᵢ (I_Gᵢ·αᵢ + ωᵢ × I_Gᵢ·ωᵢ) · ∂ωᵢ/∂q̇ₖ = F_qₖ (+ Σⱼ λⱼ aⱼₖ)
+//! Σᵢ mᵢ a_Gᵢ · ∂v_Gᵢ/∂vₖ + Σᵢ (I_Gᵢ·αᵢ + ωᵢ × I_Gᵢ·ωᵢ) · ∂ωᵢ/∂vₖ = Fₖ (+ Σⱼ λⱼ aⱼₖ)
 //! ```
 //!
-//! With `a = Σⱼ (∂v/∂q̇ⱼ) q̈ⱼ + a_bias` (and likewise `α`), the `q̈` terms give
+//! for every speed `vₖ` (the rate `q̇ₖ` of a coordinate unless a joint or
+//! statement defines it otherwise: Kane's form). With
+//! `a = Σⱼ (∂v/∂vⱼ) v̇ⱼ + a_bias` (and likewise `α`), the `v̇` terms give
 //! the mass matrix `M` — symmetric by construction — and everything else
-//! moves to the forcing `f`, so that `M q̈ = f (+ Aᵀλ)`. Constraints give
-//! `A` and `b` with `A q̈ = b`, and the energies come from the same
+//! moves to the forcing `f`, so that `M v̇ = f (+ Aᵀλ)`. Constraints give
+//! `A` and `b` with `A v̇ = b`, and the energies come from the same
 //! kinematics.
 //!
 //! A kinematic tree (see [`crate::model::Tree`]) takes a shortcut to the
@@ -93,7 +95,7 @@ struct Inertia<'a> {
 /// Derives every equation of `model`.
 pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
     let kinematics = Kinematics::new(model, pool);
-    let nq = model.nq();
+    let nv = model.nv();
     let inertias = inertias(model);
     let tree = model
         .tree
@@ -107,8 +109,8 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
             (mass_matrix, bias, true)
         }
         None => {
-            let (mass_matrix, bias) = inertia_terms(&kinematics, pool, &inertias, nq);
-            let bias = (0..nq)
+            let (mass_matrix, bias) = inertia_terms(&kinematics, pool, &inertias, nv);
+            let bias = (0..nv)
                 .map(|k| {
                     let gravity = gravity_force(model, &kinematics, pool, &inertias, k);
                     pool.sub(bias[k], gravity)
@@ -117,9 +119,9 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
             (mass_matrix, bias, false)
         }
     };
-    let forcing: Vec<ExprId> = (0..nq)
+    let forcing: Vec<ExprId> = (0..nv)
         .map(|k| {
-            let mut active = potential_and_dissipation_force(model, pool, k);
+            let mut active = potential_and_dissipation_force(model, &kinematics, pool, k);
             if !loads_done {
                 let loads = load_force(model, &kinematics, pool, k);
                 active = pool.add(loads, active);
@@ -153,7 +155,7 @@ pub fn inverse_dynamics(
     equations: &Equations,
     pool: &mut Pool,
 ) -> (Vec<ExprId>, bool) {
-    let nq = model.nq();
+    let nv = model.nv();
     let kinematics = Kinematics::new(model, pool);
     let inertias = inertias(model);
     let tree = model
@@ -163,18 +165,18 @@ pub fn inverse_dynamics(
     match tree {
         Some(tree) => {
             let inertial = recursive::inverse_dynamics(&tree, pool);
-            let forces = (0..nq)
+            let forces = (0..nv)
                 .map(|k| {
-                    let active = potential_and_dissipation_force(model, pool, k);
+                    let active = potential_and_dissipation_force(model, &kinematics, pool, k);
                     pool.sub(inertial[k], active)
                 })
                 .collect();
             (forces, true)
         }
         None => {
-            let forces = (0..nq)
+            let forces = (0..nv)
                 .map(|k| {
-                    let mut terms: Vec<ExprId> = (0..nq)
+                    let mut terms: Vec<ExprId> = (0..nv)
                         .map(|j| {
                             let qdd = pool.sym(Sym::Accel(j as u32));
                             pool.mul(equations.mass_matrix[k][j], qdd)
@@ -214,14 +216,14 @@ fn partials(
     kinematics: &Kinematics,
     pool: &mut Pool,
     inertia: &Inertia<'_>,
-    nq: usize,
+    nv: usize,
 ) -> Partials {
     Partials {
-        linear: (0..nq)
+        linear: (0..nv)
             .map(|k| kinematics.partial_velocity(pool, inertia.center, k))
             .collect(),
         angular: match inertia.rotation {
-            Some((frame, _)) => (0..nq)
+            Some((frame, _)) => (0..nv)
                 .map(|k| kinematics.partial_angular_velocity(pool, frame, k))
                 .collect(),
             None => Vec::new(),
@@ -236,12 +238,12 @@ fn inertia_terms(
     kinematics: &Kinematics,
     pool: &mut Pool,
     inertias: &[Inertia<'_>],
-    nq: usize,
+    nv: usize,
 ) -> (Vec<Vec<ExprId>>, Vec<ExprId>) {
-    let mut mass_terms = vec![vec![Vec::new(); nq]; nq];
-    let mut bias_terms = vec![Vec::new(); nq];
+    let mut mass_terms = vec![vec![Vec::new(); nv]; nv];
+    let mut bias_terms = vec![Vec::new(); nv];
     for inertia in inertias {
-        let p = partials(kinematics, pool, inertia, nq);
+        let p = partials(kinematics, pool, inertia, nv);
         let a_bias = kinematics.acceleration_bias(pool, inertia.center);
         let m_a_bias = a_bias.map(|x| pool.mul(inertia.mass, x));
         let rotational = inertia.rotation.map(|(frame, tensor)| {
@@ -255,12 +257,12 @@ fn inertia_terms(
                 p.angular.iter().map(|w| mat_vec(pool, tensor, w)).collect();
             (moment, i_partials)
         });
-        for k in 0..nq {
+        for k in 0..nv {
             bias_terms[k].push(dot(pool, &m_a_bias, &p.linear[k]));
             if let Some((moment, _)) = &rotational {
                 bias_terms[k].push(dot(pool, moment, &p.angular[k]));
             }
-            for j in k..nq {
+            for j in k..nv {
                 let linear = dot(pool, &p.linear[k], &p.linear[j]);
                 mass_terms[k][j].push(pool.mul(inertia.mass, linear));
                 if let Some((_, i_partials)) = &rotational {
@@ -269,9 +271,9 @@ fn inertia_terms(
             }
         }
     }
-    let mut mass_matrix = vec![vec![pool.zero(); nq]; nq];
-    for k in 0..nq {
-        for j in k..nq {
+    let mut mass_matrix = vec![vec![pool.zero(); nv]; nv];
+    for k in 0..nv {
+        for j in k..nv {
             let entry = pool.sum(std::mem::take(&mut mass_terms[k][j]));
             mass_matrix[k][j] = entry;
             mass_matrix[j][k] = entry;
@@ -330,9 +332,17 @@ fn load_force(model: &Model, kinematics: &Kinematics, pool: &mut Pool, k: usize)
     pool.sum(terms)
 }
 
-/// `−∂V/∂qₖ − ∂D/∂q̇ₖ`.
-fn potential_and_dissipation_force(model: &Model, pool: &mut Pool, k: usize) -> ExprId {
-    let potential = pool.diff(model.potential, Sym::Coord(k as u32));
+/// `−∂V/∂vₖ − ∂D/∂vₖ`, where `∂V/∂vₖ = Σᵢ (∂V/∂qᵢ) (∂q̇ᵢ/∂vₖ)` (`∂V/∂qₖ`
+/// when `q̇ = v`).
+fn potential_and_dissipation_force(
+    model: &Model,
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    k: usize,
+) -> ExprId {
+    let [potential] = kinematics.through_rates(pool, k, |pool, i| {
+        [pool.diff(model.potential, Sym::Coord(i))]
+    });
     let dissipation = pool.diff(model.dissipation, Sym::Speed(k as u32));
     let terms = [pool.neg(potential), pool.neg(dissipation)];
     pool.sum(terms)
@@ -394,7 +404,7 @@ fn potential_energy(
 /// `ψ = A q̇ + ψ₀` (`ψ = dφ/dt` for a holonomic `φ`), so `A = ∂ψ/∂q̇` and
 /// `b = −rate(ψ)`, the time derivative of `ψ` at constant speeds.
 fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
-    let nq = model.nq();
+    let (nq, nv) = (model.nq(), model.nv());
     let mut rows = ConstraintRows {
         jacobian: Vec::new(),
         bias: Vec::new(),
@@ -410,7 +420,7 @@ fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
             pool.time_derivative(constraint.residual)
         };
         rows.jacobian.push(
-            (0..nq)
+            (0..nv)
                 .map(|k| pool.diff(psi, Sym::Speed(k as u32)))
                 .collect(),
         );
@@ -426,5 +436,7 @@ pub mod derivatives;
 pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;
+#[cfg(test)]
+mod quaternion_check;
 mod recursive;
 pub mod regressor;

@@ -10,7 +10,11 @@
 //! `Σᵢ (mᵢ a_Gᵢ · ∂v_Gᵢ/∂q̇ₖ + Mᵢ · ∂ωᵢ/∂q̇ₖ)` minus the applied loads' share
 //! is `eₖ` dotted with the moment about `Jₖ` (revolute) or the resultant
 //! (prismatic) of the inertia forces minus the loads beyond joint `k`,
-//! which a sweep from the leaves to the root accumulates in `O(n)`. Every
+//! which a sweep from the leaves to the root accumulates in `O(n)`. A
+//! spherical joint is three such turning speeds about its link's axes
+//! (its angular velocity), a free joint three sliding speeds along them
+//! first: each speed is a column of its link's motion subspace, and the
+//! sweeps project on every column. Every
 //! vector lives in the axes of its own link, so a planar chain meets only
 //! 2×2 rotations and its zeros fold away at construction.
 //!
@@ -44,15 +48,24 @@ pub(super) struct Link {
     /// The parent link, `None` for a joint on `N`.
     pub(super) parent: Option<usize>,
     pub(super) kind: JointKind,
-    /// The joint axis (unit for a revolute joint), in the link's axes.
-    pub(super) axis: Vec3,
-    /// The joint's coordinate index.
-    pub(super) coordinate: usize,
+    /// The joint's motion subspace: one column per speed.
+    pub(super) columns: Vec<Column>,
     /// From the parent's origin to this link's, in the parent's axes (with
     /// the slide of a prismatic joint).
     pub(super) offset: Vec3,
     /// Maps the link's components to its parent's.
     pub(super) rotation: Mat3,
+}
+
+/// One speed of a joint: a turn about, or a slide along, a unit axis.
+pub(super) struct Column {
+    /// Whether the speed turns the link about `axis` through its origin
+    /// (else it slides it along `axis`).
+    pub(super) turns: bool,
+    /// The axis, in the link's axes.
+    pub(super) axis: Vec3,
+    /// The speed's index.
+    pub(super) speed: usize,
 }
 
 /// A mass fixed in a link.
@@ -96,31 +109,55 @@ impl JointTree {
         let links: Vec<Link> = tree
             .links
             .iter()
-            .map(|link| {
+            .map(|link| -> Option<Link> {
                 let parent_frame = frame_of(link.parent);
                 let mut offset = kinematics.express(pool, model, &link.offset, parent_frame);
-                let axis = kinematics.express(pool, model, &link.axis, link.frame);
-                let rotation = match link.kind {
-                    JointKind::Revolute => {
-                        kinematics.relative_rotation(pool, model, parent_frame, link.frame)
+                let (rotation, columns) = match (link.kind, link.ball) {
+                    (JointKind::Revolute | JointKind::Prismatic, _) => {
+                        let axis = kinematics.express(pool, model, &link.axis, link.frame);
+                        let turns = link.kind == JointKind::Revolute;
+                        let rotation = if turns {
+                            kinematics.relative_rotation(pool, model, parent_frame, link.frame)
+                        } else {
+                            let q = pool.sym(Sym::Coord(link.coordinate as u32));
+                            let slide = axis.map(|e| pool.mul(q, e));
+                            offset = add3(pool, &offset, &slide);
+                            identity(pool)
+                        };
+                        let column = Column {
+                            turns,
+                            axis,
+                            speed: speed_of(pool, link.coordinate)?,
+                        };
+                        (rotation, vec![column])
                     }
-                    JointKind::Prismatic => {
-                        let q = pool.sym(Sym::Coord(link.coordinate as u32));
-                        let slide = axis.map(|e| pool.mul(q, e));
-                        offset = add3(pool, &offset, &slide);
-                        identity(pool)
+                    (_, ball) => {
+                        let ball = &model.balls[ball?];
+                        let rotation =
+                            kinematics.relative_rotation(pool, model, parent_frame, link.frame);
+                        let slides = ball.translation.iter().flat_map(|(_, v)| *v);
+                        let columns = slides
+                            .map(|k| (false, k))
+                            .chain(ball.angular.map(|k| (true, k)))
+                            .enumerate()
+                            .map(|(i, (turns, speed))| Column {
+                                turns,
+                                axis: crate::model::unit_axis(pool, i % 3),
+                                speed,
+                            })
+                            .collect();
+                        (rotation, columns)
                     }
                 };
-                Link {
+                Some(Link {
                     parent: link.parent,
                     kind: link.kind,
-                    axis,
-                    coordinate: link.coordinate,
+                    columns,
                     offset,
                     rotation,
-                }
+                })
             })
-            .collect();
+            .collect::<Option<_>>()?;
         let mut masses = Vec::new();
         let attachments = tree
             .bodies
@@ -181,6 +218,18 @@ impl JointTree {
     }
 }
 
+/// The speed whose rate a one-speed joint's coordinate is, if it is one.
+fn speed_of(pool: &mut Pool, coordinate: usize) -> Option<usize> {
+    if pool.rates_are_speeds() {
+        return Some(coordinate);
+    }
+    let rate = pool.rate(coordinate as u32);
+    match *pool.node(rate) {
+        crate::expr::Node::Sym(Sym::Speed(k)) => Some(k as usize),
+        _ => None,
+    }
+}
+
 /// The components of `v` in `N`'s axes, if they are constant.
 fn constant_in_newtonian(
     model: &Model,
@@ -218,32 +267,38 @@ impl JointTree {
     /// momentum about the origin of every ancestor `k` along `eₖ`
     /// (revolute), or its momentum along `eₖ` (prismatic).
     fn mass_matrix(&self, pool: &mut Pool) -> Vec<Vec<ExprId>> {
-        let nq = self.links.len();
+        let nv = self.links.iter().map(|l| l.columns.len()).sum();
         let composites = self.composites(pool);
-        let mut m = vec![vec![pool.zero(); nq]; nq];
+        let mut m = vec![vec![pool.zero(); nv]; nv];
         for (j, link) in self.links.iter().enumerate() {
             let c = &composites[j];
-            let e = &link.axis;
-            let (linear, angular) = match link.kind {
-                JointKind::Revolute => (cross(pool, e, &c.moment), mat_vec(pool, &c.inertia, e)),
-                JointKind::Prismatic => (e.map(|x| pool.mul(c.mass, x)), cross(pool, &c.moment, e)),
-            };
-            let (mut linear, mut angular) = (group3(pool, &linear), group3(pool, &angular));
-            let column = link.coordinate;
-            m[column][column] = link.project(pool, &linear, &angular);
-            let mut l = j;
-            while let Some(p) = self.links[l].parent {
-                let r = &self.links[l].rotation;
-                linear = mat_vec(pool, r, &linear);
-                let rotated = mat_vec(pool, r, &angular);
-                let shift = cross(pool, &self.links[l].offset, &linear);
-                linear = group3(pool, &linear);
-                let sum = add3(pool, &rotated, &shift);
-                angular = group3(pool, &sum);
-                let row = self.links[p].coordinate;
-                m[row][column] = self.links[p].project(pool, &linear, &angular);
-                m[column][row] = m[row][column];
-                l = p;
+            for (i, own) in link.columns.iter().enumerate() {
+                let e = &own.axis;
+                let (linear, angular) = match own.turns {
+                    true => (cross(pool, e, &c.moment), mat_vec(pool, &c.inertia, e)),
+                    false => (e.map(|x| pool.mul(c.mass, x)), cross(pool, &c.moment, e)),
+                };
+                let (mut linear, mut angular) = (group3(pool, &linear), group3(pool, &angular));
+                let column = own.speed;
+                for other in &link.columns[..=i] {
+                    m[other.speed][column] = other.project(pool, &linear, &angular);
+                    m[column][other.speed] = m[other.speed][column];
+                }
+                let mut l = j;
+                while let Some(p) = self.links[l].parent {
+                    let r = &self.links[l].rotation;
+                    linear = mat_vec(pool, r, &linear);
+                    let rotated = mat_vec(pool, r, &angular);
+                    let shift = cross(pool, &self.links[l].offset, &linear);
+                    linear = group3(pool, &linear);
+                    let sum = add3(pool, &rotated, &shift);
+                    angular = group3(pool, &sum);
+                    for other in &self.links[p].columns {
+                        m[other.speed][column] = other.project(pool, &linear, &angular);
+                        m[column][other.speed] = m[other.speed][column];
+                    }
+                    l = p;
+                }
             }
         }
         m
@@ -314,12 +369,15 @@ impl JointTree {
             force[mass.link] = add3(pool, &force[mass.link], &f);
             moment[mass.link] = add3(pool, &moment[mass.link], &n);
         }
-        let mut bias = vec![pool.zero(); self.links.len()];
+        let nv = self.links.iter().map(|l| l.columns.len()).sum();
+        let mut bias = vec![pool.zero(); nv];
         for l in (0..self.links.len()).rev() {
             let link = &self.links[l];
             let f = group3(pool, &force[l]);
             let n = group3(pool, &moment[l]);
-            bias[link.coordinate] = link.project(pool, &f, &n);
+            for column in &link.columns {
+                bias[column.speed] = column.project(pool, &f, &n);
+            }
             let Some(p) = link.parent else {
                 continue;
             };
@@ -348,12 +406,13 @@ impl JointTree {
             let parent = link.parent.map_or(&base, |p| &motions[p]);
             let r = &link.rotation;
             let d = &link.offset;
-            let qd = pool.sym(Sym::Speed(link.coordinate as u32));
-            let rate = link.axis.map(|e| pool.mul(qd, e));
-            let qdd = pool.sym(Sym::Accel(link.coordinate as u32));
-            let joint_acceleration = match accelerations {
-                true => link.axis.map(|e| pool.mul(qdd, e)),
-                false => [zero; 3],
+            // The joint's own rates Σ vₖ eₖ over its turning and its sliding
+            // speeds, in the link's axes, and (`accelerations`) the same sums
+            // of the symbols v̇ₖ.
+            let [spin, slide] = [true, false].map(|turns| link.rates(pool, turns, Sym::Speed));
+            let [spin_rate, slide_rate] = match accelerations {
+                true => [true, false].map(|turns| link.rates(pool, turns, Sym::Accel)),
+                false => [[zero; 3]; 2],
             };
             // a_J = a_p + α_p × d + ω_p × (ω_p × d) (+ 2 ω_p × ḋ for a slide),
             // then into the link's axes.
@@ -365,18 +424,34 @@ impl JointTree {
             let carried = transpose_mul(pool, r, &parent.omega);
             let alpha = transpose_mul(pool, r, &parent.alpha);
             let (omega, alpha) = match link.kind {
-                JointKind::Revolute => {
-                    // ω = Rᵀ ω_p + q̇ e;  α = Rᵀ α_p + (Rᵀ ω_p) × q̇ e.
-                    let coriolis = cross(pool, &carried, &rate);
-                    let alpha = add3(pool, &alpha, &joint_acceleration);
-                    (add3(pool, &carried, &rate), add3(pool, &alpha, &coriolis))
+                JointKind::Revolute | JointKind::Spherical => {
+                    // ω = Rᵀ ω_p + Σ vₖ eₖ;  α = Rᵀ α_p + Σ v̇ₖ eₖ + (Rᵀ ω_p) × Σ vₖ eₖ.
+                    let coriolis = cross(pool, &carried, &spin);
+                    let alpha = add3(pool, &alpha, &spin_rate);
+                    (add3(pool, &carried, &spin), add3(pool, &alpha, &coriolis))
                 }
                 JointKind::Prismatic => {
-                    let coriolis = cross(pool, &parent.omega, &rate);
+                    let coriolis = cross(pool, &parent.omega, &slide);
                     let twice = coriolis.map(|x| pool.add(x, x));
                     accel = add3(pool, &accel, &twice);
-                    accel = add3(pool, &accel, &joint_acceleration);
+                    accel = add3(pool, &accel, &slide_rate);
                     (carried, alpha)
+                }
+                JointKind::Free => {
+                    // On the ground: ω = Σ wₖ eₖ and α = Σ ẇₖ eₖ; the
+                    // origin's velocity v (in the link's axes) turns with
+                    // it, adding ω × v to its rate v̇.
+                    let turning = transpose_mul(pool, r, &accel);
+                    let transport = cross(pool, &spin, &slide);
+                    let accel = add3(pool, &turning, &transport);
+                    let accel = add3(pool, &accel, &slide_rate);
+                    let alpha = add3(pool, &alpha, &spin_rate);
+                    motions.push(Motion {
+                        omega: group3(pool, &spin),
+                        alpha: group3(pool, &alpha),
+                        accel: group3(pool, &accel),
+                    });
+                    continue;
                 }
             };
             let accel = transpose_mul(pool, r, &accel);
@@ -391,13 +466,35 @@ impl JointTree {
 }
 
 impl Link {
-    /// The joint's share of a wrench (resultant, moment about the link's
-    /// origin): the moment along the axis (revolute) or the resultant
-    /// along it (prismatic).
+    /// `Σ symbol(k) eₖ` over the columns that turn (`turns`) or slide, in
+    /// the link's axes.
+    fn rates(&self, pool: &mut Pool, turns: bool, symbol: fn(u32) -> Sym) -> Vec3 {
+        let parts: Vec<Vec3> = self
+            .columns
+            .iter()
+            .filter(|c| c.turns == turns)
+            .map(|c| {
+                let v = pool.sym(symbol(c.speed as u32));
+                c.axis.map(|e| pool.mul(v, e))
+            })
+            .collect();
+        match parts.as_slice() {
+            [one] => *one,
+            _ => parts
+                .iter()
+                .fold([pool.zero(); 3], |a, b| add3(pool, &a, b)),
+        }
+    }
+}
+
+impl Column {
+    /// The speed's share of a wrench (resultant, moment about the link's
+    /// origin): the moment along the axis (a turn) or the resultant along
+    /// it (a slide).
     fn project(&self, pool: &mut Pool, resultant: &Vec3, moment: &Vec3) -> ExprId {
-        match self.kind {
-            JointKind::Revolute => dot(pool, &self.axis, moment),
-            JointKind::Prismatic => dot(pool, &self.axis, resultant),
+        match self.turns {
+            true => dot(pool, &self.axis, moment),
+            false => dot(pool, &self.axis, resultant),
         }
     }
 }

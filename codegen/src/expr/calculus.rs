@@ -15,8 +15,8 @@ use super::{ExprId, Func, Node, Pool, Sym};
 pub(super) enum Derivation {
     /// `∂/∂s`.
     Partial(Sym),
-    /// `d/dt` with `dt(qᵢ) = q̇ᵢ`, `dt(q̇ᵢ) = q̈ᵢ`, everything else but `t`
-    /// constant.
+    /// `d/dt` with `dt(qᵢ) = Nᵢ(q) v` (the pool's rates), `dt(vᵢ) = v̇ᵢ`,
+    /// everything else but `t` constant.
     Time,
 }
 
@@ -26,7 +26,43 @@ impl Pool {
         self.derive(e, Derivation::Partial(s))
     }
 
-    /// The total time derivative `∂e/∂t + Σ ∂e/∂qᵢ q̇ᵢ + Σ ∂e/∂q̇ᵢ q̈ᵢ`;
+    /// The rate `q̇ᵢ` of coordinate `i` in the speeds: `Nᵢ(q) v` as set by
+    /// [`set_rate`](Pool::set_rate), else the speed `vᵢ`.
+    pub fn rate(&mut self, i: u32) -> ExprId {
+        match self.rates.get(i as usize) {
+            Some(&rate) => rate,
+            None => self.sym(Sym::Speed(i)),
+        }
+    }
+
+    /// Declares `q̇ᵢ = rate` for coordinate `i` (a kinematic differential
+    /// equation, linear in the speeds), before any time derivative involves
+    /// it; the coordinates before `i` without one keep `q̇ⱼ = vⱼ`.
+    pub fn set_rate(&mut self, i: u32, rate: ExprId) {
+        while self.rates.len() < i as usize {
+            let j = self.rates.len() as u32;
+            let speed = self.sym(Sym::Speed(j));
+            self.rates.push(speed);
+        }
+        match self.rates.get_mut(i as usize) {
+            Some(slot) => *slot = rate,
+            None => self.rates.push(rate),
+        }
+    }
+
+    /// The rates set by [`set_rate`](Pool::set_rate), by coordinate (empty
+    /// while every rate is its own speed).
+    pub fn rates(&self) -> &[ExprId] {
+        &self.rates
+    }
+
+    /// Whether every coordinate's rate is its own speed (`q̇ᵢ = vᵢ`): no
+    /// [`set_rate`](Pool::set_rate) so far.
+    pub fn rates_are_speeds(&self) -> bool {
+        self.rates.is_empty()
+    }
+
+    /// The total time derivative `∂e/∂t + Σ ∂e/∂qᵢ q̇ᵢ + Σ ∂e/∂vᵢ v̇ᵢ`;
     /// parameters, inputs, multipliers and accelerations are constants.
     /// Memoised per node like [`diff`](Pool::diff).
     pub fn time_derivative(&mut self, e: ExprId) -> ExprId {
@@ -106,7 +142,7 @@ impl Pool {
         match (d, s) {
             (Derivation::Partial(by), _) if by == s => self.one(),
             (Derivation::Time, Sym::Time) => self.one(),
-            (Derivation::Time, Sym::Coord(i)) => self.sym(Sym::Speed(i)),
+            (Derivation::Time, Sym::Coord(i)) => self.rate(i),
             (Derivation::Time, Sym::Speed(i)) => self.sym(Sym::Accel(i)),
             _ => self.zero(),
         }

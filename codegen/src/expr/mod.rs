@@ -70,9 +70,10 @@ pub enum Sym {
     Param(u32),
     /// The i-th generalized coordinate `qᵢ`.
     Coord(u32),
-    /// Its rate `q̇ᵢ`.
+    /// The i-th speed `vᵢ`: the rate `q̇ᵢ` of the i-th coordinate unless
+    /// [`Pool::set_rate`] says otherwise.
     Speed(u32),
-    /// Its second rate `q̈ᵢ`.
+    /// Its rate `v̇ᵢ`.
     Accel(u32),
     /// The i-th input `uᵢ`.
     Input(u32),
@@ -158,4 +159,8 @@ pub struct Pool {
     index: HashMap<Node, ExprId>,
     /// Memoised derivatives (looked up, never iterated).
     derivatives: HashMap<(ExprId, calculus::Derivation), ExprId>,
+    /// The kinematic differential equations `q̇ᵢ = Nᵢ(q) v` that
+    /// [`Pool::time_derivative`] follows, by coordinate; a coordinate
+    /// beyond them has `q̇ᵢ = vᵢ`.
+    rates: Vec<ExprId>,
 }

@@ -36,6 +36,7 @@ impl Pool {
             meta: Vec::new(),
             index: HashMap::new(),
             derivatives: HashMap::new(),
+            rates: Vec::new(),
         };
         let zero = pool.number(Number::ZERO);
         let one = pool.number(Number::ONE);

@@ -120,6 +120,16 @@ pub enum Statement {
     },
     /// `outputs inverse_dynamics, position(P), rotation(B in F), ...;`
     Outputs(Vec<OutputRequest>),
+    /// `speeds w1, w2 { q1: rate1, q2: rate2 };`: speeds of the user's own
+    /// with the kinematic differential equations `dt(qᵢ) = rateᵢ`.
+    Speeds {
+        /// The `speeds` token.
+        keyword: Ident,
+        /// The new speeds, in order.
+        names: Vec<Ident>,
+        /// `coordinate: rate` for each coordinate whose speeds they replace.
+        rates: Vec<Field>,
+    },
 }
 
 /// One item of an `outputs` statement: `name`, `name(P)` or `name(P in F)`

@@ -36,10 +36,12 @@ pub const CONSTRAINT: &str = "constraint";
 pub const CLOSURE: &str = "closure";
 /// `outputs inverse_dynamics, position(P), ...;`
 pub const OUTPUTS: &str = "outputs";
+/// `speeds w1, w2 { q1: rate, q2: rate };`
+pub const SPEEDS: &str = "speeds";
 
 /// The statement keywords, in the order the "expected one of" message
 /// lists them.
-pub const STATEMENTS: [&str; 16] = [
+pub const STATEMENTS: [&str; 17] = [
     PARAMETERS,
     COORDINATES,
     INPUTS,
@@ -56,6 +58,7 @@ pub const STATEMENTS: [&str; 16] = [
     CONSTRAINT,
     CLOSURE,
     OUTPUTS,
+    SPEEDS,
 ];
 
 /// `force <vec> at P;`: the point of application.

@@ -174,7 +174,9 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
             Statement::Particle { name, fields }
         }
         keyword::JOINT => {
-            let kind = cursor.expect_ident("the joint's kind (`revolute` or `prismatic`)")?;
+            let kind = cursor.expect_ident(
+                "the joint's kind (`revolute`, `prismatic`, `spherical` or `free`)",
+            )?;
             let (name, fields) = named_fields(cursor, &keyword)?;
             Statement::Joint { kind, name, fields }
         }
@@ -200,6 +202,19 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
             Statement::Closure { name, fields }
         }
         keyword::OUTPUTS => Statement::Outputs(outputs(cursor)?),
+        keyword::SPEEDS => {
+            let names = names(cursor, &keyword)?;
+            let Some(block) = cursor.eat_group(Delimiter::Brace) else {
+                return Err(
+                    cursor.expected("`{` with each coordinate's rate in the new speeds, `q: rate`")
+                );
+            };
+            Statement::Speeds {
+                keyword,
+                names,
+                rates: fields(&block)?,
+            }
+        }
         _ => {
             return Err(syn::Error::new(
                 keyword.span(),
@@ -536,7 +551,7 @@ mod tests {
                 "unknown statement `bodyy`; expected one of `parameters`, `coordinates`, \
                  `inputs`, `frame`, `point`, `body`, `particle`, `joint`, `gravity`, \
                  `force`, `torque`, `potential`, `dissipation`, `constraint`, `closure`, \
-                 `outputs`"
+                 `outputs`, `speeds`"
                     .to_owned(),
                 2,
                 2
@@ -609,7 +624,7 @@ mod tests {
             ),
             (
                 "S { joint { }; }",
-                "expected the joint's kind (`revolute` or `prismatic`), found `{`",
+                "expected the joint's kind (`revolute`, `prismatic`, `spherical` or `free`), found `{`",
                 10,
             ),
             (

@@ -9,6 +9,7 @@
 mod closure;
 mod errors;
 mod output;
+pub mod quaternion;
 mod resolve;
 mod tree;
 mod vector;
@@ -41,6 +42,12 @@ pub struct Model {
     pub parameters: Vec<Ident>,
     /// Coordinates in declaration order: `Sym::Coord(i)` is `coordinates[i]`.
     pub coordinates: Vec<Ident>,
+    /// Speeds in declaration order: `Sym::Speed(k)` is `speeds[k]`. A
+    /// coordinate's rate `q̇ᵢ` is `pool.rate(i)`, linear in the speeds; it is
+    /// `Sym::Speed(i)` unless a joint or statement says otherwise.
+    pub speeds: Vec<Speed>,
+    /// The quaternion (free and spherical) joints, in declaration order.
+    pub balls: Vec<Ball>,
     /// Inputs in declaration order: `Sym::Input(i)` is `inputs[i]`.
     pub inputs: Vec<Ident>,
     /// Frames; `frames[0]` is `N`.
@@ -78,6 +85,44 @@ pub struct Model {
     pub pool: Pool,
 }
 
+/// A speed: a coordinate's rate `dt(q)`, or a speed of its own (a
+/// quaternion joint's angular velocity components, say).
+pub struct Speed {
+    /// The coordinate whose rate it is, or the speed's own name.
+    pub name: Ident,
+    /// Whether it is `dt(name)` of the coordinate `name`.
+    pub rate_of_coordinate: bool,
+}
+
+impl Speed {
+    /// The name as the language writes it: `dt(q)`, or the speed's name.
+    pub fn written(&self) -> String {
+        if self.rate_of_coordinate {
+            format!("dt({})", self.name)
+        } else {
+            self.name.to_string()
+        }
+    }
+}
+
+/// A joint whose child turns by a unit quaternion: spherical (three
+/// angular speeds) or, with a translation, free (six speeds).
+#[derive(Clone, Debug)]
+pub struct Ball {
+    /// The child frame.
+    pub frame: FrameId,
+    /// The child's origin.
+    pub origin: PointId,
+    /// Coordinate indices of the quaternion `(qx, qy, qz, qw)`.
+    pub quaternion: [usize; 4],
+    /// Speed indices of the angular velocity `(wx, wy, wz)` in the child's
+    /// axes.
+    pub angular: [usize; 3],
+    /// A free joint's position `(x, y, z)` in the parent's axes (coordinate
+    /// indices) and velocity `(vx, vy, vz)` in the child's (speed indices).
+    pub translation: Option<([usize; 3], [usize; 3])>,
+}
+
 /// A reference frame: `N`, or a rotation of a parent frame.
 pub struct Frame {
     /// The parent and the rotation about one of the parent's axes; `None`
@@ -94,6 +139,10 @@ pub struct FramePlacement {
     pub axis: [ExprId; 3],
     /// The rotation angle (right-handed); zero for a parallel frame.
     pub angle: ExprId,
+    /// `Some(i)` when the frame turns by the quaternion of
+    /// [`Model::balls`]`[i]` instead (then `axis` and `angle` are unused:
+    /// `x` and `0`).
+    pub ball: Option<usize>,
 }
 
 /// `Some(i)` if `axis` is exactly the `i`-th unit vector.
@@ -168,6 +217,11 @@ impl Model {
     /// Number of generalized coordinates.
     pub fn nq(&self) -> usize {
         self.coordinates.len()
+    }
+
+    /// Number of speeds.
+    pub fn nv(&self) -> usize {
+        self.speeds.len()
     }
 }
 

@@ -5,8 +5,8 @@
 
 use super::closure::{ClosureKind, FrameAxis, closure_rows};
 use super::{
-    Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Model, NEWTONIAN, ORIGIN,
-    Particle, Point, PointId, Torque, Tree, Vector, unit_axis,
+    Ball, Body, Constraint, Errors, Force, Frame, FrameId, FramePlacement, Model, NEWTONIAN,
+    ORIGIN, Particle, Point, PointId, Speed, Torque, Tree, Vector, quaternion, unit_axis,
 };
 use crate::expr::{ExprId, Func, Number, Pool, Sym, SymKinds};
 use crate::language::ast::{BinOp, Expr, Field, OutputRequest, SpanRange, Statement, System};
@@ -121,6 +121,12 @@ const CONSTRAINT: Use = Use {
         .union(SymKinds::SPEED),
     role: "a constraint, which may not depend on inputs",
 };
+const KINEMATICS: Use = Use {
+    allowed: SymKinds::PARAM
+        .union(SymKinds::COORD)
+        .union(SymKinds::SPEED),
+    role: "a coordinate's rate, which may depend on coordinates, parameters and the new speeds only",
+};
 const AXIS: Use = Use {
     allowed: SymKinds::PARAM,
     role: "a rotation axis, which must be constant (numbers and parameters)",
@@ -156,6 +162,9 @@ struct Resolver {
     bindings: HashMap<String, (Binding, Span)>,
     /// Every name some statement defines, for "used before its definition".
     defined_anywhere: HashMap<String, Span>,
+    /// Whether a `dt(..)` has been read (a `speeds` statement must come
+    /// before: it changes what `dt` of its coordinates means).
+    used_dt: bool,
     model: Model,
 }
 
@@ -173,12 +182,15 @@ impl Resolver {
             errors: Errors::default(),
             bindings,
             defined_anywhere: defined_names(system),
+            used_dt: false,
             model: Model {
                 docs: system.docs.clone(),
                 public: system.public,
                 name: system.name.clone(),
                 parameters: Vec::new(),
                 coordinates: Vec::new(),
+                speeds: Vec::new(),
+                balls: Vec::new(),
                 inputs: Vec::new(),
                 frames: vec![Frame { placement: None }],
                 points: vec![Point { placement: None }],
@@ -267,6 +279,11 @@ impl Resolver {
             } => self.constraint(keyword, lhs, rhs),
             Statement::Closure { name, fields } => self.closure(name, fields),
             Statement::Outputs(requests) => requests.iter().for_each(|r| self.output(r)),
+            Statement::Speeds {
+                keyword,
+                names,
+                rates,
+            } => self.speeds_statement(keyword, names, rates),
         }
     }
 
@@ -280,7 +297,30 @@ impl Resolver {
             let index = list.len() as u32;
             list.push(name.clone());
             self.define(name, Binding::Scalar(sym(index)));
+            if let Sym::Coord(_) = sym(0) {
+                let k = self.add_speed(name, true);
+                // While every rate is its own speed, the pool needs no rates
+                // (and the speed's symbol is made when first used).
+                if k != index || !self.pool.rates_are_speeds() {
+                    let speed = self.pool.sym(Sym::Speed(k));
+                    self.pool.set_rate(index, speed);
+                }
+            }
         }
+    }
+
+    /// Adds a speed: the rate `dt(name)` of the coordinate `name`, or a
+    /// speed of its own called `name`; its index.
+    fn add_speed(&mut self, name: &Ident, rate_of_coordinate: bool) -> u32 {
+        let k = self.model.speeds.len() as u32;
+        self.model.speeds.push(Speed {
+            name: name.clone(),
+            rate_of_coordinate,
+        });
+        if !rate_of_coordinate {
+            self.define(name, Binding::Scalar(Sym::Speed(k)));
+        }
+        k
     }
 
     fn frame_statement(&mut self, name: &Ident, value: &Expr) {
@@ -347,7 +387,7 @@ impl Resolver {
         };
         match (parent, rotation) {
             (Some(parent), Some((axis, angle))) => {
-                self.define_frame(name, parent, axis, angle);
+                self.define_frame(name, parent, axis, angle, None);
             }
             _ => {
                 self.define(name, Binding::Invalid);
@@ -399,10 +439,15 @@ impl Resolver {
         let revolute = match kind.to_string().as_str() {
             "revolute" => true,
             "prismatic" => false,
+            "free" => return self.ball_joint(name, fields, true),
+            "spherical" => return self.ball_joint(name, fields, false),
             _ => {
                 self.errors.push(
                     kind.span(),
-                    format!("unknown joint kind `{kind}`; expected `revolute` or `prismatic`"),
+                    format!(
+                        "unknown joint kind `{kind}`; expected `revolute`, `prismatic`, \
+                         `spherical` or `free`"
+                    ),
                 );
                 return;
             }
@@ -417,32 +462,19 @@ impl Resolver {
         let axis = axis.and_then(|e| self.axis_name(e));
         let coordinate = coordinate.and_then(|e| self.scalar(e, GEOMETRY));
         let at = at.and_then(|e| self.point_value(e, GEOMETRY));
-        let child = child.and_then(|e| match e {
-            Expr::Name(ident) => Some(ident),
-            other => {
-                self.errors
-                    .push(other.range(), "expected the name of the new child frame");
-                None
-            }
-        });
+        let child = child.and_then(|e| self.child_name(e));
         let (Some(parent), Some(axis), Some(coordinate), Some((base, offset)), Some(child)) =
             (parent, axis, coordinate, at, child)
         else {
-            self.define(name, Binding::Invalid);
-            if let Some(Expr::Name(child)) =
-                fields.iter().find(|f| f.name == "child").map(|f| &f.value)
-            {
-                self.define(child, Binding::Invalid);
-            }
-            return;
+            return self.invalid_joint(name, fields);
         };
         if revolute {
-            if self.define_frame(child, parent, axis, coordinate) {
+            if self.define_frame(child, parent, axis, coordinate, None) {
                 self.define_point(name, Some((base, offset)));
             }
         } else {
             let zero = self.pool.zero();
-            self.define_frame(child, parent, axis, zero);
+            self.define_frame(child, parent, axis, zero, None);
             let slide = Vector {
                 parts: vec![(parent, axis)],
             }
@@ -538,9 +570,31 @@ impl Resolver {
 
     /// `accelerations_jacobian` and `linearize` solve `M v̇ = f`: with
     /// constraints, the accelerations and their derivatives live on the
-    /// constraint manifold, which these outputs do not handle yet.
+    /// constraint manifold, which these outputs do not handle yet. The
+    /// derivatives by `q` and the regressor are taken in the coordinates,
+    /// so they need every speed to be its coordinate's rate.
     fn check_solved_outputs(&mut self) {
-        use super::OutputKind::{AccelerationsJacobian, Linearize};
+        use super::OutputKind::{
+            AccelerationsJacobian, InverseDynamicsJacobian, Linearize, Regressor,
+        };
+        if self.model.nq() != self.model.nv() {
+            for output in &self.model.outputs {
+                if matches!(
+                    output.kind,
+                    AccelerationsJacobian | InverseDynamicsJacobian | Linearize | Regressor
+                ) {
+                    let name = &output.function;
+                    self.errors.push(
+                        name.span(),
+                        format!(
+                            "`{name}` is not available yet for a system whose speeds are not \
+                             its coordinates' rates (a free or spherical joint, a `speeds` \
+                             statement): remove it from `outputs`"
+                        ),
+                    );
+                }
+            }
+        }
         if self.model.constraints.is_empty() {
             return;
         }
@@ -558,6 +612,259 @@ impl Resolver {
                 );
             }
         }
+    }
+
+    /// `joint spherical J { parent: F, child: B, at: P };` turns `B` from
+    /// `F` by the unit quaternion `(J_qx, J_qy, J_qz, J_qw)` about the point
+    /// `J = P`, with the speeds `J_wx, J_wy, J_wz` (angular velocity in
+    /// `B`'s axes); `joint free J { parent: N, child: B, at: P };` also
+    /// moves the point `J = P + J_x N.x + J_y N.y + J_z N.z`, first in the
+    /// coordinates, with the speeds `J_vx, J_vy, J_vz` (its velocity in
+    /// `B`'s axes) before the angular ones.
+    fn ball_joint(&mut self, name: &Ident, fields: &[Field], free: bool) {
+        let what = if free {
+            "free joint"
+        } else {
+            "spherical joint"
+        };
+        let [parent_field, child, at] = self.fields(name, what, fields, ["parent", "child", "at"]);
+        let parent = parent_field.and_then(|e| self.frame(e));
+        let at_value = at.and_then(|e| self.point_value(e, GEOMETRY));
+        if let (true, Some(parent), Some(e)) = (free, parent, parent_field)
+            && parent != NEWTONIAN
+        {
+            self.errors.push(
+                e.range(),
+                "a free joint joins a floating body to the ground: its parent must be `N` \
+                 (a body on another body needs a spherical joint, or a free joint and a \
+                 constraint)",
+            );
+        }
+        if let (true, Some((base, offset)), Some(e)) = (free, &at_value, at)
+            && self.point_moves(*base, offset)
+        {
+            self.errors.push(
+                e.range(),
+                "a free joint's `at` must be a point fixed in `N` (its origin's position \
+                 is measured from there)",
+            );
+        }
+        let child = child.and_then(|e| self.child_name(e));
+        let (Some(parent), Some((base, offset)), Some(child)) = (parent, at_value, child) else {
+            return self.invalid_joint(name, fields);
+        };
+        let named = |suffix: &str| Ident::new(&format!("{name}_{suffix}"), name.span());
+        let position = free.then(|| ["x", "y", "z"].map(|c| self.joint_coordinate(&named(c))));
+        let quaternion = ["qx", "qy", "qz", "qw"].map(|c| self.joint_coordinate(&named(c)));
+        let velocity = free.then(|| ["vx", "vy", "vz"].map(|c| self.add_speed(&named(c), false)));
+        let angular = ["wx", "wy", "wz"].map(|c| self.add_speed(&named(c), false));
+        let q = quaternion.map(|i| self.pool.sym(Sym::Coord(i)));
+        let omega = angular.map(|k| self.pool.sym(Sym::Speed(k)));
+        let rates = quaternion::rates(&mut self.pool, q, omega);
+        for (&i, rate) in quaternion.iter().zip(rates) {
+            self.pool.set_rate(i, rate);
+        }
+        let mut origin = offset;
+        if let (Some(position), Some(velocity)) = (position, velocity) {
+            // ṙ = R v: the origin's velocity, given in the child's axes.
+            let r = quaternion::rotation(&mut self.pool, q);
+            let v = velocity.map(|k| self.pool.sym(Sym::Speed(k)));
+            for (i, &coordinate) in position.iter().enumerate() {
+                let terms: Vec<ExprId> = (0..3).map(|j| self.pool.mul(r[i][j], v[j])).collect();
+                let rate = self.pool.sum(terms);
+                self.pool.set_rate(coordinate, rate);
+            }
+            let components = position.map(|i| self.pool.sym(Sym::Coord(i)));
+            let moved = Vector {
+                parts: vec![(parent, components)],
+            };
+            origin = origin.add(&moved, &mut self.pool);
+        }
+        let ball = self.model.balls.len();
+        let axis = unit_axis(&self.pool, 0);
+        let zero = self.pool.zero();
+        if self.define_frame(child, parent, axis, zero, Some(ball))
+            && self.define_point(name, Some((base, origin)))
+        {
+            let as_index = |a: [u32; 3]| a.map(|i| i as usize);
+            self.model.balls.push(Ball {
+                frame: FrameId(self.model.frames.len() - 1),
+                origin: PointId(self.model.points.len() - 1),
+                quaternion: quaternion.map(|i| i as usize),
+                angular: as_index(angular),
+                translation: position
+                    .zip(velocity)
+                    .map(|(p, v)| (as_index(p), as_index(v))),
+            });
+        }
+    }
+
+    /// The name of a joint's new child frame.
+    fn child_name<'a>(&mut self, e: &'a Expr) -> Option<&'a Ident> {
+        match e {
+            Expr::Name(ident) => Some(ident),
+            other => {
+                self.errors
+                    .push(other.range(), "expected the name of the new child frame");
+                None
+            }
+        }
+    }
+
+    /// Defines the names of a joint with errors (already reported) as
+    /// invalid, so that their uses stay silent.
+    fn invalid_joint(&mut self, name: &Ident, fields: &[Field]) {
+        self.define(name, Binding::Invalid);
+        if let Some(Expr::Name(child)) = fields.iter().find(|f| f.name == "child").map(|f| &f.value)
+        {
+            self.define(child, Binding::Invalid);
+        }
+    }
+
+    /// `speeds w1, w2 { q1: rate1, q2: rate2 };`: the speeds `w` replace
+    /// those of the coordinates named (`dt(q)`), taking their places in `v`
+    /// in order, and `dt(qᵢ) = rateᵢ`, linear in the new speeds.
+    fn speeds_statement(&mut self, keyword: &Ident, names: &[Ident], rates: &[Field]) {
+        if self.used_dt {
+            self.errors.push(
+                keyword.span(),
+                "a `speeds` statement must come before every `dt(..)`: it changes what \
+                 the speeds of its coordinates are",
+            );
+        }
+        let mut replaced: Vec<(u32, usize)> = Vec::new();
+        for field in rates {
+            match self.replaceable_speed(&field.name) {
+                Some(pair) if replaced.iter().all(|&(i, _)| i != pair.0) => replaced.push(pair),
+                Some(_) => self.errors.push(
+                    field.name.span(),
+                    format!("the rate of `{}` is given twice", field.name),
+                ),
+                None => self.errors.push(
+                    field.name.span(),
+                    format!(
+                        "`{}` is not a coordinate whose speed is still `dt({})`: a `speeds` \
+                         statement gives the rates of coordinates of `coordinates` \
+                         statements, once",
+                        field.name, field.name
+                    ),
+                ),
+            }
+        }
+        if names.len() != rates.len() {
+            self.errors.push(
+                keyword.span(),
+                format!(
+                    "{} new speed(s) for the rates of {} coordinate(s): a `speeds` \
+                     statement replaces as many speeds as it names",
+                    names.len(),
+                    rates.len()
+                ),
+            );
+        }
+        if names.len() != replaced.len() {
+            names.iter().for_each(|name| {
+                self.define(name, Binding::Invalid);
+            });
+            return;
+        }
+        let mut slots: Vec<usize> = replaced.iter().map(|&(_, k)| k).collect();
+        slots.sort_unstable();
+        for (name, &k) in names.iter().zip(&slots) {
+            self.model.speeds[k] = Speed {
+                name: name.clone(),
+                rate_of_coordinate: false,
+            };
+            self.define(name, Binding::Scalar(Sym::Speed(k as u32)));
+        }
+        for (field, &(i, _)) in rates.iter().zip(&replaced) {
+            let read_dt = std::mem::replace(&mut self.used_dt, false);
+            let rate = self.scalar(&field.value, KINEMATICS);
+            if std::mem::replace(&mut self.used_dt, read_dt) {
+                self.errors.push(
+                    field.value.range(),
+                    "a rate is written in the new speeds, without `dt(..)`",
+                );
+                continue;
+            }
+            let Some(rate) = rate else { continue };
+            let foreign = self
+                .pool
+                .free_symbols(rate)
+                .into_iter()
+                .any(|sym| matches!(sym, Sym::Speed(k) if !slots.contains(&(k as usize))));
+            let linear = slots.iter().all(|&k| {
+                let d = self.pool.diff(rate, Sym::Speed(k as u32));
+                !self.pool.kinds(d).intersects(SymKinds::SPEED)
+            });
+            if foreign || !linear {
+                let written: Vec<String> = names.iter().map(ToString::to_string).collect();
+                let written: Vec<&str> = written.iter().map(String::as_str).collect();
+                self.errors.push(
+                    field.value.range(),
+                    format!(
+                        "the rate of `{}` must be linear in the speeds of this statement ({}), \
+                         with coefficients of coordinates and parameters",
+                        field.name,
+                        list(&written)
+                    ),
+                );
+                continue;
+            }
+            self.pool.set_rate(i, rate);
+        }
+    }
+
+    /// The coordinate `name` and its speed, if the speed is still its rate
+    /// `dt(name)`.
+    fn replaceable_speed(&self, name: &Ident) -> Option<(u32, usize)> {
+        let Some((Binding::Scalar(Sym::Coord(i)), _)) = self.bindings.get(&name.to_string()) else {
+            return None;
+        };
+        let k = self
+            .model
+            .speeds
+            .iter()
+            .position(|s| s.rate_of_coordinate && s.name == *name)?;
+        Some((*i, k))
+    }
+
+    /// Declares a coordinate a joint makes (its speed comes with the joint).
+    fn joint_coordinate(&mut self, name: &Ident) -> u32 {
+        let index = self.model.coordinates.len() as u32;
+        self.model.coordinates.push(name.clone());
+        self.define(name, Binding::Scalar(Sym::Coord(index)));
+        index
+    }
+
+    /// Whether the point `base + offset` moves in `N` (depends on a
+    /// coordinate or `t`, or lies along a frame that turns).
+    fn point_moves(&mut self, base: PointId, offset: &Vector) -> bool {
+        let moving = SymKinds::COORD | SymKinds::TIME;
+        let mut parts = offset.parts.clone();
+        let mut point = base;
+        while let Some((next, offset)) = &self.model.points[point.0].placement {
+            parts.extend(offset.parts.iter().cloned());
+            point = *next;
+        }
+        parts.iter().any(|(frame, components)| {
+            components
+                .iter()
+                .any(|&c| self.pool.kinds(c).intersects(moving))
+                || self.frame_turns(*frame)
+        })
+    }
+
+    /// Whether `frame` turns in `N`.
+    fn frame_turns(&self, mut frame: FrameId) -> bool {
+        while let Some(placement) = &self.model.frames[frame.0].placement {
+            let kinds = self.pool.kinds(placement.angle);
+            if placement.ball.is_some() || !SymKinds::PARAM.contains(kinds) {
+                return true;
+            }
+            frame = placement.parent;
+        }
+        false
     }
 
     fn torque(&mut self, value: &Expr, on: &Expr, reacting: Option<&Expr>) {
@@ -720,7 +1027,12 @@ impl Resolver {
     /// the coordinates, or the coefficients of the speeds of a
     /// nonholonomic one) depends on time.
     fn jacobian_depends_on_time(&mut self, residual: ExprId, nonholonomic: bool) -> bool {
-        (0..self.model.coordinates.len() as u32).any(|i| {
+        let count = if nonholonomic {
+            self.model.speeds.len()
+        } else {
+            self.model.coordinates.len()
+        };
+        (0..count as u32).any(|i| {
             let by = if nonholonomic {
                 Sym::Speed(i)
             } else {
@@ -788,7 +1100,7 @@ impl Resolver {
     }
 
     fn linear_in_speeds(&mut self, residual: ExprId) -> bool {
-        (0..self.model.coordinates.len() as u32).all(|i| {
+        (0..self.model.speeds.len() as u32).all(|i| {
             let coefficient = self.pool.diff(residual, Sym::Speed(i));
             !self.pool.kinds(coefficient).intersects(SymKinds::SPEED)
         })
@@ -1004,6 +1316,7 @@ impl Resolver {
         parent: FrameId,
         axis: [ExprId; 3],
         angle: ExprId,
+        ball: Option<usize>,
     ) -> bool {
         let id = FrameId(self.model.frames.len());
         let new = self.define(name, Binding::Frame(id));
@@ -1013,6 +1326,7 @@ impl Resolver {
                     parent,
                     axis,
                     angle,
+                    ball,
                 }),
             });
         }
@@ -1253,6 +1567,7 @@ impl Resolver {
             );
             return None;
         }
+        self.used_dt = true;
         Some(Value::Scalar(self.pool.time_derivative(x)))
     }
 
@@ -1397,6 +1712,7 @@ fn defined_names(system: &System) -> HashMap<String, Span> {
                     }
                 }
             }
+            Statement::Speeds { names, .. } => names.iter().for_each(&mut add),
             _ => {}
         }
     }

@@ -17,6 +17,9 @@
 //! * a body whose frame starts a child link and whose centre is fixed in the
 //!   parent link sits on that child's joint (a massless frame between, as in
 //!   seed example 2, is a link of its own).
+//! * a frame turned by a quaternion joint starts a **spherical** link, placed
+//!   like a revolute one; a **free** joint's link hangs from the ground at its
+//!   origin point, which its three position coordinates move.
 //!
 //! Both spellings meet here: `joint` statements make exactly such frames
 //! and points, and so do `frame B2 = B1.rotate_z(q2); point P2 = P1 - L * B2.y`.
@@ -39,6 +42,19 @@ pub enum JointKind {
     Revolute,
     /// A translation by the coordinate along a constant direction.
     Prismatic,
+    /// A rotation by a unit quaternion about the joint's origin, with the
+    /// angular velocity in the link's axes as its three speeds.
+    Spherical,
+    /// A spherical joint whose origin also moves, with its velocity in the
+    /// link's axes as three more speeds (first): a floating base, on `N`.
+    Free,
+}
+
+impl JointKind {
+    /// Whether the joint turns its link (the link's axes are its own).
+    pub fn turns(self) -> bool {
+        self != JointKind::Prismatic
+    }
 }
 
 /// A link: the rigid subtree beyond one joint.
@@ -47,10 +63,13 @@ pub struct Link {
     pub parent: Option<usize>,
     /// How the joint moves the link.
     pub kind: JointKind,
-    /// The joint's coordinate index.
+    /// The joint's coordinate index (a quaternion joint's first).
     pub coordinate: usize,
-    /// The frame whose axes are the link's: the frame a revolute joint
-    /// turns, the parent link's frame for a prismatic joint.
+    /// The quaternion joint of [`Model::balls`] for spherical and free
+    /// joints.
+    pub ball: Option<usize>,
+    /// The frame whose axes are the link's: the frame a revolute or
+    /// quaternion joint turns, the parent link's frame for a prismatic joint.
     pub frame: FrameId,
     /// Revolute: the unit axis, along `frame`'s axes (the same in the frame
     /// it is turned from). Prismatic: the constant direction the coordinate
@@ -91,7 +110,14 @@ impl Tree {
         builder.frames(model, pool)?;
         for (i, point) in model.points.iter().enumerate().skip(1) {
             let (base, offset) = point.placement.as_ref()?;
-            let attachment = builder.point(pool, *base, offset)?;
+            let free = model
+                .balls
+                .iter()
+                .find(|b| b.origin == PointId(i) && b.translation.is_some());
+            let attachment = match free {
+                Some(ball) => builder.free_origin(pool, ball.frame, *base, offset)?,
+                None => builder.point(pool, *base, offset)?,
+            };
             debug_assert_eq!(builder.points.len(), i);
             builder.points.push(attachment);
         }
@@ -111,6 +137,7 @@ struct Draft {
     parent: Option<Option<usize>>,
     kind: JointKind,
     coordinate: usize,
+    ball: Option<usize>,
     frame: FrameId,
     axis: Vector,
     offset: Vector,
@@ -144,6 +171,30 @@ impl Builder {
         self.orientation.push(NEWTONIAN);
         for (f, frame) in model.frames.iter().enumerate().skip(1) {
             let placement = frame.placement.as_ref()?;
+            let frame = FrameId(f);
+            if let Some(b) = placement.ball {
+                let ball = &model.balls[b];
+                let mut coordinates = ball.quaternion.to_vec();
+                coordinates.extend(ball.translation.iter().flat_map(|(p, _)| *p));
+                for &k in &coordinates {
+                    self.claim(k)?;
+                }
+                self.links.push(Draft {
+                    parent: None,
+                    kind: match ball.translation {
+                        Some(_) => JointKind::Free,
+                        None => JointKind::Spherical,
+                    },
+                    coordinate: ball.quaternion[0],
+                    ball: Some(b),
+                    frame,
+                    axis: Vector::default(),
+                    offset: Vector::default(),
+                    parent_orientation: self.orientation[placement.parent.0],
+                });
+                self.orientation.push(frame);
+                continue;
+            }
             let kinds = pool.kinds(placement.angle);
             if SymKinds::PARAM.contains(kinds) {
                 self.orientation.push(self.orientation[placement.parent.0]);
@@ -152,12 +203,12 @@ impl Builder {
             let Node::Sym(Sym::Coord(k)) = pool.node(placement.angle) else {
                 return None;
             };
-            let frame = FrameId(f);
             self.claim(*k as usize)?;
             self.links.push(Draft {
                 parent: None,
                 kind: JointKind::Revolute,
                 coordinate: *k as usize,
+                ball: None,
                 frame,
                 axis: Vector {
                     parts: vec![(frame, placement.axis)],
@@ -190,11 +241,35 @@ impl Builder {
         }
     }
 
-    /// The revolute link starting at `frame`, if `frame` starts one.
+    /// The turning link starting at `frame`, if `frame` starts one.
     fn link_started_by(&self, frame: FrameId) -> Option<usize> {
         self.links
             .iter()
-            .position(|l| l.kind == JointKind::Revolute && l.frame == frame)
+            .position(|l| l.kind.turns() && l.frame == frame)
+    }
+
+    /// The origin of the free joint turning `frame`: the point `base +
+    /// offset`, where `offset` holds the joint's position; the joint sits on
+    /// the ground (`base` is fixed in `N`, as the language checks).
+    fn free_origin(
+        &mut self,
+        pool: &mut Pool,
+        frame: FrameId,
+        base: PointId,
+        offset: &Vector,
+    ) -> Option<Attachment> {
+        let at = self.points.get(base.0)?.clone();
+        let link = self.link_started_by(frame)?;
+        if at.link.is_some() {
+            return None;
+        }
+        let draft = &mut self.links[link];
+        draft.parent = Some(None);
+        draft.offset = at.offset.add(offset, pool);
+        Some(Attachment {
+            link: Some(link),
+            offset: Vector::default(),
+        })
     }
 
     /// Where the point `base + offset` is fixed.
@@ -304,6 +379,7 @@ impl Builder {
             parent: Some(parent),
             kind: JointKind::Prismatic,
             coordinate: k,
+            ball: None,
             frame,
             axis: direction,
             offset: origin.clone(),
@@ -429,6 +505,7 @@ impl Builder {
                     parent: renumber(d.parent.flatten()),
                     kind: d.kind,
                     coordinate: d.coordinate,
+                    ball: d.ball,
                     frame: d.frame,
                     axis: d.axis,
                     offset: d.offset,

@@ -17,7 +17,7 @@ pub fn function(
     pool: &mut Pool,
     output: &Output,
 ) -> Option<Function> {
-    let nv = model.nq();
+    let nv = model.nv();
     let axes = Axes {
         model,
         kinematics,

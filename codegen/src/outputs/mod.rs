@@ -137,14 +137,14 @@ use Argument::{Coordinates, Inputs, Speeds, Time};
 /// The functions every system has: `M`, `f`, `T`, `V`, and with
 /// constraints `A`, `b`, the residuals and the velocity forms.
 pub fn standard(model: &Model, equations: &Equations) -> Vec<Function> {
-    let nq = model.nq();
+    let nv = model.nv();
     let mut functions = vec![
         Function::new(
             "mass_matrix",
             "The mass matrix `M(q)` (symmetric, positive definite where the\n\
              coordinates are independent).",
             &[Coordinates],
-            Value::matrix(&equations.mass_matrix, nq),
+            Value::matrix(&equations.mass_matrix, nv),
         ),
         Function::new(
             "forcing",
@@ -176,7 +176,7 @@ pub fn standard(model: &Model, equations: &Equations) -> Vec<Function> {
             "The constraint Jacobian `A(q)` of `M q̈ = f + Aᵀλ`, `A q̈ = b`;\n\
              rows in declaration order.",
             &[Coordinates],
-            Value::matrix(&equations.constraint_jacobian, nq),
+            Value::matrix(&equations.constraint_jacobian, nv),
         ),
         Function::new(
             "constraint_bias",

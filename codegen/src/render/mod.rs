@@ -100,7 +100,14 @@ struct Section {
 impl Document {
     /// Renders every part of `equations` in `style`.
     fn new(model: &Model, equations: &Equations, pool: &mut Pool, style: Style) -> Document {
-        let names = SymbolNames::new(&model.parameters, &model.coordinates, &model.inputs);
+        let mut names = SymbolNames::new(&model.parameters, &model.coordinates, &model.inputs);
+        let speeds_are_rates = pool.rates_are_speeds();
+        if !speeds_are_rates {
+            let speeds = model.speeds.iter();
+            names = names.with_speeds(
+                speeds.map(|s| (&s.name as &dyn std::fmt::Display, s.rate_of_coordinate)),
+            );
+        }
         let equations = &equations.ungrouped(pool);
         let forms = readable_forms(pool, &entries(equations));
         let mut renderer = Renderer {
@@ -125,7 +132,7 @@ impl Document {
         ];
         Document {
             style,
-            form: form(style, constrained),
+            form: form(style, constrained, speeds_are_rates),
             constrained,
             sections: sections
                 .into_iter()
@@ -193,17 +200,26 @@ impl Document {
     }
 }
 
-/// The form of the equations in `style`.
-fn form(style: Style, constrained: bool) -> String {
-    match (style, constrained) {
+/// The form of the equations in `style`: in `q̈` when every speed is its
+/// coordinate's rate, else in the speeds `v` (`q̇ = N(q) v`).
+fn form(style: Style, constrained: bool, speeds_are_rates: bool) -> String {
+    let form = match (style, constrained) {
         (Style::Unicode, false) => "M(q) q̈ = f(t, q, q̇, u)",
         (Style::Unicode, true) => "M(q) q̈ = f(t, q, q̇, u) + A(q)ᵀ λ, A(q) q̈ = b(t, q, q̇)",
         (Style::Latex, false) => "M(q) \\ddot{q} = f(t, q, \\dot{q}, u)",
         (Style::Latex, true) => {
             "M(q) \\ddot{q} = f(t, q, \\dot{q}, u) + A(q)^{T} \\lambda, A(q) \\ddot{q} = b(t, q, \\dot{q})"
         }
+    };
+    match (speeds_are_rates, style) {
+        (true, _) => form.to_string(),
+        (false, Style::Unicode) => form.replace("q̈", "v̇").replace("q̇", "v") + " with q̇ = N(q) v",
+        (false, Style::Latex) => {
+            form.replace("\\ddot{q}", "\\dot{v}")
+                .replace("\\dot{q}", "v")
+                + " \\text{ with } \\dot{q} = N(q) v"
+        }
     }
-    .to_string()
 }
 
 /// The readable forms of `entries`, sharing [`DOCUMENT_BUDGET`]: every

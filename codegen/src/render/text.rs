@@ -111,6 +111,9 @@ pub struct SymbolNames {
     parameters: Vec<Name>,
     coordinates: Vec<Name>,
     inputs: Vec<Name>,
+    /// Speeds that are not their coordinate's rate, by index: each speed's
+    /// name and dots (empty when every speed is `q̇ᵢ`).
+    speeds: Vec<(Name, usize)>,
 }
 
 impl SymbolNames {
@@ -133,7 +136,21 @@ impl SymbolNames {
                 .iter()
                 .map(|id| Name::parse(&id.to_string()))
                 .collect(),
+            speeds: Vec::new(),
         }
+    }
+
+    /// The names of the speeds, as `(name, whether it is the rate of the
+    /// coordinate called name)`, for systems with speeds of their own.
+    pub fn with_speeds<'a>(
+        mut self,
+        speeds: impl IntoIterator<Item = (&'a dyn Display, bool)>,
+    ) -> SymbolNames {
+        self.speeds = speeds
+            .into_iter()
+            .map(|(id, rate)| (Name::parse(&id.to_string()), usize::from(rate)))
+            .collect();
+        self
     }
 
     /// The name of `sym` and its number of dots; symbols past the lists
@@ -150,6 +167,10 @@ impl SymbolNames {
             Sym::Param(i) => (lookup(&self.parameters, i, "p"), 0),
             Sym::Input(i) => (lookup(&self.inputs, i, "u"), 0),
             Sym::Coord(i) => (lookup(&self.coordinates, i, "q"), 0),
+            Sym::Speed(i) | Sym::Accel(i) if !self.speeds.is_empty() => {
+                let (name, dots) = self.speeds[i as usize].clone();
+                (name, dots + usize::from(matches!(sym, Sym::Accel(_))))
+            }
             Sym::Speed(i) => (lookup(&self.coordinates, i, "q"), 1),
             Sym::Accel(i) => (lookup(&self.coordinates, i, "q"), 2),
             Sym::Multiplier(i) => (Name::indexed(Word::Letter(&LAMBDA), i as usize), 0),

@@ -98,8 +98,11 @@ impl Urdf {
         self
     }
 
-    /// Puts a free joint between the ground and the root link, first in
-    /// `q` and `v`. Not supported yet: [`model`](Self::model) reports it.
+    /// Puts a free joint `root_joint` between the ground and the root link,
+    /// first in `q` (`root_joint_x … root_joint_qw`: position in `N` and
+    /// unit quaternion) and `v` (`root_joint_vx … root_joint_wz`: velocity
+    /// and angular velocity in the root link's axes), as Pinocchio's
+    /// free flyer; the root link's masses become its body.
     pub fn floating(mut self, on: bool) -> Self {
         self.options.floating = on;
         self
@@ -133,16 +136,6 @@ impl Urdf {
     fn model_text(&self) -> Result<String, Vec<Problem>> {
         let robot = xml::read(&self.source)?;
         let tree = tree::tree(&robot)?;
-        if self.options.floating {
-            // The root's place is the one thing a free joint changes: the
-            // writer's `base`.
-            return Err(vec![Problem::new(
-                None,
-                "`--floating`: floating bases are not supported yet (the free joint at the \
-                 root is to come); import the robot with a fixed base"
-                    .to_owned(),
-            )]);
-        }
         write::model_text(&robot, &tree, &self.options)
     }
 }

@@ -19,6 +19,16 @@ use super::{Options, Problem};
 /// link's z axis (Pinocchio's default).
 const GRAVITY: f64 = 9.81;
 
+/// The free joint of a floating base (Pinocchio's name for it): its
+/// coordinates are `root_joint_x … root_joint_qw`, its speeds
+/// `root_joint_vx … root_joint_wz`.
+const FREE_JOINT: &str = "root_joint";
+
+/// The suffixes of the names a free joint makes.
+const FREE_NAMES: [&str; 14] = [
+    "x", "y", "z", "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy", "wz", "",
+];
+
 /// Names the language gives a meaning to: they cannot name anything else.
 const RESERVED: [&str; 11] = [
     "N", "O", "t", "dt", "sin", "cos", "tan", "sqrt", "exp", "ln", "abs",
@@ -39,6 +49,15 @@ pub(super) fn model_text(
         .copied()
         .filter(|&j| robot.joints[j].kind != JointType::Fixed)
         .collect();
+    if options.floating {
+        for suffix in FREE_NAMES {
+            let name = match suffix {
+                "" => FREE_JOINT.to_owned(),
+                _ => format!("{FREE_JOINT}_{suffix}"),
+            };
+            names.claim(&name);
+        }
+    }
     let mut coordinates = vec![String::new(); robot.joints.len()];
     for &j in &moving {
         let joint = &robot.joints[j];
@@ -194,6 +213,23 @@ impl Writer<'_> {
             robot.links[self.tree.root].name
         ));
         self.lines.push(format!("pub {struct_name} {{"));
+        let root = self.tree.root;
+        let floating = self.options.floating.then(|| {
+            let frame = self.names.fresh(&self.robot.links[root].name);
+            self.comment(format!(
+                "Root link `{}`, floating: a free joint from the ground, first in q and v \
+                 (position in N and unit quaternion; velocity and angular velocity in the \
+                 link's axes).",
+                self.robot.links[root].name
+            ));
+            self.statement(format!(
+                "joint free {FREE_JOINT} {{ parent: N, child: {frame}, at: O }};"
+            ));
+            Place {
+                frame,
+                origin: FREE_JOINT.to_owned(),
+            }
+        });
         let coordinates: Vec<String> = moving
             .iter()
             .map(|&j| self.coordinates[j].clone())
@@ -203,7 +239,13 @@ impl Writer<'_> {
             let inputs: Vec<String> = coordinates.iter().map(|c| format!("tau_{c}")).collect();
             self.statement(format!("inputs {};", inputs.join(", ")));
         }
-        self.base();
+        match floating {
+            Some(place) => {
+                self.body(root, &place.frame, &place.origin);
+                self.below(root, &place);
+            }
+            None => self.base(),
+        }
         self.statement(format!("gravity -{GRAVITY} * N.z;"));
         if self.options.damping {
             self.dissipation(moving);
@@ -223,7 +265,7 @@ impl Writer<'_> {
     /// The root link, fixed to the ground (frame `N`, origin `O`), then
     /// the tree below it. A floating base changes only this: a free joint
     /// from `N` makes the root's frame and origin, and the masses welded to
-    /// the root become its body.
+    /// the root become its body (see [`Writer::model`]).
     fn base(&mut self) {
         let root = self.tree.root;
         let name = &self.robot.links[root].name;

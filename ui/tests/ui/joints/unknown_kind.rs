@@ -1,4 +1,4 @@
-//! Joints are `revolute` or `prismatic`.
+//! Joints are `revolute`, `prismatic`, `spherical` or `free`.
 
 use dalembert_macros::dalembert;
 
@@ -9,7 +9,7 @@ dalembert! {
         inputs u;
         frame B = N.rotate_z(theta);
         point G = O - l * B.y;
-        joint spherical J { parent: B, child: C, axis: z, coordinate: theta, at: G };
+        joint planar J { parent: B, child: C, axis: z, coordinate: theta, at: G };
     }
 }
 
