@@ -126,7 +126,11 @@ fn inverse_dynamics_is_pinocchios_rnea_on_the_chains() {
 #[test]
 fn inverse_dynamics_is_pinocchios_rnea_on_the_robots() {
     let robots = reference("urdf/pinocchio.json");
-    for entry in robots["models"].as_array().unwrap() {
+    // The free-flyer entries hold the joints' torques only (the base has
+    // none) and no gravity torque: their `M` and `f` are checked against
+    // Pinocchio's in generated/tests/urdf.rs.
+    let fixed = |entry: &&Value| entry["nq"] == entry["nv"];
+    for entry in robots["models"].as_array().unwrap().iter().filter(fixed) {
         let path = reference_path(&format!("urdf/{}", entry["urdf"].as_str().unwrap()));
         let source = asking(
             &Urdf::read(path).unwrap().model().unwrap(),
@@ -451,7 +455,6 @@ fn bad_outputs_are_reported_together_at_their_tokens() {
     particle p { mass: m, at: P };
     outputs position(P), velocity(B), rotation(P), jacobian(Q), speed(P);
     outputs position(P), inverse_dynamics(P), angular_velocity(B in P), rotation;
-    outputs linearize, accelerations_jacobian;
 }";
     let messages: Vec<(String, usize)> = check(source)
         .unwrap_err()
@@ -467,11 +470,6 @@ fn bad_outputs_are_reported_together_at_their_tokens() {
         ("`inverse_dynamics` takes no point or frame", 8),
         ("`P` is a point; expected a frame", 8),
         ("`rotation` needs a frame", 8),
-        ("the output `linearize` is not generated yet", 9),
-        (
-            "the output `accelerations_jacobian` is not generated yet",
-            9,
-        ),
     ];
     assert_eq!(messages.len(), expected.len(), "{messages:#?}");
     for ((message, line), (start, expected_line)) in messages.iter().zip(expected) {
