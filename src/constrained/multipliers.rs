@@ -94,25 +94,31 @@ pub enum ConstraintSolver {
 /// It solves every problem of the form "minimise `½ xᵀ M x − fᵀ x` subject to
 /// `A x = c`": the accelerations (`f` the forcing, `c = b`) and the
 /// M-orthogonal projections onto the constraints (`f = 0`, `c` the residual).
-pub(crate) enum ConstraintMetric<const NV: usize, const NC: usize> {
+///
+/// It is lent to a closure by [`with`](Self::with) rather than returned: the
+/// dense metric of a mechanism of 80 coordinates weighs some 200 kB, which
+/// every move would copy.
+#[derive(Clone, Copy)]
+pub(crate) enum ConstraintMetric<'a, const NV: usize, const NC: usize> {
     /// [`ConstraintSolver::SchurComplement`] and [`ConstraintSolver::RankRevealing`].
-    Dense(DenseMetric<NV, NC>),
+    Dense(&'a DenseMetric<NV, NC>),
     /// [`ConstraintSolver::Sparse`].
-    Sparse(SparseMetric<NV, NC>),
+    Sparse(&'a SparseMetric<NV, NC>),
 }
 
-impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
-    /// Factorises the metric of `mass` and `jacobian` for `solver`; fails if
-    /// an entry is not finite, if the (augmented) mass matrix is not
-    /// positive definite (a coordinate named from `names` moves freely
-    /// without inertia), or, for the Schur complement, if a row depends on
-    /// the rows before it.
-    pub(crate) fn new(
+impl<const NV: usize, const NC: usize> ConstraintMetric<'_, NV, NC> {
+    /// Factorises the metric of `mass` and `jacobian` for `solver` and lends
+    /// it to `use_metric`; fails if an entry is not finite, if the
+    /// (augmented) mass matrix is not positive definite (a coordinate named
+    /// from `names` moves freely without inertia), or, for the Schur
+    /// complement, if a row depends on the rows before it.
+    pub(crate) fn with<R>(
         solver: ConstraintSolver,
         mass: &[[f64; NV]; NV],
         names: &[&'static str; NV],
         jacobian: &[[f64; NV]; NC],
-    ) -> Result<Self, DynamicsError> {
+        use_metric: impl FnOnce(ConstraintMetric<'_, NV, NC>) -> Result<R, DynamicsError>,
+    ) -> Result<R, DynamicsError> {
         if !mass.iter().all(all_finite) {
             return Err(DynamicsError::NonFiniteEquations);
         }
@@ -120,8 +126,12 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<NV, NC> {
             return Err(DynamicsError::NonFiniteConstraints);
         }
         match solver {
-            ConstraintSolver::Sparse => SparseMetric::new(mass, names, jacobian).map(Self::Sparse),
-            _ => DenseMetric::new(solver, mass, names, jacobian).map(Self::Dense),
+            ConstraintSolver::Sparse => use_metric(ConstraintMetric::Sparse(&SparseMetric::new(
+                mass, names, jacobian,
+            )?)),
+            _ => use_metric(ConstraintMetric::Dense(&DenseMetric::new(
+                solver, mass, names, jacobian,
+            )?)),
         }
     }
 
@@ -160,7 +170,7 @@ pub(crate) struct DenseMetric<const NV: usize, const NC: usize> {
 
 impl<const NV: usize, const NC: usize> DenseMetric<NV, NC> {
     /// Factorises the metric of the finite `mass` and `jacobian` for
-    /// `solver` (see [`ConstraintMetric::new`]).
+    /// `solver` (see [`ConstraintMetric::with`]).
     fn new(
         solver: ConstraintSolver,
         mass: &[[f64; NV]; NV],
@@ -403,23 +413,6 @@ impl ConstraintSolver {
         self.solve_with_bias(system, t, q, v, u, stabilised)
     }
 
-    /// The factorised metric of `system` at `q` for this solver.
-    pub(crate) fn metric<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
-        self,
-        system: &S,
-        q: &[f64; NQ],
-    ) -> Result<ConstraintMetric<NV, NC>, DynamicsError>
-    where
-        S: ConstrainedSystem<NQ, NV, NU, NC>,
-    {
-        ConstraintMetric::new(
-            self,
-            &system.mass_matrix(q),
-            &pivot_names::<S, NQ, NV, NU>(),
-            &system.constraint_jacobian(q),
-        )
-    }
-
     /// `v̇` and `λ` of `M v̇ = f + Aᵀ λ`, `A v̇ = bias`, at a finite state.
     fn solve_with_bias<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
         self,
@@ -440,8 +433,13 @@ impl ConstraintSolver {
         if !all_finite(&bias) {
             return Err(DynamicsError::NonFiniteConstraints);
         }
-        let metric = self.metric(system, q)?;
-        let (vdot, lambda) = metric.solve(&SVector::from(forcing), &SVector::from(bias))?;
+        let (vdot, lambda) = ConstraintMetric::with(
+            self,
+            &system.mass_matrix(q),
+            &pivot_names::<S, NQ, NV, NU>(),
+            &system.constraint_jacobian(q),
+            |metric| metric.solve(&SVector::from(forcing), &SVector::from(bias)),
+        )?;
         let (vdot, lambda): ([f64; NV], [f64; NC]) = (vdot.into(), lambda.into());
         if all_finite(&vdot) && all_finite(&lambda) {
             Ok((vdot, lambda))
@@ -648,16 +646,14 @@ mod tests {
         // second demands a different acceleration: A = [[1, 0], [2, 0]],
         // b = [0, 1].
         let a = [[1.0, 0.0], [2.0, 0.0]];
-        let metric = ConstraintMetric::new(
+        let error = ConstraintMetric::with(
             ConstraintSolver::RankRevealing,
             &[[1.0, 0.0], [0.0, 1.0]],
             &["x", "y"],
             &a,
+            |metric| metric.solve(&SVector::from([0.0, -9.81]), &SVector::from([0.0, 1.0])),
         )
-        .unwrap();
-        let error = metric
-            .solve(&SVector::from([0.0, -9.81]), &SVector::from([0.0, 1.0]))
-            .unwrap_err();
+        .unwrap_err();
         // Row 1 is taken first (larger diagonal): row 0 is the one left over.
         match error {
             DynamicsError::InconsistentConstraints {

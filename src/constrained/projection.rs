@@ -76,22 +76,29 @@ impl ConstraintSolver {
         }
         let mass = system.mass_matrix(&q);
         let names = pivot_names::<S, NQ, NV, NU>();
-        let metric = |q: &[f64; NQ]| {
-            ConstraintMetric::new(self, &mass, &names, &system.constraint_jacobian(q))
+        let least_norm = |q: &[f64; NQ], c: [f64; NC]| {
+            let jacobian = system.constraint_jacobian(q);
+            ConstraintMetric::with(self, &mass, &names, &jacobian, |metric| {
+                Ok(metric.least_norm(&SVector::from(c)).into())
+            })
         };
-        let q = project_coordinates(system, t, q, metric, tolerance, max_iterations)?;
-        let v = project_speeds(system, t, &q, v, &metric(&q)?)?;
+        let q = project_coordinates(system, t, q, &least_norm, tolerance, max_iterations)?;
+        let v = project_speeds(system, t, &q, v, &least_norm)?;
         Ok(State { t, q, v })
     }
 }
 
-/// Gauss–Newton on `φ(t, q) = 0` from `q`, in the metric that `metric`
-/// factorises at each iterate.
+/// The smallest correction `x` in the metric at `q` with `A(q) x = c`.
+type LeastNorm<'a, const NQ: usize, const NV: usize, const NC: usize> =
+    dyn Fn(&[f64; NQ], [f64; NC]) -> Result<[f64; NV], DynamicsError> + 'a;
+
+/// Gauss–Newton on `φ(t, q) = 0` from `q`, each correction the smallest in
+/// the metric at its iterate.
 fn project_coordinates<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: [f64; NQ],
-    metric: impl Fn(&[f64; NQ]) -> Result<ConstraintMetric<NV, NC>, DynamicsError>,
+    least_norm: &LeastNorm<'_, NQ, NV, NC>,
     tolerance: f64,
     max_iterations: usize,
 ) -> Result<[f64; NQ], DynamicsError>
@@ -112,25 +119,25 @@ where
                 residual: largest,
             });
         }
-        let correction: [f64; NV] = metric(&q)?.least_norm(&SVector::from(residual)).into();
+        let correction = least_norm(&q, residual)?;
         q = system.integrate_configuration(&q, &correction, -1.0);
         iterations += 1;
     }
 }
 
-/// The speeds nearest to `v` in `metric` with `ψ(t, q, v) = 0`.
+/// The speeds nearest to `v` in the metric at `q` with `ψ(t, q, v) = 0`.
 fn project_speeds<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
     v: [f64; NV],
-    metric: &ConstraintMetric<NV, NC>,
+    least_norm: &LeastNorm<'_, NQ, NV, NC>,
 ) -> Result<[f64; NV], DynamicsError>
 where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let velocity = checked(system.constraint_velocity(t, q, &v))?;
-    let correction = metric.least_norm(&SVector::from(velocity));
+    let correction = least_norm(q, velocity)?;
     Ok(std::array::from_fn(|i| v[i] - correction[i]))
 }
 
