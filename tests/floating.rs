@@ -7,7 +7,7 @@
 
 use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive};
 use dalembert::{DynamicsError, State, Unconstrained, accelerations, energy};
-use dalembert_codegen::testing::{mat_vec, quaternion_rotation as rotation};
+use dalembert_codegen::testing::{cross, mat_vec, quaternion_rotation as rotation};
 
 dalembert::dalembert! {
     /// An axisymmetric body thrown under gravity.
@@ -429,6 +429,19 @@ fn body_rates_move_as_the_quaternion_body_and_their_rates_blow_up_at_gimbal_lock
         product([0.0, 0.0, sz, cz], [0.0, sy, 0.0, cy]),
         [sx, 0.0, 0.0, cx],
     );
+    // Euler's equations in the body rates: M = I, f = −ω × I ω.
+    let mass = body.mass_matrix(&angles);
+    let forcing = body.forcing(0.0, &angles, &omega, &[]);
+    let inertia = [1.0, 2.0, 3.0];
+    let h = [0, 1, 2].map(|i| inertia[i] * omega[i]);
+    let gyroscopic = cross(omega, h);
+    for (k, row) in mass.iter().enumerate() {
+        for (j, entry) in row.iter().enumerate() {
+            let expected = if j == k { inertia[k] } else { 0.0 };
+            assert!((entry - expected).abs() < 1e-14, "M[{k}][{j}] = {entry}");
+        }
+        assert!((forcing[k] + gyroscopic[k]).abs() < 1e-13, "f[{k}]");
+    }
     let euler = accelerations(&body, 0.0, &angles, &omega, &[]).expect("solvable");
     let quaternion = accelerations(&DZHANIBEKOV, 0.0, &q, &omega, &[]).expect("solvable");
     for i in 0..3 {

@@ -84,12 +84,15 @@ fn worst_errors(robot: &str, route: Route) -> [f64; 5] {
         .iter()
         .find(|m| m["robot"] == robot)
         .unwrap();
+    let floating = robot.ends_with("_floating");
     let model = Urdf::read(reference_dir().join(entry["urdf"].as_str().unwrap()))
         .unwrap()
+        .floating(floating)
         .model()
         .unwrap();
     let interpreter = Interpreter::new(&model, route).unwrap();
-    assert_eq!(interpreter.nq(), entry["nv"].as_u64().unwrap() as usize);
+    assert_eq!(interpreter.nq(), entry["nq"].as_u64().unwrap() as usize);
+    assert_eq!(interpreter.nv(), entry["nv"].as_u64().unwrap() as usize);
     let mut worst = [0.0_f64; 5];
     for state in entry["states"].as_array().unwrap() {
         let (q, qd, tau) = (
@@ -131,7 +134,11 @@ fn worst_errors(robot: &str, route: Route) -> [f64; 5] {
 }
 
 fn matches_pinocchio(robot: &str) {
-    for route in [Route::Dalembert, Route::Lagrange] {
+    matches_pinocchio_on(robot, &[Route::Dalembert, Route::Lagrange]);
+}
+
+fn matches_pinocchio_on(robot: &str, routes: &[Route]) {
+    for &route in routes {
         let worst = worst_errors(robot, route);
         for (error, what) in worst.iter().zip(["M", "f", "T", "V", "qdd"]) {
             assert!(
@@ -165,4 +172,11 @@ fn solo12_matches_pinocchio() {
 #[test]
 fn feature_robot_matches_pinocchio() {
     matches_pinocchio("features");
+}
+
+/// Solo12 on a floating base (`--floating`) against Pinocchio's free flyer:
+/// d'Alembert's route only, as Lagrange's needs every speed to be a rate.
+#[test]
+fn floating_solo12_matches_pinocchio_free_flyer() {
+    matches_pinocchio_on("solo12_floating", &[Route::Dalembert]);
 }

@@ -192,20 +192,6 @@ fn quaternion_origins_are_not_supported() {
 }
 
 #[test]
-fn floating_bases_are_not_supported_yet() {
-    let error = Urdf::new("robot.urdf", robot("revolute", "", ""))
-        .floating(true)
-        .model()
-        .unwrap_err();
-    assert!(
-        error
-            .to_string()
-            .contains("floating bases are not supported yet"),
-        "{error}"
-    );
-}
-
-#[test]
 fn all_errors_are_reported_together() {
     let text = r#"<robot name="r">
   <link name="a"><inertial><mass value="-2"/><inertia ixx="1" iyy="1" izz="1" ixy="0" iyz="0" ixz="0"/></inertial></link>

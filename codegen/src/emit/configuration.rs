@@ -33,27 +33,14 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
         argument("q", |s| matches!(s, Sym::Coord(_))),
         argument("qd", |s| matches!(s, Sym::Speed(_))),
     );
-    let slides = model
-        .pool
-        .rates()
-        .iter()
-        .enumerate()
-        .filter_map(|(i, &rate)| match model.pool.node(rate) {
-            Node::Sym(Sym::Speed(k)) => {
-                let (i, k) = (index(i), index(*k as usize));
-                Some(quote!(next[#i] = q[#i] + h * v[#k];))
-            }
-            _ => None,
-        });
-    let balls = model.balls.iter().map(|ball| emit_ball(ball, names.libm));
-    let own = emit_own_rates(model, &nq);
+    let (update, doc_own) = emit_update(model, names.libm);
     let mut update_doc = vec![
         " `q ⊕ h v`: the configuration reached from `q` moving at the",
         " constant speeds `v` for the time `h`. Each quaternion is",
         " normalised, then turned exactly (it comes out unit); a free",
         " joint's origin follows the screw motion of its constant speeds;",
     ];
-    if !own.is_empty() {
+    if doc_own {
         update_doc.extend([
             " the coordinates of `speeds` statements take one classical RK4",
             " step of `q̇ = N(q) v`;",
@@ -74,59 +61,131 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
         #[inline]
         #[must_use]
         pub fn integrate_configuration(&self, q: &[f64; #nq], v: &[f64; #nv], h: f64) -> [f64; #nq] {
-            let mut next = *q;
-            #(#slides)*
-            #(#balls)*
-            #own
-            next
+            #update
         }
     }
 }
 
-/// The coordinates whose rates a `speeds` statement gives (neither a
-/// speed nor a quaternion joint's): one classical Runge–Kutta step of
-/// `q̇ = N(q) v` at constant `v`, the other coordinates held.
-fn emit_own_rates(model: &Model, nq: &Literal) -> TokenStream {
+/// The body of `integrate_configuration`, on destructured arrays (no
+/// indexing): every coordinate `qᵢ` and speed `vₖ` by name, the new
+/// configuration as an array of names; and whether some coordinates come
+/// from `speeds` statements.
+fn emit_update(model: &Model, libm: bool) -> (TokenStream, bool) {
+    let (nq, nv) = (model.nq(), model.nv());
+    let q: Vec<Ident> = (0..nq).map(|i| format_ident!("q{}", i)).collect();
+    let v: Vec<Ident> = (0..nv).map(|k| format_ident!("v{}", k)).collect();
+    let mut next: Vec<TokenStream> = q.iter().map(|name| quote!(#name)).collect();
+    let mut steps = Vec::new();
     let in_ball = |i: usize| {
         model.balls.iter().any(|b| {
             b.quaternion.contains(&i) || b.translation.is_some_and(|(p, _)| p.contains(&i))
         })
     };
-    let own: Vec<Literal> = (0..model.nq())
-        .filter(|&i| {
-            let plain = matches!(
-                model.pool.rates().get(i).map(|&r| model.pool.node(r)),
-                None | Some(Node::Sym(Sym::Speed(_)))
-            );
-            !plain && !in_ball(i)
-        })
-        .map(index)
-        .collect();
-    if own.is_empty() {
-        return TokenStream::new();
+    let mut own = Vec::new();
+    // The speeds read by name (the others are left out of the pattern).
+    let mut read = vec![false; nv];
+    for i in (0..nq).filter(|&i| !in_ball(i)) {
+        let k = match model.pool.rates().get(i).map(|&r| model.pool.node(r)) {
+            Some(Node::Sym(Sym::Speed(k))) => *k as usize,
+            None => i,
+            Some(_) => {
+                own.push(i);
+                continue;
+            }
+        };
+        let (qi, vk) = (&q[i], &v[k]);
+        next[i] = quote!(#qi + h * #vk);
+        read[k] = true;
     }
-    quote! {
-        {
-            let stage = |rates: &[f64; #nq], c: f64| {
-                let mut stage = *q;
-                #(stage[#own] = q[#own] + c * h * rates[#own];)*
-                stage
-            };
-            let k1 = self.coordinate_rates(q, v);
-            let k2 = self.coordinate_rates(&stage(&k1, 0.5), v);
-            let k3 = self.coordinate_rates(&stage(&k2, 0.5), v);
-            let k4 = self.coordinate_rates(&stage(&k3, 1.0), v);
-            #(next[#own] = q[#own] + h / 6.0 * (k1[#own] + 2.0 * k2[#own] + 2.0 * k3[#own] + k4[#own]);)*
+    for ball in &model.balls {
+        let mut speeds = ball.angular.to_vec();
+        speeds.extend(ball.translation.iter().flat_map(|(_, v)| *v));
+        speeds.into_iter().for_each(|k| read[k] = true);
+    }
+    for ball in &model.balls {
+        let (step, outputs) = emit_ball(ball, &q, &v, libm);
+        steps.push(step);
+        let mut indices: Vec<usize> = ball.quaternion.to_vec();
+        indices.extend(ball.translation.iter().flat_map(|(p, _)| *p));
+        for (i, name) in indices.into_iter().zip(outputs) {
+            next[i] = quote!(#name);
         }
     }
+    if !own.is_empty() {
+        steps.push(emit_own_rates(&own, &q, &mut next));
+    }
+    let pattern = v.iter().zip(&read).map(|(name, &read)| match read {
+        true => quote!(#name),
+        false => quote!(_),
+    });
+    let destructure_v = read
+        .contains(&true)
+        .then(|| quote!(let [#(#pattern),*] = *v;));
+    let body = quote! {
+        let [#(#q),*] = *q;
+        #destructure_v
+        #(#steps)*
+        [#(#next),*]
+    };
+    (body, !own.is_empty())
 }
 
-fn index(i: usize) -> Literal {
-    Literal::usize_unsuffixed(i)
+/// The coordinates `own` whose rates a `speeds` statement gives: one
+/// classical Runge–Kutta step of `q̇ = N(q) v` at constant `v`, the other
+/// coordinates held; their new values go into `next`.
+fn emit_own_rates(own: &[usize], q: &[Ident], next: &mut [TokenStream]) -> TokenStream {
+    let stage_names = |stage: &str| -> Vec<TokenStream> {
+        (0..q.len())
+            .map(|i| match own.contains(&i) {
+                true => {
+                    let name = format_ident!("{}_{}", stage, i);
+                    quote!(#name)
+                }
+                false => quote!(_),
+            })
+            .collect()
+    };
+    let state = |stage: &str, c: TokenStream| -> Vec<TokenStream> {
+        (0..q.len())
+            .map(|i| {
+                let qi = &q[i];
+                match own.contains(&i) {
+                    true => {
+                        let k = format_ident!("{}_{}", stage, i);
+                        quote!(#qi + #c * h * #k)
+                    }
+                    false => quote!(#qi),
+                }
+            })
+            .collect()
+    };
+    let [k1, k2, k3, k4] = ["k1", "k2", "k3", "k4"].map(stage_names);
+    let (s2, s3, s4) = (
+        state("k1", quote!(0.5)),
+        state("k2", quote!(0.5)),
+        state("k3", quote!(1.0)),
+    );
+    for &i in own {
+        let name = format_ident!("n{}", i);
+        next[i] = quote!(#name);
+    }
+    let finals = own.iter().map(|&i| {
+        let (qi, name) = (&q[i], format_ident!("n{}", i));
+        let [a, b, c, d] = ["k1", "k2", "k3", "k4"].map(|s| format_ident!("{}_{}", s, i));
+        quote!(let #name = #qi + h / 6.0 * (#a + 2.0 * #b + 2.0 * #c + #d);)
+    });
+    quote! {
+        let [#(#k1),*] = self.coordinate_rates(q, v);
+        let [#(#k2),*] = self.coordinate_rates(&[#(#s2),*], v);
+        let [#(#k3),*] = self.coordinate_rates(&[#(#s3),*], v);
+        let [#(#k4),*] = self.coordinate_rates(&[#(#s4),*], v);
+        #(#finals)*
+    }
 }
 
-/// The update of one quaternion joint, in a block of its own.
-fn emit_ball(ball: &Ball, libm: bool) -> TokenStream {
+/// The update of one quaternion joint: its statements and the names of the
+/// new quaternion `(x, y, z, w)` and, for a free joint, position.
+fn emit_ball(ball: &Ball, q: &[Ident], v: &[Ident], libm: bool) -> (TokenStream, Vec<Ident>) {
     let call = |function: &str, x: TokenStream| {
         let function = Ident::new(function, Span::call_site());
         if libm {
@@ -135,27 +194,27 @@ fn emit_ball(ball: &Ball, libm: bool) -> TokenStream {
             quote!(#x.#function())
         }
     };
-    let [qx, qy, qz, qw] = ball.quaternion.map(index);
-    let [wx, wy, wz] = ball.angular.map(index);
+    let [qx, qy, qz, qw] = ball.quaternion.map(|i| &q[i]);
+    let [wx, wy, wz] = ball.angular.map(|k| &v[k]);
+    let first = ball.quaternion[0];
+    let out = |what: &str| format_ident!("n{}_{}", first, what);
+    let quaternion_out = ["x", "y", "z", "w"].map(out);
+    let [nx, ny, nz, nw] = &quaternion_out;
     let norm = call(
         "sqrt",
-        quote!((q[#qx] * q[#qx] + q[#qy] * q[#qy] + q[#qz] * q[#qz] + q[#qw] * q[#qw])),
+        quote!((#qx * #qx + #qy * #qy + #qz * #qz + #qw * #qw)),
     );
     let speed = call("sqrt", quote!(oo));
     let (sin_half, cos_half) = (call("sin", quote!(half)), call("cos", quote!(half)));
     let (sin, cos) = (call("sin", quote!(theta)), call("cos", quote!(theta)));
-    let norm_turned = call(
-        "sqrt",
-        quote!(
-            (turned[0] * turned[0]
-                + turned[1] * turned[1]
-                + turned[2] * turned[2]
-                + turned[3] * turned[3])
-        ),
-    );
+    let norm_turned = call("sqrt", quote!((t0 * t0 + t1 * t1 + t2 * t2 + t3 * t3)));
+    let mut outputs = quaternion_out.to_vec();
     let translation = ball.translation.map(|(position, velocity)| {
-        let [x, y, z] = position.map(index);
-        let [vx, vy, vz] = velocity.map(index);
+        let [x, y, z] = position.map(|i| &q[i]);
+        let [vx, vy, vz] = velocity.map(|k| &v[k]);
+        let position_out = ["px", "py", "pz"].map(out);
+        let [px, py, pz] = &position_out;
+        outputs.extend(position_out.clone());
         quote! {
             // The screw motion: r + R(q) (h v + c1 ω × v + c2 ω × (ω × v)).
             let (c1, c2) = if theta < 1e-4 {
@@ -163,25 +222,31 @@ fn emit_ball(ball: &Ball, libm: bool) -> TokenStream {
             } else {
                 ((1.0 - #cos) / oo, (h - #sin / w) / oo)
             };
-            let u = [v[#vx], v[#vy], v[#vz]];
-            let wu = [o1 * u[2] - o2 * u[1], o2 * u[0] - o0 * u[2], o0 * u[1] - o1 * u[0]];
-            let wwu = [o1 * wu[2] - o2 * wu[1], o2 * wu[0] - o0 * wu[2], o0 * wu[1] - o1 * wu[0]];
-            let d = [0, 1, 2].map(|i| h * u[i] + c1 * wu[i] + c2 * wwu[i]);
-            let r = [
-                [a3 * a3 + a0 * a0 - a1 * a1 - a2 * a2, 2.0 * (a0 * a1 - a3 * a2), 2.0 * (a0 * a2 + a3 * a1)],
-                [2.0 * (a0 * a1 + a3 * a2), a3 * a3 - a0 * a0 + a1 * a1 - a2 * a2, 2.0 * (a1 * a2 - a3 * a0)],
-                [2.0 * (a0 * a2 - a3 * a1), 2.0 * (a1 * a2 + a3 * a0), a3 * a3 - a0 * a0 - a1 * a1 + a2 * a2],
-            ];
-            next[#x] = q[#x] + r[0][0] * d[0] + r[0][1] * d[1] + r[0][2] * d[2];
-            next[#y] = q[#y] + r[1][0] * d[0] + r[1][1] * d[1] + r[1][2] * d[2];
-            next[#z] = q[#z] + r[2][0] * d[0] + r[2][1] * d[1] + r[2][2] * d[2];
+            let (u0, u1, u2) = (#vx, #vy, #vz);
+            let (wu0, wu1, wu2) = (o1 * u2 - o2 * u1, o2 * u0 - o0 * u2, o0 * u1 - o1 * u0);
+            let (wwu0, wwu1, wwu2) = (o1 * wu2 - o2 * wu1, o2 * wu0 - o0 * wu2, o0 * wu1 - o1 * wu0);
+            let d0 = h * u0 + c1 * wu0 + c2 * wwu0;
+            let d1 = h * u1 + c1 * wu1 + c2 * wwu1;
+            let d2 = h * u2 + c1 * wu2 + c2 * wwu2;
+            let #px = #x
+                + (a3 * a3 + a0 * a0 - a1 * a1 - a2 * a2) * d0
+                + 2.0 * (a0 * a1 - a3 * a2) * d1
+                + 2.0 * (a0 * a2 + a3 * a1) * d2;
+            let #py = #y
+                + 2.0 * (a0 * a1 + a3 * a2) * d0
+                + (a3 * a3 - a0 * a0 + a1 * a1 - a2 * a2) * d1
+                + 2.0 * (a1 * a2 - a3 * a0) * d2;
+            let #pz = #z
+                + 2.0 * (a0 * a2 - a3 * a1) * d0
+                + 2.0 * (a1 * a2 + a3 * a0) * d1
+                + (a3 * a3 - a0 * a0 - a1 * a1 + a2 * a2) * d2;
         }
     });
-    quote! {
-        {
+    let step = quote! {
+        let (#(#outputs),*) = {
             let norm = #norm;
-            let [a0, a1, a2, a3] = [q[#qx] / norm, q[#qy] / norm, q[#qz] / norm, q[#qw] / norm];
-            let [o0, o1, o2] = [v[#wx], v[#wy], v[#wz]];
+            let (a0, a1, a2, a3) = (#qx / norm, #qy / norm, #qz / norm, #qw / norm);
+            let (o0, o1, o2) = (#wx, #wy, #wz);
             let oo = o0 * o0 + o1 * o1 + o2 * o2;
             let w = #speed;
             let theta = h * w;
@@ -192,21 +257,18 @@ fn emit_ball(ball: &Ball, libm: bool) -> TokenStream {
             } else {
                 (#sin_half / w, #cos_half)
             };
-            let [e0, e1, e2] = [s * o0, s * o1, s * o2];
+            let (e0, e1, e2) = (s * o0, s * o1, s * o2);
             #translation
-            let turned = [
-                a3 * e0 + a0 * c + a1 * e2 - a2 * e1,
-                a3 * e1 + a1 * c + a2 * e0 - a0 * e2,
-                a3 * e2 + a2 * c + a0 * e1 - a1 * e0,
-                a3 * c - a0 * e0 - a1 * e1 - a2 * e2,
-            ];
+            let t0 = a3 * e0 + a0 * c + a1 * e2 - a2 * e1;
+            let t1 = a3 * e1 + a1 * c + a2 * e0 - a0 * e2;
+            let t2 = a3 * e2 + a2 * c + a0 * e1 - a1 * e0;
+            let t3 = a3 * c - a0 * e0 - a1 * e1 - a2 * e2;
             let unit = #norm_turned;
-            next[#qx] = turned[0] / unit;
-            next[#qy] = turned[1] / unit;
-            next[#qz] = turned[2] / unit;
-            next[#qw] = turned[3] / unit;
-        }
-    }
+            let (#nx, #ny, #nz, #nw) = (t0 / unit, t1 / unit, t2 / unit, t3 / unit);
+            (#(#outputs),*)
+        };
+    };
+    (step, outputs)
 }
 
 /// `pub fn coordinate_rates(..)` and `pub fn integrate_configuration(..)`

@@ -1,9 +1,8 @@
-//! Speeds that are not the coordinates' rates, checked against closed
-//! forms: free and spherical joints (Newton–Euler for a free body, Euler's
-//! equations about a fixed point for a heavy top) on both routes, the
-//! recursion over the tree and the general dot products of partial
-//! velocities; and body-axis angular velocities of Z-Y-X Euler angles
-//! defined by a `speeds` statement (Euler's equations again).
+//! Free and spherical joints checked against closed forms (Newton–Euler
+//! for a free body, Euler's equations about a fixed point for a heavy top),
+//! on both routes: the recursion over the tree and the general dot
+//! products of partial velocities. (Speeds of a `speeds` statement are
+//! checked end to end, in the project's `tests/floating.rs`.)
 
 use crate::equations::{Equations, derive};
 use crate::expr::Pool;
@@ -43,22 +42,6 @@ const LOADED: &str = "pub Loaded {
     force F * N.x + F * B.y at J + a * B.z;
     torque T * B.z on B;
     torque T * P.y on P reacting B;
-}";
-
-/// A body turning about its centre in Z-Y-X Euler angles, with the body-axis
-/// angular velocity as its speeds: `M = I`, `f = −ω × I ω`.
-const BODY_RATES: &str = "pub BodyRates {
-    parameters I1, I2, I3, I12;
-    coordinates psi, theta, phi;
-    speeds wx, wy, wz {
-        psi: (sin(phi) * wy + cos(phi) * wz) / cos(theta),
-        theta: cos(phi) * wy - sin(phi) * wz,
-        phi: wx + tan(theta) * (sin(phi) * wy + cos(phi) * wz)
-    };
-    frame A = N.rotate_z(psi);
-    frame C = A.rotate_y(theta);
-    frame B = C.rotate_x(phi);
-    body b { mass: 1, center: O, frame: B, inertia: [I1, I2, I3, I12, 0, 0] };
 }";
 
 fn derived(source: &str, recursive: bool) -> (Model, Pool, Equations) {
@@ -231,37 +214,5 @@ fn both_routes_agree_on_a_loaded_floating_tree() {
             .sum();
         let t = recursive_pool.eval(recursive.kinetic_energy, &state.values());
         assert_close(&format!("seed {seed}: 2T"), quadratic, 2.0 * t);
-    }
-}
-
-#[test]
-fn body_rates_of_euler_angles_follow_euler_equations() {
-    let system =
-        crate::language::parse_system(BODY_RATES.parse().expect("tokens")).expect("parses");
-    let mut model = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
-    let written: Vec<String> = model.speeds.iter().map(|s| s.written()).collect();
-    assert_eq!(written, ["wx", "wy", "wz"]);
-    let mut pool = std::mem::take(&mut model.pool);
-    let equations = derive(&model, &mut pool);
-    for seed in 0..4 {
-        let mut state = State::random(&model, seed);
-        state.q[1] = state.q[1].clamp(-1.2, 1.2);
-        let [i1, i2, i3, i12] = state.parameters[..] else {
-            unreachable!()
-        };
-        let inertia = [[i1, i12, 0.0], [i12, i2, 0.0], [0.0, 0.0, i3]];
-        let w = [0, 1, 2].map(|i| state.v[i]);
-        let gyroscopic = cross(w, mat_vec(&inertia, w));
-        let (mass, forcing) = evaluate(&pool, &equations, &state);
-        for k in 0..3 {
-            for j in 0..3 {
-                assert_close(
-                    &format!("seed {seed}: M[{k}][{j}]"),
-                    mass[k][j],
-                    inertia[k][j],
-                );
-            }
-            assert_close(&format!("seed {seed}: f[{k}]"), forcing[k], -gyroscopic[k]);
-        }
     }
 }
