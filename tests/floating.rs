@@ -214,9 +214,6 @@ fn tight() -> AdaptiveOptions {
 }
 
 #[test]
-#[ignore = "needs the manifold-correct adaptive integrators of branch `sim`: on `float` the \
-            stages compose body speeds taken at different attitudes (centre off by 2.5e-2 \
-            after 2 s)"]
 fn a_thrown_body_follows_the_parabola_and_precesses_about_its_axis() {
     let start = thrown_start();
     let dynamics = Unconstrained::without_inputs(&THROWN);
@@ -263,9 +260,6 @@ fn momentum(q: &[f64; 4], v: &[f64; 3]) -> [f64; 3] {
 }
 
 #[test]
-#[ignore = "needs the manifold-correct adaptive integrators of branch `sim`: on `float` the \
-            energy holds to 8e-13 and the body flips 7 times, but the momentum in N drifts \
-            by 3.4e-3"]
 fn dzhanibekov_flips_while_energy_and_momentum_stay() {
     // Spun about the intermediate axis, with a small wobble.
     let start = State {
@@ -316,7 +310,11 @@ fn euler_angles_stop_at_gimbal_lock_naming_the_coordinate() {
     let locked = [0.3, std::f64::consts::FRAC_PI_2, -0.2];
     match accelerations(&body, 0.0, &locked, &[0.1, 0.2, 0.3], &[]) {
         Err(DynamicsError::SingularMassMatrix { coordinate, .. }) => {
-            assert_eq!(coordinate, "phi");
+            // At gimbal lock the axes of psi and phi align. The emitted
+            // solver meets the vanishing pivot at phi (the last column of
+            // L D Lᵀ) or at psi (the root, for the articulated-body
+            // recursion), whichever route the engine chose for the model.
+            assert!(["psi", "phi"].contains(&coordinate), "{coordinate}");
         }
         other => panic!("expected a singular mass matrix, got {other:?}"),
     }
