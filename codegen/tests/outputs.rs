@@ -238,13 +238,19 @@ fn column_rank(rows: &[Vec<f64>]) -> usize {
 
 #[test]
 fn regressor_times_base_parameters_is_the_inverse_dynamics() {
-    for source in test_systems() {
+    let mut systems = test_systems();
+    for family in [Family::Planar, Family::Spatial] {
+        for n in [5, 6] {
+            systems.push(chain_spelled(family, n, Spelling::SymbolicJoints));
+        }
+    }
+    for source in systems {
         let source = source.replace("    outputs inverse_dynamics, regressor;\n", "");
         let source = asking(&source, "outputs inverse_dynamics, regressor;");
         let interpreter = interpreter(&source, Route::Dalembert);
         let mut stacked = Vec::new();
         let mut nb = 0;
-        for seed in 0..12 {
+        for seed in 0..16 {
             let mut sample = Sample::random(&interpreter, seed);
             sample.u.iter_mut().for_each(|u| *u = 0.0);
             let rates = random_rates(&interpreter, seed + 100);

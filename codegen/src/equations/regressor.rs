@@ -1,24 +1,30 @@
 //! The regressor of the inverse dynamics: `M v̇ − f = Y π` at zero inputs,
-//! with `π` the *base parameters*, found symbolically.
+//! with `π` the *base parameters*.
 //!
-//! Every entry of `M v̇ − f` is expanded into a sum of monomials, and each
-//! monomial split into its product of parameters (`m₂ l₁²`, `g m₁ c₁`; `1`
-//! for none) and the rest (numbers, functions of `q`, `v`, `v̇`, and
-//! parameters inside functions or sums, which stay in `Y`). The distinct
-//! parameter products are the parameters that enter linearly; the rest,
-//! summed per product and per row, are the columns of `Y`. Products whose
-//! columns are equal up to a constant factor cannot be told apart by any
-//! motion, so they are regrouped into one base parameter, their
-//! combination: for a two-link arm `I₁ + m₁ c₁² + m₂ l₁²`. Columns that
-//! vanish never appear. Terms with an input are left out (`Y π` is the
+//! Every entry of `M v̇ − f` is expanded, symbolically, as a polynomial in
+//! the parameters only — the parameter-free parts stay shared DAGs, so the
+//! expansion is as large as the number of parameter products, not of
+//! trigonometric terms: `Σ μ · Y_μ(q, v, v̇)`, with `μ` a product of
+//! parameters (`m₂ l₁²`, `g m₁ c₁`; `1` for none). A parameter inside a
+//! function or under a negative power of a sum is not a polynomial one
+//! there: that part stays in `Y` (read from the struct). The distinct
+//! products are the parameters that enter linearly; the `Y_μ` are the
+//! candidate columns of `Y`.
+//!
+//! A column that is a constant combination `Σ xⱼ Yⱼ` of earlier ones cannot
+//! be told apart from them by any motion: it is removed, and its product
+//! joins each base parameter `πⱼ` with the exact rational factor `xⱼ` — for
+//! a two-link arm `π = m₁ c₁² + m₂ l₁² + I₁`. Dependence is decided by
+//! polynomial identity testing (the columns' values at random points, a QR
+//! factorisation, the factors recovered as small rationals and checked);
+//! columns that vanish are left out. Inputs are set to zero (`Y π` is the
 //! force the motion needs beyond the inputs); time must not appear.
 
-use crate::expr::{ExprId, Node, Number, Pool, Sym, SymKinds};
-use crate::render::trig::readable;
-use std::collections::HashMap;
+use crate::expr::{ExprId, Func, Node, Number, Pool, Sym, SymKinds};
+use std::collections::{BTreeMap, HashMap};
 
-/// Most monomials an entry of `M v̇ − f` may expand to.
-const BUDGET: usize = 4000;
+/// Most parameter products one expression may hold.
+const MOST_PRODUCTS: usize = 5000;
 
 /// A product of parameters: `(parameter index, exponent)`, by index.
 pub type Monomial = Vec<(u32, i32)>;
@@ -36,143 +42,357 @@ pub struct Regressor {
 
 /// Why a model has no regressor.
 pub enum Failure {
-    /// An entry of `M v̇ − f` expands to more than the budget's monomials.
+    /// `M v̇ − f` holds too many products of parameters.
     TooLarge,
     /// `M v̇ − f` depends on time outside the inputs' terms.
     TimeDependent,
 }
 
+/// An expression as a polynomial in the parameters: the coefficient of
+/// each product, free of polynomial parameters.
+type Polynomial = BTreeMap<Monomial, ExprId>;
+
 /// The regressor of `inverse_dynamics` (`M q̈ − f`, in the symbols `q̈`).
 pub fn regressor(pool: &mut Pool, inverse_dynamics: &[ExprId]) -> Result<Regressor, Failure> {
     let nv = inverse_dynamics.len();
-    let plain = pool.ungroup(inverse_dynamics);
-    let mut products: Vec<(Monomial, Vec<Vec<ExprId>>)> = Vec::new();
-    let mut index: HashMap<Monomial, usize> = HashMap::new();
-    for (row, &entry) in plain.iter().enumerate() {
-        let expanded = readable(pool, entry, BUDGET).ok_or(Failure::TooLarge)?;
-        let terms = match pool.node(expanded) {
-            Node::Add(terms) => terms.to_vec(),
-            _ if pool.is_zero(expanded) => Vec::new(),
-            _ => vec![expanded],
-        };
-        for term in terms {
-            let (monomial, rest) = split_parameters(pool, term);
-            let kinds = pool.kinds(rest);
-            if kinds.intersects(SymKinds::INPUT) {
-                continue;
-            }
-            if kinds.intersects(SymKinds::TIME) {
+    let mut polynomials: HashMap<ExprId, Polynomial> = HashMap::new();
+    for e in pool.topo_order(inverse_dynamics) {
+        let p = polynomial(pool, e, &polynomials).ok_or(Failure::TooLarge)?;
+        polynomials.insert(e, p);
+    }
+    let mut columns: BTreeMap<Monomial, Vec<ExprId>> = BTreeMap::new();
+    for (row, entry) in inverse_dynamics.iter().enumerate() {
+        for (monomial, &coefficient) in &polynomials[entry] {
+            if pool.kinds(coefficient).intersects(SymKinds::TIME) {
                 return Err(Failure::TimeDependent);
             }
-            let column = *index.entry(monomial.clone()).or_insert_with(|| {
-                products.push((monomial, vec![Vec::new(); nv]));
-                products.len() - 1
-            });
-            products[column].1[row].push(rest);
+            let column = columns
+                .entry(monomial.clone())
+                .or_insert_with(|| vec![pool.zero(); nv]);
+            column[row] = coefficient;
         }
     }
-    Ok(grouped(pool, products))
+    Ok(grouped(pool, columns.into_iter().collect()))
 }
 
-/// `term` as its product of parameters and the rest (with the number).
-fn split_parameters(pool: &mut Pool, term: ExprId) -> (Monomial, ExprId) {
-    let (coefficient, body) = pool.split_coefficient(term);
-    let factors = match pool.node(body) {
-        Node::Mul(factors) => factors.to_vec(),
-        _ if body == pool.one() => Vec::new(),
-        _ => vec![body],
+/// The polynomial of `e`, from those of its children; `None` past
+/// [`MOST_PRODUCTS`].
+fn polynomial(
+    pool: &mut Pool,
+    e: ExprId,
+    known: &HashMap<ExprId, Polynomial>,
+) -> Option<Polynomial> {
+    let kinds = pool.kinds(e);
+    if !kinds.intersects(SymKinds::PARAM.union(SymKinds::INPUT)) {
+        return Some(constant(pool, e));
+    }
+    let p = match pool.node(e).clone() {
+        Node::Number(_) => constant(pool, e),
+        Node::Sym(Sym::Param(i)) => BTreeMap::from([(vec![(i, 1)], pool.one())]),
+        // The inputs are zero.
+        Node::Sym(Sym::Input(_)) => Polynomial::new(),
+        Node::Sym(_) => constant(pool, e),
+        Node::Add(terms) => {
+            let mut sum = Polynomial::new();
+            for term in terms.iter() {
+                add_into(pool, &mut sum, &known[term]);
+            }
+            sum
+        }
+        Node::Mul(factors) => {
+            let mut product = constant(pool, pool.one());
+            for factor in factors.iter() {
+                product = multiply(pool, &product, &known[factor]);
+                if product.len() > MOST_PRODUCTS {
+                    return None;
+                }
+            }
+            product
+        }
+        Node::Pow(base, n) => power(pool, e, &known[&base], n)?,
+        Node::Func(Func::Group, arg) => known[&arg].clone(),
+        Node::Func(f, arg) => match as_constant(pool, &known[&arg]) {
+            Some(argument) => {
+                let value = pool.func(f, argument);
+                constant(pool, value)
+            }
+            None => opaque(pool, e, &known[&arg]),
+        },
     };
-    let mut monomial = Monomial::new();
-    let mut rest = vec![pool.number(coefficient)];
-    for factor in factors {
-        match pool.node(factor) {
-            Node::Sym(Sym::Param(i)) => monomial.push((*i, 1)),
-            Node::Pow(base, n) => match pool.node(*base) {
-                Node::Sym(Sym::Param(i)) => monomial.push((*i, *n)),
-                _ => rest.push(factor),
-            },
-            _ => rest.push(factor),
-        }
-    }
-    monomial.sort_unstable();
-    (monomial, pool.product(rest))
+    Some(p)
 }
 
-/// Columns equal up to a constant factor merged into one base parameter,
-/// in the order of their first product.
-fn grouped(pool: &mut Pool, products: Vec<(Monomial, Vec<Vec<ExprId>>)>) -> Regressor {
+/// `{1: e}` (the empty map for zero).
+fn constant(pool: &Pool, e: ExprId) -> Polynomial {
+    match pool.is_zero(e) {
+        true => Polynomial::new(),
+        false => BTreeMap::from([(Monomial::new(), e)]),
+    }
+}
+
+/// The value of a polynomial without parameter products, if it is one.
+fn as_constant(pool: &Pool, p: &Polynomial) -> Option<ExprId> {
+    match p.len() {
+        0 => Some(pool.zero()),
+        1 => p.get(&Monomial::new()).copied(),
+        _ => None,
+    }
+}
+
+/// `e` kept whole (a parameter inside a function stays in `Y`), with the
+/// inputs in its argument set to zero by rebuilding it from `argument`.
+fn opaque(pool: &mut Pool, e: ExprId, argument: &Polynomial) -> Polynomial {
+    let Node::Func(f, _) = *pool.node(e) else {
+        return constant(pool, e);
+    };
+    let terms: Vec<ExprId> = argument
+        .iter()
+        .map(|(monomial, &c)| {
+            let product = monomial_expr(pool, monomial);
+            pool.mul(c, product)
+        })
+        .collect();
+    let argument = pool.sum(terms);
+    let value = pool.func(f, argument);
+    constant(pool, value)
+}
+
+/// `base ^ n`: each product's exponents times `n` for a single product,
+/// multiplied out for a sum and `n > 0`, kept whole otherwise.
+fn power(pool: &mut Pool, e: ExprId, base: &Polynomial, n: i32) -> Option<Polynomial> {
+    if base.len() == 1 {
+        let (monomial, &c) = base.iter().next()?;
+        let scaled: Monomial = monomial.iter().map(|&(i, k)| (i, k * n)).collect();
+        let c = pool.powi(c, n);
+        return Some(BTreeMap::from([(scaled, c)]));
+    }
+    match usize::try_from(n) {
+        Ok(count) if count <= 8 => {
+            let mut product = constant(pool, pool.one());
+            for _ in 0..count {
+                product = multiply(pool, &product, base);
+                if product.len() > MOST_PRODUCTS {
+                    return None;
+                }
+            }
+            Some(product)
+        }
+        _ => Some(constant(pool, e)),
+    }
+}
+
+/// `sum += p`.
+fn add_into(pool: &mut Pool, sum: &mut Polynomial, p: &Polynomial) {
+    for (monomial, &c) in p {
+        let total = match sum.get(monomial) {
+            Some(&previous) => pool.add(previous, c),
+            None => c,
+        };
+        if pool.is_zero(total) {
+            sum.remove(monomial);
+        } else {
+            sum.insert(monomial.clone(), total);
+        }
+    }
+}
+
+/// `a · b`.
+fn multiply(pool: &mut Pool, a: &Polynomial, b: &Polynomial) -> Polynomial {
+    let mut product = Polynomial::new();
+    for (ma, &ca) in a {
+        for (mb, &cb) in b {
+            let c = pool.mul(ca, cb);
+            let term = BTreeMap::from([(merged(ma, mb), c)]);
+            add_into(pool, &mut product, &term);
+        }
+    }
+    product
+}
+
+/// The product of two parameter products.
+fn merged(a: &Monomial, b: &Monomial) -> Monomial {
+    let mut exponents: BTreeMap<u32, i32> = a.iter().copied().collect();
+    for &(i, k) in b {
+        *exponents.entry(i).or_default() += k;
+    }
+    exponents.into_iter().filter(|&(_, k)| k != 0).collect()
+}
+
+/// A product of parameters as an expression.
+fn monomial_expr(pool: &mut Pool, monomial: &Monomial) -> ExprId {
+    let factors: Vec<ExprId> = monomial
+        .iter()
+        .map(|&(i, n)| {
+            let p = pool.sym(Sym::Param(i));
+            pool.powi(p, n)
+        })
+        .collect();
+    pool.product(factors)
+}
+
+/// The columns reduced to independent ones. A column that is a
+/// combination `Σ xⱼ Yⱼ` of earlier independent columns, with constant
+/// rational `xⱼ`, cannot be told apart from them by any motion: its product
+/// `μ` joins each `πⱼ` as `xⱼ μ`. Dependence is decided on the columns'
+/// values at random points (polynomial identity testing: expressions of
+/// the engine's functions that differ agree at random points with
+/// probability zero), the `xⱼ` recovered as exact small rationals and
+/// checked against every value.
+fn grouped(pool: &mut Pool, products: Vec<(Monomial, Vec<ExprId>)>) -> Regressor {
+    let nv = products.first().map_or(0, |(_, column)| column.len());
+    let points = (2 * products.len()).div_ceil(nv.max(1)) as u64 + 2;
+    let mut basis = Basis::default();
     let mut columns: Vec<Vec<ExprId>> = Vec::new();
     let mut combinations: Vec<Combination> = Vec::new();
-    let mut index: HashMap<Vec<ExprId>, usize> = HashMap::new();
-    for (monomial, rows) in products {
-        let column: Vec<ExprId> = rows.into_iter().map(|terms| pool.sum(terms)).collect();
-        let Some(scale) = leading_coefficient(pool, &column) else {
+    let sampled: Vec<Vec<f64>> = products
+        .iter()
+        .map(|(_, column)| sampled(pool, column, points))
+        .collect();
+    // A column that cancels symbolically may leave rounding: it vanishes
+    // next to the largest column.
+    let largest = sampled.iter().map(|v| norm(v)).fold(0.0, f64::max);
+    for ((monomial, column), values) in products.into_iter().zip(sampled) {
+        if norm(&values) <= 1e-12 * largest {
             continue;
-        };
-        let inverse = pool.number(scale.powi(-1));
-        let normalised: Vec<ExprId> = column
-            .iter()
-            .map(|&e| termwise_product(pool, inverse, e))
-            .collect();
-        match index.get(&normalised) {
-            Some(&group) => combinations[group].push((scale, monomial)),
+        }
+        match basis.dependence(&values) {
+            Some(coefficients) => {
+                for (group, c) in coefficients {
+                    combinations[group].push((c, monomial.clone()));
+                }
+            }
             None => {
-                index.insert(normalised.clone(), columns.len());
-                columns.push(normalised);
-                combinations.push(vec![(scale, monomial)]);
+                // Independent, or dependent only with coefficients that
+                // are not constants: a base parameter of its own.
+                basis.push(values, columns.len());
+                columns.push(column);
+                combinations.push(vec![(Number::ONE, monomial)]);
             }
         }
     }
-    // Products in order within a base parameter, base parameters in the
-    // order of their first products: an order that does not depend on the
-    // pool's history. Each first product enters with coefficient 1, so that
-    // `π` does not depend on which term of a column comes first either.
-    let mut groups: Vec<(Vec<ExprId>, Combination)> =
-        columns.into_iter().zip(combinations).collect();
-    for (_, combination) in &mut groups {
-        combination.sort_by(|a, b| a.1.cmp(&b.1));
-    }
-    groups.sort_by(|a, b| a.1[0].1.cmp(&b.1[0].1));
-    let (mut columns, mut combinations): (Vec<_>, Vec<_>) = groups.into_iter().unzip();
-    for (column, combination) in columns.iter_mut().zip(&mut combinations) {
-        let first = combination[0].0;
-        let inverse = first.powi(-1);
-        combination.iter_mut().for_each(|(c, _)| *c = *c * inverse);
-        let first = pool.number(first);
-        column
-            .iter_mut()
-            .for_each(|e| *e = termwise_product(pool, first, *e));
-    }
-    let nv = columns.first().map_or(0, Vec::len);
     let rows = (0..nv)
         .map(|k| columns.iter().map(|column| column[k]).collect())
         .collect();
     Regressor { rows, combinations }
 }
 
-/// `c e` with `c` multiplied into each term of a sum `e`, so that
-/// proportional sums of monomials become the same expression.
-fn termwise_product(pool: &mut Pool, c: ExprId, e: ExprId) -> ExprId {
-    match pool.node(e) {
-        Node::Add(terms) => {
-            let terms = terms.to_vec();
-            let scaled: Vec<ExprId> = terms.into_iter().map(|t| pool.mul(c, t)).collect();
-            pool.sum(scaled)
-        }
-        _ => pool.mul(c, e),
+/// The values of `column` at `points` random points: parameters in
+/// `[0.5, 1.5)`, coordinates, speeds and their rates in `[−3, 3)`, time and
+/// inputs zero.
+fn sampled(pool: &Pool, column: &[ExprId], points: u64) -> Vec<f64> {
+    (0..points)
+        .flat_map(|seed| pool.eval_many(column, &RandomPoint(seed)))
+        .collect()
+}
+
+/// A random value for every symbol, fixed by a seed.
+struct RandomPoint(u64);
+
+impl crate::expr::Env for RandomPoint {
+    fn value(&self, sym: Sym) -> f64 {
+        let (kind, index, low, high) = match sym {
+            Sym::Param(i) => (1, i, 0.5, 1.5),
+            Sym::Coord(i) => (2, i, -3.0, 3.0),
+            Sym::Speed(i) => (3, i, -3.0, 3.0),
+            Sym::Accel(i) => (4, i, -3.0, 3.0),
+            Sym::Time | Sym::Input(_) | Sym::Multiplier(_) => return 0.0,
+        };
+        let seed = (self.0 << 40) ^ (kind << 32) ^ u64::from(index);
+        crate::random::Random::new(seed).uniform(low, high)
     }
 }
 
-/// The numeric coefficient of the first term of the first nonzero entry:
-/// the scale that makes proportional columns equal. `None` for a zero
-/// column.
-fn leading_coefficient(pool: &Pool, column: &[ExprId]) -> Option<Number> {
-    let first = *column.iter().find(|&&e| !pool.is_zero(e))?;
-    let term = match pool.node(first) {
-        Node::Add(terms) => terms[0],
-        _ => first,
-    };
-    Some(pool.split_coefficient(term).0)
+/// Independent sampled columns, as a QR factorisation by modified
+/// Gram–Schmidt: `columns = Q R`.
+#[derive(Default)]
+struct Basis {
+    /// Orthonormal columns.
+    q: Vec<Vec<f64>>,
+    /// `R` by columns: `r[j]` has `j + 1` entries.
+    r: Vec<Vec<f64>>,
+    /// The sampled columns themselves.
+    columns: Vec<Vec<f64>>,
+    /// The base parameter of each column.
+    groups: Vec<usize>,
+}
+
+impl Basis {
+    /// `Qᵀ v` and what of `v` is left outside the basis.
+    fn project(&self, v: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let mut rest = v.to_vec();
+        let coordinates = self
+            .q
+            .iter()
+            .map(|q| {
+                let c: f64 = q.iter().zip(&rest).map(|(a, b)| a * b).sum();
+                rest.iter_mut().zip(q).for_each(|(x, q)| *x -= c * q);
+                c
+            })
+            .collect();
+        (coordinates, rest)
+    }
+
+    /// The exact rationals `xⱼ ≠ 0` with `v = Σ xⱼ columnⱼ`, by the base
+    /// parameter of each column, if `v` is such a combination.
+    fn dependence(&self, v: &[f64]) -> Option<Vec<(usize, Number)>> {
+        let scale = norm(v);
+        let (coordinates, rest) = self.project(v);
+        if self.q.is_empty() || norm(&rest) > 1e-9 * scale {
+            return None;
+        }
+        // R x = Qᵀ v, by back substitution.
+        let n = self.q.len();
+        let mut x = vec![0.0; n];
+        for i in (0..n).rev() {
+            let above: f64 = (i + 1..n).map(|j| self.r[j][i] * x[j]).sum();
+            x[i] = (coordinates[i] - above) / self.r[i][i];
+        }
+        let exact: Vec<Number> = x
+            .iter()
+            .map(|&c| small_rational(c))
+            .collect::<Option<_>>()?;
+        let fits = v.iter().enumerate().all(|(k, &value)| {
+            let combined: f64 = exact
+                .iter()
+                .zip(&self.columns)
+                .map(|(c, column)| c.to_f64() * column[k])
+                .sum();
+            (combined - value).abs() <= 1e-10 * scale
+        });
+        let nonzero = self.groups.iter().zip(exact).filter(|(_, c)| !c.is_zero());
+        fits.then(|| nonzero.map(|(&g, c)| (g, c)).collect())
+    }
+
+    /// Adds `v`, the column of base parameter `group`, if it is
+    /// independent of the basis.
+    fn push(&mut self, v: Vec<f64>, group: usize) {
+        let (mut coordinates, rest) = self.project(&v);
+        let left = norm(&rest);
+        if left <= 1e-9 * norm(&v) {
+            return;
+        }
+        coordinates.push(left);
+        self.q.push(rest.iter().map(|x| x / left).collect());
+        self.r.push(coordinates);
+        self.columns.push(v);
+        self.groups.push(group);
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// `c` as an exact rational with a denominator up to 1000, if it is one
+/// (to 1e-8 relative); zero below 1e-10.
+fn small_rational(c: f64) -> Option<Number> {
+    if c.abs() < 1e-10 {
+        return Some(Number::ZERO);
+    }
+    (1..=1000_i128).find_map(|den| {
+        let num = (c * den as f64).round();
+        ((num / den as f64 - c).abs() <= 1e-8 * c.abs()).then(|| Number::ratio(num as i128, den))
+    })
 }
 
 impl Regressor {

@@ -42,7 +42,7 @@ pub fn regressor(
     let (tau, _) = derive_inverse_dynamics(model, equations, pool);
     let regressor = derive_regressor(pool, &tau).map_err(|failure| {
         let why = match failure {
-            Failure::TooLarge => "`M v̇ − f` is too large to expand into monomials",
+            Failure::TooLarge => "`M v̇ − f` holds too many products of parameters",
             Failure::TimeDependent => "`M v̇ − f` depends on time `t` (outside the inputs)",
         };
         syn::Error::new(
@@ -62,10 +62,10 @@ pub fn regressor(
          zero inputs, that is `inverse_dynamics(t, q, v, v̇, 0)`, where `π` are\n\
          the {nb} base parameters that `base_parameters()` computes and\n\
          `BASE_PARAMETERS` names: the products of parameters that `M v̇ − f` is\n\
-         linear in, those whose columns are proportional regrouped into one\n\
-         (no motion tells them apart), those whose columns vanish left out.\n\
-         The number of columns is the number of base parameters, not of the\n\
-         struct's parameters:{list}"
+         linear in, each product whose column is a constant combination of\n\
+         others merged into theirs (no motion tells them apart), those whose\n\
+         columns vanish left out. The number of columns is the number of base\n\
+         parameters, not of the struct's parameters:{list}"
     );
     let pi = regressor.base_parameters(pool);
     let functions = vec![
