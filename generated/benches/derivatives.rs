@@ -19,6 +19,7 @@ use dalembert_fixtures::states::{per_call, states};
 
 /// `accelerations` and `accelerations_jacobian` of one system, in group
 /// `derivatives/NAME`.
+#[allow(clippy::type_complexity)]
 fn bench_system<S: MultibodySystem<N, N, NU>, R, const N: usize, const NU: usize>(
     c: &mut Criterion,
     name: &str,

@@ -83,7 +83,8 @@ pub fn lqr<const N: usize, const NU: usize>(
         let k3 = rate(&(p + k2 * (STEP / 2.0)));
         let k4 = rate(&(p + k3 * STEP));
         p += (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (STEP / 6.0);
-        if !(p.norm() <= DIVERGED) {
+        let norm = p.norm();
+        if norm.is_nan() || norm > DIVERGED {
             residual = f64::INFINITY;
             break;
         }

@@ -11,8 +11,8 @@ use crate::equations::Equations;
 use crate::expr::ExprId;
 use crate::model::Model;
 use crate::outputs::Function;
-use proc_macro2::{Ident, Literal, Span, TokenStream};
-use quote::quote;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
 
 /// `[[f64; columns]; rows]` as tokens.
 fn matrix(rows: usize, columns: usize) -> TokenStream {
@@ -67,47 +67,44 @@ pub fn emit_accelerations_jacobian(
         .collect();
     let (q_columns, rest) = columns.split_at(nq);
     let (v_columns, u_columns) = rest.split_at(nq);
-    let literal = Literal::usize_unsuffixed;
-    let solved = |name: &str, columns: usize| -> TokenStream {
-        let name = Ident::new(name, Span::call_site());
-        let solves = (0..columns).map(|j| {
-            let j = literal(j);
-            quote!(solve(#name[#j]))
+    let (vector, inputs) = (array(nq), array(nu));
+    // Every array is destructured, never indexed: no panic path.
+    let names_of = |prefix: &str, count: usize| -> Vec<Ident> {
+        (0..count)
+            .map(|j| format_ident!("{}{}", prefix, j))
+            .collect()
+    };
+    let (cq, cv, cu) = (names_of("cq", nq), names_of("cv", nq), names_of("cu", nu));
+    // Column `j` of `M⁻¹ ∂τ/∂x`, entry `i`: `{prefix}{j}_{i}`.
+    let entry = |prefix: &str, j: usize, i: usize| format_ident!("{}{}_{}", prefix, j, i);
+    let solved = |prefix: &str, columns: &[Ident]| -> TokenStream {
+        let patterns = (0..columns.len()).map(|j| {
+            let entries = (0..nq).map(|i| entry(prefix, j, i));
+            quote!([#(#entries),*])
         });
-        quote!([#(#solves),*])
+        let n = Literal::usize_unsuffixed(columns.len());
+        quote!(let [#(#patterns),*]: [#vector; #n] = [#(solve(#columns)),*];)
     };
     // `∂v̇/∂x = −M⁻¹ ∂τ/∂x`, row by row.
-    let transposed = |name: &str, columns: usize| -> TokenStream {
-        let name = Ident::new(name, Span::call_site());
+    let transposed = |prefix: &str, columns: usize| -> TokenStream {
         let rows = (0..nq).map(|i| {
-            let i = literal(i);
             let row = (0..columns).map(|j| {
-                let j = literal(j);
-                quote!(-#name[#j][#i])
+                let name = entry(prefix, j, i);
+                quote!(-#name)
             });
             quote!([#(#row),*])
         });
         quote!([#(#rows),*])
     };
-    // Without inputs, the input columns are empty arrays nothing reads.
-    let (rhs_u, by_u) = match nu {
-        0 => ("_rhs_u", "_by_u"),
-        _ => ("rhs_u", "by_u"),
-    };
-    let (solved_q, solved_v, solved_u) =
-        (solved("rhs_q", nq), solved("rhs_v", nq), solved(rhs_u, nu));
+    let solves = [solved("dq", &cq), solved("dv", &cv), solved("du", &cu)];
     let (dq, dv, du) = (
-        transposed("by_q", nq),
-        transposed("by_v", nq),
-        transposed(by_u, nu),
+        transposed("dq", nq),
+        transposed("dv", nq),
+        transposed("du", nu),
     );
-    let (vector, inputs) = (array(nq), array(nu));
     let (square, wide) = (matrix(nq, nq), matrix(nq, nu));
+    let literal = Literal::usize_unsuffixed;
     let (n, nu_lit) = (literal(nq), literal(nu));
-    let (rhs_u_name, by_u_name) = (
-        Ident::new(rhs_u, Span::call_site()),
-        Ident::new(by_u, Span::call_site()),
-    );
     let (name, docs) = (
         &function.name,
         function.docs.iter().map(|line| raw_string(line)),
@@ -131,12 +128,11 @@ pub fn emit_accelerations_jacobian(
             if !finite(qdd) {
                 return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations);
             }
-            let (rhs_q, rhs_v, #rhs_u_name): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) = {
+            let ([#(#cq),*], [#(#cv),*], [#(#cu),*]): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) = {
                 #statements
                 ([#(#q_columns),*], [#(#v_columns),*], [#(#u_columns),*])
             };
-            let (by_q, by_v, #by_u_name): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) =
-                (#solved_q, #solved_v, #solved_u);
+            #(#solves)*
             let jacobian: (#square, #square, #wide) = (#dq, #dv, #du);
             if jacobian.0.iter().chain(&jacobian.1).all(|row| finite(row))
                 && jacobian.2.iter().all(|row| finite(row))
@@ -166,22 +162,28 @@ pub fn emit_linearize(model: &Model, function: &Function) -> TokenStream {
         });
         quote!([#(#row),*])
     });
-    let dynamic_rows = (0..nq).map(|i| {
-        let i = literal(i);
-        let by_q = (0..nq).map(|j| {
-            let j = literal(j);
-            quote!(dq[#i][#j])
-        });
-        let by_v = (0..nq).map(|j| {
-            let j = literal(j);
-            quote!(dv[#i][#j])
-        });
-        quote!([#(#by_q,)* #(#by_v),*])
-    });
-    let input_rows = (0..nq).map(|i| {
-        let i = literal(i);
-        quote!(du[#i])
-    });
+    // `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` destructured: entries `dq{i}_{j}`,
+    // `dv{i}_{j}`, rows `du{i}`.
+    let entries = |prefix: &str| -> Vec<Vec<Ident>> {
+        (0..nq)
+            .map(|i| {
+                (0..nq)
+                    .map(|j| format_ident!("{}{}_{}", prefix, i, j))
+                    .collect()
+            })
+            .collect()
+    };
+    let (by_q, by_v) = (entries("dq"), entries("dv"));
+    let input_rows: Vec<Ident> = (0..nq).map(|i| format_ident!("du{}", i)).collect();
+    let pattern = |rows: &[Vec<Ident>]| {
+        let rows = rows.iter().map(|row| quote!([#(#row),*]));
+        quote!([#(#rows),*])
+    };
+    let (q_pattern, v_pattern) = (pattern(&by_q), pattern(&by_v));
+    let dynamic_rows = by_q
+        .iter()
+        .zip(&by_v)
+        .map(|(q_row, v_row)| quote!([#(#q_row,)* #(#v_row),*]));
     let nu = literal(nu);
     let zero_row = quote!([0.0; #nu]);
     let zero_rows = (0..nq).map(|_| zero_row.clone());
@@ -196,7 +198,8 @@ pub fn emit_linearize(model: &Model, function: &Function) -> TokenStream {
             qd: &#vector,
             u: &#inputs,
         ) -> ::core::result::Result<(#a, #b), ::dalembert::DynamicsError> {
-            let (dq, dv, du) = self.accelerations_jacobian(t, q, qd, u)?;
+            let (#q_pattern, #v_pattern, [#(#input_rows),*]) =
+                self.accelerations_jacobian(t, q, qd, u)?;
             ::core::result::Result::Ok((
                 [#(#kinematic_rows,)* #(#dynamic_rows),*],
                 [#(#zero_rows,)* #(#input_rows),*],

@@ -66,6 +66,9 @@ mod tests {
         u: Vec<f64>,
     }
 
+    /// The variables of a [`Point`] that one block of partials is by.
+    type Variables = fn(&mut Point) -> &mut Vec<f64>;
+
     impl Env for Point {
         fn value(&self, sym: Sym) -> f64 {
             match sym {
@@ -109,7 +112,7 @@ mod tests {
                 a: draw(nq),
                 u: draw(nu),
             };
-            let blocks: [(&Vec<Vec<ExprId>>, fn(&mut Point) -> &mut Vec<f64>); 3] = [
+            let blocks: [(&Vec<Vec<ExprId>>, Variables); 3] = [
                 (&jacobian.coordinates, |p| &mut p.q),
                 (&jacobian.speeds, |p| &mut p.v),
                 (&jacobian.inputs, |p| &mut p.u),
