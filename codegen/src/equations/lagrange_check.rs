@@ -163,8 +163,11 @@ fn largest(values: &[f64]) -> f64 {
     values.iter().fold(0.0, |m, v| m.max(v.abs()))
 }
 
+/// Both routes give the same `M` and `f`, and on every tree the
+/// articulated-body recursion's `q̈` satisfies Lagrange's `M q̈ = f`.
 #[test]
 fn dalembert_agrees_with_lagrange_on_every_example_system() {
+    let mut solved = Vec::new();
     for source in SYSTEMS {
         let ours = interpreter(source, Route::Dalembert);
         let theirs = interpreter(source, Route::Lagrange);
@@ -183,30 +186,13 @@ fn dalembert_agrees_with_lagrange_on_every_example_system() {
             for (k, (a, b)) in f1.iter().zip(&f2).enumerate() {
                 assert_close(&format!("{name}: f[{k}]"), *a, *b, largest(&f2));
             }
-        }
-    }
-}
-
-/// The articulated-body recursion's `q̈` satisfies Lagrange's `M q̈ = f`
-/// on every tree.
-#[test]
-fn the_articulated_recursion_solves_lagranges_equations() {
-    let mut solved = Vec::new();
-    for source in SYSTEMS {
-        let ours = interpreter(source, Route::Dalembert);
-        let theirs = interpreter(source, Route::Lagrange);
-        for seed in 0..5 {
-            let state = Sample::random(&ours, seed);
-            let at = state.values();
             let Some(qdd) = ours.articulated_accelerations(&at) else {
-                break;
+                continue;
             };
-            let (m, f) = (theirs.mass_matrix(&at), theirs.forcing(&at));
-            let scale = largest(&f) + largest(&m.concat()) * largest(&qdd);
-            for (k, row) in m.iter().enumerate() {
+            let scale = largest(&f2) + largest(&m2.concat()) * largest(&qdd);
+            for (k, row) in m2.iter().enumerate() {
                 let mq: f64 = row.iter().zip(&qdd).map(|(mkj, a)| mkj * a).sum();
-                let what = format!("{} at state {seed}: (M q̈)[{k}]", ours.name());
-                assert_close(&what, mq, f[k], scale);
+                assert_close(&format!("{name}: (M q̈)[{k}]"), mq, f2[k], scale);
             }
             if seed == 0 {
                 solved.push(ours.name());

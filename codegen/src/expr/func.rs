@@ -225,7 +225,10 @@ mod tests {
     }
 
     #[test]
-    #[allow(clippy::approx_constant, reason = "angles near a quarter turn, on purpose")]
+    #[allow(
+        clippy::approx_constant,
+        reason = "angles near a quarter turn, on purpose"
+    )]
     fn quarter_turns_fold_exactly() {
         let mut s = Scratch::default();
         for (text, value) in [
