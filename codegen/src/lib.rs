@@ -64,8 +64,8 @@ pub mod testing {
     pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
     pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
     pub use crate::random::Random;
-    pub use crate::trees::Shape;
     pub use crate::rigid::{cross, mat_vec, quaternion_rotation, transpose_vec};
+    pub use crate::trees::Shape;
 }
 
 use proc_macro2::TokenStream;

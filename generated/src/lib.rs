@@ -34,6 +34,10 @@ model!(
     constrained_pendulum
 );
 model!(
+    /// A brick turning freely on a ball joint (the Dzhanibekov effect).
+    dzhanibekov
+);
+model!(
     /// A two-link arm asking for the control outputs (kinematics, inverse
     /// dynamics, regressor).
     two_link_arm
@@ -242,9 +246,10 @@ pub use cart_pole_3::CartPole3;
 pub use cart_pole_6::CartPole6;
 pub use constrained_pendulum::ConstrainedPendulum;
 pub use double_pendulum::DoublePendulum;
+pub use dzhanibekov::Dzhanibekov;
 pub use features::FeatureTree;
-pub use limbs::Limbs;
 pub use floating_solo12::FloatingSolo;
+pub use limbs::Limbs;
 pub use panda::Panda;
 pub use planar_chain_01::PlanarChain1;
 pub use planar_chain_02::PlanarChain2;

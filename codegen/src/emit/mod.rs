@@ -261,7 +261,11 @@ fn emit_function(model: &Model, names: &Names, function: &Function) -> TokenStre
         .collect();
     let body = straight_line(&model.pool, names, &roots);
     let reads = |kind: fn(&Sym) -> bool| body.used.iter().any(kind);
-    let (nq, nv, nu) = (array(model.nq()), array(model.nv()), array(model.inputs.len()));
+    let (nq, nv, nu) = (
+        array(model.nq()),
+        array(model.nv()),
+        array(model.inputs.len()),
+    );
     let arguments = function.arguments.iter().map(|argument| {
         let (name, ty, used) = match argument {
             Argument::Time => ("t", quote!(f64), reads(|s| matches!(s, Sym::Time))),
