@@ -25,6 +25,33 @@ pub(crate) fn factor_mass_matrix<const NV: usize>(
     })
 }
 
+/// The pivot test of the emitted articulated-body solver: every pivot (a
+/// joint's articulated inertia about its axis) must exceed
+/// [`RELATIVE_PIVOT_TOLERANCE`] times the largest; the error names the first
+/// that does not, by its entry of `names`. Called by generated code, which
+/// keeps one definition of the test here (and leaves the linters of a user's
+/// crate no long chain of generated bindings to trace back from a method
+/// call).
+pub fn check_pivots<const N: usize>(
+    pivots: [f64; N],
+    names: [&'static str; N],
+) -> Result<(), DynamicsError> {
+    let tolerance = RELATIVE_PIVOT_TOLERANCE * pivots.into_iter().fold(0.0, f64::max);
+    match pivots
+        .into_iter()
+        .zip(names)
+        .enumerate()
+        .find(|(_, (pivot, _))| pivot.is_nan() || *pivot <= tolerance)
+    {
+        Some((index, (pivot, coordinate))) => Err(DynamicsError::SingularMassMatrix {
+            index,
+            coordinate,
+            pivot,
+        }),
+        None => Ok(()),
+    }
+}
+
 /// A Cholesky pivot that is not safely positive.
 pub(crate) struct Pivot {
     /// Its row and column.
@@ -53,4 +80,42 @@ pub(crate) fn cholesky<const N: usize>(
         }
     }
     Ok(factor)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const NAMES: [&str; 3] = ["a", "b", "c"];
+
+    #[test]
+    fn pivots_well_above_the_tolerance_pass() {
+        assert_eq!(check_pivots([2.0, 1e-10, 0.5], NAMES), Ok(()));
+    }
+
+    #[test]
+    fn the_first_pivot_at_or_below_the_tolerance_is_named() {
+        let tiny = 0.5 * RELATIVE_PIVOT_TOLERANCE * 2.0;
+        assert_eq!(
+            check_pivots([2.0, tiny, -1.0], NAMES),
+            Err(DynamicsError::SingularMassMatrix {
+                index: 1,
+                coordinate: "b",
+                pivot: tiny,
+            })
+        );
+    }
+
+    #[test]
+    fn a_nan_pivot_is_singular() {
+        let error = check_pivots([1.0, 1.0, f64::NAN], NAMES).unwrap_err();
+        assert!(matches!(
+            error,
+            DynamicsError::SingularMassMatrix {
+                index: 2,
+                coordinate: "c",
+                ..
+            }
+        ));
+    }
 }

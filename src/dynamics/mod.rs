@@ -6,7 +6,7 @@ mod error;
 
 use nalgebra::SVector;
 
-pub use cholesky::RELATIVE_PIVOT_TOLERANCE;
+pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots};
 pub(crate) use cholesky::factor_mass_matrix;
 pub use error::DynamicsError;
 

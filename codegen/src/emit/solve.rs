@@ -182,18 +182,7 @@ fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> 
         if !finite(&[#(#forcing),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
         }
-        let pivots = [#(#pivots),*];
-        let tolerance = ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE
-            * pivots.into_iter().fold(0.0, ::core::primitive::f64::max);
-        for (index, (pivot, coordinate)) in pivots.into_iter().zip(Self::COORDINATES).enumerate() {
-            if !(pivot > tolerance) {
-                return ::core::result::Result::Err(::dalembert::DynamicsError::SingularMassMatrix {
-                    index,
-                    coordinate,
-                    pivot,
-                });
-            }
-        }
+        ::dalembert::dynamics::check_pivots([#(#pivots),*], Self::COORDINATES)?;
         let qdd = [#(#accelerations),*];
     }
 }
