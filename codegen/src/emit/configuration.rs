@@ -96,7 +96,7 @@ pub fn emit_rate_check(model: &Model, names: &Names) -> TokenStream {
             let (value, relative) = (outputs.next(), outputs.next());
             let coordinate = model.coordinates[d.coordinate].to_string();
             let divisor = unicode(&model.pool, d.divisor, &symbols);
-            listed.push(format!(" * `{divisor}`, in the rate of `{coordinate}`;"));
+            listed.push(format!(" * `{divisor}`, in the rate of `{coordinate}`"));
             quote! {
                 if !(#relative > ::dalembert::dynamics::SINGULAR_RATES_TOLERANCE) {
                     return ::core::result::Result::Err(
@@ -395,5 +395,86 @@ mod tests {
             emitted.contains("_v : & [f64 ; 0]") && emitted.contains("[]"),
             "{emitted}"
         );
+    }
+
+    fn model(source: &str) -> Model {
+        let system = crate::language::parse_system(source.parse().unwrap()).unwrap();
+        crate::model::resolve(&system).unwrap()
+    }
+
+    #[test]
+    fn body_rates_check_the_cosine_they_divide_by() {
+        let model = model(
+            "pub BodyRates {
+                parameters I1, I2, I3;
+                coordinates psi, theta, phi;
+                speeds wx, wy, wz {
+                    psi: (sin(phi) * wy + cos(phi) * wz) / cos(theta),
+                    theta: cos(phi) * wy - sin(phi) * wz,
+                    phi: wx + tan(theta) * (sin(phi) * wy + cos(phi) * wz)
+                };
+                frame A = N.rotate_z(psi);
+                frame C = A.rotate_y(theta);
+                frame B = C.rotate_x(phi);
+                body b { mass: 1, center: O, frame: B, inertia: [I1, I2, I3] };
+            }",
+        );
+        let names = super::super::names(&model, super::super::Target::Std);
+        let expected = quote! {
+            /// Whether the coordinate rates `q̇ = N(q) v` are defined at `q`:
+            /// `DynamicsError::SingularCoordinateRates` naming the first
+            /// coordinate whose rate divides by a quantity within
+            /// `dalembert::dynamics::SINGULAR_RATES_TOLERANCE` of zero (relative
+            /// to its terms, for a sum). The divisors:
+            ///
+            #[doc = " * `cos θ`, in the rate of `psi`"]
+            #[inline]
+            pub fn check_coordinate_rates(&self, q: &[f64; 3]) -> ::core::result::Result<(), ::dalembert::DynamicsError> {
+                let [_, theta, _] = *q;
+                let cos_theta = theta.cos();
+                let x0 = cos_theta.abs();
+                if !(x0 > ::dalembert::dynamics::SINGULAR_RATES_TOLERANCE) {
+                    return ::core::result::Result::Err(
+                        ::dalembert::DynamicsError::SingularCoordinateRates {
+                            coordinate: "psi",
+                            divisor: "cos θ",
+                            value: cos_theta,
+                        },
+                    );
+                }
+                ::core::result::Result::Ok(())
+            }
+        };
+        let emitted = emit_rate_check(&model, &names);
+        assert_eq!(emitted.to_string(), expected.to_string());
+    }
+
+    #[test]
+    fn a_sum_is_checked_relative_to_its_terms_and_regular_rates_need_no_check() {
+        let rolling = model(
+            "S {
+                parameters m, a;
+                coordinates x;
+                speeds w { x: w / (a + cos(x)) };
+                particle p { mass: m, at: O + x * N.x };
+            }",
+        );
+        let names = super::super::names(&rolling, super::super::Target::Std);
+        let emitted = emit_rate_check(&rolling, &names).to_string();
+        assert!(
+            emitted.contains("let xx0 = a + cos_x ; let xx1 = xx0 . abs () ; let abs_a = a . abs () ; let xx2 = cos_x . abs () ; if ! (xx1 / (abs_a + xx2) >"),
+            "{emitted}"
+        );
+        assert!(emitted.contains(r#"divisor : "a + cos x""#), "{emitted}");
+        let pendulum = model(
+            "S {
+                parameters m, l;
+                coordinates x;
+                speeds w { x: l * cos(x) * w };
+                particle p { mass: m, at: O + x * N.x };
+            }",
+        );
+        let names = super::super::names(&pendulum, super::super::Target::Std);
+        assert!(emit_rate_check(&pendulum, &names).is_empty());
     }
 }
