@@ -516,7 +516,11 @@ fn body_rates_integrated_into_gimbal_lock_stop_naming_the_coordinate() {
     };
     let dynamics = Unconstrained::without_inputs(&body);
     let error = rk4(&dynamics, start, PI, 100, |_| {}).expect_err("stops at gimbal lock");
-    assert!((error.t - FRAC_PI_2).abs() < 1e-12, "stopped at t = {}", error.t);
+    assert!(
+        (error.t - FRAC_PI_2).abs() < 1e-12,
+        "stopped at t = {}",
+        error.t
+    );
     assert!((error.q[1] - FRAC_PI_2).abs() < 1e-12, "θ = {}", error.q[1]);
     match error.cause {
         Failure::Dynamics(cause @ DynamicsError::SingularCoordinateRates { coordinate, .. }) => {

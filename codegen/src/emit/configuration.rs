@@ -403,20 +403,17 @@ mod tests {
     }
 
     #[test]
-    fn body_rates_check_the_cosine_they_divide_by() {
+    fn azimuth_and_elevation_rates_check_the_cosine_they_divide_by() {
+        // Azimuth and elevation with the body's rates about its y and z
+        // axes: ψ̇ = ω_z / cos θ.
         let model = model(
-            "pub BodyRates {
-                parameters I1, I2, I3;
-                coordinates psi, theta, phi;
-                speeds wx, wy, wz {
-                    psi: (sin(phi) * wy + cos(phi) * wz) / cos(theta),
-                    theta: cos(phi) * wy - sin(phi) * wz,
-                    phi: wx + tan(theta) * (sin(phi) * wy + cos(phi) * wz)
-                };
+            "pub Pointer {
+                parameters I;
+                coordinates psi, theta;
+                speeds wy, wz { psi: wz / cos(theta), theta: wy };
                 frame A = N.rotate_z(psi);
-                frame C = A.rotate_y(theta);
-                frame B = C.rotate_x(phi);
-                body b { mass: 1, center: O, frame: B, inertia: [I1, I2, I3] };
+                frame B = A.rotate_y(theta);
+                body b { mass: 1, center: O, frame: B, inertia: [I, I, I] };
             }",
         );
         let names = super::super::names(&model, super::super::Target::Std);
@@ -429,8 +426,8 @@ mod tests {
             ///
             #[doc = " * `cos θ`, in the rate of `psi`"]
             #[inline]
-            pub fn check_coordinate_rates(&self, q: &[f64; 3]) -> ::core::result::Result<(), ::dalembert::DynamicsError> {
-                let [_, theta, _] = *q;
+            pub fn check_coordinate_rates(&self, q: &[f64; 2]) -> ::core::result::Result<(), ::dalembert::DynamicsError> {
+                let [_, theta] = *q;
                 let cos_theta = theta.cos();
                 let x0 = cos_theta.abs();
                 if !(x0 > ::dalembert::dynamics::SINGULAR_RATES_TOLERANCE) {
