@@ -47,6 +47,23 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
     /// speeds are the coordinates' rates).
     fn integrate_configuration(&self, q: &[f64; NQ], v: &[f64; NV], h: f64) -> [f64; NQ];
 
+    /// Whether the coordinate rates `q̇ = N(q) v` are defined at `q`: an
+    /// error naming the coordinate whose rate divides by a quantity that is
+    /// (nearly) zero there
+    /// ([`DynamicsError::SingularCoordinateRates`], with the tolerance
+    /// [`SINGULAR_RATES_TOLERANCE`](crate::dynamics::SINGULAR_RATES_TOLERANCE)).
+    /// The integrators call it at every state where they evaluate the
+    /// accelerations.
+    ///
+    /// Provided: `Ok(())`, for systems whose `N(q)` divides by nothing.
+    /// Generated systems with a `speeds` statement whose rates divide by an
+    /// expression of the coordinates (`1 / cos θ`, `tan θ`) override it
+    /// with their emitted check.
+    #[inline]
+    fn check_coordinate_rates(&self, _q: &[f64; NQ]) -> Result<(), DynamicsError> {
+        Ok(())
+    }
+
     /// The accelerations `v̇` that solve `M(q) v̇ = f(t, q, v, u)`.
     ///
     /// Provided: a Cholesky factorisation of `M` on the stack

@@ -3,7 +3,9 @@
 //! (a quaternion stays unit), a body thrown under gravity (parabola of the
 //! centre, torque-free precession), the Dzhanibekov effect in quaternions
 //! (energy and angular momentum conserved while the body flips) and the
-//! same body in Z-Y-X Euler angles stopping at gimbal lock.
+//! same body in Z-Y-X Euler angles stopping at gimbal lock, with the Euler
+//! angles' rates as speeds (a singular mass matrix) or the body rates (a
+//! singular `q̇ = N(q) v`).
 
 use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive};
 use dalembert::{DynamicsError, State, Unconstrained, accelerations, energy};
@@ -474,9 +476,64 @@ fn body_rates_move_as_the_quaternion_body_and_their_rates_blow_up_at_gimbal_lock
         "error ratio {ratio} for h halved"
     );
     // Documented behaviour at gimbal lock (cos θ = 0): the equations in the
-    // body rates are regular (M = I), the coordinate rates are not.
+    // body rates are regular (M = I), the coordinate rates are not, and the
+    // check says so, naming the coordinate whose rate divides by cos θ.
     let locked = [0.3, std::f64::consts::FRAC_PI_2, -0.2];
     assert!(accelerations(&body, 0.0, &locked, &omega, &[]).is_ok());
     let rates = body.coordinate_rates(&locked, &omega);
     assert!(rates[0].abs() > 1e12, "ψ̇ = {} at gimbal lock", rates[0]);
+    assert_eq!(body.check_coordinate_rates(&angles), Ok(()));
+    match body.check_coordinate_rates(&locked) {
+        Err(DynamicsError::SingularCoordinateRates {
+            coordinate: "psi",
+            divisor: "cos θ",
+            value,
+        }) => assert!(value.abs() < 1e-15, "cos θ = {value}"),
+        other => panic!("expected singular coordinate rates, got {other:?}"),
+    }
+    // Just outside the tolerance (|cos θ| = 1e-8) the rates are defined.
+    let near = [0.3, std::f64::consts::FRAC_PI_2 - 2e-8, -0.2];
+    assert_eq!(body.check_coordinate_rates(&near), Ok(()));
+}
+
+#[test]
+fn body_rates_integrated_into_gimbal_lock_stop_naming_the_coordinate() {
+    use dalembert::integrate::{Failure, rk4};
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let body = BodyRates {
+        I1: 1.0,
+        I2: 2.0,
+        I3: 3.0,
+    };
+    // Pitching at 1 rad/s about the body's y axis from the upright attitude
+    // (a steady spin: ω × I ω = 0), θ = t reaches gimbal lock at t = π/2;
+    // there ψ̇ = 0 / cos θ, finite in floating point (cos(π/2) ≈ 6e-17), so
+    // without the check the integration would step through silently.
+    let start = State {
+        t: 0.0,
+        q: [0.0; 3],
+        v: [0.0, 1.0, 0.0],
+    };
+    let dynamics = Unconstrained::without_inputs(&body);
+    let error = rk4(&dynamics, start, PI, 100, |_| {}).expect_err("stops at gimbal lock");
+    assert!(
+        (error.t - FRAC_PI_2).abs() < 1e-12,
+        "stopped at t = {}",
+        error.t
+    );
+    assert!((error.q[1] - FRAC_PI_2).abs() < 1e-12, "θ = {}", error.q[1]);
+    match error.cause {
+        Failure::Dynamics(cause @ DynamicsError::SingularCoordinateRates { coordinate, .. }) => {
+            assert_eq!(coordinate, "psi");
+            let message = cause.to_string();
+            assert!(
+                message.contains("`psi`") && message.contains("cos θ"),
+                "{message}"
+            );
+        }
+        other => panic!("expected singular coordinate rates, got {other:?}"),
+    }
+    // The same motion up to just before the lock integrates.
+    let before = rk4(&dynamics, start, 1.5, 100, |_| {}).expect("no gimbal lock yet");
+    assert!((before.end.q[1] - 1.5).abs() < 1e-12);
 }

@@ -1,16 +1,18 @@
 //! Per-call cost of the generated equations of the URDF robots imported by
-//! `Builder::urdf` (Franka panda, UR5, Solo-12 on a fixed base, and the
-//! benchmark trees of `trees/`: cart-poles, limbs, binary tree):
+//! `Builder::urdf` (Franka panda, UR5, Solo-12 on a fixed base and on a
+//! floating one, and the benchmark trees of `trees/`: cart-poles, limbs,
+//! binary tree):
 //! `mass_matrix` + `forcing` (the counterpart of Pinocchio's `crba` +
 //! `nonLinearEffects`) and `dalembert::accelerations`, which runs the
 //! emitted solver (the counterpart of `aba`). Same method as `chains.rs`
 //! (`dalembert_fixtures::states`): 1000 fixed pseudo-random states, one call
-//! per iteration.
+//! per iteration; the floating Solo-12's states put a unit quaternion (the
+//! rotation by a random rotation vector) in place of three of the angles.
 //!
 //! Run with `cargo bench -p dalembert-generated --bench robots`; time
 //! Pinocchio in the same window with
 //! `bash ../shared/peers/pinocchio/run.sh --urdf tests/reference/urdf/panda.urdf`
-//! (BENCHMARKS.md).
+//! (`--floating` for its free flyer; BENCHMARKS.md).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -18,24 +20,71 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::MultibodySystem;
 use dalembert_fixtures::states::{per_call, states};
-use dalembert_generated::{BinaryTree, CartPole1, CartPole3, CartPole6, Limbs, Panda, Solo, Ur5};
+use dalembert_generated::{
+    BinaryTree, CartPole1, CartPole3, CartPole6, FloatingSolo, Limbs, Panda, Solo, Ur5,
+};
 
-/// The two per-call benchmarks of one robot (one input per joint), in group
-/// `robots/NAME`.
-fn bench_robot<S: MultibodySystem<N, N, N>, const N: usize>(
+/// One call's arguments.
+struct Call<const NQ: usize, const NV: usize, const NU: usize> {
+    t: f64,
+    q: [f64; NQ],
+    v: [f64; NV],
+    u: [f64; NU],
+}
+
+/// The fixtures' states of a fixed-base robot with one input per joint.
+fn fixed_base<const N: usize>() -> Vec<Call<N, N, N>> {
+    let states = states::<N, N>(N as u64);
+    let call = |s: &dalembert_fixtures::states::Sample<N, N>| Call {
+        t: s.t,
+        q: s.q,
+        v: s.v,
+        u: s.u,
+    };
+    states.iter().map(call).collect()
+}
+
+/// States of the floating Solo-12: the fixtures' 18 coordinates with the
+/// three after the position read as a rotation vector and turned into its
+/// unit quaternion `(x, y, z, w)`.
+fn floating_solo() -> Vec<Call<19, 18, 12>> {
+    let states = states::<18, 12>(18);
+    let call = |s: &dalembert_fixtures::states::Sample<18, 12>| {
+        let [rx, ry, rz] = [s.q[3], s.q[4], s.q[5]];
+        let angle = (rx * rx + ry * ry + rz * rz).sqrt();
+        let (sine, cosine) = (angle / 2.0).sin_cos();
+        let scale = if angle > 0.0 { sine / angle } else { 0.5 };
+        let mut q = [0.0; 19];
+        q[..3].copy_from_slice(&s.q[..3]);
+        q[3..7].copy_from_slice(&[scale * rx, scale * ry, scale * rz, cosine]);
+        q[7..].copy_from_slice(&s.q[6..]);
+        Call {
+            t: s.t,
+            q,
+            v: s.v,
+            u: s.u,
+        }
+    };
+    states.iter().map(call).collect()
+}
+
+/// The two per-call benchmarks of one robot, in group `robots/NAME`.
+fn bench_robot<S, const NQ: usize, const NV: usize, const NU: usize>(
     c: &mut Criterion,
     name: &str,
     robot: S,
-) {
-    let states = states::<N, N>(N as u64);
+    states: &[Call<NQ, NV, NU>],
+) where
+    S: MultibodySystem<NQ, NV, NU>,
+{
     // Every state must be solvable, or `accelerations` would time an early return.
-    for s in &states {
+    for s in states {
         dalembert::accelerations(&robot, s.t, &s.q, &s.v, &s.u).expect("solvable state");
     }
     let mut group = c.benchmark_group(format!("robots/{name}"));
     group.bench_function("mass_matrix+forcing", |b| {
         b.iter_custom(|iters| {
-            per_call(&states, iters, |s| {
+            per_call(states, iters, |s| {
                 let robot = black_box(&robot);
                 (
                     robot.mass_matrix(&s.q),
@@ -46,7 +95,7 @@ fn bench_robot<S: MultibodySystem<N, N, N>, const N: usize>(
     });
     group.bench_function("accelerations", |b| {
         b.iter_custom(|iters| {
-            per_call(&states, iters, |s| {
+            per_call(states, iters, |s| {
                 dalembert::accelerations(black_box(&robot), s.t, &s.q, &s.v, &s.u)
             })
         })
@@ -55,14 +104,15 @@ fn bench_robot<S: MultibodySystem<N, N, N>, const N: usize>(
 }
 
 fn robots(c: &mut Criterion) {
-    bench_robot(c, "panda", Panda {});
-    bench_robot(c, "ur5", Ur5 {});
-    bench_robot(c, "solo12", Solo {});
-    bench_robot(c, "cart_pole_1", CartPole1 {});
-    bench_robot(c, "cart_pole_3", CartPole3 {});
-    bench_robot(c, "cart_pole_6", CartPole6 {});
-    bench_robot(c, "limbs", Limbs {});
-    bench_robot(c, "binary_tree", BinaryTree {});
+    bench_robot(c, "panda", Panda {}, &fixed_base());
+    bench_robot(c, "ur5", Ur5 {}, &fixed_base());
+    bench_robot(c, "solo12", Solo {}, &fixed_base());
+    bench_robot(c, "floating_solo12", FloatingSolo {}, &floating_solo());
+    bench_robot(c, "cart_pole_1", CartPole1 {}, &fixed_base());
+    bench_robot(c, "cart_pole_3", CartPole3 {}, &fixed_base());
+    bench_robot(c, "cart_pole_6", CartPole6 {}, &fixed_base());
+    bench_robot(c, "limbs", Limbs {}, &fixed_base());
+    bench_robot(c, "binary_tree", BinaryTree {}, &fixed_base());
 }
 
 criterion_group! {

@@ -28,6 +28,22 @@ pub enum DynamicsError {
     /// The accelerations overflowed although the equations were finite and
     /// the mass matrix passed the pivot test.
     NonFiniteAccelerations,
+    /// The coordinate rates `q̇ = N(q) v` of a `speeds` statement are
+    /// undefined at this configuration: the rate of `coordinate` divides by
+    /// `divisor`, which is within
+    /// [`SINGULAR_RATES_TOLERANCE`](crate::dynamics::SINGULAR_RATES_TOLERANCE)
+    /// of zero (a gimbal lock of Euler angles with body-axis rates, where
+    /// `cos θ = 0`). Reported by
+    /// [`MultibodySystem::check_coordinate_rates`](crate::MultibodySystem::check_coordinate_rates),
+    /// which every integrator calls at every state it evaluates.
+    SingularCoordinateRates {
+        /// Name of the coordinate whose rate divides by `divisor`.
+        coordinate: &'static str,
+        /// The divisor, as the equations render it (`cos θ`).
+        divisor: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// The constraint Jacobian `A`, the bias `b`, the residual `φ` or the
     /// velocity form `ψ` has a NaN or infinite entry.
     NonFiniteConstraints,
@@ -88,6 +104,15 @@ impl fmt::Display for DynamicsError {
                  inertia of its own (Cholesky pivot {pivot:.3e})"
             ),
             Self::NonFiniteAccelerations => f.write_str("the accelerations overflowed"),
+            Self::SingularCoordinateRates {
+                coordinate,
+                divisor,
+                value,
+            } => write!(
+                f,
+                "singular coordinate rates q̇ = N(q) v: the rate of `{coordinate}` divides by \
+                 {divisor} = {value:.3e}, which is (nearly) zero here"
+            ),
             Self::NonFiniteConstraints => {
                 f.write_str("non-finite entry in the constraint Jacobian, bias or residual")
             }

@@ -12,6 +12,16 @@ pub use error::DynamicsError;
 
 use crate::MultibodySystem;
 
+/// How near zero a divisor of the coordinate rates `q̇ = N(q) v` of a
+/// `speeds` statement may come before
+/// [`MultibodySystem::check_coordinate_rates`] reports
+/// [`DynamicsError::SingularCoordinateRates`]: a divisor `d` fails when
+/// `|d| ≤ 1e-8 s`, where `s` is the sum of the magnitudes of its terms for a
+/// sum (`a + b cos θ` fails when it cancels to eight digits) and `1` for
+/// anything else (`cos θ`). Past it, the rates amplify the speeds by more
+/// than `10⁸`.
+pub const SINGULAR_RATES_TOLERANCE: f64 = 1e-8;
+
 /// The accelerations `v̇` that solve `M(q) v̇ = f(t, q, v, u)`: the system's
 /// own [`MultibodySystem::accelerations`], which for generated systems is
 /// their emitted solver, unrolled for their size.

@@ -12,7 +12,9 @@ use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
 /// Equations of motion `v̇ = a(t, q, v)`, `q̇ = N(q) v` as the integrators
 /// see them.
 pub trait Dynamics<const NQ: usize, const NV: usize> {
-    /// The accelerations at `(t, q, v)`, or why they cannot be computed.
+    /// The accelerations at `(t, q, v)`, or why they (or the coordinate
+    /// rates there: [`MultibodySystem::check_coordinate_rates`]) cannot be
+    /// computed.
     fn accelerations(
         &self,
         t: f64,
@@ -123,6 +125,7 @@ where
         q: &[f64; NQ],
         v: &[f64; NV],
     ) -> Result<[f64; NV], DynamicsError> {
+        self.system.check_coordinate_rates(q)?;
         self.system
             .accelerations(t, q, v, &self.inputs.inputs(t, q, v))
     }
@@ -233,6 +236,7 @@ where
         q: &[f64; NQ],
         v: &[f64; NV],
     ) -> Result<[f64; NV], DynamicsError> {
+        self.system.check_coordinate_rates(q)?;
         let u = self.inputs.inputs(t, q, v);
         let solution = match self.stabilisation {
             Stabilisation::Baumgarte { alpha, beta } => {

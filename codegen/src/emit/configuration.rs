@@ -6,11 +6,14 @@
 //! `h |ω|` about `ω`, in the child's axes) and comes out unit, and a free
 //! joint's origin follows the screw motion of constant `(v, ω)` (the SE(3)
 //! exponential, as Pinocchio's free flyer); other coordinates move by
-//! `h` times their speed.
+//! `h` times their speed. Where the rates of a `speeds` statement divide by
+//! an expression of the coordinates, `check_coordinate_rates` tests each
+//! divisor against zero.
 
 use super::body::{Names, straight_line};
 use crate::expr::{Node, Sym};
 use crate::model::{Ball, Model};
+use crate::render::text::{SymbolNames, unicode};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
@@ -62,6 +65,65 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
         #[must_use]
         pub fn integrate_configuration(&self, q: &[f64; #nq], v: &[f64; #nv], h: f64) -> [f64; #nq] {
             #update
+        }
+    }
+}
+
+/// `pub fn check_coordinate_rates(..)` when the rates of `speeds`
+/// statements divide by expressions of the coordinates (nothing otherwise:
+/// the runtime's provided check accepts every configuration): the first
+/// divisor whose magnitude, relative to that of its terms, is not above the
+/// runtime's tolerance is an error naming its coordinate and the divisor.
+/// NaN fails too.
+pub fn emit_rate_check(model: &Model, names: &Names) -> TokenStream {
+    if model.rate_divisors.is_empty() {
+        return TokenStream::new();
+    }
+    let nq = Literal::usize_unsuffixed(model.nq());
+    let roots: Vec<_> = model
+        .rate_divisors
+        .iter()
+        .flat_map(|d| [d.divisor, d.relative])
+        .collect();
+    let body = straight_line(&model.pool, names, &roots);
+    let symbols = SymbolNames::new(&model.parameters, &model.coordinates, &model.inputs);
+    let mut outputs = body.outputs.iter();
+    let mut listed = Vec::new();
+    let checks: Vec<TokenStream> = model
+        .rate_divisors
+        .iter()
+        .map(|d| {
+            let (value, relative) = (outputs.next(), outputs.next());
+            let coordinate = model.coordinates[d.coordinate].to_string();
+            let divisor = unicode(&model.pool, d.divisor, &symbols);
+            listed.push(format!(" * `{divisor}`, in the rate of `{coordinate}`"));
+            quote! {
+                if !(#relative > ::dalembert::dynamics::SINGULAR_RATES_TOLERANCE) {
+                    return ::core::result::Result::Err(
+                        ::dalembert::DynamicsError::SingularCoordinateRates {
+                            coordinate: #coordinate,
+                            divisor: #divisor,
+                            value: #value,
+                        },
+                    );
+                }
+            }
+        })
+        .collect();
+    let statements = &body.statements;
+    quote! {
+        /// Whether the coordinate rates `q̇ = N(q) v` are defined at `q`:
+        /// `DynamicsError::SingularCoordinateRates` naming the first
+        /// coordinate whose rate divides by a quantity within
+        /// `dalembert::dynamics::SINGULAR_RATES_TOLERANCE` of zero (relative
+        /// to its terms, for a sum). The divisors:
+        ///
+        #(#[doc = #listed])*
+        #[inline]
+        pub fn check_coordinate_rates(&self, q: &[f64; #nq]) -> ::core::result::Result<(), ::dalembert::DynamicsError> {
+            #statements
+            #(#checks)*
+            ::core::result::Result::Ok(())
         }
     }
 }
@@ -333,5 +395,83 @@ mod tests {
             emitted.contains("_v : & [f64 ; 0]") && emitted.contains("[]"),
             "{emitted}"
         );
+    }
+
+    fn model(source: &str) -> Model {
+        let system = crate::language::parse_system(source.parse().unwrap()).unwrap();
+        crate::model::resolve(&system).unwrap()
+    }
+
+    #[test]
+    fn azimuth_and_elevation_rates_check_the_cosine_they_divide_by() {
+        // Azimuth and elevation with the body's rates about its y and z
+        // axes: ψ̇ = ω_z / cos θ.
+        let model = model(
+            "pub Pointer {
+                parameters I;
+                coordinates psi, theta;
+                speeds wy, wz { psi: wz / cos(theta), theta: wy };
+                frame A = N.rotate_z(psi);
+                frame B = A.rotate_y(theta);
+                body b { mass: 1, center: O, frame: B, inertia: [I, I, I] };
+            }",
+        );
+        let names = super::super::names(&model, super::super::Target::Std);
+        let expected = quote! {
+            /// Whether the coordinate rates `q̇ = N(q) v` are defined at `q`:
+            /// `DynamicsError::SingularCoordinateRates` naming the first
+            /// coordinate whose rate divides by a quantity within
+            /// `dalembert::dynamics::SINGULAR_RATES_TOLERANCE` of zero (relative
+            /// to its terms, for a sum). The divisors:
+            ///
+            #[doc = " * `cos θ`, in the rate of `psi`"]
+            #[inline]
+            pub fn check_coordinate_rates(&self, q: &[f64; 2]) -> ::core::result::Result<(), ::dalembert::DynamicsError> {
+                let [_, theta] = *q;
+                let cos_theta = theta.cos();
+                let x0 = cos_theta.abs();
+                if !(x0 > ::dalembert::dynamics::SINGULAR_RATES_TOLERANCE) {
+                    return ::core::result::Result::Err(
+                        ::dalembert::DynamicsError::SingularCoordinateRates {
+                            coordinate: "psi",
+                            divisor: "cos θ",
+                            value: cos_theta,
+                        },
+                    );
+                }
+                ::core::result::Result::Ok(())
+            }
+        };
+        let emitted = emit_rate_check(&model, &names);
+        assert_eq!(emitted.to_string(), expected.to_string());
+    }
+
+    #[test]
+    fn a_sum_is_checked_relative_to_its_terms_and_regular_rates_need_no_check() {
+        let rolling = model(
+            "S {
+                parameters m, a;
+                coordinates x;
+                speeds w { x: w / (a + cos(x)) };
+                particle p { mass: m, at: O + x * N.x };
+            }",
+        );
+        let names = super::super::names(&rolling, super::super::Target::Std);
+        let emitted = emit_rate_check(&rolling, &names).to_string();
+        assert!(
+            emitted.contains("let xx0 = a + cos_x ; let xx1 = xx0 . abs () ; let abs_a = a . abs () ; let xx2 = cos_x . abs () ; if ! (xx1 / (abs_a + xx2) >"),
+            "{emitted}"
+        );
+        assert!(emitted.contains(r#"divisor : "a + cos x""#), "{emitted}");
+        let pendulum = model(
+            "S {
+                parameters m, l;
+                coordinates x;
+                speeds w { x: l * cos(x) * w };
+                particle p { mass: m, at: O + x * N.x };
+            }",
+        );
+        let names = super::super::names(&pendulum, super::super::Target::Std);
+        assert!(emit_rate_check(&pendulum, &names).is_empty());
     }
 }

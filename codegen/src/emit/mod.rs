@@ -73,7 +73,10 @@ pub fn emit(
             let solver = solve::emit_accelerations(model, equations, &names);
             let has_solver = !solver.is_empty();
             items.push(solver);
-            emit_trait_impls(name, [nq, nv, nu, nc], has_solver)
+            let check = configuration::emit_rate_check(model, &names);
+            let has_check = !check.is_empty();
+            items.push(check);
+            emit_trait_impls(name, [nq, nv, nu, nc], [has_solver, has_check])
         }
         Target::NoStd => TokenStream::new(),
     };
@@ -312,8 +315,10 @@ fn emit_function(model: &Model, names: &Names, function: &Function) -> TokenStre
 }
 
 /// The runtime's traits, forwarding to the inherent functions (and to the
-/// emitted `accelerations` when the system has one).
-fn emit_trait_impls(name: &Ident, sizes: [usize; 4], has_solver: bool) -> TokenStream {
+/// emitted `accelerations` and `check_coordinate_rates` when the system has
+/// them).
+fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> TokenStream {
+    let [has_solver, has_check] = emitted;
     let [nq, nv, nu, nc] = sizes;
     let (coordinates, vector) = (array(nq), array(nv));
     let (inputs, rows_out) = (array(nu), array(nc));
@@ -334,6 +339,17 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], has_solver: bool) -> TokenS
     } else {
         TokenStream::new()
     };
+    let check = has_check.then(|| {
+        quote! {
+            #[inline]
+            fn check_coordinate_rates(
+                &self,
+                q: &#coordinates,
+            ) -> ::core::result::Result<(), ::dalembert::DynamicsError> {
+                #name::check_coordinate_rates(self, q)
+            }
+        }
+    });
     let system = quote! {
         impl ::dalembert::MultibodySystem<#nq, #nv, #nu> for #name {
             const COORDINATES: [&'static str; #nq] = #name::COORDINATES;
@@ -364,6 +380,7 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], has_solver: bool) -> TokenS
                 #name::integrate_configuration(self, q, v, h)
             }
             #accelerations
+            #check
         }
     };
     if nc == 0 {

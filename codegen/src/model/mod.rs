@@ -11,12 +11,14 @@ mod errors;
 mod output;
 pub mod quaternion;
 mod resolve;
+mod singular;
 mod tree;
 mod vector;
 
 pub use errors::Errors;
 pub use output::{Output, OutputKind};
 pub use resolve::resolve;
+pub use singular::RateDivisor;
 pub use tree::{JointKind, Tree};
 pub use vector::{FrameId, NEWTONIAN, Vector};
 
@@ -48,6 +50,9 @@ pub struct Model {
     pub speeds: Vec<Speed>,
     /// The quaternion (free and spherical) joints, in declaration order.
     pub balls: Vec<Ball>,
+    /// The divisors of the rates of `speeds` statements that depend on the
+    /// coordinates: where one vanishes, `q̇ = N(q) v` is undefined.
+    pub rate_divisors: Vec<RateDivisor>,
     /// Inputs in declaration order: `Sym::Input(i)` is `inputs[i]`.
     pub inputs: Vec<Ident>,
     /// Frames; `frames[0]` is `N`.

@@ -191,6 +191,7 @@ impl Resolver {
                 coordinates: Vec::new(),
                 speeds: Vec::new(),
                 balls: Vec::new(),
+                rate_divisors: Vec::new(),
                 inputs: Vec::new(),
                 frames: vec![Frame { placement: None }],
                 points: vec![Point { placement: None }],
@@ -812,6 +813,8 @@ impl Resolver {
                 continue;
             }
             self.pool.set_rate(i, rate);
+            let divisors = &mut self.model.rate_divisors;
+            super::singular::collect_rate_divisors(&mut self.pool, i as usize, rate, divisors);
         }
     }
 
