@@ -119,12 +119,6 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<'_, NV, NC> {
         jacobian: &[[f64; NV]; NC],
         use_metric: impl FnOnce(ConstraintMetric<'_, NV, NC>) -> Result<R, DynamicsError>,
     ) -> Result<R, DynamicsError> {
-        if !mass.iter().all(all_finite) {
-            return Err(DynamicsError::NonFiniteEquations);
-        }
-        if !jacobian.iter().all(all_finite) {
-            return Err(DynamicsError::NonFiniteConstraints);
-        }
         match solver {
             ConstraintSolver::Sparse => use_metric(ConstraintMetric::Sparse(&SparseMetric::new(
                 mass, names, jacobian,
@@ -177,6 +171,12 @@ impl<const NV: usize, const NC: usize> DenseMetric<NV, NC> {
         names: &[&'static str; NV],
         jacobian: &[[f64; NV]; NC],
     ) -> Result<Self, DynamicsError> {
+        if !mass.iter().all(all_finite) {
+            return Err(DynamicsError::NonFiniteEquations);
+        }
+        if !jacobian.iter().all(all_finite) {
+            return Err(DynamicsError::NonFiniteConstraints);
+        }
         let a = SMatrix::<f64, NC, NV>::from_fn(|i, j| jacobian[i][j]);
         let penalty = match solver {
             ConstraintSolver::SchurComplement => 0.0,
