@@ -236,8 +236,8 @@ impl Analysis {
         let inside = |pattern: &[u32], values: &[f64]| {
             pattern
                 .iter()
-                .filter(|&&e| values[e as usize] != 0.0)
-                .count()
+                .map(|&e| usize::from(values[e as usize] != 0.0))
+                .sum::<usize>()
         };
         self.n * self.n == mass.len()
             && self.nc * self.n == jacobian.len()
@@ -456,11 +456,6 @@ impl<const NV: usize, const NC: usize> SparseMetric<NV, NC> {
             .map(|(&j, &a)| (j as usize, a))
     }
 
-    /// `A x`.
-    fn times(&self, x: &[f64; NV]) -> [f64; NC] {
-        std::array::from_fn(|i| self.row(i).map(|(j, a)| a * x[j]).sum())
-    }
-
     /// `f + Aᵀ μ`.
     fn plus_transpose_times(&self, f: &[f64; NV], mu: &[f64; NC]) -> [f64; NV] {
         let mut sum = *f;
@@ -483,9 +478,10 @@ impl<const NV: usize, const NC: usize> SparseMetric<NV, NC> {
     ) -> Result<([f64; NV], [f64; NC]), DynamicsError> {
         let solution = self.iterate(f, c);
         if solution.mismatch > CONSISTENCY_TOLERANCE * solution.scale {
+            let (row, with) = self.worst_rows(&solution.x, c);
             return Err(DynamicsError::InconsistentConstraints {
-                row: solution.worst,
-                with: solution.second,
+                row,
+                with,
                 mismatch: solution.mismatch,
             });
         }
@@ -510,67 +506,74 @@ impl<const NV: usize, const NC: usize> SparseMetric<NV, NC> {
         let mut best: Option<Multipliers<NV, NC>> = None;
         for _ in 0..MAX_ITERATIONS {
             let x = self.factor.solve(self.plus_transpose_times(f, &mu));
-            let achieved = self.times(&x);
-            let current = self.violation(x, mu, &achieved, c);
-            let converged = current.mismatch <= CONVERGED * current.scale;
-            match &best {
-                Some(previous)
-                    if current.mismatch.is_nan()
-                        || current.mismatch >= STALLED * previous.mismatch =>
-                {
-                    return best.unwrap_or(current);
+            let (left, mismatch, scale) = self.left_over(&x, c);
+            let current = Multipliers {
+                x,
+                mu,
+                mismatch,
+                scale,
+            };
+            match best {
+                Some(previous) if mismatch.is_nan() || mismatch >= STALLED * previous.mismatch => {
+                    return previous;
                 }
-                _ if converged => return current,
+                _ if mismatch <= CONVERGED * scale => return current,
                 _ => {}
             }
-            for i in 0..NC {
-                mu[i] += self.penalty * (c[i] - achieved[i]);
+            for (m, l) in mu.iter_mut().zip(&left) {
+                *m += self.penalty * l;
             }
             best = Some(current);
         }
-        best.unwrap_or_else(|| self.violation([0.0; NV], mu, &[0.0; NC], c))
+        best.unwrap_or(Multipliers {
+            x: [0.0; NV],
+            mu,
+            mismatch: f64::INFINITY,
+            scale: 0.0,
+        })
     }
 
-    /// `x` and `μ` with the rows most and second most violated, the
-    /// largest violation `|cᵢ − Aᵢ x|` and the scale it is measured against,
-    /// the largest `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|`.
-    fn violation(
-        &self,
-        x: [f64; NV],
-        mu: [f64; NC],
-        achieved: &[f64; NC],
-        c: &[f64; NC],
-    ) -> Multipliers<NV, NC> {
-        let (mut worst, mut second) = (0, 0);
-        let mut violations = [0.0f64; NC];
-        let mut scale = 0.0f64;
-        for i in 0..NC {
-            violations[i] = (c[i] - achieved[i]).abs();
-            let terms: f64 = self.row(i).map(|(j, a)| (a * x[j]).abs()).sum();
+    /// What the rows leave undone at `x`, `c − A x`, with its largest
+    /// magnitude and the scale it is measured against, the largest
+    /// `Σⱼ |Aᵢⱼ xⱼ| + |cᵢ|`.
+    fn left_over(&self, x: &[f64; NV], c: &[f64; NC]) -> ([f64; NC], f64, f64) {
+        let (mut mismatch, mut scale) = (0.0f64, 0.0f64);
+        let left = std::array::from_fn(|i| {
+            let (mut sum, mut terms) = (0.0, 0.0);
+            for (j, a) in self.row(i) {
+                sum += a * x[j];
+                terms += (a * x[j]).abs();
+            }
+            let left = c[i] - sum;
+            mismatch = mismatch.max(left.abs());
             scale = scale.max(terms + c[i].abs());
-            if violations[i] > violations[worst] {
+            left
+        });
+        (left, mismatch, scale)
+    }
+
+    /// The rows most and second most violated at `x`.
+    fn worst_rows(&self, x: &[f64; NV], c: &[f64; NC]) -> (usize, usize) {
+        let (left, _, _) = self.left_over(x, c);
+        let (mut worst, mut second) = (0, 0);
+        for i in 0..NC {
+            let violation = left[i].abs();
+            if violation > left[worst].abs() {
                 (worst, second) = (i, worst);
-            } else if i != worst && (second == worst || violations[i] > violations[second]) {
+            } else if i != worst && (second == worst || violation > left[second].abs()) {
                 second = i;
             }
         }
-        Multipliers {
-            x,
-            mu,
-            worst,
-            second,
-            mismatch: violations.iter().fold(0.0, |m: f64, &v| m.max(v)),
-            scale,
-        }
+        (worst, second)
     }
 }
 
-/// An iterate of the method of multipliers and how far it is off.
+/// An iterate of the method of multipliers and how far it is off: the
+/// largest violation `|cᵢ − Aᵢ x|` and the scale it is measured against.
+#[derive(Clone, Copy)]
 struct Multipliers<const NV: usize, const NC: usize> {
     x: [f64; NV],
     mu: [f64; NC],
-    worst: usize,
-    second: usize,
     mismatch: f64,
     scale: f64,
 }
