@@ -32,6 +32,7 @@ use dalembert_generated::{
     DoublePendulum, PlanarChain2, PlanarChain6, PlanarChain12, PlanarChain30, SpatialChain2,
     SpatialChain6, SpatialChain12, SpatialChain30,
 };
+use dalembert_lab::thread_time;
 
 /// Simulated time of every run, s.
 const DURATION: f64 = 10.0;
@@ -39,20 +40,6 @@ const DURATION: f64 = 10.0;
 const STEPS: u64 = 10_000;
 /// Tolerance of the adaptive runs.
 const TOLERANCE: f64 = 1e-12;
-
-/// The CPU time this thread has used: unlike the wall clock, it does not
-/// count the time other processes of a shared machine hold the core.
-fn thread_time() -> Duration {
-    let mut time = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `clock_gettime` writes the `timespec` it is given and nothing
-    // else; the thread CPU-time clock exists on every Linux.
-    let status = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut time) };
-    assert_eq!(status, 0, "CLOCK_THREAD_CPUTIME_ID");
-    Duration::new(time.tv_sec as u64, time.tv_nsec as u32)
-}
 
 /// `iters` runs of `run`, timed in thread CPU time, divided by the count one
 /// run returns (its evaluations, or its steps).

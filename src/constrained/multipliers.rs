@@ -73,8 +73,8 @@ pub enum ConstraintSolver {
     #[default]
     RankRevealing,
     /// `M̄ = M + ρ AᵀA` with a stiff weight `ρ` ([`STIFFNESS`](super::STIFFNESS)),
-    /// factorised by a sparse `L D Lᵀ` in a minimum-degree order of its
-    /// nonzeros at each call, and the multipliers by the method of
+    /// factorised by a sparse `L D Lᵀ` in a minimum-degree order, and the
+    /// multipliers by the method of
     /// multipliers (`M̄ xₖ = f + Aᵀ μₖ`, `μₖ₊₁ = μₖ + ρ (b − A xₖ)`), which
     /// converges to the least-norm `λ` whatever the rank of `A`: no dense
     /// `A M̄⁻¹ Aᵀ` is formed. For large mechanisms whose rows and bodies
@@ -82,8 +82,13 @@ pub enum ConstraintSolver {
     /// N = 40: 81 coordinates, 80 rows), where it is many times faster than
     /// [`RankRevealing`](Self::RankRevealing); its accelerations hold the
     /// rows to `1e-13` (relative) but carry the rounding of the stiff
-    /// factorisation, about `1e-9` relative. Its work arrays are on the
-    /// heap (a few allocations per call).
+    /// factorisation, about `1e-9` relative. The structure (where `M` and
+    /// `A` have nonzeros, the order, the fill-in) is analysed at the first
+    /// call for a mechanism and kept by the thread for the next ones, which
+    /// only check that no nonzero falls outside it and factorise at the
+    /// cost of the nonzeros; an entry that was zero by chance at the first
+    /// call and is not later brings a new analysis. Its work arrays are on
+    /// the heap (a few allocations per call).
     Sparse,
 }
 
@@ -119,12 +124,6 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<'_, NV, NC> {
         jacobian: &[[f64; NV]; NC],
         use_metric: impl FnOnce(ConstraintMetric<'_, NV, NC>) -> Result<R, DynamicsError>,
     ) -> Result<R, DynamicsError> {
-        if !mass.iter().all(all_finite) {
-            return Err(DynamicsError::NonFiniteEquations);
-        }
-        if !jacobian.iter().all(all_finite) {
-            return Err(DynamicsError::NonFiniteConstraints);
-        }
         match solver {
             ConstraintSolver::Sparse => use_metric(ConstraintMetric::Sparse(&SparseMetric::new(
                 mass, names, jacobian,
@@ -177,6 +176,12 @@ impl<const NV: usize, const NC: usize> DenseMetric<NV, NC> {
         names: &[&'static str; NV],
         jacobian: &[[f64; NV]; NC],
     ) -> Result<Self, DynamicsError> {
+        if !mass.iter().all(all_finite) {
+            return Err(DynamicsError::NonFiniteEquations);
+        }
+        if !jacobian.iter().all(all_finite) {
+            return Err(DynamicsError::NonFiniteConstraints);
+        }
         let a = SMatrix::<f64, NC, NV>::from_fn(|i, j| jacobian[i][j]);
         let penalty = match solver {
             ConstraintSolver::SchurComplement => 0.0,
