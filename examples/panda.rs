@@ -38,12 +38,15 @@ fn gravity_compensation(arm: &Panda, t: f64, q: &[f64; 9]) -> [f64; 9] {
     f.map(|x| -x)
 }
 
+/// One `(t, angle)` series per arm joint.
+type Trajectories = Vec<Vec<(f64, f64)>>;
+
 /// Simulates `arm` from `READY` at rest under the input law `inputs`, and
 /// returns the seven arm joints' trajectories `(t, angle)`.
 fn simulate(
     arm: &Panda,
     inputs: impl Fn(f64, &[f64; 9], &[f64; 9]) -> [f64; 9],
-) -> Result<Vec<Vec<(f64, f64)>>, Box<dyn Error>> {
+) -> Result<Trajectories, Box<dyn Error>> {
     let dynamics = Unconstrained::new(arm, inputs);
     let start = State {
         t: 0.0,

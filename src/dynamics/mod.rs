@@ -6,8 +6,8 @@ mod error;
 
 use nalgebra::SVector;
 
-pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots};
 pub(crate) use cholesky::factor_mass_matrix;
+pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots};
 pub use error::DynamicsError;
 
 use crate::MultibodySystem;
