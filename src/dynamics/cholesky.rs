@@ -25,6 +25,15 @@ pub(crate) fn factor_mass_matrix<const NV: usize>(
     })
 }
 
+/// The smallest pivot that counts as nonzero in a factorisation of a matrix
+/// with this diagonal (a pivot must exceed it):
+/// [`RELATIVE_PIVOT_TOLERANCE`] times the largest diagonal entry. Called by
+/// the emitted `L D Lᵀ` solvers and by [`check_pivots`], so that the rule
+/// has one definition.
+pub fn pivot_tolerance<const N: usize>(diagonal: [f64; N]) -> f64 {
+    RELATIVE_PIVOT_TOLERANCE * diagonal.into_iter().fold(0.0, f64::max)
+}
+
 /// The pivot test of the emitted articulated-body solver: every pivot (a
 /// joint's articulated inertia about its axis) must exceed
 /// [`RELATIVE_PIVOT_TOLERANCE`] times the largest; the error names the first
@@ -36,7 +45,7 @@ pub fn check_pivots<const N: usize>(
     pivots: [f64; N],
     names: [&'static str; N],
 ) -> Result<(), DynamicsError> {
-    let tolerance = RELATIVE_PIVOT_TOLERANCE * pivots.into_iter().fold(0.0, f64::max);
+    let tolerance = pivot_tolerance(pivots);
     match pivots
         .into_iter()
         .zip(names)

@@ -43,7 +43,7 @@ pub fn emit_accelerations_jacobian(
         right_hand_side,
         solution,
         ..
-    }) = factorised(model, equations)
+    }) = factorised(model, equations, names)
     else {
         return TokenStream::new();
     };

@@ -4,8 +4,12 @@
 //!
 //! * a square-root-free Cholesky factorisation `M = L D Lᵀ` unrolled for
 //!   the system's size, which skips every entry of `L` that the structural
-//!   zeros of `M` make zero (a tree's branches): `O(n³)` for a chain, and
-//!   cheapest for few coordinates;
+//!   zeros of `M` make zero: `O(n³)` for a chain, and cheapest for few
+//!   coordinates. The speeds are eliminated in their order or in the
+//!   reverse, whichever fills in less: for a tree (parents before
+//!   children) the reverse eliminates every child before its parent, which
+//!   fills in nothing (Featherstone's `Lᵀ D L` of branch-induced sparsity),
+//!   where a floating base eliminated first would fill in every block;
 //! * for kinematic trees, the articulated-body recursion derived with the
 //!   equations (`O(n)`, see `equations::articulated`), which never forms
 //!   `M` and wins for long chains.
@@ -18,7 +22,7 @@ use crate::equations::{Articulated, Equations};
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
-use quote::{ToTokens, format_ident, quote};
+use quote::{format_ident, quote};
 
 /// Operations charged for the `sin_cos` of a coordinate (a libm call,
 /// about as long as 40 multiplications).
@@ -32,7 +36,7 @@ const FUNCTION_COST: usize = 20;
 
 /// `pub fn accelerations(..)`, for systems without constraints.
 pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let Some(factorised) = factorised(model, equations) else {
+    let Some(factorised) = factorised(model, equations, names) else {
         return TokenStream::new();
     };
     let nv = model.nv();
@@ -107,8 +111,9 @@ fn state_check() -> TokenStream {
 
 /// The pieces of a solve of `M x = f` for an unconstrained system.
 pub struct Factorised {
-    /// The checks of the state (`t`, `q`, `qd`, `u`), `M` and `f` evaluated
-    /// and checked, unpacked into `m{i}_{j}` and `f{i}`, and factorised
+    /// The checks of the state (`t`, `q`, `qd`, `u`), the entries of `M`
+    /// that the factorisation reads and `f` evaluated in one straight-line
+    /// body, bound to `m{i}_{j}` and `f{i}`, checked, and factorised
     /// (`l{i}_{j}`, the reciprocal pivots `r{j}`), returning the runtime's
     /// errors; binds the closure `finite(&[f64]) -> bool`.
     pub prelude: TokenStream,
@@ -118,43 +123,101 @@ pub struct Factorised {
     pub right_hand_side: Vec<Ident>,
     /// The names `x{i}` of the solution.
     pub solution: Vec<Ident>,
-    /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero.
+    /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero, in the
+    /// order of elimination.
     pub pattern: Vec<Vec<bool>>,
+}
+
+/// The order in which the factorisation eliminates the speeds:
+/// `speeds[i]` is the `i`-th eliminated.
+struct Order {
+    speeds: Vec<usize>,
+}
+
+impl Order {
+    /// The speeds in their order, or reversed when `reversed`.
+    fn new(n: usize, reversed: bool) -> Order {
+        let speeds = match reversed {
+            true => (0..n).rev().collect(),
+            false => (0..n).collect(),
+        };
+        Order { speeds }
+    }
+
+    /// The name of `M`'s entry at rows `i` and `j` of the elimination
+    /// order: `m{a}_{b}` with `a ≥ b` the speeds' indices.
+    fn mass(&self, i: usize, j: usize) -> Ident {
+        let (a, b) = (self.speeds[i], self.speeds[j]);
+        mass(a.max(b), a.min(b))
+    }
 }
 
 /// The factorisation and substitutions of `M x = f`; `None` for a system
 /// with constraints or no coordinates.
-pub fn factorised(model: &Model, equations: &Equations) -> Option<Factorised> {
+pub fn factorised(model: &Model, equations: &Equations, names: &Names) -> Option<Factorised> {
     let nq = model.nv();
     if !model.constraints.is_empty() || nq == 0 {
         return None;
     }
-    let pattern = fill_pattern(model, equations);
-    let factor = factorisation(model, &pattern);
-    let forward = forward_substitution(&pattern);
+    let (order, pattern) = [false, true]
+        .map(|reversed| {
+            let order = Order::new(nq, reversed);
+            let pattern = fill_pattern(model, equations, &order);
+            (order, pattern)
+        })
+        .into_iter()
+        .min_by_key(|(_, pattern)| factorisation_operations(pattern))?;
+    let factor = factorisation(model, &pattern, &order);
+    let forward = forward_substitution(&pattern, &order);
     let backward = backward_substitution(&pattern);
-    let solution: Vec<Ident> = (0..nq).map(|i| format_ident!("x{}", i)).collect();
+    let mut solution: Vec<Ident> = vec![format_ident!("x0"); nq];
+    for (i, &speed) in order.speeds.iter().enumerate() {
+        solution[speed] = format_ident!("x{}", i);
+    }
     let diagonal = (0..nq).map(|i| mass(i, i));
-    let rows = (0..nq).map(|i| {
-        let row = (0..nq).map(|j| match j == i || (j < i && pattern[i][j]) {
-            true => mass(i, j).into_token_stream(),
-            false => quote!(_),
-        });
-        quote!([#(#row),*])
-    });
+    // The entries the factorisation reads, by the speeds' indices.
+    let mut read = vec![vec![false; nq]; nq];
+    for (i, row) in pattern.iter().enumerate() {
+        for (j, _) in row
+            .iter()
+            .enumerate()
+            .filter(|(j, nonzero)| **nonzero || *j == i)
+        {
+            let (a, b) = (order.speeds[i], order.speeds[j]);
+            read[a.max(b)][a.min(b)] = true;
+        }
+    }
     let forcing: Vec<Ident> = (0..nq).map(|i| format_ident!("f{}", i)).collect();
+    // `M`'s entries the factorisation reads and `f`, computed together so
+    // that they share their subexpressions (sines and cosines above all),
+    // in a block that keeps the model's names out of the solver's.
+    let entries: Vec<(usize, usize)> = (0..nq)
+        .flat_map(|i| (0..=i).map(move |j| (i, j)))
+        .filter(|&(i, j)| read[i][j])
+        .collect();
+    let roots: Vec<ExprId> = entries
+        .iter()
+        .map(|&(i, j)| equations.mass_matrix[i][j])
+        .chain(equations.forcing.iter().copied())
+        .collect();
+    let body = straight_line(&model.pool, names, &roots);
+    let (statements, outputs) = (&body.statements, &body.outputs);
+    let bound: Vec<Ident> = entries
+        .iter()
+        .map(|&(i, j)| mass(i, j))
+        .chain(forcing.iter().cloned())
+        .collect();
     let check = state_check();
     let prelude = quote! {
         #check
-        let m = self.mass_matrix(q);
-        let f = self.forcing(t, q, qd, u);
-        if !(m.iter().all(|row| finite(row)) && finite(&f)) {
+        let [#(#bound),*] = {
+            #statements
+            [#(#outputs),*]
+        };
+        if !finite(&[#(#bound),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
         }
-        let [#(#rows),*] = m;
-        let [#(#forcing),*] = f;
-        let tolerance =
-            ::dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE * [#(#diagonal),*].into_iter().fold(0.0, ::core::primitive::f64::max);
+        let tolerance = ::dalembert::dynamics::pivot_tolerance([#(#diagonal),*]);
         #factor
     };
     Some(Factorised {
@@ -176,22 +239,27 @@ fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> 
     let pivots = &body.outputs[nq..2 * nq];
     let accelerations = &body.outputs[2 * nq..];
     let check = state_check();
+    // The pivots are named as the factorisation names them: by coordinate
+    // when every speed is its coordinate's rate, else by speed.
+    let names = match model.nq() == nq {
+        true => quote!(Self::COORDINATES),
+        false => quote!(Self::SPEEDS),
+    };
     quote! {
         #check
         #statements
         if !finite(&[#(#forcing),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
         }
-        ::dalembert::dynamics::check_pivots([#(#pivots),*], Self::COORDINATES)?;
+        ::dalembert::dynamics::check_pivots([#(#pivots),*], #names)?;
         let qdd = [#(#accelerations),*];
     }
 }
 
 /// Whether the recursion costs fewer operations than forming `M` and `f`
-/// and factorising. `mass_matrix` and `forcing` are separate functions, so
-/// that route may evaluate the sines and cosines twice. Tiny systems keep
-/// the factorisation: with one or two coordinates it measured faster at
-/// any operation count.
+/// (together, sharing their subexpressions) and factorising. Tiny systems
+/// keep the factorisation: with one or two coordinates it measured faster
+/// at any operation count.
 fn articulated_is_cheaper(
     model: &Model,
     equations: &Equations,
@@ -199,10 +267,14 @@ fn articulated_is_cheaper(
     pattern: &[Vec<bool>],
 ) -> bool {
     let pool = &model.pool;
-    let mass_matrix: Vec<ExprId> = equations.mass_matrix.iter().flatten().copied().collect();
-    let factorised = operations(pool, &mass_matrix)
-        + operations(pool, &equations.forcing)
-        + factorisation_operations(pattern);
+    let mass_and_forcing: Vec<ExprId> = equations
+        .mass_matrix
+        .iter()
+        .flatten()
+        .chain(&equations.forcing)
+        .copied()
+        .collect();
+    let factorised = operations(pool, &mass_and_forcing) + factorisation_operations(pattern);
     model.nq() >= MIN_ARTICULATED && operations(pool, &articulated.roots()) < factorised
 }
 
@@ -244,14 +316,18 @@ fn factorisation_operations(pattern: &[Vec<bool>]) -> usize {
         .sum()
 }
 
-/// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero — `Mᵢⱼ` is not
-/// structurally zero, or fill-in through an earlier column.
-fn fill_pattern(model: &Model, equations: &Equations) -> Vec<Vec<bool>> {
+/// `pattern[i][j]` (`j ≤ i`, rows of the elimination `order`): whether
+/// `Lᵢⱼ` can be nonzero — `M`'s entry is not structurally zero, or fill-in
+/// through an earlier column.
+fn fill_pattern(model: &Model, equations: &Equations, order: &Order) -> Vec<Vec<bool>> {
     let nq = model.nv();
     let mut pattern: Vec<Vec<bool>> = (0..nq)
         .map(|i| {
             (0..=i)
-                .map(|j| !model.pool.is_zero(equations.mass_matrix[i][j]))
+                .map(|j| {
+                    let entry = equations.mass_matrix[order.speeds[i]][order.speeds[j]];
+                    !model.pool.is_zero(entry)
+                })
                 .collect()
         })
         .collect();
@@ -298,7 +374,7 @@ fn unscaled(i: usize, j: usize) -> Ident {
 
 /// The columns of `M = L D Lᵀ` (no square roots): the entries `Lᵢⱼ Dⱼ`,
 /// the pivot `Dⱼ` and its test, its reciprocal, then `Lᵢⱼ`.
-fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
+fn factorisation(model: &Model, pattern: &[Vec<bool>], order: &Order) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
     let shared = |i: usize, j: usize| (0..j).filter(move |&k| pattern[i][k] && pattern[j][k]);
@@ -309,9 +385,9 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
     } else {
         model.speeds.iter().map(|s| s.written()).collect()
     };
-    for (j, coordinate) in names.iter().enumerate().take(nq) {
-        let jj = index(j);
-        let diagonal = mass(j, j);
+    for (j, &speed) in order.speeds.iter().enumerate().take(nq) {
+        let (jj, coordinate) = (index(speed), &names[speed]);
+        let diagonal = order.mass(j, j);
         let pivot = minus_products(
             quote!(#diagonal),
             shared(j, j).map(|k| {
@@ -332,7 +408,7 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
             let #r = 1.0 / #p;
         });
         for i in (j + 1..nq).filter(|&i| pattern[i][j]) {
-            let start = mass(i, j);
+            let start = order.mass(i, j);
             let value = minus_products(
                 quote!(#start),
                 shared(i, j).map(|k| {
@@ -347,11 +423,12 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>]) -> TokenStream {
     out
 }
 
-/// `L y = f` (`L` has a unit diagonal).
-fn forward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
+/// `L y = f` (`L` has a unit diagonal), `f` taken in the elimination
+/// order.
+fn forward_substitution(pattern: &[Vec<bool>], order: &Order) -> TokenStream {
     let mut out = TokenStream::new();
     for (i, row) in pattern.iter().enumerate() {
-        let start = format_ident!("f{}", i);
+        let start = format_ident!("f{}", order.speeds[i]);
         let value = minus_products(
             quote!(#start),
             (0..i).filter(|&k| row[k]).map(|k| {

@@ -26,11 +26,11 @@
 //! body `A` is the inertia about the origin, `B = [h×]` with `h` the first
 //! moment and `C = m 1`).
 
-use super::recursive::{Composite, JointTree, rotate_tensor};
+use super::recursive::{Column, Composite, JointTree, rotate_tensor};
 use crate::expr::{ExprId, Pool};
 use crate::kinematics::{Mat3, Vec3, add3, cross, dot, mat_vec, transpose_mul};
 
-/// The tree's accelerations, per coordinate.
+/// The tree's accelerations, per speed.
 #[derive(Clone, Debug)]
 pub struct Articulated {
     /// The forcing `f` the recursion starts from.
@@ -60,7 +60,7 @@ struct Spatial {
 /// A spatial vector: the angular and the linear half.
 type Pair = (Vec3, Vec3);
 
-/// What the outward sweep needs of one link.
+/// What the outward sweep needs of one speed.
 struct Pivot {
     /// `Uₖ = Iᴬₖ Sₖ`.
     u: Pair,
@@ -70,11 +70,19 @@ struct Pivot {
     force: ExprId,
 }
 
-/// `q̈` of `tree` with forcing `forcing` (indexed by coordinate); `None` if
-/// the tree does not hold one link per coordinate.
+/// `q̈` of `tree` with forcing `forcing` (indexed by speed); `None` if the
+/// tree's joints do not hold every speed.
+///
+/// A joint of several speeds (spherical, free) is taken as that many
+/// one-speed joints in series, fixed to each other with no offset and no
+/// mass: their velocities add up to the joint's, so `M` and `f` are the
+/// same and the recursion above applies speed by speed, with the identity
+/// transform between the speeds of one joint (a block `L D Lᵀ` of the
+/// joint's `Sᵀ Iᴬ S`, done column by column).
 pub fn articulated(tree: &JointTree, forcing: &[ExprId], pool: &mut Pool) -> Option<Articulated> {
-    let n = tree.links.len();
-    if n != forcing.len() || n == 0 {
+    let n = forcing.len();
+    let speeds: usize = tree.links.iter().map(|l| l.columns.len()).sum();
+    if speeds != n || n == 0 {
         return None;
     }
     let zero = pool.zero();
@@ -83,85 +91,132 @@ pub fn articulated(tree: &JointTree, forcing: &[ExprId], pool: &mut Pool) -> Opt
         .iter()
         .map(|c| rigid(pool, c))
         .collect();
-    let mut bias: Vec<Pair> = vec![([zero; 3], [zero; 3]); n];
+    let mut bias: Vec<Pair> = vec![([zero; 3], [zero; 3]); tree.links.len()];
     let mut pivots = vec![zero; n];
-    let mut steps: Vec<Pivot> = Vec::with_capacity(n);
-    for l in (0..n).rev() {
+    let mut steps: Vec<Vec<Pivot>> = Vec::with_capacity(tree.links.len());
+    for l in (0..tree.links.len()).rev() {
         let link = &tree.links[l];
-        let [column] = link.columns.as_slice() else {
-            return None;
-        };
-        let i_a = grouped(pool, &inertia[l]);
-        let delta = group_pair(pool, &bias[l]);
-        let u = motion_subspace_image(pool, column.turns, &column.axis, &i_a);
-        let u = group_pair(pool, &u);
-        let pivot = project(pool, column.turns, &column.axis, &u);
-        let pivot = pool.group(pivot);
-        let share = project(pool, column.turns, &column.axis, &delta);
-        let force = pool.sub(forcing[column.speed], share);
-        let force = pool.group(force);
-        let reciprocal = pool.powi(pivot, -1);
-        pivots[column.speed] = pivot;
+        let mut i_a = inertia[l];
+        let mut delta = bias[l];
+        let mut link_steps = Vec::with_capacity(link.columns.len());
+        for (k, column) in link.columns.iter().enumerate().rev() {
+            let step = pivot_step(pool, column, forcing[column.speed], &i_a, &delta);
+            pivots[column.speed] = step.pivot;
+            let inner = k > 0 || link.parent.is_some();
+            if inner {
+                (i_a, delta) = articulated_share(pool, &step.outward, &step.i_a, &step.delta);
+            }
+            link_steps.push(step.outward);
+        }
+        link_steps.reverse();
+        steps.push(link_steps);
         if let Some(p) = link.parent {
-            let per = pool.mul(force, reciprocal);
-            let scaled = (
-                scale3(pool, &u.0, reciprocal),
-                scale3(pool, &u.1, reciprocal),
-            );
-            let reduced = Spatial {
-                a: minus_outer(pool, &i_a.a, &u.0, &scaled.0, true),
-                b: minus_outer(pool, &i_a.b, &u.0, &scaled.1, false),
-                c: minus_outer(pool, &i_a.c, &u.1, &scaled.1, true),
-            };
-            let reduced = grouped(pool, &reduced);
-            let pushed = (scale3(pool, &u.0, per), scale3(pool, &u.1, per));
-            let passed = (
-                add3(pool, &delta.0, &pushed.0),
-                add3(pool, &delta.1, &pushed.1),
-            );
-            let passed = group_pair(pool, &passed);
-            let (moved, wrench) = to_parent(pool, &link.rotation, &link.offset, &reduced, &passed);
+            let (moved, wrench) = to_parent(pool, &link.rotation, &link.offset, &i_a, &delta);
             inertia[p] = sum(pool, &inertia[p], &moved);
             bias[p] = (
                 add3(pool, &bias[p].0, &wrench.0),
                 add3(pool, &bias[p].1, &wrench.1),
             );
         }
-        steps.push(Pivot {
-            u,
-            reciprocal,
-            force,
-        });
     }
     steps.reverse();
-    let mut motions: Vec<Pair> = Vec::with_capacity(n);
+    let mut motions: Vec<Pair> = Vec::with_capacity(tree.links.len());
     let mut accelerations = vec![zero; n];
-    for (link, step) in tree.links.iter().zip(&steps) {
-        let [column] = link.columns.as_slice() else {
-            return None;
-        };
-        let (omega, v) = match link.parent {
+    for (link, link_steps) in tree.links.iter().zip(&steps) {
+        let mut motion = match link.parent {
             Some(p) => from_parent(pool, &link.rotation, &link.offset, &motions[p]),
             None => ([zero; 3], [zero; 3]),
         };
-        let coupling = [dot(pool, &step.u.0, &omega), dot(pool, &step.u.1, &v)];
-        let coupling = pool.sum(coupling);
-        let free = pool.sub(step.force, coupling);
-        let qdd = pool.mul(free, step.reciprocal);
-        let qdd = pool.group(qdd);
-        accelerations[column.speed] = qdd;
-        let rate = scale3(pool, &column.axis, qdd);
-        let motion = match column.turns {
-            true => (add3(pool, &omega, &rate), v),
-            false => (omega, add3(pool, &v, &rate)),
-        };
-        motions.push(group_pair(pool, &motion));
+        for (column, step) in link.columns.iter().zip(link_steps) {
+            let (omega, v) = motion;
+            let coupling = [dot(pool, &step.u.0, &omega), dot(pool, &step.u.1, &v)];
+            let coupling = pool.sum(coupling);
+            let free = pool.sub(step.force, coupling);
+            let qdd = pool.mul(free, step.reciprocal);
+            let qdd = pool.group(qdd);
+            accelerations[column.speed] = qdd;
+            let rate = scale3(pool, &column.axis, qdd);
+            motion = match column.turns {
+                true => (add3(pool, &omega, &rate), v),
+                false => (omega, add3(pool, &v, &rate)),
+            };
+            motion = group_pair(pool, &motion);
+        }
+        motions.push(motion);
     }
     Some(Articulated {
         forcing: forcing.to_vec(),
         pivots,
         accelerations,
     })
+}
+
+/// One speed's step of the inward sweep, with the articulated inertia and
+/// bias it started from (grouped).
+struct Step {
+    pivot: ExprId,
+    outward: Pivot,
+    i_a: Spatial,
+    delta: Pair,
+}
+
+/// `Uₖ`, `Dₖ` and `uₖ` of one speed with articulated inertia `i_a` and
+/// bias `delta` beyond it.
+fn pivot_step(
+    pool: &mut Pool,
+    column: &Column,
+    force: ExprId,
+    i_a: &Spatial,
+    delta: &Pair,
+) -> Step {
+    let i_a = grouped(pool, i_a);
+    let delta = group_pair(pool, delta);
+    let u = motion_subspace_image(pool, column.turns, &column.axis, &i_a);
+    let u = group_pair(pool, &u);
+    let pivot = project(pool, column.turns, &column.axis, &u);
+    let pivot = pool.group(pivot);
+    let share = project(pool, column.turns, &column.axis, &delta);
+    let force = pool.sub(force, share);
+    let force = pool.group(force);
+    let reciprocal = pool.powi(pivot, -1);
+    Step {
+        pivot,
+        outward: Pivot {
+            u,
+            reciprocal,
+            force,
+        },
+        i_a,
+        delta,
+    }
+}
+
+/// What a speed passes inwards: `Iᴬ − U Uᵀ / D` and `Δ + U u / D`, in the
+/// axes it was given in.
+fn articulated_share(
+    pool: &mut Pool,
+    step: &Pivot,
+    i_a: &Spatial,
+    delta: &Pair,
+) -> (Spatial, Pair) {
+    let u = &step.u;
+    let per = pool.mul(step.force, step.reciprocal);
+    let scaled = (
+        scale3(pool, &u.0, step.reciprocal),
+        scale3(pool, &u.1, step.reciprocal),
+    );
+    let reduced = Spatial {
+        a: minus_outer(pool, &i_a.a, &u.0, &scaled.0, true),
+        b: minus_outer(pool, &i_a.b, &u.0, &scaled.1, false),
+        c: minus_outer(pool, &i_a.c, &u.1, &scaled.1, true),
+    };
+    let reduced = grouped(pool, &reduced);
+    let pushed = (scale3(pool, &u.0, per), scale3(pool, &u.1, per));
+    let passed = (
+        add3(pool, &delta.0, &pushed.0),
+        add3(pool, &delta.1, &pushed.1),
+    );
+    (reduced, group_pair(pool, &passed))
 }
 
 /// The rigid inertia of a composite about its link's origin.

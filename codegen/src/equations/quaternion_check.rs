@@ -44,6 +44,20 @@ const LOADED: &str = "pub Loaded {
     torque T * P.y on P reacting B;
 }";
 
+/// A revolute link carrying a ball joint away from the root, with a body
+/// on each side: a joint of several speeds inside the tree.
+const BALL_IN_CHAIN: &str = "pub BallInChain {
+    parameters m, a, b, g;
+    coordinates s;
+    inputs T;
+    joint revolute hinge { parent: N, child: A, axis: [1, 2, 2], coordinate: s, at: O };
+    joint spherical ball { parent: A, child: B, at: hinge + a * A.x + b * A.z };
+    body upper { mass: m, center: hinge + a / 2 * A.x, frame: A, inertia: [m / 3, m / 2, m / 5, m / 11, 0, m / 13] };
+    body lower { mass: m / 3, center: ball - b * B.z + a * B.y, frame: B, inertia: [m / 4, m / 6, m / 7, 0, m / 17, m / 19] };
+    gravity -g * N.z;
+    torque T * A.x on A;
+}";
+
 fn derived(source: &str, recursive: bool) -> (Model, Pool, Equations) {
     let system = crate::language::parse_system(source.parse().expect("tokens")).expect("parses");
     let mut model = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
@@ -214,5 +228,32 @@ fn both_routes_agree_on_a_loaded_floating_tree() {
             .sum();
         let t = recursive_pool.eval(recursive.kinetic_energy, &state.values());
         assert_close(&format!("seed {seed}: 2T"), quadratic, 2.0 * t);
+    }
+}
+
+/// The articulated-body recursion, which takes a joint of several speeds
+/// as one-speed joints in series, solves `M v̇ = f` of the general route
+/// for a free joint at the root and a ball joint inside the tree.
+#[test]
+fn the_articulated_recursion_solves_joints_of_several_speeds() {
+    for source in [LOADED, BALL_IN_CHAIN] {
+        let (model, recursive_pool, recursive) = derived(source, true);
+        let (_, general_pool, general) = derived(source, false);
+        let articulated = recursive.articulated.as_ref().expect("a tree");
+        for seed in 0..4 {
+            let state = State::random(&model, seed);
+            let (m, f) = evaluate(&general_pool, &general, &state);
+            let vdot = recursive_pool.eval_many(&articulated.accelerations, &state.values());
+            let pivots = recursive_pool.eval_many(&articulated.pivots, &state.values());
+            assert!(
+                pivots.iter().all(|&p| p > 0.0),
+                "{}: pivots {pivots:?}",
+                model.name
+            );
+            for (k, (row, fk)) in m.iter().zip(&f).enumerate() {
+                let mv: f64 = row.iter().zip(&vdot).map(|(a, b)| a * b).sum();
+                assert_close(&format!("{}, seed {seed}: (M v̇)[{k}]", model.name), mv, *fk);
+            }
+        }
     }
 }
