@@ -24,8 +24,8 @@ use dalembert::integrate::{
     AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
 };
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained};
+use dalembert_fixtures::cpu_time::thread_time_of;
 use dalembert_fixtures::iftomm::{FourBars10, FourBars40, Parallelogram, four_bar_start};
-use dalembert_lab::thread_time_of;
 
 const DURATION: f64 = 20.0;
 const HIGH_PRECISION: f64 = 1e-3;

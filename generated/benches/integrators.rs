@@ -28,11 +28,11 @@ use dalembert::integrate::{
     AdaptiveOptions, ExplicitPair, GaussLegendre, Solution, State, Unconstrained, adaptive,
     gauss_legendre, rk4,
 };
+use dalembert_fixtures::cpu_time::thread_time;
 use dalembert_generated::{
     DoublePendulum, PlanarChain2, PlanarChain6, PlanarChain12, PlanarChain30, SpatialChain2,
     SpatialChain6, SpatialChain12, SpatialChain30,
 };
-use dalembert_lab::thread_time;
 
 /// Simulated time of every run, s.
 const DURATION: f64 = 10.0;

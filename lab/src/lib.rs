@@ -9,13 +9,11 @@
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
 mod chart;
-mod cpu_time;
 mod lqr;
 mod scene;
 mod work_precision;
 
 pub use chart::{ChartError, Series, line_chart, line_chart_log_log, line_chart_log_y};
-pub use cpu_time::{thread_time, thread_time_of};
 pub use lqr::{RiccatiError, lqr};
 pub use scene::{Pose, Recording, Scene, SceneError, decimate};
 pub use work_precision::{
