@@ -24,10 +24,10 @@ use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 
 /// Most monomials one entry may show.
-const ENTRY_BUDGET: usize = 400;
+const ENTRY_BUDGET: usize = 100;
 
 /// Most monomials the entries of one rendering may show together (about).
-const DOCUMENT_BUDGET: usize = 8000;
+const DOCUMENT_BUDGET: usize = 3000;
 
 /// Fewest monomials an entry may show however many entries there are.
 const MIN_ENTRY_BUDGET: usize = 8;
@@ -607,7 +607,7 @@ mod tests {
                 assert!(rows[0].starts_with("M₁₁ q̈₁ + M₁₂ q̈₂"), "{}", rows[0]);
                 assert!(
                     doc.iter()
-                        .any(|l| l == " M₁₁ = (large: more than 16 terms, see the generated code)")
+                        .any(|l| l == " M₁₁ = (large: more than 8 terms, see the generated code)")
                 );
             } else {
                 assert!(

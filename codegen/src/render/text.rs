@@ -26,6 +26,10 @@ use std::fmt::Display;
 
 use crate::expr::{ExprId, Func, Node, Number, Pool, Rational, Sym};
 
+/// Numerators and denominators below this are written as fractions
+/// (`1/12`, `4/3`); larger ones as decimals.
+const READABLE_FRACTION: i128 = 10_000;
+
 /// Deepest nesting of parentheses and calls printed in full.
 const MAX_DEPTH: usize = 64;
 
@@ -776,11 +780,17 @@ impl<'a> Walker<'a> {
         }
     }
 
-    /// Writes a non-negative number: `3`, `½`, `\frac{3}{2}`, `0.1`.
+    /// Writes a non-negative number: `3`, `½`, `\frac{3}{2}`, `0.1`. A
+    /// fraction of long numbers (the exact value of a decimal literal such
+    /// as a robot's inertia, `751063428762144027/1000000000000000000`) is
+    /// written as the nearest `f64`, the value the generated code uses.
     fn number(&mut self, n: Number) {
         match n.as_rational() {
-            Some(r) if !r.is_integer() => (self.notation.fraction)(&mut self.out, r),
-            _ => self.out.push_str(&n.to_string()),
+            Some(r) if r.is_integer() => self.out.push_str(&n.to_string()),
+            Some(r) if r.num.abs() < READABLE_FRACTION && r.den < READABLE_FRACTION => {
+                (self.notation.fraction)(&mut self.out, r)
+            }
+            _ => self.out.push_str(&format!("{:?}", n.to_f64())),
         }
     }
 
