@@ -135,6 +135,9 @@ pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
         if !writer.needs_binding(e, &uses) {
             continue;
         }
+        if writer.alias_group(e) {
+            continue;
+        }
         match pairs.get(&e) {
             Some(&(sine, cosine, arg)) => writer.bind_sin_cos(sine, cosine, arg),
             None => writer.bind(e),
@@ -292,6 +295,30 @@ impl Writer<'_> {
             Node::Number(_) | Node::Sym(_) => false,
             Node::Func(..) => true,
             _ => uses.get(&e).copied().unwrap_or(0) > 1,
+        }
+    }
+
+    /// A group (a step of a recursion) whose content already has a name (a
+    /// symbol or a bound temporary) takes that name: no `let x2 = x1;`.
+    /// Returns whether it did. (A literal keeps its typed `let`.)
+    fn alias_group(&mut self, e: ExprId) -> bool {
+        let Node::Func(Func::Group, arg) = self.pool.node(e) else {
+            return false;
+        };
+        let named = self
+            .bound
+            .get(arg)
+            .cloned()
+            .or_else(|| match self.pool.node(*arg) {
+                Node::Sym(_) => Some(self.compound(*arg)),
+                _ => None,
+            });
+        match named {
+            Some(name) => {
+                self.bound.insert(e, name);
+                true
+            }
+            None => false,
         }
     }
 
