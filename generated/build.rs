@@ -58,6 +58,21 @@ fn with_derivatives(out: &std::path::Path) {
     builder.compile().unwrap_or_else(|e| panic!("\n{e}\n"));
 }
 
+/// Removes the generated files of models that no longer exist (renamed or
+/// deleted `.dal` files, the 60-link chains after a build without the
+/// `large` feature): `OUT_DIR` outlives them, and the panic-free scan reads
+/// every file in it. `chain_references.rs` is written below.
+fn remove_stale(out: &std::path::Path, written: &[PathBuf]) {
+    for entry in std::fs::read_dir(out).expect("OUT_DIR exists") {
+        let path = entry.expect("an OUT_DIR entry").path();
+        let generated = path.extension().is_some_and(|e| e == "rs")
+            && path.file_name().is_some_and(|n| n != "chain_references.rs");
+        if generated && !written.contains(&path) {
+            std::fs::remove_file(&path).expect("OUT_DIR is writable");
+        }
+    }
+}
+
 fn main() {
     let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     let mut builder = dalembert_codegen::Builder::new();
@@ -70,7 +85,7 @@ fn main() {
             builder.model(path);
         }
     }
-    builder
+    let written = builder
         .model_dir("models")
         .urdf("../tests/reference/urdf/panda.urdf")
         .urdf("../tests/reference/urdf/ur5_robot.urdf")
@@ -83,6 +98,7 @@ fn main() {
         .urdf("trees/binary_tree.urdf")
         .compile()
         .unwrap_or_else(|e| panic!("\n{e}\n"));
+    remove_stale(&out, &written);
     let mut references = String::new();
     let mut names: Vec<String> = std::fs::read_dir("models")
         .expect("models/")
