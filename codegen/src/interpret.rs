@@ -1,9 +1,20 @@
 //! The interpreter: the derived equations of a system evaluated
 //! numerically, beside the generator (as `pest_vm` beside
-//! `pest_generator`). It evaluates the symbolic DAG before optimisation and
-//! emission, so comparing it with the emitted code checks the optimiser and
-//! the emitter, and its [`Route::Lagrange`] derives `M` and `f` another way,
-//! which checks the d'Alembert assembly.
+//! `pest_generator`).
+//!
+//! * [`Route::Dalembert`] evaluates the equations exactly as
+//!   `equations::derive` returns them, and the requested outputs built from
+//!   those, before `optimize` and emission. The emitted code computes the
+//!   optimised equations through the emitter's folding and sharing, so
+//!   comparing the two checks the optimiser and the emitter.
+//! * [`Route::Lagrange`] derives `M` and `f` another way, from the same
+//!   (unoptimised) `T` and `V`; comparing it with the d'Alembert route
+//!   checks the d'Alembert assembly. `T`, `V`, `A`, `b` and the outputs
+//!   are the same on both routes.
+//!
+//! The generator's checks of the derived equations (`check_equations`) run
+//! on the optimised equations, as when generating, so a model the
+//! interpreter accepts is one the generator accepts.
 
 use crate::equations::{Equations, lagrange};
 use crate::expr::{Env, ExprId, Pool, Sym};

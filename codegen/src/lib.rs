@@ -44,8 +44,11 @@ pub use urdf::Urdf;
 ///
 /// * [`Interpreter`](testing::Interpreter) evaluates a system's derived
 ///   equations numerically, by d'Alembert's route (as the generator derives
-///   them) or Lagrange's (an independent derivation): differential tests
-///   compare the emitted code with both.
+///   them, before optimisation) or Lagrange's (`M` and `f` derived from `T`
+///   and `V` instead): differential tests compare the emitted code (the
+///   optimised equations) with the first, which checks the optimiser and
+///   the emitter, and the two routes with each other, which checks the
+///   d'Alembert assembly.
 /// * [`chain`](testing::chain) and [`chain_spelled`](testing::chain_spelled)
 ///   write the n-link benchmark chains of the reference data
 ///   ([`Family`](testing::Family)) as model text, in three
