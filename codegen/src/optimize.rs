@@ -60,28 +60,13 @@ fn cheaper_form(pool: &mut Pool, e: ExprId) -> ExprId {
 /// `e` with every `sin(a + b)`, `cos(a + b)` rewritten by the addition
 /// formulas, recursively, down to sines and cosines of single terms.
 fn expand_angle_sums(pool: &mut Pool, e: ExprId) -> ExprId {
-    let mut image: HashMap<ExprId, ExprId> = HashMap::new();
-    for n in pool.topo_order(&[e]) {
-        let rebuilt = match pool.node(n).clone() {
-            Node::Number(_) | Node::Sym(_) => n,
-            Node::Add(terms) => {
-                let terms: Vec<ExprId> = terms.iter().map(|t| image[t]).collect();
-                pool.sum(terms)
-            }
-            Node::Mul(factors) => {
-                let factors: Vec<ExprId> = factors.iter().map(|f| image[f]).collect();
-                pool.product(factors)
-            }
-            Node::Pow(base, exp) => pool.powi(image[&base], exp),
-            Node::Func(f @ (Func::Sin | Func::Cos), arg) => {
-                let (sin, cos) = sin_cos_of_sum(pool, image[&arg]);
-                if f == Func::Sin { sin } else { cos }
-            }
-            Node::Func(f, arg) => pool.func(f, image[&arg]),
-        };
-        image.insert(n, rebuilt);
-    }
-    image[&e]
+    pool.rebuild(&[e], |pool, node, images| match *pool.node(node) {
+        Node::Func(f @ (Func::Sin | Func::Cos), _) => {
+            let (sin, cos) = sin_cos_of_sum(pool, images[0]);
+            if f == Func::Sin { sin } else { cos }
+        }
+        _ => pool.with_children(node, images),
+    })[0]
 }
 
 /// `(sin x, cos x)` with `x` a sum split term by term:

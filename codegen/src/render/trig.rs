@@ -52,42 +52,19 @@ pub fn readable(pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
 /// Like [`Pool::expand`], but giving up as soon as an intermediate result
 /// exceeds `budget` terms.
 fn expand_within(pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
-    let mut expanded: HashMap<ExprId, ExprId> = HashMap::new();
-    for n in pool.topo_order(&[e]) {
-        let image = expand_node(pool, n, &expanded, budget)?;
-        if term_count(pool, image) > budget {
-            return None;
-        }
-        expanded.insert(n, image);
-    }
-    expanded.get(&e).copied()
+    let expanded = pool.try_rebuild(&[e], |pool, node, images| {
+        let image = expand_node(pool, node, images, budget)?;
+        (term_count(pool, image) <= budget).then_some(image)
+    })?;
+    Some(expanded[0])
 }
 
-/// The expansion of node `n`, given those of its children.
-fn expand_node(
-    pool: &mut Pool,
-    n: ExprId,
-    expanded: &HashMap<ExprId, ExprId>,
-    budget: usize,
-) -> Option<ExprId> {
-    let images = |children: &[ExprId]| -> Option<Vec<ExprId>> {
-        children.iter().map(|c| expanded.get(c).copied()).collect()
-    };
-    match pool.node(n).clone() {
-        Node::Number(_) | Node::Sym(_) => Some(n),
-        Node::Add(terms) => {
-            let terms = images(&terms)?;
-            Some(pool.sum(terms))
-        }
-        Node::Mul(factors) => distribute(pool, &images(&factors)?, budget),
-        Node::Pow(base, exp) => {
-            let base = *images(&[base])?.first()?;
-            expand_power(pool, base, exp, budget)
-        }
-        Node::Func(f, arg) => {
-            let arg = *images(&[arg])?.first()?;
-            Some(pool.func(f, arg))
-        }
+/// The expansion of `node`, given those of its children.
+fn expand_node(pool: &mut Pool, node: ExprId, images: &[ExprId], budget: usize) -> Option<ExprId> {
+    match *pool.node(node) {
+        Node::Mul(_) => distribute(pool, images, budget),
+        Node::Pow(_, exp) => expand_power(pool, images[0], exp, budget),
+        _ => Some(pool.with_children(node, images)),
     }
 }
 
