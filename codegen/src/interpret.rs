@@ -145,7 +145,8 @@ impl Interpreter {
         // The same checks as the generator, on the optimised equations; the
         // interpreter evaluates the unoptimised ones.
         let mut optimised = equations.clone();
-        crate::optimize::optimize(&mut optimised, &mut pool);
+        let mut forms = crate::readable::ReadableForms::default();
+        crate::optimize::optimize(&mut optimised, &mut pool, &mut forms);
         model.pool = pool;
         crate::check_equations(&model, &optimised)?;
         let mut pool = std::mem::take(&mut model.pool);

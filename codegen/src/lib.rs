@@ -27,6 +27,7 @@ mod model;
 mod optimize;
 mod outputs;
 mod random;
+mod readable;
 mod render;
 mod rigid;
 #[cfg(test)]
@@ -106,9 +107,11 @@ pub fn check(source: &str) -> syn::Result<()> {
 /// file), rendered in the seed document's style: `M(q)`, `f`, and with
 /// constraints `A` and `b`, as Unicode text or LaTeX.
 pub fn equations(source: &str, style: Style) -> syn::Result<String> {
-    let (mut model, equations) = derive(lex(source)?)?;
+    let (mut model, equations, mut forms) = derive(lex(source)?)?;
     let mut pool = std::mem::take(&mut model.pool);
-    Ok(render::equations_text(&model, &equations, &mut pool, style))
+    Ok(render::equations_text(
+        &model, &equations, &mut pool, &mut forms, style,
+    ))
 }
 
 /// How big the derivation of a system is.
@@ -125,7 +128,7 @@ pub struct Statistics {
 /// The size of the derivation of the system in `source` (the text of a
 /// `.dal` file), as [`generate`] derives and optimises it.
 pub fn statistics(source: &str) -> syn::Result<Statistics> {
-    let (model, mut equations) = derive(lex(source)?)?;
+    let (model, mut equations, _) = derive(lex(source)?)?;
     let outputs: Vec<expr::ExprId> = equations.expressions_mut().map(|e| *e).collect();
     Ok(Statistics {
         pool_nodes: model.pool.len(),
@@ -147,17 +150,17 @@ fn lex(source: &str) -> syn::Result<TokenStream> {
 
 /// The whole pipeline, from tokens to items.
 fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> {
-    let (mut model, equations) = derive(input)?;
+    let (mut model, equations, mut forms) = derive(input)?;
     let mut pool = std::mem::take(&mut model.pool);
     let mut docs = model.docs.clone();
     if !docs.is_empty() {
         docs.push(String::new());
     }
-    let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool);
+    let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool, &mut forms);
     docs.extend(equation_lines);
     let mut functions = outputs::standard(&model, &equations);
     let mut requested = outputs::requested(&model, &equations, &mut pool)?;
-    optimize::optimize_functions(&mut requested.functions, &mut pool);
+    optimize::optimize_functions(&mut requested.functions, &mut pool, &mut forms);
     functions.extend(requested.functions);
     model.pool = pool;
     Ok(emit::emit(
@@ -171,13 +174,17 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
 }
 
 /// Parses, checks, derives and optimises: the model (owning the expression
-/// pool) and its equations.
-fn derive(input: TokenStream) -> syn::Result<(model::Model, equations::Equations)> {
+/// pool), its equations, and the readable forms computed so far, which the
+/// optimiser and the renderer share so that each is computed once.
+fn derive(
+    input: TokenStream,
+) -> syn::Result<(model::Model, equations::Equations, readable::ReadableForms)> {
     let (mut model, mut pool, mut equations) = derive_unoptimised(input)?;
-    optimize::optimize(&mut equations, &mut pool);
+    let mut forms = readable::ReadableForms::default();
+    optimize::optimize(&mut equations, &mut pool, &mut forms);
     model.pool = pool;
     check_equations(&model, &equations)?;
-    Ok((model, equations))
+    Ok((model, equations, forms))
 }
 
 /// Parses, checks and derives: the model, the expression pool (taken out of

@@ -8,12 +8,15 @@
 //! docs), then every `sin`/`cos` of a sum of angles written back as products
 //! of the sines and cosines of its parts, which the code computes anyway.
 //! The compact form replaces the entry when it costs fewer operations; an
-//! entry too large to expand within the budget keeps its DAG form.
+//! entry too large to expand within the budget keeps its DAG form. The
+//! readable forms come from the derivation's
+//! [`ReadableForms`](crate::readable::ReadableForms), which the renderer
+//! reads again for the docs.
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool};
 use crate::outputs::Function;
-use crate::render::trig::readable;
+use crate::readable::ReadableForms;
 use std::collections::{HashMap, HashSet};
 
 /// Most monomials an entry may expand to before it keeps its DAG form.
@@ -23,30 +26,39 @@ const BUDGET: usize = 200;
 /// anything but a single symbol (whose `sin_cos` the code shares).
 const FUNCTION_COST: usize = 20;
 
-/// Replaces each output of `equations` by its compact form where cheaper.
-pub fn optimize(equations: &mut Equations, pool: &mut Pool) {
-    optimize_all(equations.expressions_mut(), pool);
+/// Replaces each output of `equations` by its compact form where cheaper,
+/// from the derivation's readable `forms`.
+pub fn optimize(equations: &mut Equations, pool: &mut Pool, forms: &mut ReadableForms) {
+    optimize_all(equations.expressions_mut(), pool, forms);
 }
 
-/// Replaces each result of `functions` by its compact form where cheaper.
-pub fn optimize_functions(functions: &mut [Function], pool: &mut Pool) {
+/// Replaces each result of `functions` by its compact form where cheaper,
+/// from the derivation's readable `forms`.
+pub fn optimize_functions(functions: &mut [Function], pool: &mut Pool, forms: &mut ReadableForms) {
     optimize_all(
         functions.iter_mut().flat_map(Function::expressions_mut),
         pool,
+        forms,
     );
 }
 
 /// Replaces each of `expressions` by its compact form where cheaper.
-fn optimize_all<'a>(expressions: impl Iterator<Item = &'a mut ExprId>, pool: &mut Pool) {
+fn optimize_all<'a>(
+    expressions: impl Iterator<Item = &'a mut ExprId>,
+    pool: &mut Pool,
+    forms: &mut ReadableForms,
+) {
     let mut chosen: HashMap<ExprId, ExprId> = HashMap::new();
     for e in expressions {
-        *e = *chosen.entry(*e).or_insert_with(|| cheaper_form(pool, *e));
+        *e = *chosen
+            .entry(*e)
+            .or_insert_with(|| cheaper_form(pool, forms, *e));
     }
 }
 
 /// `e`, or its compact form if that costs fewer operations.
-fn cheaper_form(pool: &mut Pool, e: ExprId) -> ExprId {
-    let Some(compact) = readable(pool, e, BUDGET) else {
+fn cheaper_form(pool: &mut Pool, forms: &mut ReadableForms, e: ExprId) -> ExprId {
+    let Some(compact) = forms.get(pool, e, BUDGET) else {
         return e;
     };
     let compact = expand_angle_sums(pool, compact);
@@ -105,6 +117,7 @@ fn cost(pool: &Pool, e: ExprId) -> usize {
 #[cfg(test)]
 mod tests {
     use crate::interpret::{Interpreter, Route, Sample};
+    use crate::readable::ReadableForms;
     use crate::seeds::{DOUBLE_PENDULUM, ROTATING_BAR};
 
     /// The interpreter evaluates the equations as derived and the emitted
@@ -118,7 +131,7 @@ mod tests {
             let (_, mut pool, derived) =
                 crate::derive_unoptimised(crate::lex(source).unwrap()).unwrap();
             let mut optimised = derived.clone();
-            super::optimize(&mut optimised, &mut pool);
+            super::optimize(&mut optimised, &mut pool, &mut ReadableForms::default());
             let mut derived = derived;
             let before: Vec<_> = derived.expressions_mut().map(|e| *e).collect();
             let after: Vec<_> = optimised.expressions_mut().map(|e| *e).collect();

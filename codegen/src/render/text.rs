@@ -922,9 +922,9 @@ impl<'a> Walker<'a> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::trig::readable;
-    use super::super::trig::tests::{Build, seed_double_pendulum, symbols};
     use super::*;
+    use crate::readable::readable;
+    use crate::readable::tests::{Build, seed_double_pendulum, symbols};
 
     /// Names for `m, L, g, d, l`, `θ₁, θ₂` and the input `M_phi`.
     fn seed_names() -> SymbolNames {
