@@ -157,7 +157,7 @@ fn terms(pool: &Pool, e: ExprId) -> Vec<ExprId> {
 }
 
 /// The factors of a coefficient-free monomial as `(base, exponent)`.
-fn factors(pool: &Pool, monomial: ExprId) -> Vec<(ExprId, i32)> {
+pub fn factors(pool: &Pool, monomial: ExprId) -> Vec<(ExprId, i32)> {
     let as_power = |f: ExprId| match pool.node(f) {
         &Node::Pow(base, exp) => (base, exp),
         _ => (f, 1),

@@ -25,6 +25,7 @@ use std::cmp::Reverse;
 use std::fmt::Display;
 
 use crate::expr::{ExprId, Func, Node, Number, Pool, Rational, Sym};
+use crate::readable::factors;
 
 /// Deepest nesting of parentheses and calls printed in full.
 const MAX_DEPTH: usize = 64;
@@ -553,7 +554,7 @@ impl Term {
     fn of(pool: &Pool, e: ExprId, negate: bool) -> Term {
         let (c, rest) = pool.split_coefficient(e);
         let mut coefficient = if negate { -c } else { c };
-        let mut factors: Vec<Factor> = power_factors(pool, rest)
+        let mut factors: Vec<Factor> = factors(pool, rest)
             .into_iter()
             .map(|(base, exp)| {
                 let (flipped, odd) = orientation(pool, base);
@@ -589,19 +590,6 @@ impl Term {
     }
 }
 
-/// The factors of a coefficient-free monomial as `(base, exponent)`.
-fn power_factors(pool: &Pool, monomial: ExprId) -> Vec<(ExprId, i32)> {
-    let as_power = |f: ExprId| match pool.node(f) {
-        &Node::Pow(base, exp) => (base, exp),
-        _ => (f, 1),
-    };
-    match pool.node(monomial) {
-        _ if monomial == pool.one() => Vec::new(),
-        Node::Mul(fs) => fs.iter().map(|&f| as_power(f)).collect(),
-        _ => vec![as_power(monomial)],
-    }
-}
-
 /// Whether the argument of `base`, an odd or even function, prints
 /// negated, and whether the function is odd. The argument is negated when
 /// the term holding its greatest symbol is negative, so `cos(θ₁ − θ₂)`
@@ -626,7 +614,7 @@ fn orientation(pool: &Pool, base: ExprId) -> (bool, bool) {
 /// The greatest symbol among the factors of monomial `t`, if any.
 fn greatest_symbol(pool: &Pool, t: ExprId) -> Option<Sym> {
     let (_, rest) = pool.split_coefficient(t);
-    power_factors(pool, rest)
+    factors(pool, rest)
         .into_iter()
         .filter_map(|(base, _)| match pool.node(base) {
             Node::Sym(s) => Some(*s),
