@@ -141,15 +141,17 @@ impl Interpreter {
     /// Parses, checks and derives the system in `source` (the text of a
     /// `.dal` file) along `route`; the same errors as [`check`](crate::check).
     pub fn new(source: &str, route: Route) -> syn::Result<Interpreter> {
-        let (mut model, mut pool, mut equations) = crate::derive_unoptimised(crate::lex(source)?)?;
+        let crate::Derivation {
+            model,
+            mut pool,
+            mut equations,
+            mut forms,
+        } = crate::derive_unoptimised(crate::lex(source)?)?;
         // The same checks as the generator, on the optimised equations; the
         // interpreter evaluates the unoptimised ones.
         let mut optimised = equations.clone();
-        let mut forms = crate::readable::ReadableForms::default();
         crate::optimize::optimize(&mut optimised, &mut pool, &mut forms);
-        model.pool = pool;
-        crate::check_equations(&model, &optimised)?;
-        let mut pool = std::mem::take(&mut model.pool);
+        crate::check_equations(&model, &pool, &optimised)?;
         if route == Route::Lagrange && !pool.rates_are_speeds() {
             return Err(syn::Error::new(
                 model.name.span(),
@@ -325,8 +327,7 @@ impl Geometry {
         let mut system = crate::language::parse_system(crate::lex(source)?)?;
         let names = GeometryNames::of(&system);
         system.statements.extend(names.probes()?);
-        let mut model = crate::model::resolve(&system)?;
-        let mut pool = std::mem::take(&mut model.pool);
+        let (model, mut pool) = crate::model::resolve(&system)?;
         let kinematics = Kinematics::new(&model, &mut pool);
         // The probes, appended last, name the points and frames in order.
         let probed_points = model.forces[model.forces.len() - names.points.len()..].iter();

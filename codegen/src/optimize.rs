@@ -117,7 +117,6 @@ fn cost(pool: &Pool, e: ExprId) -> usize {
 #[cfg(test)]
 mod tests {
     use crate::interpret::{Interpreter, Route, Sample};
-    use crate::readable::ReadableForms;
     use crate::seeds::{DOUBLE_PENDULUM, ROTATING_BAR};
 
     /// The interpreter evaluates the equations as derived and the emitted
@@ -128,11 +127,14 @@ mod tests {
     fn the_optimiser_rewrites_the_seed_examples_and_keeps_their_values() {
         for source in [DOUBLE_PENDULUM, ROTATING_BAR] {
             let interpreter = Interpreter::new(source, Route::Dalembert).unwrap();
-            let (_, mut pool, derived) =
-                crate::derive_unoptimised(crate::lex(source).unwrap()).unwrap();
+            let crate::Derivation {
+                mut pool,
+                equations: mut derived,
+                mut forms,
+                ..
+            } = crate::derive_unoptimised(crate::lex(source).unwrap()).unwrap();
             let mut optimised = derived.clone();
-            super::optimize(&mut optimised, &mut pool, &mut ReadableForms::default());
-            let mut derived = derived;
+            super::optimize(&mut optimised, &mut pool, &mut forms);
             let before: Vec<_> = derived.expressions_mut().map(|e| *e).collect();
             let after: Vec<_> = optimised.expressions_mut().map(|e| *e).collect();
             assert_ne!(before, after, "nothing rewritten in\n{source}");

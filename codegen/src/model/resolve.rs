@@ -22,8 +22,9 @@ use proc_macro2::Span;
 use scope::{Binding, defined_names};
 use std::collections::HashMap;
 
-/// Resolves and checks a parsed system; all errors are reported together.
-pub fn resolve(system: &System) -> syn::Result<Model> {
+/// Resolves and checks a parsed system: the model and the pool its
+/// expressions live in; all errors are reported together.
+pub fn resolve(system: &System) -> syn::Result<(Model, Pool)> {
     let mut resolver = Resolver::new(system);
     for statement in &system.statements {
         resolver.statement(statement);
@@ -83,17 +84,15 @@ impl Resolver {
                 moving_masses: Vec::new(),
                 tree: None,
                 outputs: Vec::new(),
-                pool: Pool::default(),
             },
         }
     }
 
-    fn finish(mut self) -> syn::Result<Model> {
+    fn finish(mut self) -> syn::Result<(Model, Pool)> {
         self.check_has_coordinates();
         self.check_solved_outputs();
         self.model.tree = Tree::of(&self.model, &mut self.pool);
-        self.model.pool = self.pool;
-        self.errors.finish(self.model)
+        self.errors.finish((self.model, self.pool))
     }
 }
 

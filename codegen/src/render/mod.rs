@@ -469,8 +469,7 @@ mod tests {
     fn derive(source: &str) -> (Model, Equations, Pool) {
         let tokens: proc_macro2::TokenStream = source.parse().expect("tokens");
         let system = crate::language::parse_system(tokens).expect("a system");
-        let mut model = crate::model::resolve(&system).expect("a model");
-        let mut pool = std::mem::take(&mut model.pool);
+        let (model, mut pool) = crate::model::resolve(&system).expect("a model");
         let equations = crate::equations::derive(&model, &mut pool);
         (model, equations, pool)
     }
