@@ -1,9 +1,20 @@
 //! The interpreter: the derived equations of a system evaluated
 //! numerically, beside the generator (as `pest_vm` beside
-//! `pest_generator`). It evaluates the symbolic DAG before optimisation and
-//! emission, so comparing it with the emitted code checks the optimiser and
-//! the emitter, and its [`Route::Lagrange`] derives `M` and `f` another way,
-//! which checks the d'Alembert assembly.
+//! `pest_generator`).
+//!
+//! * [`Route::Dalembert`] evaluates the equations exactly as
+//!   `equations::derive` returns them, and the requested outputs built from
+//!   those, before `optimize` and emission. The emitted code computes the
+//!   optimised equations through the emitter's folding and sharing, so
+//!   comparing the two checks the optimiser and the emitter.
+//! * [`Route::Lagrange`] derives `M` and `f` another way, from the same
+//!   (unoptimised) `T` and `V`; comparing it with the d'Alembert route
+//!   checks the d'Alembert assembly. `T`, `V`, `A`, `b` and the outputs
+//!   are the same on both routes.
+//!
+//! The generator's checks of the derived equations (`check_equations`) run
+//! on the optimised equations, as when generating, so a model the
+//! interpreter accepts is one the generator accepts.
 
 use crate::equations::{Equations, lagrange};
 use crate::expr::{Env, ExprId, Pool, Sym};
@@ -130,14 +141,17 @@ impl Interpreter {
     /// Parses, checks and derives the system in `source` (the text of a
     /// `.dal` file) along `route`; the same errors as [`check`](crate::check).
     pub fn new(source: &str, route: Route) -> syn::Result<Interpreter> {
-        let (mut model, mut pool, mut equations) = crate::derive_unoptimised(crate::lex(source)?)?;
+        let crate::Derivation {
+            model,
+            mut pool,
+            mut equations,
+            mut forms,
+        } = crate::derive_unoptimised(crate::lex(source)?)?;
         // The same checks as the generator, on the optimised equations; the
         // interpreter evaluates the unoptimised ones.
         let mut optimised = equations.clone();
-        crate::optimize::optimize(&mut optimised, &mut pool);
-        model.pool = pool;
-        crate::check_equations(&model, &optimised)?;
-        let mut pool = std::mem::take(&mut model.pool);
+        crate::optimize::optimize(&mut optimised, &mut pool, &mut forms);
+        crate::check_equations(&model, &pool, &optimised)?;
         if route == Route::Lagrange && !pool.rates_are_speeds() {
             return Err(syn::Error::new(
                 model.name.span(),
@@ -313,8 +327,7 @@ impl Geometry {
         let mut system = crate::language::parse_system(crate::lex(source)?)?;
         let names = GeometryNames::of(&system);
         system.statements.extend(names.probes()?);
-        let mut model = crate::model::resolve(&system)?;
-        let mut pool = std::mem::take(&mut model.pool);
+        let (model, mut pool) = crate::model::resolve(&system)?;
         let kinematics = Kinematics::new(&model, &mut pool);
         // The probes, appended last, name the points and frames in order.
         let probed_points = model.forces[model.forces.len() - names.points.len()..].iter();

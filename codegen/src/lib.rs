@@ -27,6 +27,7 @@ mod model;
 mod optimize;
 mod outputs;
 mod random;
+mod readable;
 mod render;
 mod rigid;
 #[cfg(test)]
@@ -44,8 +45,11 @@ pub use urdf::Urdf;
 ///
 /// * [`Interpreter`](testing::Interpreter) evaluates a system's derived
 ///   equations numerically, by d'Alembert's route (as the generator derives
-///   them) or Lagrange's (an independent derivation): differential tests
-///   compare the emitted code with both.
+///   them, before optimisation) or Lagrange's (`M` and `f` derived from `T`
+///   and `V` instead): differential tests compare the emitted code (the
+///   optimised equations) with the first, which checks the optimiser and
+///   the emitter, and the two routes with each other, which checks the
+///   d'Alembert assembly.
 /// * [`chain`](testing::chain) and [`chain_spelled`](testing::chain_spelled)
 ///   write the n-link benchmark chains of the reference data
 ///   ([`Family`](testing::Family)) as model text, in three
@@ -103,9 +107,15 @@ pub fn check(source: &str) -> syn::Result<()> {
 /// file), rendered in the seed document's style: `M(q)`, `f`, and with
 /// constraints `A` and `b`, as Unicode text or LaTeX.
 pub fn equations(source: &str, style: Style) -> syn::Result<String> {
-    let (mut model, equations) = derive(lex(source)?)?;
-    let mut pool = std::mem::take(&mut model.pool);
-    Ok(render::equations_text(&model, &equations, &mut pool, style))
+    let Derivation {
+        model,
+        mut pool,
+        equations,
+        mut forms,
+    } = derive(lex(source)?)?;
+    Ok(render::equations_text(
+        &model, &equations, &mut pool, &mut forms, style,
+    ))
 }
 
 /// How big the derivation of a system is.
@@ -122,11 +132,15 @@ pub struct Statistics {
 /// The size of the derivation of the system in `source` (the text of a
 /// `.dal` file), as [`generate`] derives and optimises it.
 pub fn statistics(source: &str) -> syn::Result<Statistics> {
-    let (model, mut equations) = derive(lex(source)?)?;
+    let Derivation {
+        pool,
+        mut equations,
+        ..
+    } = derive(lex(source)?)?;
     let outputs: Vec<expr::ExprId> = equations.expressions_mut().map(|e| *e).collect();
     Ok(Statistics {
-        pool_nodes: model.pool.len(),
-        output_nodes: model.pool.topo_order(&outputs).len(),
+        pool_nodes: pool.len(),
+        output_nodes: pool.topo_order(&outputs).len(),
     })
 }
 
@@ -144,21 +158,25 @@ fn lex(source: &str) -> syn::Result<TokenStream> {
 
 /// The whole pipeline, from tokens to items.
 fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> {
-    let (mut model, equations) = derive(input)?;
-    let mut pool = std::mem::take(&mut model.pool);
+    let Derivation {
+        model,
+        mut pool,
+        equations,
+        mut forms,
+    } = derive(input)?;
     let mut docs = model.docs.clone();
     if !docs.is_empty() {
         docs.push(String::new());
     }
-    let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool);
+    let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool, &mut forms);
     docs.extend(equation_lines);
     let mut functions = outputs::standard(&model, &equations);
     let mut requested = outputs::requested(&model, &equations, &mut pool)?;
-    optimize::optimize_functions(&mut requested.functions, &mut pool);
+    optimize::optimize_functions(&mut requested.functions, &mut pool, &mut forms);
     functions.extend(requested.functions);
-    model.pool = pool;
     Ok(emit::emit(
         &model,
+        &pool,
         &equations,
         &functions,
         &requested.constants,
@@ -167,45 +185,70 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
     ))
 }
 
-/// Parses, checks, derives and optimises: the model (owning the expression
-/// pool) and its equations.
-fn derive(input: TokenStream) -> syn::Result<(model::Model, equations::Equations)> {
-    let (mut model, mut pool, mut equations) = derive_unoptimised(input)?;
-    optimize::optimize(&mut equations, &mut pool);
-    model.pool = pool;
-    check_equations(&model, &equations)?;
-    Ok((model, equations))
+/// One system's derivation: the checked model, the pool every expression
+/// of it lives in, its equations, and the readable forms computed so far,
+/// which the optimiser and the renderer share so that each is computed
+/// once.
+struct Derivation {
+    model: model::Model,
+    pool: expr::Pool,
+    equations: equations::Equations,
+    forms: readable::ReadableForms,
 }
 
-/// Parses, checks and derives: the model, the expression pool (taken out of
-/// the model) and the equations as derived, before optimisation. The checks
-/// of the derived equations ([`check_equations`]) need the optimised ones.
-fn derive_unoptimised(
-    input: TokenStream,
-) -> syn::Result<(model::Model, expr::Pool, equations::Equations)> {
+/// Parses, checks, derives and optimises.
+fn derive(input: TokenStream) -> syn::Result<Derivation> {
+    let mut derivation = derive_unoptimised(input)?;
+    let Derivation {
+        model,
+        pool,
+        equations,
+        forms,
+    } = &mut derivation;
+    optimize::optimize(equations, pool, forms);
+    check_equations(model, pool, equations)?;
+    Ok(derivation)
+}
+
+/// Parses, checks and derives: the equations as derived, before
+/// optimisation (no readable form computed yet). The checks of the derived
+/// equations ([`check_equations`]) need the optimised ones.
+fn derive_unoptimised(input: TokenStream) -> syn::Result<Derivation> {
     let system = language::parse_system(input)?;
-    let mut model = model::resolve(&system)?;
-    let mut pool = std::mem::take(&mut model.pool);
+    let (model, mut pool) = model::resolve(&system)?;
     let equations = equations::derive(&model, &mut pool);
-    Ok((model, pool, equations))
+    Ok(Derivation {
+        model,
+        pool,
+        equations,
+        forms: readable::ReadableForms::default(),
+    })
 }
 
 /// The checks that need the derived (and optimised) equations.
-fn check_equations(model: &model::Model, equations: &equations::Equations) -> syn::Result<()> {
-    check_timeless(model, equations)?;
-    check_inertia(model, equations)
+fn check_equations(
+    model: &model::Model,
+    pool: &expr::Pool,
+    equations: &equations::Equations,
+) -> syn::Result<()> {
+    check_timeless(model, pool, equations)?;
+    check_inertia(model, pool, equations)
 }
 
 /// Every speed must move some mass: a coordinate (or speed) whose diagonal entry
 /// of `M` is zero (and that no constraint ties) makes `M` singular
 /// everywhere. Reported at the coordinate's declaration.
-fn check_inertia(model: &model::Model, equations: &equations::Equations) -> syn::Result<()> {
+fn check_inertia(
+    model: &model::Model,
+    pool: &expr::Pool,
+    equations: &equations::Equations,
+) -> syn::Result<()> {
     let mut errors = (0..model.nv()).filter_map(|k| {
-        let massless = model.pool.is_zero(equations.mass_matrix[k][k]);
+        let massless = pool.is_zero(equations.mass_matrix[k][k]);
         let constrained = equations
             .constraint_jacobian
             .iter()
-            .any(|row| !model.pool.is_zero(row[k]));
+            .any(|row| !pool.is_zero(row[k]));
         (massless && !constrained).then(|| {
             let speed = &model.speeds[k];
             let name = &speed.name;
@@ -236,13 +279,17 @@ fn check_inertia(model: &model::Model, equations: &equations::Equations) -> syn:
 /// `V(q)`) must not depend on time: reports the masses that move with time
 /// when `t` did not cancel from them. (A row of `A(q)` with `t` is rejected
 /// earlier, at its constraint.)
-fn check_timeless(model: &model::Model, equations: &equations::Equations) -> syn::Result<()> {
+fn check_timeless(
+    model: &model::Model,
+    pool: &expr::Pool,
+    equations: &equations::Equations,
+) -> syn::Result<()> {
     let timeless = equations
         .mass_matrix
         .iter()
         .flatten()
         .chain([&equations.kinetic_energy, &equations.potential_energy]);
-    let mut timeless = timeless.map(|&e| model.pool.kinds(e));
+    let mut timeless = timeless.map(|&e| pool.kinds(e));
     if !timeless.any(|kinds| kinds.intersects(expr::SymKinds::TIME)) {
         return Ok(());
     }

@@ -10,9 +10,12 @@
 //! positive definite. Two test suites use it:
 //!
 //! * `tests/interpreter.rs`: the interpreter's d'Alembert route against its
-//!   Lagrange route on many models ([`RANDOM_MODELS`] proptest cases);
+//!   Lagrange route on many models ([`RANDOM_MODELS`] proptest cases),
+//!   which checks the d'Alembert assembly;
 //! * `tests/emitted.rs`: the code that `build.rs` generated and compiled
-//!   for [`EMITTED_MODELS`] fixed-seed models against the interpreter.
+//!   (the optimised equations) for [`EMITTED_MODELS`] fixed-seed models
+//!   against both routes of the interpreter (the equations as derived,
+//!   before optimisation), which checks the optimiser and the emitter.
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 

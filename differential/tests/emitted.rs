@@ -1,6 +1,8 @@
 //! The emitted code of the random models that `build.rs` generated and
-//! compiled agrees with the interpreter (both routes) at random states, and
-//! its mass matrix is positive definite.
+//! compiled (the optimised equations) agrees at random states with the
+//! interpreter's evaluation of the equations as derived, before
+//! optimisation, on both routes: this checks the optimiser and the emitter.
+//! And its mass matrix is positive definite.
 
 use dalembert::MultibodySystem;
 use dalembert_codegen::testing::{Interpreter, Route, Sample};

@@ -11,22 +11,22 @@
 //! divisor against zero.
 
 use super::body::{Names, straight_line};
-use crate::expr::{Node, Sym};
+use crate::expr::{Node, Pool, Sym};
 use crate::model::{Ball, Model};
 use crate::render::text::{SymbolNames, unicode};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
 /// `pub fn coordinate_rates(..)` and `pub fn integrate_configuration(..)`.
-pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
-    if model.pool.rates_are_speeds() {
+pub fn emit_configuration(model: &Model, pool: &Pool, names: &Names) -> TokenStream {
+    if pool.rates_are_speeds() {
         return emit_identity(model.nq());
     }
     let (nq, nv) = (
         Literal::usize_unsuffixed(model.nq()),
         Literal::usize_unsuffixed(model.nv()),
     );
-    let rates = straight_line(&model.pool, names, model.pool.rates());
+    let rates = straight_line(pool, names, pool.rates());
     let (statements, outputs) = (&rates.statements, &rates.outputs);
     let argument = |name: &str, sym: fn(&Sym) -> bool| {
         let used = rates.used.iter().any(sym);
@@ -36,7 +36,7 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
         argument("q", |s| matches!(s, Sym::Coord(_))),
         argument("qd", |s| matches!(s, Sym::Speed(_))),
     );
-    let (update, doc_own) = emit_update(model, names.libm);
+    let (update, doc_own) = emit_update(model, pool, names.libm);
     let mut update_doc = vec![
         " `q ⊕ h v`: the configuration reached from `q` moving at the",
         " constant speeds `v` for the time `h`. Each quaternion is",
@@ -75,7 +75,7 @@ pub fn emit_configuration(model: &Model, names: &Names) -> TokenStream {
 /// divisor whose magnitude, relative to that of its terms, is not above the
 /// runtime's tolerance is an error naming its coordinate and the divisor.
 /// NaN fails too.
-pub fn emit_rate_check(model: &Model, names: &Names) -> TokenStream {
+pub fn emit_rate_check(model: &Model, pool: &Pool, names: &Names) -> TokenStream {
     if model.rate_divisors.is_empty() {
         return TokenStream::new();
     }
@@ -85,7 +85,7 @@ pub fn emit_rate_check(model: &Model, names: &Names) -> TokenStream {
         .iter()
         .flat_map(|d| [d.divisor, d.relative])
         .collect();
-    let body = straight_line(&model.pool, names, &roots);
+    let body = straight_line(pool, names, &roots);
     let symbols = SymbolNames::new(&model.parameters, &model.coordinates, &model.inputs);
     let mut outputs = body.outputs.iter();
     let mut listed = Vec::new();
@@ -95,7 +95,7 @@ pub fn emit_rate_check(model: &Model, names: &Names) -> TokenStream {
         .map(|d| {
             let (value, relative) = (outputs.next(), outputs.next());
             let coordinate = model.coordinates[d.coordinate].to_string();
-            let divisor = unicode(&model.pool, d.divisor, &symbols);
+            let divisor = unicode(pool, d.divisor, &symbols);
             listed.push(format!(" * `{divisor}`, in the rate of `{coordinate}`"));
             quote! {
                 if !(#relative > ::dalembert::dynamics::SINGULAR_RATES_TOLERANCE) {
@@ -132,7 +132,7 @@ pub fn emit_rate_check(model: &Model, names: &Names) -> TokenStream {
 /// indexing): every coordinate `qᵢ` and speed `vₖ` by name, the new
 /// configuration as an array of names; and whether some coordinates come
 /// from `speeds` statements.
-fn emit_update(model: &Model, libm: bool) -> (TokenStream, bool) {
+fn emit_update(model: &Model, pool: &Pool, libm: bool) -> (TokenStream, bool) {
     let (nq, nv) = (model.nq(), model.nv());
     let q: Vec<Ident> = (0..nq).map(|i| format_ident!("q{}", i)).collect();
     let v: Vec<Ident> = (0..nv).map(|k| format_ident!("v{}", k)).collect();
@@ -147,7 +147,7 @@ fn emit_update(model: &Model, libm: bool) -> (TokenStream, bool) {
     // The speeds read by name (the others are left out of the pattern).
     let mut read = vec![false; nv];
     for i in (0..nq).filter(|&i| !in_ball(i)) {
-        let k = match model.pool.rates().get(i).map(|&r| model.pool.node(r)) {
+        let k = match pool.rates().get(i).map(|&r| pool.node(r)) {
             Some(Node::Sym(Sym::Speed(k))) => *k as usize,
             None => i,
             Some(_) => {
@@ -397,7 +397,7 @@ mod tests {
         );
     }
 
-    fn model(source: &str) -> Model {
+    fn model(source: &str) -> (Model, Pool) {
         let system = crate::language::parse_system(source.parse().unwrap()).unwrap();
         crate::model::resolve(&system).unwrap()
     }
@@ -406,7 +406,7 @@ mod tests {
     fn azimuth_and_elevation_rates_check_the_cosine_they_divide_by() {
         // Azimuth and elevation with the body's rates about its y and z
         // axes: ψ̇ = ω_z / cos θ.
-        let model = model(
+        let (model, pool) = model(
             "pub Pointer {
                 parameters I;
                 coordinates psi, theta;
@@ -442,13 +442,13 @@ mod tests {
                 ::core::result::Result::Ok(())
             }
         };
-        let emitted = emit_rate_check(&model, &names);
+        let emitted = emit_rate_check(&model, &pool, &names);
         assert_eq!(emitted.to_string(), expected.to_string());
     }
 
     #[test]
     fn a_sum_is_checked_relative_to_its_terms_and_regular_rates_need_no_check() {
-        let rolling = model(
+        let (rolling, pool) = model(
             "S {
                 parameters m, a;
                 coordinates x;
@@ -457,13 +457,13 @@ mod tests {
             }",
         );
         let names = super::super::names(&rolling, super::super::Target::Std);
-        let emitted = emit_rate_check(&rolling, &names).to_string();
+        let emitted = emit_rate_check(&rolling, &pool, &names).to_string();
         assert!(
             emitted.contains("let xx0 = a + cos_x ; let xx1 = xx0 . abs () ; let abs_a = a . abs () ; let xx2 = cos_x . abs () ; if ! (xx1 / (abs_a + xx2) >"),
             "{emitted}"
         );
         assert!(emitted.contains(r#"divisor : "a + cos x""#), "{emitted}");
-        let pendulum = model(
+        let (pendulum, pool) = model(
             "S {
                 parameters m, l;
                 coordinates x;
@@ -472,6 +472,6 @@ mod tests {
             }",
         );
         let names = super::super::names(&pendulum, super::super::Target::Std);
-        assert!(emit_rate_check(&pendulum, &names).is_empty());
+        assert!(emit_rate_check(&pendulum, &pool, &names).is_empty());
     }
 }

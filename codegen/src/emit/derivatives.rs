@@ -8,7 +8,7 @@ use super::body::{Names, Straight, straight_line};
 use super::solve::{Factorised, factorised};
 use super::{array, raw_string};
 use crate::equations::Equations;
-use crate::expr::ExprId;
+use crate::expr::{ExprId, Pool};
 use crate::model::Model;
 use crate::outputs::Function;
 use proc_macro2::{Ident, Literal, TokenStream};
@@ -33,6 +33,7 @@ fn by_columns(block: &[ExprId], columns: usize) -> Vec<ExprId> {
 /// (which the model rejects).
 pub fn emit_accelerations_jacobian(
     model: &Model,
+    pool: &Pool,
     equations: &Equations,
     names: &Names,
     function: &Function,
@@ -43,7 +44,7 @@ pub fn emit_accelerations_jacobian(
         right_hand_side,
         solution,
         ..
-    }) = factorised(model, equations, names)
+    }) = factorised(model, pool, equations, names)
     else {
         return TokenStream::new();
     };
@@ -60,7 +61,7 @@ pub fn emit_accelerations_jacobian(
         statements,
         outputs,
         ..
-    } = straight_line(&model.pool, names, &roots);
+    } = straight_line(pool, names, &roots);
     let columns: Vec<TokenStream> = outputs
         .chunks(nq)
         .map(|column| quote!([#(#column),*]))

@@ -11,7 +11,7 @@ mod derivatives;
 mod solve;
 
 use crate::equations::Equations;
-use crate::expr::{ExprId, Sym};
+use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 use crate::outputs::{Argument, Body, Function, NameList, Shape};
 use body::{Names, straight_line};
@@ -41,6 +41,7 @@ pub enum Target {
 /// All items for one system.
 pub fn emit(
     model: &Model,
+    pool: &Pool,
     equations: &Equations,
     functions: &[Function],
     constants_of_outputs: &[NameList],
@@ -55,25 +56,25 @@ pub fn emit(
     let mut items: Vec<TokenStream> = functions
         .iter()
         .map(|function| match (function.body, target) {
-            (Body::Explicit, _) => emit_function(model, &names, function),
+            (Body::Explicit, _) => emit_function(model, pool, &names, function),
             // Both return the runtime's errors.
             (_, Target::NoStd) => TokenStream::new(),
             (Body::AccelerationsJacobian, Target::Std) => {
-                derivatives::emit_accelerations_jacobian(model, equations, &names, function)
+                derivatives::emit_accelerations_jacobian(model, pool, equations, &names, function)
             }
             (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, function),
         })
         .collect();
-    items.push(configuration::emit_configuration(model, &names));
+    items.push(configuration::emit_configuration(model, pool, &names));
     let strukt = emit_struct(model, &documentation.docs);
-    let mut constants = emit_constants(model, &documentation.text);
+    let mut constants = emit_constants(model, pool, &documentation.text);
     constants.extend(constants_of_outputs.iter().map(emit_name_list));
     let traits = match target {
         Target::Std => {
-            let solver = solve::emit_accelerations(model, equations, &names);
+            let solver = solve::emit_accelerations(model, pool, equations, &names);
             let has_solver = !solver.is_empty();
             items.push(solver);
-            let check = configuration::emit_rate_check(model, &names);
+            let check = configuration::emit_rate_check(model, pool, &names);
             let has_check = !check.is_empty();
             items.push(check);
             emit_trait_impls(name, [nq, nv, nu, nc], [has_solver, has_check])
@@ -177,7 +178,7 @@ fn raw_string(text: &str) -> Literal {
         .unwrap_or_else(|_| Literal::string(text))
 }
 
-fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
+fn emit_constants(model: &Model, pool: &Pool, equations_text: &str) -> TokenStream {
     let [nq, nv, np, nu, nc] = [
         model.nq(),
         model.nv(),
@@ -191,7 +192,7 @@ fn emit_constants(model: &Model, equations_text: &str) -> TokenStream {
     let parameters = strings(&model.parameters);
     let inputs = strings(&model.inputs);
     let speeds = model.speeds.iter().map(|s| s.written());
-    let nv_doc = if model.pool.rates_are_speeds() {
+    let nv_doc = if pool.rates_are_speeds() {
         " Number of speeds (the coordinates' rates)."
     } else {
         " Number of speeds (`v`, with `q̇ = N(q) v`)."
@@ -256,13 +257,13 @@ fn rows(outputs: &[TokenStream], width: usize) -> Vec<TokenStream> {
 /// One function: its docs, its signature (an argument it does not read is
 /// named with a leading `_`) and a straight-line body computing all its
 /// results, which share their subexpressions.
-fn emit_function(model: &Model, names: &Names, function: &Function) -> TokenStream {
+fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function) -> TokenStream {
     let roots: Vec<ExprId> = function
         .results
         .iter()
         .flat_map(|value| value.expressions.iter().copied())
         .collect();
-    let body = straight_line(&model.pool, names, &roots);
+    let body = straight_line(pool, names, &roots);
     let reads = |kind: fn(&Sym) -> bool| body.used.iter().any(kind);
     let (nq, nv, nu) = (
         array(model.nq()),
@@ -420,8 +421,7 @@ mod tests {
     fn one_function_returns_its_results_as_a_tuple_sharing_subexpressions() {
         let source = "S { parameters m; coordinates q; particle p { mass: m, at: O + q * N.x }; }";
         let system = crate::language::parse_system(source.parse().unwrap()).unwrap();
-        let mut model = crate::model::resolve(&system).unwrap();
-        let pool = &mut model.pool;
+        let (model, mut pool) = crate::model::resolve(&system).unwrap();
         let (m, q) = (pool.sym(Sym::Param(0)), pool.sym(Sym::Coord(0)));
         let sine = pool.sin(q);
         let product = pool.mul(m, sine);
@@ -432,7 +432,7 @@ mod tests {
             results: vec![Value::vector(vec![product]), Value::scalar(sine)],
             body: Body::Explicit,
         };
-        let emitted = emit_function(&model, &names(&model, Target::Std), &function);
+        let emitted = emit_function(&model, &pool, &names(&model, Target::Std), &function);
         let expected = quote! {
             #[doc = r#" Both."#]
             #[inline]

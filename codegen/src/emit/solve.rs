@@ -35,14 +35,19 @@ const MIN_ARTICULATED: usize = 3;
 const FUNCTION_COST: usize = 20;
 
 /// `pub fn accelerations(..)`, for systems without constraints.
-pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -> TokenStream {
-    let Some(factorised) = factorised(model, equations, names) else {
+pub fn emit_accelerations(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    names: &Names,
+) -> TokenStream {
+    let Some(factorised) = factorised(model, pool, equations, names) else {
         return TokenStream::new();
     };
     let nv = model.nv();
     let (doc, body) = match &equations.articulated {
         Some(articulated)
-            if articulated_is_cheaper(model, equations, articulated, &factorised.pattern) =>
+            if articulated_is_cheaper(model, pool, equations, articulated, &factorised.pattern) =>
         {
             (
                 [
@@ -53,7 +58,7 @@ pub fn emit_accelerations(model: &Model, equations: &Equations, names: &Names) -
                     " above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times the",
                     " largest pivot, is an error.",
                 ],
-                articulated_body(model, articulated, names),
+                articulated_body(model, pool, articulated, names),
             )
         }
         _ => {
@@ -154,7 +159,12 @@ impl Order {
 
 /// The factorisation and substitutions of `M x = f`; `None` for a system
 /// with constraints or no coordinates.
-pub fn factorised(model: &Model, equations: &Equations, names: &Names) -> Option<Factorised> {
+pub fn factorised(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    names: &Names,
+) -> Option<Factorised> {
     let nq = model.nv();
     if !model.constraints.is_empty() || nq == 0 {
         return None;
@@ -162,7 +172,7 @@ pub fn factorised(model: &Model, equations: &Equations, names: &Names) -> Option
     let (order, pattern) = [false, true]
         .map(|reversed| {
             let order = Order::new(nq, reversed);
-            let pattern = fill_pattern(model, equations, &order);
+            let pattern = fill_pattern(model, pool, equations, &order);
             (order, pattern)
         })
         .into_iter()
@@ -200,7 +210,7 @@ pub fn factorised(model: &Model, equations: &Equations, names: &Names) -> Option
         .map(|&(i, j)| equations.mass_matrix[i][j])
         .chain(equations.forcing.iter().copied())
         .collect();
-    let body = straight_line(&model.pool, names, &roots);
+    let body = straight_line(pool, names, &roots);
     let (statements, outputs) = (&body.statements, &body.outputs);
     let bound: Vec<Ident> = entries
         .iter()
@@ -231,8 +241,13 @@ pub fn factorised(model: &Model, equations: &Equations, names: &Names) -> Option
 
 /// The articulated-body route, up to `let qdd = [..];`: one straight-line
 /// body computing `f`, the pivots and `q̈`, then the checks.
-fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> TokenStream {
-    let body = straight_line(&model.pool, names, &articulated.roots());
+fn articulated_body(
+    model: &Model,
+    pool: &Pool,
+    articulated: &Articulated,
+    names: &Names,
+) -> TokenStream {
+    let body = straight_line(pool, names, &articulated.roots());
     let nq = model.nv();
     let statements = &body.statements;
     let forcing = &body.outputs[..nq];
@@ -262,11 +277,11 @@ fn articulated_body(model: &Model, articulated: &Articulated, names: &Names) -> 
 /// at any operation count.
 fn articulated_is_cheaper(
     model: &Model,
+    pool: &Pool,
     equations: &Equations,
     articulated: &Articulated,
     pattern: &[Vec<bool>],
 ) -> bool {
-    let pool = &model.pool;
     let mass_and_forcing: Vec<ExprId> = equations
         .mass_matrix
         .iter()
@@ -319,14 +334,19 @@ fn factorisation_operations(pattern: &[Vec<bool>]) -> usize {
 /// `pattern[i][j]` (`j ≤ i`, rows of the elimination `order`): whether
 /// `Lᵢⱼ` can be nonzero — `M`'s entry is not structurally zero, or fill-in
 /// through an earlier column.
-fn fill_pattern(model: &Model, equations: &Equations, order: &Order) -> Vec<Vec<bool>> {
+fn fill_pattern(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    order: &Order,
+) -> Vec<Vec<bool>> {
     let nq = model.nv();
     let mut pattern: Vec<Vec<bool>> = (0..nq)
         .map(|i| {
             (0..=i)
                 .map(|j| {
                     let entry = equations.mass_matrix[order.speeds[i]][order.speeds[j]];
-                    !model.pool.is_zero(entry)
+                    !pool.is_zero(entry)
                 })
                 .collect()
         })

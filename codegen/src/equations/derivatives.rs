@@ -89,8 +89,7 @@ mod tests {
     fn check_against_differences(source: &str) {
         let system =
             crate::language::parse_system(source.parse().expect("tokens")).expect("parses");
-        let mut model = crate::model::resolve(&system).expect("a valid model");
-        let mut pool = std::mem::take(&mut model.pool);
+        let (model, mut pool) = crate::model::resolve(&system).expect("a valid model");
         let equations = super::super::derive(&model, &mut pool);
         let (tau, _) = super::super::inverse_dynamics(&model, &equations, &mut pool);
         let (nq, nu, np) = (model.nq(), model.inputs.len(), model.parameters.len());

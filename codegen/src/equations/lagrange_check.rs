@@ -230,7 +230,7 @@ fn the_trees_among_them_take_the_recursive_route() {
         .filter_map(|source| {
             let system =
                 crate::language::parse_system(source.parse().expect("tokens")).expect("parses");
-            let model = crate::model::resolve(&system).unwrap_or_else(|e| panic!("{e}"));
+            let (model, _) = crate::model::resolve(&system).unwrap_or_else(|e| panic!("{e}"));
             model.tree.is_some().then(|| model.name.to_string())
         })
         .collect();

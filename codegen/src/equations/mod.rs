@@ -21,7 +21,7 @@ use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
 pub use articulated::Articulated;
 
-/// The derived equations of one system, as expressions of the model's pool.
+/// The derived equations of one system, as expressions of the pool the model was resolved into.
 #[derive(Clone)]
 pub struct Equations {
     /// `M(q)`, `nq × nq`.

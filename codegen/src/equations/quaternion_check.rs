@@ -60,12 +60,11 @@ const BALL_IN_CHAIN: &str = "pub BallInChain {
 
 fn derived(source: &str, recursive: bool) -> (Model, Pool, Equations) {
     let system = crate::language::parse_system(source.parse().expect("tokens")).expect("parses");
-    let mut model = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
+    let (mut model, mut pool) = resolve(&system).unwrap_or_else(|e| panic!("{e}"));
     assert!(model.tree.is_some(), "{} is a tree", model.name);
     if !recursive {
         model.tree = None;
     }
-    let mut pool = std::mem::take(&mut model.pool);
     let equations = derive(&model, &mut pool);
     (model, pool, equations)
 }

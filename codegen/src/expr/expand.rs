@@ -2,8 +2,6 @@
 //! small systems in documentation. Expansion can grow expressions
 //! exponentially: the derivation itself never uses it.
 
-use std::collections::HashMap;
-
 use super::{ExprId, Node, Pool};
 
 impl Pool {
@@ -13,25 +11,11 @@ impl Pool {
     /// symbols, calls and powers). Like terms are merged after each
     /// multiplication, so `(a + b)¹⁰` has 11 terms throughout.
     pub fn expand(&mut self, e: ExprId) -> ExprId {
-        let mut expanded: HashMap<ExprId, ExprId> = HashMap::new();
-        for n in self.topo_order(&[e]) {
-            let image = |c: ExprId| expanded[&c];
-            let new = match self.node(n).clone() {
-                Node::Number(_) | Node::Sym(_) => n,
-                Node::Add(terms) => {
-                    let terms: Vec<ExprId> = terms.iter().map(|&t| image(t)).collect();
-                    self.sum(terms)
-                }
-                Node::Mul(factors) => {
-                    let factors: Vec<ExprId> = factors.iter().map(|&f| image(f)).collect();
-                    self.distribute(factors)
-                }
-                Node::Pow(base, exp) => self.expand_power(image(base), exp),
-                Node::Func(f, arg) => self.func(f, image(arg)),
-            };
-            expanded.insert(n, new);
-        }
-        expanded[&e]
+        self.rebuild(&[e], |pool, node, images| match *pool.node(node) {
+            Node::Mul(_) => pool.distribute(images.iter().copied()),
+            Node::Pow(_, exp) => pool.expand_power(images[0], exp),
+            _ => pool.with_children(node, images),
+        })[0]
     }
 
     /// `base ^ exp` for an expanded `base`, multiplied out if `base` is a

@@ -1,8 +1,6 @@
 //! Elementary functions: exact folding of special values and the parity
 //! rules that keep `sin(-x)` and `-sin(x)` one node.
 
-use std::collections::HashMap;
-
 use super::{ExprId, Func, Node, Number, Pool};
 
 /// How a function treats a negated argument.
@@ -139,25 +137,10 @@ impl Pool {
     /// `roots` with every [`Func::Group`] replaced by its argument, so that
     /// its sums flatten into their surroundings again.
     pub fn ungroup(&mut self, roots: &[ExprId]) -> Vec<ExprId> {
-        let mut image: HashMap<ExprId, ExprId> = HashMap::new();
-        for n in self.topo_order(roots) {
-            let rebuilt = match self.node(n).clone() {
-                Node::Number(_) | Node::Sym(_) => n,
-                Node::Add(terms) => {
-                    let terms: Vec<ExprId> = terms.iter().map(|t| image[t]).collect();
-                    self.sum(terms)
-                }
-                Node::Mul(factors) => {
-                    let factors: Vec<ExprId> = factors.iter().map(|f| image[f]).collect();
-                    self.product(factors)
-                }
-                Node::Pow(base, exp) => self.powi(image[&base], exp),
-                Node::Func(Func::Group, arg) => image[&arg],
-                Node::Func(f, arg) => self.func(f, image[&arg]),
-            };
-            image.insert(n, rebuilt);
-        }
-        roots.iter().map(|r| image[r]).collect()
+        self.rebuild(roots, |pool, node, images| match pool.node(node) {
+            Node::Func(Func::Group, _) => images[0],
+            _ => pool.with_children(node, images),
+        })
     }
 
     /// `sin(a)`.

@@ -32,8 +32,8 @@
 //!
 //! Files: `number` (exact arithmetic), `decimal` (literal values), `kinds`
 //! (symbol summaries), `pool` (interning, queries, traversal), `canon`
-//! (sums, products, powers), `func` (elementary functions), `calculus`
-//! (derivatives), `eval` (the interpreter), and for tests `expand` and
+//! (sums, products, powers), `func` (elementary functions), `rebuild`
+//! (bottom-up rewriting), `calculus` (derivatives), `eval` (the interpreter), and for tests `expand` and
 //! `display`.
 
 mod calculus;
@@ -48,6 +48,7 @@ mod func;
 mod kinds;
 mod number;
 mod pool;
+mod rebuild;
 #[cfg(test)]
 mod test_util;
 #[cfg(test)]

@@ -1,7 +1,9 @@
 //! The model layer: a syntax tree resolved into a checked mechanical model.
 //!
 //! Names are bound to parameters, coordinates, inputs, frames and points;
-//! every scalar is an expression of the engine's [`Pool`]; every rule of the
+//! every scalar is an expression of the engine's [`Pool`], which
+//! [`resolve`] returns beside the model (the model holds ids into it, not
+//! the pool); every rule of the
 //! language (types, what may depend on what, required fields) is checked
 //! here, once, and all violations are reported together, each at the user's
 //! token. Later layers trust the model and report nothing.
@@ -86,8 +88,6 @@ pub struct Model {
     /// The outputs asked for beyond `M`, `f`, the energies and the
     /// constraints, in the order written.
     pub outputs: Vec<Output>,
-    /// The expressions of everything above.
-    pub pool: Pool,
 }
 
 /// A speed: a coordinate's rate `dt(q)`, or a speed of its own (a

@@ -3,25 +3,25 @@
 //! for a command-line tool ([`equations_text`]).
 //!
 //! Each entry is expanded and its trigonometric pairs recombined
-//! ([`readable`]); an entry too large for that is named in the rows and
+//! ([`crate::readable`]); an entry too large for that is named in the rows and
 //! noted as large in the listing. All entries share one budget of
 //! monomials (each at most [`ENTRY_BUDGET`]), so the rendering of a 30-body
 //! chain stays bounded in size and time.
 //!
-//! Files: `trig` (readable forms), `text` (the Unicode and LaTeX printers).
+//! The readable forms come from the derivation's [`ReadableForms`], which
+//! the optimiser filled first; `text` holds the Unicode and LaTeX printers.
 
 pub mod text;
-pub mod trig;
 
 use std::collections::{HashMap, HashSet};
 
 pub use text::Style;
 use text::{Coefficient, SymbolNames, label, latex, linear_combination, unicode};
-use trig::{readable, term_count};
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
+use crate::readable::{ReadableForms, term_count};
 
 /// Most monomials one entry may show.
 const ENTRY_BUDGET: usize = 100;
@@ -44,8 +44,9 @@ pub fn equations_doc(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
+    forms: &mut ReadableForms,
 ) -> (Vec<String>, String) {
-    let document = Document::new(model, equations, pool, Style::Unicode);
+    let document = Document::new(model, equations, pool, forms, Style::Unicode);
     let mut lines = vec![
         " # Equations of motion".to_string(),
         String::new(),
@@ -74,9 +75,10 @@ pub fn equations_text(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
+    forms: &mut ReadableForms,
     style: Style,
 ) -> String {
-    Document::new(model, equations, pool, style).text(model)
+    Document::new(model, equations, pool, forms, style).text(model)
 }
 
 /// A rendering independent of its output format.
@@ -99,7 +101,13 @@ struct Section {
 
 impl Document {
     /// Renders every part of `equations` in `style`.
-    fn new(model: &Model, equations: &Equations, pool: &mut Pool, style: Style) -> Document {
+    fn new(
+        model: &Model,
+        equations: &Equations,
+        pool: &mut Pool,
+        readable: &mut ReadableForms,
+        style: Style,
+    ) -> Document {
         let mut names = SymbolNames::new(&model.parameters, &model.coordinates, &model.inputs);
         let speeds_are_rates = pool.rates_are_speeds();
         if !speeds_are_rates {
@@ -109,9 +117,10 @@ impl Document {
             );
         }
         let equations = &equations.ungrouped(pool);
-        let forms = readable_forms(pool, &entries(equations));
+        let forms = readable_forms(pool, readable, &entries(equations));
         let mut renderer = Renderer {
             pool,
+            readable,
             names,
             style,
             forms,
@@ -226,7 +235,11 @@ fn form(style: Style, constrained: bool, speeds_are_rates: bool) -> String {
 /// entry first gets an equal share, then the entries that did not fit share
 /// what the others left, for a few rounds. An entry that never fits maps to
 /// the last budget it was given.
-fn readable_forms(pool: &mut Pool, entries: &[ExprId]) -> HashMap<ExprId, Result<ExprId, usize>> {
+fn readable_forms(
+    pool: &mut Pool,
+    readable: &mut ReadableForms,
+    entries: &[ExprId],
+) -> HashMap<ExprId, Result<ExprId, usize>> {
     let mut forms = HashMap::new();
     let mut seen = HashSet::new();
     let mut pending: Vec<ExprId> = entries
@@ -239,7 +252,7 @@ fn readable_forms(pool: &mut Pool, entries: &[ExprId]) -> HashMap<ExprId, Result
     for _ in 0..BUDGET_ROUNDS {
         let mut failed = Vec::new();
         for e in pending {
-            match readable(pool, e, budget) {
+            match readable.get(pool, e, budget) {
                 Some(form) => {
                     spent += term_count(pool, form);
                     forms.insert(e, Ok(form));
@@ -262,6 +275,8 @@ fn readable_forms(pool: &mut Pool, entries: &[ExprId]) -> HashMap<ExprId, Result
 /// Renders entries, computing each readable form once.
 struct Renderer<'a> {
     pool: &'a mut Pool,
+    /// The derivation's readable forms.
+    readable: &'a mut ReadableForms,
     names: SymbolNames,
     style: Style,
     /// Readable forms by expression, or the budget they exceeded.
@@ -274,7 +289,10 @@ impl Renderer<'_> {
         if let Some(&form) = self.forms.get(&e) {
             return form;
         }
-        let form = readable(self.pool, e, MIN_ENTRY_BUDGET).ok_or(MIN_ENTRY_BUDGET);
+        let form = self
+            .readable
+            .get(self.pool, e, MIN_ENTRY_BUDGET)
+            .ok_or(MIN_ENTRY_BUDGET);
         self.forms.insert(e, form);
         form
     }
@@ -451,8 +469,7 @@ mod tests {
     fn derive(source: &str) -> (Model, Equations, Pool) {
         let tokens: proc_macro2::TokenStream = source.parse().expect("tokens");
         let system = crate::language::parse_system(tokens).expect("a system");
-        let mut model = crate::model::resolve(&system).expect("a model");
-        let mut pool = std::mem::take(&mut model.pool);
+        let (model, mut pool) = crate::model::resolve(&system).expect("a model");
         let equations = crate::equations::derive(&model, &mut pool);
         (model, equations, pool)
     }
@@ -475,7 +492,7 @@ mod tests {
     #[test]
     fn double_pendulum_doc_in_the_seed_style() {
         let (model, equations, mut pool) = derive(DOUBLE_PENDULUM);
-        let (doc, _) = equations_doc(&model, &equations, &mut pool);
+        let (doc, _) = equations_doc(&model, &equations, &mut pool, &mut ReadableForms::default());
         assert_eq!(doc[0], " # Equations of motion");
         assert!(doc[2].contains("`M(q) q̈ = f(t, q, q̇, u)`"), "{}", doc[2]);
         assert_eq!(
@@ -503,7 +520,7 @@ mod tests {
     #[test]
     fn rotating_bar_rows_match_the_seed() {
         let (model, equations, mut pool) = derive(ROTATING_BAR);
-        let (doc, _) = equations_doc(&model, &equations, &mut pool);
+        let (doc, _) = equations_doc(&model, &equations, &mut pool, &mut ReadableForms::default());
         assert_eq!(
             rows(&doc),
             [
@@ -516,7 +533,7 @@ mod tests {
     #[test]
     fn constrained_pendulum_has_multipliers_and_constraint_rows() {
         let (model, equations, mut pool) = derive(CONSTRAINED_PENDULUM);
-        let (doc, _) = equations_doc(&model, &equations, &mut pool);
+        let (doc, _) = equations_doc(&model, &equations, &mut pool, &mut ReadableForms::default());
         assert!(doc[2].contains("A(q)ᵀ λ"), "{}", doc[2]);
         assert_eq!(
             rows(&doc),
@@ -537,7 +554,13 @@ mod tests {
             !doc.iter().any(|l| l.starts_with(" a₁₂")),
             "zero entries are listed"
         );
-        let latex = equations_text(&model, &equations, &mut pool, Style::Latex);
+        let latex = equations_text(
+            &model,
+            &equations,
+            &mut pool,
+            &mut ReadableForms::default(),
+            Style::Latex,
+        );
         assert!(latex.starts_with("% Equations of motion of ConstrainedPendulum\n"));
         for line in [
             "m \\ddot{x} &= \\lambda_{1} \\\\",
@@ -558,7 +581,13 @@ mod tests {
     #[test]
     fn unicode_text_for_the_command_line() {
         let (model, equations, mut pool) = derive(DOUBLE_PENDULUM);
-        let text = equations_text(&model, &equations, &mut pool, Style::Unicode);
+        let text = equations_text(
+            &model,
+            &equations,
+            &mut pool,
+            &mut ReadableForms::default(),
+            Style::Unicode,
+        );
         assert!(text.starts_with(
             "Equations of motion of DoublePendulum\nDerived with d'Alembert's principle"
         ));
@@ -598,7 +627,8 @@ mod tests {
     fn thirty_link_chains_stay_bounded() {
         for relative in [false, true] {
             let (model, equations, mut pool) = derive(&chain(30, relative));
-            let (doc, _) = equations_doc(&model, &equations, &mut pool);
+            let (doc, _) =
+                equations_doc(&model, &equations, &mut pool, &mut ReadableForms::default());
             let size: usize = doc.iter().map(String::len).sum();
             assert!(size < 400_000, "{size} bytes");
             let rows = rows(&doc);

@@ -25,6 +25,7 @@ use std::cmp::Reverse;
 use std::fmt::Display;
 
 use crate::expr::{ExprId, Func, Node, Number, Pool, Rational, Sym};
+use crate::readable::factors;
 
 /// Numerators and denominators below this are written as fractions
 /// (`1/12`, `4/3`); larger ones as decimals.
@@ -557,7 +558,7 @@ impl Term {
     fn of(pool: &Pool, e: ExprId, negate: bool) -> Term {
         let (c, rest) = pool.split_coefficient(e);
         let mut coefficient = if negate { -c } else { c };
-        let mut factors: Vec<Factor> = power_factors(pool, rest)
+        let mut factors: Vec<Factor> = factors(pool, rest)
             .into_iter()
             .map(|(base, exp)| {
                 let (flipped, odd) = orientation(pool, base);
@@ -593,19 +594,6 @@ impl Term {
     }
 }
 
-/// The factors of a coefficient-free monomial as `(base, exponent)`.
-fn power_factors(pool: &Pool, monomial: ExprId) -> Vec<(ExprId, i32)> {
-    let as_power = |f: ExprId| match pool.node(f) {
-        &Node::Pow(base, exp) => (base, exp),
-        _ => (f, 1),
-    };
-    match pool.node(monomial) {
-        _ if monomial == pool.one() => Vec::new(),
-        Node::Mul(fs) => fs.iter().map(|&f| as_power(f)).collect(),
-        _ => vec![as_power(monomial)],
-    }
-}
-
 /// Whether the argument of `base`, an odd or even function, prints
 /// negated, and whether the function is odd. The argument is negated when
 /// the term holding its greatest symbol is negative, so `cos(θ₁ − θ₂)`
@@ -630,7 +618,7 @@ fn orientation(pool: &Pool, base: ExprId) -> (bool, bool) {
 /// The greatest symbol among the factors of monomial `t`, if any.
 fn greatest_symbol(pool: &Pool, t: ExprId) -> Option<Sym> {
     let (_, rest) = pool.split_coefficient(t);
-    power_factors(pool, rest)
+    factors(pool, rest)
         .into_iter()
         .filter_map(|(base, _)| match pool.node(base) {
             Node::Sym(s) => Some(*s),
@@ -932,9 +920,9 @@ impl<'a> Walker<'a> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::trig::readable;
-    use super::super::trig::tests::{Build, seed_double_pendulum, symbols};
     use super::*;
+    use crate::readable::readable;
+    use crate::readable::tests::{Build, seed_double_pendulum, symbols};
 
     /// Names for `m, L, g, d, l`, `θ₁, θ₂` and the input `M_phi`.
     fn seed_names() -> SymbolNames {

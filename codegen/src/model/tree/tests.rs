@@ -6,8 +6,8 @@ use crate::seeds::{CONSTRAINED_PENDULUM, DOUBLE_PENDULUM, ROTATING_BAR};
 
 fn tree(source: &str) -> Option<Tree> {
     let system = parse_system(source.parse().expect("tokens")).expect("parses");
-    let mut model = crate::model::resolve(&system).unwrap_or_else(|e| panic!("{e}"));
-    model.tree.take()
+    let (model, _) = crate::model::resolve(&system).unwrap_or_else(|e| panic!("{e}"));
+    model.tree
 }
 
 /// `(parent, kind, coordinate)` of each link.

@@ -1,6 +1,6 @@
-//! Readable forms of derived expressions, for the generated docs: expand
-//! into a sum of monomials within a budget, then recombine trigonometric
-//! pairs until no rule applies:
+//! Readable forms of derived expressions: expand into a sum of monomials
+//! within a budget, then recombine trigonometric pairs until no rule
+//! applies:
 //!
 //! * `c·R·sin²x + c·R·cos²x = c·R`, and with different coefficients
 //!   `a·R·sin²x + b·R·cos²x = b·R + (a − b)·R·sin²x` when a term `R` is
@@ -15,11 +15,60 @@
 //! The orientation of a difference (`cos(θ₂ − θ₁)` or `cos(θ₁ − θ₂)`) is not
 //! chosen here: the pool keeps one canonical node for both (`cos` is even,
 //! `sin` odd). The printers pick the orientation that puts the
-//! highest-indexed coordinate first (see [`super::text`]).
+//! highest-indexed coordinate first (see [`crate::render::text`]).
+//!
+//! Two layers read them: the optimiser (an entry's compact form starts from
+//! its readable form) and the renderer (the docs print them). Both ask
+//! through one [`ReadableForms`] per derivation, so each form is computed
+//! once.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use crate::expr::{ExprId, Func, Node, Number, Pool};
+
+/// The readable forms of one derivation's expressions, each computed once
+/// for the optimiser and the renderer, which ask about the same
+/// expressions within different budgets.
+#[derive(Default)]
+pub struct ReadableForms {
+    /// What is known of each expression asked about (looked up, never
+    /// iterated).
+    known: HashMap<ExprId, Known>,
+}
+
+/// What the budgets tried so far tell of one expression's readable form.
+#[derive(Clone, Copy, Default)]
+struct Known {
+    /// The form, and the smallest budget it was found within.
+    fits: Option<(ExprId, usize)>,
+    /// The largest budget its expansion exceeded.
+    too_large: Option<usize>,
+}
+
+impl ReadableForms {
+    /// [`readable`]`(pool, e, budget)`, computed only if what is known of
+    /// `e` does not decide it. The budget only stops the work, so a form
+    /// found within a budget is the same within any larger one, and an
+    /// expansion too large for a budget is too large for any smaller one.
+    /// The reuse is exact: a computation it saves would retrace the steps
+    /// of an earlier one (or a prefix of them, when it fails sooner), so it
+    /// would intern no new node, and the pool's ids (which order sums and
+    /// products, and so the emitted code) are as without it.
+    pub fn get(&mut self, pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
+        let known = self.known.entry(e).or_default();
+        match (known.fits, known.too_large) {
+            (Some((form, within)), _) if within <= budget => return Some(form),
+            (_, Some(over)) if budget <= over => return None,
+            _ => {}
+        }
+        let form = readable(pool, e, budget);
+        match form {
+            Some(form) => known.fits = Some((form, budget)),
+            None => known.too_large = Some(budget),
+        }
+        form
+    }
+}
 
 /// How many products (before like terms merge) one multiplication of two
 /// expanded sums may form, in multiples of the budget: a little room for
@@ -52,42 +101,19 @@ pub fn readable(pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
 /// Like [`Pool::expand`], but giving up as soon as an intermediate result
 /// exceeds `budget` terms.
 fn expand_within(pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
-    let mut expanded: HashMap<ExprId, ExprId> = HashMap::new();
-    for n in pool.topo_order(&[e]) {
-        let image = expand_node(pool, n, &expanded, budget)?;
-        if term_count(pool, image) > budget {
-            return None;
-        }
-        expanded.insert(n, image);
-    }
-    expanded.get(&e).copied()
+    let expanded = pool.try_rebuild(&[e], |pool, node, images| {
+        let image = expand_node(pool, node, images, budget)?;
+        (term_count(pool, image) <= budget).then_some(image)
+    })?;
+    Some(expanded[0])
 }
 
-/// The expansion of node `n`, given those of its children.
-fn expand_node(
-    pool: &mut Pool,
-    n: ExprId,
-    expanded: &HashMap<ExprId, ExprId>,
-    budget: usize,
-) -> Option<ExprId> {
-    let images = |children: &[ExprId]| -> Option<Vec<ExprId>> {
-        children.iter().map(|c| expanded.get(c).copied()).collect()
-    };
-    match pool.node(n).clone() {
-        Node::Number(_) | Node::Sym(_) => Some(n),
-        Node::Add(terms) => {
-            let terms = images(&terms)?;
-            Some(pool.sum(terms))
-        }
-        Node::Mul(factors) => distribute(pool, &images(&factors)?, budget),
-        Node::Pow(base, exp) => {
-            let base = *images(&[base])?.first()?;
-            expand_power(pool, base, exp, budget)
-        }
-        Node::Func(f, arg) => {
-            let arg = *images(&[arg])?.first()?;
-            Some(pool.func(f, arg))
-        }
+/// The expansion of `node`, given those of its children.
+fn expand_node(pool: &mut Pool, node: ExprId, images: &[ExprId], budget: usize) -> Option<ExprId> {
+    match *pool.node(node) {
+        Node::Mul(_) => distribute(pool, images, budget),
+        Node::Pow(_, exp) => expand_power(pool, images[0], exp, budget),
+        _ => Some(pool.with_children(node, images)),
     }
 }
 
@@ -131,7 +157,7 @@ fn terms(pool: &Pool, e: ExprId) -> Vec<ExprId> {
 }
 
 /// The factors of a coefficient-free monomial as `(base, exponent)`.
-fn factors(pool: &Pool, monomial: ExprId) -> Vec<(ExprId, i32)> {
+pub fn factors(pool: &Pool, monomial: ExprId) -> Vec<(ExprId, i32)> {
     let as_power = |f: ExprId| match pool.node(f) {
         &Node::Pow(base, exp) => (base, exp),
         _ => (f, 1),
@@ -396,7 +422,7 @@ impl Rewrite<'_> {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+pub(crate) mod tests {
     use std::hash::{DefaultHasher, Hash, Hasher};
 
     use super::*;
@@ -435,7 +461,7 @@ pub(super) mod tests {
 
     /// Small constructors for building test expressions without nested
     /// `&mut` borrows.
-    pub(in crate::render) trait Build {
+    pub(crate) trait Build {
         fn num(&mut self, num: i128, den: i128) -> ExprId;
         fn prod(&mut self, factors: &[ExprId]) -> ExprId;
         fn plus(&mut self, terms: &[ExprId]) -> ExprId;
@@ -472,7 +498,7 @@ pub(super) mod tests {
     }
 
     /// `m, L, g, d, l` (parameters 0–4), `θ₁, θ₂` and `θ̇₁, θ̇₂`.
-    pub(in crate::render) struct Symbols {
+    pub(crate) struct Symbols {
         pub m: ExprId,
         pub big_l: ExprId,
         pub g: ExprId,
@@ -482,7 +508,7 @@ pub(super) mod tests {
         pub u: [ExprId; 2],
     }
 
-    pub(in crate::render) fn symbols(p: &mut Pool) -> Symbols {
+    pub(crate) fn symbols(p: &mut Pool) -> Symbols {
         let [m, big_l, g, d, l] = [0, 1, 2, 3, 4].map(|i| p.sym(Sym::Param(i)));
         Symbols {
             m,
@@ -549,7 +575,7 @@ pub(super) mod tests {
     }
 
     /// Seed 2: `M₁₁ = m d² (sin²φ + cos²φ) + 1/12 m l² cos²θ`.
-    pub(in crate::render) fn seed_rotating_bar_m11(p: &mut Pool, s: &Symbols) -> ExprId {
+    pub(crate) fn seed_rotating_bar_m11(p: &mut Pool, s: &Symbols) -> ExprId {
         let [phi, theta] = s.q;
         let (sin2, cos2) = (p.sin_pow(phi, 2), p.cos_pow(phi, 2));
         let squares = p.add(sin2, cos2);
@@ -641,7 +667,7 @@ pub(super) mod tests {
 
     /// Seed example 1 as d'Alembert produces it, with vectors in `N`
     /// components: `(M₁₂, f₁)`.
-    pub(in crate::render) fn seed_double_pendulum(p: &mut Pool, s: &Symbols) -> (ExprId, ExprId) {
+    pub(crate) fn seed_double_pendulum(p: &mut Pool, s: &Symbols) -> (ExprId, ExprId) {
         let ([t1, t2], [u1, u2]) = (s.q, s.u);
         let half = p.num(1, 2);
         let half_l = p.mul(half, s.big_l);
@@ -683,6 +709,26 @@ pub(super) mod tests {
         let weight = p.prod(&[minus_three_halves, s.m, s.g, s.big_l, sin1]);
         assert_eq!(form, p.add(coriolis, weight));
         assert_eq!(term_count(&p, form), 2);
+    }
+
+    /// Shared forms give `readable`'s answer at every budget, asked in any
+    /// order, and what they save would have interned nothing new.
+    #[test]
+    fn shared_forms_answer_as_readable_and_save_only_repeated_work() {
+        let mut p = Pool::new();
+        let s = symbols(&mut p);
+        let (m12, f1) = seed_double_pendulum(&mut p, &s);
+        let a_plus_b = p.add(s.q[0], s.q[1]);
+        let cube = p.pow(a_plus_b, 3);
+        let mut forms = ReadableForms::default();
+        for e in [m12, f1, cube] {
+            for budget in [400, 2, 200, 1, 400, 3, 4, 8, 2] {
+                let shared = forms.get(&mut p, e, budget);
+                let nodes = p.len();
+                assert_eq!(shared, readable(&mut p, e, budget), "budget {budget}");
+                assert_eq!(p.len(), nodes, "a saved computation interns a node");
+            }
+        }
     }
 
     #[test]

@@ -1,0 +1,219 @@
+//! The `{ field: value }` blocks of bodies, particles, joints and
+//! closures: which fields there are, and the values only fields take
+//! (masses, inertias, axes).
+
+use super::Resolver;
+use super::evaluate::{AXES, AXIS, MASS};
+use super::list;
+use crate::expr::{ExprId, Func, Number, Pool};
+use crate::language::ast::{Expr, Field};
+use crate::model::closure::FrameAxis;
+use crate::model::unit_axis;
+use proc_macro2::Ident;
+
+impl Resolver {
+    /// Picks the named fields out of a `{ ... }` block, reporting unknown,
+    /// repeated and missing ones.
+    pub(super) fn fields<'a, const K: usize>(
+        &mut self,
+        owner: &Ident,
+        what: &str,
+        fields: &'a [Field],
+        expected: [&str; K],
+    ) -> [Option<&'a Expr>; K] {
+        let mut found: [Option<&'a Expr>; K] = [None; K];
+        for field in fields {
+            match expected.iter().position(|name| field.name == name) {
+                Some(i) if found[i].is_some() => self.errors.push(
+                    field.name.span(),
+                    format!("field `{}` is given twice", field.name),
+                ),
+                Some(i) => found[i] = Some(&field.value),
+                None => self.errors.push(
+                    field.name.span(),
+                    format!(
+                        "unknown field `{}` of a {what}; expected {}",
+                        field.name,
+                        list(&expected)
+                    ),
+                ),
+            }
+        }
+        let missing: Vec<&str> = expected
+            .iter()
+            .zip(&found)
+            .filter(|(_, value)| value.is_none())
+            .map(|(name, _)| *name)
+            .collect();
+        if !missing.is_empty() {
+            self.errors.push(
+                owner.span(),
+                format!(
+                    "{what} `{owner}` is missing {} {}; a {what} needs {}",
+                    if missing.len() == 1 {
+                        "the field"
+                    } else {
+                        "the fields"
+                    },
+                    list(&missing),
+                    list(&expected)
+                ),
+            );
+        }
+        found
+    }
+
+    pub(super) fn mass(&mut self, e: &Expr) -> Option<ExprId> {
+        let mass = self.scalar(e, MASS)?;
+        if let Some(n) = self.pool.as_number(mass) {
+            if n.is_zero() || n.is_negative() {
+                self.errors.push(
+                    e.range(),
+                    "a mass must be positive; a frame without mass needs no body at all",
+                );
+                return None;
+            }
+        }
+        Some(mass)
+    }
+
+    /// `[Ixx, Iyy, Izz]` or `[Ixx, Iyy, Izz, Ixy, Iyz, Izx]`.
+    pub(super) fn inertia(&mut self, e: &Expr) -> Option<[[ExprId; 3]; 3]> {
+        let Expr::Array { items, span } = e else {
+            self.errors.push(
+                e.range(),
+                "expected the inertia as a list: `[Ixx, Iyy, Izz]` or `[Ixx, Iyy, Izz, Ixy, Iyz, Izx]`",
+            );
+            return None;
+        };
+        if items.len() != 3 && items.len() != 6 {
+            self.errors.push(
+                *span,
+                format!(
+                    "an inertia lists 3 principal moments `[Ixx, Iyy, Izz]` or 6 entries \
+                     `[Ixx, Iyy, Izz, Ixy, Iyz, Izx]`; found {}",
+                    items.len()
+                ),
+            );
+            return None;
+        }
+        let mut values = Vec::with_capacity(6);
+        for (i, item) in items.iter().enumerate() {
+            let value = self.scalar(item, MASS);
+            if let Some(n) = value.and_then(|v| self.pool.as_number(v)) {
+                if i < 3 && n.is_negative() {
+                    self.errors.push(
+                        item.range(),
+                        "a principal moment of inertia cannot be negative",
+                    );
+                }
+            }
+            values.push(value);
+        }
+        let values: Option<Vec<_>> = values.into_iter().collect();
+        let v = values?;
+        let zero = self.pool.zero();
+        let (xy, yz, zx) = if v.len() == 6 {
+            (v[3], v[4], v[5])
+        } else {
+            (zero, zero, zero)
+        };
+        Some([[v[0], xy, zx], [xy, v[1], yz], [zx, yz, v[2]]])
+    }
+
+    /// A joint axis: `x`, `y`, `z`, or a constant direction `[ax, ay, az]`.
+    pub(super) fn axis_name(&mut self, e: &Expr) -> Option<[ExprId; 3]> {
+        match e {
+            Expr::Name(ident) => {
+                if let Some(axis) = AXES.iter().position(|a| ident == a) {
+                    return Some(unit_axis(&self.pool, axis));
+                }
+            }
+            Expr::Array { .. } => return self.constant_axis(e),
+            _ => {}
+        }
+        self.errors.push(
+            e.range(),
+            "expected a joint axis: `x`, `y` or `z` (an axis of the parent frame), or a constant direction `[ax, ay, az]`",
+        );
+        None
+    }
+
+    /// A unit vector of a frame, `F.x`, `F.y` or `F.z` (closure axes).
+    pub(super) fn frame_axis(&mut self, e: &Expr) -> Option<FrameAxis> {
+        if let Expr::Member { base, member } = e {
+            if let Some(axis) = AXES.iter().position(|a| member == a) {
+                return self.frame_name(base).map(|frame| (frame, axis));
+            }
+        }
+        self.errors.push(
+            e.range(),
+            "expected a unit vector of a frame: `F.x`, `F.y` or `F.z`",
+        );
+        None
+    }
+
+    /// `[ax, ay, az]` of numbers and parameters, normalised to a unit
+    /// vector.
+    pub(super) fn constant_axis(&mut self, e: &Expr) -> Option<[ExprId; 3]> {
+        let Expr::Array { items, span } = e else {
+            self.errors.push(
+                e.range(),
+                "expected a constant axis `[ax, ay, az]` (its components in the parent frame's axes)",
+            );
+            return None;
+        };
+        if items.len() != 3 {
+            self.errors.push(
+                *span,
+                format!(
+                    "an axis has three components `[ax, ay, az]`; found {}",
+                    items.len()
+                ),
+            );
+            return None;
+        }
+        let components: Vec<Option<ExprId>> =
+            items.iter().map(|item| self.scalar(item, AXIS)).collect();
+        let components: [ExprId; 3] = [components[0]?, components[1]?, components[2]?];
+        let unit = normalised(&mut self.pool, components);
+        if unit.is_none() {
+            self.errors.push(
+                *span,
+                "the axis is zero; expected a non-zero direction `[ax, ay, az]`",
+            );
+        }
+        unit
+    }
+}
+
+/// `v / |v|`, exact where the length is rational, in floats for other
+/// numeric vectors; `None` for a vector that is zero.
+pub(super) fn normalised(pool: &mut Pool, v: [ExprId; 3]) -> Option<[ExprId; 3]> {
+    let squares: Vec<ExprId> = v.iter().map(|&c| pool.mul(c, c)).collect();
+    let length_squared = pool.sum(squares);
+    if pool.is_zero(length_squared) {
+        return None;
+    }
+    let numbers: Option<Vec<f64>> = v
+        .iter()
+        .map(|&c| pool.as_number(c).map(|n| n.to_f64()))
+        .collect();
+    let exact = pool
+        .as_rational(length_squared)
+        .is_some_and(|r| r.sqrt_exact().is_some());
+    match numbers {
+        Some(numbers) if !exact => {
+            let length = numbers.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if length == 0.0 || !length.is_finite() {
+                return None;
+            }
+            Some([0, 1, 2].map(|i| pool.number(Number::Float(numbers[i] / length))))
+        }
+        _ => {
+            let length = pool.func(Func::Sqrt, length_squared);
+            let inverse = pool.powi(length, -1);
+            Some(v.map(|c| pool.mul(c, inverse)))
+        }
+    }
+}
