@@ -70,19 +70,29 @@ fn error<const NQ: usize>(end: &State<NQ, NQ>, n: f64) -> f64 {
 /// One timed run: its name and the simulation returning the final state.
 type Run<'a, const NQ: usize> = (String, Box<dyn Fn() -> Result<State<NQ, NQ>, String> + 'a>);
 
-/// Checks every run's error on `B0`, then times them.
+/// Checks every run's error on `B0`, then times those that reach the high
+/// precision (the others are reported, not timed).
 fn time_runs<const NQ: usize>(
     group: &mut BenchmarkGroup<'_, WallTime>,
     n: f64,
     runs: &[Run<'_, NQ>],
 ) {
+    let mut precise = Vec::new();
     for (name, run) in runs {
-        let end = run().expect("the run crosses every singular position");
-        let error = error(&end, n);
-        assert!(error < HIGH_PRECISION, "{name}: B0 off by {error:e}");
-        eprintln!("N = {n}, {name}: B0 off by {error:.1e} m at {DURATION} s");
+        match run() {
+            Ok(end) if error(&end, n) < HIGH_PRECISION => {
+                let error = error(&end, n);
+                eprintln!("N = {n}, {name}: B0 off by {error:.1e} m at {DURATION} s");
+                precise.push((name, run));
+            }
+            Ok(end) => eprintln!(
+                "N = {n}, {name}: B0 off by {:.1e} m, beyond the high precision: not timed",
+                error(&end, n)
+            ),
+            Err(e) => eprintln!("N = {n}, {name}: fails ({e}): not timed"),
+        }
     }
-    for (name, run) in runs {
+    for (name, run) in precise {
         group.bench_function(name.as_str(), |b| {
             b.iter_custom(|iters| {
                 (0..iters)
@@ -174,19 +184,27 @@ fn forty_four_bars(c: &mut Criterion) {
         g: 9.81,
     };
     let sparse = ConstraintSolver::Sparse;
-    let runs: [Run<'_, 81>; 4] = [
+    let rk4 = |steps: u64| -> Run<'_, 81> {
+        let h = DURATION / steps as f64 * 1e3;
         (
-            "dop853_sparse_projection_tol1e-7".into(),
-            Box::new(move || simulate(&system, sparse, Method::Dop853(1e-7))),
-        ),
+            format!("rk4_sparse_projection_h{h:.1}ms"),
+            Box::new(move || simulate(&system, sparse, Method::Rk4(steps))),
+        )
+    };
+    let dop853 = |tolerance: f64| -> Run<'_, 81> {
         (
-            "rk4_sparse_projection_h25ms".into(),
-            Box::new(move || simulate(&system, sparse, Method::Rk4(800))),
-        ),
-        (
-            "rk4_sparse_projection_h20ms".into(),
-            Box::new(move || simulate(&system, sparse, Method::Rk4(1_000))),
-        ),
+            format!("dop853_sparse_projection_tol{tolerance:e}"),
+            Box::new(move || simulate(&system, sparse, Method::Dop853(tolerance))),
+        )
+    };
+    let runs: [Run<'_, 81>; 8] = [
+        dop853(1e-7),
+        dop853(3e-8),
+        dop853(1e-8),
+        rk4(700),
+        rk4(800),
+        rk4(900),
+        rk4(1_000),
         (
             "dop853_projection_tol1e-6".into(),
             Box::new(move || {
