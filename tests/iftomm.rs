@@ -169,17 +169,22 @@ fn ten_four_bars_cross_every_singular_position() {
     assert!(alf < 1e-3, "augmented Lagrangian: {alf:e}");
 }
 
-#[test]
-fn forty_four_bars_cross_every_singular_position_on_the_sparse_solver() {
-    // The benchmark's size: 81 coordinates, 80 closure rows, 20 s. The
-    // solvers' arrays of 81 × 81 entries, copied freely by a debug build,
-    // need more than a test thread's 2 MB of stack.
+/// Runs `test` on N = 40, the benchmark's size (81 coordinates, 80 closure
+/// rows), in a thread of 64 MB: the solvers' arrays of 81 × 81 entries,
+/// copied freely by a debug build, need more than a test thread's 2 MB of
+/// stack.
+fn with_a_large_stack(test: fn()) {
     std::thread::Builder::new()
         .stack_size(64 << 20)
-        .spawn(forty_four_bars)
+        .spawn(test)
         .expect("a thread")
         .join()
-        .expect("the run passes");
+        .expect("the test passes");
+}
+
+#[test]
+fn forty_four_bars_cross_every_singular_position_on_the_sparse_solver() {
+    with_a_large_stack(forty_four_bars);
 }
 
 fn forty_four_bars() {
@@ -217,12 +222,7 @@ fn forty_four_bars() {
 
 #[test]
 fn forty_four_bars_with_their_energy_held_keep_b0_ten_times_inside_the_high_precision() {
-    std::thread::Builder::new()
-        .stack_size(64 << 20)
-        .spawn(forty_four_bars_with_their_energy_held)
-        .expect("a thread")
-        .join()
-        .expect("the runs pass");
+    with_a_large_stack(forty_four_bars_with_their_energy_held);
 }
 
 /// One run of 20 s each by DOP853 at `1e-5` and RK4 at `h = 0.05 s`, the
