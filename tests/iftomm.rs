@@ -1,6 +1,7 @@
 //! The IFToMM benchmark mechanisms on the rank-revealing solver and the
 //! augmented Lagrangian integrator: the N-four-bar mechanism (A02) through
-//! every singular position, Bricard's overconstrained mechanism (A04) with
+//! every singular position (with N = 40 and the energy held, ten times
+//! inside the benchmark's precision), Bricard's overconstrained mechanism (A04) with
 //! its energy and closure kept, and the least-norm multipliers of a
 //! redundant four-bar against their closed form; the `closure` statements
 //! against the same rows written as coordinate equations; Andrews' squeezer
@@ -29,39 +30,47 @@ const PROJECTION: Stabilisation = Stabilisation::Projection {
 /// `0.05 k` s up to `t_end` (DOP853 at 1e-13 on the one-coordinate
 /// system: the independent reference).
 fn parallelogram_angles(n: f64, t_end: f64) -> Vec<f64> {
+    let steps = (t_end / 0.05).round() as u64;
+    (0..=steps)
+        .map(|k| parallelogram_angle(n, k as f64 * 0.05))
+        .collect()
+}
+
+/// The angle of every crank of the parallelogram motion of `n` windows at
+/// `t`.
+fn parallelogram_angle(n: f64, t: f64) -> f64 {
     let reduced = Parallelogram {
         m: 1.0,
         L: 1.0,
         g: 9.81,
         n,
     };
-    let mut angles = Vec::new();
     let start = State {
         t: 0.0,
         q: [FRAC_PI_2],
         v: [-1.0],
     };
-    let dynamics = Unconstrained::without_inputs(&reduced);
-    let steps = (t_end / 0.05).round() as u64;
-    for k in 0..=steps {
-        let t = k as f64 * 0.05;
-        let end = if k == 0 {
-            start
-        } else {
-            adaptive(
-                &dynamics,
-                start,
-                t,
-                ExplicitPair::Dop853,
-                AdaptiveOptions::with_tolerance(1e-13),
-                |_| {},
-            )
-            .unwrap()
-            .end
-        };
-        angles.push(end.q[0]);
+    if t == 0.0 {
+        return start.q[0];
     }
-    angles
+    let dynamics = Unconstrained::without_inputs(&reduced);
+    adaptive(
+        &dynamics,
+        start,
+        t,
+        ExplicitPair::Dop853,
+        AdaptiveOptions::with_tolerance(1e-13),
+        |_| {},
+    )
+    .unwrap()
+    .end
+    .q[0]
+}
+
+/// The distance of the tips of two cranks of unit length at the angles `a`
+/// and `b`: the error of the reference point `B0`.
+fn tip_distance(a: f64, b: f64) -> f64 {
+    (a.cos() - b.cos()).abs().max((a.sin() - b.sin()).abs())
 }
 
 /// Crossings of the horizontal (`sin phi0` changing sign) in `angles`.
@@ -86,13 +95,10 @@ where
     let steps = (t_end / 1e-3).round() as u64;
     let every = 50;
     let deviation = |angles: &[f64]| {
-        let worst = angles.iter().zip(&reference).fold(0.0f64, |m, (a, r)| {
-            m.max(
-                (a.sin_cos().0 - r.sin_cos().0)
-                    .abs()
-                    .max((a.cos() - r.cos()).abs()),
-            )
-        });
+        let worst = angles
+            .iter()
+            .zip(&reference)
+            .fold(0.0f64, |m, (&a, &r)| m.max(tip_distance(a, r)));
         (worst, crossings(angles.iter().copied()))
     };
     let dynamics = Constrained::without_inputs(system, PROJECTION);
@@ -163,17 +169,22 @@ fn ten_four_bars_cross_every_singular_position() {
     assert!(alf < 1e-3, "augmented Lagrangian: {alf:e}");
 }
 
-#[test]
-fn forty_four_bars_cross_every_singular_position_on_the_sparse_solver() {
-    // The benchmark's size: 81 coordinates, 80 closure rows, 20 s. The
-    // solvers' arrays of 81 × 81 entries, copied freely by a debug build,
-    // need more than a test thread's 2 MB of stack.
+/// Runs `test` on N = 40, the benchmark's size (81 coordinates, 80 closure
+/// rows), in a thread of 64 MB: the solvers' arrays of 81 × 81 entries,
+/// copied freely by a debug build, need more than a test thread's 2 MB of
+/// stack.
+fn with_a_large_stack(test: fn()) {
     std::thread::Builder::new()
         .stack_size(64 << 20)
-        .spawn(forty_four_bars)
+        .spawn(test)
         .expect("a thread")
         .join()
-        .expect("the run passes");
+        .expect("the test passes");
+}
+
+#[test]
+fn forty_four_bars_cross_every_singular_position_on_the_sparse_solver() {
+    with_a_large_stack(forty_four_bars);
 }
 
 fn forty_four_bars() {
@@ -205,10 +216,58 @@ fn forty_four_bars() {
     assert_eq!(crossings(angles.iter().copied()), expected);
     // The benchmark's high precision on the reference point B0 at 20 s.
     let (b0, phi) = (angles[angles.len() - 1], reference[reference.len() - 1]);
-    let error = (b0.cos() - phi.cos())
-        .abs()
-        .max((b0.sin() - phi.sin()).abs());
+    let error = tip_distance(b0, phi);
     assert!(error < 1e-3, "B0 off by {error:e}");
+}
+
+#[test]
+fn forty_four_bars_with_their_energy_held_keep_b0_ten_times_inside_the_high_precision() {
+    with_a_large_stack(forty_four_bars_with_their_energy_held);
+}
+
+/// One run of 20 s each by DOP853 at `1e-5` and RK4 at `h = 0.05 s`, the
+/// state projected onto the constraints and then onto the start's energy
+/// after every step: the settings of the IFToMM timing, far inside the
+/// precision whatever the start's last digits.
+fn forty_four_bars_with_their_energy_held() {
+    let system = FourBars40 {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let phi = parallelogram_angle(40.0, 20.0);
+    for nudge in [0.0, 1e-10] {
+        let mut start = four_bar_start();
+        start.q[0] += nudge;
+        let start = ConstraintSolver::Sparse
+            .project_onto_constraints(&system, &start, 1e-12, 10)
+            .unwrap();
+        let held = Stabilisation::EnergyProjection {
+            tolerance: 1e-12,
+            max_iterations: 10,
+            energy: energy(&system, &start.q, &start.v),
+        };
+        let dynamics =
+            Constrained::without_inputs(&system, held).with_solver(ConstraintSolver::Sparse);
+        let options = AdaptiveOptions::with_tolerance(1e-5);
+        let dop853 = adaptive(
+            &dynamics,
+            start,
+            20.0,
+            ExplicitPair::Dop853,
+            options,
+            |_| {},
+        )
+        .unwrap_or_else(|e| panic!("DOP853: {e}"));
+        let rk4 = rk4(&dynamics, start, 20.0, 400, |_| {}).unwrap_or_else(|e| panic!("RK4: {e}"));
+        for (name, end) in [("DOP853", dop853.end), ("RK4", rk4.end)] {
+            let error = tip_distance(end.q[0], phi);
+            assert!(
+                error < 1e-4,
+                "{name}, start nudged by {nudge:e}: B0 off by {error:e}"
+            );
+        }
+    }
 }
 
 /// Bricard's mechanism at rest in its cube configuration.

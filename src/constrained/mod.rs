@@ -9,7 +9,8 @@
 //!   constraints, singular positions and coordinates without inertia of
 //!   their own are handled;
 //! * [`project_onto_constraints`] moves a state back onto the constraint
-//!   manifold (positions, then speeds);
+//!   manifold (positions, then speeds), and [`project_onto_energy_level`]
+//!   the speeds of a conservative system onto its energy level;
 //! * a [`Stabilisation`] chooses how [`Constrained`](crate::Constrained)
 //!   dynamics keep an integration on the manifold, and
 //!   [`constraint_drift`] measures how far it is off.
@@ -27,6 +28,6 @@ pub use multipliers::{
     constrained_accelerations,
 };
 pub(crate) use projection::checked;
-pub use projection::project_onto_constraints;
+pub use projection::{project_onto_constraints, project_onto_energy_level};
 pub use sparse::STIFFNESS;
 pub use stabilisation::{Stabilisation, constraint_drift};

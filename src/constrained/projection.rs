@@ -1,14 +1,15 @@
 //! Coordinate projection: a state that has drifted off the constraint
 //! manifold is moved back onto it, positions by Gauss–Newton on `φ(t, q) = 0`
 //! and speeds by the exact projection onto `ψ(t, q, q̇) = 0`, both along the
-//! shortest path in the metric of the mass matrix.
+//! shortest path in the metric of the mass matrix; and the speeds of a
+//! conservative system onto its energy level.
 
 use nalgebra::SVector;
 
 use super::ConstraintSolver;
 use super::multipliers::ConstraintMetric;
 use crate::dynamics::{all_finite, pivot_names};
-use crate::{ConstrainedSystem, DynamicsError, State};
+use crate::{ConstrainedSystem, DynamicsError, MultibodySystem, State};
 
 /// `state` moved onto the constraint manifold at its time: first the
 /// coordinates, until the largest holonomic residual `|φᵢ(t, q)|` is at most
@@ -141,6 +142,34 @@ where
     Ok(std::array::from_fn(|i| v[i] - correction[i]))
 }
 
+/// `state` with its speeds scaled so that its energy `T + V` is `energy`:
+/// the nearest such state in the metric of the mass matrix along the
+/// speeds (the gradient of `T = ½ vᵀ M v` in that metric is `v` itself),
+/// which keeps every velocity constraint `A v = 0` of a system whose
+/// constraints do not depend on time. A state at rest, or whose potential
+/// energy alone exceeds `energy`, has no such speeds and is returned as it
+/// is (so is a non-finite one).
+pub fn project_onto_energy_level<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    state: &State<NQ, NV>,
+    energy: f64,
+) -> State<NQ, NV>
+where
+    S: MultibodySystem<NQ, NV, NU>,
+{
+    let kinetic = system.kinetic_energy(&state.q, &state.v);
+    let available = energy - system.potential_energy(&state.q);
+    let scale = (available / kinetic).sqrt();
+    if kinetic > 0.0 && scale.is_finite() {
+        State {
+            v: state.v.map(|v| v * scale),
+            ..*state
+        }
+    } else {
+        *state
+    }
+}
+
 /// `values`, or an error if one of them is not finite.
 pub(crate) fn checked<const NC: usize>(values: [f64; NC]) -> Result<[f64; NC], DynamicsError> {
     if all_finite(&values) {
@@ -191,6 +220,31 @@ mod tests {
         let along = |v: [f64; 2]| v[0] * tangent[0] + v[1] * tangent[1];
         assert!((along(projected.v) - along(start.v)).abs() < 1e-15);
         assert_eq!(projected.t, start.t);
+    }
+
+    #[test]
+    fn the_energy_level_is_reached_by_scaling_the_speeds_along_the_circle() {
+        let PointOnCircle { m, l, g } = PENDULUM;
+        // On the circle at 0.7 rad from the downward vertical, moving along it
+        // at 0.8 m/s: the level of 3 J needs the speed √(2 (3 + m g l cos θ) / m).
+        let (s, c) = 0.7f64.sin_cos();
+        let on = State {
+            t: 0.0,
+            q: [l * s, -l * c],
+            v: [0.8 * c, 0.8 * s],
+        };
+        let level = project_onto_energy_level(&PENDULUM, &on, 3.0);
+        let speed = (2.0 * (3.0 + m * g * l * c) / m).sqrt();
+        assert!((level.v[0] - speed * c).abs() < 1e-14, "{level:?}");
+        assert!((level.v[1] - speed * s).abs() < 1e-14, "{level:?}");
+        assert_eq!(level.q, on.q);
+        let [psi] = PENDULUM.constraint_velocity(0.0, &level.q, &level.v);
+        assert!(psi.abs() < 1e-15, "{psi}");
+        // At rest, or below the potential energy, there is nothing to scale.
+        let at_rest = State { v: [0.0; 2], ..on };
+        assert_eq!(project_onto_energy_level(&PENDULUM, &at_rest, 3.0), at_rest);
+        let too_low = project_onto_energy_level(&PENDULUM, &on, -m * g * l);
+        assert_eq!(too_low, on);
     }
 
     #[test]

@@ -6,7 +6,7 @@
 use std::marker::PhantomData;
 
 use super::State;
-use crate::constrained::{ConstraintSolver, Stabilisation};
+use crate::constrained::{ConstraintSolver, Stabilisation, project_onto_energy_level};
 use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
 
 /// Equations of motion `v̇ = a(t, q, v)`, `q̇ = N(q) v` as the integrators
@@ -243,7 +243,9 @@ where
                 self.solver
                     .baumgarte_accelerations(self.system, t, q, v, &u, alpha, beta)
             }
-            Stabilisation::None | Stabilisation::Projection { .. } => {
+            Stabilisation::None
+            | Stabilisation::Projection { .. }
+            | Stabilisation::EnergyProjection { .. } => {
                 self.solver.accelerations(self.system, t, q, v, &u)
             }
         };
@@ -268,6 +270,19 @@ where
             } => {
                 self.solver
                     .project_onto_constraints(self.system, state, tolerance, max_iterations)
+            }
+            Stabilisation::EnergyProjection {
+                tolerance,
+                max_iterations,
+                energy,
+            } => {
+                let projected = self.solver.project_onto_constraints(
+                    self.system,
+                    state,
+                    tolerance,
+                    max_iterations,
+                )?;
+                Ok(project_onto_energy_level(self.system, &projected, energy))
             }
             Stabilisation::None | Stabilisation::Baumgarte { .. } => Ok(*state),
         }
