@@ -39,7 +39,8 @@
 //! * [`dynamics`]: the accelerations `v̇` of `M v̇ = f` and their errors;
 //! * [`constrained`]: accelerations and multipliers of constrained systems,
 //!   projection onto the constraints, drift stabilisation;
-//! * [`integrate`]: the integrators, and which one to use for which job.
+//! * [`integrate`]: the integrators, and which one to use for which job;
+//! * [`math`]: the elementary functions the generated code calls.
 //!
 //! The language, the generated API and the build-script route are described
 //! in the project's README and `docs/language.md`; `Pendulum::EQUATIONS` and
@@ -52,6 +53,7 @@ pub use dalembert_macros::dalembert;
 pub mod constrained;
 pub mod dynamics;
 pub mod integrate;
+pub mod math;
 mod system;
 #[cfg(test)]
 mod test_systems;

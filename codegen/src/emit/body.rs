@@ -322,10 +322,18 @@ impl Writer<'_> {
         }
     }
 
-    /// `let (s, c) = x.sin_cos();` binding a sine and the cosine of the
-    /// same argument with one call.
+    /// `let (s, c) = ::dalembert::math::sin_cos(x);` binding a sine and the
+    /// cosine of the same argument with one call (the runtime's, cheaper
+    /// than `f64::sin_cos`: see its `math` module); `::libm::sincos(x)`
+    /// without the runtime.
     fn bind_sin_cos(&mut self, sine: ExprId, cosine: ExprId, arg: ExprId) {
-        let call = self.method_call(arg, "sin_cos");
+        let call = match self.names.libm {
+            true => self.method_call(arg, "sin_cos"),
+            false => {
+                let argument = self.expr(arg);
+                quote!(::dalembert::math::sin_cos(#argument))
+            }
+        };
         let (s, c) = (self.temporary_name(sine), self.temporary_name(cosine));
         self.statements.extend(quote!(let (#s, #c) = #call;));
         self.bound.insert(sine, quote!(#s));
