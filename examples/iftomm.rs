@@ -3,7 +3,8 @@
 //! squeezer) and A04 (Bricard's overconstrained mechanism), each simulated
 //! over the benchmark's duration with the rank-revealing and the sparse
 //! constraint solvers (RK4 and DOP853, projected after every step) and with
-//! the index-3 augmented Lagrangian method: energy
+//! the index-3 augmented Lagrangian method (and, on A02, the Runge–Kutta
+//! methods again with the energy held after each projection): energy
 //! drift, largest constraint residual and the error of the benchmark's
 //! reference point against an independent reference, then a work-precision
 //! chart per benchmark (error of the reference point at the final time
@@ -140,6 +141,7 @@ fn pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
             tolerances: &[1e-8, 1e-10, 1e-12],
             alf_steps: &[1e-3, 5e-4, 2.5e-4],
             solvers: DENSE,
+            energy_held: false,
         },
     )
 }
@@ -221,6 +223,7 @@ where
             tolerances: &[1e-4, 1e-5, 1e-6, 1e-8, 1e-10],
             alf_steps: &[],
             solvers: SPARSE,
+            energy_held: true,
         }
     } else {
         Settings {
@@ -228,6 +231,7 @@ where
             tolerances: &[1e-6, 1e-8, 1e-10],
             alf_steps: &[2e-3, 1e-3, 5e-4],
             solvers: BOTH,
+            energy_held: true,
         }
     };
     run(
@@ -282,6 +286,7 @@ fn andrews(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
             tolerances: &[1e-6, 1e-8, 1e-10],
             alf_steps: &[2e-5, 1e-5, 5e-6],
             solvers: DENSE,
+            energy_held: false,
         },
     )
 }
@@ -335,6 +340,7 @@ fn bricard(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
             tolerances: &[1e-6, 1e-8, 1e-10],
             alf_steps: &[2e-3, 1e-3, 5e-4],
             solvers: DENSE,
+            energy_held: false,
         },
     )
 }
@@ -378,12 +384,15 @@ where
 
 /// The methods' settings on one benchmark: RK4 steps, DOP853 tolerances
 /// (each with every solver of `solvers`) and the augmented Lagrangian
-/// method's steps.
+/// method's steps; with `energy_held`, the Runge–Kutta lines run a second
+/// time with the energy held after each projection
+/// (`Stabilisation::EnergyProjection`, for conservative mechanisms only).
 struct Settings<'a> {
     steps: &'a [f64],
     tolerances: &'a [f64],
     alf_steps: &'a [f64],
     solvers: &'a [(&'a str, ConstraintSolver)],
+    energy_held: bool,
 }
 
 /// The constraint solvers of the Runge–Kutta lines, by the suffix of their
@@ -450,11 +459,22 @@ where
             points.push(measured);
             Ok(())
         };
-    for &(suffix, solver) in settings.solvers {
-        let dynamics = Constrained::without_inputs(system, PROJECTION).with_solver(solver);
+    let held = Stabilisation::EnergyProjection {
+        tolerance: 1e-12,
+        max_iterations: 10,
+        energy: initial,
+    };
+    let stabilisations = [("projection", PROJECTION), ("energy held", held)];
+    let stabilisations = &stabilisations[..1 + usize::from(settings.energy_held)];
+    for (&(suffix, solver), &(kept, stabilisation)) in settings
+        .solvers
+        .iter()
+        .flat_map(|s| stabilisations.iter().map(move |k| (s, k)))
+    {
+        let dynamics = Constrained::without_inputs(system, stabilisation).with_solver(solver);
         for &h in settings.steps {
             let n = (duration / h).round() as u64;
-            record(&format!("RK4 + projection{suffix}"), h, &mut |observer| {
+            record(&format!("RK4 + {kept}{suffix}"), h, &mut |observer| {
                 rk4(&dynamics, start, duration, n, observer)
             })?;
         }
@@ -464,7 +484,7 @@ where
                 ..AdaptiveOptions::with_tolerance(tolerance)
             };
             record(
-                &format!("DOP853 + projection{suffix}"),
+                &format!("DOP853 + {kept}{suffix}"),
                 tolerance,
                 &mut |observer| {
                     adaptive(
