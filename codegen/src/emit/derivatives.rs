@@ -47,13 +47,13 @@ pub fn emit_accelerations_jacobian(
     else {
         return TokenStream::new();
     };
-    let (nq, nu) = (model.nq(), model.inputs.len());
+    let (nv, nu) = (model.nv(), model.inputs.len());
     // ∂τ/∂q, ∂τ/∂v and ∂τ/∂u by columns: solved, then negated as they are
     // transposed into rows.
     let roots: Vec<ExprId> = function
         .results
         .iter()
-        .zip([nq, nq, nu])
+        .zip([nv, nv, nu])
         .flat_map(|(value, columns)| by_columns(&value.expressions, columns))
         .collect();
     let Straight {
@@ -62,24 +62,24 @@ pub fn emit_accelerations_jacobian(
         ..
     } = straight_line(&model.pool, names, &roots);
     let columns: Vec<TokenStream> = outputs
-        .chunks(nq)
+        .chunks(nv)
         .map(|column| quote!([#(#column),*]))
         .collect();
-    let (q_columns, rest) = columns.split_at(nq);
-    let (v_columns, u_columns) = rest.split_at(nq);
-    let (vector, inputs) = (array(nq), array(nu));
+    let (q_columns, rest) = columns.split_at(nv);
+    let (v_columns, u_columns) = rest.split_at(nv);
+    let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
     // Every array is destructured, never indexed: no panic path.
     let names_of = |prefix: &str, count: usize| -> Vec<Ident> {
         (0..count)
             .map(|j| format_ident!("{}{}", prefix, j))
             .collect()
     };
-    let (cq, cv, cu) = (names_of("cq", nq), names_of("cv", nq), names_of("cu", nu));
+    let (cq, cv, cu) = (names_of("cq", nv), names_of("cv", nv), names_of("cu", nu));
     // Column `j` of `M⁻¹ ∂τ/∂x`, entry `i`: `{prefix}{j}_{i}`.
     let entry = |prefix: &str, j: usize, i: usize| format_ident!("{}{}_{}", prefix, j, i);
     let solved = |prefix: &str, columns: &[Ident]| -> TokenStream {
         let patterns = (0..columns.len()).map(|j| {
-            let entries = (0..nq).map(|i| entry(prefix, j, i));
+            let entries = (0..nv).map(|i| entry(prefix, j, i));
             quote!([#(#entries),*])
         });
         let n = Literal::usize_unsuffixed(columns.len());
@@ -87,7 +87,7 @@ pub fn emit_accelerations_jacobian(
     };
     // `∂v̇/∂x = −M⁻¹ ∂τ/∂x`, row by row.
     let transposed = |prefix: &str, columns: usize| -> TokenStream {
-        let rows = (0..nq).map(|i| {
+        let rows = (0..nv).map(|i| {
             let row = (0..columns).map(|j| {
                 let name = entry(prefix, j, i);
                 quote!(-#name)
@@ -98,13 +98,13 @@ pub fn emit_accelerations_jacobian(
     };
     let solves = [solved("dq", &cq), solved("dv", &cv), solved("du", &cu)];
     let (dq, dv, du) = (
-        transposed("dq", nq),
-        transposed("dv", nq),
+        transposed("dq", nv),
+        transposed("dv", nv),
         transposed("du", nu),
     );
-    let (square, wide) = (matrix(nq, nq), matrix(nq, nu));
+    let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
     let literal = Literal::usize_unsuffixed;
-    let (n, nu_lit) = (literal(nq), literal(nu));
+    let (n, nu_lit) = (literal(nv), literal(nu));
     let (name, docs) = (
         &function.name,
         function.docs.iter().map(|line| raw_string(line)),
@@ -115,7 +115,7 @@ pub fn emit_accelerations_jacobian(
         pub fn #name(
             &self,
             t: f64,
-            q: &#vector,
+            q: &#coordinates,
             qd: &#vector,
             u: &#inputs,
         ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
@@ -145,36 +145,41 @@ pub fn emit_accelerations_jacobian(
     }
 }
 
-/// `pub fn linearize(..)` from `accelerations_jacobian`, for `q̇ = v`, with
-/// the docs of `function`.
-pub fn emit_linearize(model: &Model, function: &Function) -> TokenStream {
-    let (nq, nu) = (model.nq(), model.inputs.len());
-    let (vector, inputs) = (array(nq), array(nu));
-    let (a, b) = (matrix(2 * nq, 2 * nq), matrix(2 * nq, nu));
-    let literal = Literal::usize_unsuffixed;
-    let kinematic_rows = (0..nq).map(|i| {
-        let row = (0..2 * nq).map(|j| {
-            if j == nq + i {
-                quote!(1.0)
-            } else {
-                quote!(0.0)
-            }
-        });
-        quote!([#(#row),*])
-    });
+/// `pub fn linearize(..)`: the kinematic rows `K_δ`, `K_v` (the results
+/// of `function`) by a straight-line body, the dynamic rows from
+/// `accelerations_jacobian`, with the docs of `function`.
+pub fn emit_linearize(model: &Model, names: &Names, function: &Function) -> TokenStream {
+    let (nv, nu) = (model.nv(), model.inputs.len());
+    let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
+    let (a, b) = (matrix(2 * nv, 2 * nv), matrix(2 * nv, nu));
+    let roots: Vec<ExprId> = function
+        .results
+        .iter()
+        .flat_map(|value| value.expressions.iter().copied())
+        .collect();
+    let Straight {
+        statements,
+        outputs,
+        ..
+    } = straight_line(&model.pool, names, &roots);
+    let (kinematic_by_q, kinematic_by_v) = outputs.split_at(nv * nv);
+    let kinematic_rows = kinematic_by_q
+        .chunks(nv)
+        .zip(kinematic_by_v.chunks(nv))
+        .map(|(q_row, v_row)| quote!([#(#q_row,)* #(#v_row),*]));
     // `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` destructured: entries `dq{i}_{j}`,
     // `dv{i}_{j}`, rows `du{i}`.
     let entries = |prefix: &str| -> Vec<Vec<Ident>> {
-        (0..nq)
+        (0..nv)
             .map(|i| {
-                (0..nq)
+                (0..nv)
                     .map(|j| format_ident!("{}{}_{}", prefix, i, j))
                     .collect()
             })
             .collect()
     };
     let (by_q, by_v) = (entries("dq"), entries("dv"));
-    let input_rows: Vec<Ident> = (0..nq).map(|i| format_ident!("du{}", i)).collect();
+    let input_rows: Vec<Ident> = (0..nv).map(|i| format_ident!("du{}", i)).collect();
     let pattern = |rows: &[Vec<Ident>]| {
         let rows = rows.iter().map(|row| quote!([#(#row),*]));
         quote!([#(#rows),*])
@@ -184,9 +189,15 @@ pub fn emit_linearize(model: &Model, function: &Function) -> TokenStream {
         .iter()
         .zip(&by_v)
         .map(|(q_row, v_row)| quote!([#(#q_row,)* #(#v_row),*]));
-    let nu = literal(nu);
+    let nu = Literal::usize_unsuffixed(nu);
     let zero_row = quote!([0.0; #nu]);
-    let zero_rows = (0..nq).map(|_| zero_row.clone());
+    let zero_rows = (0..nv).map(|_| zero_row.clone());
+    let kinematic_names: Vec<Ident> = (0..nv).map(|i| format_ident!("k{}", i)).collect();
+    let kinematic = match statements.is_empty() {
+        true => quote!([#(#kinematic_rows),*]),
+        false => quote!({ #statements [#(#kinematic_rows),*] }),
+    };
+    let (state_row, n) = (array(2 * nv), Literal::usize_unsuffixed(nv));
     let docs = function.docs.iter().map(|line| raw_string(line));
     quote! {
         #(#[doc = #docs])*
@@ -194,14 +205,15 @@ pub fn emit_linearize(model: &Model, function: &Function) -> TokenStream {
         pub fn linearize(
             &self,
             t: f64,
-            q: &#vector,
+            q: &#coordinates,
             qd: &#vector,
             u: &#inputs,
         ) -> ::core::result::Result<(#a, #b), ::dalembert::DynamicsError> {
             let (#q_pattern, #v_pattern, [#(#input_rows),*]) =
                 self.accelerations_jacobian(t, q, qd, u)?;
+            let [#(#kinematic_names),*]: [#state_row; #n] = #kinematic;
             ::core::result::Result::Ok((
-                [#(#kinematic_rows,)* #(#dynamic_rows),*],
+                [#(#kinematic_names,)* #(#dynamic_rows),*],
                 [#(#zero_rows,)* #(#input_rows),*],
             ))
         }

@@ -61,7 +61,7 @@ pub fn emit(
             (Body::AccelerationsJacobian, Target::Std) => {
                 derivatives::emit_accelerations_jacobian(model, equations, &names, function)
             }
-            (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, function),
+            (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, &names, function),
         })
         .collect();
     items.push(configuration::emit_configuration(model, &names));

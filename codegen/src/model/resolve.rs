@@ -572,25 +572,20 @@ impl Resolver {
     /// `accelerations_jacobian` and `linearize` solve `M v̇ = f`: with
     /// constraints, the accelerations and their derivatives live on the
     /// constraint manifold, which these outputs do not handle yet. The
-    /// derivatives by `q` and the regressor are taken in the coordinates,
-    /// so they need every speed to be its coordinate's rate.
+    /// regressor is taken in the coordinates, so it needs every speed to be
+    /// its coordinate's rate.
     fn check_solved_outputs(&mut self) {
-        use super::OutputKind::{
-            AccelerationsJacobian, InverseDynamicsJacobian, Linearize, Regressor,
-        };
+        use super::OutputKind::{AccelerationsJacobian, Linearize, Regressor};
         if self.model.nq() != self.model.nv() {
             for output in &self.model.outputs {
-                if matches!(
-                    output.kind,
-                    AccelerationsJacobian | InverseDynamicsJacobian | Linearize | Regressor
-                ) {
+                if output.kind == Regressor {
                     let name = &output.function;
                     self.errors.push(
                         name.span(),
                         format!(
                             "`{name}` is not available yet for a system whose speeds are not \
-                             its coordinates' rates (a free or spherical joint, a `speeds` \
-                             statement): remove it from `outputs`"
+                             its coordinates' rates (a free or spherical joint): remove it \
+                             from `outputs`"
                         ),
                     );
                 }

@@ -4,9 +4,11 @@
 //! [`crate::equations::derivatives`]).
 
 use super::{Argument, Body, Function, Value, doc_lines};
-use crate::equations::derivatives::{ResidualJacobian, residual_jacobian};
+use crate::equations::derivatives::{
+    ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
+};
 use crate::equations::{Equations, inverse_dynamics};
-use crate::expr::Pool;
+use crate::expr::{Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Span};
 
@@ -23,7 +25,8 @@ fn partials(
         true => "the Newton–Euler recursion over the kinematic tree",
         false => "the mass matrix and the forcing",
     };
-    let jacobian = residual_jacobian(pool, &tau, model.nq(), model.inputs.len());
+    let directions = tangent_directions(model, pool);
+    let jacobian = residual_jacobian(pool, &tau, &directions, model.inputs.len());
     (jacobian, route)
 }
 
@@ -50,21 +53,22 @@ pub fn inverse_dynamics_jacobian(
     equations: &Equations,
     pool: &mut Pool,
 ) -> Function {
-    let nq = model.nq();
+    let nv = model.nv();
     let (jacobian, route) = partials(model, equations, pool);
+    let tangent = tangent_note(model);
     function(
         "inverse_dynamics_jacobian",
         &format!(
             "The derivatives of the inverse dynamics `τ(t, q, v, v̇, u) = M v̇ − f`:\n\
              `(∂τ/∂q, ∂τ/∂v, ∂τ/∂v̇ = M)`, entry `[i][j]` the derivative of `τᵢ` by\n\
              the `j`-th variable. Exact: `τ`, derived by {route},\n\
-             differentiated symbolically, the shared subexpressions computed once."
+             differentiated symbolically, the shared subexpressions computed once.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Accelerations, Inputs],
         vec![
-            Value::matrix(&jacobian.coordinates, nq),
-            Value::matrix(&jacobian.speeds, nq),
-            Value::matrix(&equations.mass_matrix, nq),
+            Value::matrix(&jacobian.coordinates, nv),
+            Value::matrix(&jacobian.speeds, nv),
+            Value::matrix(&equations.mass_matrix, nv),
         ],
         Body::Explicit,
     )
@@ -72,8 +76,9 @@ pub fn inverse_dynamics_jacobian(
 
 /// `accelerations_jacobian(t, q, v, u) -> Result<(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u), _>`.
 pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut Pool) -> Function {
-    let (nq, nu) = (model.nq(), model.inputs.len());
+    let (nv, nu) = (model.nv(), model.inputs.len());
     let (jacobian, route) = partials(model, equations, pool);
+    let tangent = tangent_note(model);
     function(
         "accelerations_jacobian",
         &format!(
@@ -84,33 +89,73 @@ pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut P
              of `τ` (derived by {route}) are differentiated\n\
              symbolically, and every column goes through the `L D Lᵀ` factorisation\n\
              of `M` that solved for `v̇`. The errors of `accelerations`, and\n\
-             `NonFiniteEquations` for a non-finite derivative."
+             `NonFiniteEquations` for a non-finite derivative.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Inputs],
         vec![
-            Value::matrix(&jacobian.coordinates, nq),
-            Value::matrix(&jacobian.speeds, nq),
+            Value::matrix(&jacobian.coordinates, nv),
+            Value::matrix(&jacobian.speeds, nv),
             Value::matrix(&jacobian.inputs, nu),
         ],
         Body::AccelerationsJacobian,
     )
 }
 
-/// `linearize(t, q, v, u) -> Result<(A, B), _>`.
-pub fn linearize() -> Function {
+/// `linearize(t, q, v, u) -> Result<(A, B), _>`: its results are the
+/// kinematic rows `(K_δ, K_v)` of `A`; the rest comes from
+/// `accelerations_jacobian`.
+pub fn linearize(model: &Model, pool: &mut Pool) -> Function {
+    let nv = model.nv();
+    let directions = tangent_directions(model, pool);
+    let (by_coordinates, by_speeds) = tangent_kinematics(model, pool, &directions);
+    let tangent = tangent_note(model);
+    let own_rates = match plain_speeds(model).into_iter().all(|(k, c)| {
+        let rate = pool.rate(c as u32);
+        rate == pool.sym(Sym::Speed(k as u32))
+    }) {
+        true => "",
+        false => ", `(∂(N v)/∂q, N)` for rates `q̇ = N(q) v` of a `speeds` statement",
+    };
+    let balls = match model.balls.is_empty() {
+        true => "",
+        false => {
+            ", and `δ̇ = δν − ad(ν̄) δ` for a quaternion joint of twist `ν̄` (its\n\
+             angular velocity `ω̄`, and for a free joint its velocity `v̄`, in the\n\
+             child's axes): `δ̇_ω = δω − ω̄ × δ_ω`, `δ̇_v = δv − ω̄ × δ_v − v̄ × δ_ω`"
+        }
+    };
     function(
         "linearize",
-        "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
-         state `x = (q, v)` and input `u`. The coordinates' rates are the speeds\n\
-         (`q̇ = v`), so `A = [[0, I], [∂v̇/∂q, ∂v̇/∂v]]` and `B = [[0], [∂v̇/∂u]]`,\n\
-         from `accelerations_jacobian` (and with its errors). About an\n\
-         equilibrium, the eigenvalues of `A` are the exponents of the small\n\
-         motions. Systems with constraints are not linearised (yet), nor\n\
-         Lie-group joints (free, spherical).",
+        &format!(
+            "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
+             state `x = (q, v)` and input `u`, with `q = q̄ ⊕ δ` and `v = v̄ + δv`\n\
+             (`δ` in the tangent space, one entry per speed):\n\
+             `A = [[K_δ, K_v], [∂v̇/∂q, ∂v̇/∂v]]` and `B = [[0], [∂v̇/∂u]]`, from\n\
+             `accelerations_jacobian` (and with its errors). The kinematic rows\n\
+             `δ̇ = K_δ δ + K_v δv` are `(0, I)` where the speeds are the coordinates'\n\
+             rates{own_rates}{balls}. About an equilibrium, the eigenvalues of `A` are the\n\
+             exponents of the small motions. Systems with constraints are not\n\
+             linearised (yet).{tangent}"
+        ),
         &[Time, Coordinates, Speeds, Inputs],
-        Vec::new(),
+        vec![
+            Value::matrix(&by_coordinates, nv),
+            Value::matrix(&by_speeds, nv),
+        ],
         Body::Linearize,
     )
+}
+
+/// What `∂/∂q` means, for the docs of a model with quaternion joints.
+fn tangent_note(model: &Model) -> &'static str {
+    if model.balls.is_empty() {
+        return "";
+    }
+    "\n`∂/∂q` is in the tangent space, one column per speed, along `q ⊕ δ` as\n\
+     `integrate_configuration` moves (Pinocchio's convention): a free or\n\
+     spherical joint's quaternion `p` turns to `p ⊗ exp(δ_ω / 2)` (`δ_ω` in\n\
+     the child's axes) and a free joint's position moves by `R(p) δ_v`;\n\
+     other coordinates move by `δ`. At a unit quaternion."
 }
 
 #[cfg(test)]

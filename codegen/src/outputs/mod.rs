@@ -259,7 +259,9 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                         .functions
                         .push(derivatives::accelerations_jacobian(model, equations, pool));
                 }
-                requested.functions.push(derivatives::linearize());
+                requested
+                    .functions
+                    .push(derivatives::linearize(model, pool));
             }
             _ => requested
                 .functions
