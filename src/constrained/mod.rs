@@ -8,12 +8,16 @@
 //!   say which solver when): rank-revealing by default, so redundant
 //!   constraints, singular positions and coordinates without inertia of
 //!   their own are handled;
+//! * [`linearize_on_constraints`] linearises the equations on the
+//!   constraint manifold with independent coordinates (what a generated
+//!   `linearize` calls for a constrained system);
 //! * [`project_onto_constraints`] moves a state back onto the constraint
 //!   manifold (positions, then speeds);
 //! * a [`Stabilisation`] chooses how [`Constrained`](crate::Constrained)
 //!   dynamics keep an integration on the manifold, and
 //!   [`constraint_drift`] measures how far it is off.
 
+mod linearize;
 mod multipliers;
 mod projection;
 mod rank;
@@ -22,6 +26,10 @@ mod stabilisation;
 #[cfg(test)]
 pub(crate) mod test_systems;
 
+pub use linearize::{
+    ConstrainedLinearization, ConstrainedPartials, DEPENDENT_PIVOT_TOLERANCE,
+    linearize_on_constraints,
+};
 pub use multipliers::{
     CONSISTENCY_TOLERANCE, ConstraintSolver, RANK_TOLERANCE, baumgarte_accelerations,
     constrained_accelerations,

@@ -219,3 +219,133 @@ pub fn emit_linearize(model: &Model, names: &Names, function: &Function) -> Toke
         }
     }
 }
+
+/// `pub fn linearize(..)` of a system with constraints, from `function`,
+/// whose results are the partials of `linearize_on_constraints`
+/// (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, `∂c/∂q`, `∂c/∂v`, `∂ψ/∂q`), evaluated at
+/// the accelerations and multipliers of `constrained_accelerations`, with
+/// the independent coordinates of the model's `linearize(..)`.
+pub fn emit_constrained_linearize(
+    model: &Model,
+    names: &Names,
+    function: &Function,
+) -> TokenStream {
+    let (nv, nu, nc) = (model.nv(), model.inputs.len(), model.constraints.len());
+    let independent: Vec<bool> = (0..nv)
+        .map(|j| {
+            model
+                .outputs
+                .iter()
+                .flat_map(|o| &o.independent)
+                .any(|(i, _)| *i == j)
+        })
+        .collect();
+    let roots: Vec<ExprId> = function
+        .results
+        .iter()
+        .flat_map(|value| value.expressions.iter().copied())
+        .collect();
+    let Straight {
+        statements,
+        outputs,
+        used,
+    } = straight_line(&model.pool, names, &roots);
+    let mut outputs = outputs.into_iter();
+    let mut block = |rows: usize, columns: usize| -> TokenStream {
+        let entries: Vec<TokenStream> = outputs.by_ref().take(rows * columns).collect();
+        let rows = entries
+            .chunks(columns.max(1))
+            .take(rows)
+            .map(|row| quote!([#(#row),*]));
+        match columns {
+            0 => {
+                let rows = (0..model.nv()).map(|_| quote!([]));
+                quote!([#(#rows),*])
+            }
+            _ => quote!([#(#rows),*]),
+        }
+    };
+    let (r_q, r_v, r_u) = (block(nv, nv), block(nv, nv), block(nv, nu));
+    let (c_q, c_v, psi_q) = (block(nc, nv), block(nc, nv), block(nc, nv));
+    let multipliers = (0..nc).map(|j| {
+        let name = format_ident!("lambda{}", j);
+        match used.contains(&crate::expr::Sym::Multiplier(j as u32)) {
+            true => quote!(#name),
+            false => quote!(_),
+        }
+    });
+    let entries = |prefix: &str, columns: usize| -> Vec<Vec<Ident>> {
+        (0..nv)
+            .map(|i| {
+                (0..columns)
+                    .map(|j| format_ident!("{}{}_{}", prefix, i, j))
+                    .collect()
+            })
+            .collect()
+    };
+    let pattern = |rows: &[Vec<Ident>]| {
+        let rows = rows.iter().map(|row| quote!([#(#row),*]));
+        quote!([#(#rows),*])
+    };
+    let [kq, kv, dq, dv] = ["kq", "kv", "dq", "dv"].map(|prefix| entries(prefix, nv));
+    let du: Vec<Ident> = (0..nv).map(|i| format_ident!("du{}", i)).collect();
+    let (kq_pattern, kv_pattern, dq_pattern, dv_pattern) =
+        (pattern(&kq), pattern(&kv), pattern(&dq), pattern(&dv));
+    let join = |left: &[Vec<Ident>], right: &[Vec<Ident>]| -> Vec<TokenStream> {
+        left.iter()
+            .zip(right)
+            .map(|(l, r)| quote!([#(#l,)* #(#r),*]))
+            .collect()
+    };
+    let (kinematic_rows, dynamic_rows) = (join(&kq, &kv), join(&dq, &dv));
+    let zero_rows = (0..nv).map(|_| {
+        let nu = Literal::usize_unsuffixed(nu);
+        quote!([0.0; #nu])
+    });
+    let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
+    let (a, b) = (matrix(2 * nv, 2 * nv), matrix(2 * nv, nu));
+    let docs = function.docs.iter().map(|line| raw_string(line));
+    quote! {
+        #(#[doc = #docs])*
+        #[inline]
+        pub fn linearize(
+            &self,
+            t: f64,
+            q: &#coordinates,
+            qd: &#vector,
+            u: &#inputs,
+        ) -> ::core::result::Result<(#a, #b), ::dalembert::DynamicsError> {
+            let (accelerations, [#(#multipliers),*]) =
+                ::dalembert::constrained::constrained_accelerations(self, t, q, qd, u)?;
+            let partials = {
+                let qdd = &accelerations;
+                #statements
+                ::dalembert::constrained::ConstrainedPartials {
+                    residual_by_q: #r_q,
+                    residual_by_v: #r_v,
+                    residual_by_u: #r_u,
+                    constraint_by_q: #c_q,
+                    constraint_by_v: #c_v,
+                    velocity_by_q: #psi_q,
+                }
+            };
+            let ::dalembert::constrained::ConstrainedLinearization {
+                kinematic_by_q: #kq_pattern,
+                kinematic_by_v: #kv_pattern,
+                dynamic_by_q: #dq_pattern,
+                dynamic_by_v: #dv_pattern,
+                dynamic_by_u: [#(#du),*],
+            } = ::dalembert::constrained::linearize_on_constraints(
+                &self.mass_matrix(q),
+                &self.constraint_jacobian(q),
+                &partials,
+                &[#(#independent),*],
+                &Self::COORDINATES,
+            )?;
+            ::core::result::Result::Ok((
+                [#(#kinematic_rows,)* #(#dynamic_rows),*],
+                [#(#zero_rows,)* #(#du),*],
+            ))
+        }
+    }
+}

@@ -56,12 +56,15 @@ pub fn emit(
         .iter()
         .map(|function| match (function.body, target) {
             (Body::Explicit, _) => emit_function(model, &names, function),
-            // Both return the runtime's errors.
+            // They return the runtime's errors.
             (_, Target::NoStd) => TokenStream::new(),
             (Body::AccelerationsJacobian, Target::Std) => {
                 derivatives::emit_accelerations_jacobian(model, equations, &names, function)
             }
             (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, &names, function),
+            (Body::ConstrainedLinearize, Target::Std) => {
+                derivatives::emit_constrained_linearize(model, &names, function)
+            }
         })
         .collect();
     items.push(configuration::emit_configuration(model, &names));

@@ -504,9 +504,20 @@ impl Resolver {
             );
             return;
         }
-        let (mut point, mut frame) = (None, None);
+        let (mut point, mut frame, mut independent) = (None, None, Vec::new());
+        if let (false, Some(extra)) = (subject == Subject::Coordinates, request.more.first()) {
+            let message = format!("`{name}` takes one point or frame: remove `, {extra}`");
+            self.errors.push(extra.span(), message);
+            return;
+        }
         match (subject, &request.of) {
-            (Subject::None, None) => {}
+            (Subject::None | Subject::Coordinates, None) => {}
+            (Subject::Coordinates, Some(of)) => {
+                independent = self.independent_coordinates(of, &request.more);
+                if independent.len() != 1 + request.more.len() {
+                    return;
+                }
+            }
             (Subject::None, Some(of)) => {
                 let message = format!("`{name}` takes no point or frame: write `{name}` alone");
                 self.errors.push(of.span(), message);
@@ -547,7 +558,11 @@ impl Resolver {
             );
             return;
         }
-        let function = function_name(name, request.of.as_ref(), request.axes.as_ref());
+        let of = request
+            .of
+            .as_ref()
+            .filter(|_| subject != Subject::Coordinates);
+        let function = function_name(name, of, request.axes.as_ref());
         let same = |o: &&super::Output| o.function == function || (o.kind, o.axes) == (kind, axes);
         if let Some(earlier) = self.model.outputs.iter().find(same) {
             let message = format!(
@@ -561,12 +576,41 @@ impl Resolver {
             kind,
             axes,
             function,
-            subject: request.of.as_ref().map(Ident::to_string),
+            subject: of.map(Ident::to_string),
             axes_name: request
                 .axes
                 .as_ref()
                 .map_or("N".to_string(), Ident::to_string),
+            independent,
         });
+    }
+
+    /// `linearize(a, b)`'s names as coordinates, each once; an error at
+    /// each name that is not one.
+    fn independent_coordinates(&mut self, first: &Ident, more: &[Ident]) -> Vec<(usize, Ident)> {
+        let mut independent: Vec<(usize, Ident)> = Vec::new();
+        for name in std::iter::once(first).chain(more) {
+            match self.lookup(name) {
+                Some(Binding::Scalar(Sym::Coord(i)))
+                    if independent.iter().any(|(j, _)| *j == i as usize) =>
+                {
+                    self.errors
+                        .push(name.span(), format!("`{name}` is named twice"));
+                }
+                Some(Binding::Scalar(Sym::Coord(i))) => {
+                    independent.push((i as usize, name.clone()))
+                }
+                Some(other) => {
+                    let message = format!(
+                        "`{name}` is {}; `linearize(..)` names the independent coordinates",
+                        other.describe()
+                    );
+                    self.errors.push(name.span(), message);
+                }
+                None => {}
+            }
+        }
+        independent
     }
 
     /// `accelerations_jacobian` and `linearize` solve `M v̇ = f`: with
@@ -591,19 +635,23 @@ impl Resolver {
                 }
             }
         }
-        if self.model.constraints.is_empty() {
-            return;
-        }
         for output in &self.model.outputs {
-            if matches!(output.kind, AccelerationsJacobian | Linearize) {
+            if output.kind == Linearize {
+                if let Some((span, message)) =
+                    super::output::linearize_problem(&self.model, &self.pool, output)
+                {
+                    self.errors.push(span, message);
+                }
+            }
+            if output.kind == AccelerationsJacobian && !self.model.constraints.is_empty() {
                 let name = &output.function;
                 self.errors.push(
                     name.span(),
                     format!(
                         "`{name}` is not available for a system with constraints yet \
                          (the derivatives would have to be taken on the constraint manifold): \
-                         remove it from `outputs`, or describe the system with independent \
-                         coordinates and no `constraint` statements"
+                         remove it from `outputs`, or ask for `linearize(..)` with the \
+                         independent coordinates"
                     ),
                 );
             }

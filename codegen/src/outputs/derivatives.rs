@@ -8,7 +8,7 @@ use crate::equations::derivatives::{
     ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
 };
 use crate::equations::{Equations, inverse_dynamics};
-use crate::expr::{Pool, Sym};
+use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Span};
 
@@ -146,6 +146,107 @@ pub fn linearize(model: &Model, pool: &mut Pool) -> Function {
     )
 }
 
+/// `linearize(t, q, v, u) -> Result<(A, B), _>` of a system with
+/// holonomic constraints, on the constraint manifold with the independent
+/// coordinates `independent` (as written): its results are the partials,
+/// at the solved `v̇` and `λ`, of the residuals `r = M v̇ − f − Aᵀ λ` (by
+/// `q`, `v`, `u`) and `c = A v̇ − b` (by `q`, `v`), and `∂ψ/∂q` of the
+/// constraints' velocity form `ψ`; the runtime's
+/// `linearize_on_constraints` does the rest.
+pub fn constrained_linearize(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+    independent: &[String],
+) -> Function {
+    let (nv, nu) = (model.nv(), model.inputs.len());
+    let (tau, _) = inverse_dynamics(model, equations, pool);
+    let jacobian = &equations.constraint_jacobian;
+    let multipliers: Vec<ExprId> = (0..jacobian.len())
+        .map(|j| pool.sym(Sym::Multiplier(j as u32)))
+        .collect();
+    let residual: Vec<ExprId> = tau
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let reactions: Vec<ExprId> = jacobian
+                .iter()
+                .zip(&multipliers)
+                .map(|(row, &lambda)| pool.mul(row[i], lambda))
+                .collect();
+            let reaction = pool.sum(reactions);
+            let minus = pool.neg(reaction);
+            pool.add(t, minus)
+        })
+        .collect();
+    let constraint: Vec<ExprId> = jacobian
+        .iter()
+        .zip(&equations.constraint_bias)
+        .map(|(row, &b)| {
+            let mut terms: Vec<ExprId> = row
+                .iter()
+                .enumerate()
+                .map(|(k, &a)| {
+                    let accel = pool.sym(Sym::Accel(k as u32));
+                    pool.mul(a, accel)
+                })
+                .collect();
+            terms.push(pool.neg(b));
+            pool.sum(terms)
+        })
+        .collect();
+    let mut by = |rows: &[ExprId], symbol: fn(u32) -> Sym, n: usize| -> Value {
+        let block: Vec<Vec<ExprId>> = rows
+            .iter()
+            .map(|&e| (0..n).map(|j| pool.diff(e, symbol(j as u32))).collect())
+            .collect();
+        Value::matrix(&block, n)
+    };
+    let results = vec![
+        by(&residual, Sym::Coord, nv),
+        by(&residual, Sym::Speed, nv),
+        by(&residual, Sym::Input, nu),
+        by(&constraint, Sym::Coord, nv),
+        by(&constraint, Sym::Speed, nv),
+        by(&equations.constraint_velocity, Sym::Coord, nv),
+    ];
+    let dependent: Vec<String> = model
+        .coordinates
+        .iter()
+        .map(ToString::to_string)
+        .filter(|c| !independent.contains(c))
+        .collect();
+    function(
+        "linearize",
+        &format!(
+            "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
+             state `x = (q, v)` on the constraint manifold and input `u`, with the\n\
+             independent coordinates `{}` (the dependent `{}` follow from the\n\
+             constraints), by the method of Peterson, Gede and Hubbard (2014), as\n\
+             SymPy's `Linearizer`. The accelerations `v̇(t, q, v, u)` of\n\
+             `M v̇ = f + Aᵀ λ`, `A v̇ = b` are differentiated exactly (the partials of\n\
+             `M v̇ − f − Aᵀ λ` and `A v̇ − b` at the solved `v̇`, `λ`, through the\n\
+             saddle-point system). A perturbation that keeps the constraints is\n\
+             `δq = E δq`, `δv = E δv + F δq`, where `E` and `F` read only the\n\
+             independent entries (`δq_D = −A_D⁻¹ A_I δq_I`,\n\
+             `δv_D = −A_D⁻¹ (A_I δv_I + ∂ψ/∂q δq)`), so\n\
+             `A = [[F, E], [∂v̇/∂q E + ∂v̇/∂v F, ∂v̇/∂v E]]` and `B = [[0], [∂v̇/∂u]]`:\n\
+             the columns of the dependent entries are zero, and the rows and columns\n\
+             of the independent coordinates and their speeds are the reduced `A` of\n\
+             SymPy's `Linearizer`, whose eigenvalues about an equilibrium are the\n\
+             nonzero ones of `A`. The state must be on the manifold. Errors: those\n\
+             of `dalembert::constrained::constrained_accelerations`, and\n\
+             `SingularDependentCoordinates` naming a dependent coordinate where the\n\
+             independent ones do not determine it (`A_D` singular).",
+            independent.join("`, `"),
+            dependent.join("`, `"),
+        ),
+        &[Time, Coordinates, Speeds, Inputs],
+        results,
+        Body::ConstrainedLinearize,
+    )
+}
+
 /// What `∂/∂q` means, for the docs of a model with quaternion joints.
 fn tangent_note(model: &Model) -> &'static str {
     if model.balls.is_empty() {
@@ -172,12 +273,12 @@ mod tests {
     }
 
     #[test]
-    fn a_constrained_system_is_not_linearised_and_the_error_says_where() {
+    fn a_constrained_system_names_its_independent_coordinates_and_the_error_says_where() {
         let source = constrained_pendulum_asking_for("inverse_dynamics_jacobian, linearize");
         let error = crate::check(&source).expect_err("constraints");
         let message = error.to_string();
         assert!(
-            message.contains("`linearize` is not available for a system with constraints"),
+            message.contains("name its 1 independent coordinate(s) in parentheses"),
             "{message}"
         );
         let line = source
@@ -192,6 +293,15 @@ mod tests {
             .nth(line - 1)
             .and_then(|l| l.find("linearize"));
         assert_eq!(Some(start.column), column, "{message}");
+    }
+
+    #[test]
+    fn a_constrained_system_with_its_independent_coordinate_is_linearised() {
+        let source = constrained_pendulum_asking_for("linearize(theta)");
+        let code = crate::generate(&source).expect("generates");
+        assert!(code.contains("pub fn linearize("), "{code}");
+        assert!(code.contains("linearize_on_constraints"), "{code}");
+        assert!(code.contains("&[false, false, true]"), "{code}");
     }
 
     #[test]
