@@ -140,6 +140,26 @@ def floating_entry(file, rng):
     return {"model": os.path.splitext(file)[0] + "_floating", "nv": model.nv, "states": states}
 
 
+def brick_entry(rng):
+    """generated/models/dzhanibekov.dal: a uniform 3 × 2 × 1 box of 12 kg on a spherical joint
+    at its centre (q its unit quaternion (x, y, z, w), v its angular velocity in its axes), no
+    torques; the derivatives by q in the tangent space."""
+    model = pin.Model()
+    joint = model.addJoint(0, pin.JointModelSpherical(), pin.SE3.Identity(), "ball")
+    m, (a, b, c) = 12.0, (3.0, 2.0, 1.0)
+    inertia = np.diag([m * (b * b + c * c), m * (a * a + c * c), m * (a * a + b * b)]) / 12.0
+    model.appendBodyToJoint(joint, pin.Inertia(m, np.zeros(3), inertia), pin.SE3.Identity())
+    states = []
+    for _ in range(STATES):
+        quaternion = rng.normal(size=4)
+        q = quaternion / np.linalg.norm(quaternion)
+        v, a_ = rng.uniform(-2.0, 2.0, 3), rng.uniform(-5.0, 5.0, 3)
+        entry = {"q": [float(x) for x in q], "qd": [float(x) for x in v], "tau": [0.0] * 3}
+        entry.update(derivatives(model, q, v, np.zeros(3), a_, np.arange(3)))
+        states.append(entry)
+    return {"model": "dzhanibekov", "nv": 3, "states": states}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=os.path.join(ROOT, "tests", "reference", "derivatives.json"))
@@ -147,7 +167,7 @@ def main():
     rng = np.random.default_rng(SEED)
     models = [chain_entry(f, n, rng) for f in ["planar", "spatial"] for n in LINKS]
     models += [robot_entry(f, rng) for f in ["panda.urdf", "ur5_robot.urdf"]]
-    models += [floating_entry("solo12.urdf", rng)]
+    models += [floating_entry("solo12.urdf", rng), brick_entry(rng)]
     write_document(
         args.out,
         "derivatives/1",

@@ -383,15 +383,27 @@ fn chains_and_robots_match_pinocchio() {
     dalembert_generated::chains_and_robots_with_derivatives!(check_against_pinocchio);
 }
 
-/// The floating Solo-12: Pinocchio's derivatives by `q` are in the tangent
-/// space of its free flyer, as ours.
+/// The floating Solo-12 and the brick on a ball joint: Pinocchio's
+/// derivatives by `q` are in the tangent space of its free flyer and
+/// spherical joint, as ours.
 #[test]
-fn floating_robot_matches_pinocchio_in_the_tangent_space() {
+fn quaternion_joints_match_pinocchio_in_the_tangent_space() {
     check_against_pinocchio(
         "solo12_floating",
         &floating_solo12::FloatingSolo {},
         floating_solo12::FloatingSolo::accelerations_jacobian,
         floating_solo12::FloatingSolo::inverse_dynamics_jacobian,
+    );
+    check_against_pinocchio(
+        "dzhanibekov",
+        &dzhanibekov::Dzhanibekov {
+            m: 12.0,
+            a: 3.0,
+            b: 2.0,
+            c: 1.0,
+        },
+        dzhanibekov::Dzhanibekov::accelerations_jacobian,
+        dzhanibekov::Dzhanibekov::inverse_dynamics_jacobian,
     );
 }
 
