@@ -507,7 +507,7 @@ fn check_kinematic_rows<
 >(
     system: &S,
     base: Base,
-    linearize: fn(&S, f64, &[f64; NQ], &[f64; NV], &[f64; NU]) -> LinearizeResult<NX, NU>,
+    linearize: Linearize<S, NQ, NV, NU, NX>,
     accelerations_jacobian: AccelerationsJacobian<S, NQ, NV, NU>,
 ) {
     let mut random = Random::new(6);
@@ -528,18 +528,17 @@ fn check_kinematic_rows<
             let reference = system.integrate_configuration(&q, &v, h);
             tangent_difference(base, &moved, &reference)
         };
-        let mut numeric = [[0.0; NX]; NV];
-        for j in 0..NX {
+        // Column j of the mixed differences, then transposed.
+        let columns: [[f64; NV]; NX] = std::array::from_fn(|j| {
             let (pp, pm, mp, mm) = (
                 delta(step, step, j),
                 delta(step, -step, j),
                 delta(-step, step, j),
                 delta(-step, -step, j),
             );
-            for i in 0..NV {
-                numeric[i][j] = (pp[i] - pm[i] - mp[i] + mm[i]) / (4.0 * step * step);
-            }
-        }
+            std::array::from_fn(|i| (pp[i] - pm[i] - mp[i] + mm[i]) / (4.0 * step * step))
+        });
+        let numeric: [[f64; NX]; NV] = std::array::from_fn(|i| columns.map(|column| column[i]));
         let kinematic: [[f64; NX]; NV] = std::array::from_fn(|i| a[i]);
         assert_matches("A's kinematic rows", &kinematic, &numeric);
         for i in 0..NV {
@@ -551,9 +550,15 @@ fn check_kinematic_rows<
     }
 }
 
-/// What `linearize` returns for a state of `NX` entries.
-type LinearizeResult<const NX: usize, const NU: usize> =
-    Result<([[f64; NX]; NX], [[f64; NU]; NX]), dalembert::DynamicsError>;
+/// `linearize(t, q, v, u)` of a system with a state of `NX` entries.
+type Linearize<S, const NQ: usize, const NV: usize, const NU: usize, const NX: usize> =
+    fn(
+        &S,
+        f64,
+        &[f64; NQ],
+        &[f64; NV],
+        &[f64; NU],
+    ) -> Result<([[f64; NX]; NX], [[f64; NU]; NX]), dalembert::DynamicsError>;
 
 #[test]
 fn linearize_of_quaternion_joints_has_the_kinematic_rows_of_the_tangent_space() {

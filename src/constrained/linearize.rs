@@ -172,7 +172,8 @@ fn solve_dependent<const NC: usize, const NV: usize>(
             .map(|row| (row, block[(row, column)]))
             .max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
             .unwrap_or((column, 0.0));
-        if !(pivot.abs() > tolerance) {
+        // NaN fails too.
+        if pivot.abs().partial_cmp(&tolerance) != Some(std::cmp::Ordering::Greater) {
             return Err(DynamicsError::SingularDependentCoordinates {
                 coordinate: coordinates[dependent[column]],
                 pivot,
