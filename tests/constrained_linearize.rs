@@ -12,40 +12,31 @@ use dalembert::constrained::constrained_accelerations;
 use dalembert_fixtures::slider_crank::{SLIDER_CRANK, SliderCrank};
 use nalgebra::SMatrix;
 
-dalembert::dalembert! {
-    /// Seed example 3, linearised with `theta` independent.
-    pub ByAngle {
-        parameters m, l, g;
-        coordinates x, y, theta;
-        inputs M;
-        frame B = N.rotate_z(theta);
-        point G = O + x * N.x + y * N.y;
-        body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
-        gravity -g * N.y;
-        torque M * N.z on B;
-        constraint x - l/2 * sin(theta) == 0;
-        constraint y + l/2 * cos(theta) == 0;
-        outputs linearize(theta);
-    }
+/// Seed example 3 as `$name`, linearised with `$independent` independent.
+macro_rules! seed_example_3 {
+    ($name:ident, $independent:ident) => {
+        dalembert::dalembert! {
+            /// Seed example 3, linearised with one coordinate independent.
+            pub $name {
+                parameters m, l, g;
+                coordinates x, y, theta;
+                inputs M;
+                frame B = N.rotate_z(theta);
+                point G = O + x * N.x + y * N.y;
+                body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
+                gravity -g * N.y;
+                torque M * N.z on B;
+                constraint x - l/2 * sin(theta) == 0;
+                constraint y + l/2 * cos(theta) == 0;
+                outputs linearize($independent);
+            }
+        }
+    };
 }
 
-dalembert::dalembert! {
-    /// Seed example 3, linearised with `y` independent: `x` and `theta`
-    /// follow from it except where `sin θ = 0`.
-    pub ByHeight {
-        parameters m, l, g;
-        coordinates x, y, theta;
-        inputs M;
-        frame B = N.rotate_z(theta);
-        point G = O + x * N.x + y * N.y;
-        body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
-        gravity -g * N.y;
-        torque M * N.z on B;
-        constraint x - l/2 * sin(theta) == 0;
-        constraint y + l/2 * cos(theta) == 0;
-        outputs linearize(y);
-    }
-}
+seed_example_3!(ByAngle, theta);
+// `x` and `theta` follow from `y` except where `sin θ = 0`.
+seed_example_3!(ByHeight, y);
 
 const BAR: ByAngle = ByAngle {
     m: 1.7,

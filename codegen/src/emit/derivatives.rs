@@ -8,7 +8,7 @@ use super::body::{Names, Straight, straight_line};
 use super::solve::{Factorised, factorised};
 use super::{array, raw_string};
 use crate::equations::Equations;
-use crate::expr::ExprId;
+use crate::expr::{ExprId, Sym};
 use crate::model::Model;
 use crate::outputs::Function;
 use proc_macro2::{Ident, Literal, TokenStream};
@@ -145,59 +145,37 @@ pub fn emit_accelerations_jacobian(
     }
 }
 
-/// `pub fn linearize(..)`: the kinematic rows `K_δ`, `K_v` (the results
-/// of `function`) by a straight-line body, the dynamic rows from
-/// `accelerations_jacobian`, with the docs of `function`.
-pub fn emit_linearize(model: &Model, names: &Names, function: &Function) -> TokenStream {
+/// `n` rows of `columns` names `{prefix}{i}_{j}`: a destructured matrix.
+fn entry_names(prefix: &str, n: usize, columns: usize) -> Vec<Vec<Ident>> {
+    (0..n)
+        .map(|i| {
+            (0..columns)
+                .map(|j| format_ident!("{}{}_{}", prefix, i, j))
+                .collect()
+        })
+        .collect()
+}
+
+/// The pattern `[[a, b], [c, d]]` of a matrix of names.
+fn pattern(rows: &[Vec<Ident>]) -> TokenStream {
+    let rows = rows.iter().map(|row| quote!([#(#row),*]));
+    quote!([#(#rows),*])
+}
+
+/// Rows of `2 NV` entries: each row of `left` followed by that of `right`.
+fn joined_rows(left: &[Vec<Ident>], right: &[Vec<Ident>]) -> Vec<TokenStream> {
+    left.iter()
+        .zip(right)
+        .map(|(l, r)| quote!([#(#l,)* #(#r),*]))
+        .collect()
+}
+
+/// `pub fn linearize(..)` with the docs of `function` and `body`, which
+/// ends with `Ok((A, B))`.
+fn linearize_function(model: &Model, function: &Function, body: TokenStream) -> TokenStream {
     let (nv, nu) = (model.nv(), model.inputs.len());
     let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
     let (a, b) = (matrix(2 * nv, 2 * nv), matrix(2 * nv, nu));
-    let roots: Vec<ExprId> = function
-        .results
-        .iter()
-        .flat_map(|value| value.expressions.iter().copied())
-        .collect();
-    let Straight {
-        statements,
-        outputs,
-        ..
-    } = straight_line(&model.pool, names, &roots);
-    let (kinematic_by_q, kinematic_by_v) = outputs.split_at(nv * nv);
-    let kinematic_rows = kinematic_by_q
-        .chunks(nv)
-        .zip(kinematic_by_v.chunks(nv))
-        .map(|(q_row, v_row)| quote!([#(#q_row,)* #(#v_row),*]));
-    // `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` destructured: entries `dq{i}_{j}`,
-    // `dv{i}_{j}`, rows `du{i}`.
-    let entries = |prefix: &str| -> Vec<Vec<Ident>> {
-        (0..nv)
-            .map(|i| {
-                (0..nv)
-                    .map(|j| format_ident!("{}{}_{}", prefix, i, j))
-                    .collect()
-            })
-            .collect()
-    };
-    let (by_q, by_v) = (entries("dq"), entries("dv"));
-    let input_rows: Vec<Ident> = (0..nv).map(|i| format_ident!("du{}", i)).collect();
-    let pattern = |rows: &[Vec<Ident>]| {
-        let rows = rows.iter().map(|row| quote!([#(#row),*]));
-        quote!([#(#rows),*])
-    };
-    let (q_pattern, v_pattern) = (pattern(&by_q), pattern(&by_v));
-    let dynamic_rows = by_q
-        .iter()
-        .zip(&by_v)
-        .map(|(q_row, v_row)| quote!([#(#q_row,)* #(#v_row),*]));
-    let nu = Literal::usize_unsuffixed(nu);
-    let zero_row = quote!([0.0; #nu]);
-    let zero_rows = (0..nv).map(|_| zero_row.clone());
-    let kinematic_names: Vec<Ident> = (0..nv).map(|i| format_ident!("k{}", i)).collect();
-    let kinematic = match statements.is_empty() {
-        true => quote!([#(#kinematic_rows),*]),
-        false => quote!({ #statements [#(#kinematic_rows),*] }),
-    };
-    let (state_row, n) = (array(2 * nv), Literal::usize_unsuffixed(nv));
     let docs = function.docs.iter().map(|line| raw_string(line));
     quote! {
         #(#[doc = #docs])*
@@ -209,15 +187,64 @@ pub fn emit_linearize(model: &Model, names: &Names, function: &Function) -> Toke
             qd: &#vector,
             u: &#inputs,
         ) -> ::core::result::Result<(#a, #b), ::dalembert::DynamicsError> {
-            let (#q_pattern, #v_pattern, [#(#input_rows),*]) =
-                self.accelerations_jacobian(t, q, qd, u)?;
-            let [#(#kinematic_names),*]: [#state_row; #n] = #kinematic;
-            ::core::result::Result::Ok((
-                [#(#kinematic_names,)* #(#dynamic_rows),*],
-                [#(#zero_rows,)* #(#input_rows),*],
-            ))
+            #body
         }
     }
+}
+
+/// The upper rows of `B`: zeros.
+fn zero_rows(model: &Model) -> Vec<TokenStream> {
+    let nu = Literal::usize_unsuffixed(model.inputs.len());
+    (0..model.nv()).map(|_| quote!([0.0; #nu])).collect()
+}
+
+/// The expressions of `function`'s results, in order.
+fn roots(function: &Function) -> Vec<ExprId> {
+    function
+        .results
+        .iter()
+        .flat_map(|value| value.expressions.iter().copied())
+        .collect()
+}
+
+/// `pub fn linearize(..)`: the kinematic rows `K_δ`, `K_v` (the results
+/// of `function`) by a straight-line body, the dynamic rows from
+/// `accelerations_jacobian`, with the docs of `function`.
+pub fn emit_linearize(model: &Model, names: &Names, function: &Function) -> TokenStream {
+    let nv = model.nv();
+    let Straight {
+        statements,
+        outputs,
+        ..
+    } = straight_line(&model.pool, names, &roots(function));
+    let (kinematic_by_q, kinematic_by_v) = outputs.split_at(nv * nv);
+    let kinematic_rows = kinematic_by_q
+        .chunks(nv)
+        .zip(kinematic_by_v.chunks(nv))
+        .map(|(q_row, v_row)| quote!([#(#q_row,)* #(#v_row),*]));
+    // `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` destructured: entries `dq{i}_{j}`,
+    // `dv{i}_{j}`, rows `du{i}`.
+    let (by_q, by_v) = (entry_names("dq", nv, nv), entry_names("dv", nv, nv));
+    let input_rows: Vec<Ident> = (0..nv).map(|i| format_ident!("du{}", i)).collect();
+    let (q_pattern, v_pattern) = (pattern(&by_q), pattern(&by_v));
+    let dynamic_rows = joined_rows(&by_q, &by_v);
+    let zero_rows = zero_rows(model);
+    let kinematic_names: Vec<Ident> = (0..nv).map(|i| format_ident!("k{}", i)).collect();
+    let kinematic = match statements.is_empty() {
+        true => quote!([#(#kinematic_rows),*]),
+        false => quote!({ #statements [#(#kinematic_rows),*] }),
+    };
+    let (state_row, n) = (array(2 * nv), Literal::usize_unsuffixed(nv));
+    let body = quote! {
+        let (#q_pattern, #v_pattern, [#(#input_rows),*]) =
+            self.accelerations_jacobian(t, q, qd, u)?;
+        let [#(#kinematic_names),*]: [#state_row; #n] = #kinematic;
+        ::core::result::Result::Ok((
+            [#(#kinematic_names,)* #(#dynamic_rows),*],
+            [#(#zero_rows,)* #(#input_rows),*],
+        ))
+    };
+    linearize_function(model, function, body)
 }
 
 /// `pub fn linearize(..)` of a system with constraints, from `function`,
@@ -240,112 +267,72 @@ pub fn emit_constrained_linearize(
                 .any(|(i, _)| *i == j)
         })
         .collect();
-    let roots: Vec<ExprId> = function
-        .results
-        .iter()
-        .flat_map(|value| value.expressions.iter().copied())
-        .collect();
     let Straight {
         statements,
         outputs,
         used,
-    } = straight_line(&model.pool, names, &roots);
+    } = straight_line(&model.pool, names, &roots(function));
     let mut outputs = outputs.into_iter();
     let mut block = |rows: usize, columns: usize| -> TokenStream {
         let entries: Vec<TokenStream> = outputs.by_ref().take(rows * columns).collect();
-        let rows = entries
-            .chunks(columns.max(1))
-            .take(rows)
-            .map(|row| quote!([#(#row),*]));
         match columns {
             0 => {
-                let rows = (0..model.nv()).map(|_| quote!([]));
+                let rows = (0..rows).map(|_| quote!([]));
                 quote!([#(#rows),*])
             }
-            _ => quote!([#(#rows),*]),
+            _ => {
+                let rows = entries.chunks(columns).map(|row| quote!([#(#row),*]));
+                quote!([#(#rows),*])
+            }
         }
     };
     let (r_q, r_v, r_u) = (block(nv, nv), block(nv, nv), block(nv, nu));
     let (c_q, c_v, psi_q) = (block(nc, nv), block(nc, nv), block(nc, nv));
     let multipliers = (0..nc).map(|j| {
         let name = format_ident!("lambda{}", j);
-        match used.contains(&crate::expr::Sym::Multiplier(j as u32)) {
+        match used.contains(&Sym::Multiplier(j as u32)) {
             true => quote!(#name),
             false => quote!(_),
         }
     });
-    let entries = |prefix: &str, columns: usize| -> Vec<Vec<Ident>> {
-        (0..nv)
-            .map(|i| {
-                (0..columns)
-                    .map(|j| format_ident!("{}{}_{}", prefix, i, j))
-                    .collect()
-            })
-            .collect()
-    };
-    let pattern = |rows: &[Vec<Ident>]| {
-        let rows = rows.iter().map(|row| quote!([#(#row),*]));
-        quote!([#(#rows),*])
-    };
-    let [kq, kv, dq, dv] = ["kq", "kv", "dq", "dv"].map(|prefix| entries(prefix, nv));
+    let [kq, kv, dq, dv] = ["kq", "kv", "dq", "dv"].map(|prefix| entry_names(prefix, nv, nv));
     let du: Vec<Ident> = (0..nv).map(|i| format_ident!("du{}", i)).collect();
     let (kq_pattern, kv_pattern, dq_pattern, dv_pattern) =
         (pattern(&kq), pattern(&kv), pattern(&dq), pattern(&dv));
-    let join = |left: &[Vec<Ident>], right: &[Vec<Ident>]| -> Vec<TokenStream> {
-        left.iter()
-            .zip(right)
-            .map(|(l, r)| quote!([#(#l,)* #(#r),*]))
-            .collect()
+    let (kinematic_rows, dynamic_rows) = (joined_rows(&kq, &kv), joined_rows(&dq, &dv));
+    let zero_rows = zero_rows(model);
+    let body = quote! {
+        let (accelerations, [#(#multipliers),*]) =
+            ::dalembert::constrained::constrained_accelerations(self, t, q, qd, u)?;
+        let partials = {
+            let qdd = &accelerations;
+            #statements
+            ::dalembert::constrained::ConstrainedPartials {
+                residual_by_q: #r_q,
+                residual_by_v: #r_v,
+                residual_by_u: #r_u,
+                constraint_by_q: #c_q,
+                constraint_by_v: #c_v,
+                velocity_by_q: #psi_q,
+            }
+        };
+        let ::dalembert::constrained::ConstrainedLinearization {
+            kinematic_by_q: #kq_pattern,
+            kinematic_by_v: #kv_pattern,
+            dynamic_by_q: #dq_pattern,
+            dynamic_by_v: #dv_pattern,
+            dynamic_by_u: [#(#du),*],
+        } = ::dalembert::constrained::linearize_on_constraints(
+            &self.mass_matrix(q),
+            &self.constraint_jacobian(q),
+            &partials,
+            &[#(#independent),*],
+            &Self::COORDINATES,
+        )?;
+        ::core::result::Result::Ok((
+            [#(#kinematic_rows,)* #(#dynamic_rows),*],
+            [#(#zero_rows,)* #(#du),*],
+        ))
     };
-    let (kinematic_rows, dynamic_rows) = (join(&kq, &kv), join(&dq, &dv));
-    let zero_rows = (0..nv).map(|_| {
-        let nu = Literal::usize_unsuffixed(nu);
-        quote!([0.0; #nu])
-    });
-    let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
-    let (a, b) = (matrix(2 * nv, 2 * nv), matrix(2 * nv, nu));
-    let docs = function.docs.iter().map(|line| raw_string(line));
-    quote! {
-        #(#[doc = #docs])*
-        #[inline]
-        pub fn linearize(
-            &self,
-            t: f64,
-            q: &#coordinates,
-            qd: &#vector,
-            u: &#inputs,
-        ) -> ::core::result::Result<(#a, #b), ::dalembert::DynamicsError> {
-            let (accelerations, [#(#multipliers),*]) =
-                ::dalembert::constrained::constrained_accelerations(self, t, q, qd, u)?;
-            let partials = {
-                let qdd = &accelerations;
-                #statements
-                ::dalembert::constrained::ConstrainedPartials {
-                    residual_by_q: #r_q,
-                    residual_by_v: #r_v,
-                    residual_by_u: #r_u,
-                    constraint_by_q: #c_q,
-                    constraint_by_v: #c_v,
-                    velocity_by_q: #psi_q,
-                }
-            };
-            let ::dalembert::constrained::ConstrainedLinearization {
-                kinematic_by_q: #kq_pattern,
-                kinematic_by_v: #kv_pattern,
-                dynamic_by_q: #dq_pattern,
-                dynamic_by_v: #dv_pattern,
-                dynamic_by_u: [#(#du),*],
-            } = ::dalembert::constrained::linearize_on_constraints(
-                &self.mass_matrix(q),
-                &self.constraint_jacobian(q),
-                &partials,
-                &[#(#independent),*],
-                &Self::COORDINATES,
-            )?;
-            ::core::result::Result::Ok((
-                [#(#kinematic_rows,)* #(#dynamic_rows),*],
-                [#(#zero_rows,)* #(#du),*],
-            ))
-        }
-    }
+    linearize_function(model, function, body)
 }
