@@ -134,8 +134,7 @@ pub fn linearize(model: &Model, pool: &mut Pool) -> Function {
              `accelerations_jacobian` (and with its errors). The kinematic rows\n\
              `δ̇ = K_δ δ + K_v δv` are `(0, I)` where the speeds are the coordinates'\n\
              rates{own_rates}{balls}. About an equilibrium, the eigenvalues of `A` are the\n\
-             exponents of the small motions. Systems with constraints are not\n\
-             linearised (yet).{tangent}"
+             exponents of the small motions.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Inputs],
         vec![
