@@ -16,9 +16,11 @@ use dalembert_codegen::testing::{Family, Spelling, chain, chain_parameters};
 
 /// The models whose copy asks for the derivatives: `models/NAME.dal`, or a
 /// URDF robot by its file name.
-const WITH_DERIVATIVES: [&str; 10] = [
+const WITH_DERIVATIVES: [&str; 12] = [
     "double_pendulum",
     "rotating_bar",
+    "dzhanibekov",
+    "floating_solo12",
     "planar_chain_02",
     "planar_chain_06",
     "planar_chain_12",

@@ -110,6 +110,56 @@ def robot_entry(file, rng):
     return {"model": os.path.splitext(file)[0], "nv": model.nv, "states": states}
 
 
+def floating_entry(file, rng):
+    """The robot on Pinocchio's free flyer, as dalembert's `--floating` writes it: q is the
+    base's position and unit quaternion (x, y, z, w) then the joints in file order; v the
+    base's linear and angular velocity in its own axes then the joints'. The derivatives by
+    q are Pinocchio's, in the tangent space (q ⊕ δ = q exp(δ))."""
+    path = os.path.join(ROBOTS, file)
+    model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
+    order = file_order_coordinates(path)
+    joints = [model.joints[model.getJointId(name)] for name in order]
+    assert all(j.nq == 1 for j in joints), "one angle or slide per joint"
+    perm = np.array(list(range(6)) + [j.idx_v for j in joints])
+    states = []
+    for _ in range(STATES):
+        q = pin.neutral(model)
+        q[:3] = rng.uniform(-1.0, 1.0, 3)
+        quaternion = rng.normal(size=4)
+        q[3:7] = quaternion / np.linalg.norm(quaternion)
+        angles = rng.uniform(-math.pi, math.pi, len(order))
+        q[[j.idx_q for j in joints]] = angles
+        v, a = rng.uniform(-2.0, 2.0, model.nv), rng.uniform(-5.0, 5.0, model.nv)
+        tau = rng.uniform(-10.0, 10.0, len(order))
+        vp, ap, taup = np.zeros(model.nv), np.zeros(model.nv), np.zeros(model.nv)
+        vp[perm], ap[perm], taup[perm[6:]] = v, a, tau
+        entry = {"q": [float(x) for x in list(q[:7]) + list(angles)],
+                 "qd": [float(x) for x in v], "tau": [float(x) for x in tau]}
+        entry.update(derivatives(model, q, vp, taup, ap, perm))
+        states.append(entry)
+    return {"model": os.path.splitext(file)[0] + "_floating", "nv": model.nv, "states": states}
+
+
+def brick_entry(rng):
+    """generated/models/dzhanibekov.dal: a uniform 3 × 2 × 1 box of 12 kg on a spherical joint
+    at its centre (q its unit quaternion (x, y, z, w), v its angular velocity in its axes), no
+    torques; the derivatives by q in the tangent space."""
+    model = pin.Model()
+    joint = model.addJoint(0, pin.JointModelSpherical(), pin.SE3.Identity(), "ball")
+    m, (a, b, c) = 12.0, (3.0, 2.0, 1.0)
+    inertia = np.diag([m * (b * b + c * c), m * (a * a + c * c), m * (a * a + b * b)]) / 12.0
+    model.appendBodyToJoint(joint, pin.Inertia(m, np.zeros(3), inertia), pin.SE3.Identity())
+    states = []
+    for _ in range(STATES):
+        quaternion = rng.normal(size=4)
+        q = quaternion / np.linalg.norm(quaternion)
+        v, a_ = rng.uniform(-2.0, 2.0, 3), rng.uniform(-5.0, 5.0, 3)
+        entry = {"q": [float(x) for x in q], "qd": [float(x) for x in v], "tau": [0.0] * 3}
+        entry.update(derivatives(model, q, v, np.zeros(3), a_, np.arange(3)))
+        states.append(entry)
+    return {"model": "dzhanibekov", "nv": 3, "states": states}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=os.path.join(ROOT, "tests", "reference", "derivatives.json"))
@@ -117,13 +167,16 @@ def main():
     rng = np.random.default_rng(SEED)
     models = [chain_entry(f, n, rng) for f in ["planar", "spatial"] for n in LINKS]
     models += [robot_entry(f, rng) for f in ["panda.urdf", "ur5_robot.urdf"]]
+    models += [floating_entry("solo12.urdf", rng), brick_entry(rng)]
     write_document(
         args.out,
         "derivatives/1",
         "scripts/derivatives_reference.py (Pinocchio Python bindings)",
         SEED,
         "Per state: q, qd, tau (zero for the chains), qdd = aba(q, qd, tau); "
-        "ddq_dq, ddq_dv, ddq_dtau = M^-1 from computeABADerivatives at (q, qd, tau); "
+        "ddq_dq, ddq_dv, ddq_dtau = M^-1 from computeABADerivatives at (q, qd, tau) "
+        "(tau: the joints' torques; a floating base's q is position then quaternion (x, y, z, w), "
+        "its derivatives by q in the tangent space); "
         "dtau_dq, dtau_dv, dtau_da = M from computeRNEADerivatives at (q, qd, vdot). "
         "Matrices row by row, entry [i][j] the derivative of component i by variable j, "
         "in dalembert's coordinate order.",

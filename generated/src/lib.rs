@@ -314,6 +314,8 @@ pub mod derivatives {
     with_derivatives!(
         double_pendulum,
         rotating_bar,
+        dzhanibekov,
+        floating_solo12,
         planar_chain_02,
         planar_chain_06,
         planar_chain_12,

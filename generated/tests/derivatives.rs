@@ -22,20 +22,24 @@ const TOLERANCE: f64 = 1e-6;
 /// `O(ε/h)`).
 const STEP: f64 = 1e-5;
 
-/// A random state: coordinates in `[−π, π)`, speeds and inputs in `[−2, 2)`.
-struct State<const N: usize, const NU: usize> {
+/// A random state: coordinates in `[−π, π)` (each quaternion then
+/// normalised), speeds and inputs in `[−2, 2)`.
+struct State<const NQ: usize, const NV: usize, const NU: usize> {
     t: f64,
-    q: [f64; N],
-    v: [f64; N],
+    q: [f64; NQ],
+    v: [f64; NV],
     u: [f64; NU],
 }
 
-impl<const N: usize, const NU: usize> State<N, NU> {
-    fn random(random: &mut Random) -> Self {
+impl<const NQ: usize, const NV: usize, const NU: usize> State<NQ, NV, NU> {
+    fn random<S: MultibodySystem<NQ, NV, NU>>(system: &S, random: &mut Random) -> Self {
         let pi = std::f64::consts::PI;
+        let t = random.uniform(0.0, 3.0);
+        let q = std::array::from_fn(|_| random.uniform(-pi, pi));
         State {
-            t: random.uniform(0.0, 3.0),
-            q: std::array::from_fn(|_| random.uniform(-pi, pi)),
+            t,
+            // `q ⊕ 0` normalises the quaternions and moves nothing else.
+            q: system.integrate_configuration(&q, &[0.0; NV], 0.0),
             v: std::array::from_fn(|_| random.uniform(-2.0, 2.0)),
             u: std::array::from_fn(|_| random.uniform(-2.0, 2.0)),
         }
@@ -85,46 +89,49 @@ fn assert_matches<const N: usize, const M: usize>(
 }
 
 /// `accelerations_jacobian(t, q, v, u)` of a system.
-type AccelerationsJacobian<S, const N: usize, const NU: usize> =
+type AccelerationsJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
     fn(
         &S,
         f64,
-        &[f64; N],
-        &[f64; N],
+        &[f64; NQ],
+        &[f64; NV],
         &[f64; NU],
-    ) -> Result<([[f64; N]; N], [[f64; N]; N], [[f64; NU]; N]), dalembert::DynamicsError>;
+    )
+        -> Result<([[f64; NV]; NV], [[f64; NV]; NV], [[f64; NU]; NV]), dalembert::DynamicsError>;
 
 /// `inverse_dynamics_jacobian(t, q, v, v̇, u)` of a system.
-type InverseDynamicsJacobian<S, const N: usize, const NU: usize> =
+type InverseDynamicsJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
     fn(
         &S,
         f64,
-        &[f64; N],
-        &[f64; N],
-        &[f64; N],
+        &[f64; NQ],
+        &[f64; NV],
+        &[f64; NV],
         &[f64; NU],
-    ) -> ([[f64; N]; N], [[f64; N]; N], [[f64; N]; N]);
+    ) -> ([[f64; NV]; NV], [[f64; NV]; NV], [[f64; NV]; NV]);
 
 /// Both Jacobians of `system` against central differences of its
-/// accelerations and of `M v̇ − f`, at `states` random states.
-fn check<S: MultibodySystem<N, N, NU>, const N: usize, const NU: usize>(
+/// accelerations and of `M v̇ − f`, at random states; by `q` along
+/// `q ⊕ δ` (`integrate_configuration`), in the tangent space.
+fn check<S: MultibodySystem<NQ, NV, NU>, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
-    accelerations_jacobian: AccelerationsJacobian<S, N, NU>,
-    inverse_dynamics_jacobian: InverseDynamicsJacobian<S, N, NU>,
+    accelerations_jacobian: AccelerationsJacobian<S, NQ, NV, NU>,
+    inverse_dynamics_jacobian: InverseDynamicsJacobian<S, NQ, NV, NU>,
     seed: u64,
 ) {
     let mut random = Random::new(seed);
     for _ in 0..5 {
-        let State { t, q, v, u } = State::<N, NU>::random(&mut random);
+        let State { t, q, v, u } = State::<NQ, NV, NU>::random(system, &mut random);
         let vdot = dalembert::accelerations(system, t, &q, &v, &u).expect("solvable");
-        let accelerations = |q: &[f64; N], v: &[f64; N], u: &[f64; NU]| {
+        let accelerations = |q: &[f64; NQ], v: &[f64; NV], u: &[f64; NU]| {
             dalembert::accelerations(system, t, q, v, u).expect("solvable")
         };
+        let moved = |delta: &[f64; NV]| system.integrate_configuration(&q, delta, 1.0);
         let (by_q, by_v, by_u) = accelerations_jacobian(system, t, &q, &v, &u).expect("solvable");
         assert_matches(
             "∂v̇/∂q",
             &by_q,
-            &central_differences(&q, |q| accelerations(q, &v, &u)),
+            &central_differences(&[0.0; NV], |delta| accelerations(&moved(delta), &v, &u)),
         );
         assert_matches(
             "∂v̇/∂v",
@@ -137,13 +144,17 @@ fn check<S: MultibodySystem<N, N, NU>, const N: usize, const NU: usize>(
             &central_differences(&u, |u| accelerations(&q, &v, u)),
         );
         // τ = M v̇ − f at an arbitrary v̇, not only the solved one.
-        let a: [f64; N] = std::array::from_fn(|i| vdot[i] + random.uniform(-1.0, 1.0));
-        let tau = |q: &[f64; N], v: &[f64; N]| -> [f64; N] {
+        let a: [f64; NV] = std::array::from_fn(|i| vdot[i] + random.uniform(-1.0, 1.0));
+        let tau = |q: &[f64; NQ], v: &[f64; NV]| -> [f64; NV] {
             let (m, f) = (system.mass_matrix(q), system.forcing(t, q, v, &u));
-            std::array::from_fn(|i| (0..N).map(|j| m[i][j] * a[j]).sum::<f64>() - f[i])
+            std::array::from_fn(|i| (0..NV).map(|j| m[i][j] * a[j]).sum::<f64>() - f[i])
         };
         let (tau_q, tau_v, mass) = inverse_dynamics_jacobian(system, t, &q, &v, &a, &u);
-        assert_matches("∂τ/∂q", &tau_q, &central_differences(&q, |q| tau(q, &v)));
+        assert_matches(
+            "∂τ/∂q",
+            &tau_q,
+            &central_differences(&[0.0; NV], |delta| tau(&moved(delta), &v)),
+        );
         assert_matches("∂τ/∂v", &tau_v, &central_differences(&v, |v| tau(&q, v)));
         assert_eq!(mass, system.mass_matrix(&q), "∂τ/∂v̇ = M");
     }
@@ -166,6 +177,14 @@ fn seed_examples_match_central_differences() {
     check!(1;
         double_pendulum::DoublePendulum { m: 1.3, L: 0.7, g: 9.81 },
         rotating_bar::RotatingBar { m: 1.1, l: 0.9, d: 0.4 },
+    );
+}
+
+#[test]
+fn quaternion_joints_match_central_differences_in_the_tangent_space() {
+    check!(5;
+        dzhanibekov::Dzhanibekov { m: 12.0, a: 3.0, b: 2.0, c: 1.0 },
+        floating_solo12::FloatingSolo {},
     );
 }
 
@@ -300,31 +319,45 @@ fn reference_states(model: &str) -> Vec<Value> {
 }
 
 /// Both Jacobians of `system` against Pinocchio's at every reference state
-/// of `model` (the torques are the inputs, if the system has any).
-fn check_against_pinocchio<S: MultibodySystem<N, N, NU>, const N: usize, const NU: usize>(
+/// of `model` (the torques are the inputs, if the system has any: the
+/// last `NU` speeds').
+fn check_against_pinocchio<
+    S: MultibodySystem<NQ, NV, NU>,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+>(
     model: &str,
     system: &S,
-    accelerations_jacobian: AccelerationsJacobian<S, N, NU>,
-    inverse_dynamics_jacobian: InverseDynamicsJacobian<S, N, NU>,
+    accelerations_jacobian: AccelerationsJacobian<S, NQ, NV, NU>,
+    inverse_dynamics_jacobian: InverseDynamicsJacobian<S, NQ, NV, NU>,
 ) {
-    let array = |v: &Value| -> [f64; N] { numbers(v).try_into().expect("N numbers") };
+    fn array<const N: usize>(v: &Value) -> [f64; N] {
+        numbers(v).try_into().expect("N numbers")
+    }
     for state in reference_states(model) {
         let (q, v, a) = (
-            array(&state["q"]),
-            array(&state["qd"]),
-            array(&state["vdot"]),
+            array::<NQ>(&state["q"]),
+            array::<NV>(&state["qd"]),
+            array::<NV>(&state["vdot"]),
         );
         let u: [f64; NU] = match NU {
             0 => [0.0; NU],
-            _ => numbers(&state["tau"]).try_into().expect("NU torques"),
+            _ => array(&state["tau"]),
         };
         let (by_q, by_v, by_u) = accelerations_jacobian(system, 0.0, &q, &v, &u).expect("solvable");
-        let flat = |m: &[[f64; N]; N]| -> Vec<f64> { m.iter().flatten().copied().collect() };
+        let flat = |m: &[[f64; NV]; NV]| -> Vec<f64> { m.iter().flatten().copied().collect() };
         assert_agrees(&format!("{model} ∂q̈/∂q"), &flat(&by_q), &state["ddq_dq"]);
         assert_agrees(&format!("{model} ∂q̈/∂v"), &flat(&by_v), &state["ddq_dv"]);
-        if NU == N {
+        if NU > 0 {
+            // The columns of M⁻¹ of the actuated speeds.
+            let rows = state["ddq_dtau"].as_array().expect("rows");
+            let want: Vec<Value> = rows
+                .iter()
+                .map(|row| Value::Array(row.as_array().expect("a row")[NV - NU..].to_vec()))
+                .collect();
             let by_u: Vec<f64> = by_u.iter().flatten().copied().collect();
-            assert_agrees(&format!("{model} ∂q̈/∂τ"), &by_u, &state["ddq_dtau"]);
+            assert_agrees(&format!("{model} ∂q̈/∂τ"), &by_u, &Value::Array(want));
         }
         let (tau_q, tau_v, mass) = inverse_dynamics_jacobian(system, 0.0, &q, &v, &a, &u);
         assert_agrees(&format!("{model} ∂τ/∂q"), &flat(&tau_q), &state["dtau_dq"]);
@@ -348,4 +381,203 @@ macro_rules! check_against_pinocchio {
 #[test]
 fn chains_and_robots_match_pinocchio() {
     dalembert_generated::chains_and_robots_with_derivatives!(check_against_pinocchio);
+}
+
+/// The floating Solo-12 and the brick on a ball joint: Pinocchio's
+/// derivatives by `q` are in the tangent space of its free flyer and
+/// spherical joint, as ours.
+#[test]
+fn quaternion_joints_match_pinocchio_in_the_tangent_space() {
+    check_against_pinocchio(
+        "solo12_floating",
+        &floating_solo12::FloatingSolo {},
+        floating_solo12::FloatingSolo::accelerations_jacobian,
+        floating_solo12::FloatingSolo::inverse_dynamics_jacobian,
+    );
+    check_against_pinocchio(
+        "dzhanibekov",
+        &dzhanibekov::Dzhanibekov {
+            m: 12.0,
+            a: 3.0,
+            b: 2.0,
+            c: 1.0,
+        },
+        dzhanibekov::Dzhanibekov::accelerations_jacobian,
+        dzhanibekov::Dzhanibekov::inverse_dynamics_jacobian,
+    );
+}
+
+/// How a system's coordinates sit in its tangent space: a quaternion joint
+/// first (a free joint's position and quaternion, or a spherical joint's
+/// quaternion), then plain coordinates, one per remaining speed.
+#[derive(Clone, Copy)]
+enum Base {
+    Free,
+    Spherical,
+}
+
+/// `(x, y, z, w) ⊗ (x, y, z, w)`.
+fn quaternion_product(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    let (u, v) = ([a[0], a[1], a[2]], [b[0], b[1], b[2]]);
+    let cross = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let vector: [f64; 3] = std::array::from_fn(|i| a[3] * v[i] + b[3] * u[i] + cross[i]);
+    let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    [vector[0], vector[1], vector[2], a[3] * b[3] - dot]
+}
+
+/// `p⁻¹ ⊗ x ⊗ p` for a unit `p`: `x` in `p`'s axes.
+fn in_axes_of(p: [f64; 4], x: [f64; 3]) -> [f64; 3] {
+    let conjugate = [-p[0], -p[1], -p[2], p[3]];
+    let turned = quaternion_product(quaternion_product(conjugate, [x[0], x[1], x[2], 0.0]), p);
+    [turned[0], turned[1], turned[2]]
+}
+
+/// `q ⊖ q̄`: the tangent vector `δ` with `q̄ ⊕ δ = q` (the SE(3) or SO(3)
+/// logarithm of `q̄⁻¹ q` for the quaternion joint, differences for the
+/// rest), computed independently of the generated code.
+fn tangent_difference<const NQ: usize, const NV: usize>(
+    base: Base,
+    q: &[f64; NQ],
+    from: &[f64; NQ],
+) -> [f64; NV] {
+    // Where the quaternion is in `q`, and the angular speeds in `v`.
+    let (quaternion, angular) = match base {
+        Base::Free => (3, 3),
+        Base::Spherical => (0, 0),
+    };
+    let at = |x: &[f64; NQ]| -> [f64; 4] { std::array::from_fn(|i| x[quaternion + i]) };
+    let mut relative = quaternion_product(
+        [-at(from)[0], -at(from)[1], -at(from)[2], at(from)[3]],
+        at(q),
+    );
+    if relative[3] < 0.0 {
+        relative = relative.map(|x| -x);
+    }
+    let sine = (relative[0].powi(2) + relative[1].powi(2) + relative[2].powi(2)).sqrt();
+    let angle = 2.0 * sine.atan2(relative[3]);
+    // angle / sine → 2 / w for a vanishing angle.
+    let scale = match sine > 0.0 {
+        true => angle / sine,
+        false => 2.0 / relative[3],
+    };
+    let omega: [f64; 3] = std::array::from_fn(|i| relative[i] * scale);
+    let mut delta = [0.0; NV];
+    delta[angular..angular + 3].copy_from_slice(&omega);
+    if let Base::Free = base {
+        // V(ω)⁻¹ R̄ᵀ (r − r̄), V⁻¹ = 1 − ½[ω]× + (1 − θ sin θ / (2 (1 − cos θ))) [ω]×² / θ².
+        let moved = in_axes_of(at(from), std::array::from_fn(|i| q[i] - from[i]));
+        let cross = |a: [f64; 3], b: [f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let once = cross(omega, moved);
+        let twice = cross(omega, once);
+        let c = match angle < 1e-2 {
+            true => 1.0 / 12.0 + angle * angle / 720.0,
+            false => (1.0 - angle * angle.sin() / (2.0 * (1.0 - angle.cos()))) / (angle * angle),
+        };
+        for i in 0..3 {
+            delta[i] = moved[i] - 0.5 * once[i] + c * twice[i];
+        }
+    }
+    let (first_plain, first_plain_speed) = (quaternion + 4, angular + 3);
+    for (k, i) in (first_plain_speed..NV).zip(first_plain..NQ) {
+        delta[k] = q[i] - from[i];
+    }
+    delta
+}
+
+/// The kinematic rows of `linearize` (`δ̇` by `δ` and `δv`, with
+/// `q = q̄ ⊕ δ`) against mixed central differences of
+/// `((q̄ ⊕ ε δ₀) ⊕ h (v̄ + ε δv)) ⊖ (q̄ ⊕ h v̄)` in `h` and `ε`; the dynamic
+/// rows are `accelerations_jacobian`'s.
+fn check_kinematic_rows<
+    S: MultibodySystem<NQ, NV, NU>,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const NX: usize,
+>(
+    system: &S,
+    base: Base,
+    linearize: Linearize<S, NQ, NV, NU, NX>,
+    accelerations_jacobian: AccelerationsJacobian<S, NQ, NV, NU>,
+) {
+    let mut random = Random::new(6);
+    for _ in 0..3 {
+        let State { t, q, v, u } = State::<NQ, NV, NU>::random(system, &mut random);
+        let (a, b) = linearize(system, t, &q, &v, &u).expect("solvable");
+        let (by_q, by_v, by_u) = accelerations_jacobian(system, t, &q, &v, &u).expect("solvable");
+        let step = 1e-4;
+        let delta = |h: f64, epsilon: f64, j: usize| -> [f64; NV] {
+            let (mut d0, mut dv) = ([0.0; NV], [0.0; NV]);
+            match j < NV {
+                true => d0[j] = epsilon,
+                false => dv[j - NV] = epsilon,
+            }
+            let start = system.integrate_configuration(&q, &d0, 1.0);
+            let speeds: [f64; NV] = std::array::from_fn(|k| v[k] + dv[k]);
+            let moved = system.integrate_configuration(&start, &speeds, h);
+            let reference = system.integrate_configuration(&q, &v, h);
+            tangent_difference(base, &moved, &reference)
+        };
+        // Column j of the mixed differences, then transposed.
+        let columns: [[f64; NV]; NX] = std::array::from_fn(|j| {
+            let (pp, pm, mp, mm) = (
+                delta(step, step, j),
+                delta(step, -step, j),
+                delta(-step, step, j),
+                delta(-step, -step, j),
+            );
+            std::array::from_fn(|i| (pp[i] - pm[i] - mp[i] + mm[i]) / (4.0 * step * step))
+        });
+        let numeric: [[f64; NX]; NV] = std::array::from_fn(|i| columns.map(|column| column[i]));
+        let kinematic: [[f64; NX]; NV] = std::array::from_fn(|i| a[i]);
+        assert_matches("A's kinematic rows", &kinematic, &numeric);
+        for i in 0..NV {
+            assert_eq!(a[NV + i][..NV], by_q[i], "A's row {}", NV + i);
+            assert_eq!(a[NV + i][NV..], by_v[i], "A's row {}", NV + i);
+            assert_eq!(b[i], [0.0; NU]);
+            assert_eq!(b[NV + i], by_u[i]);
+        }
+    }
+}
+
+/// `linearize(t, q, v, u)` of a system with a state of `NX` entries.
+type Linearize<S, const NQ: usize, const NV: usize, const NU: usize, const NX: usize> =
+    fn(
+        &S,
+        f64,
+        &[f64; NQ],
+        &[f64; NV],
+        &[f64; NU],
+    ) -> Result<([[f64; NX]; NX], [[f64; NU]; NX]), dalembert::DynamicsError>;
+
+#[test]
+fn linearize_of_quaternion_joints_has_the_kinematic_rows_of_the_tangent_space() {
+    let brick = dzhanibekov::Dzhanibekov {
+        m: 12.0,
+        a: 3.0,
+        b: 2.0,
+        c: 1.0,
+    };
+    check_kinematic_rows(
+        &brick,
+        Base::Spherical,
+        dzhanibekov::Dzhanibekov::linearize,
+        dzhanibekov::Dzhanibekov::accelerations_jacobian,
+    );
+    check_kinematic_rows(
+        &floating_solo12::FloatingSolo {},
+        Base::Free,
+        floating_solo12::FloatingSolo::linearize,
+        floating_solo12::FloatingSolo::accelerations_jacobian,
+    );
 }

@@ -8,6 +8,9 @@
 //!   say which solver when): rank-revealing by default, so redundant
 //!   constraints, singular positions and coordinates without inertia of
 //!   their own are handled;
+//! * [`linearize_on_constraints`] linearises the equations on the
+//!   constraint manifold with independent coordinates (what a generated
+//!   `linearize` calls for a constrained system);
 //! * [`project_onto_constraints`] moves a state back onto the constraint
 //!   manifold (positions, then speeds), and [`project_onto_energy_level`]
 //!   the speeds of a conservative system onto its energy level;
@@ -15,6 +18,7 @@
 //!   dynamics keep an integration on the manifold, and
 //!   [`constraint_drift`] measures how far it is off.
 
+mod linearize;
 mod multipliers;
 mod projection;
 mod rank;
@@ -23,6 +27,10 @@ mod stabilisation;
 #[cfg(test)]
 pub(crate) mod test_systems;
 
+pub use linearize::{
+    ConstrainedLinearization, ConstrainedPartials, DEPENDENT_PIVOT_TOLERANCE,
+    linearize_on_constraints,
+};
 pub use multipliers::{
     CONSISTENCY_TOLERANCE, ConstraintSolver, RANK_TOLERANCE, baumgarte_accelerations,
     constrained_accelerations,

@@ -85,6 +85,18 @@ pub enum DynamicsError {
         /// The largest `|φᵢ|` left.
         residual: f64,
     },
+    /// The independent coordinates chosen for the linearisation of a
+    /// constrained system do not determine the others here: the
+    /// constraints' Jacobian by the dependent coordinates is singular (its
+    /// elimination met a pivot not larger than `1e-12` times the largest
+    /// entry), at the column of `coordinate`. Choose other independent
+    /// coordinates near this configuration.
+    SingularDependentCoordinates {
+        /// The dependent coordinate whose column failed.
+        coordinate: &'static str,
+        /// The pivot.
+        pivot: f64,
+    },
 }
 
 impl fmt::Display for DynamicsError {
@@ -137,6 +149,12 @@ impl fmt::Display for DynamicsError {
                 f,
                 "projection onto the constraints did not converge: max |φ| = {residual:.3e} \
                  after {iterations} iterations"
+            ),
+            Self::SingularDependentCoordinates { coordinate, pivot } => write!(
+                f,
+                "the independent coordinates do not determine `{coordinate}` here: the \
+                 constraints' Jacobian by the dependent coordinates is singular (pivot \
+                 {pivot:.3e}); choose other independent coordinates"
             ),
         }
     }

@@ -6,8 +6,8 @@ mod error;
 
 use nalgebra::SVector;
 
-pub(crate) use cholesky::factor_mass_matrix;
 pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots, pivot_tolerance};
+pub(crate) use cholesky::{cholesky, factor_mass_matrix};
 pub use error::DynamicsError;
 
 use crate::MultibodySystem;

@@ -57,12 +57,17 @@ pub fn emit(
         .iter()
         .map(|function| match (function.body, target) {
             (Body::Explicit, _) => emit_function(model, pool, &names, function),
-            // Both return the runtime's errors.
+            // They return the runtime's errors.
             (_, Target::NoStd) => TokenStream::new(),
             (Body::AccelerationsJacobian, Target::Std) => {
                 derivatives::emit_accelerations_jacobian(model, pool, equations, &names, function)
             }
-            (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, function),
+            (Body::Linearize, Target::Std) => {
+                derivatives::emit_linearize(model, pool, &names, function)
+            }
+            (Body::ConstrainedLinearize, Target::Std) => {
+                derivatives::emit_constrained_linearize(model, pool, &names, function)
+            }
         })
         .collect();
     items.push(configuration::emit_configuration(model, pool, &names));

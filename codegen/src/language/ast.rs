@@ -132,14 +132,19 @@ pub enum Statement {
     },
 }
 
-/// One item of an `outputs` statement: `name`, `name(P)` or `name(P in F)`
+/// One item of an `outputs` statement: `name`, `name(P)`, `name(P in F)` or
+/// `name(a, b)`
 /// (unchecked: the model knows which names and arguments exist).
 #[derive(Clone, Debug)]
 pub struct OutputRequest {
     /// The output's name (`inverse_dynamics`, `position`, ...).
     pub name: Ident,
-    /// The point or frame in parentheses, if any.
+    /// The point or frame in parentheses, if any (or the first of
+    /// `linearize`'s independent coordinates).
     pub of: Option<Ident>,
+    /// Further names after commas: `linearize(theta, phi)`'s other
+    /// independent coordinates.
+    pub more: Vec<Ident>,
     /// The frame after `in`, whose axes the output is expressed in.
     pub axes: Option<Ident>,
 }

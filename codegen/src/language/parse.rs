@@ -325,7 +325,7 @@ fn outputs(cursor: &mut Cursor) -> syn::Result<Vec<OutputRequest>> {
     Ok(requests)
 }
 
-/// Parses one `name`, `name(P)` or `name(P in F)`.
+/// Parses one `name`, `name(P)`, `name(P in F)` or `name(a, b, ..)`.
 fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
     let name =
         cursor.expect_ident("the name of an output (`inverse_dynamics`, `position(P)`, ...)")?;
@@ -333,11 +333,16 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
         return Ok(OutputRequest {
             name,
             of: None,
+            more: Vec::new(),
             axes: None,
         });
     };
     let mut inside = Cursor::group(&group);
-    let of = inside.expect_ident(format!("a point or frame in `{name}(..)`"))?;
+    let of = inside.expect_ident(format!("a point, frame or coordinate in `{name}(..)`"))?;
+    let mut more = Vec::new();
+    while inside.eat_punct(',').is_some() {
+        more.push(inside.expect_ident("a coordinate after `,`")?);
+    }
     let axes = match inside.eat_keyword(keyword::IN) {
         Some(_) => Some(inside.expect_ident("a frame after `in`")?),
         None => None,
@@ -348,6 +353,7 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
     Ok(OutputRequest {
         name,
         of: Some(of),
+        more,
         axes,
     })
 }

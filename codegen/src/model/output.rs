@@ -6,7 +6,8 @@
 //! more. A new kind of output is one variant of [`OutputKind`] and one row
 //! of [`KINDS`].
 
-use super::{FrameId, PointId};
+use super::{FrameId, Model, PointId};
+use crate::expr::Pool;
 use proc_macro2::{Ident, Span};
 use quote::format_ident;
 
@@ -49,6 +50,9 @@ pub enum Subject {
     Point,
     /// A frame: `rotation(B)`.
     Frame,
+    /// Coordinates, optional: `linearize(theta)`, the independent
+    /// coordinates of a system with constraints.
+    Coordinates,
 }
 
 /// Whether an output can be generated today.
@@ -66,7 +70,7 @@ pub const KINDS: [(&str, Subject, Availability); 12] = [
     ("inverse_dynamics", Subject::None, Availability::Ready),
     ("regressor", Subject::None, Availability::Ready),
     ("accelerations_jacobian", Subject::None, Availability::Ready),
-    ("linearize", Subject::None, Availability::Ready),
+    ("linearize", Subject::Coordinates, Availability::Ready),
     (
         "inverse_dynamics_jacobian",
         Subject::None,
@@ -87,6 +91,7 @@ pub fn kind_list() -> String {
         .iter()
         .map(|(name, subject, _)| match subject {
             Subject::None => format!("`{name}`"),
+            Subject::Coordinates => format!("`{name}`"),
             Subject::Point => format!("`{name}(P)`"),
             Subject::Frame => format!("`{name}(B)`"),
         })
@@ -129,6 +134,9 @@ pub struct Output {
     pub subject: Option<String>,
     /// The name of the frame of [`Output::axes`], for the docs.
     pub axes_name: String,
+    /// `linearize(a, b)`'s independent coordinates, as written, with their
+    /// indices.
+    pub independent: Vec<(usize, Ident)>,
 }
 
 /// The function name of an output written `name`, `name(subject)` or
@@ -144,4 +152,52 @@ pub fn function_name(name: &Ident, subject: Option<&Ident>, axes: Option<&Ident>
     }
     ident.set_span(span);
     ident
+}
+
+/// What is wrong with a `linearize` output of `model` (whose expressions
+/// are in `pool`), at which token: a
+/// system with constraints is linearised on the constraint manifold, so
+/// it names as many independent coordinates as it has degrees of freedom
+/// (`NQ − NC`; the others are found from the holonomic constraints), and
+/// a system without names none.
+pub fn linearize_problem(model: &Model, pool: &Pool, output: &Output) -> Option<(Span, String)> {
+    let name = &output.function;
+    let (nq, nc) = (model.nq(), model.constraints.len());
+    if nc == 0 {
+        let (_, first) = output.independent.first()?;
+        return Some((
+            first.span(),
+            format!(
+                "`{name}` takes independent coordinates only for a system with constraints: \
+                 write `{name}` alone"
+            ),
+        ));
+    }
+    let problem = if model.constraints.iter().any(|c| c.nonholonomic) {
+        "is not available yet for a system with nonholonomic constraints: remove it from \
+         `outputs`"
+            .to_string()
+    } else if nq != model.nv() || !model.balls.is_empty() || !pool.rates_are_speeds() {
+        "is not available yet for a system with constraints whose speeds are not its \
+         coordinates' rates (a free or spherical joint, a `speeds` statement): remove it \
+         from `outputs`"
+            .to_string()
+    } else if output.independent.len() + nc != nq {
+        let written: Vec<String> = model.coordinates.iter().map(ToString::to_string).collect();
+        format!(
+            "linearises a system with constraints on the constraint manifold: name its \
+             {} independent coordinate(s) in parentheses, as `{name}({})` ({nq} coordinates \
+             `{}`, less {nc} constraint(s)); the others are found from the constraints",
+            nq.saturating_sub(nc),
+            written.last().map_or("", String::as_str),
+            written.join("`, `"),
+        )
+    } else {
+        return None;
+    };
+    let span = match output.independent.first() {
+        Some((_, first)) if nq == model.nv() && output.independent.len() + nc != nq => first.span(),
+        _ => name.span(),
+    };
+    Some((span, format!("`{name}` {problem}")))
 }

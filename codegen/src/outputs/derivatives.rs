@@ -4,9 +4,11 @@
 //! [`crate::equations::derivatives`]).
 
 use super::{Argument, Body, Function, Value, doc_lines};
-use crate::equations::derivatives::{ResidualJacobian, residual_jacobian};
+use crate::equations::derivatives::{
+    ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
+};
 use crate::equations::{Equations, inverse_dynamics};
-use crate::expr::Pool;
+use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Span};
 
@@ -23,7 +25,8 @@ fn partials(
         true => "the Newton–Euler recursion over the kinematic tree",
         false => "the mass matrix and the forcing",
     };
-    let jacobian = residual_jacobian(pool, &tau, model.nq(), model.inputs.len());
+    let directions = tangent_directions(model, pool);
+    let jacobian = residual_jacobian(pool, &tau, &directions, model.inputs.len());
     (jacobian, route)
 }
 
@@ -50,21 +53,22 @@ pub fn inverse_dynamics_jacobian(
     equations: &Equations,
     pool: &mut Pool,
 ) -> Function {
-    let nq = model.nq();
+    let nv = model.nv();
     let (jacobian, route) = partials(model, equations, pool);
+    let tangent = tangent_note(model);
     function(
         "inverse_dynamics_jacobian",
         &format!(
             "The derivatives of the inverse dynamics `τ(t, q, v, v̇, u) = M v̇ − f`:\n\
              `(∂τ/∂q, ∂τ/∂v, ∂τ/∂v̇ = M)`, entry `[i][j]` the derivative of `τᵢ` by\n\
              the `j`-th variable. Exact: `τ`, derived by {route},\n\
-             differentiated symbolically, the shared subexpressions computed once."
+             differentiated symbolically, the shared subexpressions computed once.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Accelerations, Inputs],
         vec![
-            Value::matrix(&jacobian.coordinates, nq),
-            Value::matrix(&jacobian.speeds, nq),
-            Value::matrix(&equations.mass_matrix, nq),
+            Value::matrix(&jacobian.coordinates, nv),
+            Value::matrix(&jacobian.speeds, nv),
+            Value::matrix(&equations.mass_matrix, nv),
         ],
         Body::Explicit,
     )
@@ -72,8 +76,9 @@ pub fn inverse_dynamics_jacobian(
 
 /// `accelerations_jacobian(t, q, v, u) -> Result<(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u), _>`.
 pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut Pool) -> Function {
-    let (nq, nu) = (model.nq(), model.inputs.len());
+    let (nv, nu) = (model.nv(), model.inputs.len());
     let (jacobian, route) = partials(model, equations, pool);
+    let tangent = tangent_note(model);
     function(
         "accelerations_jacobian",
         &format!(
@@ -84,33 +89,173 @@ pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut P
              of `τ` (derived by {route}) are differentiated\n\
              symbolically, and every column goes through the `L D Lᵀ` factorisation\n\
              of `M` that solved for `v̇`. The errors of `accelerations`, and\n\
-             `NonFiniteEquations` for a non-finite derivative."
+             `NonFiniteEquations` for a non-finite derivative.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Inputs],
         vec![
-            Value::matrix(&jacobian.coordinates, nq),
-            Value::matrix(&jacobian.speeds, nq),
+            Value::matrix(&jacobian.coordinates, nv),
+            Value::matrix(&jacobian.speeds, nv),
             Value::matrix(&jacobian.inputs, nu),
         ],
         Body::AccelerationsJacobian,
     )
 }
 
-/// `linearize(t, q, v, u) -> Result<(A, B), _>`.
-pub fn linearize() -> Function {
+/// `linearize(t, q, v, u) -> Result<(A, B), _>`: its results are the
+/// kinematic rows `(K_δ, K_v)` of `A`; the rest comes from
+/// `accelerations_jacobian`.
+pub fn linearize(model: &Model, pool: &mut Pool) -> Function {
+    let nv = model.nv();
+    let directions = tangent_directions(model, pool);
+    let (by_coordinates, by_speeds) = tangent_kinematics(model, pool, &directions);
+    let tangent = tangent_note(model);
+    let own_rates = match plain_speeds(model).into_iter().all(|(k, c)| {
+        let rate = pool.rate(c as u32);
+        rate == pool.sym(Sym::Speed(k as u32))
+    }) {
+        true => "",
+        false => ", `(∂(N v)/∂q, N)` for rates `q̇ = N(q) v` of a `speeds` statement",
+    };
+    let balls = match model.balls.is_empty() {
+        true => "",
+        false => {
+            ", and `δ̇ = δν − ad(ν̄) δ` for a quaternion joint of twist `ν̄` (its\n\
+             angular velocity `ω̄`, and for a free joint its velocity `v̄`, in the\n\
+             child's axes): `δ̇_ω = δω − ω̄ × δ_ω`, `δ̇_v = δv − ω̄ × δ_v − v̄ × δ_ω`"
+        }
+    };
     function(
         "linearize",
-        "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
-         state `x = (q, v)` and input `u`. The coordinates' rates are the speeds\n\
-         (`q̇ = v`), so `A = [[0, I], [∂v̇/∂q, ∂v̇/∂v]]` and `B = [[0], [∂v̇/∂u]]`,\n\
-         from `accelerations_jacobian` (and with its errors). About an\n\
-         equilibrium, the eigenvalues of `A` are the exponents of the small\n\
-         motions. Systems with constraints are not linearised (yet), nor\n\
-         Lie-group joints (free, spherical).",
+        &format!(
+            "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
+             state `x = (q, v)` and input `u`, with `q = q̄ ⊕ δ` and `v = v̄ + δv`\n\
+             (`δ` in the tangent space, one entry per speed):\n\
+             `A = [[K_δ, K_v], [∂v̇/∂q, ∂v̇/∂v]]` and `B = [[0], [∂v̇/∂u]]`, from\n\
+             `accelerations_jacobian` (and with its errors). The kinematic rows\n\
+             `δ̇ = K_δ δ + K_v δv` are `(0, I)` where the speeds are the coordinates'\n\
+             rates{own_rates}{balls}. About an equilibrium, the eigenvalues of `A` are the\n\
+             exponents of the small motions.{tangent}"
+        ),
         &[Time, Coordinates, Speeds, Inputs],
-        Vec::new(),
+        vec![
+            Value::matrix(&by_coordinates, nv),
+            Value::matrix(&by_speeds, nv),
+        ],
         Body::Linearize,
     )
+}
+
+/// `linearize(t, q, v, u) -> Result<(A, B), _>` of a system with
+/// holonomic constraints, on the constraint manifold with the independent
+/// coordinates `independent` (as written): its results are the partials,
+/// at the solved `v̇` and `λ`, of the residuals `r = M v̇ − f − Aᵀ λ` (by
+/// `q`, `v`, `u`) and `c = A v̇ − b` (by `q`, `v`), and `∂ψ/∂q` of the
+/// constraints' velocity form `ψ`; the runtime's
+/// `linearize_on_constraints` does the rest.
+pub fn constrained_linearize(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+    independent: &[String],
+) -> Function {
+    let (nv, nu) = (model.nv(), model.inputs.len());
+    let (tau, _) = inverse_dynamics(model, equations, pool);
+    let jacobian = &equations.constraint_jacobian;
+    let multipliers: Vec<ExprId> = (0..jacobian.len())
+        .map(|j| pool.sym(Sym::Multiplier(j as u32)))
+        .collect();
+    let residual: Vec<ExprId> = tau
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let reactions: Vec<ExprId> = jacobian
+                .iter()
+                .zip(&multipliers)
+                .map(|(row, &lambda)| pool.mul(row[i], lambda))
+                .collect();
+            let reaction = pool.sum(reactions);
+            let minus = pool.neg(reaction);
+            pool.add(t, minus)
+        })
+        .collect();
+    let constraint: Vec<ExprId> = jacobian
+        .iter()
+        .zip(&equations.constraint_bias)
+        .map(|(row, &b)| {
+            let mut terms: Vec<ExprId> = row
+                .iter()
+                .enumerate()
+                .map(|(k, &a)| {
+                    let accel = pool.sym(Sym::Accel(k as u32));
+                    pool.mul(a, accel)
+                })
+                .collect();
+            terms.push(pool.neg(b));
+            pool.sum(terms)
+        })
+        .collect();
+    let mut by = |rows: &[ExprId], symbol: fn(u32) -> Sym, n: usize| -> Value {
+        let block: Vec<Vec<ExprId>> = rows
+            .iter()
+            .map(|&e| (0..n).map(|j| pool.diff(e, symbol(j as u32))).collect())
+            .collect();
+        Value::matrix(&block, n)
+    };
+    let results = vec![
+        by(&residual, Sym::Coord, nv),
+        by(&residual, Sym::Speed, nv),
+        by(&residual, Sym::Input, nu),
+        by(&constraint, Sym::Coord, nv),
+        by(&constraint, Sym::Speed, nv),
+        by(&equations.constraint_velocity, Sym::Coord, nv),
+    ];
+    let dependent: Vec<String> = model
+        .coordinates
+        .iter()
+        .map(ToString::to_string)
+        .filter(|c| !independent.contains(c))
+        .collect();
+    function(
+        "linearize",
+        &format!(
+            "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
+             state `x = (q, v)` on the constraint manifold and input `u`, with the\n\
+             independent coordinates `{}` (the dependent `{}` follow from the\n\
+             constraints), by the method of Peterson, Gede and Hubbard (2014), as\n\
+             SymPy's `Linearizer`. The accelerations `v̇(t, q, v, u)` of\n\
+             `M v̇ = f + Aᵀ λ`, `A v̇ = b` are differentiated exactly (the partials of\n\
+             `M v̇ − f − Aᵀ λ` and `A v̇ − b` at the solved `v̇`, `λ`, through the\n\
+             saddle-point system). A perturbation that keeps the constraints is\n\
+             `δq = E δq`, `δv = E δv + F δq`, where `E` and `F` read only the\n\
+             independent entries (`δq_D = −A_D⁻¹ A_I δq_I`,\n\
+             `δv_D = −A_D⁻¹ (A_I δv_I + ∂ψ/∂q δq)`), so\n\
+             `A = [[F, E], [∂v̇/∂q E + ∂v̇/∂v F, ∂v̇/∂v E]]` and `B = [[0], [∂v̇/∂u]]`:\n\
+             the columns of the dependent entries are zero, and the rows and columns\n\
+             of the independent coordinates and their speeds are the reduced `A` of\n\
+             SymPy's `Linearizer`, whose eigenvalues about an equilibrium are the\n\
+             nonzero ones of `A`. The state must be on the manifold. Errors: those\n\
+             of `dalembert::constrained::constrained_accelerations`, and\n\
+             `SingularDependentCoordinates` naming a dependent coordinate where the\n\
+             independent ones do not determine it (`A_D` singular).",
+            independent.join("`, `"),
+            dependent.join("`, `"),
+        ),
+        &[Time, Coordinates, Speeds, Inputs],
+        results,
+        Body::ConstrainedLinearize,
+    )
+}
+
+/// What `∂/∂q` means, for the docs of a model with quaternion joints.
+fn tangent_note(model: &Model) -> &'static str {
+    if model.balls.is_empty() {
+        return "";
+    }
+    "\n`∂/∂q` is in the tangent space, one column per speed, along `q ⊕ δ` as\n\
+     `integrate_configuration` moves (Pinocchio's convention): a free or\n\
+     spherical joint's quaternion `p` turns to `p ⊗ exp(δ_ω / 2)` (`δ_ω` in\n\
+     the child's axes) and a free joint's position moves by `R(p) δ_v`;\n\
+     other coordinates move by `δ`. At a unit quaternion."
 }
 
 #[cfg(test)]
@@ -127,12 +272,12 @@ mod tests {
     }
 
     #[test]
-    fn a_constrained_system_is_not_linearised_and_the_error_says_where() {
+    fn a_constrained_system_names_its_independent_coordinates_and_the_error_says_where() {
         let source = constrained_pendulum_asking_for("inverse_dynamics_jacobian, linearize");
         let error = crate::check(&source).expect_err("constraints");
         let message = error.to_string();
         assert!(
-            message.contains("`linearize` is not available for a system with constraints"),
+            message.contains("name its 1 independent coordinate(s) in parentheses"),
             "{message}"
         );
         let line = source
@@ -147,6 +292,15 @@ mod tests {
             .nth(line - 1)
             .and_then(|l| l.find("linearize"));
         assert_eq!(Some(start.column), column, "{message}");
+    }
+
+    #[test]
+    fn a_constrained_system_with_its_independent_coordinate_is_linearised() {
+        let source = constrained_pendulum_asking_for("linearize(theta)");
+        let code = crate::generate(&source).expect("generates");
+        assert!(code.contains("pub fn linearize("), "{code}");
+        assert!(code.contains("linearize_on_constraints"), "{code}");
+        assert!(code.contains("&[false, false, true]"), "{code}");
     }
 
     #[test]

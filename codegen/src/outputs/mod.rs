@@ -39,9 +39,13 @@ pub enum Body {
     /// accelerations solved from `M v̇ = f`, and it returns
     /// `−M⁻¹` times each (the factorisation that solved for `v̇` reused).
     AccelerationsJacobian,
-    /// `linearize`: no results of its own; `A` and `B` assembled from
-    /// `accelerations_jacobian`.
+    /// `linearize`: its results are the kinematic rows of `A`; the rest is
+    /// assembled from `accelerations_jacobian`.
     Linearize,
+    /// `linearize` of a system with constraints: its results are the
+    /// partials of the residuals that the runtime's
+    /// `linearize_on_constraints` takes.
+    ConstrainedLinearize,
 }
 
 /// An argument of a generated function.
@@ -253,13 +257,28 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
             OutputKind::AccelerationsJacobian => requested
                 .functions
                 .push(derivatives::accelerations_jacobian(model, equations, pool)),
+            OutputKind::Linearize if !model.constraints.is_empty() => {
+                let independent: Vec<String> = output
+                    .independent
+                    .iter()
+                    .map(|(_, c)| c.to_string())
+                    .collect();
+                requested.functions.push(derivatives::constrained_linearize(
+                    model,
+                    equations,
+                    pool,
+                    &independent,
+                ))
+            }
             OutputKind::Linearize => {
                 if !asked(OutputKind::AccelerationsJacobian) {
                     requested
                         .functions
                         .push(derivatives::accelerations_jacobian(model, equations, pool));
                 }
-                requested.functions.push(derivatives::linearize());
+                requested
+                    .functions
+                    .push(derivatives::linearize(model, pool));
             }
             _ => requested
                 .functions

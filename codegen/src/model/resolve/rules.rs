@@ -98,46 +98,46 @@ impl Resolver {
         }
     }
 
-    /// `accelerations_jacobian` and `linearize` solve `M v̇ = f`: with
-    /// constraints, the accelerations and their derivatives live on the
-    /// constraint manifold, which these outputs do not handle yet. The
-    /// derivatives by `q` and the regressor are taken in the coordinates,
-    /// so they need every speed to be its coordinate's rate.
+    /// `accelerations_jacobian` solves `M v̇ = f`: with constraints, the
+    /// accelerations and their derivatives live on the constraint manifold,
+    /// which it does not handle yet (`linearize(..)` with the independent
+    /// coordinates does, and its own problems are checked by
+    /// `linearize_problem`). The regressor is taken in the coordinates, so
+    /// it needs every speed to be its coordinate's rate.
     pub(super) fn check_solved_outputs(&mut self) {
-        use crate::model::OutputKind::{
-            AccelerationsJacobian, InverseDynamicsJacobian, Linearize, Regressor,
-        };
+        use crate::model::OutputKind::{AccelerationsJacobian, Linearize, Regressor};
         if self.model.nq() != self.model.nv() {
             for output in &self.model.outputs {
-                if matches!(
-                    output.kind,
-                    AccelerationsJacobian | InverseDynamicsJacobian | Linearize | Regressor
-                ) {
+                if output.kind == Regressor {
                     let name = &output.function;
                     self.errors.push(
                         name.span(),
                         format!(
                             "`{name}` is not available yet for a system whose speeds are not \
-                             its coordinates' rates (a free or spherical joint, a `speeds` \
-                             statement): remove it from `outputs`"
+                             its coordinates' rates (a free or spherical joint): remove it \
+                             from `outputs`"
                         ),
                     );
                 }
             }
         }
-        if self.model.constraints.is_empty() {
-            return;
-        }
         for output in &self.model.outputs {
-            if matches!(output.kind, AccelerationsJacobian | Linearize) {
+            if output.kind == Linearize {
+                if let Some((span, message)) =
+                    crate::model::output::linearize_problem(&self.model, &self.pool, output)
+                {
+                    self.errors.push(span, message);
+                }
+            }
+            if output.kind == AccelerationsJacobian && !self.model.constraints.is_empty() {
                 let name = &output.function;
                 self.errors.push(
                     name.span(),
                     format!(
                         "`{name}` is not available for a system with constraints yet \
                          (the derivatives would have to be taken on the constraint manifold): \
-                         remove it from `outputs`, or describe the system with independent \
-                         coordinates and no `constraint` statements"
+                         remove it from `outputs`, or ask for `linearize(..)` with the \
+                         independent coordinates"
                     ),
                 );
             }

@@ -683,9 +683,20 @@ impl Resolver {
             );
             return;
         }
-        let (mut point, mut frame) = (None, None);
+        let (mut point, mut frame, mut independent) = (None, None, Vec::new());
+        if let (false, Some(extra)) = (subject == Subject::Coordinates, request.more.first()) {
+            let message = format!("`{name}` takes one point or frame: remove `, {extra}`");
+            self.errors.push(extra.span(), message);
+            return;
+        }
         match (subject, &request.of) {
-            (Subject::None, None) => {}
+            (Subject::None | Subject::Coordinates, None) => {}
+            (Subject::Coordinates, Some(of)) => {
+                independent = self.independent_coordinates(of, &request.more);
+                if independent.len() != 1 + request.more.len() {
+                    return;
+                }
+            }
             (Subject::None, Some(of)) => {
                 let message = format!("`{name}` takes no point or frame: write `{name}` alone");
                 self.errors.push(of.span(), message);
@@ -726,7 +737,11 @@ impl Resolver {
             );
             return;
         }
-        let function = function_name(name, request.of.as_ref(), request.axes.as_ref());
+        let of = request
+            .of
+            .as_ref()
+            .filter(|_| subject != Subject::Coordinates);
+        let function = function_name(name, of, request.axes.as_ref());
         let same =
             |o: &&crate::model::Output| o.function == function || (o.kind, o.axes) == (kind, axes);
         if let Some(earlier) = self.model.outputs.iter().find(same) {
@@ -741,11 +756,40 @@ impl Resolver {
             kind,
             axes,
             function,
-            subject: request.of.as_ref().map(Ident::to_string),
+            subject: of.map(Ident::to_string),
             axes_name: request
                 .axes
                 .as_ref()
                 .map_or("N".to_string(), Ident::to_string),
+            independent,
         });
+    }
+
+    /// `linearize(a, b)`'s names as coordinates, each once; an error at
+    /// each name that is not one.
+    fn independent_coordinates(&mut self, first: &Ident, more: &[Ident]) -> Vec<(usize, Ident)> {
+        let mut independent: Vec<(usize, Ident)> = Vec::new();
+        for name in std::iter::once(first).chain(more) {
+            match self.lookup(name) {
+                Some(Binding::Scalar(Sym::Coord(i)))
+                    if independent.iter().any(|(j, _)| *j == i as usize) =>
+                {
+                    self.errors
+                        .push(name.span(), format!("`{name}` is named twice"));
+                }
+                Some(Binding::Scalar(Sym::Coord(i))) => {
+                    independent.push((i as usize, name.clone()))
+                }
+                Some(other) => {
+                    let message = format!(
+                        "`{name}` is {}; `linearize(..)` names the independent coordinates",
+                        other.describe()
+                    );
+                    self.errors.push(name.span(), message);
+                }
+                None => {}
+            }
+        }
+        independent
     }
 }

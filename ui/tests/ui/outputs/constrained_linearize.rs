@@ -1,5 +1,6 @@
-//! `accelerations_jacobian` and `linearize` of a system with constraints are
-//! not generated: each is an error at its name.
+//! `accelerations_jacobian` of a system with constraints is not generated,
+//! and its `linearize` needs the independent coordinates: each is an error
+//! at its name.
 
 use dalembert_macros::dalembert;
 
