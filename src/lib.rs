@@ -39,7 +39,9 @@
 //! * [`dynamics`]: the accelerations `v̇` of `M v̇ = f` and their errors;
 //! * [`constrained`]: accelerations and multipliers of constrained systems,
 //!   projection onto the constraints, drift stabilisation;
-//! * [`integrate`]: the integrators, and which one to use for which job.
+//! * [`integrate`]: the integrators, and which one to use for which job;
+//! * [`series`]: the Taylor-coefficient recurrences that the code of
+//!   `outputs taylor;` calls ([`TaylorSystem`], [`integrate::taylor`]).
 //!
 //! The language, the generated API and the build-script route are described
 //! in the project's README and `docs/language.md`; `Pendulum::EQUATIONS` and
@@ -52,6 +54,7 @@ pub use dalembert_macros::dalembert;
 pub mod constrained;
 pub mod dynamics;
 pub mod integrate;
+pub mod series;
 mod system;
 #[cfg(test)]
 mod test_systems;
@@ -59,7 +62,7 @@ mod test_systems;
 pub use constrained::Stabilisation;
 pub use dynamics::{DynamicsError, accelerations, energy};
 pub use integrate::{Constrained, IntegrationError, Solution, State, Unconstrained};
-pub use system::{ConstrainedSystem, MultibodySystem};
+pub use system::{ConstrainedSystem, MultibodySystem, TaylorSystem};
 
 /// The README's Rust examples, compiled and run as doctests.
 #[cfg(doctest)]
