@@ -75,6 +75,18 @@ pub fn time<const K: usize>(t: f64) -> [f64; K] {
     series
 }
 
+/// Writes `values[i]` as coefficient `k` of `series[i]`.
+#[inline(always)]
+pub fn assign_all<const K: usize, const N: usize>(
+    series: [&mut [f64; K]; N],
+    k: usize,
+    values: [f64; N],
+) {
+    for (x, value) in series.into_iter().zip(values) {
+        set(x, k, value);
+    }
+}
+
 /// `x` with `ẋ = rate`: `xₖ = rate_{k−1} / k` (`k ≥ 1`).
 #[inline(always)]
 pub fn integral<const K: usize>(x: &mut [f64; K], rate: &[f64; K], k: usize) {

@@ -9,6 +9,7 @@ mod body;
 mod configuration;
 mod derivatives;
 mod solve;
+mod taylor;
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Sym};
@@ -56,12 +57,13 @@ pub fn emit(
         .iter()
         .map(|function| match (function.body, target) {
             (Body::Explicit, _) => emit_function(model, &names, function),
-            // Both return the runtime's errors.
+            // They return the runtime's errors.
             (_, Target::NoStd) => TokenStream::new(),
             (Body::AccelerationsJacobian, Target::Std) => {
                 derivatives::emit_accelerations_jacobian(model, equations, &names, function)
             }
             (Body::Linearize, Target::Std) => derivatives::emit_linearize(model, function),
+            (Body::Taylor, Target::Std) => taylor::emit_taylor(model, equations, &names, function),
         })
         .collect();
     items.push(configuration::emit_configuration(model, &names));
@@ -76,7 +78,11 @@ pub fn emit(
             let check = configuration::emit_rate_check(model, &names);
             let has_check = !check.is_empty();
             items.push(check);
-            emit_trait_impls(name, [nq, nv, nu, nc], [has_solver, has_check])
+            let mut traits = emit_trait_impls(name, [nq, nv, nu, nc], [has_solver, has_check]);
+            if functions.iter().any(|f| f.body == Body::Taylor) {
+                traits.extend(taylor::emit_trait_impl(name, [nq, nv, nu]));
+            }
+            traits
         }
         Target::NoStd => TokenStream::new(),
     };

@@ -576,13 +576,13 @@ impl Resolver {
     /// so they need every speed to be its coordinate's rate.
     fn check_solved_outputs(&mut self) {
         use super::OutputKind::{
-            AccelerationsJacobian, InverseDynamicsJacobian, Linearize, Regressor,
+            AccelerationsJacobian, InverseDynamicsJacobian, Linearize, Regressor, Taylor,
         };
         if self.model.nq() != self.model.nv() {
             for output in &self.model.outputs {
                 if matches!(
                     output.kind,
-                    AccelerationsJacobian | InverseDynamicsJacobian | Linearize | Regressor
+                    AccelerationsJacobian | InverseDynamicsJacobian | Linearize | Regressor | Taylor
                 ) {
                     let name = &output.function;
                     self.errors.push(
@@ -600,7 +600,7 @@ impl Resolver {
             return;
         }
         for output in &self.model.outputs {
-            if matches!(output.kind, AccelerationsJacobian | Linearize) {
+            if matches!(output.kind, AccelerationsJacobian | Linearize | Taylor) {
                 let name = &output.function;
                 self.errors.push(
                     name.span(),

@@ -42,6 +42,10 @@ pub enum Body {
     /// `linearize`: no results of its own; `A` and `B` assembled from
     /// `accelerations_jacobian`.
     Linearize,
+    /// `taylor_coefficients`: its results are `M` and `f`, whose Taylor
+    /// coefficients it computes order by order, solving each order with one
+    /// factorisation of `M`.
+    Taylor,
 }
 
 /// An argument of a generated function.
@@ -261,6 +265,9 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 }
                 requested.functions.push(derivatives::linearize());
             }
+            OutputKind::Taylor => requested
+                .functions
+                .push(dynamics::taylor(model, equations)),
             _ => requested
                 .functions
                 .extend(kinematic::function(model, &kinematics, pool, output)),
