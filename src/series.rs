@@ -31,31 +31,77 @@ pub fn constant_at(c: f64, k: usize) -> f64 {
     if k == 0 { c } else { 0.0 }
 }
 
-/// `Σⱼ wⱼ aⱼ b_{k−j}` for `j` from `from` to `k`, with `wⱼ = weight(j)`.
+/// The operands of `Σⱼ aⱼ b_{k−j}` for `j` from `from` to `to`: the
+/// slices `a[from..=to]` and `b[k−to..=k−from]`, empty when `from > to`
+/// or beyond the arrays.
+#[inline(always)]
+fn terms<'a, const K: usize>(
+    a: &'a [f64; K],
+    b: &'a [f64; K],
+    k: usize,
+    (from, to): (usize, usize),
+) -> (&'a [f64], &'a [f64]) {
+    let (Some(low), Some(high)) = (k.checked_sub(to), k.checked_sub(from)) else {
+        return (&[], &[]);
+    };
+    match (a.get(from..=to), b.get(low..=high)) {
+        (Some(a), Some(b)) if from <= to => (a, b),
+        _ => (&[], &[]),
+    }
+}
+
+/// `Σᵢ wᵢ aᵢ b_{n−1−i}` for slices of one length `n`, `wᵢ = first + i`
+/// (`weighted`) or 1: in four independent partial sums, so that the
+/// additions do not wait on one another (a sum of products in one chain
+/// is bound by the latency of the additions).
+#[inline(always)]
+fn reversed_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
+    let (chunks, rest) = a.as_chunks::<4>();
+    let (rest_b, chunks_b) = b.as_rchunks::<4>();
+    let step = if weighted.is_some() { 1.0 } else { 0.0 };
+    let first = weighted.unwrap_or(1.0);
+    let mut w = [first, first + step, first + 2.0 * step, first + 3.0 * step];
+    let mut sums = [0.0; 4];
+    for (x, y) in chunks.iter().zip(chunks_b.iter().rev()) {
+        let ([a0, a1, a2, a3], [b0, b1, b2, b3]) = (*x, *y);
+        let [w0, w1, w2, w3] = w;
+        let [s0, s1, s2, s3] = sums;
+        sums = [
+            s0 + w0 * a0 * b3,
+            s1 + w1 * a1 * b2,
+            s2 + w2 * a2 * b1,
+            s3 + w3 * a3 * b0,
+        ];
+        w = [w0 + 4.0 * step, w1 + 4.0 * step, w2 + 4.0 * step, w3 + 4.0 * step];
+    }
+    let [w0, ..] = w;
+    let tail: f64 = rest
+        .iter()
+        .zip(rest_b.iter().rev())
+        .enumerate()
+        .map(|(i, (x, y))| (w0 + step * i as f64) * x * y)
+        .sum();
+    let [s0, s1, s2, s3] = sums;
+    (s0 + s1) + (s2 + s3) + tail
+}
+
+/// `Σⱼ j aⱼ b_{k−j}` for `j` from `from` to `to`.
 #[inline(always)]
 fn weighted_cauchy<const K: usize>(
     a: &[f64; K],
     b: &[f64; K],
     k: usize,
-    from: usize,
-    weight: impl Fn(usize) -> f64,
+    range: (usize, usize),
 ) -> f64 {
-    a.iter()
-        .zip(b.iter().take(k.saturating_add(1)).rev())
-        .enumerate()
-        .skip(from)
-        .map(|(j, (x, y))| weight(j) * x * y)
-        .sum()
+    let (x, y) = terms(a, b, k, range);
+    reversed_dot(x, y, Some(range.0 as f64))
 }
 
-/// `Σⱼ aⱼ b_{k−j}` for `j` from `from` to `k`.
+/// `Σⱼ aⱼ b_{k−j}` for `j` from `from` to `to`.
 #[inline(always)]
-fn cauchy<const K: usize>(a: &[f64; K], b: &[f64; K], k: usize, from: usize) -> f64 {
-    a.iter()
-        .zip(b.iter().take(k.saturating_add(1)).rev())
-        .skip(from)
-        .map(|(x, y)| x * y)
-        .sum()
+fn cauchy<const K: usize>(a: &[f64; K], b: &[f64; K], k: usize, range: (usize, usize)) -> f64 {
+    let (x, y) = terms(a, b, k, range);
+    reversed_dot(x, y, None)
 }
 
 /// The series of a quantity worth `x` now, whose higher coefficients are
@@ -111,20 +157,20 @@ pub fn linear<const K: usize, const T: usize>(
 /// `c = a b`: `cₖ = Σⱼ aⱼ b_{k−j}`.
 #[inline(always)]
 pub fn product<const K: usize>(c: &mut [f64; K], a: &[f64; K], b: &[f64; K], k: usize) {
-    set(c, k, cauchy(a, b, k, 0));
+    set(c, k, cauchy(a, b, k, (0, k)));
 }
 
 /// `c = a / b`: `cₖ = (aₖ − Σ_{j≥1} bⱼ c_{k−j}) / b₀`.
 #[inline(always)]
 pub fn quotient<const K: usize>(c: &mut [f64; K], a: &[f64; K], b: &[f64; K], k: usize) {
-    let value = (at(a, k) - cauchy(b, c, k, 1)) / at(b, 0);
+    let value = (at(a, k) - cauchy(b, c, k, (1, k))) / at(b, 0);
     set(c, k, value);
 }
 
 /// `c = 1 / b`: `cₖ = (δₖ₀ − Σ_{j≥1} bⱼ c_{k−j}) / b₀`.
 #[inline(always)]
 pub fn reciprocal<const K: usize>(c: &mut [f64; K], b: &[f64; K], k: usize) {
-    let value = (constant_at(1.0, k) - cauchy(b, c, k, 1)) / at(b, 0);
+    let value = (constant_at(1.0, k) - cauchy(b, c, k, (1, k))) / at(b, 0);
     set(c, k, value);
 }
 
@@ -138,9 +184,8 @@ pub fn sin_cos<const K: usize>(s: &mut [f64; K], c: &mut [f64; K], x: &[f64; K],
         set(c, 0, cosine);
         return;
     }
-    let by_j = |j: usize| j as f64;
-    let sine = weighted_cauchy(x, c, k, 1, by_j) / k as f64;
-    let cosine = -weighted_cauchy(x, s, k, 1, by_j) / k as f64;
+    let sine = weighted_cauchy(x, c, k, (1, k)) / k as f64;
+    let cosine = -weighted_cauchy(x, s, k, (1, k)) / k as f64;
     set(s, k, sine);
     set(c, k, cosine);
 }
@@ -155,9 +200,9 @@ pub fn tan<const K: usize>(t: &mut [f64; K], w: &mut [f64; K], x: &[f64; K], k: 
         set(w, 0, 1.0 + tangent * tangent);
         return;
     }
-    let tangent = weighted_cauchy(x, w, k, 1, |j| j as f64) / k as f64;
+    let tangent = weighted_cauchy(x, w, k, (1, k)) / k as f64;
     set(t, k, tangent);
-    set(w, k, cauchy(t, t, k, 0));
+    set(w, k, cauchy(t, t, k, (0, k)));
 }
 
 /// `e = exp x`: `ė = e ẋ`, so `eₖ = (1/k) Σⱼ j xⱼ e_{k−j}`.
@@ -165,7 +210,7 @@ pub fn tan<const K: usize>(t: &mut [f64; K], w: &mut [f64; K], x: &[f64; K], k: 
 pub fn exp<const K: usize>(e: &mut [f64; K], x: &[f64; K], k: usize) {
     let value = match k {
         0 => at(x, 0).exp(),
-        _ => weighted_cauchy(x, e, k, 1, |j| j as f64) / k as f64,
+        _ => weighted_cauchy(x, e, k, (1, k)) / k as f64,
     };
     set(e, k, value);
 }
@@ -176,7 +221,7 @@ pub fn ln<const K: usize>(l: &mut [f64; K], x: &[f64; K], k: usize) {
     let value = match k {
         0 => at(x, 0).ln(),
         _ => {
-            let below = weighted_cauchy(l, x, k, 1, |j| if j < k { j as f64 } else { 0.0 });
+            let below = weighted_cauchy(l, x, k, (1, k - 1));
             (at(x, k) - below / k as f64) / at(x, 0)
         }
     };
@@ -189,7 +234,7 @@ pub fn sqrt<const K: usize>(s: &mut [f64; K], x: &[f64; K], k: usize) {
     let value = match k {
         0 => at(x, 0).sqrt(),
         _ => {
-            let inner = weighted_cauchy(s, s, k, 1, |j| if j < k { 1.0 } else { 0.0 });
+            let inner = cauchy(s, s, k, (1, k - 1));
             (at(x, k) - inner) / (2.0 * at(s, 0))
         }
     };
@@ -208,7 +253,7 @@ pub fn abs<const K: usize>(a: &mut [f64; K], x: &[f64; K], k: usize) {
 /// motion adds to `M₀ v̇ₖ`).
 #[inline(always)]
 pub fn convolution_tail<const K: usize>(m: &[f64; K], a: &[f64; K], k: usize) -> f64 {
-    cauchy(m, a, k, 1)
+    cauchy(m, a, k, (1, k))
 }
 
 /// The sum `Σₖ xₖ τᵏ` of the first `n` coefficients (Horner).
@@ -246,8 +291,12 @@ mod tests {
     }
 
     fn close(a: &[f64; K], b: &[f64; K]) {
+        close_to(a, b, 1e-14);
+    }
+
+    fn close_to(a: &[f64; K], b: &[f64; K], tolerance: f64) {
         for (k, (x, y)) in a.iter().zip(b).enumerate() {
-            assert!((x - y).abs() <= 1e-14 * y.abs().max(1.0), "order {k}: {x} vs {y}");
+            assert!((x - y).abs() <= tolerance * y.abs().max(1.0), "order {k}: {x} vs {y}");
         }
     }
 
@@ -301,7 +350,9 @@ mod tests {
             quotient(&mut back, &square, &x, k);
         }
         close(&t, &q);
-        close(&back, &x);
+        // Each order of a quotient divides the rounding of the lower ones
+        // by `x₀ = 0.4`: 2.5¹¹ ≈ 2e4 ulps at order 11.
+        close_to(&back, &x, 1e-11);
         // (0.4 + τ)² = 0.16 + 0.8 τ + τ².
         let mut polynomial = [0.0; K];
         polynomial[..3].copy_from_slice(&[0.16, 0.8, 1.0]);
