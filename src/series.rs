@@ -11,6 +11,28 @@
 //! `0..k` of its own result; a `k` at or beyond `K` writes nothing. None
 //! indexes, allocates or panics.
 
+/// `1/k` for the orders the integrator uses, so that the recurrences
+/// multiply where they would divide (a division is several times the
+/// latency of a multiplication, and the orders form one chain).
+const INVERSES: [f64; 64] = {
+    let mut inverses = [0.0; 64];
+    let mut k = 1;
+    while k < 64 {
+        inverses[k] = 1.0 / k as f64;
+        k += 1;
+    }
+    inverses
+};
+
+/// `1/k` (`k ≥ 1`), from the table below 64.
+#[inline(always)]
+fn inverse(k: usize) -> f64 {
+    match INVERSES.get(k) {
+        Some(&r) if k > 0 => r,
+        _ => 1.0 / k as f64,
+    }
+}
+
 /// Writes `value` as coefficient `k` of `x` (nothing if `k ≥ K`).
 #[inline(always)]
 fn set<const K: usize>(x: &mut [f64; K], k: usize, value: f64) {
@@ -137,7 +159,7 @@ pub fn assign_all<const K: usize, const N: usize>(
 #[inline(always)]
 pub fn integral<const K: usize>(x: &mut [f64; K], rate: &[f64; K], k: usize) {
     if let Some(below) = k.checked_sub(1) {
-        set(x, k, at(rate, below) / k as f64);
+        set(x, k, at(rate, below) * inverse(k));
     }
 }
 
@@ -184,8 +206,8 @@ pub fn sin_cos<const K: usize>(s: &mut [f64; K], c: &mut [f64; K], x: &[f64; K],
         set(c, 0, cosine);
         return;
     }
-    let sine = weighted_cauchy(x, c, k, (1, k)) / k as f64;
-    let cosine = -weighted_cauchy(x, s, k, (1, k)) / k as f64;
+    let sine = weighted_cauchy(x, c, k, (1, k)) * inverse(k);
+    let cosine = -weighted_cauchy(x, s, k, (1, k)) * inverse(k);
     set(s, k, sine);
     set(c, k, cosine);
 }
@@ -200,7 +222,7 @@ pub fn tan<const K: usize>(t: &mut [f64; K], w: &mut [f64; K], x: &[f64; K], k: 
         set(w, 0, 1.0 + tangent * tangent);
         return;
     }
-    let tangent = weighted_cauchy(x, w, k, (1, k)) / k as f64;
+    let tangent = weighted_cauchy(x, w, k, (1, k)) * inverse(k);
     set(t, k, tangent);
     set(w, k, cauchy(t, t, k, (0, k)));
 }
@@ -210,7 +232,7 @@ pub fn tan<const K: usize>(t: &mut [f64; K], w: &mut [f64; K], x: &[f64; K], k: 
 pub fn exp<const K: usize>(e: &mut [f64; K], x: &[f64; K], k: usize) {
     let value = match k {
         0 => at(x, 0).exp(),
-        _ => weighted_cauchy(x, e, k, (1, k)) / k as f64,
+        _ => weighted_cauchy(x, e, k, (1, k)) * inverse(k),
     };
     set(e, k, value);
 }
@@ -222,7 +244,7 @@ pub fn ln<const K: usize>(l: &mut [f64; K], x: &[f64; K], k: usize) {
         0 => at(x, 0).ln(),
         _ => {
             let below = weighted_cauchy(l, x, k, (1, k - 1));
-            (at(x, k) - below / k as f64) / at(x, 0)
+            (at(x, k) - below * inverse(k)) / at(x, 0)
         }
     };
     set(l, k, value);

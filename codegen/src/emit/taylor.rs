@@ -552,3 +552,70 @@ pub fn emit_trait_impl(name: &Ident, sizes: [usize; 3]) -> TokenStream {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    /// `source`, a system's text, with `outputs taylor;` before its
+    /// closing brace.
+    fn asking_for_taylor(source: &str) -> String {
+        let end = source.rfind('}').expect("a closing brace");
+        format!("{}    outputs taylor;\n{}", &source[..end], &source[end..])
+    }
+
+    /// The error `check` reports, at the line and column of `taylor`.
+    fn error_at_taylor(source: &str) -> String {
+        let error = crate::check(source).expect_err("rejected");
+        let line = source
+            .lines()
+            .position(|l| l.contains("outputs taylor"))
+            .expect("the line");
+        let start = error.span().start();
+        assert_eq!(start.line, line + 1, "{error}");
+        let column = source.lines().nth(line).and_then(|l| l.find("taylor"));
+        assert_eq!(Some(start.column), column, "{error}");
+        error.to_string()
+    }
+
+    #[test]
+    fn constrained_systems_have_no_taylor_output_and_the_error_says_where() {
+        let source = asking_for_taylor(crate::seeds::CONSTRAINED_PENDULUM);
+        let message = error_at_taylor(&source);
+        assert!(
+            message.contains("`taylor` is not available for a system with constraints"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn speeds_that_are_not_rates_have_no_taylor_output() {
+        let source = asking_for_taylor(
+            "Ball { parameters m; joint spherical ball { parent: N, child: B, at: O };
+               body b { mass: m, center: ball, frame: B, inertia: [m, m, m] }; }",
+        );
+        let message = error_at_taylor(&source);
+        assert!(message.contains("whose speeds are not its coordinates' rates"), "{message}");
+    }
+
+    /// One `sin_cos` per argument, one Cauchy product per distinct
+    /// product, `x⁻²` as the reciprocal of `x · x`, constants out of the
+    /// recurrences.
+    #[test]
+    fn the_program_shares_its_series() {
+        let source = "S {
+            parameters m, k;
+            coordinates x;
+            particle p { mass: m, at: O + x * N.x };
+            potential k * (sin(x) + cos(x) + sin(x) * cos(x) + 1 / x);
+            outputs taylor;
+        }";
+        let code = crate::generate(source).expect("generates");
+        let body = &code[code.find("pub fn taylor_coefficients").expect("emitted")..];
+        let calls = |name: &str| body.matches(&format!("::dalembert::series::{name}(")).count();
+        assert_eq!(calls("sin_cos"), 1, "{body}");
+        // `−∂V/∂x = k (−cos x + sin x − cos² x + sin² x + x⁻²)`: the squares
+        // and `x · x`.
+        assert_eq!(calls("product"), 3, "{body}");
+        assert_eq!(calls("reciprocal"), 1, "{body}");
+        assert!(!body.contains("self.k *"), "constants are bound once: {body}");
+    }
+}
