@@ -94,7 +94,12 @@ fn reversed_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
             s2 + w2 * a2 * b1,
             s3 + w3 * a3 * b0,
         ];
-        w = [w0 + 4.0 * step, w1 + 4.0 * step, w2 + 4.0 * step, w3 + 4.0 * step];
+        w = [
+            w0 + 4.0 * step,
+            w1 + 4.0 * step,
+            w2 + 4.0 * step,
+            w3 + 4.0 * step,
+        ];
     }
     let [w0, ..] = w;
     let tail: f64 = rest
@@ -318,19 +323,28 @@ mod tests {
 
     fn close_to(a: &[f64; K], b: &[f64; K], tolerance: f64) {
         for (k, (x, y)) in a.iter().zip(b).enumerate() {
-            assert!((x - y).abs() <= tolerance * y.abs().max(1.0), "order {k}: {x} vs {y}");
+            assert!(
+                (x - y).abs() <= tolerance * y.abs().max(1.0),
+                "order {k}: {x} vs {y}"
+            );
         }
     }
 
     #[test]
     fn elementary_functions_match_their_derivatives() {
         let x0: f64 = 0.7;
-        close(&of_line(x0, |c, x, k| exp(c, x, k)), &expected(|_| x0.exp()));
+        close(
+            &of_line(x0, |c, x, k| exp(c, x, k)),
+            &expected(|_| x0.exp()),
+        );
         close(
             &of_line(x0, |c, x, k| ln(c, x, k)),
             &expected(|k| match k {
                 0 => x0.ln(),
-                _ => (-1f64).powi(k as i32 + 1) * (1..k).product::<usize>() as f64 / x0.powi(k as i32),
+                _ => {
+                    (-1f64).powi(k as i32 + 1) * (1..k).product::<usize>() as f64
+                        / x0.powi(k as i32)
+                }
             }),
         );
         // √x: derivatives (1/2)(−1/2)…(1/2 − k + 1) x^(1/2 − k).
@@ -362,7 +376,8 @@ mod tests {
     #[test]
     fn tangent_is_sine_over_cosine_and_products_multiply() {
         let x = time::<K>(0.4);
-        let (mut s, mut c, mut q, mut t, mut w) = ([0.0; K], [0.0; K], [0.0; K], [0.0; K], [0.0; K]);
+        let (mut s, mut c, mut q, mut t, mut w) =
+            ([0.0; K], [0.0; K], [0.0; K], [0.0; K], [0.0; K]);
         let (mut square, mut back) = ([0.0; K], [0.0; K]);
         for k in 0..K {
             sin_cos(&mut s, &mut c, &x, k);

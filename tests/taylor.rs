@@ -47,7 +47,12 @@ fn oscillator_coefficients_are_the_closed_form_to_the_last_bits() {
         };
         close(&format!("x_{k}"), x[k], derivative(k) / factorial, 1e-15);
         if k + 1 < K {
-            close(&format!("v_{k}"), v[k], derivative(k + 1) / factorial, 1e-15);
+            close(
+                &format!("v_{k}"),
+                v[k],
+                derivative(k + 1) / factorial,
+                1e-15,
+            );
         }
     }
 }
@@ -142,10 +147,20 @@ fn free_precession_is_a_uniform_turn() {
         assert!(vi[1..].iter().all(|c| c.abs() < 1e-15), "v{i}: {vi:?}");
     }
     let dynamics = Unconstrained::without_inputs(&top);
-    let start = State { t: 0.0, q: q0, v: v0 };
-    let end = taylor(&dynamics, start, 10.0, TaylorOptions::with_tolerance(1e-15), |_| {})
-        .expect("integrates")
-        .end;
+    let start = State {
+        t: 0.0,
+        q: q0,
+        v: v0,
+    };
+    let end = taylor(
+        &dynamics,
+        start,
+        10.0,
+        TaylorOptions::with_tolerance(1e-15),
+        |_| {},
+    )
+    .expect("integrates")
+    .end;
     let expected = [0.1 + 10.0 * psi_dot, theta, -0.2 + 10.0 * phi_dot];
     for i in 0..3 {
         close("q", end.q[i], expected[i], 1e-13);

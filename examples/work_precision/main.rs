@@ -278,8 +278,7 @@ fn regular_pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
     let initial_energy = energy(&pendulum, &start.q, &start.v);
     let judge = |end: &State<2, 2>| Accuracy {
         error: state_error(end, &reference),
-        energy_error: ((energy(&pendulum, &end.q, &end.v) - initial_energy) / initial_energy)
-            .abs(),
+        energy_error: ((energy(&pendulum, &end.q, &end.v) - initial_energy) / initial_energy).abs(),
         drift: 0.0,
     };
     let mut all = runs(

@@ -268,11 +268,7 @@ impl<const K: usize, const NQ: usize, const NV: usize> Polynomial<K, NQ, NV> {
     /// vanish.
     fn step(&self, order: usize, tolerance: f64) -> f64 {
         let series = || self.q.iter().chain(&self.v);
-        let norm = |k: usize| {
-            series()
-                .map(|x| series::at(x, k).abs())
-                .fold(0.0, f64::max)
-        };
+        let norm = |k: usize| series().map(|x| series::at(x, k).abs()).fold(0.0, f64::max);
         let scale = if tolerance * norm(0) <= tolerance {
             1.0
         } else {

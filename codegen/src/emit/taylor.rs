@@ -16,9 +16,9 @@
 
 use std::collections::HashMap;
 
+use super::array;
 use super::body::{Names, number, straight_line};
 use super::solve::{Elimination, elimination, mass, state_check};
-use super::array;
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool, Sym, SymKinds};
 use crate::model::Model;
@@ -373,7 +373,12 @@ impl Written<'_> {
 
 /// `pub fn taylor_coefficients<const K: usize>(..)`; nothing for a system
 /// the model rejects (constraints, speeds that are not rates).
-pub fn emit_taylor(model: &Model, equations: &Equations, names: &Names, function: &Function) -> TokenStream {
+pub fn emit_taylor(
+    model: &Model,
+    equations: &Equations,
+    names: &Names,
+    function: &Function,
+) -> TokenStream {
     let Some(solver) = elimination(model, equations) else {
         return TokenStream::new();
     };
@@ -385,7 +390,11 @@ pub fn emit_taylor(model: &Model, equations: &Equations, names: &Names, function
         .iter()
         .map(|row| row.iter().map(|&e| program.lower(e)).collect())
         .collect();
-    let forcing: Vec<Operand> = equations.forcing.iter().map(|&e| program.lower(e)).collect();
+    let forcing: Vec<Operand> = equations
+        .forcing
+        .iter()
+        .map(|&e| program.lower(e))
+        .collect();
     let Program {
         operations,
         coordinates,
@@ -430,7 +439,8 @@ pub fn emit_taylor(model: &Model, equations: &Equations, names: &Names, function
         solution,
         ..
     } = solver;
-    let slots = |list: &[Slot]| -> Vec<Ident> { list.iter().map(|&s| written.slots[s].clone()).collect() };
+    let slots =
+        |list: &[Slot]| -> Vec<Ident> { list.iter().map(|&s| written.slots[s].clone()).collect() };
     let (q, v, a) = (slots(&coordinates), slots(&speeds), slots(&accelerations));
     let bound: Vec<&Ident> = constants.iter().map(|e| &written.constants[e]).collect();
     let body = straight_line(&pool, names, &constants);
@@ -459,13 +469,18 @@ pub fn emit_taylor(model: &Model, equations: &Equations, names: &Names, function
     let rows: Vec<TokenStream> = (0..nv)
         .map(|i| {
             let f = written.at_order(forcing[i]);
-            let moving = matrix[i].iter().zip(&a).filter_map(|(entry, acceleration)| match entry {
-                Operand::Series(slot) => {
-                    let m = &written.slots[*slot];
-                    Some(quote!(- ::dalembert::series::convolution_tail(&#m, &#acceleration, k)))
-                }
-                Operand::Constant(_) => None,
-            });
+            let moving = matrix[i]
+                .iter()
+                .zip(&a)
+                .filter_map(|(entry, acceleration)| match entry {
+                    Operand::Series(slot) => {
+                        let m = &written.slots[*slot];
+                        Some(
+                            quote!(- ::dalembert::series::convolution_tail(&#m, &#acceleration, k)),
+                        )
+                    }
+                    Operand::Constant(_) => None,
+                });
             quote!(#f #(#moving)*)
         })
         .collect();
@@ -474,7 +489,8 @@ pub fn emit_taylor(model: &Model, equations: &Equations, names: &Names, function
         Literal::usize_unsuffixed(nv),
         Literal::usize_unsuffixed(entries.len()),
     );
-    let (coordinates_ty, speeds_ty, inputs_ty) = (array(model.nq()), array(nv), array(model.inputs.len()));
+    let (coordinates_ty, speeds_ty, inputs_ty) =
+        (array(model.nq()), array(nv), array(model.inputs.len()));
     let check = state_check();
     let docs = function.docs.iter().map(|line| super::raw_string(line));
     quote! {
@@ -593,7 +609,10 @@ mod tests {
                body b { mass: m, center: ball, frame: B, inertia: [m, m, m] }; }",
         );
         let message = error_at_taylor(&source);
-        assert!(message.contains("whose speeds are not its coordinates' rates"), "{message}");
+        assert!(
+            message.contains("whose speeds are not its coordinates' rates"),
+            "{message}"
+        );
     }
 
     /// One `sin_cos` per argument, one Cauchy product per distinct
@@ -610,12 +629,18 @@ mod tests {
         }";
         let code = crate::generate(source).expect("generates");
         let body = &code[code.find("pub fn taylor_coefficients").expect("emitted")..];
-        let calls = |name: &str| body.matches(&format!("::dalembert::series::{name}(")).count();
+        let calls = |name: &str| {
+            body.matches(&format!("::dalembert::series::{name}("))
+                .count()
+        };
         assert_eq!(calls("sin_cos"), 1, "{body}");
         // `−∂V/∂x = k (−cos x + sin x − cos² x + sin² x + x⁻²)`: the squares
         // and `x · x`.
         assert_eq!(calls("product"), 3, "{body}");
         assert_eq!(calls("reciprocal"), 1, "{body}");
-        assert!(!body.contains("self.k *"), "constants are bound once: {body}");
+        assert!(
+            !body.contains("self.k *"),
+            "constants are bound once: {body}"
+        );
     }
 }

@@ -582,7 +582,11 @@ impl Resolver {
             for output in &self.model.outputs {
                 if matches!(
                     output.kind,
-                    AccelerationsJacobian | InverseDynamicsJacobian | Linearize | Regressor | Taylor
+                    AccelerationsJacobian
+                        | InverseDynamicsJacobian
+                        | Linearize
+                        | Regressor
+                        | Taylor
                 ) {
                     let name = &output.function;
                     self.errors.push(

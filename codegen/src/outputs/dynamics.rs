@@ -115,7 +115,8 @@ pub fn taylor(model: &Model, equations: &Equations) -> Function {
 }
 
 /// The docs of `taylor_coefficients`.
-const TAYLOR_DOCS: &str = "The Taylor coefficients of the motion through the state `(t, q, q̇)` with the
+const TAYLOR_DOCS: &str =
+    "The Taylor coefficients of the motion through the state `(t, q, q̇)` with the
 inputs `u` held constant: entry `[i][k]` of the two arrays is the coefficient
 of `τᵏ` in `qᵢ(t + τ)` and `q̇ᵢ(t + τ)`, for `k ≤ order` (and `k < K`; the
 rest are zero). Every elementary operation of `M` and `f` has its

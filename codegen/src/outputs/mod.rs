@@ -265,9 +265,7 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 }
                 requested.functions.push(derivatives::linearize());
             }
-            OutputKind::Taylor => requested
-                .functions
-                .push(dynamics::taylor(model, equations)),
+            OutputKind::Taylor => requested.functions.push(dynamics::taylor(model, equations)),
             _ => requested
                 .functions
                 .extend(kinematic::function(model, &kinematics, pool, output)),
