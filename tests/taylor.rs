@@ -78,6 +78,7 @@ fn coefficients_stop_at_the_order_asked_for() {
 /// against SymPy's derivatives along the flow, printed by
 /// `scripts/taylor_functions_reference.py` (30 digits).
 #[test]
+#[allow(clippy::excessive_precision)] // SymPy's digits as the script prints them
 fn coefficients_match_sympys_derivatives_along_the_flow() {
     let system = TaylorFunctions {
         m: 1.5,

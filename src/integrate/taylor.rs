@@ -146,8 +146,8 @@ where
         options,
     };
     match options.order() {
-        ..16 => run.integrate::<16>(on_step),
-        ..24 => run.integrate::<24>(on_step),
+        0..16 => run.integrate::<16>(on_step),
+        16..24 => run.integrate::<24>(on_step),
         _ => run.integrate::<{ MAX_ORDER + 1 }>(on_step),
     }
 }
