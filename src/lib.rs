@@ -40,7 +40,9 @@
 //! * [`constrained`]: accelerations and multipliers of constrained systems,
 //!   projection onto the constraints, drift stabilisation;
 //! * [`integrate`]: the integrators, and which one to use for which job;
-//! * [`math`]: the elementary functions the generated code calls.
+//! * [`math`]: the elementary functions the generated code calls;
+//! * [`series`]: the Taylor-coefficient recurrences that the code of
+//!   `outputs taylor;` calls ([`TaylorSystem`], [`integrate::taylor`]).
 //!
 //! The language, the generated API and the build-script route are described
 //! in the project's README and `docs/language.md`; `Pendulum::EQUATIONS` and
@@ -54,6 +56,7 @@ pub mod constrained;
 pub mod dynamics;
 pub mod integrate;
 pub mod math;
+pub mod series;
 mod system;
 #[cfg(test)]
 mod test_systems;
@@ -61,7 +64,7 @@ mod test_systems;
 pub use constrained::Stabilisation;
 pub use dynamics::{DynamicsError, accelerations, energy};
 pub use integrate::{Constrained, IntegrationError, Solution, State, Unconstrained};
-pub use system::{ConstrainedSystem, MultibodySystem};
+pub use system::{ConstrainedSystem, MultibodySystem, TaylorSystem};
 
 /// The README's Rust examples, compiled and run as doctests.
 #[cfg(doctest)]

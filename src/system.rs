@@ -103,3 +103,28 @@ pub trait ConstrainedSystem<const NQ: usize, const NV: usize, const NU: usize, c
     /// constraint manifold (velocity-level drift).
     fn constraint_velocity(&self, t: f64, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NC];
 }
+
+/// The Taylor coefficients of a motion: `q[i][k]` and `v[i][k]` are the
+/// coefficients of `τᵏ` in `qᵢ(t₀ + τ)` and `vᵢ(t₀ + τ)`.
+pub type Expansion<const K: usize, const NQ: usize, const NV: usize> =
+    ([[f64; K]; NQ], [[f64; K]; NV]);
+
+/// A system whose model asks for `outputs taylor;`: the Taylor coefficients
+/// of its motion through a state, which [`integrate::taylor`](crate::integrate::taylor)
+/// sums.
+pub trait TaylorSystem<const NQ: usize, const NV: usize, const NU: usize>:
+    MultibodySystem<NQ, NV, NU>
+{
+    /// The coefficients of orders `0..=order` (at most `K − 1`; the rest are
+    /// zero) of the motion through `(t, q, v)` with the inputs `u` held
+    /// constant, or why they cannot be computed (a non-finite state, a
+    /// singular mass matrix).
+    fn taylor_coefficients<const K: usize>(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        u: &[f64; NU],
+        order: usize,
+    ) -> Result<Expansion<K, NQ, NV>, DynamicsError>;
+}

@@ -1,7 +1,8 @@
 //! Generated functions and the runtime's solvers allocate nothing: a
 //! counting global allocator around calls of every generated function and
 //! of `accelerations`, `constrained_accelerations`, `rk4_step` (unconstrained
-//! and constrained with projection) and `energy` finds no allocation.
+//! and constrained with projection), `energy`, the adaptive pairs and the
+//! Taylor integrator finds no allocation.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -210,6 +211,45 @@ fn adaptive_pairs_dense_output_and_events_allocate_nothing() {
         (plain.is_ok(), dense.is_ok(), events.is_ok(), crossings)
     });
     assert_eq!(made, 0, "the adaptive integrators allocated");
+    assert!(result.0 && result.1 && result.2, "{result:?}");
+    assert!(
+        result.3 > 0,
+        "the pendulum crosses θ₁ = 0 within 1 s: {result:?}"
+    );
+}
+
+#[test]
+fn the_taylor_integrator_its_polynomials_and_events_allocate_nothing() {
+    let pendulum = dalembert_generated::taylor_double_pendulum::TaylorDoublePendulum {
+        m: 1.0,
+        L: 1.2,
+        g: 9.81,
+    };
+    let dynamics = Unconstrained::without_inputs(&pendulum);
+    let start = State {
+        t: 0.0,
+        q: [0.3, -0.4],
+        v: [0.5, 0.1],
+    };
+    let options = integrate::TaylorOptions::with_tolerance(1e-14);
+    let (made, result) = allocations(|| {
+        let plain = integrate::taylor(&dynamics, start, 1.0, options, |_| {});
+        let mut middle = 0.0;
+        let dense = integrate::taylor_dense(&dynamics, start, 1.0, options, |step| {
+            middle += step.state_at(0.5 * (step.start().t + step.end().t)).q[0];
+            std::ops::ControlFlow::Continue(())
+        });
+        let upright = integrate::Event::record(
+            |_, q: &[f64; 2], _: &[f64; 2]| q[0],
+            integrate::Crossing::Either,
+        );
+        let mut crossings = 0;
+        let events = integrate::taylor_with_events(&dynamics, start, 1.0, options, upright, |_| {
+            crossings += 1
+        });
+        (plain.is_ok(), dense.is_ok(), events.is_ok(), crossings)
+    });
+    assert_eq!(made, 0, "the Taylor integrator allocated");
     assert!(result.0 && result.1 && result.2, "{result:?}");
     assert!(
         result.3 > 0,

@@ -7,8 +7,12 @@
 //! sensitivity of the chaotic pendulum.
 //!
 //! ```text
-//! cargo run --release --example work_precision [-- --out DIR] [--scipy CSV] [--repeats N]
+//! cargo run --release --example work_precision [-- --out DIR] [--scipy CSV] [--repeats N] [--taylor]
 //! ```
+//!
+//! `--taylor` runs only the charts with the Taylor integrator: seed example
+//! 1 (chaotic) and the same pendulum at 0.2 rad (regular), whose ratio of
+//! DOP853's time to Taylor's at the final-state error 1e-12 it prints.
 //!
 //! Output goes to `DIR` (default `target/charts`). `--scipy` adds the SciPy
 //! `solve_ivp(DOP853)` line written by `scripts/scipy_baseline.sh` to the
@@ -27,6 +31,7 @@ use dalembert::{
 use dalembert_fixtures::seeds::{CHAOTIC, CHAOTIC_END, CHAOTIC_START};
 use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 use dalembert_fixtures::stability::{ON_AXIS, STIFF, STIFF_START, TOWARDS_AXIS, chaotic_reference};
+use dalembert_generated::taylor_double_pendulum::TaylorDoublePendulum;
 use dalembert_lab::clap::{Arg, Command, value_parser};
 use dalembert_lab::indicatif::{ProgressBar, ProgressStyle};
 use dalembert_lab::{
@@ -36,6 +41,8 @@ use dalembert_lab::{
 
 /// The error at which our DOP853 and SciPy's are compared.
 const COMPARISON_ERROR: f64 = 1e-6;
+/// The error at which our DOP853 and the Taylor integrator are compared.
+const TAYLOR_COMPARISON_ERROR: f64 = 1e-12;
 /// Where double precision meets the chaos of seed example 1 at t = 10: the
 /// reference README's DOP853 at rtol = atol = 1e-14 is 3.3e-8 off.
 const CHAOTIC_LIMIT: f64 = 3.3e-8;
@@ -69,6 +76,11 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .value_parser(value_parser!(usize))
                 .default_value("5"),
         )
+        .arg(
+            Arg::new("taylor")
+                .long("taylor")
+                .action(dalembert_lab::clap::ArgAction::SetTrue),
+        )
         .get_matches();
     let out = options
         .get_one::<PathBuf>("out")
@@ -82,6 +94,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     std::fs::create_dir_all(&out)?;
 
     chaotic_pendulum(&out, repeats, &scipy)?;
+    regular_pendulum(&out, repeats)?;
+    if options.get_flag("taylor") {
+        return Ok(());
+    }
     let pendulum = SEED_3;
     let start = pendulum.assembled(1.0, 2.0);
     constrained(
@@ -212,6 +228,94 @@ fn runs<'a, E: Dynamics<NQ, NQ>, const NQ: usize>(
     runs
 }
 
+/// The runs of the Taylor integrator over `tolerances`.
+fn taylor_runs<'a, E: integrate::TaylorDynamics<NQ, NQ>, const NQ: usize>(
+    dynamics: &'a E,
+    (start, t_end): (State<NQ, NQ>, f64),
+    tolerances: &[f64],
+) -> Vec<(String, f64, Run<'a, NQ>)> {
+    tolerances
+        .iter()
+        .map(|&tolerance| {
+            let options = integrate::TaylorOptions::with_tolerance(tolerance);
+            let run = move || integrate::taylor(dynamics, start, t_end, options, |_| {});
+            ("Taylor".to_owned(), tolerance, Box::new(run) as Run<'a, NQ>)
+        })
+        .collect()
+}
+
+/// Seed example 1 at 0.2 rad to t = 10 s, a regular motion: DOPRI5, DOP853
+/// and Taylor against the Taylor integrator at 1e-20 (checked against
+/// DOP853 at 1e-16), and the ratio of DOP853's time to Taylor's at
+/// [`TAYLOR_COMPARISON_ERROR`].
+fn regular_pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
+    let pendulum = TaylorDoublePendulum {
+        m: 1.0,
+        L: 1.0,
+        g: 9.81,
+    };
+    let dynamics = Unconstrained::without_inputs(&pendulum);
+    let start = State {
+        t: 0.0,
+        q: [0.2, 0.2],
+        v: [0.0, 0.0],
+    };
+    let t_end = 10.0;
+    let tight = integrate::TaylorOptions::with_tolerance(1e-20);
+    let reference = integrate::taylor(&dynamics, start, t_end, tight, |_| {})?.end;
+    let check = integrate::adaptive(
+        &dynamics,
+        start,
+        t_end,
+        ExplicitPair::Dop853,
+        AdaptiveOptions::with_tolerance(1e-16),
+        |_| {},
+    )?;
+    println!(
+        "seed example 1 at 0.2 rad: reference (Taylor 1e-20) vs DOP853 1e-16: {:.2e}",
+        state_error(&check.end, &reference)
+    );
+    let initial_energy = energy(&pendulum, &start.q, &start.v);
+    let judge = |end: &State<2, 2>| Accuracy {
+        error: state_error(end, &reference),
+        energy_error: ((energy(&pendulum, &end.q, &end.v) - initial_energy) / initial_energy).abs(),
+        drift: 0.0,
+    };
+    let mut all = runs(
+        "",
+        &dynamics,
+        (start, t_end),
+        &[
+            (ExplicitPair::DormandPrince54, &decades(6, 13)),
+            (ExplicitPair::Dop853, &decades(6, 16)),
+        ],
+        &[],
+    );
+    all.extend(taylor_runs(&dynamics, (start, t_end), &decades(6, 17)));
+    let points = sweep("0.2 rad", repeats, all, &judge);
+    write_work_precision(
+        out,
+        "regular_pendulum",
+        "Seed example 1 at 0.2 rad (regular) to t = 10 s",
+        &points,
+        &[],
+    )?;
+    let error = TAYLOR_COMPARISON_ERROR;
+    match (
+        seconds_at_error(&points, "DOP853", error),
+        seconds_at_error(&points, "Taylor", error),
+    ) {
+        (Some(dop853), Some(taylor)) => println!(
+            "at final-state error {error:e} (0.2 rad): DOP853 {:.1} µs, Taylor {:.1} µs: {:.2}× fewer seconds",
+            dop853 * 1e6,
+            taylor * 1e6,
+            dop853 / taylor
+        ),
+        _ => println!("DOP853 or Taylor does not bracket the error {error:e}"),
+    }
+    Ok(())
+}
+
 /// Tolerances `10⁻ᵃ … 10⁻ᵇ`, a decade apart.
 fn decades(from: i32, to: i32) -> Vec<f64> {
     (from..=to).map(|k| 10f64.powi(-k)).collect()
@@ -273,6 +377,18 @@ fn chaotic_pendulum(out: &Path, repeats: usize, scipy: &Path) -> Result<(), Box<
             (FixedStep::Sdirk, &steps_sdirk),
         ],
     );
+    let taylor_system = TaylorDoublePendulum {
+        m: CHAOTIC.m,
+        L: CHAOTIC.L,
+        g: CHAOTIC.g,
+    };
+    let taylor_dynamics = Unconstrained::without_inputs(&taylor_system);
+    let mut runs = runs;
+    runs.extend(taylor_runs(
+        &taylor_dynamics,
+        (CHAOTIC_START, CHAOTIC_END),
+        &decades(6, 16),
+    ));
     let points = sweep("seed example 1", repeats, runs, &judge);
     let scipy_points = read_scipy(scipy);
     let scipy_line: Vec<(f64, f64)> = scipy_points

@@ -43,6 +43,27 @@ model!(
     two_link_arm
 );
 
+// Systems asking for `outputs taylor;` (the Taylor integrator's tests and
+// work-precision charts).
+model!(
+    /// Seed example 1 with the Taylor coefficients of its motion.
+    taylor_double_pendulum
+);
+model!(
+    /// A mass on a linear spring with the Taylor coefficients of its motion.
+    taylor_oscillator
+);
+model!(
+    /// A torque-free symmetric body in Euler angles (free precession) with
+    /// the Taylor coefficients of its motion.
+    taylor_top
+);
+model!(
+    /// A particle in a potential of every elementary function, damped and
+    /// driven, with the Taylor coefficients of its motion.
+    taylor_functions
+);
+
 // Benchmark chains: `models/{planar,spatial}_chain_NN.dal`, written by
 // `dalembert chain FAMILY N` (`dalembert_codegen::testing::chain`); tests/chains.rs checks
 // them against that generator and against tests/reference/chains.json.

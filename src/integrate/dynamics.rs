@@ -83,8 +83,8 @@ impl<const NQ: usize, const NV: usize, const NU: usize> InputLaw<NQ, NV, NU> for
 /// `NU` is the number of inputs.
 #[derive(Clone, Copy, Debug)]
 pub struct Unconstrained<'a, S, F, const NU: usize> {
-    system: &'a S,
-    inputs: F,
+    pub(super) system: &'a S,
+    pub(super) inputs: F,
 }
 
 impl<'a, S, const NU: usize> Unconstrained<'a, S, NoInputs, NU> {

@@ -45,6 +45,7 @@
 //! | [`adaptive`] with [`ExplicitPair::Dop853`] | adaptive | tight tolerances (`1e-10` and below): the least work per digit |
 //! | [`adaptive_dense`], [`adaptive_with_events`] | adaptive | output at any time, impacts, switching, stopping at a condition |
 //! | [`gauss_legendre`] | fixed | long runs of conservative systems: the energy error stays bounded |
+//! | [`taylor`] (and [`taylor_dense`], [`taylor_with_events`]) | variable order and step | tight tolerances (`1e-12`…`1e-16`) on systems whose model asks for `outputs taylor;`: the series of the motion, compiled from the model |
 //! | [`sdirk`] | fixed | stiff springs and joints, whose fast modes an explicit method must resolve |
 //! | [`augmented_lagrangian`] | fixed | closed loops with redundant constraints or singular positions at a fixed step: the index-3 formulation of the IFToMM benchmarks' reference solutions (constrained dynamics only) |
 
@@ -56,6 +57,7 @@ mod lu;
 mod runge_kutta;
 mod sdirk;
 mod solution;
+mod taylor;
 
 pub use adaptive::{
     AdaptiveOptions, Crossing, DenseStep, Event, ExplicitPair, adaptive, adaptive_dense,
@@ -67,3 +69,6 @@ pub use gauss::{GaussLegendre, gauss_legendre};
 pub use runge_kutta::{State, rk4, rk4_step};
 pub use sdirk::sdirk;
 pub use solution::{Failure, IntegrationError, Solution, Statistics};
+pub use taylor::{
+    MAX_ORDER, TaylorDynamics, TaylorOptions, taylor, taylor_dense, taylor_with_events,
+};

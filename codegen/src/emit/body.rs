@@ -578,7 +578,7 @@ fn join(items: &[TokenStream], separator: TokenStream) -> TokenStream {
 
 /// A float literal for `n`, the nearest double to its exact value
 /// (suffixed, so that a method call on it has a type).
-fn number(n: Number) -> TokenStream {
+pub fn number(n: Number) -> TokenStream {
     let value = n.to_f64();
     let magnitude = if value.is_nan() {
         quote!(::core::primitive::f64::NAN)

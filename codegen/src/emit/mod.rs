@@ -9,6 +9,7 @@ mod body;
 mod configuration;
 mod derivatives;
 mod solve;
+mod taylor;
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool, Sym};
@@ -68,6 +69,9 @@ pub fn emit(
             (Body::ConstrainedLinearize, Target::Std) => {
                 derivatives::emit_constrained_linearize(model, pool, &names, function)
             }
+            (Body::Taylor, Target::Std) => {
+                taylor::emit_taylor(model, pool, equations, &names, function)
+            }
         })
         .collect();
     items.push(configuration::emit_configuration(model, pool, &names));
@@ -82,7 +86,11 @@ pub fn emit(
             let check = configuration::emit_rate_check(model, pool, &names);
             let has_check = !check.is_empty();
             items.push(check);
-            emit_trait_impls(name, [nq, nv, nu, nc], [has_solver, has_check])
+            let mut traits = emit_trait_impls(name, [nq, nv, nu, nc], [has_solver, has_check]);
+            if functions.iter().any(|f| f.body == Body::Taylor) {
+                traits.extend(taylor::emit_trait_impl(name, [nq, nv, nu]));
+            }
+            traits
         }
         Target::NoStd => TokenStream::new(),
     };

@@ -105,7 +105,7 @@ pub fn emit_accelerations(
 
 /// Binds the closure `finite(&[f64]) -> bool` and returns the runtime's
 /// error for a non-finite `t`, `q`, `qd` or `u`.
-fn state_check() -> TokenStream {
+pub fn state_check() -> TokenStream {
     quote! {
         let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
         if !(t.is_finite() && finite(q) && finite(qd) && finite(u)) {
@@ -157,14 +157,30 @@ impl Order {
     }
 }
 
-/// The factorisation and substitutions of `M x = f`; `None` for a system
-/// with constraints or no coordinates.
-pub fn factorised(
-    model: &Model,
-    pool: &Pool,
-    equations: &Equations,
-    names: &Names,
-) -> Option<Factorised> {
+/// The unrolled `L D Lᵀ` solve of `M x = f`, whatever computes `M`'s
+/// entries and `f`.
+pub struct Elimination {
+    /// The entries `(i, j)` (`i ≥ j`) of `M` that the factorisation reads,
+    /// by the speeds' indices, bound to `m{i}_{j}` before it.
+    pub entries: Vec<(usize, usize)>,
+    /// Binds `tolerance` and factorises (`l{i}_{j}`, the reciprocal pivots
+    /// `r{j}`), returning the runtime's error at a pivot not above the
+    /// tolerance.
+    pub factor: TokenStream,
+    /// Forward and backward substitution from `f{i}` to `x{i}`.
+    pub substitutions: TokenStream,
+    /// The names `f{i}` of the right-hand side.
+    pub right_hand_side: Vec<Ident>,
+    /// The names `x{i}` of the solution.
+    pub solution: Vec<Ident>,
+    /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero, in the
+    /// order of elimination.
+    pub pattern: Vec<Vec<bool>>,
+}
+
+/// The elimination of `M x = f` that fills in less, in the speeds' order
+/// or the reverse; `None` for a system with constraints or no coordinates.
+pub fn elimination(model: &Model, pool: &Pool, equations: &Equations) -> Option<Elimination> {
     let nq = model.nv();
     if !model.constraints.is_empty() || nq == 0 {
         return None;
@@ -197,14 +213,42 @@ pub fn factorised(
             read[a.max(b)][a.min(b)] = true;
         }
     }
-    let forcing: Vec<Ident> = (0..nq).map(|i| format_ident!("f{}", i)).collect();
-    // `M`'s entries the factorisation reads and `f`, computed together so
-    // that they share their subexpressions (sines and cosines above all),
-    // in a block that keeps the model's names out of the solver's.
     let entries: Vec<(usize, usize)> = (0..nq)
         .flat_map(|i| (0..=i).map(move |j| (i, j)))
         .filter(|&(i, j)| read[i][j])
         .collect();
+    Some(Elimination {
+        entries,
+        factor: quote! {
+            let tolerance = ::dalembert::dynamics::pivot_tolerance([#(#diagonal),*]);
+            #factor
+        },
+        substitutions: quote!(#forward #backward),
+        right_hand_side: (0..nq).map(|i| format_ident!("f{}", i)).collect(),
+        solution,
+        pattern,
+    })
+}
+
+/// The factorisation and substitutions of `M x = f`; `None` for a system
+/// with constraints or no coordinates.
+pub fn factorised(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    names: &Names,
+) -> Option<Factorised> {
+    let Elimination {
+        entries,
+        factor,
+        substitutions,
+        right_hand_side,
+        solution,
+        pattern,
+    } = elimination(model, pool, equations)?;
+    // `M`'s entries the factorisation reads and `f`, computed together so
+    // that they share their subexpressions (sines and cosines above all),
+    // in a block that keeps the model's names out of the solver's.
     let roots: Vec<ExprId> = entries
         .iter()
         .map(|&(i, j)| equations.mass_matrix[i][j])
@@ -215,7 +259,7 @@ pub fn factorised(
     let bound: Vec<Ident> = entries
         .iter()
         .map(|&(i, j)| mass(i, j))
-        .chain(forcing.iter().cloned())
+        .chain(right_hand_side.iter().cloned())
         .collect();
     let check = state_check();
     let prelude = quote! {
@@ -227,13 +271,12 @@ pub fn factorised(
         if !finite(&[#(#bound),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
         }
-        let tolerance = ::dalembert::dynamics::pivot_tolerance([#(#diagonal),*]);
         #factor
     };
     Some(Factorised {
         prelude,
-        substitutions: quote!(#forward #backward),
-        right_hand_side: forcing,
+        substitutions,
+        right_hand_side,
         solution,
         pattern,
     })
@@ -373,7 +416,7 @@ fn minus_products(
 }
 
 /// The name of `Mᵢⱼ`.
-fn mass(i: usize, j: usize) -> Ident {
+pub fn mass(i: usize, j: usize) -> Ident {
     format_ident!("m{}_{}", i, j)
 }
 

@@ -151,6 +151,7 @@ pub trait Env {
 }
 
 /// The arena of hash-consed expressions.
+#[derive(Clone)]
 pub struct Pool {
     /// The nodes, indexed by id.
     nodes: Vec<Node>,

@@ -25,6 +25,9 @@ pub enum OutputKind {
     AccelerationsJacobian,
     /// `linearize`: the state-space matrices `A`, `B` about a state.
     Linearize,
+    /// `taylor`: the Taylor coefficients of the motion through a state, to
+    /// any order (`taylor_coefficients`, for `dalembert::integrate::taylor`).
+    Taylor,
     /// `position(P)`: where a point is, from `O`.
     Position(PointId),
     /// `velocity(P)`: its velocity in `N`.
@@ -66,11 +69,12 @@ pub enum Availability {
 
 /// Every output name of the language, what it needs in parentheses and
 /// whether it is generated.
-pub const KINDS: [(&str, Subject, Availability); 12] = [
+pub const KINDS: [(&str, Subject, Availability); 13] = [
     ("inverse_dynamics", Subject::None, Availability::Ready),
     ("regressor", Subject::None, Availability::Ready),
     ("accelerations_jacobian", Subject::None, Availability::Ready),
     ("linearize", Subject::Coordinates, Availability::Ready),
+    ("taylor", Subject::None, Availability::Ready),
     (
         "inverse_dynamics_jacobian",
         Subject::None,
@@ -108,6 +112,7 @@ pub fn kind(name: &str, point: Option<PointId>, frame: Option<FrameId>) -> Optio
         ("inverse_dynamics_jacobian", ..) => OutputKind::InverseDynamicsJacobian,
         ("accelerations_jacobian", ..) => OutputKind::AccelerationsJacobian,
         ("linearize", ..) => OutputKind::Linearize,
+        ("taylor", ..) => OutputKind::Taylor,
         ("position", Some(p), _) => OutputKind::Position(p),
         ("velocity", Some(p), _) => OutputKind::Velocity(p),
         ("acceleration", Some(p), _) => OutputKind::Acceleration(p),

@@ -1,6 +1,7 @@
-//! Dynamic outputs: the inverse dynamics `M v̇ − f` and its regressor.
+//! Dynamic outputs: the inverse dynamics `M v̇ − f`, its regressor, and the
+//! Taylor coefficients of the motion.
 
-use super::{Argument, Function, NameList, Value, doc_lines};
+use super::{Argument, Body, Function, NameList, Value, doc_lines};
 use crate::equations::regressor::{Failure, regressor as derive_regressor};
 use crate::equations::{Equations, inverse_dynamics as derive_inverse_dynamics};
 use crate::expr::Pool;
@@ -93,6 +94,38 @@ pub fn regressor(
     };
     Ok((functions, constant))
 }
+
+/// `taylor_coefficients(t, q, v, u, order)`: the series of `M` and `f`
+/// (its results) through a state, `v̇` solved order by order.
+pub fn taylor(model: &Model, equations: &Equations) -> Function {
+    let nv = model.nv();
+    Function {
+        body: Body::Taylor,
+        results: vec![
+            Value::matrix(&equations.mass_matrix, nv),
+            Value::vector(equations.forcing.clone()),
+        ],
+        ..Function::new(
+            "taylor_coefficients",
+            TAYLOR_DOCS,
+            &[Time, Coordinates, Speeds, Inputs],
+            Value::vector(Vec::new()),
+        )
+    }
+}
+
+/// The docs of `taylor_coefficients`.
+const TAYLOR_DOCS: &str =
+    "The Taylor coefficients of the motion through the state `(t, q, q̇)` with the
+inputs `u` held constant: entry `[i][k]` of the two arrays is the coefficient
+of `τᵏ` in `qᵢ(t + τ)` and `q̇ᵢ(t + τ)`, for `k ≤ order` (and `k < K`; the
+rest are zero). Every elementary operation of `M` and `f` has its
+recurrence (`dalembert::series`: Cauchy products, quotients, the `sin`/`cos`
+pair, …), computed order by order from the lower orders; order `k` of
+`M(q) q̈ = f` gives `M₀ q̈ₖ = fₖ − Σⱼ₌₁ᵏ Mⱼ q̈ₖ₋ⱼ`, solved with the one
+`L D Lᵀ` factorisation of `M₀ = M(q)`, and `q̇ₖ₊₁ = q̈ₖ / (k + 1)`,
+`qₖ₊₁ = q̇ₖ / (k + 1)`. The errors of `accelerations` (non-finite state,
+singular `M`); a non-finite coefficient is left for the caller to see.";
 
 /// `j` in subscript digits.
 fn subscript(j: usize) -> String {

@@ -103,7 +103,8 @@ pub fn function(
         | OutputKind::Regressor
         | OutputKind::InverseDynamicsJacobian
         | OutputKind::AccelerationsJacobian
-        | OutputKind::Linearize => return None,
+        | OutputKind::Linearize
+        | OutputKind::Taylor => return None,
     };
     let subject = output.subject.as_deref().unwrap_or_default();
     let docs = what

@@ -46,6 +46,10 @@ pub enum Body {
     /// partials of the residuals that the runtime's
     /// `linearize_on_constraints` takes.
     ConstrainedLinearize,
+    /// `taylor_coefficients`: its results are `M` and `f`, whose Taylor
+    /// coefficients it computes order by order, solving each order with one
+    /// factorisation of `M`.
+    Taylor,
 }
 
 /// An argument of a generated function.
@@ -280,6 +284,7 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                     .functions
                     .push(derivatives::linearize(model, pool));
             }
+            OutputKind::Taylor => requested.functions.push(dynamics::taylor(model, equations)),
             _ => requested
                 .functions
                 .extend(kinematic::function(model, &kinematics, pool, output)),

@@ -70,7 +70,7 @@ impl<const NQ: usize, const NV: usize> Interpolant<NQ, NV> {
     /// The interpolated state at the fraction `theta` of the step (the
     /// configuration not yet put back on its manifold; the time that of
     /// the start).
-    fn at(&self, theta: f64) -> State<NQ, NV> {
+    fn at_fraction(&self, theta: f64) -> State<NQ, NV> {
         let other = 1.0 - theta;
         let mut sum = self.r[6];
         for (k, r) in self.r[..6].iter().enumerate().rev() {
@@ -80,6 +80,21 @@ impl<const NQ: usize, const NV: usize> Interpolant<NQ, NV> {
         }
         sum.scale(theta);
         offset_from(&self.start, &sum)
+    }
+}
+
+/// The state at any time of one step, between its ends: a continuous
+/// extension of a Runge–Kutta step, a Taylor polynomial.
+pub(crate) trait Continuous<const NQ: usize, const NV: usize> {
+    /// The state at time `t` (its configuration not yet put back on the
+    /// manifold).
+    fn state_at(&self, t: f64) -> State<NQ, NV>;
+}
+
+impl<const NQ: usize, const NV: usize> Continuous<NQ, NV> for Interpolant<NQ, NV> {
+    fn state_at(&self, t: f64) -> State<NQ, NV> {
+        let state = self.at_fraction((t - self.start.t) / self.h);
+        State { t, ..state }
     }
 }
 
@@ -114,7 +129,7 @@ pub struct DenseStep<'a, const NQ: usize, const NV: usize, D> {
     end: &'a State<NQ, NV>,
     /// `None` when the integration did not ask for the extension (then the
     /// step is only shown by its ends).
-    interpolant: Option<&'a Interpolant<NQ, NV>>,
+    interpolant: Option<&'a dyn Continuous<NQ, NV>>,
 }
 
 impl<'a, const NQ: usize, const NV: usize, D> DenseStep<'a, NQ, NV, D>
@@ -123,11 +138,11 @@ where
 {
     /// The step from `start` that ended (after the dynamics' correction) at
     /// `end`, with its continuous extension if it was asked for.
-    pub(super) fn new(
+    pub(crate) fn new(
         dynamics: &'a D,
         start: &'a State<NQ, NV>,
         end: &'a State<NQ, NV>,
-        interpolant: Option<&'a Interpolant<NQ, NV>>,
+        interpolant: Option<&'a dyn Continuous<NQ, NV>>,
     ) -> Self {
         Self {
             dynamics,
@@ -155,7 +170,7 @@ where
     pub fn state_at(&self, t: f64) -> State<NQ, NV> {
         let (start, end) = (self.start, self.end);
         let state = match self.interpolant {
-            Some(interpolant) => interpolant.at((t - start.t) / interpolant.h),
+            Some(interpolant) => interpolant.state_at(t),
             None => {
                 let mut line = difference(end, start);
                 line.scale((t - start.t) / (end.t - start.t));
@@ -250,17 +265,39 @@ pub fn adaptive_with_events<D, G, const NQ: usize, const NV: usize>(
     pair: ExplicitPair,
     options: AdaptiveOptions,
     event: Event<G>,
-    mut on_event: impl FnMut(&State<NQ, NV>),
+    on_event: impl FnMut(&State<NQ, NV>),
 ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
     D: Dynamics<NQ, NV>,
     G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64,
 {
-    let g = |s: &State<NQ, NV>| (event.function)(s.t, &s.q, &s.v);
-    let mut before = g(&initial);
-    let on_step = |step: &DenseStep<'_, NQ, NV, D>| {
+    let on_step = watch(event, &initial, on_event);
+    adaptive_dense(dynamics, initial, t_end, pair, options, on_step)
+}
+
+/// What an integration watching `event` from `initial` does at each step
+/// (its continuous extension, [`DenseStep`]): locates a zero crossed in the
+/// step, gives the state there to `on_event`, and breaks there if the event
+/// stops the integration.
+pub(crate) fn watch<D, G, const NQ: usize, const NV: usize>(
+    event: Event<G>,
+    initial: &State<NQ, NV>,
+    mut on_event: impl FnMut(&State<NQ, NV>),
+) -> impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>
+where
+    D: Dynamics<NQ, NV>,
+    G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64,
+{
+    let Event {
+        function,
+        crossing,
+        stop,
+    } = event;
+    let g = move |s: &State<NQ, NV>| function(s.t, &s.q, &s.v);
+    let mut before = g(initial);
+    move |step: &DenseStep<'_, NQ, NV, D>| {
         let after = g(step.end());
-        let crossed = event.crossing.between(before, after);
+        let crossed = crossing.between(before, after);
         before = after;
         if !crossed {
             return ControlFlow::Continue(());
@@ -270,13 +307,12 @@ where
         let t = zero(at, bracket, (g(step.start()), after));
         let state = step.state_at(t);
         on_event(&state);
-        if event.stop {
+        if stop {
             ControlFlow::Break(state)
         } else {
             ControlFlow::Continue(())
         }
-    };
-    adaptive_dense(dynamics, initial, t_end, pair, options, on_step)
+    }
 }
 
 /// The zero of `f` in `[a, b]`, where `f(a) = fa` and `f(b) = fb` differ in

@@ -23,6 +23,7 @@ mod tableaux;
 use std::ops::ControlFlow;
 
 use dense::Interpolant;
+pub(crate) use dense::{Continuous, watch};
 pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
 use tableaux::{DOP853, DOPRI5, EmbeddedPair, ErrorEstimate};
 
@@ -252,7 +253,8 @@ where
                 }
                 _ => None,
             };
-            let step = DenseStep::new(dynamics, &state, &settled, interpolant.as_ref());
+            let extension = interpolant.as_ref().map(|i| i as &dyn Continuous<NQ, NV>);
+            let step = DenseStep::new(dynamics, &state, &settled, extension);
             if let ControlFlow::Break(end) = on_step(&step) {
                 state = end;
                 break;

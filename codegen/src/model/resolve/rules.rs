@@ -98,17 +98,18 @@ impl Resolver {
         }
     }
 
-    /// `accelerations_jacobian` solves `M v̇ = f`: with constraints, the
-    /// accelerations and their derivatives live on the constraint manifold,
-    /// which it does not handle yet (`linearize(..)` with the independent
+    /// `accelerations_jacobian` and `taylor` solve `M v̇ = f`: with
+    /// constraints, the accelerations and their derivatives live on the
+    /// constraint manifold, which they do not handle yet (`linearize(..)` with the independent
     /// coordinates does, and its own problems are checked by
-    /// `linearize_problem`). The regressor is taken in the coordinates, so
-    /// it needs every speed to be its coordinate's rate.
+    /// `linearize_problem`). The regressor and the Taylor coefficients are
+    /// taken in the coordinates, so they need every speed to be its
+    /// coordinate's rate.
     pub(super) fn check_solved_outputs(&mut self) {
-        use crate::model::OutputKind::{AccelerationsJacobian, Linearize, Regressor};
+        use crate::model::OutputKind::{AccelerationsJacobian, Linearize, Regressor, Taylor};
         if self.model.nq() != self.model.nv() {
             for output in &self.model.outputs {
-                if output.kind == Regressor {
+                if matches!(output.kind, Regressor | Taylor) {
                     let name = &output.function;
                     self.errors.push(
                         name.span(),
@@ -129,7 +130,9 @@ impl Resolver {
                     self.errors.push(span, message);
                 }
             }
-            if output.kind == AccelerationsJacobian && !self.model.constraints.is_empty() {
+            if matches!(output.kind, AccelerationsJacobian | Taylor)
+                && !self.model.constraints.is_empty()
+            {
                 let name = &output.function;
                 self.errors.push(
                     name.span(),

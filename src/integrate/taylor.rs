@@ -1,0 +1,296 @@
+//! Taylor-series integration of a system whose model asks for
+//! `outputs taylor;` (the method of TIDES and heyoka).
+//!
+//! At each step the generated `taylor_coefficients` expands the motion
+//! through the current state to order `p` (every elementary operation of
+//! the equations by its coefficient recurrence, [`crate::series`]; each
+//! order of `M(q) v̇ = f` solved with the one factorisation of `M` at the
+//! step's start), and the step sums the series. Order and step follow Jorba
+//! & Zou (2005), as heyoka does: for the tolerance `ε` the order is
+//! `p = ⌈−ln(ε)/2 + 1⌉`, and the step
+//! `h = min(ρ_{p−1}, ρ_p) e⁻² e^(−0.7/(p−1))` with
+//! `ρⱼ = (m / ‖xⱼ‖∞)^(1/j)` from the last two coefficients `xⱼ` of the state
+//! `x = (q, v)`, `m = max(1, ‖x₀‖∞)` (absolute error for a state of norm
+//! below one, relative above). The polynomial of a step is its continuous
+//! extension, free: [`taylor_dense`] gives it, and events are located on it
+//! ([`taylor_with_events`]).
+//!
+//! The inputs are held at their value at the start of each step (the
+//! series of a system driven by `u(t, q, v)` is that of the frozen inputs):
+//! drive it by steps no longer than the inputs' own time scale, or use the
+//! Runge–Kutta methods. Systems with constraints, or whose speeds are not
+//! the coordinates' rates, have no `taylor` output.
+
+use std::ops::ControlFlow;
+
+use super::adaptive::{Continuous, DenseStep, Event, watch};
+use super::dynamics::InputLaw;
+use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained};
+use crate::series;
+use crate::system::{Expansion, TaylorSystem};
+use crate::{DynamicsError, MultibodySystem};
+
+/// The highest order the integrator uses (`ε ≈ 1e−26`).
+pub const MAX_ORDER: usize = 31;
+
+/// Equations that can be expanded in Taylor series: the dynamics of a
+/// [`TaylorSystem`] closed over its input law.
+pub trait TaylorDynamics<const NQ: usize, const NV: usize>: Dynamics<NQ, NV> {
+    /// The coefficients of orders `0..=order` (below `K`) of the motion
+    /// through `(t, q, v)`, the inputs held at their value there.
+    fn expansion<const K: usize>(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        order: usize,
+    ) -> Result<Expansion<K, NQ, NV>, DynamicsError>;
+}
+
+impl<S, F, const NQ: usize, const NV: usize, const NU: usize> TaylorDynamics<NQ, NV>
+    for Unconstrained<'_, S, F, NU>
+where
+    S: TaylorSystem<NQ, NV, NU> + MultibodySystem<NQ, NV, NU>,
+    F: InputLaw<NQ, NV, NU>,
+{
+    #[inline]
+    fn expansion<const K: usize>(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        order: usize,
+    ) -> Result<Expansion<K, NQ, NV>, DynamicsError> {
+        let u = self.inputs.inputs(t, q, v);
+        self.system.taylor_coefficients::<K>(t, q, v, &u, order)
+    }
+}
+
+/// Tolerance and limits of a Taylor integration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TaylorOptions {
+    /// The local error asked of each step: absolute for a state of norm
+    /// below one, relative above.
+    pub tolerance: f64,
+    /// Steps allowed before giving up.
+    pub max_steps: u64,
+}
+
+impl TaylorOptions {
+    /// `tolerance` and a budget of ten million steps.
+    pub fn with_tolerance(tolerance: f64) -> Self {
+        Self {
+            tolerance,
+            max_steps: 10_000_000,
+        }
+    }
+
+    /// Jorba and Zou's order for the tolerance, `⌈−ln(ε)/2 + 1⌉`, between 2
+    /// and [`MAX_ORDER`].
+    pub fn order(&self) -> usize {
+        let order = (-self.tolerance.ln() / 2.0 + 1.0).ceil();
+        if order.is_nan() {
+            return MAX_ORDER;
+        }
+        (order.max(2.0) as usize).min(MAX_ORDER)
+    }
+}
+
+/// Integrates `dynamics` from `initial` to `t_end` by Taylor series of the
+/// order and with the steps that `options` ask for, and returns the final
+/// state (exactly at `t_end`) with the work done (`rhs_evaluations` counts
+/// the expansions, one a step).
+///
+/// `observer` sees the initial state and every step's end. Allocates
+/// nothing. Stops at the first expansion that fails (singular mass matrix,
+/// non-finite values: the error names its time and configuration), when
+/// the step falls below the resolution of the time, or when
+/// `options.max_steps` run out.
+pub fn taylor<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
+    t_end: f64,
+    options: TaylorOptions,
+    mut observer: impl FnMut(&State<NQ, NV>),
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: TaylorDynamics<NQ, NV>,
+{
+    observer(&initial);
+    let on_step = |step: &DenseStep<'_, NQ, NV, D>| {
+        observer(step.end());
+        ControlFlow::Continue(())
+    };
+    taylor_dense(dynamics, initial, t_end, options, on_step)
+}
+
+/// [`taylor`] showing each step with its polynomial: `on_step` sees a
+/// [`DenseStep`], whose [`state_at`](DenseStep::state_at) sums the step's
+/// series at any time inside it, and may end the integration there by
+/// returning [`ControlFlow::Break`] with the state to end at.
+pub fn taylor_dense<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
+    t_end: f64,
+    options: TaylorOptions,
+    on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: TaylorDynamics<NQ, NV>,
+{
+    // The series are kept to the smallest length that holds the order.
+    let run = Run {
+        dynamics,
+        initial,
+        t_end,
+        options,
+    };
+    match options.order() {
+        0..16 => run.integrate::<16>(on_step),
+        16..24 => run.integrate::<24>(on_step),
+        _ => run.integrate::<{ MAX_ORDER + 1 }>(on_step),
+    }
+}
+
+/// [`taylor`] watching `event`, as
+/// [`adaptive_with_events`](super::adaptive_with_events) does: each zero of
+/// its function crossed in a step is located on the step's polynomial to a
+/// few units in the last place of the time and given to `on_event`; a
+/// stopping event ends the integration at its first zero.
+pub fn taylor_with_events<D, G, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
+    t_end: f64,
+    options: TaylorOptions,
+    event: Event<G>,
+    on_event: impl FnMut(&State<NQ, NV>),
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: TaylorDynamics<NQ, NV>,
+    G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64,
+{
+    let on_step = watch(event, &initial, on_event);
+    taylor_dense(dynamics, initial, t_end, options, on_step)
+}
+
+/// What a Taylor integration is asked to do.
+struct Run<'a, D, const NQ: usize, const NV: usize> {
+    dynamics: &'a D,
+    initial: State<NQ, NV>,
+    t_end: f64,
+    options: TaylorOptions,
+}
+
+impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV>
+where
+    D: TaylorDynamics<NQ, NV>,
+{
+    /// The integration with series of `K` coefficients.
+    fn integrate<const K: usize>(
+        self,
+        mut on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        let Run {
+            dynamics,
+            initial,
+            t_end,
+            options,
+        } = self;
+        let order = options.order().min(K - 1);
+        let mut state = initial;
+        let mut statistics = Statistics::default();
+        while state.t < t_end {
+            if statistics.accepted_steps == options.max_steps {
+                let steps = options.max_steps;
+                return Err(IntegrationError::at(
+                    &state,
+                    Failure::TooManySteps { steps },
+                ));
+            }
+            let (q, v) = dynamics
+                .expansion::<K>(state.t, &state.q, &state.v, order)
+                .map_err(|cause| IntegrationError::dynamics(state.t, state.q, cause))?;
+            statistics.rhs_evaluations += 1;
+            let polynomial = Polynomial {
+                start: state,
+                q,
+                v,
+                terms: order + 1,
+            };
+            let mut h = polynomial.step(order, options.tolerance);
+            let last = state.t + h >= t_end;
+            if last {
+                h = t_end - state.t;
+            }
+            if h.is_nan() || h <= 16.0 * f64::EPSILON * state.t.abs() {
+                return Err(IntegrationError::at(
+                    &state,
+                    Failure::StepSizeTooSmall { h },
+                ));
+            }
+            let t = if last { t_end } else { state.t + h };
+            let mut next = polynomial.state_at(t);
+            next.q = dynamics.renormalise(&next.q);
+            if !next.q.iter().chain(&next.v).all(|x| x.is_finite()) {
+                let cause = DynamicsError::NonFiniteAccelerations;
+                return Err(IntegrationError::dynamics(state.t, state.q, cause));
+            }
+            let settled = dynamics
+                .settle(&next)
+                .map_err(|cause| IntegrationError::dynamics(t, next.q, cause))?;
+            statistics.accepted_steps += 1;
+            let step = DenseStep::new(dynamics, &state, &settled, Some(&polynomial));
+            if let ControlFlow::Break(end) = on_step(&step) {
+                state = end;
+                break;
+            }
+            state = settled;
+        }
+        Ok(Solution {
+            end: state,
+            statistics,
+        })
+    }
+}
+
+/// The Taylor polynomial of one step: the motion through `start`.
+struct Polynomial<const K: usize, const NQ: usize, const NV: usize> {
+    start: State<NQ, NV>,
+    q: [[f64; K]; NQ],
+    v: [[f64; K]; NV],
+    /// The coefficients summed: orders `0..terms`.
+    terms: usize,
+}
+
+impl<const K: usize, const NQ: usize, const NV: usize> Polynomial<K, NQ, NV> {
+    /// Jorba and Zou's step for `order` and `tolerance`, with heyoka's
+    /// safety factor `e^(−0.7/(p−1))`; infinite when the last two orders
+    /// vanish.
+    fn step(&self, order: usize, tolerance: f64) -> f64 {
+        let series = || self.q.iter().chain(&self.v);
+        let norm = |k: usize| series().map(|x| series::at(x, k).abs()).fold(0.0, f64::max);
+        let scale = if tolerance * norm(0) <= tolerance {
+            1.0
+        } else {
+            norm(0)
+        };
+        let radius = |j: usize| (scale / norm(j)).powf(1.0 / j as f64);
+        let rho = radius(order - 1).min(radius(order));
+        let p = order as f64;
+        rho / std::f64::consts::E.powi(2) * (-0.7 / (p - 1.0)).exp()
+    }
+}
+
+impl<const K: usize, const NQ: usize, const NV: usize> Continuous<NQ, NV>
+    for Polynomial<K, NQ, NV>
+{
+    fn state_at(&self, t: f64) -> State<NQ, NV> {
+        let tau = t - self.start.t;
+        let sum = |x: &[f64; K]| series::sum(x, self.terms, tau);
+        State {
+            t,
+            q: std::array::from_fn(|i| sum(&self.q[i])),
+            v: std::array::from_fn(|i| sum(&self.v[i])),
+        }
+    }
+}

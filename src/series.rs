@@ -1,0 +1,400 @@
+//! Truncated Taylor series `x(t₀ + τ) = Σₖ xₖ τᵏ` held as their
+//! coefficients `[x₀, x₁, …]` in a `[f64; K]`, and the recurrences that give
+//! the coefficient of order `k` of an elementary operation from the lower
+//! orders of its operands (automatic differentiation in Taylor form, as in
+//! Jorba & Zou 2005 and heyoka).
+//!
+//! The code that `outputs taylor;` generates (`taylor_coefficients`) calls
+//! these functions once per node of the model's expression DAG and per
+//! order; [`crate::integrate::taylor`] sums the series. Each function writes
+//! order `k` of its result, reading orders `0..=k` of its operands and
+//! `0..k` of its own result; a `k` at or beyond `K` writes nothing. None
+//! indexes, allocates or panics.
+
+/// `1/k` for the orders the integrator uses, so that the recurrences
+/// multiply where they would divide (a division is several times the
+/// latency of a multiplication, and the orders form one chain).
+const INVERSES: [f64; 64] = {
+    let mut inverses = [0.0; 64];
+    let mut k = 1;
+    while k < 64 {
+        inverses[k] = 1.0 / k as f64;
+        k += 1;
+    }
+    inverses
+};
+
+/// `1/k` (`k ≥ 1`), from the table below 64.
+#[inline(always)]
+fn inverse(k: usize) -> f64 {
+    match INVERSES.get(k) {
+        Some(&r) if k > 0 => r,
+        _ => 1.0 / k as f64,
+    }
+}
+
+/// Writes `value` as coefficient `k` of `x` (nothing if `k ≥ K`).
+#[inline(always)]
+fn set<const K: usize>(x: &mut [f64; K], k: usize, value: f64) {
+    if let Some(slot) = x.get_mut(k) {
+        *slot = value;
+    }
+}
+
+/// Coefficient `k` of `x` (`0` beyond the array).
+#[inline(always)]
+pub fn at<const K: usize>(x: &[f64; K], k: usize) -> f64 {
+    x.get(k).copied().unwrap_or(0.0)
+}
+
+/// Coefficient `k` of a constant `c`: `c` at order 0, else 0.
+#[inline(always)]
+pub fn constant_at(c: f64, k: usize) -> f64 {
+    if k == 0 { c } else { 0.0 }
+}
+
+/// The operands of `Σⱼ aⱼ b_{k−j}` for `j` from `from` to `to`: the
+/// slices `a[from..=to]` and `b[k−to..=k−from]`, empty when `from > to`
+/// or beyond the arrays.
+#[inline(always)]
+fn terms<'a, const K: usize>(
+    a: &'a [f64; K],
+    b: &'a [f64; K],
+    k: usize,
+    (from, to): (usize, usize),
+) -> (&'a [f64], &'a [f64]) {
+    let (Some(low), Some(high)) = (k.checked_sub(to), k.checked_sub(from)) else {
+        return (&[], &[]);
+    };
+    match (a.get(from..=to), b.get(low..=high)) {
+        (Some(a), Some(b)) if from <= to => (a, b),
+        _ => (&[], &[]),
+    }
+}
+
+/// `Σᵢ wᵢ aᵢ b_{n−1−i}` for slices of one length `n`, `wᵢ = first + i`
+/// (`weighted`) or 1: in four independent partial sums, so that the
+/// additions do not wait on one another (a sum of products in one chain
+/// is bound by the latency of the additions).
+#[inline(always)]
+fn reversed_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
+    let (chunks, chunks_b) = (a.chunks_exact(4), b.rchunks_exact(4));
+    let (rest, rest_b) = (chunks.remainder(), chunks_b.remainder());
+    let step = if weighted.is_some() { 1.0 } else { 0.0 };
+    let first = weighted.unwrap_or(1.0);
+    let mut w = [first, first + step, first + 2.0 * step, first + 3.0 * step];
+    let mut sums = [0.0; 4];
+    // `rchunks_exact` starts from the end of `b`: each chunk of `a` meets
+    // the chunk of `b` it pairs with, reversed.
+    for (x, y) in chunks.zip(chunks_b) {
+        let (&[a0, a1, a2, a3], &[b0, b1, b2, b3]) = (x, y) else {
+            continue;
+        };
+        let [w0, w1, w2, w3] = w;
+        let [s0, s1, s2, s3] = sums;
+        sums = [
+            s0 + w0 * a0 * b3,
+            s1 + w1 * a1 * b2,
+            s2 + w2 * a2 * b1,
+            s3 + w3 * a3 * b0,
+        ];
+        w = [
+            w0 + 4.0 * step,
+            w1 + 4.0 * step,
+            w2 + 4.0 * step,
+            w3 + 4.0 * step,
+        ];
+    }
+    let [w0, ..] = w;
+    let tail: f64 = rest
+        .iter()
+        .zip(rest_b.iter().rev())
+        .enumerate()
+        .map(|(i, (x, y))| (w0 + step * i as f64) * x * y)
+        .sum();
+    let [s0, s1, s2, s3] = sums;
+    (s0 + s1) + (s2 + s3) + tail
+}
+
+/// `Σⱼ j aⱼ b_{k−j}` for `j` from `from` to `to`.
+#[inline(always)]
+fn weighted_cauchy<const K: usize>(
+    a: &[f64; K],
+    b: &[f64; K],
+    k: usize,
+    range: (usize, usize),
+) -> f64 {
+    let (x, y) = terms(a, b, k, range);
+    reversed_dot(x, y, Some(range.0 as f64))
+}
+
+/// `Σⱼ aⱼ b_{k−j}` for `j` from `from` to `to`.
+#[inline(always)]
+fn cauchy<const K: usize>(a: &[f64; K], b: &[f64; K], k: usize, range: (usize, usize)) -> f64 {
+    let (x, y) = terms(a, b, k, range);
+    reversed_dot(x, y, None)
+}
+
+/// The series of a quantity worth `x` now, whose higher coefficients are
+/// filled in order by order ([`integral`]).
+#[inline(always)]
+pub fn start<const K: usize>(x: f64) -> [f64; K] {
+    let mut series = [0.0; K];
+    set(&mut series, 0, x);
+    series
+}
+
+/// The series of the time `t₀ + τ`: `[t₀, 1, 0, …]`.
+#[inline(always)]
+pub fn time<const K: usize>(t: f64) -> [f64; K] {
+    let mut series = start(t);
+    set(&mut series, 1, 1.0);
+    series
+}
+
+/// Writes `values[i]` as coefficient `k` of `series[i]`.
+#[inline(always)]
+pub fn assign_all<const K: usize, const N: usize>(
+    series: [&mut [f64; K]; N],
+    k: usize,
+    values: [f64; N],
+) {
+    for (x, value) in series.into_iter().zip(values) {
+        set(x, k, value);
+    }
+}
+
+/// `x` with `ẋ = rate`: `xₖ = rate_{k−1} / k` (`k ≥ 1`).
+#[inline(always)]
+pub fn integral<const K: usize>(x: &mut [f64; K], rate: &[f64; K], k: usize) {
+    if let Some(below) = k.checked_sub(1) {
+        set(x, k, at(rate, below) * inverse(k));
+    }
+}
+
+/// `c = constant + Σ wᵢ aᵢ`, linear: `cₖ = Σ wᵢ aᵢₖ` (plus the constant at
+/// order 0).
+#[inline(always)]
+pub fn linear<const K: usize, const T: usize>(
+    c: &mut [f64; K],
+    k: usize,
+    constant: f64,
+    terms: [(f64, &[f64; K]); T],
+) {
+    let sum: f64 = terms.iter().map(|(w, a)| w * at(a, k)).sum();
+    set(c, k, constant_at(constant, k) + sum);
+}
+
+/// `c = a b`: `cₖ = Σⱼ aⱼ b_{k−j}`.
+#[inline(always)]
+pub fn product<const K: usize>(c: &mut [f64; K], a: &[f64; K], b: &[f64; K], k: usize) {
+    set(c, k, cauchy(a, b, k, (0, k)));
+}
+
+/// `c = a / b`: `cₖ = (aₖ − Σ_{j≥1} bⱼ c_{k−j}) / b₀`.
+#[inline(always)]
+pub fn quotient<const K: usize>(c: &mut [f64; K], a: &[f64; K], b: &[f64; K], k: usize) {
+    let value = (at(a, k) - cauchy(b, c, k, (1, k))) / at(b, 0);
+    set(c, k, value);
+}
+
+/// `c = 1 / b`: `cₖ = (δₖ₀ − Σ_{j≥1} bⱼ c_{k−j}) / b₀`.
+#[inline(always)]
+pub fn reciprocal<const K: usize>(c: &mut [f64; K], b: &[f64; K], k: usize) {
+    let value = (constant_at(1.0, k) - cauchy(b, c, k, (1, k))) / at(b, 0);
+    set(c, k, value);
+}
+
+/// `s = sin x`, `c = cos x` together: `ṡ = c ẋ`, `ċ = −s ẋ`, so
+/// `sₖ = (1/k) Σⱼ j xⱼ c_{k−j}` and `cₖ = −(1/k) Σⱼ j xⱼ s_{k−j}`.
+#[inline(always)]
+pub fn sin_cos<const K: usize>(s: &mut [f64; K], c: &mut [f64; K], x: &[f64; K], k: usize) {
+    if k == 0 {
+        let (sine, cosine) = at(x, 0).sin_cos();
+        set(s, 0, sine);
+        set(c, 0, cosine);
+        return;
+    }
+    let sine = weighted_cauchy(x, c, k, (1, k)) * inverse(k);
+    let cosine = -weighted_cauchy(x, s, k, (1, k)) * inverse(k);
+    set(s, k, sine);
+    set(c, k, cosine);
+}
+
+/// `t = tan x` with `w = 1 + t²`: `ṫ = w ẋ`, so `tₖ = (1/k) Σⱼ j xⱼ w_{k−j}`,
+/// then `wₖ = Σⱼ tⱼ t_{k−j}` (`k ≥ 1`).
+#[inline(always)]
+pub fn tan<const K: usize>(t: &mut [f64; K], w: &mut [f64; K], x: &[f64; K], k: usize) {
+    if k == 0 {
+        let tangent = at(x, 0).tan();
+        set(t, 0, tangent);
+        set(w, 0, 1.0 + tangent * tangent);
+        return;
+    }
+    let tangent = weighted_cauchy(x, w, k, (1, k)) * inverse(k);
+    set(t, k, tangent);
+    set(w, k, cauchy(t, t, k, (0, k)));
+}
+
+/// `e = exp x`: `ė = e ẋ`, so `eₖ = (1/k) Σⱼ j xⱼ e_{k−j}`.
+#[inline(always)]
+pub fn exp<const K: usize>(e: &mut [f64; K], x: &[f64; K], k: usize) {
+    let value = match k {
+        0 => at(x, 0).exp(),
+        _ => weighted_cauchy(x, e, k, (1, k)) * inverse(k),
+    };
+    set(e, k, value);
+}
+
+/// `l = ln x`: `x l̇ = ẋ`, so `lₖ = (xₖ − (1/k) Σ_{1≤j<k} j lⱼ x_{k−j}) / x₀`.
+#[inline(always)]
+pub fn ln<const K: usize>(l: &mut [f64; K], x: &[f64; K], k: usize) {
+    let value = match k {
+        0 => at(x, 0).ln(),
+        _ => {
+            let below = weighted_cauchy(l, x, k, (1, k - 1));
+            (at(x, k) - below * inverse(k)) / at(x, 0)
+        }
+    };
+    set(l, k, value);
+}
+
+/// `s = √x`: `s² = x`, so `sₖ = (xₖ − Σ_{1≤j<k} sⱼ s_{k−j}) / (2 s₀)`.
+#[inline(always)]
+pub fn sqrt<const K: usize>(s: &mut [f64; K], x: &[f64; K], k: usize) {
+    let value = match k {
+        0 => at(x, 0).sqrt(),
+        _ => {
+            let inner = cauchy(s, s, k, (1, k - 1));
+            (at(x, k) - inner) / (2.0 * at(s, 0))
+        }
+    };
+    set(s, k, value);
+}
+
+/// `a = |x|` away from a zero of `x`: `aₖ = sign(x₀) xₖ`.
+#[inline(always)]
+pub fn abs<const K: usize>(a: &mut [f64; K], x: &[f64; K], k: usize) {
+    let sign = if at(x, 0) < 0.0 { -1.0 } else { 1.0 };
+    set(a, k, sign * at(x, k));
+}
+
+/// `Σ_{j≥1} mⱼ a_{k−j}`: the part of coefficient `k` of the product `m a`
+/// that the orders `≥ 1` of `m` give (of `M(q) v̇`, what the mass matrix's
+/// motion adds to `M₀ v̇ₖ`).
+#[inline(always)]
+pub fn convolution_tail<const K: usize>(m: &[f64; K], a: &[f64; K], k: usize) -> f64 {
+    cauchy(m, a, k, (1, k))
+}
+
+/// The sum `Σₖ xₖ τᵏ` of the first `n` coefficients (Horner).
+#[inline(always)]
+pub fn sum<const K: usize>(x: &[f64; K], n: usize, tau: f64) -> f64 {
+    x.iter().take(n).rev().fold(0.0, |acc, c| acc * tau + c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const K: usize = 12;
+
+    /// The series of `f(x(t))` built order by order with `step`, for
+    /// `x(τ) = x₀ + τ`.
+    fn of_line(x0: f64, step: impl Fn(&mut [f64; K], &[f64; K], usize)) -> [f64; K] {
+        let x = time::<K>(x0);
+        let mut c = [0.0; K];
+        for k in 0..K {
+            step(&mut c, &x, k);
+        }
+        c
+    }
+
+    /// The Taylor coefficients `f⁽ᵏ⁾(x₀)/k!` from closed-form derivatives.
+    fn expected(derivative: impl Fn(usize) -> f64) -> [f64; K] {
+        let mut factorial = 1.0;
+        std::array::from_fn(|k| {
+            if k > 0 {
+                factorial *= k as f64;
+            }
+            derivative(k) / factorial
+        })
+    }
+
+    fn close(a: &[f64; K], b: &[f64; K]) {
+        close_to(a, b, 1e-14);
+    }
+
+    fn close_to(a: &[f64; K], b: &[f64; K], tolerance: f64) {
+        for (k, (x, y)) in a.iter().zip(b).enumerate() {
+            assert!(
+                (x - y).abs() <= tolerance * y.abs().max(1.0),
+                "order {k}: {x} vs {y}"
+            );
+        }
+    }
+
+    #[test]
+    fn elementary_functions_match_their_derivatives() {
+        let x0: f64 = 0.7;
+        close(&of_line(x0, exp), &expected(|_| x0.exp()));
+        close(
+            &of_line(x0, ln),
+            &expected(|k| match k {
+                0 => x0.ln(),
+                _ => {
+                    (-1f64).powi(k as i32 + 1) * (1..k).product::<usize>() as f64
+                        / x0.powi(k as i32)
+                }
+            }),
+        );
+        // √x: derivatives (1/2)(−1/2)…(1/2 − k + 1) x^(1/2 − k).
+        close(
+            &of_line(x0, sqrt),
+            &expected(|k| {
+                let falling: f64 = (0..k).map(|i| 0.5 - i as f64).product();
+                falling * x0.powf(0.5 - k as f64)
+            }),
+        );
+        let sines = expected(|k| (x0 + k as f64 * std::f64::consts::FRAC_PI_2).sin());
+        let cosines = expected(|k| (x0 + k as f64 * std::f64::consts::FRAC_PI_2).cos());
+        let x = time::<K>(x0);
+        let (mut s, mut c) = ([0.0; K], [0.0; K]);
+        for k in 0..K {
+            sin_cos(&mut s, &mut c, &x, k);
+        }
+        close(&s, &sines);
+        close(&c, &cosines);
+        // 1 / x: derivatives (−1)ᵏ k! / x^(k+1).
+        close(
+            &of_line(x0, reciprocal),
+            &expected(|k| {
+                (-1f64).powi(k as i32) * (1..=k).product::<usize>() as f64 / x0.powi(k as i32 + 1)
+            }),
+        );
+    }
+
+    #[test]
+    fn tangent_is_sine_over_cosine_and_products_multiply() {
+        let x = time::<K>(0.4);
+        let (mut s, mut c, mut q, mut t, mut w) =
+            ([0.0; K], [0.0; K], [0.0; K], [0.0; K], [0.0; K]);
+        let (mut square, mut back) = ([0.0; K], [0.0; K]);
+        for k in 0..K {
+            sin_cos(&mut s, &mut c, &x, k);
+            quotient(&mut q, &s, &c, k);
+            tan(&mut t, &mut w, &x, k);
+            product(&mut square, &x, &x, k);
+            quotient(&mut back, &square, &x, k);
+        }
+        close(&t, &q);
+        // Each order of a quotient divides the rounding of the lower ones
+        // by `x₀ = 0.4`: 2.5¹¹ ≈ 2e4 ulps at order 11.
+        close_to(&back, &x, 1e-11);
+        // (0.4 + τ)² = 0.16 + 0.8 τ + τ².
+        let mut polynomial = [0.0; K];
+        polynomial[..3].copy_from_slice(&[0.16, 0.8, 1.0]);
+        close(&square, &polynomial);
+        assert!((sum(&square, K, 0.5) - 0.81).abs() < 1e-15);
+    }
+}
