@@ -23,7 +23,7 @@
 
 use std::ops::ControlFlow;
 
-use super::adaptive::{Continuous, DenseStep, Event, watch};
+use super::adaptive::{Continuous, DenseStep, Event, observe, watch};
 use super::dynamics::InputLaw;
 use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained};
 use crate::series;
@@ -111,16 +111,12 @@ pub fn taylor<D, const NQ: usize, const NV: usize>(
     initial: State<NQ, NV>,
     t_end: f64,
     options: TaylorOptions,
-    mut observer: impl FnMut(&State<NQ, NV>),
+    observer: impl FnMut(&State<NQ, NV>),
 ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
     D: TaylorDynamics<NQ, NV>,
 {
-    observer(&initial);
-    let on_step = |step: &DenseStep<'_, NQ, NV, D>| {
-        observer(step.end());
-        ControlFlow::Continue(())
-    };
+    let on_step = observe(&initial, observer);
     taylor_dense(dynamics, initial, t_end, options, on_step)
 }
 

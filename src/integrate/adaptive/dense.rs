@@ -275,6 +275,22 @@ where
     adaptive_dense(dynamics, initial, t_end, pair, options, on_step)
 }
 
+/// What an integration reporting to `observer` does at each step: shows it
+/// the step's end and goes on. `observer` sees `initial` first, here.
+pub(crate) fn observe<D, const NQ: usize, const NV: usize>(
+    initial: &State<NQ, NV>,
+    mut observer: impl FnMut(&State<NQ, NV>),
+) -> impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>
+where
+    D: Dynamics<NQ, NV>,
+{
+    observer(initial);
+    move |step| {
+        observer(step.end());
+        ControlFlow::Continue(())
+    }
+}
+
 /// What an integration watching `event` from `initial` does at each step
 /// (its continuous extension, [`DenseStep`]): locates a zero crossed in the
 /// step, gives the state there to `on_event`, and breaks there if the event

@@ -23,7 +23,7 @@ mod tableaux;
 use std::ops::ControlFlow;
 
 use dense::Interpolant;
-pub(crate) use dense::{Continuous, watch};
+pub(crate) use dense::{Continuous, observe, watch};
 pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
 use tableaux::{DOP853, DOPRI5, EmbeddedPair, ErrorEstimate};
 
@@ -87,16 +87,12 @@ pub fn adaptive<D, const NQ: usize, const NV: usize>(
     t_end: f64,
     pair: ExplicitPair,
     options: AdaptiveOptions,
-    mut observer: impl FnMut(&State<NQ, NV>),
+    observer: impl FnMut(&State<NQ, NV>),
 ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
     D: Dynamics<NQ, NV>,
 {
-    observer(&initial);
-    let on_step = |step: &DenseStep<'_, NQ, NV, D>| {
-        observer(step.end());
-        ControlFlow::Continue(())
-    };
+    let on_step = observe(&initial, observer);
     let run = Run {
         dynamics,
         initial,
