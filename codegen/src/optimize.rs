@@ -17,7 +17,7 @@ use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool};
 use crate::outputs::Function;
 use crate::readable::ReadableForms;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 /// Most monomials an entry may expand to before it keeps its DAG form.
 const BUDGET: usize = 200;
@@ -49,36 +49,51 @@ fn optimize_all<'a>(
     forms: &mut ReadableForms,
 ) {
     let mut chosen: HashMap<ExprId, ExprId> = HashMap::new();
+    let mut split = AngleSums::new();
     for e in expressions {
         *e = *chosen
             .entry(*e)
-            .or_insert_with(|| cheaper_form(pool, forms, *e));
+            .or_insert_with(|| cheaper_form(pool, forms, &mut split, *e));
     }
 }
 
-/// `e`, or its compact form if that costs fewer operations.
-fn cheaper_form(pool: &mut Pool, forms: &mut ReadableForms, e: ExprId) -> ExprId {
+/// `e`, or its compact form if that costs fewer operations; `split` holds
+/// the nodes whose angle sums are already split.
+fn cheaper_form(
+    pool: &mut Pool,
+    forms: &mut ReadableForms,
+    split: &mut AngleSums,
+    e: ExprId,
+) -> ExprId {
     let Some(compact) = forms.get(pool, e, BUDGET) else {
         return e;
     };
-    let compact = expand_angle_sums(pool, compact);
-    if cost(pool, compact) < cost(pool, e) {
+    let compact = expand_angle_sums(pool, split, compact);
+    let compact_cost = cost_past(pool, compact, usize::MAX);
+    if compact_cost < cost_past(pool, e, compact_cost) {
         compact
     } else {
         e
     }
 }
 
+/// The image of every node met by [`expand_angle_sums`], kept across the
+/// entries (which share most of their nodes).
+type AngleSums = HashMap<ExprId, Option<ExprId>>;
+
 /// `e` with every `sin(a + b)`, `cos(a + b)` rewritten by the addition
 /// formulas, recursively, down to sines and cosines of single terms.
-fn expand_angle_sums(pool: &mut Pool, e: ExprId) -> ExprId {
-    pool.rebuild(&[e], |pool, node, images| match *pool.node(node) {
-        Node::Func(f @ (Func::Sin | Func::Cos), _) => {
-            let (sin, cos) = sin_cos_of_sum(pool, images[0]);
-            if f == Func::Sin { sin } else { cos }
-        }
-        _ => pool.with_children(node, images),
-    })[0]
+fn expand_angle_sums(pool: &mut Pool, split: &mut AngleSums, e: ExprId) -> ExprId {
+    let images = pool.try_rebuild_remembering(&[e], split, |pool, node, images| {
+        Some(match *pool.node(node) {
+            Node::Func(f @ (Func::Sin | Func::Cos), _) => {
+                let (sin, cos) = sin_cos_of_sum(pool, images[0]);
+                if f == Func::Sin { sin } else { cos }
+            }
+            _ => pool.with_children(node, images),
+        })
+    });
+    images.map_or(e, |images| images[0])
 }
 
 /// `(sin x, cos x)` with `x` a sum split term by term:
@@ -98,20 +113,31 @@ fn sin_cos_of_sum(pool: &mut Pool, x: ExprId) -> (ExprId, ExprId) {
 
 /// Arithmetic operations to evaluate `e` once, shared nodes counted once;
 /// sines and cosines of single symbols are free (the code shares them).
-fn cost(pool: &Pool, e: ExprId) -> usize {
-    let mut seen = HashSet::new();
-    pool.topo_order(&[e])
-        .into_iter()
-        .filter(|n| seen.insert(*n))
-        .map(|n| match pool.node(n) {
-            Node::Number(_) | Node::Sym(_) => 0,
-            Node::Add(items) | Node::Mul(items) => items.len() - 1,
-            Node::Pow(_, exp) => exp.unsigned_abs() as usize,
-            Node::Func(Func::Group, _) => 0,
-            Node::Func(_, arg) if matches!(pool.node(*arg), Node::Sym(_)) => 0,
-            Node::Func(..) => FUNCTION_COST,
-        })
-        .sum()
+/// The count stops as soon as it passes `limit` (a large DAG need not be
+/// walked to lose to a small form): the result is exact up to `limit`,
+/// and above `limit` whenever the exact cost is.
+fn cost_past(pool: &Pool, e: ExprId, limit: usize) -> usize {
+    let mut total = 0usize;
+    pool.post_order(&[e], |n| {
+        if total > limit {
+            return false;
+        }
+        total = total.saturating_add(node_cost(pool, n));
+        true
+    });
+    total
+}
+
+/// The operations of one node, its children computed.
+fn node_cost(pool: &Pool, n: ExprId) -> usize {
+    match pool.node(n) {
+        Node::Number(_) | Node::Sym(_) => 0,
+        Node::Add(items) | Node::Mul(items) => items.len() - 1,
+        Node::Pow(_, exp) => exp.unsigned_abs() as usize,
+        Node::Func(Func::Group, _) => 0,
+        Node::Func(_, arg) if matches!(pool.node(*arg), Node::Sym(_)) => 0,
+        Node::Func(..) => FUNCTION_COST,
+    }
 }
 
 #[cfg(test)]

@@ -34,7 +34,14 @@ pub struct ReadableForms {
     /// What is known of each expression asked about (looked up, never
     /// iterated).
     known: HashMap<ExprId, Known>,
+    /// The expansions of every node met so far, by budget (`None`: past
+    /// it): the entries of one derivation share most of their DAG, which
+    /// is expanded once.
+    expansions: HashMap<usize, Expansions>,
 }
+
+/// The expansion of each node within one budget, `None` past it.
+type Expansions = HashMap<ExprId, Option<ExprId>>;
 
 /// What the budgets tried so far tell of one expression's readable form.
 #[derive(Clone, Copy, Default)]
@@ -46,22 +53,28 @@ struct Known {
 }
 
 impl ReadableForms {
-    /// [`readable`]`(pool, e, budget)`, computed only if what is known of
-    /// `e` does not decide it. The budget only stops the work, so a form
+    /// `e` as a short sum of monomials for humans, or `None` if its
+    /// expansion, or that of any part of it, would have more than `budget`
+    /// terms (see the module docs); computed only if what is known of `e`
+    /// does not decide it. The budget only stops the work, so a form
     /// found within a budget is the same within any larger one, and an
     /// expansion too large for a budget is too large for any smaller one.
+    /// The expansions of the nodes met in earlier calls within the same
+    /// budget are reused too ([`Pool::try_rebuild_remembering`]).
     /// The reuse is exact: a computation it saves would retrace the steps
     /// of an earlier one (or a prefix of them, when it fails sooner), so it
     /// would intern no new node, and the pool's ids (which order sums and
     /// products, and so the emitted code) are as without it.
     pub fn get(&mut self, pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
-        let known = self.known.entry(e).or_default();
+        let known = *self.known.entry(e).or_default();
         match (known.fits, known.too_large) {
             (Some((form, within)), _) if within <= budget => return Some(form),
             (_, Some(over)) if budget <= over => return None,
             _ => {}
         }
-        let form = readable(pool, e, budget);
+        let expansions = self.expansions.entry(budget).or_default();
+        let form = readable_remembering(pool, e, budget, expansions);
+        let known = self.known.entry(e).or_default();
         match form {
             Some(form) => known.fits = Some((form, budget)),
             None => known.too_large = Some(budget),
@@ -89,8 +102,21 @@ pub fn term_count(pool: &Pool, e: ExprId) -> usize {
 /// trigonometric pairs recombined (see the module docs). `None` if the
 /// expansion of `e`, or of any part of it, would have more than `budget`
 /// terms: the work is bounded by the size of `e`'s DAG times the budget.
+/// Computed afresh: the reference [`ReadableForms`] is tested against.
+#[cfg(test)]
 pub fn readable(pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
-    let expanded = expand_within(pool, e, budget)?;
+    readable_remembering(pool, e, budget, &mut Expansions::new())
+}
+
+/// [`readable`], with the expansions of the nodes of `e` taken from and
+/// added to `expansions` (all within `budget`).
+fn readable_remembering(
+    pool: &mut Pool,
+    e: ExprId,
+    budget: usize,
+    expansions: &mut Expansions,
+) -> Option<ExprId> {
+    let expanded = expand_within(pool, e, budget, expansions)?;
     let mut sum = Monomials::of(pool, expanded);
     while let Some(shorter) = sum.recombined(pool) {
         sum = shorter;
@@ -99,9 +125,15 @@ pub fn readable(pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
 }
 
 /// Like [`Pool::expand`], but giving up as soon as an intermediate result
-/// exceeds `budget` terms.
-fn expand_within(pool: &mut Pool, e: ExprId, budget: usize) -> Option<ExprId> {
-    let expanded = pool.try_rebuild(&[e], |pool, node, images| {
+/// exceeds `budget` terms; the nodes already in `expansions` are not
+/// expanded again.
+fn expand_within(
+    pool: &mut Pool,
+    e: ExprId,
+    budget: usize,
+    expansions: &mut Expansions,
+) -> Option<ExprId> {
+    let expanded = pool.try_rebuild_remembering(&[e], expansions, |pool, node, images| {
         let image = expand_node(pool, node, images, budget)?;
         (term_count(pool, image) <= budget).then_some(image)
     })?;

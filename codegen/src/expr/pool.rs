@@ -207,7 +207,7 @@ impl Pool {
     /// descended into. Iterative (an explicit stack), so deep expressions
     /// cannot overflow the call stack; the order depends only on the DAG and
     /// the order of `roots`.
-    pub(super) fn post_order(
+    pub(crate) fn post_order(
         &self,
         roots: &[ExprId],
         mut enter: impl FnMut(ExprId) -> bool,

@@ -38,15 +38,66 @@ impl Pool {
     pub fn try_rebuild(
         &mut self,
         roots: &[ExprId],
+        f: impl FnMut(&mut Pool, ExprId, &[ExprId]) -> Option<ExprId>,
+    ) -> Option<Vec<ExprId>> {
+        self.try_rebuild_remembering(roots, &mut HashMap::new(), f)
+    }
+
+    /// [`try_rebuild`](Pool::try_rebuild) with the images kept in `known`
+    /// across calls, failures included (`None`): a node already there is
+    /// neither rewritten again nor descended into, and meeting a known
+    /// failure fails the call at once. So rewriting many roots that share
+    /// subexpressions, one call each, costs what one call over all of them
+    /// would. A call that fails leaves the ancestors of the failing node
+    /// unknown.
+    ///
+    /// The calls of `f` are those of [`try_rebuild`](Pool::try_rebuild)
+    /// on the same roots, in the same order, less the ones whose image is
+    /// known: the same depth-first post-order, pruned at known nodes, and
+    /// stopped where a known failure would be rewritten (to fail) again.
+    /// So a pure rewrite interns the same nodes in the same order, and
+    /// the ids are as if nothing had been remembered.
+    pub fn try_rebuild_remembering(
+        &mut self,
+        roots: &[ExprId],
+        known: &mut HashMap<ExprId, Option<ExprId>>,
         mut f: impl FnMut(&mut Pool, ExprId, &[ExprId]) -> Option<ExprId>,
     ) -> Option<Vec<ExprId>> {
-        let mut image: HashMap<ExprId, ExprId> = HashMap::new();
-        for node in self.topo_order(roots) {
-            let images: Vec<ExprId> = self.children(node).iter().map(|c| image[c]).collect();
-            let rebuilt = f(self, node, &images)?;
-            image.insert(node, rebuilt);
+        // An explicit stack of (node, next child), so that deep
+        // expressions cannot overflow the call stack.
+        let mut stack: Vec<(ExprId, usize)> = Vec::new();
+        for &root in roots {
+            match known.get(&root) {
+                Some(None) => return None,
+                Some(Some(_)) => continue,
+                None => stack.push((root, 0)),
+            }
+            while let Some((node, next)) = stack.last_mut() {
+                let node = *node;
+                match self.children(node).get(*next).copied() {
+                    Some(child) => {
+                        *next += 1;
+                        match known.get(&child) {
+                            Some(None) => return None,
+                            Some(Some(_)) => {}
+                            None => stack.push((child, 0)),
+                        }
+                    }
+                    None => {
+                        stack.pop();
+                        let images: Vec<ExprId> = self
+                            .children(node)
+                            .iter()
+                            .map(|c| known[c])
+                            .collect::<Option<_>>()?;
+                        let rebuilt = f(self, node, &images);
+                        known.insert(node, rebuilt);
+                        rebuilt?;
+                    }
+                }
+            }
         }
-        Some(roots.iter().map(|r| image[r]).collect())
+        roots.iter().map(|r| known[r]).collect()
     }
 
     /// `node` built again over `children` (one per child of `node`, in
@@ -135,5 +186,75 @@ mod tests {
             .iter()
             .position(|&n| matches!(s.pool.node(n), Node::Func(Func::Tan, _)));
         assert_eq!(Some(calls - 1), first_tan);
+    }
+
+    /// The rewrite of the tests: squares every sine, refuses tangents.
+    fn square_sines(pool: &mut Pool, node: ExprId, images: &[ExprId]) -> Option<ExprId> {
+        match pool.node(node) {
+            Node::Func(Func::Tan, _) => None,
+            Node::Func(Func::Sin, _) => {
+                let sine = pool.with_children(node, images);
+                Some(pool.powi(sine, 2))
+            }
+            _ => Some(pool.with_children(node, images)),
+        }
+    }
+
+    #[test]
+    fn remembered_images_are_those_of_one_rewrite_each_node_once() {
+        let mut s = Scratch::default();
+        let roots = [
+            s.e("sin(q0)*q1 + q2"),
+            s.e("(sin(q0)*q1)^2 + cos(q2)"),
+            s.e("sin(q0)*q1"),
+        ];
+        let mut known = HashMap::new();
+        let mut calls = 0;
+        let mut counted = |pool: &mut Pool, node: ExprId, images: &[ExprId]| {
+            calls += 1;
+            square_sines(pool, node, images)
+        };
+        let remembered: Vec<ExprId> = roots
+            .iter()
+            .map(|&r| {
+                s.pool
+                    .try_rebuild_remembering(&[r], &mut known, &mut counted)
+            })
+            .map(|images| images.expect("no tangent")[0])
+            .collect();
+        assert_eq!(
+            calls,
+            s.pool.topo_order(&roots).len(),
+            "a node rewritten twice"
+        );
+        let at_once = s.pool.try_rebuild(&roots, square_sines);
+        assert_eq!(Some(remembered), at_once);
+    }
+
+    #[test]
+    fn a_remembered_failure_fails_its_ancestors_without_a_call() {
+        let mut s = Scratch::default();
+        let failing = s.e("tan(q1)*q0");
+        let root = s.e("tan(q1)*q0 + sin(q2)");
+        let mut known = HashMap::new();
+        assert_eq!(
+            s.pool
+                .try_rebuild_remembering(&[failing], &mut known, square_sines),
+            None
+        );
+        let mut asked = Vec::new();
+        let images = s
+            .pool
+            .try_rebuild_remembering(&[root], &mut known, |pool, node, images| {
+                asked.push(node);
+                square_sines(pool, node, images)
+            });
+        assert_eq!(images, None);
+        let tan = s.e("tan(q1)");
+        assert!(!asked.contains(&tan), "the known failure was asked again");
+        assert!(
+            !asked.contains(&root),
+            "the root was asked with a failed child"
+        );
     }
 }
