@@ -8,17 +8,18 @@
 #
 # For each N it prints one CSV line
 #
-#   n,expand_release_s,expand_debug_s,build_default_s,build_engine_optimised_s
+#   n,expand_s,build_default_s,build_engine_optimised_s
 #
-# expand_*: `dalembert generate` on the model (the macro's work plus
-# formatting) with the engine built in release and in debug; build_*: the
-# wall time of `cargo build --release` of the user crate alone (its
+# expand_s: `dalembert generate` on the model (the macro's work plus
+# formatting) with the engine built in release; build_*: the wall time of
+# `cargo build --release` of the user crate alone (its
 # dependencies built beforehand), first with Cargo's defaults, where the
 # release profile compiles proc macros without optimisation
 # (`build-override`), then with the engine optimised by
 # `[profile.release.package.dalembert-codegen] opt-level = 3` in the user's
-# Cargo.toml. The crates live under target/build-time/, one target
-# directory per profile shared by every N.
+# Cargo.toml: their difference is the time the unoptimised engine adds to
+# the expansion (the code it expands to is the same). The crates live under
+# target/build-time/, one target directory per profile shared by every N.
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -27,7 +28,6 @@ sizes=("$@")
 ((${#sizes[@]})) || sizes=(12 30 60)
 
 cargo build --quiet --release -p dalembert-codegen --bin dalembert
-cargo build --quiet -p dalembert-codegen --bin dalembert
 
 seconds() { # runs "$@" quietly, prints its wall time in seconds
     local start end
@@ -55,14 +55,13 @@ user_crate() { # DIR N OPTIMISED: writes the crate
     } > "$dir/src/lib.rs"
 }
 
-echo "n,expand_release_s,expand_debug_s,build_default_s,build_engine_optimised_s"
+echo "n,expand_s,build_default_s,build_engine_optimised_s"
 for n in "${sizes[@]}"; do
     line="$n"
     base="target/build-time/spatial_$n"
     mkdir -p "$base"
     target/release/dalembert chain spatial "$n" seed > "$base/chain.dal"
     line+=,$(seconds target/release/dalembert generate "$base/chain.dal")
-    line+=,$(seconds target/debug/dalembert generate "$base/chain.dal")
     for optimised in no yes; do
         dir="$base/optimised_$optimised"
         mkdir -p "$dir"
