@@ -48,10 +48,13 @@ pub const CONSISTENCY_TOLERANCE: f64 = 1e-3;
 /// `max |Aᵢⱼ| (1 + max |qⱼ|)`: within about `1e-8` of the manifold relative
 /// to its coordinates, to first order. At such a state near a singular
 /// position (the stage of an integrator a few `1e-10` rad from where
-/// A02's four-bars lie flat) the rows that [`RANK_TOLERANCE`] declares
-/// dependent demand, by rounding and discretisation, accelerations their
-/// tiny gradients cannot give; far off it (a point at the centre of its
-/// circle) they contradict the others.
+/// A02's four-bars lie flat) the rows that [`ACCELERATION_RANK_TOLERANCE`]
+/// declares dependent demand, by rounding and discretisation, accelerations
+/// their tiny gradients cannot give; far off it (a point at the centre of
+/// its circle) they contradict the others. The residual of a nonholonomic
+/// row is zero by definition, so at a state on the manifold of the
+/// holonomic rows a contradiction among nonholonomic rows is not reported
+/// either.
 pub const NEAR_MANIFOLD: f64 = 1e-8;
 
 /// Whether rows found dependent must agree with the others.
