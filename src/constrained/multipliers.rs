@@ -687,6 +687,19 @@ mod tests {
     }
 
     #[test]
+    fn a_state_is_on_the_manifold_to_first_order_relative_to_its_coordinates() {
+        // A02's stage 2e-10 rad from the flat position: residuals of
+        // rounding, unit gradients, angles near −π.
+        let q = [-3.14159205, -3.14159205, 2.9e-10];
+        let a = [[2.9e-10, -2.9e-10, 1.0], [1.0, -1.0, 2.9e-10]];
+        assert!(on_the_manifold(&[2.2e-16, -2.2e-15], &a, &q));
+        // Off by 1e-7 of the coordinates' size: not on it.
+        assert!(!on_the_manifold(&[4.2e-7, 0.0], &a, &q));
+        // The centre of the circle `x² + y² = l²`: `A = 0`, `φ = −l²`.
+        assert!(!on_the_manifold(&[-0.25], &[[0.0, 0.0]], &[0.0, 0.0]));
+    }
+
+    #[test]
     fn baumgarte_enforces_the_stabilised_acceleration_constraint() {
         // Off the manifold, moving outward: φ > 0 and ψ > 0.
         let (q, qd) = ([0.3, -0.45], [0.6, 0.1]);

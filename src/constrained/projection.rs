@@ -88,7 +88,7 @@ impl ConstraintSolver {
             })
         };
         let q = project_coordinates(system, t, q, self, &least_norm, tolerance, max_iterations)?;
-        let v = project_speeds(system, t, &q, v, &|q, c| least_norm(self, q, c))?;
+        let v = project_speeds(system, t, &q, v, self, &least_norm)?;
         Ok(State { t, q, v })
     }
 }
@@ -145,19 +145,21 @@ where
     }
 }
 
-/// The speeds nearest to `v` in the metric at `q` with `ψ(t, q, v) = 0`.
+/// The speeds nearest to `v` in the metric at `q` with `ψ(t, q, v) = 0`,
+/// by `solver`.
 fn project_speeds<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
     v: [f64; NV],
-    least_norm: &dyn Fn(&[f64; NQ], [f64; NC]) -> Result<[f64; NV], DynamicsError>,
+    solver: ConstraintSolver,
+    least_norm: &LeastNorm<'_, NQ, NV, NC>,
 ) -> Result<[f64; NV], DynamicsError>
 where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let velocity = checked(system.constraint_velocity(t, q, &v))?;
-    let correction = least_norm(q, velocity)?;
+    let correction = least_norm(solver, q, velocity)?;
     Ok(std::array::from_fn(|i| v[i] - correction[i]))
 }
 
