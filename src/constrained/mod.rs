@@ -32,8 +32,8 @@ pub use linearize::{
     linearize_on_constraints,
 };
 pub use multipliers::{
-    CONSISTENCY_TOLERANCE, ConstraintSolver, RANK_TOLERANCE, baumgarte_accelerations,
-    constrained_accelerations,
+    ACCELERATION_RANK_TOLERANCE, CONSISTENCY_TOLERANCE, ConstraintSolver, NEAR_MANIFOLD,
+    RANK_TOLERANCE, baumgarte_accelerations, constrained_accelerations,
 };
 pub(crate) use projection::checked;
 pub use projection::{project_onto_constraints, project_onto_energy_level};

@@ -6,8 +6,8 @@
 
 use nalgebra::SVector;
 
-use super::ConstraintSolver;
 use super::multipliers::ConstraintMetric;
+use super::{ConstraintSolver, RANK_TOLERANCE};
 use crate::dynamics::{all_finite, pivot_names};
 use crate::{ConstrainedSystem, DynamicsError, MultibodySystem, State};
 
@@ -22,6 +22,10 @@ use crate::{ConstrainedSystem, DynamicsError, MultibodySystem, State};
 /// `Δv = −M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ ψ`, exact in one step because `ψ` is linear in
 /// `v`, and every Gauss–Newton iteration moves the coordinates by
 /// `q ⊕ (−Δ)`, `Δ = M⁻¹ Aᵀ (A M⁻¹ Aᵀ)⁻¹ φ`, with `A` re-evaluated at each iterate.
+/// With [`ConstraintSolver::Sparse`], an iteration that leaves more than
+/// half the residual before it (near a singular position, where its
+/// multiplier iteration barely moves the rows whose gradients nearly
+/// vanish) hands the remaining iterations to the rank-revealing solve.
 /// Nonholonomic rows have `φ = 0`, so the coordinates move only along
 /// directions that their rows of `A` leave unchanged; their speeds are
 /// projected like the others. A state already within `tolerance` keeps its
@@ -77,28 +81,38 @@ impl ConstraintSolver {
         }
         let mass = system.mass_matrix(&q);
         let names = pivot_names::<S, NQ, NV, NU>();
-        let least_norm = |q: &[f64; NQ], c: [f64; NC]| {
+        let least_norm = |solver, q: &[f64; NQ], c: [f64; NC]| {
             let jacobian = system.constraint_jacobian(q);
-            ConstraintMetric::with(self, &mass, &names, &jacobian, |metric| {
+            ConstraintMetric::with(solver, RANK_TOLERANCE, &mass, &names, &jacobian, |metric| {
                 Ok(metric.least_norm(&SVector::from(c)).into())
             })
         };
-        let q = project_coordinates(system, t, q, &least_norm, tolerance, max_iterations)?;
-        let v = project_speeds(system, t, &q, v, &least_norm)?;
+        let q = project_coordinates(system, t, q, self, &least_norm, tolerance, max_iterations)?;
+        let v = project_speeds(system, t, &q, v, self, &least_norm)?;
         Ok(State { t, q, v })
     }
 }
 
-/// The smallest correction `x` in the metric at `q` with `A(q) x = c`.
+/// The smallest correction `x` in the metric at `q` with `A(q) x = c`, by a
+/// solver.
 type LeastNorm<'a, const NQ: usize, const NV: usize, const NC: usize> =
-    dyn Fn(&[f64; NQ], [f64; NC]) -> Result<[f64; NV], DynamicsError> + 'a;
+    dyn Fn(ConstraintSolver, &[f64; NQ], [f64; NC]) -> Result<[f64; NV], DynamicsError> + 'a;
+
+/// A Gauss–Newton iteration that leaves more than this fraction of the
+/// residual before it has stalled: its solve does not reach the rows that
+/// hold the residual (near a singular position, rows whose gradients
+/// nearly vanish, which the sparse solver's multiplier iteration leaves as
+/// they are).
+const STALLED: f64 = 0.5;
 
 /// Gauss–Newton on `φ(t, q) = 0` from `q`, each correction the smallest in
-/// the metric at its iterate.
+/// the metric at its iterate: by the projection's solver, and by the
+/// rank-revealing one from the first iteration that stalls on.
 fn project_coordinates<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: [f64; NQ],
+    mut solver: ConstraintSolver,
     least_norm: &LeastNorm<'_, NQ, NV, NC>,
     tolerance: f64,
     max_iterations: usize,
@@ -108,6 +122,7 @@ where
 {
     let mut q = q;
     let mut iterations = 0;
+    let mut before = f64::INFINITY;
     loop {
         let residual = checked(system.constraint_residual(t, &q))?;
         let largest = largest_magnitude(&residual);
@@ -120,25 +135,31 @@ where
                 residual: largest,
             });
         }
-        let correction = least_norm(&q, residual)?;
+        if largest > STALLED * before && solver == ConstraintSolver::Sparse {
+            solver = ConstraintSolver::RankRevealing;
+        }
+        before = largest;
+        let correction = least_norm(solver, &q, residual)?;
         q = system.integrate_configuration(&q, &correction, -1.0);
         iterations += 1;
     }
 }
 
-/// The speeds nearest to `v` in the metric at `q` with `ψ(t, q, v) = 0`.
+/// The speeds nearest to `v` in the metric at `q` with `ψ(t, q, v) = 0`,
+/// by `solver`.
 fn project_speeds<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     system: &S,
     t: f64,
     q: &[f64; NQ],
     v: [f64; NV],
+    solver: ConstraintSolver,
     least_norm: &LeastNorm<'_, NQ, NV, NC>,
 ) -> Result<[f64; NV], DynamicsError>
 where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let velocity = checked(system.constraint_velocity(t, q, &v))?;
-    let correction = least_norm(q, velocity)?;
+    let correction = least_norm(solver, q, velocity)?;
     Ok(std::array::from_fn(|i| v[i] - correction[i]))
 }
 

@@ -20,7 +20,7 @@
 use std::cell::RefCell;
 use std::rc::Rc;
 
-use super::multipliers::CONSISTENCY_TOLERANCE;
+use super::multipliers::{CONSISTENCY_TOLERANCE, Dependents};
 use crate::DynamicsError;
 use crate::dynamics::RELATIVE_PIVOT_TOLERANCE;
 
@@ -475,9 +475,12 @@ impl<const NV: usize, const NC: usize> SparseMetric<NV, NC> {
         &self,
         f: &[f64; NV],
         c: &[f64; NC],
+        dependents: Dependents,
     ) -> Result<([f64; NV], [f64; NC]), DynamicsError> {
         let solution = self.iterate(f, c);
-        if solution.mismatch > CONSISTENCY_TOLERANCE * solution.scale {
+        if dependents == Dependents::MustAgree
+            && solution.mismatch > CONSISTENCY_TOLERANCE * solution.scale
+        {
             let (row, with) = self.worst_rows(&solution.x, c);
             return Err(DynamicsError::InconsistentConstraints {
                 row,
@@ -706,7 +709,9 @@ mod tests {
             &[[1.0, 0.0], [2.0, 0.0]],
         )
         .unwrap();
-        let error = metric.solve(&[0.0, -9.81], &[0.0, 1.0]).unwrap_err();
+        let error = metric
+            .solve(&[0.0, -9.81], &[0.0, 1.0], Dependents::MustAgree)
+            .unwrap_err();
         assert!(
             matches!(error, DynamicsError::InconsistentConstraints { .. }),
             "{error:?}"
