@@ -4,17 +4,21 @@
 //! [`crate::equations::derivatives`]).
 
 use super::{Argument, Body, Function, Value, doc_lines};
+use crate::emit::solve::operations;
 use crate::equations::derivatives::{
     ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
 };
-use crate::equations::{Equations, inverse_dynamics};
+use crate::equations::{Equations, inverse_dynamics, tree_residual_jacobian};
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
 
-/// The partials of `τ` and the route that derived `τ`, for the docs.
+/// The partials of `τ` and the route that derived them, for the docs: of
+/// a tree of revolute and prismatic joints, those of the world-frame
+/// recursion where they cost fewer operations than the symbolic partials of
+/// `τ`.
 fn partials(
     model: &Model,
     equations: &Equations,
@@ -27,7 +31,20 @@ fn partials(
     };
     let directions = tangent_directions(model, pool);
     let jacobian = residual_jacobian(pool, &tau, &directions, model.inputs.len());
-    (jacobian, route)
+    match tree_residual_jacobian(model, pool) {
+        Some(tree) if operations(pool, &entries(&tree)) < operations(pool, &entries(&jacobian)) => {
+            let route = "the Newton–Euler recursion over the kinematic tree, and its partials\n\
+                         by the recursion of Carpentier and Mansard in the axes of `N`";
+            (tree, route)
+        }
+        _ => (jacobian, route),
+    }
+}
+
+/// Every entry of `jacobian`.
+fn entries(jacobian: &ResidualJacobian) -> Vec<ExprId> {
+    let blocks = [&jacobian.coordinates, &jacobian.speeds, &jacobian.inputs];
+    blocks.into_iter().flatten().flatten().copied().collect()
 }
 
 /// A function named `name` computing `results` as `body` says.
