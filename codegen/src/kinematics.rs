@@ -327,7 +327,8 @@ pub fn identity(pool: &Pool) -> Mat3 {
     r
 }
 
-fn mat_mul(pool: &mut Pool, a: &Mat3, b: &Mat3) -> Mat3 {
+/// `a · b`.
+pub fn mat_mul(pool: &mut Pool, a: &Mat3, b: &Mat3) -> Mat3 {
     let mut r = [[pool.zero(); 3]; 3];
     for (i, row) in r.iter_mut().enumerate() {
         for (j, entry) in row.iter_mut().enumerate() {

@@ -39,6 +39,36 @@ fn chain_operation_counts() {
     insta::assert_snapshot!("chain_operation_counts", table);
 }
 
+/// Operations per call of `accelerations` and `accelerations_jacobian` of
+/// the chains and robots that ask for the derivatives, and how many
+/// columns the jacobian sends through the solve (whose body is counted
+/// once: each call costs about `n²` more).
+#[test]
+fn derivative_operation_counts() {
+    let mut table = String::new();
+    for name in [
+        "planar_chain_06",
+        "planar_chain_12",
+        "spatial_chain_06",
+        "spatial_chain_12",
+        "panda",
+        "ur5_robot",
+    ] {
+        let path = std::path::Path::new(env!("OUT_DIR")).join(format!("derivatives/{name}.rs"));
+        let code = std::fs::read_to_string(&path).expect("the generated copy");
+        for function in ["accelerations", "accelerations_jacobian"] {
+            table.push_str(&format!(
+                "{name:16} {function:22} {}\n",
+                common::operations(&code, function)
+            ));
+        }
+        // `solve(` once for `v̇`, once per column solved.
+        let columns = code.matches("solve(").count() - 1;
+        table.push_str(&format!("{name:16} columns solved {columns}\n"));
+    }
+    insta::assert_snapshot!("derivative_operation_counts", table);
+}
+
 #[test]
 fn rendered_equations() {
     for model in common::models().iter().filter(|m| m.is_small()) {

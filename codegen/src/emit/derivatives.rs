@@ -1,7 +1,7 @@
 //! The outputs that solve through the mass matrix: `accelerations_jacobian`
 //! (`∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the partials of the inverse dynamics at the
-//! solved `v̇`, every column through the one `L D Lᵀ` factorisation that
-//! solved for `v̇`) and `linearize` (the state-space matrices `A`, `B` of
+//! solved `v̇`, every column but those of structural zeros through the one
+//! `L D Lᵀ` factorisation that solved for `v̇`) and `linearize` (the state-space matrices `A`, `B` of
 //! `ẋ = (q̇, v̇)` about a state).
 
 use super::body::{Names, Straight, straight_line};
@@ -66,6 +66,7 @@ pub fn emit_accelerations_jacobian(
         .chunks(nv)
         .map(|column| quote!([#(#column),*]))
         .collect();
+    let n = Literal::usize_unsuffixed(nv);
     let (q_columns, rest) = columns.split_at(nv);
     let (v_columns, u_columns) = rest.split_at(nv);
     let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
@@ -76,15 +77,42 @@ pub fn emit_accelerations_jacobian(
             .collect()
     };
     let (cq, cv, cu) = (names_of("cq", nv), names_of("cv", nv), names_of("cu", nu));
+    // A column of structural zeros (`∂τ/∂q₁` of a first joint turning about
+    // gravity) is bound to `_` and solved to zeros without the solve.
+    let zero_columns: Vec<bool> = roots
+        .chunks(nv)
+        .map(|column| column.iter().all(|&e| e == pool.zero()))
+        .collect();
+    let (q_zeros, rest) = zero_columns.split_at(nv);
+    let (v_zeros, u_zeros) = rest.split_at(nv);
+    let binding = |names: &[Ident], zeros: &[bool]| -> Vec<TokenStream> {
+        names
+            .iter()
+            .zip(zeros)
+            .map(|(name, &zero)| match zero {
+                true => quote!(_),
+                false => quote!(#name),
+            })
+            .collect()
+    };
+    let (bq, bv, bu) = (
+        binding(&cq, q_zeros),
+        binding(&cv, v_zeros),
+        binding(&cu, u_zeros),
+    );
     // Column `j` of `M⁻¹ ∂τ/∂x`, entry `i`: `{prefix}{j}_{i}`.
     let entry = |prefix: &str, j: usize, i: usize| format_ident!("{}{}_{}", prefix, j, i);
-    let solved = |prefix: &str, columns: &[Ident]| -> TokenStream {
+    let solved = |prefix: &str, columns: &[Ident], zeros: &[bool]| -> TokenStream {
         let patterns = (0..columns.len()).map(|j| {
             let entries = (0..nv).map(|i| entry(prefix, j, i));
             quote!([#(#entries),*])
         });
-        let n = Literal::usize_unsuffixed(columns.len());
-        quote!(let [#(#patterns),*]: [#vector; #n] = [#(solve(#columns)),*];)
+        let values = columns.iter().zip(zeros).map(|(column, &zero)| match zero {
+            true => quote!([0.0; #n]),
+            false => quote!(solve(#column)),
+        });
+        let count = Literal::usize_unsuffixed(columns.len());
+        quote!(let [#(#patterns),*]: [#vector; #count] = [#(#values),*];)
     };
     // `∂v̇/∂x = −M⁻¹ ∂τ/∂x`, row by row.
     let transposed = |prefix: &str, columns: usize| -> TokenStream {
@@ -97,15 +125,18 @@ pub fn emit_accelerations_jacobian(
         });
         quote!([#(#rows),*])
     };
-    let solves = [solved("dq", &cq), solved("dv", &cv), solved("du", &cu)];
+    let solves = [
+        solved("dq", &cq, q_zeros),
+        solved("dv", &cv, v_zeros),
+        solved("du", &cu, u_zeros),
+    ];
     let (dq, dv, du) = (
         transposed("dq", nv),
         transposed("dv", nv),
         transposed("du", nu),
     );
     let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
-    let literal = Literal::usize_unsuffixed;
-    let (n, nu_lit) = (literal(nv), literal(nu));
+    let nu_lit = Literal::usize_unsuffixed(nu);
     let (name, docs) = (
         &function.name,
         function.docs.iter().map(|line| raw_string(line)),
@@ -129,7 +160,7 @@ pub fn emit_accelerations_jacobian(
             if !finite(qdd) {
                 return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations);
             }
-            let ([#(#cq),*], [#(#cv),*], [#(#cu),*]): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) = {
+            let ([#(#bq),*], [#(#bv),*], [#(#bu),*]): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) = {
                 #statements
                 ([#(#q_columns),*], [#(#v_columns),*], [#(#u_columns),*])
             };

@@ -8,7 +8,7 @@
 mod body;
 mod configuration;
 mod derivatives;
-mod solve;
+pub(crate) mod solve;
 mod taylor;
 
 use crate::equations::Equations;

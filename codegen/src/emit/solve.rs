@@ -338,7 +338,7 @@ fn articulated_is_cheaper(
 
 /// Arithmetic operations (and charged functions) of the code computing
 /// `roots`, each shared node once.
-fn operations(pool: &Pool, roots: &[ExprId]) -> usize {
+pub(crate) fn operations(pool: &Pool, roots: &[ExprId]) -> usize {
     pool.topo_order(roots)
         .into_iter()
         .map(|e| match pool.node(e) {

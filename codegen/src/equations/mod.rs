@@ -191,6 +191,45 @@ pub fn inverse_dynamics(
     }
 }
 
+/// `∂τ/∂δ`, `∂τ/∂v` and `∂τ/∂u` of the inverse dynamics `τ = M v̇ − f` of
+/// a tree of revolute and prismatic joints: the inertia and gravity terms
+/// by the recursion of `tree_partials`, the applied loads, potentials and
+/// dissipation (everything else in `τ`) differentiated symbolically;
+/// `None` for any other model.
+pub fn tree_residual_jacobian(
+    model: &Model,
+    pool: &mut Pool,
+) -> Option<derivatives::ResidualJacobian> {
+    if !model.balls.is_empty() {
+        return None;
+    }
+    let kinematics = Kinematics::new(model, pool);
+    let inertias = inertias(model);
+    let tree =
+        recursive::JointTree::new(model, model.tree.as_ref()?, &kinematics, &inertias, pool)?;
+    let (by_q, by_v) = tree_partials::inertial_partials(&tree, pool)?;
+    let loads = tree.applied_loads(pool);
+    let rest: Vec<ExprId> = (0..model.nv())
+        .map(|k| {
+            let active = potential_and_dissipation_force(model, &kinematics, pool, k);
+            pool.sub(loads[k], active)
+        })
+        .collect();
+    let directions = derivatives::tangent_directions(model, pool);
+    let mut jacobian = derivatives::residual_jacobian(pool, &rest, &directions, model.inputs.len());
+    for (block, inertial) in [
+        (&mut jacobian.coordinates, by_q),
+        (&mut jacobian.speeds, by_v),
+    ] {
+        for (row, inertial) in block.iter_mut().zip(inertial) {
+            for (entry, x) in row.iter_mut().zip(inertial) {
+                *entry = pool.add(*entry, x);
+            }
+        }
+    }
+    Some(jacobian)
+}
+
 fn inertias(model: &Model) -> Vec<Inertia<'_>> {
     let bodies = model.bodies.iter().map(|b| Inertia {
         mass: b.mass,
@@ -440,3 +479,4 @@ mod lagrange_check;
 mod quaternion_check;
 mod recursive;
 pub mod regressor;
+mod tree_partials;

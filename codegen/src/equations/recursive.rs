@@ -40,7 +40,7 @@ pub struct JointTree {
     /// about the link's origin, in the link's axes.
     loads: Vec<(Vec3, Vec3)>,
     /// Gravity in `N`'s axes.
-    gravity: Vec3,
+    pub(super) gravity: Vec3,
 }
 
 /// A link: the subtree beyond one joint.
@@ -358,17 +358,40 @@ impl JointTree {
     /// forces minus the applied loads beyond it (gravity as an upward
     /// acceleration of the base), projected on the joint.
     fn projected_wrenches(&self, pool: &mut Pool, motions: &[Motion]) -> Vec<ExprId> {
-        let mut force: Vec<Vec3> = Vec::with_capacity(self.links.len());
-        let mut moment: Vec<Vec3> = Vec::with_capacity(self.links.len());
-        for (f, n) in &self.loads {
-            force.push(f.map(|x| pool.neg(x)));
-            moment.push(n.map(|x| pool.neg(x)));
-        }
+        let (mut force, mut moment) = self.reversed_loads(pool);
         for mass in &self.masses {
             let (f, n) = inertia_wrench(pool, mass, &motions[mass.link]);
             force[mass.link] = add3(pool, &force[mass.link], &f);
             moment[mass.link] = add3(pool, &moment[mass.link], &n);
         }
+        self.projected(pool, force, moment)
+    }
+
+    /// The applied loads' share of the inverse dynamics: minus their
+    /// generalized forces, by the inward sweep without the masses.
+    pub(super) fn applied_loads(&self, pool: &mut Pool) -> Vec<ExprId> {
+        let (force, moment) = self.reversed_loads(pool);
+        self.projected(pool, force, moment)
+    }
+
+    /// Per link, minus the resultant of its applied loads and minus their
+    /// moment about its origin.
+    fn reversed_loads(&self, pool: &mut Pool) -> (Vec<Vec3>, Vec<Vec3>) {
+        self.loads
+            .iter()
+            .map(|(f, n)| (f.map(|x| pool.neg(x)), n.map(|x| pool.neg(x))))
+            .unzip()
+    }
+
+    /// The sweep inwards of the wrenches `force`, `moment` (per link, about
+    /// its origin, in its axes), each subtree's total projected on its
+    /// joint.
+    fn projected(
+        &self,
+        pool: &mut Pool,
+        mut force: Vec<Vec3>,
+        mut moment: Vec<Vec3>,
+    ) -> Vec<ExprId> {
         let nv = self.links.iter().map(|l| l.columns.len()).sum();
         let mut bias = vec![pool.zero(); nv];
         for l in (0..self.links.len()).rev() {
@@ -519,12 +542,12 @@ fn inertia_wrench(pool: &mut Pool, mass: &Mass, motion: &Motion) -> (Vec3, Vec3)
 }
 
 /// Each component as one operand ([`Pool::group`]).
-fn group3(pool: &mut Pool, v: &Vec3) -> Vec3 {
+pub(super) fn group3(pool: &mut Pool, v: &Vec3) -> Vec3 {
     v.map(|x| pool.group(x))
 }
 
 /// A composite with every entry grouped.
-fn grouped(pool: &mut Pool, c: &Composite) -> Composite {
+pub(super) fn grouped(pool: &mut Pool, c: &Composite) -> Composite {
     Composite {
         mass: c.mass,
         moment: group3(pool, &c.moment),
@@ -547,7 +570,7 @@ fn combined(pool: &mut Pool, a: &Composite, b: &Composite) -> Composite {
 /// moment about `A`. For a single mass about its centre, `h = 0` and `moved
 /// = m d`: pass the centre as `d` and `m c` as `moved` (the parallel-axis
 /// theorem).
-fn shifted(pool: &mut Pool, c: &Composite, d: &Vec3, moved: &Vec3) -> Composite {
+pub(super) fn shifted(pool: &mut Pool, c: &Composite, d: &Vec3, moved: &Vec3) -> Composite {
     // With h = moved − m d: K_B = K_A + (2 moved·d − m|d|²) 1 − moved dᵀ − d movedᵀ + m d dᵀ.
     let two = pool.int(2);
     let md = d.map(|x| pool.mul(c.mass, x));

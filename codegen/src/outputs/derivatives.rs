@@ -4,30 +4,44 @@
 //! [`crate::equations::derivatives`]).
 
 use super::{Argument, Body, Function, Value, doc_lines};
+use crate::emit::solve::operations;
 use crate::equations::derivatives::{
     ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
 };
-use crate::equations::{Equations, inverse_dynamics};
+use crate::equations::{Equations, inverse_dynamics, tree_residual_jacobian};
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
 
-/// The partials of `τ` and the route that derived `τ`, for the docs.
-fn partials(
-    model: &Model,
-    equations: &Equations,
-    pool: &mut Pool,
-) -> (ResidualJacobian, &'static str) {
+/// The partials of `τ` and how they were found, for the docs: of a tree
+/// of revolute and prismatic joints, those of the world-frame recursion
+/// where they cost fewer operations than the symbolic partials of `τ`.
+fn partials(model: &Model, equations: &Equations, pool: &mut Pool) -> (ResidualJacobian, String) {
     let (tau, recursive) = inverse_dynamics(model, equations, pool);
     let route = match recursive {
         true => "the Newton–Euler recursion over the kinematic tree",
         false => "the mass matrix and the forcing",
     };
+    let symbolic = format!("`τ`, derived by {route},\ndifferentiated symbolically");
     let directions = tangent_directions(model, pool);
     let jacobian = residual_jacobian(pool, &tau, &directions, model.inputs.len());
-    (jacobian, route)
+    match tree_residual_jacobian(model, pool) {
+        Some(tree) if operations(pool, &entries(&tree)) < operations(pool, &entries(&jacobian)) => {
+            let recursion = "the inertia and gravity terms of `τ` differentiated by the\n\
+                             recursion of Carpentier and Mansard over the kinematic tree in\n\
+                             the axes of `N`, its loads, springs and dampers symbolically";
+            (tree, recursion.to_string())
+        }
+        _ => (jacobian, symbolic),
+    }
+}
+
+/// Every entry of `jacobian`.
+fn entries(jacobian: &ResidualJacobian) -> Vec<ExprId> {
+    let blocks = [&jacobian.coordinates, &jacobian.speeds, &jacobian.inputs];
+    blocks.into_iter().flatten().flatten().copied().collect()
 }
 
 /// A function named `name` computing `results` as `body` says.
@@ -54,15 +68,15 @@ pub fn inverse_dynamics_jacobian(
     pool: &mut Pool,
 ) -> Function {
     let nv = model.nv();
-    let (jacobian, route) = partials(model, equations, pool);
+    let (jacobian, how) = partials(model, equations, pool);
     let tangent = tangent_note(model);
     function(
         "inverse_dynamics_jacobian",
         &format!(
             "The derivatives of the inverse dynamics `τ(t, q, v, v̇, u) = M v̇ − f`:\n\
              `(∂τ/∂q, ∂τ/∂v, ∂τ/∂v̇ = M)`, entry `[i][j]` the derivative of `τᵢ` by\n\
-             the `j`-th variable. Exact: `τ`, derived by {route},\n\
-             differentiated symbolically, the shared subexpressions computed once.{tangent}"
+             the `j`-th variable. Exact: {how}, the shared subexpressions computed\n\
+             once.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Accelerations, Inputs],
         vec![
@@ -77,7 +91,7 @@ pub fn inverse_dynamics_jacobian(
 /// `accelerations_jacobian(t, q, v, u) -> Result<(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u), _>`.
 pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut Pool) -> Function {
     let (nv, nu) = (model.nv(), model.inputs.len());
-    let (jacobian, route) = partials(model, equations, pool);
+    let (jacobian, how) = partials(model, equations, pool);
     let tangent = tangent_note(model);
     function(
         "accelerations_jacobian",
@@ -86,9 +100,9 @@ pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut P
              `(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u)`, entry `[i][j]` the derivative of `v̇ᵢ` by the\n\
              `j`-th variable. Exact: differentiating `M v̇ = f` gives\n\
              `M ∂v̇/∂x = −∂τ/∂x` with `τ = M v̇ − f` at the solved `v̇`; the partials\n\
-             of `τ` (derived by {route}) are differentiated\n\
-             symbolically, and every column goes through the `L D Lᵀ` factorisation\n\
-             of `M` that solved for `v̇`. The errors of `accelerations`, and\n\
+             are exact ({how}), and every column but those of\n\
+             structural zeros goes through the `L D Lᵀ` factorisation of `M` that\n\
+             solved for `v̇`. The errors of `accelerations`, and\n\
              `NonFiniteEquations` for a non-finite derivative.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Inputs],

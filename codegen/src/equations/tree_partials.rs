@@ -1,0 +1,434 @@
+//! The partials `∂τ/∂q` and `∂τ/∂v` of the inertia and gravity terms of a
+//! tree's inverse dynamics `τ = M v̇ − f`, by a recursion over the tree in
+//! the axes of `N` (Carpentier and Mansard, "Analytical derivatives of
+//! rigid body dynamics algorithms", RSS 2018: the derivatives of the
+//! recursive Newton–Euler algorithm), for trees whose joints are all
+//! revolute or prismatic.
+//!
+//! Every spatial quantity is in `N`'s axes at `N`'s origin: the motion
+//! subspace `Sᵢ` of joint `i` (`(e, o × e)` for a turn about the unit axis
+//! `e` through `o`, `(0, e)` for a slide), the twist `vᵢ = v_λ + Sᵢ q̇ᵢ` and
+//! the acceleration `aᵢ = a_λ + Sᵢ q̈ᵢ + Ψ̇ᵢ q̇ᵢ` of link `i` (parent `λ`,
+//! `Ψ̇ᵢ = v_λ × Sᵢ`, the base accelerating at `−g`), the link's inertia
+//! `Iᵢ`, its inertia force `fᵢ = Iᵢ aᵢ + vᵢ ×* Iᵢ vᵢ`, and `τᵢ = Sᵢ · Fᵢ`
+//! with `Fᵢ` the sum of the `f` of subtree `i`. Turning joint `j` moves its
+//! subtree rigidly: anything fixed in it changes by `Sⱼ ×` (`Sⱼ ×*` for a
+//! force), the twists beyond `j` by `Sⱼ × v + Ψ̇ⱼ` and the accelerations
+//! by `Sⱼ × a + Ψ̈ⱼ − v × Ψ̇ⱼ` (`Ψ̈ⱼ = a_λ × Sⱼ + v_λ × Ψ̇ⱼ`). With the
+//! composites of subtree `i`, `Iᶜᵢ`, its rate `İᶜᵢ` (`İ = v ×* I − I v×` per
+//! link) and its momentum `hᶜᵢ`, and `Lᶜᵢ x = İᶜᵢ x + x ×* hᶜᵢ`:
+//!
+//! ```text
+//! j ⪯ i:  ∂τᵢ/∂qⱼ = Sᵢ · (Iᶜᵢ Ψ̈ⱼ + Lᶜᵢ Ψ̇ⱼ)        ∂τᵢ/∂q̇ⱼ = Sᵢ · (Lᶜᵢ Sⱼ + 2 Iᶜᵢ Ψ̇ⱼ)
+//! i ≺ j:  ∂τᵢ/∂qⱼ = Sᵢ · (Sⱼ ×* Fⱼ + Iᶜⱼ Ψ̈ⱼ + Lᶜⱼ Ψ̇ⱼ)  ∂τᵢ/∂q̇ⱼ = Sᵢ · (Lᶜⱼ Sⱼ + 2 Iᶜⱼ Ψ̇ⱼ)
+//! ```
+//!
+//! and zero where neither joint is beyond the other. The first row is
+//! `yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ` and `zᵢ · Sⱼ + 2 yᵢ · Ψ̇ⱼ` with `yᵢ = Iᶜᵢ Sᵢ` and
+//! `zᵢ = Lᶜᵢᵀ Sᵢ = İᶜᵢ Sᵢ − Sᵢ ×* hᶜᵢ`, the second `Sᵢ` dotted with one
+//! vector per `j`: a few dot products of six per entry, against a sweep
+//! differentiated link by link in the body-frame recursion.
+
+use super::recursive::{
+    Composite, JointTree, group3, grouped as grouped_composite, rotate_tensor, shifted,
+};
+use crate::expr::{ExprId, Pool, Sym};
+use crate::kinematics::{Mat3, Vec3, add3, cross, dot, identity, mat_mul, mat_vec};
+use crate::model::JointKind;
+
+/// A square block of partials, `[i][j]` by the `j`-th variable.
+type Block = Vec<Vec<ExprId>>;
+
+/// A spatial vector in `N`'s axes at `N`'s origin: `(ω, v)` for a motion,
+/// `(n, f)` for a force.
+#[derive(Clone, Copy)]
+struct Spatial {
+    angular: Vec3,
+    linear: Vec3,
+}
+
+/// The recursion's state of one link.
+struct Moving {
+    /// Maps the link's components to `N`'s.
+    rotation: Mat3,
+    /// The link's origin, from `N`'s.
+    origin: Vec3,
+    /// The joint's motion subspace `S`.
+    subspace: Spatial,
+    /// `Ψ̇ = v_λ × S`.
+    rate: Spatial,
+    /// `Ψ̈ = a_λ × S + v_λ × Ψ̇`.
+    second_rate: Spatial,
+    /// The link's twist and acceleration.
+    twist: Spatial,
+    acceleration: Spatial,
+}
+
+/// The composites of a subtree: inertia `(m, first moment c, inertia about
+/// the origin K)`, its rate `(ċ, K̇)`, momentum and inertia force.
+#[derive(Clone, Copy)]
+struct Subtree {
+    inertia: Composite,
+    moment_rate: Vec3,
+    inertia_rate: Mat3,
+    momentum: Spatial,
+    force: Spatial,
+}
+
+/// `(∂τ/∂q, ∂τ/∂v)` of the inertia and gravity terms of `tree`, `None`
+/// unless every joint is a revolute or prismatic joint whose coordinate's
+/// rate is the speed of the same index.
+pub(super) fn inertial_partials(tree: &JointTree, pool: &mut Pool) -> Option<(Block, Block)> {
+    let one_speed = |l: &super::recursive::Link| {
+        matches!(l.kind, JointKind::Revolute | JointKind::Prismatic) && l.columns.len() == 1
+    };
+    if !pool.rates_are_speeds() || !tree.links.iter().all(one_speed) {
+        return None;
+    }
+    let links = forward(tree, pool);
+    let subtrees = backward(tree, &links, pool);
+    let columns: Vec<Columns> = links
+        .iter()
+        .zip(&subtrees)
+        .map(|(link, subtree)| columns(pool, link, subtree))
+        .collect();
+    let n = links.len();
+    let speed = |l: usize| tree.links[l].columns[0].speed;
+    let zero = pool.zero();
+    let (mut by_q, mut by_v) = (vec![vec![zero; n]; n], vec![vec![zero; n]; n]);
+    for (i, Columns { y, z, .. }) in columns.iter().enumerate() {
+        let mut ancestor = Some(i);
+        while let Some(j) = ancestor {
+            // j ⪯ i: yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ and zᵢ · Sⱼ + 2 yᵢ · Ψ̇ⱼ.
+            let other = &links[j];
+            let terms = [
+                spatial_dot(pool, y, &other.second_rate),
+                spatial_dot(pool, z, &other.rate),
+            ];
+            by_q[speed(i)][speed(j)] = pool.sum(terms);
+            let y_rate = spatial_dot(pool, y, &other.rate);
+            let terms = [
+                spatial_dot(pool, z, &other.subspace),
+                pool.add(y_rate, y_rate),
+            ];
+            by_v[speed(i)][speed(j)] = pool.sum(terms);
+            // j ≺ i: Sⱼ · wᵢ and Sⱼ · uᵢ.
+            if j != i {
+                let Columns { w, u, .. } = &columns[i];
+                by_q[speed(j)][speed(i)] = spatial_dot(pool, &other.subspace, w);
+                by_v[speed(j)][speed(i)] = spatial_dot(pool, &other.subspace, u);
+            }
+            ancestor = tree.links[j].parent;
+        }
+    }
+    Some((by_q, by_v))
+}
+
+/// What the entries of one joint `i`'s row and column are dot products
+/// with: `yᵢ = Iᶜᵢ Sᵢ`, `zᵢ = Lᶜᵢᵀ Sᵢ` (with the `Ψ` of the joints up to
+/// `i`), `wᵢ = Sᵢ ×* Fᵢ + Iᶜᵢ Ψ̈ᵢ + Lᶜᵢ Ψ̇ᵢ` and `uᵢ = Lᶜᵢ Sᵢ + 2 Iᶜᵢ Ψ̇ᵢ`
+/// (with the `S` of its ancestors).
+struct Columns {
+    y: Spatial,
+    z: Spatial,
+    w: Spatial,
+    u: Spatial,
+}
+
+/// The [`Columns`] of a link, from its subtree's composites, sharing
+/// `İᶜ S` and `S ×* hᶜ` between `Lᶜ S` and `Lᶜᵀ S`.
+fn columns(pool: &mut Pool, link: &Moving, subtree: &Subtree) -> Columns {
+    let (s, rate) = (&link.subspace, &link.rate);
+    let y = inertia_times(pool, &subtree.inertia, s);
+    let turned = rate_times(pool, subtree, s);
+    let carried = force_cross(pool, s, &subtree.momentum);
+    let z = sub(pool, &turned, &carried);
+    let pushed = inertia_times(pool, &subtree.inertia, rate);
+    let terms = [turned, carried, pushed, pushed];
+    let u = sum(pool, &terms);
+    let terms = [
+        force_cross(pool, s, &subtree.force),
+        inertia_times(pool, &subtree.inertia, &link.second_rate),
+        rate_times(pool, subtree, rate),
+        force_cross(pool, rate, &subtree.momentum),
+    ];
+    let w = sum(pool, &terms);
+    let [y, z, w, u] = [y, z, w, u].map(|x| grouped(pool, &x));
+    Columns { y, z, w, u }
+}
+
+/// The links outwards: placement in `N`, motion subspace, twist,
+/// acceleration (the symbols `q̈`, the base at `−g`) and the rates `Ψ̇`,
+/// `Ψ̈` of the subspace.
+fn forward(tree: &JointTree, pool: &mut Pool) -> Vec<Moving> {
+    let zero = pool.zero();
+    let base = Moving {
+        rotation: identity(pool),
+        origin: [zero; 3],
+        subspace: Spatial::zero(pool),
+        rate: Spatial::zero(pool),
+        second_rate: Spatial::zero(pool),
+        twist: Spatial::zero(pool),
+        acceleration: Spatial {
+            angular: [zero; 3],
+            linear: tree.gravity.map(|g| pool.neg(g)),
+        },
+    };
+    let mut links: Vec<Moving> = Vec::with_capacity(tree.links.len());
+    for link in &tree.links {
+        let parent = link.parent.map_or(&base, |p| &links[p]);
+        let offset = mat_vec(pool, &parent.rotation, &link.offset);
+        let origin = add3(pool, &parent.origin, &offset);
+        let origin = group3(pool, &origin);
+        let rotation = mat_mul(pool, &parent.rotation, &link.rotation);
+        let rotation = rotation.map(|row| group3(pool, &row));
+        let column = &link.columns[0];
+        let axis = mat_vec(pool, &rotation, &column.axis);
+        let axis = group3(pool, &axis);
+        let subspace = match column.turns {
+            true => Spatial {
+                angular: axis,
+                linear: {
+                    let moment = cross(pool, &origin, &axis);
+                    group3(pool, &moment)
+                },
+            },
+            false => Spatial {
+                angular: [zero; 3],
+                linear: axis,
+            },
+        };
+        let (v, a) = (&parent.twist, &parent.acceleration);
+        let rate = motion_cross(pool, v, &subspace);
+        let rate = grouped(pool, &rate);
+        let turned = motion_cross(pool, a, &subspace);
+        let carried = motion_cross(pool, v, &rate);
+        let second_rate = add(pool, &turned, &carried);
+        let second_rate = grouped(pool, &second_rate);
+        let speed = pool.sym(Sym::Speed(column.speed as u32));
+        let accel = pool.sym(Sym::Accel(column.speed as u32));
+        let moved = scale(pool, speed, &subspace);
+        let twist = add(pool, v, &moved);
+        let twist = grouped(pool, &twist);
+        let terms = [*a, scale(pool, accel, &subspace), scale(pool, speed, &rate)];
+        let acceleration = sum(pool, &terms);
+        let acceleration = grouped(pool, &acceleration);
+        links.push(Moving {
+            rotation,
+            origin,
+            subspace,
+            rate,
+            second_rate,
+            twist,
+            acceleration,
+        });
+    }
+    links
+}
+
+/// The composites of every subtree inwards, from each link's inertia moved
+/// into `N`.
+fn backward(tree: &JointTree, links: &[Moving], pool: &mut Pool) -> Vec<Subtree> {
+    let own = tree.link_inertias(pool);
+    let mut subtrees: Vec<Subtree> = own
+        .iter()
+        .zip(links)
+        .map(|(inertia, link)| link_subtree(pool, inertia, link))
+        .collect();
+    for l in (0..links.len()).rev() {
+        let grouped = subtree_grouped(pool, &subtrees[l]);
+        subtrees[l] = grouped;
+        if let Some(p) = tree.links[l].parent {
+            subtrees[p] = subtree_sum(pool, &subtrees[p], &grouped);
+        }
+    }
+    subtrees
+}
+
+/// One link's inertia `inertia` (about its origin, in its axes) in `N`,
+/// with its rate, momentum and inertia force.
+fn link_subtree(pool: &mut Pool, inertia: &Composite, link: &Moving) -> Subtree {
+    let (rotation, origin) = (&link.rotation, &link.origin);
+    let moment = mat_vec(pool, rotation, &inertia.moment);
+    let turned = Composite {
+        mass: inertia.mass,
+        moment,
+        inertia: rotate_tensor(pool, rotation, &inertia.inertia),
+    };
+    let carried = origin.map(|o| pool.mul(inertia.mass, o));
+    let moved = add3(pool, &moment, &carried);
+    let moved = group3(pool, &moved);
+    let world = shifted(pool, &turned, origin, &moved);
+    let world = grouped_composite(pool, &world);
+    let Spatial {
+        angular: w,
+        linear: v,
+    } = link.twist;
+    // ċ = m v + ω × c; K̇ = A + Aᵀ + 2 (c·v) 1 − v cᵀ − c vᵀ with A = [ω]× K.
+    let carried = cross(pool, &w, &world.moment);
+    let pushed = v.map(|x| pool.mul(world.mass, x));
+    let moment_rate = add3(pool, &pushed, &carried);
+    let columns = [0, 1, 2].map(|j| {
+        let column = [0, 1, 2].map(|i| world.inertia[i][j]);
+        cross(pool, &w, &column)
+    });
+    let c_dot_v = dot(pool, &world.moment, &v);
+    let twice = pool.add(c_dot_v, c_dot_v);
+    let inertia_rate = [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let outer = [
+                pool.mul(v[i], world.moment[j]),
+                pool.mul(world.moment[i], v[j]),
+            ];
+            let mut terms = vec![columns[j][i], columns[i][j]];
+            terms.extend(outer.map(|x| pool.neg(x)));
+            if i == j {
+                terms.push(twice);
+            }
+            pool.sum(terms)
+        })
+    });
+    let momentum = inertia_times(pool, &world, &link.twist);
+    let momentum = grouped(pool, &momentum);
+    let inertial = inertia_times(pool, &world, &link.acceleration);
+    let gyroscopic = force_cross(pool, &link.twist, &momentum);
+    Subtree {
+        inertia: world,
+        moment_rate,
+        inertia_rate,
+        momentum,
+        force: add(pool, &inertial, &gyroscopic),
+    }
+}
+
+/// `I x` for the spatial inertia `(m, c, K)`: `(K ω + c × v, m v − c × ω)`.
+fn inertia_times(pool: &mut Pool, inertia: &Composite, x: &Spatial) -> Spatial {
+    let (w, v) = (&x.angular, &x.linear);
+    let turned = mat_vec(pool, &inertia.inertia, w);
+    let lever = cross(pool, &inertia.moment, v);
+    let pushed = v.map(|x| pool.mul(inertia.mass, x));
+    let swung = cross(pool, &inertia.moment, w);
+    Spatial {
+        angular: add3(pool, &turned, &lever),
+        linear: sub3(pool, &pushed, &swung),
+    }
+}
+
+/// `İᶜ x = (K̇ ω + ċ × v, −ċ × ω)` for the rate of a subtree's inertia.
+fn rate_times(pool: &mut Pool, subtree: &Subtree, x: &Spatial) -> Spatial {
+    let turned = mat_vec(pool, &subtree.inertia_rate, &x.angular);
+    let lever = cross(pool, &subtree.moment_rate, &x.linear);
+    let swung = cross(pool, &x.angular, &subtree.moment_rate);
+    Spatial {
+        angular: add3(pool, &turned, &lever),
+        linear: swung,
+    }
+}
+
+/// `m₁ × m₂ = (ω₁ × ω₂, ω₁ × v₂ + v₁ × ω₂)`.
+fn motion_cross(pool: &mut Pool, a: &Spatial, b: &Spatial) -> Spatial {
+    let first = cross(pool, &a.angular, &b.linear);
+    let second = cross(pool, &a.linear, &b.angular);
+    Spatial {
+        angular: cross(pool, &a.angular, &b.angular),
+        linear: add3(pool, &first, &second),
+    }
+}
+
+/// `m ×* f = (ω × n + v × f, ω × f)`.
+fn force_cross(pool: &mut Pool, m: &Spatial, f: &Spatial) -> Spatial {
+    let first = cross(pool, &m.angular, &f.angular);
+    let second = cross(pool, &m.linear, &f.linear);
+    Spatial {
+        angular: add3(pool, &first, &second),
+        linear: cross(pool, &m.angular, &f.linear),
+    }
+}
+
+/// `a · b` of a motion and a force.
+fn spatial_dot(pool: &mut Pool, a: &Spatial, b: &Spatial) -> ExprId {
+    let terms = [
+        dot(pool, &a.angular, &b.angular),
+        dot(pool, &a.linear, &b.linear),
+    ];
+    pool.sum(terms)
+}
+
+fn add(pool: &mut Pool, a: &Spatial, b: &Spatial) -> Spatial {
+    Spatial {
+        angular: add3(pool, &a.angular, &b.angular),
+        linear: add3(pool, &a.linear, &b.linear),
+    }
+}
+
+fn sub(pool: &mut Pool, a: &Spatial, b: &Spatial) -> Spatial {
+    Spatial {
+        angular: sub3(pool, &a.angular, &b.angular),
+        linear: sub3(pool, &a.linear, &b.linear),
+    }
+}
+
+fn sum(pool: &mut Pool, terms: &[Spatial]) -> Spatial {
+    let first = terms[0];
+    terms[1..]
+        .iter()
+        .fold(first, |total, x| add(pool, &total, x))
+}
+
+/// `s x`.
+fn scale(pool: &mut Pool, s: ExprId, x: &Spatial) -> Spatial {
+    Spatial {
+        angular: x.angular.map(|e| pool.mul(s, e)),
+        linear: x.linear.map(|e| pool.mul(s, e)),
+    }
+}
+
+fn sub3(pool: &mut Pool, a: &Vec3, b: &Vec3) -> Vec3 {
+    [0, 1, 2].map(|i| pool.sub(a[i], b[i]))
+}
+
+fn grouped(pool: &mut Pool, x: &Spatial) -> Spatial {
+    Spatial {
+        angular: group3(pool, &x.angular),
+        linear: group3(pool, &x.linear),
+    }
+}
+
+impl Spatial {
+    fn zero(pool: &Pool) -> Spatial {
+        let zero = pool.zero();
+        Spatial {
+            angular: [zero; 3],
+            linear: [zero; 3],
+        }
+    }
+}
+
+/// Every entry of a subtree's composites grouped.
+fn subtree_grouped(pool: &mut Pool, s: &Subtree) -> Subtree {
+    Subtree {
+        inertia: grouped_composite(pool, &s.inertia),
+        moment_rate: group3(pool, &s.moment_rate),
+        inertia_rate: s.inertia_rate.map(|row| group3(pool, &row)),
+        momentum: grouped(pool, &s.momentum),
+        force: grouped(pool, &s.force),
+    }
+}
+
+/// `a + b`, entry by entry.
+fn subtree_sum(pool: &mut Pool, a: &Subtree, b: &Subtree) -> Subtree {
+    let matrix_sum = |pool: &mut Pool, x: &Mat3, y: &Mat3| -> Mat3 {
+        [0, 1, 2].map(|i| add3(pool, &x[i], &y[i]))
+    };
+    Subtree {
+        inertia: Composite {
+            mass: pool.add(a.inertia.mass, b.inertia.mass),
+            moment: add3(pool, &a.inertia.moment, &b.inertia.moment),
+            inertia: matrix_sum(pool, &a.inertia.inertia, &b.inertia.inertia),
+        },
+        moment_rate: add3(pool, &a.moment_rate, &b.moment_rate),
+        inertia_rate: matrix_sum(pool, &a.inertia_rate, &b.inertia_rate),
+        momentum: add(pool, &a.momentum, &b.momentum),
+        force: add(pool, &a.force, &b.force),
+    }
+}
