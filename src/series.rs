@@ -73,11 +73,32 @@ fn terms<'a, const K: usize>(
 }
 
 /// `Σᵢ wᵢ aᵢ b_{n−1−i}` for slices of one length `n`, `wᵢ = first + i`
+/// (`weighted`) or 1, its two end terms added last. Those are the terms
+/// that hold the newest coefficient of each operand (`a₀ bₖ` and `aₖ b₀` of
+/// a product's order `k`), the ones written in the same order as the sum:
+/// the interior, from older coefficients, is summed while the previous
+/// orders still run, so that the chain from one order to the next waits
+/// on two products and two additions only.
+#[inline(always)]
+fn reversed_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
+    let first = weighted.unwrap_or(1.0);
+    match (a, b) {
+        ([a_first, a_inner @ .., a_last], [b_first, b_inner @ .., b_last]) => {
+            let last = weighted.map_or(1.0, |w| w + a_inner.len() as f64 + 1.0);
+            let inner = interior_dot(a_inner, b_inner, weighted.map(|w| w + 1.0));
+            inner + (first * a_first * b_last + last * a_last * b_first)
+        }
+        ([a0], [b0]) => first * a0 * b0,
+        _ => 0.0,
+    }
+}
+
+/// `Σᵢ wᵢ aᵢ b_{n−1−i}` for slices of one length `n`, `wᵢ = first + i`
 /// (`weighted`) or 1: in four independent partial sums, so that the
 /// additions do not wait on one another (a sum of products in one chain
 /// is bound by the latency of the additions).
 #[inline(always)]
-fn reversed_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
+fn interior_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
     let (chunks, chunks_b) = (a.chunks_exact(4), b.rchunks_exact(4));
     let (rest, rest_b) = (chunks.remainder(), chunks_b.remainder());
     let step = if weighted.is_some() { 1.0 } else { 0.0 };
