@@ -193,6 +193,7 @@ where
             options,
         } = self;
         let order = options.order().min(K - 1);
+        let fraction = radius_fraction(order);
         let mut state = initial;
         let mut statistics = Statistics::default();
         while state.t < t_end {
@@ -213,7 +214,7 @@ where
                 v,
                 terms: order + 1,
             };
-            let mut h = polynomial.step(order, options.tolerance);
+            let mut h = polynomial.step(order, fraction);
             let last = state.t + h >= t_end;
             if last {
                 h = t_end - state.t;
@@ -259,22 +260,28 @@ struct Polynomial<const K: usize, const NQ: usize, const NV: usize> {
 }
 
 impl<const K: usize, const NQ: usize, const NV: usize> Polynomial<K, NQ, NV> {
-    /// Jorba and Zou's step for `order` and `tolerance`, with heyoka's
-    /// safety factor `e^(−0.7/(p−1))`; infinite when the last two orders
-    /// vanish.
-    fn step(&self, order: usize, tolerance: f64) -> f64 {
-        let series = || self.q.iter().chain(&self.v);
-        let norm = |k: usize| series().map(|x| series::at(x, k).abs()).fold(0.0, f64::max);
-        let scale = if tolerance * norm(0) <= tolerance {
-            1.0
-        } else {
-            norm(0)
-        };
-        let radius = |j: usize| (scale / norm(j)).powf(1.0 / j as f64);
-        let rho = radius(order - 1).min(radius(order));
-        let p = order as f64;
-        rho / std::f64::consts::E.powi(2) * (-0.7 / (p - 1.0)).exp()
+    /// Jorba and Zou's step for `order`: the radius of convergence
+    /// `min(ρ_{p−1}, ρ_p)` times `fraction` ([`radius_fraction`]); infinite
+    /// when the last two orders vanish. The three norms it reads are taken
+    /// in one pass over the series.
+    fn step(&self, order: usize, fraction: f64) -> f64 {
+        let mut norms = [0.0_f64; 3];
+        for x in self.q.iter().chain(&self.v) {
+            for (norm, k) in norms.iter_mut().zip([0, order - 1, order]) {
+                *norm = norm.max(series::at(x, k).abs());
+            }
+        }
+        let [now, below, last] = norms;
+        let scale = now.max(1.0);
+        let radius = |norm: f64, j: usize| (scale / norm).powf(1.0 / j as f64);
+        radius(below, order - 1).min(radius(last, order)) * fraction
     }
+}
+
+/// What the step takes of the radius of convergence at `order`: Jorba and
+/// Zou's `e⁻²`, with heyoka's safety factor `e^(−0.7/(p−1))`.
+fn radius_fraction(order: usize) -> f64 {
+    (-2.0 - 0.7 / (order as f64 - 1.0)).exp()
 }
 
 impl<const K: usize, const NQ: usize, const NV: usize> Continuous<NQ, NV>
