@@ -67,8 +67,8 @@ enum Operand {
 }
 
 /// The program of one system: its series and how each is computed.
-struct Program<'a> {
-    pool: &'a mut Pool,
+struct Program {
+    pool: Pool,
     operations: Vec<Operation>,
     nodes: HashMap<ExprId, Slot>,
     calls: HashMap<(&'static str, Vec<Slot>), Slot>,
@@ -81,9 +81,9 @@ struct Program<'a> {
 /// The symbols whose series move within a step (inputs are held).
 const MOVING: SymKinds = SymKinds::COORD.union(SymKinds::SPEED).union(SymKinds::TIME);
 
-impl<'a> Program<'a> {
+impl Program {
     /// The series of the state: `q`, `q̇` and `q̈`.
-    fn new(pool: &'a mut Pool, n: usize) -> Self {
+    fn new(pool: Pool, n: usize) -> Self {
         let mut program = Program {
             pool,
             operations: Vec::new(),
@@ -306,42 +306,24 @@ impl<'a> Program<'a> {
     }
 }
 
-/// The program of `M` and `f`, with the pool it lowered them in.
+/// The program of `M` and `f`, and the operands of their entries.
 struct Lowered {
-    pool: Pool,
-    operations: Vec<Operation>,
-    coordinates: Vec<Slot>,
-    speeds: Vec<Slot>,
-    accelerations: Vec<Slot>,
-    time: Option<Slot>,
+    program: Program,
     matrix: Vec<Vec<Operand>>,
     forcing: Vec<Operand>,
 }
 
 impl Lowered {
     /// The entries of `M` and `f` lowered in `pool`.
-    fn new(mut pool: Pool, nv: usize, (mass_matrix, forcing): (&[Vec<ExprId>], &[ExprId])) -> Self {
-        let mut program = Program::new(&mut pool, nv);
+    fn new(pool: Pool, nv: usize, (mass_matrix, forcing): (&[Vec<ExprId>], &[ExprId])) -> Self {
+        let mut program = Program::new(pool, nv);
         let matrix = mass_matrix
             .iter()
             .map(|row| row.iter().map(|&e| program.lower(e)).collect())
             .collect();
         let forcing = forcing.iter().map(|&e| program.lower(e)).collect();
-        let Program {
-            operations,
-            coordinates,
-            speeds,
-            accelerations,
-            time,
-            ..
-        } = program;
         Lowered {
-            pool,
-            operations,
-            coordinates,
-            speeds,
-            accelerations,
-            time,
+            program,
             matrix,
             forcing,
         }
@@ -351,7 +333,8 @@ impl Lowered {
     /// (Cauchy products, quotients, elementary functions): what an order
     /// costs, linear combinations being cheap beside them.
     fn recurrences(&self) -> usize {
-        self.operations
+        self.program
+            .operations
             .iter()
             .filter(|operation| matches!(operation, Operation::Call { .. }))
             .count()
@@ -468,12 +451,16 @@ pub fn emit_taylor(
     };
     let nv = model.nv();
     let Lowered {
-        pool,
-        operations,
-        coordinates,
-        speeds,
-        accelerations,
-        time,
+        program:
+            Program {
+                pool,
+                operations,
+                coordinates,
+                speeds,
+                accelerations,
+                time,
+                ..
+            },
         matrix,
         forcing,
     } = lowered(pool, nv, equations);
