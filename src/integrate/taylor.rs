@@ -15,8 +15,10 @@
 //! `(h/ρ)^p = e^(−a p) ≈ ε`, and the work per unit of time, the cost of an
 //! expansion of order `p` over `h`, is least at `a = β` when that cost grows
 //! as `p^β`: Jorba and Zou count the Cauchy products' `p²` (`a = 2`); the
-//! recurrences here cost between `p` and `p²`, and `a =` [`STEP_EXPONENT`]
-//! `= 1.5` is the fastest of 1, 1.25, 1.5 and 2 measured on seed example 1. The polynomial of a step is its continuous
+//! recurrences here cost between `p` and `p²`, and `a = 1.5` was the
+//! fastest of 1, 1.25, 1.5 and 2 measured on seed example 1.
+//!
+//! The polynomial of a step is its continuous
 //! extension, free: [`taylor_dense`] gives it, and events are located on it
 //! ([`taylor_with_events`]).
 //!
@@ -94,8 +96,8 @@ impl TaylorOptions {
         }
     }
 
-    /// The order for the tolerance, `⌈−ln(ε)/a + 1⌉` (`a` =
-    /// [`STEP_EXPONENT`]; Jorba and Zou's has `a = 2`), between 2 and
+    /// The order for the tolerance, `⌈−ln(ε)/1.5 + 1⌉` (Jorba and Zou's
+    /// has 2 for 1.5; the module docs say why), between 2 and
     /// [`MAX_ORDER`].
     pub fn order(&self) -> usize {
         let order = (-self.tolerance.ln() / STEP_EXPONENT + 1.0).ceil();
