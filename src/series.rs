@@ -73,47 +73,54 @@ fn terms<'a, const K: usize>(
 }
 
 /// `Σᵢ wᵢ aᵢ b_{n−1−i}` for slices of one length `n`, `wᵢ = first + i`
-/// (`weighted`) or 1: in four independent partial sums, so that the
-/// additions do not wait on one another (a sum of products in one chain
-/// is bound by the latency of the additions).
+/// (`weighted`) or 1, its two end terms added last. Those are the terms
+/// that hold the newest coefficient of each operand (`a₀ bₖ` and `aₖ b₀` of
+/// a product's order `k`), the ones written in the same order as the sum:
+/// the interior, from older coefficients, is summed while the previous
+/// orders still run, so that the chain from one order to the next waits
+/// on two products and two additions only.
 #[inline(always)]
 fn reversed_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
-    let (chunks, chunks_b) = (a.chunks_exact(4), b.rchunks_exact(4));
-    let (rest, rest_b) = (chunks.remainder(), chunks_b.remainder());
+    let first = weighted.unwrap_or(1.0);
+    match (a, b) {
+        ([a_first, a_inner @ .., a_last], [b_first, b_inner @ .., b_last]) => {
+            let last = weighted.map_or(1.0, |w| w + a_inner.len() as f64 + 1.0);
+            let inner = interior_dot(a_inner, b_inner, weighted.map(|w| w + 1.0));
+            inner + (first * a_first * b_last + last * a_last * b_first)
+        }
+        ([a0], [b0]) => first * a0 * b0,
+        _ => 0.0,
+    }
+}
+
+/// `Σᵢ wᵢ aᵢ b_{n−1−i}` for slices of one length `n`, `wᵢ = first + i`
+/// (`weighted`) or 1: in two independent partial sums, the two lanes of
+/// one vector register.
+#[inline(always)]
+fn interior_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
+    let (pairs, pairs_b) = (a.chunks_exact(2), b.rchunks_exact(2));
+    let (rest, rest_b) = (pairs.remainder(), pairs_b.remainder());
     let step = if weighted.is_some() { 1.0 } else { 0.0 };
     let first = weighted.unwrap_or(1.0);
-    let mut w = [first, first + step, first + 2.0 * step, first + 3.0 * step];
-    let mut sums = [0.0; 4];
-    // `rchunks_exact` starts from the end of `b`: each chunk of `a` meets
-    // the chunk of `b` it pairs with, reversed.
-    for (x, y) in chunks.zip(chunks_b) {
-        let (&[a0, a1, a2, a3], &[b0, b1, b2, b3]) = (x, y) else {
+    let mut w = [first, first + step];
+    let mut sums = [0.0; 2];
+    // `rchunks_exact` starts from the end of `b`: each pair of `a` meets
+    // the pair of `b` it multiplies, reversed.
+    for (x, y) in pairs.zip(pairs_b) {
+        let (&[a0, a1], &[b0, b1]) = (x, y) else {
             continue;
         };
-        let [w0, w1, w2, w3] = w;
-        let [s0, s1, s2, s3] = sums;
-        sums = [
-            s0 + w0 * a0 * b3,
-            s1 + w1 * a1 * b2,
-            s2 + w2 * a2 * b1,
-            s3 + w3 * a3 * b0,
-        ];
-        w = [
-            w0 + 4.0 * step,
-            w1 + 4.0 * step,
-            w2 + 4.0 * step,
-            w3 + 4.0 * step,
-        ];
+        let [w0, w1] = w;
+        let [s0, s1] = sums;
+        sums = [s0 + w0 * a0 * b1, s1 + w1 * a1 * b0];
+        w = [w0 + 2.0 * step, w1 + 2.0 * step];
     }
-    let [w0, ..] = w;
-    let tail: f64 = rest
-        .iter()
-        .zip(rest_b.iter().rev())
-        .enumerate()
-        .map(|(i, (x, y))| (w0 + step * i as f64) * x * y)
-        .sum();
-    let [s0, s1, s2, s3] = sums;
-    (s0 + s1) + (s2 + s3) + tail
+    let tail = match (rest, rest_b) {
+        (&[x], &[y]) => w[0] * x * y,
+        _ => 0.0,
+    };
+    let [s0, s1] = sums;
+    (s0 + s1) + tail
 }
 
 /// `Σⱼ j aⱼ b_{k−j}` for `j` from `from` to `to`.

@@ -23,8 +23,15 @@ use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool, Sym, SymKinds};
 use crate::model::Model;
 use crate::outputs::Function;
+use crate::readable::readable;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
+
+/// Most monomials an entry of `M` or `f` may expand to for its angle sums
+/// to be recombined (`sin a cos b − cos a sin b = sin(a − b)`: one
+/// `sin_cos` recurrence of the difference instead of four Cauchy products
+/// and two sums); a larger entry is lowered as derived ([`lowered`]).
+const RECOMBINATION_BUDGET: usize = 200;
 
 /// The index of one series of the program.
 type Slot = usize;
@@ -60,8 +67,8 @@ enum Operand {
 }
 
 /// The program of one system: its series and how each is computed.
-struct Program<'a> {
-    pool: &'a mut Pool,
+struct Program {
+    pool: Pool,
     operations: Vec<Operation>,
     nodes: HashMap<ExprId, Slot>,
     calls: HashMap<(&'static str, Vec<Slot>), Slot>,
@@ -74,9 +81,9 @@ struct Program<'a> {
 /// The symbols whose series move within a step (inputs are held).
 const MOVING: SymKinds = SymKinds::COORD.union(SymKinds::SPEED).union(SymKinds::TIME);
 
-impl<'a> Program<'a> {
+impl Program {
     /// The series of the state: `q`, `q̇` and `q̈`.
-    fn new(pool: &'a mut Pool, n: usize) -> Self {
+    fn new(pool: Pool, n: usize) -> Self {
         let mut program = Program {
             pool,
             operations: Vec::new(),
@@ -299,6 +306,65 @@ impl<'a> Program<'a> {
     }
 }
 
+/// The program of `M` and `f`, and the operands of their entries.
+struct Lowered {
+    program: Program,
+    matrix: Vec<Vec<Operand>>,
+    forcing: Vec<Operand>,
+}
+
+impl Lowered {
+    /// The entries of `M` and `f` lowered in `pool`.
+    fn new(pool: Pool, nv: usize, (mass_matrix, forcing): (&[Vec<ExprId>], &[ExprId])) -> Self {
+        let mut program = Program::new(pool, nv);
+        let matrix = mass_matrix
+            .iter()
+            .map(|row| row.iter().map(|&e| program.lower(e)).collect())
+            .collect();
+        let forcing = forcing.iter().map(|&e| program.lower(e)).collect();
+        Lowered {
+            program,
+            matrix,
+            forcing,
+        }
+    }
+
+    /// The recurrences of each order that are sums over the lower orders
+    /// (Cauchy products, quotients, elementary functions): what an order
+    /// costs, linear combinations being cheap beside them.
+    fn recurrences(&self) -> usize {
+        self.program
+            .operations
+            .iter()
+            .filter(|operation| matches!(operation, Operation::Call { .. }))
+            .count()
+    }
+}
+
+/// `M` and `f` lowered as derived, or with their angle sums recombined
+/// (within [`RECOMBINATION_BUDGET`]) when that takes fewer recurrences.
+fn lowered(pool: &Pool, nv: usize, equations: &Equations) -> Lowered {
+    let derived = Lowered::new(
+        pool.clone(),
+        nv,
+        (&equations.mass_matrix, &equations.forcing),
+    );
+    let mut pool = pool.clone();
+    let mut recombine = |e: ExprId| readable(&mut pool, e, RECOMBINATION_BUDGET).unwrap_or(e);
+    let mass_matrix: Vec<Vec<ExprId>> = equations
+        .mass_matrix
+        .iter()
+        .map(|row| row.iter().map(|&e| recombine(e)).collect())
+        .collect();
+    let forcing: Vec<ExprId> = equations.forcing.iter().map(|&e| recombine(e)).collect();
+    let recombined = Lowered::new(pool, nv, (&mass_matrix, &forcing));
+    if recombined.recurrences() < derived.recurrences() {
+        recombined
+    } else {
+        derived
+    }
+}
+
 /// Names of the program's series and constants in the emitted code.
 struct Written<'a> {
     pool: &'a Pool,
@@ -384,26 +450,20 @@ pub fn emit_taylor(
         return TokenStream::new();
     };
     let nv = model.nv();
-    let mut pool = pool.clone();
-    let mut program = Program::new(&mut pool, nv);
-    let matrix: Vec<Vec<Operand>> = equations
-        .mass_matrix
-        .iter()
-        .map(|row| row.iter().map(|&e| program.lower(e)).collect())
-        .collect();
-    let forcing: Vec<Operand> = equations
-        .forcing
-        .iter()
-        .map(|&e| program.lower(e))
-        .collect();
-    let Program {
-        operations,
-        coordinates,
-        speeds,
-        accelerations,
-        time,
-        ..
-    } = program;
+    let Lowered {
+        program:
+            Program {
+                pool,
+                operations,
+                coordinates,
+                speeds,
+                accelerations,
+                time,
+                ..
+            },
+        matrix,
+        forcing,
+    } = lowered(pool, nv, equations);
     // Every constant the program reads, bound once.
     let mut constants: Vec<ExprId> = Vec::new();
     let mut read = |e: ExprId| {
