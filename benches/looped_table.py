@@ -7,7 +7,8 @@ Usage: python3 benches/looped_table.py BASELINE... [--target TARGET_DIR] [--bina
   BENCH        the bench executable (`cargo bench ... --no-run` names it): adds the
                machine-code size of each unrolled `accelerations` (from `nm`)
 
-For each chain (group `forms/FAMILY/n`), prints the median over the rounds of
+For each computation (`accelerations`, and `M+f`: `mass_matrix` + `forcing`) and
+each chain (group `forms/FAMILY/n`), prints the median over the rounds of
 criterion's median per call of each form, the median and range over the rounds
 of the ratio looped / unrolled (each round's two figures come from the same
 window), and each form's cost per link.
@@ -32,18 +33,19 @@ def option(args, name, default):
 
 
 def code_sizes(binary):
-    """(family, n) -> bytes of machine code of the generated `accelerations`."""
+    """(family, n, function) -> bytes of machine code of a generated function."""
     symbols = subprocess.run(["nm", "-C", "-S", binary], capture_output=True, text=True, check=True)
     sizes = {}
     looped = []
     for line in symbols.stdout.splitlines():
-        if line.endswith("dalembert_fixtures::looped::aba::<impl dalembert_fixtures::looped::table::Chain<_>>::accelerations"):
+        if re.search(r"dalembert_fixtures::looped::.*::(accelerations|mass_matrix|forcing)$", line):
             looped.append(int(line.split()[1], 16))
-        found = re.search(r"^\S+ (\S+) \S (dalembert_generated::(planar|spatial)_chain_(\d+)::\w+::accelerations)$", line)
+        found = re.search(r"^\S+ (\S+) \S dalembert_generated::(planar|spatial)_chain_(\d+)::\w+::(\w+)$", line)
         if found:
-            sizes[(found.group(3), int(found.group(4)))] = int(found.group(1), 16)
+            key = (found.group(2), int(found.group(3)), found.group(4))
+            sizes[key] = int(found.group(1), 16)
     if looped:
-        print(f"looped `accelerations`: {min(looped) / 1024:.1f}–{max(looped) / 1024:.1f} KiB of code for every n")
+        print(f"looped functions: {min(looped) / 1024:.1f}–{max(looped) / 1024:.1f} KiB of code each, for every n")
     return sizes
 
 
@@ -64,21 +66,27 @@ for baseline in baselines:
             median = json.load(f)["median"]["point_estimate"]
         rounds.setdefault((family, int(n)), {}).setdefault(baseline, {})[bench["function_id"]] = median
 
-print(f"{len(baselines)} rounds: {' '.join(baselines)}\n")
-print(
-    "| family | n | unrolled (ns) | looped (ns) | looped / unrolled (range) "
-    "| unrolled ns/link | looped ns/link | unrolled code (KiB) |"
-)
-print("|---|---|---|---|---|---|---|---|")
-for (family, n), by_round in sorted(rounds.items()):
-    complete = [forms for forms in by_round.values() if len(forms) == 2]
-    unrolled = [forms["unrolled"] for forms in complete]
-    looped = [forms["looped"] for forms in complete]
-    ratios = [forms["looped"] / forms["unrolled"] for forms in complete]
-    u, l = statistics.median(unrolled), statistics.median(looped)
-    size = f"{sizes[(family, n)] / 1024:.1f}" if (family, n) in sizes else "–"
+print(f"{len(baselines)} rounds: {' '.join(baselines)}")
+for title, suffix, functions in [
+    ("accelerations", "", ["accelerations"]),
+    ("M+f", " M+f", ["mass_matrix", "forcing"]),
+]:
+    print(f"\n{title}\n")
     print(
-        f"| {family} | {n} | {u:.0f} | {l:.0f} | {statistics.median(ratios):.2f} "
-        f"({min(ratios):.2f}–{max(ratios):.2f}) | {u / n:.1f} | {l / n:.1f} "
-        f"| {size} |"
+        "| family | n | unrolled (ns) | looped (ns) | looped / unrolled (range) "
+        "| unrolled ns/link | looped ns/link | unrolled code (KiB) |"
     )
+    print("|---|---|---|---|---|---|---|---|")
+    for (family, n), by_round in sorted(rounds.items()):
+        complete = [f for f in by_round.values() if "unrolled" + suffix in f and "looped" + suffix in f]
+        if not complete:
+            continue
+        unrolled = statistics.median(f["unrolled" + suffix] for f in complete)
+        looped = statistics.median(f["looped" + suffix] for f in complete)
+        ratios = [f["looped" + suffix] / f["unrolled" + suffix] for f in complete]
+        code = [sizes.get((family, n, function)) for function in functions]
+        size = f"{sum(code) / 1024:.1f}" if None not in code else "–"
+        print(
+            f"| {family} | {n} | {unrolled:.0f} | {looped:.0f} | {statistics.median(ratios):.2f} "
+            f"({min(ratios):.2f}–{max(ratios):.2f}) | {unrolled / n:.1f} | {looped / n:.1f} | {size} |"
+        )
