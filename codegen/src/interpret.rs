@@ -594,6 +594,21 @@ mod geometry_tests {
             mass_properties,
             [(2.0, [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 3.0]])]
         );
+        assert_eq!(geometry.gravity(&at), [0.0; 3], "no gravity statement");
+    }
+
+    #[test]
+    fn gravity_in_the_newtonian_axes() {
+        let source = CART.replace("coordinates s, a;", "coordinates s, a; gravity -L * N.y;");
+        let geometry = Interpreter::geometry(&source).unwrap();
+        let at = Values {
+            parameters: &[0.7],
+            t: 0.0,
+            q: &[1.3, 0.4],
+            qd: &[],
+            u: &[],
+        };
+        assert_close(&[geometry.gravity(&at)], &[[0.0, -0.7, 0.0]]);
     }
 
     fn assert_close(got: &[[f64; 3]], expected: &[[f64; 3]]) {
