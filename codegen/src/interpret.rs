@@ -317,6 +317,9 @@ pub struct Geometry {
     rotations: Vec<ExprId>,
     /// Each body's mass and then its central inertia, row-major.
     mass_properties: Vec<ExprId>,
+    /// The uniform gravity field in `N`'s axes (zero without a `gravity`
+    /// statement).
+    gravity: [ExprId; 3],
     name: String,
     np: usize,
     nq: usize,
@@ -373,11 +376,15 @@ impl Geometry {
             .iter()
             .flat_map(|b| [b.mass].into_iter().chain(b.inertia.into_iter().flatten()))
             .collect();
+        let gravity = model.gravity.as_ref().map_or([pool.zero(); 3], |g| {
+            kinematics.express(&mut pool, &model, g, NEWTONIAN)
+        });
         Ok(Geometry {
             name: model.name.to_string(),
             np: model.parameters.len(),
             nq: model.nq(),
             mass_properties,
+            gravity,
             pool,
             points: [String::from("O")]
                 .into_iter()
@@ -474,6 +481,13 @@ impl Geometry {
                 )
             })
             .collect()
+    }
+
+    /// The uniform gravity field in `N`'s axes (zero if the model has
+    /// none). Only the parameters of `at` are read.
+    pub fn gravity(&self, at: &Values<'_>) -> [f64; 3] {
+        let values = self.pool.eval_many(&self.gravity, at);
+        [values[0], values[1], values[2]]
     }
 }
 
@@ -580,6 +594,21 @@ mod geometry_tests {
             mass_properties,
             [(2.0, [[1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, 3.0]])]
         );
+        assert_eq!(geometry.gravity(&at), [0.0; 3], "no gravity statement");
+    }
+
+    #[test]
+    fn gravity_in_the_newtonian_axes() {
+        let source = CART.replace("coordinates s, a;", "coordinates s, a; gravity -L * N.y;");
+        let geometry = Interpreter::geometry(&source).unwrap();
+        let at = Values {
+            parameters: &[0.7],
+            t: 0.0,
+            q: &[1.3, 0.4],
+            qd: &[],
+            u: &[],
+        };
+        assert_close(&[geometry.gravity(&at)], &[[0.0, -0.7, 0.0]]);
     }
 
     fn assert_close(got: &[[f64; 3]], expected: &[[f64; 3]]) {

@@ -18,7 +18,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::{DynamicsError, MultibodySystem};
 use dalembert_generated::*;
 
-use dalembert_fixtures::states::{per_call, states};
+use dalembert_fixtures::states::{mass_matrix_and_forcing, per_call, states};
 
 /// The generated `accelerations` method of a system.
 type Accelerations<S, const N: usize> =
@@ -41,11 +41,7 @@ fn bench_chain<S: MultibodySystem<N, N, 0>, const N: usize>(
     group.bench_function("mass_matrix+forcing", |b| {
         b.iter_custom(|iters| {
             per_call(&states, iters, |s| {
-                let system = black_box(&system);
-                (
-                    system.mass_matrix(&s.q),
-                    system.forcing(s.t, &s.q, &s.v, &s.u),
-                )
+                mass_matrix_and_forcing(black_box(&system), s)
             })
         })
     });

@@ -15,7 +15,7 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert_generated::*;
 
-use dalembert_fixtures::states::{per_call, states};
+use dalembert_fixtures::states::{mass_matrix_and_forcing, per_call, states};
 
 /// The two benchmarks of one system, in group `FAMILY/SPELLING/n`.
 macro_rules! bench {
@@ -26,11 +26,7 @@ macro_rules! bench {
         group.bench_function("mass_matrix+forcing", |b| {
             b.iter_custom(|iters| {
                 per_call(&states, iters, |s| {
-                    let system = black_box(&system);
-                    (
-                        system.mass_matrix(&s.q),
-                        system.forcing(s.t, &s.q, &s.v, &s.u),
-                    )
+                    mass_matrix_and_forcing(black_box(&system), s)
                 })
             })
         });
