@@ -110,8 +110,32 @@ pub struct Straight {
     pub used: BTreeSet<Sym>,
 }
 
-/// Writes the straight-line code computing `roots`.
+/// Where a function body takes the sines and cosines of its coordinates'
+/// angles.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Angles {
+    /// All with one call at the top, right after loading the coordinates
+    /// ([`Writer::bind_angles`]).
+    AtTop,
+    /// Each where it is first needed: a long recursion then keeps fewer
+    /// values live (the articulated-body `accelerations`).
+    WhereNeeded,
+}
+
+/// Writes the straight-line code computing `roots`, with the angles' sines
+/// and cosines taken at the top.
 pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
+    straight_line_taking(pool, names, roots, Angles::AtTop)
+}
+
+/// Writes the straight-line code computing `roots`, taking the angles'
+/// sines and cosines as `angles` says.
+pub fn straight_line_taking(
+    pool: &Pool,
+    names: &Names,
+    roots: &[ExprId],
+    angles: Angles,
+) -> Straight {
     let order = pool.topo_order(roots);
     let nested = nested_sums(pool, &order);
     let uses = count_uses(pool, &order, roots, &nested);
@@ -131,7 +155,9 @@ pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
     }
     let loads = names.load(&used);
     let pairs = sin_cos_pairs(pool, &order);
-    writer.bind_angles(&angle_pairs(pool, &order, &pairs));
+    if angles == Angles::AtTop {
+        writer.bind_angles(&angle_pairs(pool, &order, &pairs));
+    }
     for &e in &order {
         if !writer.needs_binding(e, &uses) {
             continue;
