@@ -110,8 +110,32 @@ pub struct Straight {
     pub used: BTreeSet<Sym>,
 }
 
-/// Writes the straight-line code computing `roots`.
+/// Where a function body takes the sines and cosines of its coordinates'
+/// angles.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Angles {
+    /// All with one call at the top, right after loading the coordinates
+    /// ([`Writer::bind_angles`]).
+    AtTop,
+    /// Each where it is first needed: a long recursion then keeps fewer
+    /// values live (the articulated-body `accelerations`).
+    WhereNeeded,
+}
+
+/// Writes the straight-line code computing `roots`, with the angles' sines
+/// and cosines taken at the top.
 pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
+    straight_line_taking(pool, names, roots, Angles::AtTop)
+}
+
+/// Writes the straight-line code computing `roots`, taking the angles'
+/// sines and cosines as `angles` says.
+pub fn straight_line_taking(
+    pool: &Pool,
+    names: &Names,
+    roots: &[ExprId],
+    angles: Angles,
+) -> Straight {
     let order = pool.topo_order(roots);
     let nested = nested_sums(pool, &order);
     let uses = count_uses(pool, &order, roots, &nested);
@@ -131,6 +155,9 @@ pub fn straight_line(pool: &Pool, names: &Names, roots: &[ExprId]) -> Straight {
     }
     let loads = names.load(&used);
     let pairs = sin_cos_pairs(pool, &order);
+    if angles == Angles::AtTop {
+        writer.bind_angles(&angle_pairs(pool, &order, &pairs));
+    }
     for &e in &order {
         if !writer.needs_binding(e, &uses) {
             continue;
@@ -264,6 +291,22 @@ fn sin_cos_pairs(pool: &Pool, order: &[ExprId]) -> HashMap<ExprId, (ExprId, Expr
     pairs
 }
 
+/// The sine–cosine pairs of the symbols (the coordinates' angles), in
+/// the order of `order`: the ones a function can take all at once at its
+/// top, right after loading the symbols.
+fn angle_pairs(
+    pool: &Pool,
+    order: &[ExprId],
+    pairs: &HashMap<ExprId, (ExprId, ExprId, ExprId)>,
+) -> Vec<(ExprId, ExprId, ExprId)> {
+    order
+        .iter()
+        .filter_map(|e| pairs.get(e).filter(|&&(sine, ..)| sine == *e))
+        .filter(|&&(.., arg)| matches!(pool.node(arg), Node::Sym(_)))
+        .copied()
+        .collect()
+}
+
 fn children(node: &Node) -> Vec<ExprId> {
     match node {
         Node::Number(_) | Node::Sym(_) => Vec::new(),
@@ -338,6 +381,33 @@ impl Writer<'_> {
         self.statements.extend(quote!(let (#s, #c) = #call;));
         self.bound.insert(sine, quote!(#s));
         self.bound.insert(cosine, quote!(#c));
+    }
+
+    /// `let ([s1, s2, …], [c1, c2, …]) = ::dalembert::math::sin_cos_all([x1,
+    /// x2, …]);` binding the sines and cosines of several angles with one
+    /// call of the runtime (which computes them side by side, see its `math`
+    /// module). Without the runtime, or for a single angle, one
+    /// [`Writer::bind_sin_cos`] per angle.
+    fn bind_angles(&mut self, angles: &[(ExprId, ExprId, ExprId)]) {
+        if self.names.libm || angles.len() < 2 {
+            for &(sine, cosine, arg) in angles {
+                self.bind_sin_cos(sine, cosine, arg);
+            }
+            return;
+        }
+        let arguments: Vec<TokenStream> = angles.iter().map(|&(.., arg)| self.expr(arg)).collect();
+        let mut sines = Vec::new();
+        let mut cosines = Vec::new();
+        for &(sine, cosine, _) in angles {
+            let (s, c) = (self.temporary_name(sine), self.temporary_name(cosine));
+            self.bound.insert(sine, quote!(#s));
+            self.bound.insert(cosine, quote!(#c));
+            sines.push(s);
+            cosines.push(c);
+        }
+        self.statements.extend(quote!(
+            let ([#(#sines),*], [#(#cosines),*]) = ::dalembert::math::sin_cos_all([#(#arguments),*]);
+        ));
     }
 
     /// `let x = value;`, typed `f64` where the value holds no symbol, so

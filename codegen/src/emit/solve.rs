@@ -17,7 +17,7 @@
 //! Both have the same checks and errors as the runtime's
 //! `dalembert::accelerations` (the pivots `Dⱼ` are the `Lⱼⱼ²` of `L Lᵀ`).
 
-use super::body::{Names, straight_line};
+use super::body::{Angles, Names, straight_line, straight_line_taking};
 use crate::equations::{Articulated, Equations};
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
@@ -290,7 +290,7 @@ fn articulated_body(
     articulated: &Articulated,
     names: &Names,
 ) -> TokenStream {
-    let body = straight_line(pool, names, &articulated.roots());
+    let body = straight_line_taking(pool, names, &articulated.roots(), Angles::WhereNeeded);
     let nq = model.nv();
     let statements = &body.statements;
     let forcing = &body.outputs[..nq];

@@ -45,7 +45,8 @@ pub fn models() -> Vec<Model> {
 }
 
 /// Arithmetic operations in the body of `function` of generated `code`:
-/// `+`, `-` (binary or unary), `*`, `/` tokens and `sin_cos` calls.
+/// `+`, `-` (binary or unary), `*`, `/` tokens and sines and cosines (one
+/// per `sin_cos` call, one per angle of a `sin_cos_all` call).
 #[allow(dead_code)] // not every test file uses every helper
 pub fn operations(code: &str, function: &str) -> Operations {
     let file = syn::parse_file(code).expect("generated code parses");
@@ -74,8 +75,15 @@ fn quote_tokens(block: &syn::Block) -> proc_macro2::TokenStream {
 
 fn count(tokens: proc_macro2::TokenStream, counts: &mut Operations) {
     use proc_macro2::TokenTree;
-    for token in tokens {
+    let mut tokens = tokens.into_iter();
+    while let Some(token) = tokens.next() {
         match token {
+            TokenTree::Ident(i) if i == "sin_cos_all" => {
+                // `sin_cos_all([x1, x2, …])`: one sine and cosine per angle.
+                if let Some(TokenTree::Group(call)) = tokens.next() {
+                    counts.sin_cos += angles(call.stream());
+                }
+            }
             TokenTree::Group(g) => count(g.stream(), counts),
             TokenTree::Punct(p) => match p.as_char() {
                 '+' | '-' => counts.add += 1,
@@ -86,6 +94,26 @@ fn count(tokens: proc_macro2::TokenStream, counts: &mut Operations) {
             TokenTree::Ident(i) if i == "sin_cos" => counts.sin_cos += 1,
             _ => {}
         }
+    }
+}
+
+/// The number of elements of the one array literal in `arguments`.
+fn angles(arguments: proc_macro2::TokenStream) -> usize {
+    use proc_macro2::TokenTree;
+    match arguments.into_iter().next() {
+        Some(TokenTree::Group(array)) => {
+            let mut elements = 0;
+            let mut empty = true;
+            for token in array.stream() {
+                match token {
+                    TokenTree::Punct(p) if p.as_char() == ',' => empty = true,
+                    _ if empty => (elements, empty) = (elements + 1, false),
+                    _ => {}
+                }
+            }
+            elements
+        }
+        _ => 0,
     }
 }
 
