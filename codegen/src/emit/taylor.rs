@@ -23,7 +23,7 @@ use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool, Sym, SymKinds};
 use crate::model::Model;
 use crate::outputs::Function;
-use crate::readable::readable;
+use crate::readable::ReadableForms;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -350,7 +350,8 @@ fn lowered(pool: &Pool, nv: usize, equations: &Equations) -> Lowered {
         (&equations.mass_matrix, &equations.forcing),
     );
     let mut pool = pool.clone();
-    let mut recombine = |e: ExprId| readable(&mut pool, e, RECOMBINATION_BUDGET).unwrap_or(e);
+    let mut forms = ReadableForms::default();
+    let mut recombine = |e: ExprId| forms.get(&mut pool, e, RECOMBINATION_BUDGET).unwrap_or(e);
     let mass_matrix: Vec<Vec<ExprId>> = equations
         .mass_matrix
         .iter()
