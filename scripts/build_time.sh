@@ -4,8 +4,10 @@
 # (symbolic parameters, torque inputs: `dalembert chain spatial N seed`),
 # depending on this repository by path.
 #
-#   scripts/build_time.sh [N ...]          (default: 12 30 60)
+#   scripts/build_time.sh [N | MODEL.dal ...]     (default: 12 30 60)
 #
+# A MODEL.dal argument times that model instead of a chain (its name
+# stands for N in the output).
 # For each N it prints one CSV line
 #
 #   n,expand_s,build_default_s,build_engine_optimised_s
@@ -57,10 +59,18 @@ user_crate() { # DIR N OPTIMISED: writes the crate
 
 echo "n,expand_s,build_default_s,build_engine_optimised_s"
 for n in "${sizes[@]}"; do
+    if [[ $n == *.dal ]]; then
+        model=$n
+        n=$(basename "$n" .dal | tr '_' '-')
+        base="target/build-time/model_$n"
+        mkdir -p "$base"
+        cp "$model" "$base/chain.dal"
+    else
+        base="target/build-time/spatial_$n"
+        mkdir -p "$base"
+        target/release/dalembert chain spatial "$n" seed > "$base/chain.dal"
+    fi
     line="$n"
-    base="target/build-time/spatial_$n"
-    mkdir -p "$base"
-    target/release/dalembert chain spatial "$n" seed > "$base/chain.dal"
     line+=,$(seconds target/release/dalembert generate "$base/chain.dal")
     for optimised in no yes; do
         dir="$base/optimised_$optimised"
