@@ -17,6 +17,7 @@
 
 mod build;
 mod chain;
+mod cost;
 mod emit;
 mod equations;
 mod expr;

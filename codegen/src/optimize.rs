@@ -13,6 +13,7 @@
 //! [`ReadableForms`](crate::readable::ReadableForms), which the renderer
 //! reads again for the docs.
 
+use crate::cost::FUNCTION_COST;
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool};
 use crate::outputs::Function;
@@ -21,10 +22,6 @@ use std::collections::HashMap;
 
 /// Most monomials an entry may expand to before it keeps its DAG form.
 const BUDGET: usize = 200;
-
-/// Operations charged for a `sin`, `cos` or other elementary function of
-/// anything but a single symbol (whose `sin_cos` the code shares).
-const FUNCTION_COST: usize = 20;
 
 /// Replaces each output of `equations` by its compact form where cheaper,
 /// from the derivation's readable `forms`.

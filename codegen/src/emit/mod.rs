@@ -8,7 +8,7 @@
 mod body;
 mod configuration;
 mod derivatives;
-pub(crate) mod solve;
+mod solve;
 mod taylor;
 
 use crate::equations::Equations;

@@ -18,21 +18,15 @@
 //! `dalembert::accelerations` (the pivots `Dⱼ` are the `Lⱼⱼ²` of `L Lᵀ`).
 
 use super::body::{Angles, Names, straight_line, straight_line_taking};
+use crate::cost::operations;
 use crate::equations::{Articulated, Equations};
-use crate::expr::{ExprId, Func, Node, Pool, Sym};
+use crate::expr::{ExprId, Pool};
 use crate::model::Model;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
-/// Operations charged for the `sin_cos` of a coordinate (a libm call,
-/// about as long as 40 multiplications).
-const SIN_COS_COST: usize = 40;
-
 /// The fewest coordinates for which the recursion may be chosen.
 const MIN_ARTICULATED: usize = 3;
-
-/// Operations charged for any other elementary function.
-const FUNCTION_COST: usize = 20;
 
 /// `pub fn accelerations(..)`, for systems without constraints.
 pub fn emit_accelerations(
@@ -334,26 +328,6 @@ fn articulated_is_cheaper(
         .collect();
     let factorised = operations(pool, &mass_and_forcing) + factorisation_operations(pattern);
     model.nq() >= MIN_ARTICULATED && operations(pool, &articulated.roots()) < factorised
-}
-
-/// Arithmetic operations (and charged functions) of the code computing
-/// `roots`, each shared node once.
-pub(crate) fn operations(pool: &Pool, roots: &[ExprId]) -> usize {
-    pool.topo_order(roots)
-        .into_iter()
-        .map(|e| match pool.node(e) {
-            Node::Number(_) | Node::Sym(_) | Node::Func(Func::Group, _) => 0,
-            Node::Add(terms) => terms.len() - 1,
-            Node::Mul(factors) => factors.len() - 1,
-            Node::Pow(_, _) => 1,
-            Node::Func(Func::Sin | Func::Cos, arg)
-                if matches!(pool.node(*arg), Node::Sym(Sym::Coord(_))) =>
-            {
-                SIN_COS_COST / 2
-            }
-            Node::Func(_, _) => FUNCTION_COST,
-        })
-        .sum()
 }
 
 /// Multiplications, subtractions and divisions of the unrolled `L D Lᵀ`

@@ -4,7 +4,7 @@
 //! [`crate::equations::derivatives`]).
 
 use super::{Argument, Body, Function, Value, doc_lines};
-use crate::emit::solve::operations;
+use crate::cost::operations;
 use crate::equations::derivatives::{
     ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
 };
