@@ -34,8 +34,7 @@ impl Pool {
         for term in terms {
             self.collect_term(term, Number::ONE, &mut constant, &mut parts);
         }
-        parts.sort_by_key(|&(rest, _)| rest);
-        let merged = merge_sorted(parts, |a, b| Some(a + b));
+        let merged = self.merge_terms(parts, &mut constant);
         let mut out = Vec::with_capacity(merged.len() + 1);
         if !constant.is_zero() {
             out.push(self.number(constant));
@@ -52,10 +51,81 @@ impl Pool {
         }
     }
 
+    /// Like terms of `parts` merged, sorted by their coefficient-free part,
+    /// with the multiples of sums among them that must not stay whole
+    /// ([`Self::must_flatten`]) spread into their terms, until none is left.
+    fn merge_terms(
+        &self,
+        mut parts: Vec<(ExprId, Number)>,
+        constant: &mut Number,
+    ) -> Vec<(ExprId, Number)> {
+        loop {
+            parts.sort_by_key(|&(rest, _)| rest);
+            let merged = merge_sorted(parts, |a, b| Some(a + b));
+            let flatten = self.must_flatten(&merged);
+            if flatten.iter().all(|&f| !f) {
+                return merged;
+            }
+            parts = Vec::with_capacity(merged.len());
+            for (&(rest, c), flat) in merged.iter().zip(flatten) {
+                if flat {
+                    self.collect_term(rest, c, constant, &mut parts);
+                } else {
+                    parts.push((rest, c));
+                }
+            }
+        }
+    }
+
+    /// Which of the merged `parts` (sorted by their rest) are multiples of
+    /// a sum to spread into their terms: those whose coefficient merged to
+    /// one (a sum's term is never a sum), and those sharing a term with
+    /// another part, so that like terms meet and cancel
+    /// (`(x + y) − 2·(x + z)` is `−x + y − 2z`). Any other multiple of a
+    /// sum stays one term, and the sum stays shared with its other uses.
+    fn must_flatten(&self, parts: &[(ExprId, Number)]) -> Vec<bool> {
+        let inner = |rest: ExprId| match self.node(rest) {
+            Node::Add(terms) => Some(terms),
+            _ => None,
+        };
+        let mut flatten = vec![false; parts.len()];
+        if parts.iter().all(|&(rest, _)| inner(rest).is_none()) {
+            return flatten;
+        }
+        // Every coefficient-free part a term of this sum would bring, once
+        // per part it comes from.
+        let mut met: Vec<ExprId> = Vec::new();
+        for &(rest, _) in parts {
+            match inner(rest) {
+                Some(terms) => met.extend(
+                    terms
+                        .iter()
+                        .map(|&t| self.split_coefficient(t).1)
+                        .filter(|&r| r != self.one()),
+                ),
+                None => met.push(rest),
+            }
+        }
+        met.sort_unstable();
+        let twice =
+            |r: ExprId| met.partition_point(|&m| m <= r) - met.partition_point(|&m| m < r) > 1;
+        for (flat, &(rest, c)) in flatten.iter_mut().zip(parts) {
+            if let Some(terms) = inner(rest) {
+                *flat = c.is_one()
+                    || terms
+                        .iter()
+                        .map(|&t| self.split_coefficient(t).1)
+                        .any(|r| r != self.one() && twice(r));
+            }
+        }
+        flatten
+    }
+
     /// Adds `scale · term` to a sum under construction: numbers to
-    /// `constant`, others as `(rest, coefficient)` to `parts`. Sums and
-    /// numeric multiples of sums are flattened (the terms of a canonical
-    /// sum are neither, so this recurses at most twice).
+    /// `constant`, others as `(rest, coefficient)` to `parts`. Sums are
+    /// flattened (the terms of a canonical sum are not sums, so this
+    /// recurses at most once); a numeric multiple of a sum is kept as one
+    /// part, for [`Self::merge_terms`] to decide.
     fn collect_term(
         &self,
         term: ExprId,
@@ -72,11 +142,7 @@ impl Pool {
             }
             _ => {
                 let (c, rest) = self.split_coefficient(term);
-                if matches!(self.node(rest), Node::Add(_)) {
-                    self.collect_term(rest, scale * c, constant, parts);
-                } else {
-                    parts.push((rest, scale * c));
-                }
+                parts.push((rest, scale * c));
             }
         }
     }
@@ -252,13 +318,31 @@ mod tests {
     fn products_do_not_distribute_over_sums() {
         let mut s = Scratch::default();
         let e = s.e("3*(q0 + q1)");
-        let expected = Node::Mul([s.e("3"), s.e("q0 + q1")].into());
+        let sum = s.e("q0 + q1");
+        let expected = Node::Mul([s.e("3"), sum].into());
         assert_eq!(s.pool.node(e), &expected);
         assert_eq!(s.e("3*(q0 + q1) - 3*(q1 + q0)"), s.pool.zero());
-        // Inside a sum, a multiple of a sum is flattened like a sum.
-        assert_eq!(s.e("q0 - 2*(q0 + q1)"), s.e("-q0 - 2*q1"));
         let e = s.e("(q0 + q1 + 1) - (q0 + q1 + 1)");
         assert_eq!(e, s.pool.zero());
+        assert_eq!(s.e("2*(q0 + q1) - (q0 + q1)"), sum);
+    }
+
+    #[test]
+    fn a_multiple_of_a_sum_stays_whole_unless_its_terms_meet_others() {
+        let mut s = Scratch::default();
+        // Kept whole: `q0 + q1` stays one node, shared with its other uses.
+        let e = s.e("q2 - 2*(q0 + q1)");
+        let (multiple, q2) = (s.e("-2*(q0 + q1)"), s.e("q2"));
+        assert_eq!(s.pool.children(e), [q2, multiple]);
+        assert_eq!(s.e("q2 - (q0 + q1)"), s.e("-(q0 + q1) + q2"));
+        // Spread where a term meets another, so like terms merge.
+        assert_eq!(s.e("q0 - 2*(q0 + q1)"), s.e("-q0 - 2*q1"));
+        assert_eq!(s.e("(q0 + q2) - (q0 + q1)"), s.e("q2 - q1"));
+        assert_eq!(s.e("(q0 + q1 + 1) - q0 - q1"), s.pool.one());
+        assert_eq!(s.e("2*(q0 + q1) - 3*(q0 + q2)"), s.e("-q0 + 2*q1 - 3*q2"));
+        // Spreading one multiple can make another meet: all are spread.
+        let chain = s.e("(q0 + q1) - (q1 + q2) + 2*(q2 + q3)");
+        assert_eq!(chain, s.e("q0 + q2 + 2*q3"));
         let minus = s.e("-3*(q0 + q1)");
         let sum = s.e("q0 + q1");
         assert_eq!(s.pool.split_coefficient(minus), (Number::from(-3), sum));

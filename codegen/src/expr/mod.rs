@@ -5,8 +5,7 @@
 //! shared subexpressions are stored (and later emitted) once. Constructors
 //! keep expressions canonical as they are built:
 //!
-//! * sums are flat (`Add` never holds an `Add`, nor a numeric multiple of
-//!   one: `x - (y + z)` is `x - y - z`), their terms are sorted by
+//! * sums are flat (`Add` never holds an `Add`), their terms are sorted by
 //!   the id of their coefficient-free part, like terms are merged
 //!   (`2ab + 3ab = 5ab`), numbers are folded into a single leading
 //!   constant, and zero terms vanish;
@@ -14,7 +13,11 @@
 //!   leading rational coefficient, equal bases merged by adding integer
 //!   exponents (`x·x⁻¹ = 1`), and zero annihilates;
 //! * products are *not* distributed over sums: chains stay linear in size
-//!   (`3·(x + y)` on its own stays a product);
+//!   (`3·(x + y)` stays a product, and stays one term of a sum, so the sum
+//!   `x + y` remains shared with its other uses); a numeric multiple of a
+//!   sum is spread into the sum around it only where one of its terms
+//!   meets another term there, so that like terms still merge and cancel
+//!   (`x − (x + y)` is `−y`, `(x + y) − (x + z)` is `y − z`);
 //! * integer powers of products are distributed over the factors
 //!   (`(2xy)⁻¹ = ½x⁻¹y⁻¹`), never over sums;
 //! * odd and even functions take a non-negative argument:
