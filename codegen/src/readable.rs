@@ -116,12 +116,15 @@ fn readable_remembering(
     budget: usize,
     expansions: &mut Expansions,
 ) -> Option<ExprId> {
-    let expanded = expand_within(pool, e, budget, expansions)?;
-    let mut sum = Monomials::of(pool, expanded);
-    while let Some(shorter) = sum.recombined(pool) {
-        sum = shorter;
-    }
-    Some(sum.to_expr(pool))
+    // Sums as they come, never as `−1` times a sum: the rules see every term.
+    pool.with_flat_signs(|pool| {
+        let expanded = expand_within(pool, e, budget, expansions)?;
+        let mut sum = Monomials::of(pool, expanded);
+        while let Some(shorter) = sum.recombined(pool) {
+            sum = shorter;
+        }
+        Some(sum.to_expr(pool))
+    })
 }
 
 /// Like [`Pool::expand`], but giving up as soon as an intermediate result

@@ -508,20 +508,22 @@ impl Writer<'_> {
                 quote!(+ #magnitude)
             });
         }
-        out.extend(self.terms(&sum.rest, false));
+        out.extend(self.terms(&sum.rest, false, false));
         out
     }
 
     fn sum(&self, terms: &[ExprId]) -> TokenStream {
-        self.terms(terms, true)
+        self.terms(terms, true, false)
     }
 
-    /// Terms joined by their signs; `first` if they start the sum.
-    fn terms(&self, terms: &[ExprId], first: bool) -> TokenStream {
+    /// Terms joined by their signs (every sign turned if `turned`); `first`
+    /// if they start the sum.
+    fn terms(&self, terms: &[ExprId], first: bool, turned: bool) -> TokenStream {
         let mut out = TokenStream::new();
         for (i, &term) in terms.iter().enumerate() {
             let i = if first { i } else { i + 1 };
             let (negative, magnitude) = self.sign(term);
+            let negative = negative != turned;
             let written = magnitude.unwrap_or_else(|| self.expr(term));
             out.extend(match (i, negative) {
                 (0, false) => quote!(#written),
@@ -565,8 +567,17 @@ impl Writer<'_> {
         }
     }
 
-    /// `c * a * b^2 / (d * e)`.
+    /// `c * a * b^2 / (d * e)`; `−1` times a sum written out is the sum
+    /// with its signs turned (`-a + b`, not `-((a - b))`).
     fn product_of(&self, coefficient: Number, factors: &[ExprId]) -> TokenStream {
+        if let [f] = factors
+            && coefficient == Number::from(-1i64)
+            && !self.bound.contains_key(f)
+            && !self.nested.contains_key(f)
+            && let Node::Add(terms) = self.pool.node(*f)
+        {
+            return self.terms(terms, true, true);
+        }
         let mut numerator = Vec::new();
         let mut denominator = Vec::new();
         // Whether the denominator is a product (`x * x` from `x⁻²` is one

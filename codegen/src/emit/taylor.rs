@@ -377,6 +377,12 @@ impl Written<'_> {
     /// A constant: a literal, or its bound name.
     fn constant(&self, e: ExprId) -> TokenStream {
         match (self.pool.node(e), self.constants.get(&e)) {
+            // An argument or a tuple's element: a negative literal needs no
+            // parentheses.
+            (Node::Number(n), _) if n.is_negative() => {
+                let magnitude = number(-*n);
+                quote!(-#magnitude)
+            }
             (Node::Number(n), _) => number(*n),
             (_, Some(name)) => quote!(#name),
             _ => quote!(0.0),

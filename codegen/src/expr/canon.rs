@@ -34,20 +34,58 @@ impl Pool {
         for term in terms {
             self.collect_term(term, Number::ONE, &mut constant, &mut parts);
         }
-        let merged = self.merge_terms(parts, &mut constant);
+        let (merged, negated) = self.merged_and_signed(parts, &mut constant);
         let mut out = Vec::with_capacity(merged.len() + 1);
         if !constant.is_zero() {
             out.push(self.number(constant));
         }
         for (rest, c) in merged {
-            if !c.is_zero() {
-                out.push(self.scale(c, rest));
-            }
+            out.push(self.scale(c, rest));
         }
-        match out.as_slice() {
+        let sum = match out.as_slice() {
             [] => self.zero(),
             [single] => *single,
             _ => self.intern(Node::Add(out.into())),
+        };
+        if negated {
+            let minus_one = self.int(-1);
+            self.product([minus_one, sum])
+        } else {
+            sum
+        }
+    }
+
+    /// [`Self::merge_terms`], and in a pool
+    /// [with positive sums](Pool::with_positive_sums) every sign turned
+    /// (`true`) if the first non-constant term of two or more is negative.
+    /// Turning a `−1` multiple of a sum makes it a sum to spread; after that
+    /// the first term may be negative again, so this repeats (each round
+    /// spreads a multiple: it ends).
+    fn merged_and_signed(
+        &self,
+        mut parts: Vec<(ExprId, Number)>,
+        constant: &mut Number,
+    ) -> (Vec<(ExprId, Number)>, bool) {
+        let mut negated = false;
+        loop {
+            let mut merged = self.merge_terms(parts, constant);
+            merged.retain(|(_, c)| !c.is_zero());
+            let turn = self.positive_sums
+                && merged.len() + usize::from(!constant.is_zero()) > 1
+                && merged.first().is_some_and(|(_, c)| c.is_negative());
+            if !turn {
+                return (merged, negated);
+            }
+            negated = !negated;
+            *constant = -*constant;
+            for (_, c) in merged.iter_mut() {
+                *c = -*c;
+            }
+            let is_sum = |rest: ExprId| matches!(self.node(rest), Node::Add(_));
+            if !merged.iter().any(|&(rest, c)| c.is_one() && is_sum(rest)) {
+                return (merged, negated);
+            }
+            parts = merged;
         }
     }
 
@@ -272,7 +310,7 @@ fn merge_sorted<V: Copy>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_util::Scratch;
+    use super::super::test_util::{Scratch, parse};
     use super::*;
 
     #[test]
@@ -346,6 +384,28 @@ mod tests {
         let minus = s.e("-3*(q0 + q1)");
         let sum = s.e("q0 + q1");
         assert_eq!(s.pool.split_coefficient(minus), (Number::from(-3), sum));
+    }
+
+    #[test]
+    fn positive_sums_share_a_sum_with_their_negation() {
+        let mut s = Scratch::default();
+        let flat = s.e("q0 - q1");
+        s.pool = std::mem::take(&mut s.pool).with_positive_sums();
+        // `q0` was made first, so it leads: `q0 − q1` is a sum, `q1 − q0`
+        // is −1 times it.
+        let (a, b, minus_one) = (s.e("q0 - q1"), s.e("q1 - q0"), s.e("-1"));
+        assert!(matches!(s.pool.node(a), Node::Add(_)));
+        assert_eq!(s.pool.node(b), &Node::Mul([minus_one, a].into()));
+        assert_eq!((s.pool.neg(a), s.pool.neg(b)), (b, a));
+        assert_eq!(s.e("(q0 - q1) + (q1 - q0)"), s.pool.zero());
+        // The constant turns with the terms, and a multiple of a sum turned
+        // to one is spread.
+        let (c, turned) = (s.e("-(q0 - q1) + 2"), s.e("-2 + q0 - q1"));
+        assert_eq!(s.pool.node(c), &Node::Mul([minus_one, turned].into()));
+        // Without the setting, sums are built as they come.
+        let flat_again = s.pool.with_flat_signs(|pool| parse(pool, "q1 - q0"));
+        assert!(matches!(s.pool.node(flat_again), Node::Add(_)));
+        assert_eq!(a, flat);
     }
 
     #[test]

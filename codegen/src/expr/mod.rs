@@ -18,6 +18,11 @@
 //!   sum is spread into the sum around it only where one of its terms
 //!   meets another term there, so that like terms still merge and cancel
 //!   (`x − (x + y)` is `−y`, `(x + y) − (x + z)` is `y − z`);
+//! * in a pool made [`Pool::with_positive_sums`] (every derivation's), a
+//!   sum whose first non-constant term has a negative coefficient is `−1`
+//!   times the sum with every sign turned, so that `a − b` and `b − a`
+//!   share one sum (expansion for the readable forms builds sums as they
+//!   come);
 //! * integer powers of products are distributed over the factors
 //!   (`(2xy)⁻¹ = ½x⁻¹y⁻¹`), never over sums;
 //! * odd and even functions take a non-negative argument:
@@ -168,4 +173,7 @@ pub struct Pool {
     /// [`Pool::time_derivative`] follows, by coordinate; a coordinate
     /// beyond them has `q̇ᵢ = vᵢ`.
     rates: Vec<ExprId>,
+    /// Whether a sum whose first term is negative is built as `−1` times
+    /// the sum with every sign turned ([`Pool::with_positive_sums`]).
+    positive_sums: bool,
 }

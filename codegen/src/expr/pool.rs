@@ -37,11 +37,32 @@ impl Pool {
             index: HashMap::new(),
             derivatives: HashMap::new(),
             rates: Vec::new(),
+            positive_sums: false,
         };
         let zero = pool.number(Number::ZERO);
         let one = pool.number(Number::ONE);
         debug_assert_eq!((zero, one), (Pool::ZERO, Pool::ONE));
         pool
+    }
+
+    /// This pool, building every sum whose first term (after its
+    /// constant) has a negative coefficient as `−1` times the sum with every
+    /// sign turned: `b − a` and `a − b` then share one sum, which a
+    /// derivation full of cross products (`a × b = −b × a`) needs to compute
+    /// each value once. Expansion for the readable forms turns it off
+    /// ([`Pool::with_flat_signs`]): polynomials stay flat there.
+    pub fn with_positive_sums(mut self) -> Pool {
+        self.positive_sums = true;
+        self
+    }
+
+    /// `f` run with sums built as they come (see
+    /// [`Pool::with_positive_sums`]), the pool's setting restored after.
+    pub fn with_flat_signs<R>(&mut self, f: impl FnOnce(&mut Pool) -> R) -> R {
+        let positive = std::mem::replace(&mut self.positive_sums, false);
+        let result = f(self);
+        self.positive_sums = positive;
+        result
     }
 
     /// The node named by `e`.

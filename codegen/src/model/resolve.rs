@@ -48,7 +48,7 @@ struct Resolver {
 
 impl Resolver {
     fn new(system: &System) -> Resolver {
-        let pool = Pool::new();
+        let pool = Pool::new().with_positive_sums();
         let zero = pool.zero();
         let mut bindings = HashMap::new();
         let builtin = Span::call_site();
