@@ -4,11 +4,11 @@
 //! `L D Lᵀ` factorisation that solved for `v̇`) and `linearize` (the state-space matrices `A`, `B` of
 //! `ẋ = (q̇, v̇)` about a state).
 
-use super::body::{Names, Straight, straight_line};
+use super::body::{Given, Names, Straight, straight_line, straight_line_given};
 use super::solve::{Factorised, factorised, negated_row_substitutions};
 use super::{array, raw_string};
 use crate::equations::Equations;
-use crate::expr::{ExprId, Pool, Sym};
+use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
 use crate::outputs::Function;
 use proc_macro2::{Ident, Literal, TokenStream};
@@ -32,6 +32,18 @@ fn solved_columns(pool: &Pool, blocks: &[&[ExprId]; 3], widths: [usize; 3]) -> V
         .collect()
 }
 
+/// The sines and cosines of symbols (the coordinates' angles) that
+/// `roots` read, in their order.
+fn angle_functions(pool: &Pool, roots: &[ExprId]) -> Vec<ExprId> {
+    pool.topo_order(roots)
+        .into_iter()
+        .filter(|&e| match pool.node(e) {
+            Node::Func(Func::Sin | Func::Cos, arg) => matches!(pool.node(*arg), Node::Sym(_)),
+            _ => false,
+        })
+        .collect()
+}
+
 /// `pub fn accelerations_jacobian(..)` from `function`, whose results are
 /// `∂τ/∂q`, `∂τ/∂v`, `∂τ/∂u`; nothing for a system with constraints
 /// (which the model rejects). The columns that are not structural zeros
@@ -44,6 +56,17 @@ pub fn emit_accelerations_jacobian(
     names: &Names,
     function: &Function,
 ) -> TokenStream {
+    let (nv, nu) = (model.nv(), model.inputs.len());
+    let widths = [nv, nv, nu];
+    let blocks: [&[ExprId]; 3] = [0, 1, 2].map(|k| function.results[k].expressions.as_slice());
+    // The sines and cosines of the angles are computed once, with `M` and
+    // `f`, and the partials' body takes them.
+    let angles = angle_functions(pool, &blocks.concat());
+    let given = Given {
+        array: format_ident!("angles"),
+        expressions: &angles,
+    };
+    let given = (!angles.is_empty()).then_some(&given);
     let Some(Factorised {
         prelude,
         substitutions,
@@ -51,13 +74,10 @@ pub fn emit_accelerations_jacobian(
         pattern,
         order,
         ..
-    }) = factorised(model, pool, equations, names)
+    }) = factorised(model, pool, equations, names, given)
     else {
         return TokenStream::new();
     };
-    let (nv, nu) = (model.nv(), model.inputs.len());
-    let widths = [nv, nv, nu];
-    let blocks: [&[ExprId]; 3] = [0, 1, 2].map(|k| function.results[k].expressions.as_slice());
     let columns = solved_columns(pool, &blocks, widths);
     // Row `i` of the solve (the `i`-th speed eliminated): `∂τ/∂x` of that
     // speed's equation in the columns solved.
@@ -73,7 +93,10 @@ pub fn emit_accelerations_jacobian(
         statements,
         outputs,
         ..
-    } = straight_line(pool, names, &roots);
+    } = match given {
+        Some(given) => straight_line_given(pool, names, &roots, given),
+        None => straight_line(pool, names, &roots),
+    };
     let row_values = (0..nv).map(|i| {
         let row = &outputs[i * columns.len()..(i + 1) * columns.len()];
         quote!([#(#row),*])

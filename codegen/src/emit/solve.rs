@@ -17,7 +17,7 @@
 //! Both have the same checks and errors as the runtime's
 //! `dalembert::accelerations` (the pivots `Dⱼ` are the `Lⱼⱼ²` of `L Lᵀ`).
 
-use super::body::{Angles, Names, straight_line, straight_line_taking};
+use super::body::{Angles, Given, Names, straight_line, straight_line_taking};
 use crate::cost::operations;
 use crate::equations::{Articulated, Equations};
 use crate::expr::{ExprId, Pool};
@@ -35,7 +35,7 @@ pub fn emit_accelerations(
     equations: &Equations,
     names: &Names,
 ) -> TokenStream {
-    let Some(factorised) = factorised(model, pool, equations, names) else {
+    let Some(factorised) = factorised(model, pool, equations, names, None) else {
         return TokenStream::new();
     };
     let nv = model.nv();
@@ -228,12 +228,15 @@ pub fn elimination(model: &Model, pool: &Pool, equations: &Equations) -> Option<
 }
 
 /// The factorisation and substitutions of `M x = f`; `None` for a system
-/// with constraints or no coordinates.
+/// with constraints or no coordinates. The body computing `M` and `f` also
+/// computes the values of `also`, if any, into its array, for a later body
+/// to take.
 pub fn factorised(
     model: &Model,
     pool: &Pool,
     equations: &Equations,
     names: &Names,
+    also: Option<&Given<'_>>,
 ) -> Option<Factorised> {
     let Elimination {
         entries,
@@ -247,25 +250,39 @@ pub fn factorised(
     // `M`'s entries the factorisation reads and `f`, computed together so
     // that they share their subexpressions (sines and cosines above all),
     // in a block that keeps the model's names out of the solver's.
+    let given: &[ExprId] = also.map_or(&[], |also| also.expressions);
     let roots: Vec<ExprId> = entries
         .iter()
         .map(|&(i, j)| equations.mass_matrix[i][j])
         .chain(equations.forcing.iter().copied())
+        .chain(given.iter().copied())
         .collect();
     let body = straight_line(pool, names, &roots);
-    let (statements, outputs) = (&body.statements, &body.outputs);
+    let statements = &body.statements;
+    let (outputs, given_outputs) = body.outputs.split_at(roots.len() - given.len());
     let bound: Vec<Ident> = entries
         .iter()
         .map(|&(i, j)| mass(i, j))
         .chain(right_hand_side.iter().cloned())
         .collect();
     let check = state_check();
+    let binding = match also {
+        None => quote! {
+            let [#(#bound),*] = {
+                #statements
+                [#(#outputs),*]
+            };
+        },
+        Some(Given { array, .. }) => quote! {
+            let ([#(#bound),*], #array) = {
+                #statements
+                ([#(#outputs),*], [#(#given_outputs),*])
+            };
+        },
+    };
     let prelude = quote! {
         #check
-        let [#(#bound),*] = {
-            #statements
-            [#(#outputs),*]
-        };
+        #binding
         if !finite(&[#(#bound),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
         }
