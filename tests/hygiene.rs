@@ -75,7 +75,7 @@ dalembert::dalembert! {
     /// The same cart and pendulum, unconstrained, asking for the derivatives,
     /// with user names spelled like the locals of `accelerations_jacobian`.
     pub HygienicDerivatives {
-        parameters qdd, solve, rhs_q, by_q, finite, jacobian, m, f;
+        parameters qdd, solve, rhs_q, by_q, finite, jacobian, m, f, angles, b0;
         coordinates s, theta;
         inputs r0;
         frame B = N.rotate_z(theta);
@@ -84,7 +84,7 @@ dalembert::dalembert! {
         body rod { mass: solve, center: C - rhs_q * B.y, frame: B, inertia: [0, 0, solve * rhs_q^2 / 3] };
         gravity -by_q * N.y;
         force r0 * N.x at C;
-        dissipation finite * dt(s)^2 / 2 + jacobian * dt(theta)^2 / 2;
+        dissipation finite * dt(s)^2 / 2 + (jacobian + angles * b0) * dt(theta)^2 / 2;
         potential m * s^2 / 2 + f * theta^2 / 2;
         outputs linearize, inverse_dynamics_jacobian;
     }
@@ -101,6 +101,8 @@ fn generated_derivatives_are_hygienic() {
         jacobian: 0.2,
         m: 3.0,
         f: 0.4,
+        angles: 0.5,
+        b0: 0.2,
     };
     let (a, b) = system
         .linearize(0.0, &[0.0; 2], &[0.0; 2], &[0.0])

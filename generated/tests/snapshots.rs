@@ -40,9 +40,10 @@ fn chain_operation_counts() {
 }
 
 /// Operations per call of `accelerations` and `accelerations_jacobian` of
-/// the chains and robots that ask for the derivatives, and how many
-/// columns the jacobian sends through the solve (whose body is counted
-/// once: each call costs about `n²` more).
+/// the chains and robots that ask for the derivatives, and the solve of
+/// the jacobian: how many columns of `∂τ/∂x` it takes and its operations at
+/// run time (each row operation `scale_and_subtract` loops over the
+/// columns, so the body counts leave it out).
 #[test]
 fn derivative_operation_counts() {
     let mut table = String::new();
@@ -62,11 +63,65 @@ fn derivative_operation_counts() {
                 common::operations(&code, function)
             ));
         }
-        // `solve(` once for `v̇`, once per column solved.
-        let columns = code.matches("solve(").count() - 1;
-        table.push_str(&format!("{name:16} columns solved {columns}\n"));
+        let (columns, operations) = solve_operations(&code);
+        table.push_str(&format!(
+            "{name:16} solve: {columns} columns, {operations} operations\n"
+        ));
     }
     insta::assert_snapshot!("derivative_operation_counts", table);
+}
+
+/// The columns of the jacobian's solve (`let [mut b0, …]: [[f64; C]; N]`) and
+/// its multiplications and subtractions at run time: per call of
+/// `scale_and_subtract(row, factor, [(l, other), …])`, `2 C` per term and
+/// `C` for a factor other than `1.0`.
+fn solve_operations(code: &str) -> (usize, usize) {
+    use proc_macro2::{Delimiter, TokenStream, TokenTree};
+    /// The token trees of `stream`, flattened through every group.
+    fn flat(stream: TokenStream, out: &mut Vec<TokenTree>) {
+        for token in stream {
+            out.push(token.clone());
+            if let TokenTree::Group(group) = token {
+                flat(group.stream(), out);
+            }
+        }
+    }
+    let mut tokens = Vec::new();
+    flat(code.parse().expect("generated code lexes"), &mut tokens);
+    let text = |t: &TokenTree| t.to_string();
+    let rows = tokens
+        .windows(2)
+        .position(|w| text(&w[0]) == "mut" && text(&w[1]) == "b0")
+        .expect("the rows of the jacobian's solve");
+    let columns: usize = tokens[rows..]
+        .windows(3)
+        .find(|w| text(&w[0]) == "f64" && text(&w[1]) == ";")
+        .map(|w| text(&w[2]).parse().expect("a number of columns"))
+        .expect("the jacobian's columns");
+    let per_column: usize = tokens
+        .windows(2)
+        .filter(|w| text(&w[0]) == "scale_and_subtract")
+        .map(|w| {
+            let TokenTree::Group(arguments) = &w[1] else {
+                panic!("a call")
+            };
+            let arguments: Vec<TokenTree> = arguments.stream().into_iter().collect();
+            let mut parts = arguments.split(|t| text(t) == ",");
+            let (_, factor, terms) = (parts.next(), parts.next(), parts.next());
+            let scaling = usize::from(factor.map(|f| f.iter().map(text).collect::<String>())
+                != Some("1.0".into()));
+            let terms = match terms.and_then(|t| t.first()) {
+                Some(TokenTree::Group(list)) => list
+                    .stream()
+                    .into_iter()
+                    .filter(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Parenthesis))
+                    .count(),
+                _ => panic!("an array of terms"),
+            };
+            2 * terms + scaling
+        })
+        .sum();
+    (columns, columns * per_column)
 }
 
 #[test]

@@ -3,12 +3,14 @@
 
 mod cholesky;
 mod error;
+mod rows;
 
 use nalgebra::SVector;
 
 pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots, pivot_tolerance};
 pub(crate) use cholesky::{cholesky, factor_mass_matrix};
 pub use error::DynamicsError;
+pub use rows::scale_and_subtract;
 
 use crate::MultibodySystem;
 

@@ -56,7 +56,7 @@ impl Names {
     /// `self`, all read before any is bound, so that no user name (a
     /// parameter called `q`, a coordinate called `u`) can shadow an argument
     /// another load still needs.
-    fn load(&self, used: &BTreeSet<Sym>) -> TokenStream {
+    fn load(&self, used: &BTreeSet<Sym>, taken: Option<(TokenStream, TokenStream)>) -> TokenStream {
         let mut patterns = Vec::new();
         let mut values = Vec::new();
         for (i, name) in self.parameters.iter().enumerate() {
@@ -88,6 +88,10 @@ impl Names {
                 patterns.push(quote!([#(#elements),*]));
                 values.push(quote!(*#array));
             }
+        }
+        if let Some((pattern, value)) = taken {
+            patterns.push(pattern);
+            values.push(value);
         }
         match (patterns.as_slice(), values.as_slice()) {
             ([], _) => TokenStream::new(),
@@ -136,7 +140,41 @@ pub fn straight_line_taking(
     roots: &[ExprId],
     angles: Angles,
 ) -> Straight {
-    let order = pool.topo_order(roots);
+    write(pool, names, roots, angles, None)
+}
+
+/// Values an earlier body computed, that a body takes instead of computing
+/// them again: the array named `array` holds the values of `expressions`,
+/// in order.
+pub struct Given<'a> {
+    /// The array's name, at the scope of the body (like `q` or `qdd`).
+    pub array: Ident,
+    /// The expressions whose values it holds.
+    pub expressions: &'a [ExprId],
+}
+
+/// Writes the straight-line code computing `roots`, taking the values of
+/// `given` from its array (loaded with the symbols) wherever they occur.
+pub fn straight_line_given(
+    pool: &Pool,
+    names: &Names,
+    roots: &[ExprId],
+    given: &Given<'_>,
+) -> Straight {
+    write(pool, names, roots, Angles::AtTop, Some(given))
+}
+
+/// The straight-line code computing `roots` ([`straight_line_taking`]),
+/// with the values of `given`, if any, taken from its array.
+fn write(
+    pool: &Pool,
+    names: &Names,
+    roots: &[ExprId],
+    angles: Angles,
+    given: Option<&Given<'_>>,
+) -> Straight {
+    let is_given = |e: ExprId| given.is_some_and(|g| g.expressions.contains(&e));
+    let order = pool.post_order(roots, |e| !is_given(e));
     let nested = nested_sums(pool, &order);
     let uses = count_uses(pool, &order, roots, &nested);
     let mut writer = Writer {
@@ -153,7 +191,8 @@ pub fn straight_line_taking(
             used.insert(*sym);
         }
     }
-    let loads = names.load(&used);
+    let taken = given.map(|given| writer.take(given, &uses));
+    let loads = names.load(&used, taken);
     let pairs = sin_cos_pairs(pool, &order);
     if angles == Angles::AtTop {
         writer.bind_angles(&angle_pairs(pool, &order, &pairs));
@@ -408,6 +447,30 @@ impl Writer<'_> {
         self.statements.extend(quote!(
             let ([#(#sines),*], [#(#cosines),*]) = ::dalembert::math::sin_cos_all([#(#arguments),*]);
         ));
+    }
+
+    /// The pattern and value that load the array of `given`: each of its
+    /// values that the body uses (per `uses`) bound to the name the body
+    /// would have given it, the others to `_`.
+    fn take(
+        &mut self,
+        given: &Given<'_>,
+        uses: &HashMap<ExprId, usize>,
+    ) -> (TokenStream, TokenStream) {
+        let elements: Vec<TokenStream> = given
+            .expressions
+            .iter()
+            .map(|&e| match uses.contains_key(&e) {
+                true => {
+                    let name = self.temporary_name(e);
+                    self.bound.insert(e, quote!(#name));
+                    quote!(#name)
+                }
+                false => quote!(_),
+            })
+            .collect();
+        let array = &given.array;
+        (quote!([#(#elements),*]), quote!(#array))
     }
 
     /// `let x = value;`, typed `f64` where the value holds no symbol, so

@@ -4,11 +4,11 @@
 //! `L D Lᵀ` factorisation that solved for `v̇`) and `linearize` (the state-space matrices `A`, `B` of
 //! `ẋ = (q̇, v̇)` about a state).
 
-use super::body::{Names, Straight, straight_line};
-use super::solve::{Factorised, factorised};
+use super::body::{Given, Names, Straight, straight_line, straight_line_given};
+use super::solve::{Factorised, factorised, negated_row_substitutions};
 use super::{array, raw_string};
 use crate::equations::Equations;
-use crate::expr::{ExprId, Pool, Sym};
+use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
 use crate::outputs::Function;
 use proc_macro2::{Ident, Literal, TokenStream};
@@ -20,17 +20,35 @@ fn matrix(rows: usize, columns: usize) -> TokenStream {
     quote!([#row; #rows])
 }
 
-/// The entries of a row-major `rows × columns` block, column by column
-/// (the right-hand sides of the solves).
-fn by_columns(block: &[ExprId], columns: usize) -> Vec<ExprId> {
-    (0..columns)
-        .flat_map(|j| block.iter().skip(j).step_by(columns).copied())
+/// The columns of `∂τ/∂x` that the solve takes: those of `∂τ/∂q`, `∂τ/∂v`
+/// and `∂τ/∂u` (blocks 0, 1, 2, row-major `nv × widths[block]` in
+/// `blocks`) that are not structurally zero (`∂τ/∂q₁` of a first joint
+/// turning about gravity is), as `(block, column)`.
+fn solved_columns(pool: &Pool, blocks: &[&[ExprId]; 3], widths: [usize; 3]) -> Vec<(usize, usize)> {
+    let nv = widths[0];
+    (0..3)
+        .flat_map(|block| (0..widths[block]).map(move |j| (block, j)))
+        .filter(|&(block, j)| (0..nv).any(|i| !pool.is_zero(blocks[block][i * widths[block] + j])))
+        .collect()
+}
+
+/// The sines and cosines of symbols (the coordinates' angles) that
+/// `roots` read, in their order.
+fn angle_functions(pool: &Pool, roots: &[ExprId]) -> Vec<ExprId> {
+    pool.topo_order(roots)
+        .into_iter()
+        .filter(|&e| match pool.node(e) {
+            Node::Func(Func::Sin | Func::Cos, arg) => matches!(pool.node(*arg), Node::Sym(_)),
+            _ => false,
+        })
         .collect()
 }
 
 /// `pub fn accelerations_jacobian(..)` from `function`, whose results are
 /// `∂τ/∂q`, `∂τ/∂v`, `∂τ/∂u`; nothing for a system with constraints
-/// (which the model rejects).
+/// (which the model rejects). The columns that are not structural zeros
+/// are solved together: the rows of `∂τ/∂x` are arrays, substituted in
+/// place through `L D Lᵀ` one row operation at a time.
 pub fn emit_accelerations_jacobian(
     model: &Model,
     pool: &Pool,
@@ -38,105 +56,81 @@ pub fn emit_accelerations_jacobian(
     names: &Names,
     function: &Function,
 ) -> TokenStream {
+    let (nv, nu) = (model.nv(), model.inputs.len());
+    let widths = [nv, nv, nu];
+    let blocks: [&[ExprId]; 3] = [0, 1, 2].map(|k| function.results[k].expressions.as_slice());
+    // The sines and cosines of the angles are computed once, with `M` and
+    // `f`, and the partials' body takes them.
+    let angles = angle_functions(pool, &blocks.concat());
+    let given = Given {
+        array: format_ident!("angles"),
+        expressions: &angles,
+    };
+    let given = (!angles.is_empty()).then_some(&given);
     let Some(Factorised {
         prelude,
         substitutions,
-        right_hand_side,
         solution,
+        pattern,
+        order,
         ..
-    }) = factorised(model, pool, equations, names)
+    }) = factorised(model, pool, equations, names, given)
     else {
         return TokenStream::new();
     };
-    let (nv, nu) = (model.nv(), model.inputs.len());
-    // ∂τ/∂q, ∂τ/∂v and ∂τ/∂u by columns: solved, then negated as they are
-    // transposed into rows.
-    let roots: Vec<ExprId> = function
-        .results
+    let columns = solved_columns(pool, &blocks, widths);
+    // Row `i` of the solve (the `i`-th speed eliminated): `∂τ/∂x` of that
+    // speed's equation in the columns solved.
+    let roots: Vec<ExprId> = order
         .iter()
-        .zip([nv, nv, nu])
-        .flat_map(|(value, columns)| by_columns(&value.expressions, columns))
+        .flat_map(|&speed| {
+            columns
+                .iter()
+                .map(move |&(block, j)| blocks[block][speed * widths[block] + j])
+        })
         .collect();
     let Straight {
         statements,
         outputs,
         ..
-    } = straight_line(pool, names, &roots);
-    let columns: Vec<TokenStream> = outputs
-        .chunks(nv)
-        .map(|column| quote!([#(#column),*]))
-        .collect();
-    let n = Literal::usize_unsuffixed(nv);
-    let (q_columns, rest) = columns.split_at(nv);
-    let (v_columns, u_columns) = rest.split_at(nv);
-    let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
-    // Every array is destructured, never indexed: no panic path.
-    let names_of = |prefix: &str, count: usize| -> Vec<Ident> {
-        (0..count)
-            .map(|j| format_ident!("{}{}", prefix, j))
-            .collect()
+    } = match given {
+        Some(given) => straight_line_given(pool, names, &roots, given),
+        None => straight_line(pool, names, &roots),
     };
-    let (cq, cv, cu) = (names_of("cq", nv), names_of("cv", nv), names_of("cu", nu));
-    // A column of structural zeros (`∂τ/∂q₁` of a first joint turning about
-    // gravity) is bound to `_` and solved to zeros without the solve.
-    let zero_columns: Vec<bool> = roots
-        .chunks(nv)
-        .map(|column| column.iter().all(|&e| e == pool.zero()))
-        .collect();
-    let (q_zeros, rest) = zero_columns.split_at(nv);
-    let (v_zeros, u_zeros) = rest.split_at(nv);
-    let binding = |names: &[Ident], zeros: &[bool]| -> Vec<TokenStream> {
-        names
-            .iter()
-            .zip(zeros)
-            .map(|(name, &zero)| match zero {
-                true => quote!(_),
-                false => quote!(#name),
-            })
-            .collect()
+    let row_values = (0..nv).map(|i| {
+        let row = &outputs[i * columns.len()..(i + 1) * columns.len()];
+        quote!([#(#row),*])
+    });
+    let rows: Vec<Ident> = (0..nv).map(|i| format_ident!("b{}", i)).collect();
+    let solve = negated_row_substitutions(&pattern, &rows);
+    // `∂v̇ᵢ/∂x_j`, by the speed `i`: `dq{i}_{j}`, `dv{i}_{j}`, `du{i}_{j}`.
+    let entry = |block: usize, i: usize, j: usize| {
+        format_ident!("{}{}_{}", ["dq", "dv", "du"][block], i, j)
     };
-    let (bq, bv, bu) = (
-        binding(&cq, q_zeros),
-        binding(&cv, v_zeros),
-        binding(&cu, u_zeros),
-    );
-    // Column `j` of `M⁻¹ ∂τ/∂x`, entry `i`: `{prefix}{j}_{i}`.
-    let entry = |prefix: &str, j: usize, i: usize| format_ident!("{}{}_{}", prefix, j, i);
-    let solved = |prefix: &str, columns: &[Ident], zeros: &[bool]| -> TokenStream {
-        let patterns = (0..columns.len()).map(|j| {
-            let entries = (0..nv).map(|i| entry(prefix, j, i));
-            quote!([#(#entries),*])
-        });
-        let values = columns.iter().zip(zeros).map(|(column, &zero)| match zero {
-            true => quote!([0.0; #n]),
-            false => quote!(solve(#column)),
-        });
-        let count = Literal::usize_unsuffixed(columns.len());
-        quote!(let [#(#patterns),*]: [#vector; #count] = [#(#values),*];)
-    };
-    // `∂v̇/∂x = −M⁻¹ ∂τ/∂x`, row by row.
-    let transposed = |prefix: &str, columns: usize| -> TokenStream {
+    let unpacked = order.iter().zip(&rows).map(|(&speed, row)| {
+        let entries = columns.iter().map(|&(block, j)| entry(block, speed, j));
+        quote!(let [#(#entries),*] = #row;)
+    });
+    let block = |block: usize| -> TokenStream {
         let rows = (0..nv).map(|i| {
-            let row = (0..columns).map(|j| {
-                let name = entry(prefix, j, i);
-                quote!(-#name)
+            let row = (0..widths[block]).map(|j| match columns.contains(&(block, j)) {
+                true => {
+                    let name = entry(block, i, j);
+                    quote!(#name)
+                }
+                false => quote!(0.0),
             });
             quote!([#(#row),*])
         });
         quote!([#(#rows),*])
     };
-    let solves = [
-        solved("dq", &cq, q_zeros),
-        solved("dv", &cv, v_zeros),
-        solved("du", &cu, u_zeros),
-    ];
-    let (dq, dv, du) = (
-        transposed("dq", nv),
-        transposed("dv", nv),
-        transposed("du", nu),
-    );
+    let (dq, dv, du) = (block(0), block(1), block(2));
+    let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
     let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
-    let nu_lit = Literal::usize_unsuffixed(nu);
+    let (n, count) = (
+        Literal::usize_unsuffixed(nv),
+        Literal::usize_unsuffixed(columns.len()),
+    );
     let (name, docs) = (
         &function.name,
         function.docs.iter().map(|line| raw_string(line)),
@@ -152,19 +146,21 @@ pub fn emit_accelerations_jacobian(
             u: &#inputs,
         ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
             #prelude
-            let solve = |[#(#right_hand_side),*]: #vector| -> #vector {
+            let qdd = &{
                 #substitutions
                 [#(#solution),*]
             };
-            let qdd = &solve([#(#right_hand_side),*]);
             if !finite(qdd) {
                 return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations);
             }
-            let ([#(#bq),*], [#(#bv),*], [#(#bu),*]): ([#vector; #n], [#vector; #n], [#vector; #nu_lit]) = {
+            // `∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the columns of `∂τ/∂x` that are not
+            // structurally zero, row by row in the order of elimination.
+            let [#(mut #rows),*]: [[f64; #count]; #n] = {
                 #statements
-                ([#(#q_columns),*], [#(#v_columns),*], [#(#u_columns),*])
+                [#(#row_values),*]
             };
-            #(#solves)*
+            #solve
+            #(#unpacked)*
             let jacobian: (#square, #square, #wide) = (#dq, #dv, #du);
             if jacobian.0.iter().chain(&jacobian.1).all(|row| finite(row))
                 && jacobian.2.iter().all(|row| finite(row))

@@ -17,7 +17,7 @@
 //! Both have the same checks and errors as the runtime's
 //! `dalembert::accelerations` (the pivots `Dⱼ` are the `Lⱼⱼ²` of `L Lᵀ`).
 
-use super::body::{Angles, Names, straight_line, straight_line_taking};
+use super::body::{Angles, Given, Names, straight_line, straight_line_taking};
 use crate::cost::operations;
 use crate::equations::{Articulated, Equations};
 use crate::expr::{ExprId, Pool};
@@ -35,7 +35,7 @@ pub fn emit_accelerations(
     equations: &Equations,
     names: &Names,
 ) -> TokenStream {
-    let Some(factorised) = factorised(model, pool, equations, names) else {
+    let Some(factorised) = factorised(model, pool, equations, names, None) else {
         return TokenStream::new();
     };
     let nv = model.nv();
@@ -118,13 +118,13 @@ pub struct Factorised {
     pub prelude: TokenStream,
     /// Forward and backward substitution from `f{i}` to `x{i}`.
     pub substitutions: TokenStream,
-    /// The names `f{i}` of the right-hand side.
-    pub right_hand_side: Vec<Ident>,
     /// The names `x{i}` of the solution.
     pub solution: Vec<Ident>,
     /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero, in the
     /// order of elimination.
     pub pattern: Vec<Vec<bool>>,
+    /// The speeds in the order of elimination.
+    pub order: Vec<usize>,
 }
 
 /// The order in which the factorisation eliminates the speeds:
@@ -170,6 +170,8 @@ pub struct Elimination {
     /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero, in the
     /// order of elimination.
     pub pattern: Vec<Vec<bool>>,
+    /// The speeds in the order of elimination.
+    pub order: Vec<usize>,
 }
 
 /// The elimination of `M x = f` that fills in less, in the speeds' order
@@ -221,16 +223,20 @@ pub fn elimination(model: &Model, pool: &Pool, equations: &Equations) -> Option<
         right_hand_side: (0..nq).map(|i| format_ident!("f{}", i)).collect(),
         solution,
         pattern,
+        order: order.speeds,
     })
 }
 
 /// The factorisation and substitutions of `M x = f`; `None` for a system
-/// with constraints or no coordinates.
+/// with constraints or no coordinates. The body computing `M` and `f` also
+/// computes the values of `also`, if any, into its array, for a later body
+/// to take.
 pub fn factorised(
     model: &Model,
     pool: &Pool,
     equations: &Equations,
     names: &Names,
+    also: Option<&Given<'_>>,
 ) -> Option<Factorised> {
     let Elimination {
         entries,
@@ -239,29 +245,44 @@ pub fn factorised(
         right_hand_side,
         solution,
         pattern,
+        order,
     } = elimination(model, pool, equations)?;
     // `M`'s entries the factorisation reads and `f`, computed together so
     // that they share their subexpressions (sines and cosines above all),
     // in a block that keeps the model's names out of the solver's.
+    let given: &[ExprId] = also.map_or(&[], |also| also.expressions);
     let roots: Vec<ExprId> = entries
         .iter()
         .map(|&(i, j)| equations.mass_matrix[i][j])
         .chain(equations.forcing.iter().copied())
+        .chain(given.iter().copied())
         .collect();
     let body = straight_line(pool, names, &roots);
-    let (statements, outputs) = (&body.statements, &body.outputs);
+    let statements = &body.statements;
+    let (outputs, given_outputs) = body.outputs.split_at(roots.len() - given.len());
     let bound: Vec<Ident> = entries
         .iter()
         .map(|&(i, j)| mass(i, j))
         .chain(right_hand_side.iter().cloned())
         .collect();
     let check = state_check();
+    let binding = match also {
+        None => quote! {
+            let [#(#bound),*] = {
+                #statements
+                [#(#outputs),*]
+            };
+        },
+        Some(Given { array, .. }) => quote! {
+            let ([#(#bound),*], #array) = {
+                #statements
+                ([#(#outputs),*], [#(#given_outputs),*])
+            };
+        },
+    };
     let prelude = quote! {
         #check
-        let [#(#bound),*] = {
-            #statements
-            [#(#outputs),*]
-        };
+        #binding
         if !finite(&[#(#bound),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
         }
@@ -270,9 +291,9 @@ pub fn factorised(
     Some(Factorised {
         prelude,
         substitutions,
-        right_hand_side,
         solution,
         pattern,
+        order,
     })
 }
 
@@ -494,6 +515,42 @@ fn backward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
         );
         let x = format_ident!("x{}", i);
         out.extend(quote!(let #x = #value;));
+    }
+    out
+}
+
+/// `M X = −B` for the many columns of `B` at once, in place: `rows[i]`
+/// names the mutable array holding row `i` (in the elimination order) of
+/// `B`, and holds that of `X` after `L Y = B` and `D Lᵀ X = −Y` (the
+/// negation folded into the reciprocal pivots). Each step is one
+/// `dalembert::dynamics::scale_and_subtract` over the columns.
+pub fn negated_row_substitutions(pattern: &[Vec<bool>], rows: &[Ident]) -> TokenStream {
+    let nq = pattern.len();
+    let step = |i: usize, factor: TokenStream, terms: Vec<(Ident, usize)>| -> TokenStream {
+        let row = &rows[i];
+        let terms = terms.iter().map(|(l, k)| {
+            let other = &rows[*k];
+            quote!((#l, &#other))
+        });
+        quote!(::dalembert::dynamics::scale_and_subtract(&mut #row, #factor, [#(#terms),*]);)
+    };
+    let mut out = TokenStream::new();
+    for (i, row) in pattern.iter().enumerate() {
+        let terms: Vec<(Ident, usize)> = (0..i)
+            .filter(|&k| row[k])
+            .map(|k| (entry(i, k), k))
+            .collect();
+        if !terms.is_empty() {
+            out.extend(step(i, quote!(1.0), terms));
+        }
+    }
+    for i in (0..nq).rev() {
+        let r = format_ident!("r{}", i);
+        let terms = (i + 1..nq)
+            .filter(|&k| pattern[k][i])
+            .map(|k| (entry(k, i), k))
+            .collect();
+        out.extend(step(i, quote!(-#r), terms));
     }
     out
 }
