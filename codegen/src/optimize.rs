@@ -8,7 +8,11 @@
 //! docs), then every `sin`/`cos` of a sum of angles written back as products
 //! of the sines and cosines of its parts, which the code computes anyway.
 //! The compact form replaces the entry when it costs fewer operations; an
-//! entry too large to expand within the budget keeps its DAG form. The
+//! entry too large to expand within the budget keeps its DAG form. A
+//! function computes each shared node once, so either form is charged only
+//! the nodes that its function's results chosen before it do not compute
+//! already: a DAG entry whose subexpressions its neighbours share is
+//! cheap, though costly alone. The
 //! readable forms come from the derivation's
 //! [`ReadableForms`](crate::readable::ReadableForms), which the renderer
 //! reads again for the docs.
@@ -18,56 +22,87 @@ use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool};
 use crate::outputs::Function;
 use crate::readable::ReadableForms;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Most monomials an entry may expand to before it keeps its DAG form.
 const BUDGET: usize = 200;
 
 /// Replaces each output of `equations` by its compact form where cheaper,
-/// from the derivation's readable `forms`.
+/// from the derivation's readable `forms`; each of `M`, `f`, `T`, `V`, `A`,
+/// `b`, the residuals and the velocity forms is one function's results.
 pub fn optimize(equations: &mut Equations, pool: &mut Pool, forms: &mut ReadableForms) {
-    optimize_all(equations.expressions_mut(), pool, forms);
+    let Equations {
+        mass_matrix,
+        forcing,
+        kinetic_energy,
+        potential_energy,
+        constraint_jacobian,
+        constraint_bias,
+        constraint_residual,
+        constraint_velocity,
+        ..
+    } = equations;
+    let groups: [Vec<&mut ExprId>; 8] = [
+        mass_matrix.iter_mut().flatten().collect(),
+        forcing.iter_mut().collect(),
+        vec![kinetic_energy],
+        vec![potential_energy],
+        constraint_jacobian.iter_mut().flatten().collect(),
+        constraint_bias.iter_mut().collect(),
+        constraint_residual.iter_mut().collect(),
+        constraint_velocity.iter_mut().collect(),
+    ];
+    optimize_all(groups.into_iter(), pool, forms);
 }
 
 /// Replaces each result of `functions` by its compact form where cheaper,
 /// from the derivation's readable `forms`.
 pub fn optimize_functions(functions: &mut [Function], pool: &mut Pool, forms: &mut ReadableForms) {
     optimize_all(
-        functions.iter_mut().flat_map(Function::expressions_mut),
+        functions.iter_mut().map(|f| f.expressions_mut().collect()),
         pool,
         forms,
     );
 }
 
-/// Replaces each of `expressions` by its compact form where cheaper.
+/// Replaces each of `expressions` by its compact form where cheaper: each
+/// group is one function's results, which compute every shared node once,
+/// so a form costs only the nodes that the forms chosen before it in its
+/// group do not already compute.
 fn optimize_all<'a>(
-    expressions: impl Iterator<Item = &'a mut ExprId>,
+    groups: impl Iterator<Item = Vec<&'a mut ExprId>>,
     pool: &mut Pool,
     forms: &mut ReadableForms,
 ) {
     let mut chosen: HashMap<ExprId, ExprId> = HashMap::new();
     let mut split = AngleSums::new();
-    for e in expressions {
-        *e = *chosen
-            .entry(*e)
-            .or_insert_with(|| cheaper_form(pool, forms, &mut split, *e));
+    for group in groups {
+        let mut computed = HashSet::new();
+        for e in group {
+            *e = *chosen
+                .entry(*e)
+                .or_insert_with(|| cheaper_form(pool, forms, &mut split, *e, &computed));
+            pool.post_order(&[*e], |n| computed.insert(n));
+        }
     }
 }
 
-/// `e`, or its compact form if that costs fewer operations; `split` holds
-/// the nodes whose angle sums are already split.
+/// `e`, or its compact form if that costs fewer operations besides the
+/// nodes already `computed`; `split` holds the nodes whose angle sums are
+/// already split.
 fn cheaper_form(
     pool: &mut Pool,
     forms: &mut ReadableForms,
     split: &mut AngleSums,
     e: ExprId,
+    computed: &HashSet<ExprId>,
 ) -> ExprId {
     let Some(compact) = forms.get(pool, e, BUDGET) else {
         return e;
     };
     let compact = expand_angle_sums(pool, split, compact);
-    let compact_cost = cost_past(pool, compact, usize::MAX);
-    if compact_cost < cost_past(pool, e, compact_cost) {
+    let compact_cost = cost_past(pool, compact, computed, usize::MAX);
+    if compact_cost < cost_past(pool, e, computed, compact_cost) {
         compact
     } else {
         e
@@ -108,15 +143,16 @@ fn sin_cos_of_sum(pool: &mut Pool, x: ExprId) -> (ExprId, ExprId) {
     (pool.sum(sin_terms), pool.sub(cos_first, sin_product))
 }
 
-/// Arithmetic operations to evaluate `e` once, shared nodes counted once;
-/// sines and cosines of single symbols are free (the code shares them).
-/// The count stops as soon as it passes `limit` (a large DAG need not be
-/// walked to lose to a small form): the result is exact up to `limit`,
-/// and above `limit` whenever the exact cost is.
-fn cost_past(pool: &Pool, e: ExprId, limit: usize) -> usize {
+/// Arithmetic operations to evaluate `e` once, shared nodes counted once
+/// and the nodes already `computed` not at all; sines and cosines of
+/// single symbols are free (the code shares them). The count stops as soon
+/// as it passes `limit` (a large DAG need not be walked to lose to a small
+/// form): the result is exact up to `limit`, and above `limit` whenever the
+/// exact cost is.
+fn cost_past(pool: &Pool, e: ExprId, computed: &HashSet<ExprId>, limit: usize) -> usize {
     let mut total = 0usize;
     pool.post_order(&[e], |n| {
-        if total > limit {
+        if total > limit || computed.contains(&n) {
             return false;
         }
         total = total.saturating_add(node_cost(pool, n));

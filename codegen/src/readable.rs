@@ -5,6 +5,7 @@
 //! * `c·R·sin²x + c·R·cos²x = c·R`, and with different coefficients
 //!   `a·R·sin²x + b·R·cos²x = b·R + (a − b)·R·sin²x` when a term `R` is
 //!   already there to absorb `b·R` (so the sum gets shorter);
+//! * `c·R − c·R·sin²x = c·R·cos²x` and `c·R − c·R·cos²x = c·R·sin²x`;
 //! * `c·R·(cos a cos b ± sin a sin b) = c·R·cos(a ∓ b)` and
 //!   `c·R·(sin a cos b ± cos a sin b) = c·R·sin(a ± b)`, for `a ≠ b`;
 //!
@@ -359,6 +360,37 @@ impl Monomials {
             .collect()
     }
 
+    /// `c·R − c·R·p = c·R·q` with `{p, q} = {sin²x, cos²x}`, where the
+    /// `candidate` is `R·p` and a term `R` is there with the opposite
+    /// coefficient (two terms become one); every monomial it changes is
+    /// `touched`.
+    fn complement(
+        &mut self,
+        pool: &mut Pool,
+        candidate: &Candidate,
+        touched: &mut BTreeSet<ExprId>,
+    ) {
+        let (monomial, rest) = (candidate.monomial, candidate.rest);
+        let (f, x) = match candidate.pattern {
+            Pattern::SinSquared(x) => (Func::Cos, x),
+            Pattern::CosSquared(x) => (Func::Sin, x),
+            _ => return,
+        };
+        let (Some(&a), Some(&b)) = (self.0.get(&monomial), self.0.get(&rest)) else {
+            return;
+        };
+        if b != -a || touched.contains(&monomial) || touched.contains(&rest) {
+            return;
+        }
+        let other = pool.func(f, x);
+        let square = pool.powi(other, 2);
+        let replaced = pool.mul(rest, square);
+        self.0.remove(&monomial);
+        self.0.remove(&rest);
+        touched.extend(self.add_expr(pool, b, replaced));
+        touched.extend([monomial, rest]);
+    }
+
     /// One pass of recombination: every rule applied once where it can be,
     /// each monomial taking part in at most one rewrite. `None` if the sum
     /// did not get shorter (then no rule applies).
@@ -373,6 +405,7 @@ impl Monomials {
         for candidate in all {
             let Some(&partner) = by_shape.get(&(candidate.rest, candidate.pattern.partner()))
             else {
+                next.complement(pool, &candidate, &mut touched);
                 continue;
             };
             if touched.contains(&candidate.monomial) || touched.contains(&partner) {
@@ -580,6 +613,22 @@ pub(crate) mod tests {
         assert_eq!(term_count(&p, form), 1);
         let difference = p.sub(a, b);
         assert_eq!(form, p.cos(difference));
+    }
+
+    /// The diagonal of an inertia tensor turned about an axis, its trace
+    /// kept: `m + L − m sin²θ₁ − L cos²θ₁ = m cos²θ₁ + L sin²θ₁`.
+    #[test]
+    fn one_minus_a_square_is_the_other_square() {
+        let mut p = Pool::new();
+        let s = symbols(&mut p);
+        let (sin2, cos2) = (p.sin_pow(s.q[0], 2), p.cos_pow(s.q[0], 2));
+        let (m_sin2, l_cos2) = (p.mul(s.m, sin2), p.mul(s.big_l, cos2));
+        let trace = p.add(s.m, s.big_l);
+        let turned = p.add(m_sin2, l_cos2);
+        let e = p.minus(trace, turned);
+        let form = checked(&mut p, e);
+        let (m_cos2, l_sin2) = (p.mul(s.m, cos2), p.mul(s.big_l, sin2));
+        assert_eq!(form, p.add(m_cos2, l_sin2));
     }
 
     #[test]

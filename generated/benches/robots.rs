@@ -3,7 +3,9 @@
 //! floating one, and the benchmark trees of `trees/`: cart-poles, limbs,
 //! binary tree):
 //! `mass_matrix` + `forcing` (the counterpart of Pinocchio's `crba` +
-//! `nonLinearEffects`) and `dalembert::accelerations`, which runs the
+//! `nonLinearEffects`), each of the two alone (their sum against the pair
+//! shows what calling one after the other costs: BENCHMARKS.md) and
+//! `dalembert::accelerations`, which runs the
 //! emitted solver (the counterpart of `aba`). Same method as `chains.rs`
 //! (`dalembert_fixtures::states`): 1000 fixed pseudo-random states, one call
 //! per iteration; the floating Solo-12's states put a unit quaternion (the
@@ -90,6 +92,16 @@ fn bench_robot<S, const NQ: usize, const NV: usize, const NU: usize>(
                     robot.mass_matrix(&s.q),
                     robot.forcing(s.t, &s.q, &s.v, &s.u),
                 )
+            })
+        })
+    });
+    group.bench_function("mass_matrix", |b| {
+        b.iter_custom(|iters| per_call(states, iters, |s| black_box(&robot).mass_matrix(&s.q)))
+    });
+    group.bench_function("forcing", |b| {
+        b.iter_custom(|iters| {
+            per_call(states, iters, |s| {
+                black_box(&robot).forcing(s.t, &s.q, &s.v, &s.u)
             })
         })
     });

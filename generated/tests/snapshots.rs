@@ -39,6 +39,24 @@ fn chain_operation_counts() {
     insta::assert_snapshot!("chain_operation_counts", table);
 }
 
+/// Operations per call of the URDF robots' `mass_matrix`, `forcing` and
+/// `accelerations` (their benchmarks' functions), one line each.
+#[test]
+fn robot_operation_counts() {
+    let mut table = String::new();
+    for name in ["panda", "ur5_robot", "solo12", "floating_solo12"] {
+        let path = std::path::Path::new(env!("OUT_DIR")).join(format!("{name}.rs"));
+        let code = std::fs::read_to_string(&path).expect("the generated robot");
+        for function in ["mass_matrix", "forcing", "accelerations"] {
+            table.push_str(&format!(
+                "{name:16} {function:14} {}\n",
+                common::operations(&code, function)
+            ));
+        }
+    }
+    insta::assert_snapshot!("robot_operation_counts", table);
+}
+
 /// Operations per call of `accelerations` and `accelerations_jacobian` of
 /// the chains and robots that ask for the derivatives, and the solve of
 /// the jacobian: how many columns of `∂τ/∂x` it takes and its operations at
