@@ -33,6 +33,12 @@ use quote::{format_ident, quote};
 /// and two sums); a larger entry is lowered as derived ([`lowered`]).
 const RECOMBINATION_BUDGET: usize = 200;
 
+/// The orders emitted one by one, each with its own copy of the
+/// recurrences (a constant order, so sums of compile-time length); higher
+/// orders run in a loop. The runtime's Taylor integrator uses up to 31
+/// (`dalembert::integrate::taylor::MAX_ORDER`).
+const UNROLLED_ORDERS: usize = 31;
+
 /// The index of one series of the program.
 type Slot = usize;
 
@@ -554,6 +560,8 @@ pub fn emit_taylor(
     let (coordinates_ty, speeds_ty, inputs_ty) =
         (array(model.nq()), array(nv), array(model.inputs.len()));
     let check = state_check();
+    let unrolled = (1..=UNROLLED_ORDERS).map(Literal::usize_unsuffixed);
+    let beyond = Literal::usize_unsuffixed(UNROLLED_ORDERS + 1);
     let docs = function.docs.iter().map(|line| super::raw_string(line));
     quote! {
         #(#[doc = #docs])*
@@ -581,27 +589,46 @@ pub fn emit_taylor(
             let order = order.min(K.saturating_sub(1));
             {
                 // Order `k` of every series, after order `k − 1` of the
-                // accelerations (`solved`) and its integrals; returns the
+                // accelerations (`solved`) and its integrals; gives the
                 // entries of `M₀` that the factorisation reads and the
-                // right-hand side of order `k`.
-                let mut advance = |k: usize, solved: [f64; #nv_lit]| -> ([f64; #ne_lit], [f64; #nv_lit]) {
-                    if let ::core::option::Option::Some(below) = k.checked_sub(1) {
-                        ::dalembert::series::assign_all([#(&mut #a),*], below, solved);
-                        #(::dalembert::series::integral(&mut #v, &#a, k);)*
-                        #(::dalembert::series::integral(&mut #q, &#v, k);)*
-                        if k == order {
-                            return ([0.0; #ne_lit], [0.0; #nv_lit]);
+                // right-hand side of order `k`. A macro, so that each order
+                // below is its own copy with `k` a constant and every sum a
+                // compile-time length.
+                macro_rules! advance {
+                    ($k:expr, $solved:expr) => {{
+                        let k: usize = $k;
+                        let solved: [f64; #nv_lit] = $solved;
+                        'order: {
+                            if let ::core::option::Option::Some(below) = k.checked_sub(1) {
+                                ::dalembert::series::assign_all([#(&mut #a),*], below, solved);
+                                #(::dalembert::series::integral(&mut #v, &#a, k);)*
+                                #(::dalembert::series::integral(&mut #q, &#v, k);)*
+                                if k == order {
+                                    break 'order ([0.0; #ne_lit], [0.0; #nv_lit]);
+                                }
+                            }
+                            #(#steps)*
+                            ([#(#mass_entries),*], [#(#rows),*])
                         }
-                    }
-                    #(#steps)*
-                    ([#(#mass_entries),*], [#(#rows),*])
-                };
-                let ([#(#mass_names),*], mut rhs) = advance(0, [0.0; #nv_lit]);
+                    }};
+                }
+                let ([#(#mass_names),*], mut rhs) = advance!(0, [0.0; #nv_lit]);
                 #factor
-                for k in 1..=order {
-                    let [#(#right_hand_side),*] = rhs;
-                    #substitutions
-                    rhs = advance(k, [#(#solution),*]).1;
+                // For each order `k` in turn: order `k` of the accelerations
+                // solved, then order `k` of everything else, if the
+                // expansion goes that far.
+                macro_rules! next_orders {
+                    ($($k:expr),+) => {$(
+                        if $k <= order {
+                            let [#(#right_hand_side),*] = rhs;
+                            #substitutions
+                            rhs = advance!($k, [#(#solution),*]).1;
+                        }
+                    )+};
+                }
+                next_orders!(#(#unrolled),*);
+                for k in #beyond..=order {
+                    next_orders!(k);
                 }
             }
             ::core::result::Result::Ok(([#(#q),*], [#(#v),*]))
