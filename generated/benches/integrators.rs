@@ -4,6 +4,11 @@
 //! and four flops per coordinate per iteration, along a trajectory close to
 //! the integrators').
 //!
+//! The floor's loop is the only caller of each system's `accelerations`
+//! here, so the compiler inlines the generated code into it; another call
+//! of the same function in this file would leave it out of line and the
+//! floor a fifth slower on the planar chain of 12 (BENCHMARKS.md).
+//!
 //! Systems: seed example 1 (the chaotic double pendulum of
 //! `tests/reference/chaotic_double_pendulum.json`, θ₁ = θ₂ = 2 rad at rest)
 //! and the planar chain of 12 links (every angle 0.3 rad at rest). Each
