@@ -4,10 +4,10 @@
 //! and four flops per coordinate per iteration, along a trajectory close to
 //! the integrators').
 //!
-//! The floor's loop is the only caller of each system's `accelerations`
-//! here, so the compiler inlines the generated code into it; another call
-//! of the same function in this file would leave it out of line and the
-//! floor a fifth slower on the planar chain of 12 (BENCHMARKS.md).
+//! The compiler inlines the generated `accelerations` into the floor's
+//! loop; one more caller of the same system's `accelerations` in this file
+//! has left it out of line, and the floor a fifth slower on the planar
+//! chain of 12 (BENCHMARKS.md): keep the file's calls as they are.
 //!
 //! Systems: seed example 1 (the chaotic double pendulum of
 //! `tests/reference/chaotic_double_pendulum.json`, θ₁ = θ₂ = 2 rad at rest)
