@@ -12,7 +12,10 @@
 //! accelerations from `M₀ q̈ₖ = fₖ − Σⱼ₌₁ᵏ Mⱼ q̈ₖ₋ⱼ` with the one `L D Lᵀ`
 //! factorisation of `M₀` (only the entries of `M` that move contribute to
 //! the sum), and order `k + 1` of the speeds and coordinates by
-//! integration.
+//! integration. The work of one order is a local `macro_rules!`
+//! (`advance!`), invoked once per order up to [`UNROLLED_ORDERS`] with the
+//! order a literal, so that every recurrence's sum has a compile-time length
+//! and unrolls; higher orders run in a loop.
 
 use std::collections::HashMap;
 
