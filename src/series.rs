@@ -9,7 +9,13 @@
 //! order; [`crate::integrate::taylor`] sums the series. Each function writes
 //! order `k` of its result, reading orders `0..=k` of its operands and
 //! `0..k` of its own result; a `k` at or beyond `K` writes nothing. None
-//! indexes, allocates or panics.
+//! allocates or panics: coefficients are read and written by `get`, and the
+//! only indexing is of `[_; N]` arrays by loops over `0..N`.
+//!
+//! The generated code emits each order up to 31 as its own copy with `k` a
+//! constant, so the loops below are written over plain indices (no slices,
+//! no iterator adaptors) that unroll to compile-time lengths there and
+//! leave nothing to call out of line.
 
 /// `1/k` for the orders the integrator uses, so that the recurrences
 /// multiply where they would divide (a division is several times the
@@ -53,74 +59,42 @@ pub fn constant_at(c: f64, k: usize) -> f64 {
     if k == 0 { c } else { 0.0 }
 }
 
-/// The operands of `Σⱼ aⱼ b_{k−j}` for `j` from `from` to `to`: the
-/// slices `a[from..=to]` and `b[k−to..=k−from]`, empty when `from > to`
-/// or beyond the arrays.
+/// `Σⱼ wⱼ aⱼ b_{k−j}` for `j` from `from` to `to` (`wⱼ = j` when
+/// `weighted`, else 1; `0` when `from > to` or beyond the arrays), its two
+/// end terms added last. Those are the terms that hold the newest
+/// coefficient of each operand (`a₀ bₖ` and `aₖ b₀` of a product's order
+/// `k`), the ones written in the same order as the sum: the interior, from
+/// older coefficients, is summed while the previous orders still run, so
+/// that the chain from one order to the next waits on two products and two
+/// additions only. The interior runs in two independent partial sums, the
+/// two lanes of one vector register.
 #[inline(always)]
-fn terms<'a, const K: usize>(
-    a: &'a [f64; K],
-    b: &'a [f64; K],
+fn reversed_dot<const K: usize>(
+    a: &[f64; K],
+    b: &[f64; K],
     k: usize,
     (from, to): (usize, usize),
-) -> (&'a [f64], &'a [f64]) {
-    let (Some(low), Some(high)) = (k.checked_sub(to), k.checked_sub(from)) else {
-        return (&[], &[]);
+    weighted: bool,
+) -> f64 {
+    if from > to || to > k || to >= K || k - from >= K {
+        return 0.0;
+    }
+    let term = |j: usize| {
+        let w = if weighted { j as f64 } else { 1.0 };
+        w * at(a, j) * at(b, k - j)
     };
-    match (a.get(from..=to), b.get(low..=high)) {
-        (Some(a), Some(b)) if from <= to => (a, b),
-        _ => (&[], &[]),
+    if from == to {
+        return term(from);
     }
-}
-
-/// `Σᵢ wᵢ aᵢ b_{n−1−i}` for slices of one length `n`, `wᵢ = first + i`
-/// (`weighted`) or 1, its two end terms added last. Those are the terms
-/// that hold the newest coefficient of each operand (`a₀ bₖ` and `aₖ b₀` of
-/// a product's order `k`), the ones written in the same order as the sum:
-/// the interior, from older coefficients, is summed while the previous
-/// orders still run, so that the chain from one order to the next waits
-/// on two products and two additions only.
-#[inline(always)]
-fn reversed_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
-    let first = weighted.unwrap_or(1.0);
-    match (a, b) {
-        ([a_first, a_inner @ .., a_last], [b_first, b_inner @ .., b_last]) => {
-            let last = weighted.map_or(1.0, |w| w + a_inner.len() as f64 + 1.0);
-            let inner = interior_dot(a_inner, b_inner, weighted.map(|w| w + 1.0));
-            inner + (first * a_first * b_last + last * a_last * b_first)
-        }
-        ([a0], [b0]) => first * a0 * b0,
-        _ => 0.0,
-    }
-}
-
-/// `Σᵢ wᵢ aᵢ b_{n−1−i}` for slices of one length `n`, `wᵢ = first + i`
-/// (`weighted`) or 1: in two independent partial sums, the two lanes of
-/// one vector register.
-#[inline(always)]
-fn interior_dot(a: &[f64], b: &[f64], weighted: Option<f64>) -> f64 {
-    let (pairs, pairs_b) = (a.chunks_exact(2), b.rchunks_exact(2));
-    let (rest, rest_b) = (pairs.remainder(), pairs_b.remainder());
-    let step = if weighted.is_some() { 1.0 } else { 0.0 };
-    let first = weighted.unwrap_or(1.0);
-    let mut w = [first, first + step];
     let mut sums = [0.0; 2];
-    // `rchunks_exact` starts from the end of `b`: each pair of `a` meets
-    // the pair of `b` it multiplies, reversed.
-    for (x, y) in pairs.zip(pairs_b) {
-        let (&[a0, a1], &[b0, b1]) = (x, y) else {
-            continue;
-        };
-        let [w0, w1] = w;
-        let [s0, s1] = sums;
-        sums = [s0 + w0 * a0 * b1, s1 + w1 * a1 * b0];
-        w = [w0 + 2.0 * step, w1 + 2.0 * step];
+    let mut j = from + 1;
+    while j + 1 < to {
+        sums[0] += term(j);
+        sums[1] += term(j + 1);
+        j += 2;
     }
-    let tail = match (rest, rest_b) {
-        (&[x], &[y]) => w[0] * x * y,
-        _ => 0.0,
-    };
-    let [s0, s1] = sums;
-    (s0 + s1) + tail
+    let tail = if j < to { term(j) } else { 0.0 };
+    ((sums[0] + sums[1]) + tail) + (term(from) + term(to))
 }
 
 /// `Σⱼ j aⱼ b_{k−j}` for `j` from `from` to `to`.
@@ -131,15 +105,13 @@ fn weighted_cauchy<const K: usize>(
     k: usize,
     range: (usize, usize),
 ) -> f64 {
-    let (x, y) = terms(a, b, k, range);
-    reversed_dot(x, y, Some(range.0 as f64))
+    reversed_dot(a, b, k, range, true)
 }
 
 /// `Σⱼ aⱼ b_{k−j}` for `j` from `from` to `to`.
 #[inline(always)]
 fn cauchy<const K: usize>(a: &[f64; K], b: &[f64; K], k: usize, range: (usize, usize)) -> f64 {
-    let (x, y) = terms(a, b, k, range);
-    reversed_dot(x, y, None)
+    reversed_dot(a, b, k, range, false)
 }
 
 /// The series of a quantity worth `x` now, whose higher coefficients are
@@ -166,8 +138,8 @@ pub fn assign_all<const K: usize, const N: usize>(
     k: usize,
     values: [f64; N],
 ) {
-    for (x, value) in series.into_iter().zip(values) {
-        set(x, k, value);
+    for i in 0..N {
+        set(series[i], k, values[i]);
     }
 }
 
@@ -188,7 +160,10 @@ pub fn linear<const K: usize, const T: usize>(
     constant: f64,
     terms: [(f64, &[f64; K]); T],
 ) {
-    let sum: f64 = terms.iter().map(|(w, a)| w * at(a, k)).sum();
+    let mut sum = 0.0;
+    for (w, a) in terms {
+        sum += w * at(a, k);
+    }
     set(c, k, constant_at(constant, k) + sum);
 }
 

@@ -4,6 +4,11 @@
 //! and four flops per coordinate per iteration, along a trajectory close to
 //! the integrators').
 //!
+//! The compiler inlines the generated `accelerations` into the floor's
+//! loop; one more caller of the same system's `accelerations` in this file
+//! has left it out of line, and the floor a fifth slower on the planar
+//! chain of 12 (BENCHMARKS.md): keep the file's calls as they are.
+//!
 //! Systems: seed example 1 (the chaotic double pendulum of
 //! `tests/reference/chaotic_double_pendulum.json`, θ₁ = θ₂ = 2 rad at rest)
 //! and the planar chain of 12 links (every angle 0.3 rad at rest). Each

@@ -12,7 +12,14 @@
 //! accelerations from `M₀ q̈ₖ = fₖ − Σⱼ₌₁ᵏ Mⱼ q̈ₖ₋ⱼ` with the one `L D Lᵀ`
 //! factorisation of `M₀` (only the entries of `M` that move contribute to
 //! the sum), and order `k + 1` of the speeds and coordinates by
-//! integration.
+//! integration. The work of one order is `advance`, a method of a local
+//! struct (`Series`) that borrows the series, always inlined and called once
+//! per order up to [`UNROLLED_ORDERS`] with the order a literal, so that
+//! every recurrence's sum has a compile-time length and unrolls; higher
+//! orders run in a loop. The series stay local arrays, one each, which the
+//! struct only borrows: owned by one struct, they measured twice as slow
+//! (the sums of the inlined copies no longer vectorised), and so did one
+//! out-of-line function per order.
 
 use std::collections::HashMap;
 
@@ -32,6 +39,12 @@ use quote::{format_ident, quote};
 /// `sin_cos` recurrence of the difference instead of four Cauchy products
 /// and two sums); a larger entry is lowered as derived ([`lowered`]).
 const RECOMBINATION_BUDGET: usize = 200;
+
+/// The orders emitted one by one, each with its own copy of the
+/// recurrences (a constant order, so sums of compile-time length); higher
+/// orders run in a loop. The runtime's Taylor integrator uses up to 31
+/// (`dalembert::integrate::taylor::MAX_ORDER`).
+const UNROLLED_ORDERS: usize = 31;
 
 /// The index of one series of the program.
 type Slot = usize;
@@ -384,7 +397,7 @@ impl Written<'_> {
                 quote!(-#magnitude)
             }
             (Node::Number(n), _) => number(*n),
-            (_, Some(name)) => quote!(#name),
+            (_, Some(name)) => quote!(self.#name),
             _ => quote!(0.0),
         }
     }
@@ -394,7 +407,7 @@ impl Written<'_> {
         match operand {
             Operand::Series(slot) => {
                 let x = &self.slots[slot];
-                quote!(::dalembert::series::at(&#x, k))
+                quote!(::dalembert::series::at(&self.#x, k))
             }
             Operand::Constant(e) => {
                 let c = self.constant(e);
@@ -408,7 +421,7 @@ impl Written<'_> {
         match operand {
             Operand::Series(slot) => {
                 let x = &self.slots[slot];
-                quote!(::dalembert::series::at(&#x, 0))
+                quote!(::dalembert::series::at(&self.#x, 0))
             }
             Operand::Constant(e) => self.constant(e),
         }
@@ -423,9 +436,9 @@ impl Written<'_> {
                 let constant = self.constant(*constant);
                 let terms = terms.iter().map(|(w, x)| {
                     let (w, x) = (self.constant(*w), &self.slots[*x]);
-                    quote!((#w, &#x))
+                    quote!((#w, &self.#x))
                 });
-                quote!(::dalembert::series::linear(&mut #out, k, #constant, [#(#terms),*]);)
+                quote!(::dalembert::series::linear(&mut self.#out, k, #constant, [#(#terms),*]);)
             }
             Operation::Call {
                 name,
@@ -435,10 +448,10 @@ impl Written<'_> {
                 let name = Ident::new(name, proc_macro2::Span::call_site());
                 let partner = partner.map(|p| {
                     let p = &self.slots[p];
-                    quote!(&mut #p,)
+                    quote!(&mut self.#p,)
                 });
                 let operands = operands.iter().map(|&x| &self.slots[x]);
-                quote!(::dalembert::series::#name(&mut #out, #partner #(&#operands,)* k);)
+                quote!(::dalembert::series::#name(&mut self.#out, #partner #(&self.#operands,)* k);)
             }
         }
     }
@@ -516,7 +529,7 @@ pub fn emit_taylor(
     let n_constants = Literal::usize_unsuffixed(constants.len());
     let time_series = time.map(|slot| {
         let x = &written.slots[slot];
-        quote!(let #x = ::dalembert::series::time::<K>(t);)
+        quote!(let mut #x = ::dalembert::series::time::<K>(t);)
     });
     let intermediate: Vec<&Ident> = operations
         .iter()
@@ -544,7 +557,7 @@ pub fn emit_taylor(
                     Operand::Series(slot) => {
                         let m = &written.slots[*slot];
                         Some(
-                            quote!(- ::dalembert::series::convolution_tail(&#m, &#acceleration, k)),
+                            quote!(- ::dalembert::series::convolution_tail(&self.#m, &self.#acceleration, k)),
                         )
                     }
                     Operand::Constant(_) => None,
@@ -560,6 +573,9 @@ pub fn emit_taylor(
     let (coordinates_ty, speeds_ty, inputs_ty) =
         (array(model.nq()), array(nv), array(model.inputs.len()));
     let check = state_check();
+    let unrolled = (1..=UNROLLED_ORDERS).map(Literal::usize_unsuffixed);
+    let beyond = Literal::usize_unsuffixed(UNROLLED_ORDERS + 1);
+    let all_series = &written.slots;
     let docs = function.docs.iter().map(|line| super::raw_string(line));
     quote! {
         #(#[doc = #docs])*
@@ -572,6 +588,53 @@ pub fn emit_taylor(
             u: &#inputs_ty,
             order: usize,
         ) -> ::core::result::Result<([[f64; K]; #nq_lit], [[f64; K]; #nv_lit]), ::dalembert::DynamicsError> {
+            /// The series of the expansion, borrowed (coordinates, speeds,
+            /// accelerations, then every node of `M` and `f` that moves),
+            /// the constants they read, and the highest order asked for.
+            struct Series<'a, const K: usize> {
+                #(#all_series: &'a mut [f64; K],)*
+                #(#bound: f64,)*
+                order: usize,
+            }
+            impl<const K: usize> Series<'_, K> {
+                /// Order `k` of every series, after order `k − 1` of the
+                /// accelerations (`solved`) and its integrals: the entries
+                /// of `M₀` that the factorisation reads and the right-hand
+                /// side of order `k` (zeros at `k = order`, which only
+                /// integrates). Always inlined, so that each call with a
+                /// literal `k` is its own copy and every sum has a
+                /// compile-time length.
+                #[inline(always)]
+                fn advance(&mut self, k: usize, solved: [f64; #nv_lit]) -> ([f64; #ne_lit], [f64; #nv_lit]) {
+                    if let ::core::option::Option::Some(below) = k.checked_sub(1) {
+                        ::dalembert::series::assign_all([#(&mut self.#a),*], below, solved);
+                        #(::dalembert::series::integral(&mut self.#v, &self.#a, k);)*
+                        #(::dalembert::series::integral(&mut self.#q, &self.#v, k);)*
+                        if k == self.order {
+                            return ([0.0; #ne_lit], [0.0; #nv_lit]);
+                        }
+                    }
+                    #(#steps)*
+                    ([#(#mass_entries),*], [#(#rows),*])
+                }
+                /// Order `k` of the accelerations solved from the
+                /// right-hand side `rhs`, then order `k` of everything
+                /// else and the next right-hand side, if the expansion
+                /// goes that far.
+                #[inline(always)]
+                fn next(
+                    &mut self,
+                    k: usize,
+                    rhs: [f64; #nv_lit],
+                    solve: impl Fn([f64; #nv_lit]) -> [f64; #nv_lit],
+                ) -> [f64; #nv_lit] {
+                    if k <= self.order {
+                        self.advance(k, solve(rhs)).1
+                    } else {
+                        rhs
+                    }
+                }
+            }
             #check
             let [#(#bound),*]: [f64; #n_constants] = {
                 #statements
@@ -584,31 +647,20 @@ pub fn emit_taylor(
             #(let mut #a = [0.0; K];)*
             #time_series
             #(let mut #intermediate = [0.0; K];)*
-            let order = order.min(K.saturating_sub(1));
-            {
-                // Order `k` of every series, after order `k − 1` of the
-                // accelerations (`solved`) and its integrals; returns the
-                // entries of `M₀` that the factorisation reads and the
-                // right-hand side of order `k`.
-                let mut advance = |k: usize, solved: [f64; #nv_lit]| -> ([f64; #ne_lit], [f64; #nv_lit]) {
-                    if let ::core::option::Option::Some(below) = k.checked_sub(1) {
-                        ::dalembert::series::assign_all([#(&mut #a),*], below, solved);
-                        #(::dalembert::series::integral(&mut #v, &#a, k);)*
-                        #(::dalembert::series::integral(&mut #q, &#v, k);)*
-                        if k == order {
-                            return ([0.0; #ne_lit], [0.0; #nv_lit]);
-                        }
-                    }
-                    #(#steps)*
-                    ([#(#mass_entries),*], [#(#rows),*])
-                };
-                let ([#(#mass_names),*], mut rhs) = advance(0, [0.0; #nv_lit]);
-                #factor
-                for k in 1..=order {
-                    let [#(#right_hand_side),*] = rhs;
-                    #substitutions
-                    rhs = advance(k, [#(#solution),*]).1;
-                }
+            let mut series = Series::<K> {
+                #(#all_series: &mut #all_series,)*
+                #(#bound,)*
+                order: order.min(K.saturating_sub(1)),
+            };
+            let ([#(#mass_names),*], mut rhs) = series.advance(0, [0.0; #nv_lit]);
+            #factor
+            let solve = |[#(#right_hand_side),*]: [f64; #nv_lit]| {
+                #substitutions
+                [#(#solution),*]
+            };
+            #(rhs = series.next(#unrolled, rhs, solve);)*
+            for k in #beyond..=series.order {
+                rhs = series.next(k, rhs, solve);
             }
             ::core::result::Result::Ok(([#(#q),*], [#(#v),*]))
         }
