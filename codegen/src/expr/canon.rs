@@ -81,8 +81,9 @@ impl Pool {
             for (_, c) in merged.iter_mut() {
                 *c = -*c;
             }
-            let is_sum = |rest: ExprId| matches!(self.node(rest), Node::Add(_));
-            if !merged.iter().any(|&(rest, c)| c.is_one() && is_sum(rest)) {
+            // Turning made no new like terms; only a multiple turned to one
+            // may need spreading.
+            if !self.must_flatten(&merged).contains(&true) {
                 return (merged, negated);
             }
             parts = merged;
@@ -122,41 +123,45 @@ impl Pool {
     /// (`(x + y) − 2·(x + z)` is `−x + y − 2z`). Any other multiple of a
     /// sum stays one term, and the sum stays shared with its other uses.
     fn must_flatten(&self, parts: &[(ExprId, Number)]) -> Vec<bool> {
-        let inner = |rest: ExprId| match self.node(rest) {
-            Node::Add(terms) => Some(terms),
-            _ => None,
-        };
-        let mut flatten = vec![false; parts.len()];
-        if parts.iter().all(|&(rest, _)| inner(rest).is_none()) {
-            return flatten;
+        let is_sum = |rest: ExprId| matches!(self.node(rest), Node::Add(_));
+        if !parts.iter().any(|&(rest, _)| is_sum(rest)) {
+            return vec![false; parts.len()];
         }
-        // Every coefficient-free part a term of this sum would bring, once
-        // per part it comes from.
-        let mut met: Vec<ExprId> = Vec::new();
-        for &(rest, _) in parts {
-            match inner(rest) {
-                Some(terms) => met.extend(
+        // The coefficient-free, non-constant parts of each multiple's terms.
+        let inner: Vec<Option<Vec<ExprId>>> = parts
+            .iter()
+            .map(|&(rest, _)| match self.node(rest) {
+                Node::Add(terms) => Some(
                     terms
                         .iter()
                         .map(|&t| self.split_coefficient(t).1)
-                        .filter(|&r| r != self.one()),
+                        .filter(|&r| r != self.one())
+                        .collect(),
                 ),
+                _ => None,
+            })
+            .collect();
+        // Every coefficient-free part a term of this sum would bring, once
+        // per part it comes from.
+        let mut met: Vec<ExprId> = Vec::new();
+        for (&(rest, _), terms) in parts.iter().zip(&inner) {
+            match terms {
+                Some(terms) => met.extend_from_slice(terms),
                 None => met.push(rest),
             }
         }
         met.sort_unstable();
         let twice =
             |r: ExprId| met.partition_point(|&m| m <= r) - met.partition_point(|&m| m < r) > 1;
-        for (flat, &(rest, c)) in flatten.iter_mut().zip(parts) {
-            if let Some(terms) = inner(rest) {
-                *flat = c.is_one()
-                    || terms
-                        .iter()
-                        .map(|&t| self.split_coefficient(t).1)
-                        .any(|r| r != self.one() && twice(r));
-            }
-        }
-        flatten
+        parts
+            .iter()
+            .zip(&inner)
+            .map(|(&(_, c), terms)| {
+                terms
+                    .as_ref()
+                    .is_some_and(|terms| c.is_one() || terms.iter().any(|&r| twice(r)))
+            })
+            .collect()
     }
 
     /// Adds `scale · term` to a sum under construction: numbers to
