@@ -31,28 +31,7 @@ const BUDGET: usize = 200;
 /// from the derivation's readable `forms`; each of `M`, `f`, `T`, `V`, `A`,
 /// `b`, the residuals and the velocity forms is one function's results.
 pub fn optimize(equations: &mut Equations, pool: &mut Pool, forms: &mut ReadableForms) {
-    let Equations {
-        mass_matrix,
-        forcing,
-        kinetic_energy,
-        potential_energy,
-        constraint_jacobian,
-        constraint_bias,
-        constraint_residual,
-        constraint_velocity,
-        ..
-    } = equations;
-    let groups: [Vec<&mut ExprId>; 8] = [
-        mass_matrix.iter_mut().flatten().collect(),
-        forcing.iter_mut().collect(),
-        vec![kinetic_energy],
-        vec![potential_energy],
-        constraint_jacobian.iter_mut().flatten().collect(),
-        constraint_bias.iter_mut().collect(),
-        constraint_residual.iter_mut().collect(),
-        constraint_velocity.iter_mut().collect(),
-    ];
-    optimize_all(groups.into_iter(), pool, forms);
+    optimize_all(equations.functions_mut().into_iter(), pool, forms);
 }
 
 /// Replaces each result of `functions` by its compact form where cheaper,

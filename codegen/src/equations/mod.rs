@@ -48,19 +48,36 @@ pub struct Equations {
 }
 
 impl Equations {
-    /// Every expression, in a fixed order (`M` row by row, `f`, `T`, `V`,
-    /// `A`, `b`, residuals, velocity forms), for passes that rewrite them.
+    /// Every expression grouped by the generated function that computes
+    /// it, in a fixed order (`M` row by row, `f`, `T`, `V`, `A`, `b`,
+    /// residuals, velocity forms), for passes that rewrite them.
+    pub fn functions_mut(&mut self) -> [Vec<&mut ExprId>; 8] {
+        let Equations {
+            mass_matrix,
+            forcing,
+            kinetic_energy,
+            potential_energy,
+            constraint_jacobian,
+            constraint_bias,
+            constraint_residual,
+            constraint_velocity,
+            ..
+        } = self;
+        [
+            mass_matrix.iter_mut().flatten().collect(),
+            forcing.iter_mut().collect(),
+            vec![kinetic_energy],
+            vec![potential_energy],
+            constraint_jacobian.iter_mut().flatten().collect(),
+            constraint_bias.iter_mut().collect(),
+            constraint_residual.iter_mut().collect(),
+            constraint_velocity.iter_mut().collect(),
+        ]
+    }
+
+    /// Every expression, in the order of [`Equations::functions_mut`].
     pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut ExprId> {
-        self.mass_matrix
-            .iter_mut()
-            .flatten()
-            .chain(&mut self.forcing)
-            .chain(std::iter::once(&mut self.kinetic_energy))
-            .chain(std::iter::once(&mut self.potential_energy))
-            .chain(self.constraint_jacobian.iter_mut().flatten())
-            .chain(&mut self.constraint_bias)
-            .chain(&mut self.constraint_residual)
-            .chain(&mut self.constraint_velocity)
+        self.functions_mut().into_iter().flatten()
     }
 
     /// The same equations without [`Func::Group`](crate::expr::Func::Group)
