@@ -7,7 +7,9 @@
 //! * names that spell a Greek letter print as the letter (`theta1` → `θ₁`,
 //!   `Omega` → `Ω`, `l` → `ℓ` as in the seed); trailing digits become a
 //!   subscript and `_` starts one (`M_phi` → `M_φ`); speeds are dotted
-//!   (`θ̇₁`), accelerations double-dotted (`θ̈₁`), multipliers are `λ₁…`;
+//!   (`θ̇₁`), accelerations double-dotted (`θ̈₁`), a stem of several letters
+//!   takes Leibniz's notation instead (`d(FL_HFE)/dt`), multipliers are
+//!   `λ₁…`;
 //! * coefficients are fractions (`½`, `3/2`), products are juxtaposed with
 //!   spaces, factors ordered parameters, inputs, `t`, coordinates, functions,
 //!   speeds, accelerations, multipliers, then negative powers; integer
@@ -265,6 +267,12 @@ impl Word {
     fn text(s: &str) -> Word {
         Word::Text(s.to_string())
     }
+
+    /// Whether the word is text of more than one letter (`mass`, `FL`),
+    /// which reads as a product of letters where a letter would not.
+    fn is_several_letters(&self) -> bool {
+        matches!(self, Word::Text(t) if t.chars().count() > 1)
+    }
 }
 
 /// An identifier read as `stem_label123`: a stem, an optional word
@@ -336,10 +344,9 @@ struct Notation {
     superscript: fn(&mut String, i32),
     subscript: fn(&mut String, &str),
     fraction: fn(&mut String, Rational),
-    /// Writes a stem with 0, 1 or 2 dots.
-    dotted: fn(&mut String, &Word, usize),
-    /// Writes a word subscript (`_φ`, `_{\phi}`), then digits if any.
-    labelled: fn(&mut String, Option<&Word>, &str),
+    /// Writes a name differentiated 0, 1 or 2 times: its stem, dotted, then
+    /// its word subscript (`_φ`, `_{\phi}`) and digits if any.
+    name: fn(&mut String, &Name, usize),
     call: fn(Func) -> Call,
     /// Between two factors when one is a name of several letters, which a
     /// plain space would read as a product of letters (`m ma`).
@@ -363,8 +370,7 @@ const UNICODE: Notation = Notation {
     superscript: unicode_superscript,
     subscript: unicode_subscript,
     fraction: unicode_fraction,
-    dotted: unicode_dotted,
-    labelled: unicode_labelled,
+    name: unicode_name,
     call: unicode_call,
     word_times: "·",
 };
@@ -376,8 +382,7 @@ const LATEX: Notation = Notation {
     superscript: latex_superscript,
     subscript: latex_subscript,
     fraction: latex_fraction,
-    dotted: latex_dotted,
-    labelled: latex_labelled,
+    name: latex_name,
     call: latex_call,
     word_times: " ",
 };
@@ -417,10 +422,21 @@ fn unicode_word(out: &mut String, word: &Word) {
     }
 }
 
-/// `θ`, `θ̇`, `θ̈` (combining dots after the stem).
-fn unicode_dotted(out: &mut String, stem: &Word, dots: usize) {
-    unicode_word(out, stem);
+/// `θ₁`, `θ̇₁`, `θ̈₁` (combining dots after the stem); a stem of several
+/// letters, where a combining dot would sit on its last letter alone
+/// (`FL_HFE` read as `FL̈_HFE`), takes the rate in Leibniz's notation:
+/// `d(FL_HFE)/dt`, `d²(FL_HFE)/dt²`.
+fn unicode_name(out: &mut String, name: &Name, dots: usize) {
+    if dots > 0 && name.stem.is_several_letters() {
+        let order = if dots == 1 { "" } else { "²" };
+        out.push_str(&format!("d{order}("));
+        unicode_name(out, name, 0);
+        out.push_str(&format!(")/dt{order}"));
+        return;
+    }
+    unicode_word(out, &name.stem);
     out.extend(["", "\u{307}", "\u{308}"].get(dots).copied());
+    unicode_labelled(out, name.label.as_ref(), &name.digits);
 }
 
 /// `_φ₂`.
@@ -468,14 +484,16 @@ fn latex_word(out: &mut String, word: &Word) {
     }
 }
 
-/// `\theta`, `\dot{\theta}`, `\ddot{\theta}`.
-fn latex_dotted(out: &mut String, stem: &Word, dots: usize) {
+/// `\theta_{1}`, `\dot{\theta}_{1}`, `\ddot{\theta}_{1}` (an accent is
+/// centred over a stem of several letters, `\dot{\mathrm{FL}}`).
+fn latex_name(out: &mut String, name: &Name, dots: usize) {
     let accent = ["", "\\dot{", "\\ddot{"].get(dots).copied().unwrap_or("");
     out.push_str(accent);
-    latex_word(out, stem);
+    latex_word(out, &name.stem);
     if !accent.is_empty() {
         out.push('}');
     }
+    latex_labelled(out, name.label.as_ref(), &name.digits);
 }
 
 /// `_{\phi,2}`.
@@ -761,9 +779,7 @@ impl<'a> Walker<'a> {
     /// (not a Greek letter's name).
     fn is_word(&self, factor: Factor) -> bool {
         match *self.pool.node(factor.base) {
-            Node::Sym(s) => {
-                matches!(&self.names.of(s).0.stem, Word::Text(t) if t.chars().count() > 1)
-            }
+            Node::Sym(s) => self.names.of(s).0.stem.is_several_letters(),
             _ => false,
         }
     }
@@ -814,8 +830,7 @@ impl<'a> Walker<'a> {
     /// Writes a symbol's name.
     fn symbol(&mut self, s: Sym) {
         let (name, dots) = self.names.of(s);
-        (self.notation.dotted)(&mut self.out, &name.stem, dots);
-        (self.notation.labelled)(&mut self.out, name.label.as_ref(), &name.digits);
+        (self.notation.name)(&mut self.out, &name, dots);
     }
 
     /// Writes `f(arg)^exp`: `sin θ`, `sin²(θ₂ − θ₁)`, `(ln x)²`, `|x|⁻¹`.
@@ -997,6 +1012,26 @@ mod tests {
             both(&names, Sym::Speed(2)),
             ("M\u{307}_φ₂".into(), "\\dot{M}_{\\phi,2}".into())
         );
+    }
+
+    #[test]
+    fn rates_of_names_of_several_letters_are_written_whole() {
+        let names = SymbolNames::new(&["m"], &["FL_HFE", "panda_joint1"], &["u"]);
+        assert_eq!(
+            both(&names, Sym::Speed(0)),
+            (
+                "d(FL_HFE)/dt".into(),
+                "\\dot{\\mathrm{FL}}_{\\mathrm{HFE}}".into()
+            )
+        );
+        assert_eq!(
+            both(&names, Sym::Accel(1)),
+            (
+                "d²(panda_joint₁)/dt²".into(),
+                "\\ddot{\\mathrm{panda}}_{\\mathrm{joint},1}".into()
+            )
+        );
+        assert_eq!(both(&names, Sym::Coord(0)).0, "FL_HFE");
     }
 
     #[test]
