@@ -8,6 +8,7 @@
 mod body;
 mod configuration;
 mod derivatives;
+mod schedule;
 mod solve;
 mod taylor;
 
