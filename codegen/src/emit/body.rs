@@ -184,24 +184,7 @@ fn write(
         bound: HashMap::new(),
         statements: TokenStream::new(),
         temporaries: 0,
-        depth: HashMap::new(),
     };
-    if std::env::var("DALEMBERT_DEPTH").is_ok() {
-        for &e in &order {
-            let d = match pool.node(e) {
-                Node::Number(_) | Node::Sym(_) => 0,
-                _ => {
-                    1 + writer
-                        .written_children(e)
-                        .iter()
-                        .map(|c| writer.depth.get(c).copied().unwrap_or(0))
-                        .max()
-                        .unwrap_or(0)
-                }
-            };
-            writer.depth.insert(e, d);
-        }
-    }
     let mut used = BTreeSet::new();
     for &e in &order {
         if let Node::Sym(sym) = pool.node(e) {
@@ -214,15 +197,8 @@ fn write(
     if angles == Angles::AtTop {
         writer.bind_angles(&angle_pairs(pool, &order, &pairs));
     }
-    let sched = std::env::var("DALEMBERT_SCHED").unwrap_or_default();
-    let statements: Vec<ExprId> = match sched.as_str() {
-        "" | "post" => order.clone(),
-        _ => writer.scheduled(&order, roots, &uses, &pairs, sched == "roots"),
-    };
-    for &e in &statements {
-        if !writer.needs_binding(e, &uses)
-            && !(sched != "" && sched != "post" && writer.is_early_root(e, roots))
-        {
+    for &e in &order {
+        if !writer.needs_binding(e, &uses) {
             continue;
         }
         if writer.alias_group(e) {
@@ -264,39 +240,6 @@ fn count_uses(
         *uses.entry(r).or_default() += 1;
     }
     uses
-}
-
-fn live(reads: &[Vec<usize>], order: &[usize]) -> (usize, usize) {
-    let n = reads.len();
-    let values = reads
-        .iter()
-        .flatten()
-        .map(|&v| v + 1)
-        .max()
-        .unwrap_or(0)
-        .max(n);
-    let mut remaining = vec![0usize; values];
-    for r in reads {
-        for &v in r {
-            remaining[v] += 1;
-        }
-    }
-    let mut live: usize = (n..values).count();
-    let (mut max, mut sum) = (0, 0);
-    for &s in order {
-        for &v in &reads[s] {
-            remaining[v] -= 1;
-            if remaining[v] == 0 {
-                live -= 1;
-            }
-        }
-        if remaining[s] > 0 {
-            live += 1;
-        }
-        max = max.max(live);
-        sum += live;
-    }
-    (max, sum / n.max(1))
 }
 
 /// A sum written as an earlier sum plus a constant and other terms.
@@ -420,90 +363,9 @@ struct Writer<'a> {
     bound: HashMap<ExprId, TokenStream>,
     statements: TokenStream,
     temporaries: usize,
-    depth: HashMap<ExprId, u32>,
 }
 
 impl Writer<'_> {
-    fn is_early_root(&self, e: ExprId, roots: &[ExprId]) -> bool {
-        !self.bound.contains_key(&e)
-            && roots.contains(&e)
-            && matches!(
-                self.pool.node(e),
-                Node::Add(_) | Node::Mul(_) | Node::Pow(..)
-            )
-    }
-
-    fn written_children(&self, e: ExprId) -> Vec<ExprId> {
-        match self.nested.get(&e) {
-            Some(sum) => std::iter::once(sum.inner)
-                .chain(sum.rest.iter().copied())
-                .collect(),
-            None => children(self.pool.node(e)),
-        }
-    }
-
-    fn scheduled(
-        &self,
-        order: &[ExprId],
-        roots: &[ExprId],
-        uses: &HashMap<ExprId, usize>,
-        pairs: &HashMap<ExprId, (ExprId, ExprId, ExprId)>,
-        post: bool,
-    ) -> Vec<ExprId> {
-        let root_set: std::collections::HashSet<ExprId> = roots.iter().copied().collect();
-        let mut statements: Vec<ExprId> = Vec::new();
-        let mut index: HashMap<ExprId, usize> = HashMap::new();
-        for &e in order {
-            let needed = self.needs_binding(e, uses)
-                || (root_set.contains(&e) && self.is_early_root(e, roots));
-            if !needed || index.contains_key(&e) {
-                continue;
-            }
-            index.insert(e, statements.len());
-            if let Some(&(sine, cosine, _)) = pairs.get(&e) {
-                index.insert(sine, statements.len());
-                index.insert(cosine, statements.len());
-            }
-            statements.push(e);
-        }
-        let mut leaves: HashMap<ExprId, usize> = HashMap::new();
-        let n = statements.len();
-        let mut reads: Vec<Vec<usize>> = Vec::new();
-        for &s in &statements {
-            let mut read = Vec::new();
-            let mut stack = self.written_children(s);
-            if let Some(&(_, _, arg)) = pairs.get(&s) {
-                stack = vec![arg];
-            }
-            while let Some(c) = stack.pop() {
-                if let Some(&i) = index.get(&c) {
-                    read.push(i);
-                } else if self.bound.contains_key(&c) || matches!(self.pool.node(c), Node::Sym(_)) {
-                    let next = n + leaves.len();
-                    read.push(*leaves.entry(c).or_insert(next));
-                } else {
-                    stack.extend(self.written_children(c));
-                }
-            }
-            read.sort_unstable();
-            read.dedup();
-            reads.push(read);
-        }
-        let identity: Vec<usize> = (0..n).collect();
-        let greedy = super::schedule::schedule(&reads);
-        if std::env::var("DALEMBERT_LIVE").is_ok() {
-            eprintln!(
-                "n {n} post {:?} greedy {:?}",
-                live(&reads, &identity),
-                live(&reads, &greedy)
-            );
-        }
-        if post {
-            return statements;
-        }
-        greedy.into_iter().map(|i| statements[i]).collect()
-    }
-
     /// Elementary functions are always bound (they are the expensive calls,
     /// and groups the steps of a recursion), other compound expressions when
     /// they are used more than once.
@@ -699,19 +561,6 @@ impl Writer<'_> {
     /// `a + b - c`: terms with a negative coefficient are subtracted.
     /// `inner ± constant ± rest…`.
     fn nested_sum(&self, sum: &NestedSum) -> TokenStream {
-        if !self.depth.is_empty() {
-            let mut all = vec![sum.inner];
-            all.extend(sum.rest.iter().copied());
-            let all = self.by_depth(&all);
-            let mut out = TokenStream::new();
-            if !sum.constant.is_zero() {
-                out.extend(number(sum.constant));
-                out.extend(self.terms(&all, false, false));
-            } else {
-                out.extend(self.terms(&all, true, false));
-            }
-            return out;
-        }
         let inner = self.expr(sum.inner);
         let mut out = quote!(#inner);
         if !sum.constant.is_zero() {
@@ -732,14 +581,7 @@ impl Writer<'_> {
 
     /// Terms joined by their signs (every sign turned if `turned`); `first`
     /// if they start the sum.
-    fn by_depth(&self, items: &[ExprId]) -> Vec<ExprId> {
-        let mut items = items.to_vec();
-        items.sort_by_key(|e| self.depth.get(e).copied().unwrap_or(0));
-        items
-    }
-
     fn terms(&self, terms: &[ExprId], first: bool, turned: bool) -> TokenStream {
-        let terms = &self.by_depth(terms)[..];
         let mut out = TokenStream::new();
         for (i, &term) in terms.iter().enumerate() {
             let i = if first { i } else { i + 1 };
@@ -804,7 +646,7 @@ impl Writer<'_> {
         // Whether the denominator is a product (`x * x` from `x⁻²` is one
         // even alone), which needs parentheses below the `/`.
         let mut product_below = false;
-        for &f in &self.by_depth(factors) {
+        for &f in factors {
             match self.pool.node(f) {
                 // `i32::MIN` has no positive counterpart: it stays a `powi`.
                 Node::Pow(base, n) if *n < 0 && *n != i32::MIN && !self.bound.contains_key(&f) => {

@@ -8,7 +8,6 @@
 mod body;
 mod configuration;
 mod derivatives;
-mod schedule;
 mod solve;
 mod taylor;
 
