@@ -11,19 +11,28 @@
 #
 # Thread CPU time per call over 2·10⁶ calls cycling through 1000
 # pseudo-random states (coordinates and speeds in [−1, 1], the quaternion
-# of a free joint, coordinates 3..7, normalised), five rounds. It prints
-# the sizes of the two functions' machine code, then per round M alone,
+# of a free joint, coordinates 3..7, normalised), five rounds (ROUNDS=n in
+# the environment for another number; 0 to only build). It prints
+# the sizes of the two functions' machine code and their register traffic
+# (stores to the stack, instructions reading the stack, register-to-register
+# copies: the spills and copies of values that did not stay in the 16 xmm
+# registers), then per round M alone,
 # f alone, their sum, and the pair called together. When the pair's code
-# exceeds the instruction cache (32 KB per core here), together costs
-# more than the sum.
+# exceeds the instruction cache (32 KB per core on the AMD EPYC machines,
+# 64 KB on the Intel Xeon ones: `lscpu`), together costs more than the sum.
+# EXTRA_RUSTFLAGS in the environment are added to the build's flags (e.g.
+# '-C no-vectorize-slp' to see the code without LLVM's SLP vectoriser).
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
 repo=$(pwd)
-model=$1 name=$2 nq=$3 nv=$4 nu=$5 cpu=${6:-x86-64}
+model=$1 name=$2 nq=$3 nv=$4 nu=$5 cpu=${6:-x86-64} rounds=${ROUNDS:-5}
 dir=$repo/target/pair-timing
 mkdir -p "$dir/src/bin"
 cargo run -q -p dalembert-codegen --bin dalembert -- generate "$model" > "$dir/model.rs"
+# A model with parameters is timed with all of them at 1.
+fields=$(awk -v s="pub struct $name {" 'index($0, s) { inside = 1; next } inside && /^}/ { inside = 0 }
+    inside && match($0, /pub [A-Za-z_0-9]+: f64/) { f = substr($0, RSTART + 4, RLENGTH - 9); printf "%s: 1.0, ", f }' "$dir/model.rs")
 cat > "$dir/Cargo.toml" <<TOML
 [package]
 name = "pair-timing"
@@ -73,14 +82,14 @@ fn main() {
             (q, v, u)
         })
         .collect();
-    let s = System {};
+    let s = System { $fields };
     let n = 2_000_000;
     let time = |call: &dyn Fn(usize)| {
         let t = now();
         (0..n).for_each(|i| call(i % 1000));
         (now() - t) / n as f64
     };
-    for round in 0..5 {
+    for round in 0..black_box($rounds) {
         let m = time(&|i| { black_box(pair_mass_matrix(black_box(&s), &states[i].0)); });
         let f = time(&|i| { let (q, v, u) = &states[i]; black_box(pair_forcing(black_box(&s), q, v, u)); });
         let both = time(&|i| {
@@ -92,9 +101,13 @@ fn main() {
 }
 RUST
 export CARGO_TARGET_DIR=$dir/target-$cpu
-RUSTFLAGS="-C target-cpu=$cpu" cargo build -q --release --manifest-path "$dir/Cargo.toml" --bin pair
+RUSTFLAGS="-C target-cpu=$cpu ${EXTRA_RUSTFLAGS:-}" cargo build -q --release --manifest-path "$dir/Cargo.toml" --bin pair
 for f in pair_mass_matrix pair_forcing; do
     size=$(nm -S "$CARGO_TARGET_DIR/release/pair" | awk -v f="$f" '$4 == f { print $2 }')
-    echo "$f: $((16#$size)) bytes of machine code ($cpu)"
+    code=$(objdump -d --no-show-raw-insn --disassemble="$f" "$CARGO_TARGET_DIR/release/pair")
+    stores=$(grep -cE '%xmm[0-9]+,(-?0x[0-9a-f]+)?\(%rsp\)' <<<"$code" || true)
+    reads=$(grep -cE '\(%rsp\),%xmm[0-9]+' <<<"$code" || true)
+    copies=$(grep -cE 'mov(apd|aps|sd)\s+%xmm[0-9]+,%xmm[0-9]+$' <<<"$code" || true)
+    echo "$f: $((16#$size)) bytes of machine code ($cpu), $stores stack stores, $reads stack reads, $copies register copies"
 done
 "$CARGO_TARGET_DIR/release/pair"
