@@ -79,33 +79,55 @@ where
     }
 }
 
-/// The Butcher tableau of an `S`-stage collocation method.
-struct Collocation<const S: usize> {
-    c: [f64; S],
-    a: [[f64; S]; S],
-    b: [f64; S],
+/// The most stages of any method here (Gauss 6).
+const MAX_STAGES: usize = 3;
+
+/// The stage slopes of one step; those past the method's stage count are
+/// unused.
+type Stages<const NQ: usize, const NV: usize> = [Rate<NQ, NV>; MAX_STAGES];
+
+/// The Butcher tableau of a collocation method of up to [`MAX_STAGES`]
+/// stages, padded with zeros.
+///
+/// The stage count is a value, not a type parameter, so that every method
+/// runs the same code, whose stage iteration is the only place that
+/// evaluates the accelerations: with that single call site the compiler
+/// inlines the system's accelerations into it, as into RK4's stage loop
+/// (BENCHMARKS.md, "Integrators: cost per evaluation").
+struct Collocation {
+    stages: usize,
+    c: [f64; MAX_STAGES],
+    a: [[f64; MAX_STAGES]; MAX_STAGES],
+    b: [f64; MAX_STAGES],
 }
 
 /// The implicit midpoint rule.
-const MIDPOINT: Collocation<1> = Collocation {
-    c: [0.5],
-    a: [[0.5]],
-    b: [1.0],
+const MIDPOINT: Collocation = Collocation {
+    stages: 1,
+    c: [0.5, 0.0, 0.0],
+    a: [[0.5, 0.0, 0.0], [0.0; MAX_STAGES], [0.0; MAX_STAGES]],
+    b: [1.0, 0.0, 0.0],
 };
 
 /// `√3 / 6`.
 const SQRT3_6: f64 = 0.288_675_134_594_812_9;
 /// Two-stage Gauss–Legendre, nodes `1/2 ∓ √3/6`.
-const GAUSS4: Collocation<2> = Collocation {
-    c: [0.5 - SQRT3_6, 0.5 + SQRT3_6],
-    a: [[0.25, 0.25 - SQRT3_6], [0.25 + SQRT3_6, 0.25]],
-    b: [0.5, 0.5],
+const GAUSS4: Collocation = Collocation {
+    stages: 2,
+    c: [0.5 - SQRT3_6, 0.5 + SQRT3_6, 0.0],
+    a: [
+        [0.25, 0.25 - SQRT3_6, 0.0],
+        [0.25 + SQRT3_6, 0.25, 0.0],
+        [0.0; MAX_STAGES],
+    ],
+    b: [0.5, 0.5, 0.0],
 };
 
 /// `√15`.
 const SQRT15: f64 = 3.872_983_346_207_417;
 /// Three-stage Gauss–Legendre, nodes `1/2 − √15/10, 1/2, 1/2 + √15/10`.
-const GAUSS6: Collocation<3> = Collocation {
+const GAUSS6: Collocation = Collocation {
+    stages: 3,
     c: [0.5 - SQRT15 / 10.0, 0.5, 0.5 + SQRT15 / 10.0],
     a: [
         [
@@ -127,28 +149,43 @@ const GAUSS6: Collocation<3> = Collocation {
     b: [5.0 / 18.0, 4.0 / 9.0, 5.0 / 18.0],
 };
 
-impl<const S: usize> Collocation<S> {
+impl Collocation {
     /// The matrix that carries the stage slopes of one step to a first guess
     /// of those of the next: entry `(i, j)` is the Lagrange basis polynomial
-    /// of node `cⱼ` at `1 + cᵢ`.
-    fn extrapolation(&self) -> [[f64; S]; S] {
+    /// of node `cⱼ` at `1 + cᵢ` (zero past the stage count).
+    fn extrapolation(&self) -> [[f64; MAX_STAGES]; MAX_STAGES] {
+        let s = self.stages;
         std::array::from_fn(|i| {
             std::array::from_fn(|j| {
+                if i >= s || j >= s {
+                    return 0.0;
+                }
                 let x = 1.0 + self.c[i];
-                (0..S)
+                (0..s)
                     .filter(|&m| m != j)
                     .map(|m| (x - self.c[m]) / (self.c[j] - self.c[m]))
                     .product()
             })
         })
     }
+
+    /// Row `i` of `weights` applied to the method's stage slopes.
+    #[inline(always)]
+    fn combine<const NQ: usize, const NV: usize>(
+        &self,
+        weights: &[f64; MAX_STAGES],
+        stages: &Stages<NQ, NV>,
+    ) -> Rate<NQ, NV> {
+        Rate::combination_of_first(self.stages, weights, stages)
+    }
 }
 
 /// [`gauss_legendre`] with the tableau `scheme`; the first guess of each
-/// step's stage slopes extrapolates the previous step's.
-fn integrate<D, const NQ: usize, const NV: usize, const S: usize>(
+/// step's stage slopes extrapolates the previous step's (the first step's
+/// is the slope at the start, for every stage).
+fn integrate<D, const NQ: usize, const NV: usize>(
     (dynamics, initial, t_end, steps): (&D, State<NQ, NV>, f64, u64),
-    scheme: &Collocation<S>,
+    scheme: &Collocation,
     observer: impl FnMut(&State<NQ, NV>),
 ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
@@ -156,24 +193,30 @@ where
 {
     let kernel = Kernel::new(dynamics);
     let extrapolation = scheme.extrapolation();
-    let mut guess = [kernel.rate(&initial)?; S];
+    let mut guess = None;
     let step = |state: &State<NQ, NV>, h: f64| {
         let stages = solve_stages(&kernel, scheme, state, h, guess)?;
-        guess = std::array::from_fn(|i| Rate::combination(&extrapolation[i], &stages));
-        Ok(kernel.step_end(state, &Rate::combination(&scheme.b, &stages), h))
+        guess = Some(std::array::from_fn(|i| {
+            scheme.combine(&extrapolation[i], &stages)
+        }));
+        Ok(kernel.step_end(state, &scheme.combine(&scheme.b, &stages), h))
     };
     kernel.fixed_steps(initial, t_end, steps, step, observer)
 }
 
 /// The stage slopes `Kᵢ = F(y + h Σⱼ aᵢⱼ Kⱼ)` of one step from `state`, by
-/// fixed-point iteration from `guess` until the change is rounding.
-fn solve_stages<D, const NQ: usize, const NV: usize, const S: usize>(
+/// fixed-point iteration from `guess` until the change is rounding; without
+/// a guess, the first sweep evaluates the slope at `state` alone and takes
+/// it for every stage.
+///
+/// Every evaluation of the method happens at the one call in the sweep.
+fn solve_stages<D, const NQ: usize, const NV: usize>(
     kernel: &Kernel<'_, D>,
-    scheme: &Collocation<S>,
+    scheme: &Collocation,
     state: &State<NQ, NV>,
     h: f64,
-    guess: [Rate<NQ, NV>; S],
-) -> Result<[Rate<NQ, NV>; S], IntegrationError<NQ>>
+    guess: Option<Stages<NQ, NV>>,
+) -> Result<Stages<NQ, NV>, IntegrationError<NQ>>
 where
     D: Dynamics<NQ, NV>,
 {
@@ -183,17 +226,32 @@ where
             .iter()
             .chain(&state.v)
             .fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut stages = guess;
+    let mut stages = guess.unwrap_or([Rate::ZERO; MAX_STAGES]);
+    let mut from_start = guess.is_none();
     let mut previous_change = f64::INFINITY;
-    for _ in 0..MAX_ITERATIONS {
-        let mut updated = [Rate::ZERO; S];
-        for (i, slope) in updated.iter_mut().enumerate() {
-            let combined = Rate::combination(&scheme.a[i], &stages);
-            *slope = kernel.rate(&kernel.stage(state, &combined, h, scheme.c[i]))?;
+    let mut iterations = 0;
+    while iterations < MAX_ITERATIONS {
+        let mut updated = [Rate::ZERO; MAX_STAGES];
+        let sweep = if from_start { 1 } else { scheme.stages };
+        for (i, slope) in updated.iter_mut().enumerate().take(sweep) {
+            let point = if from_start {
+                *state
+            } else {
+                let combined = scheme.combine(&scheme.a[i], &stages);
+                kernel.stage(state, &combined, h, scheme.c[i])
+            };
+            *slope = kernel.rate(&point)?;
         }
+        if from_start {
+            stages = [updated[0]; MAX_STAGES];
+            from_start = false;
+            continue;
+        }
+        iterations += 1;
         let change = updated
             .iter()
             .zip(&stages)
+            .take(scheme.stages)
             .fold(0.0f64, |m, (new, old)| m.max(new.largest_difference(old)))
             * h.abs();
         stages = updated;

@@ -28,6 +28,13 @@ use quote::{format_ident, quote};
 /// The fewest coordinates for which the recursion may be chosen.
 const MIN_ARTICULATED: usize = 3;
 
+/// The recursion's operations, charged in percent of the factorisation's:
+/// its sweeps run one link after another, where `M`'s entries are
+/// independent of each other, and at 0.96 of the factorisation's count the
+/// spatial chains of 12 ran 1.13–1.17 times as long (BENCHMARKS.md,
+/// "The recursion's operations cost more").
+const ARTICULATED_PERCENT: usize = 120;
+
 /// `pub fn accelerations(..)`, for systems without constraints.
 pub fn emit_accelerations(
     model: &Model,
@@ -329,8 +336,9 @@ fn articulated_body(
     }
 }
 
-/// Whether the recursion costs fewer operations than forming `M` and `f`
-/// (together, sharing their subexpressions) and factorising. Tiny systems
+/// Whether the recursion costs fewer operations, charged at
+/// [`ARTICULATED_PERCENT`], than forming `M` and `f` (together, sharing
+/// their subexpressions) and factorising. Tiny systems
 /// keep the factorisation: with one or two coordinates it measured faster
 /// at any operation count.
 fn articulated_is_cheaper(
@@ -348,7 +356,8 @@ fn articulated_is_cheaper(
         .copied()
         .collect();
     let factorised = operations(pool, &mass_and_forcing) + factorisation_operations(pattern);
-    model.nq() >= MIN_ARTICULATED && operations(pool, &articulated.roots()) < factorised
+    let charged = operations(pool, &articulated.roots()) * ARTICULATED_PERCENT;
+    model.nq() >= MIN_ARTICULATED && charged < factorised * 100
 }
 
 /// Multiplications, subtractions and divisions of the unrolled `L D Lᵀ`

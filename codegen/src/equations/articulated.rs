@@ -26,7 +26,7 @@
 //! body `A` is the inertia about the origin, `B = [h×]` with `h` the first
 //! moment and `C = m 1`).
 
-use super::recursive::{Column, Composite, JointTree, rotate_tensor};
+use super::recursive::{Column, Composite, JointTree, rotate_symmetric, rotate_tensor};
 use crate::expr::{ExprId, Pool};
 use crate::kinematics::{Mat3, Vec3, add3, cross, dot, mat_vec, transpose_mul};
 
@@ -290,9 +290,9 @@ fn to_parent(
     i: &Spatial,
     w: &Pair,
 ) -> (Spatial, Pair) {
-    let a = rotate_tensor(pool, rotation, &i.a);
+    let a = rotate_symmetric(pool, rotation, &i.a);
     let b = rotate_tensor(pool, rotation, &i.b);
-    let c = rotate_tensor(pool, rotation, &i.c);
+    let c = rotate_symmetric(pool, rotation, &i.c);
     let r = skew(pool, offset);
     let rc = mat_mul(pool, &r, &c);
     let b_moved = add_mat(pool, &b, &rc);

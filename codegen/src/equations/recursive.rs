@@ -609,7 +609,7 @@ pub(super) fn shifted(pool: &mut Pool, c: &Composite, d: &Vec3, moved: &Vec3) ->
 /// are multiplied out and `jj` follows from the trace, which a turn keeps:
 /// 20 operations where the general `R K Rᵀ` takes 36 (6 if the block is a
 /// multiple of the identity, as a body's symmetric about the axis is).
-fn rotate_symmetric(pool: &mut Pool, r: &Mat3, k: &Mat3) -> Mat3 {
+pub(super) fn rotate_symmetric(pool: &mut Pool, r: &Mat3, k: &Mat3) -> Mat3 {
     let Some(a) = turning_axis(pool, r) else {
         return rotate_tensor(pool, r, k);
     };
