@@ -1,8 +1,11 @@
 //! The outputs that solve through the mass matrix: `accelerations_jacobian`
 //! (`∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the partials of the inverse dynamics at the
 //! solved `v̇`, every column but those of structural zeros through the one
-//! `L D Lᵀ` factorisation that solved for `v̇`) and `linearize` (the state-space matrices `A`, `B` of
-//! `ẋ = (q̇, v̇)` about a state).
+//! `L D Lᵀ` factorisation that solved for `v̇`; for a large tree the pairs
+//! of joints of the world-frame partials added by a loop of the runtime,
+//! `dalembert::dynamics::add_tree_pairs`, rather than unrolled) and
+//! `linearize` (the state-space matrices `A`, `B` of `ẋ = (q̇, v̇)` about a
+//! state).
 
 use super::body::{Given, Names, Straight, straight_line, straight_line_given};
 use super::solve::{Factorised, factorised, negated_row_substitutions};
@@ -10,7 +13,7 @@ use super::{array, raw_string};
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
-use crate::outputs::Function;
+use crate::outputs::{Function, PairedTree};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -24,12 +27,50 @@ fn matrix(rows: usize, columns: usize) -> TokenStream {
 /// and `∂τ/∂u` (blocks 0, 1, 2, row-major `nv × widths[block]` in
 /// `blocks`) that are not structurally zero (`∂τ/∂q₁` of a first joint
 /// turning about gravity is), as `(block, column)`.
-fn solved_columns(pool: &Pool, blocks: &[&[ExprId]; 3], widths: [usize; 3]) -> Vec<(usize, usize)> {
+/// With `paired`, the columns of `∂τ/∂q` and `∂τ/∂v` are those that can
+/// be nonzero with the pairs added.
+fn solved_columns(
+    pool: &Pool,
+    blocks: &[&[ExprId]; 3],
+    widths: [usize; 3],
+    paired: Option<&PairedTree>,
+) -> Vec<(usize, usize)> {
     let nv = widths[0];
     (0..3)
         .flat_map(|block| (0..widths[block]).map(move |j| (block, j)))
-        .filter(|&(block, j)| (0..nv).any(|i| !pool.is_zero(blocks[block][i * widths[block] + j])))
+        .filter(|&(block, j)| match (paired, block) {
+            (Some(paired), 0 | 1) => paired.nonzero[block][j],
+            _ => (0..nv).any(|i| !pool.is_zero(blocks[block][i * widths[block] + j])),
+        })
         .collect()
+}
+
+/// The call adding the pairs of `paired`'s joints to the rows `rows` (in
+/// the elimination `order`, the columns `columns`), from the array
+/// `links` of the links' vectors: `dalembert::dynamics::add_tree_pairs`
+/// with the tree as a table.
+fn tree_pairs(
+    paired: &PairedTree,
+    order: &[usize],
+    columns: &[(usize, usize)],
+    rows: &[Ident],
+) -> TokenStream {
+    let none = || quote!(usize::MAX);
+    let index = |i: Option<usize>| {
+        i.map_or_else(none, |i| {
+            let i = Literal::usize_unsuffixed(i);
+            quote!(#i)
+        })
+    };
+    let table = paired.parents.iter().zip(&paired.speeds).map(|(&parent, &speed)| {
+        let row = index(order.iter().position(|&s| s == speed));
+        let [by_q, by_v] = [0, 1].map(|block| index(columns.iter().position(|&c| c == (block, speed))));
+        let parent = index(parent);
+        quote!(::dalembert::dynamics::TreeLink { parent: #parent, row: #row, by_q: #by_q, by_v: #by_v })
+    });
+    quote! {
+        ::dalembert::dynamics::add_tree_pairs([#(&mut #rows),*], &links, &[#(#table),*]);
+    }
 }
 
 /// The sines and cosines of symbols (the coordinates' angles) that
@@ -44,24 +85,74 @@ fn angle_functions(pool: &Pool, roots: &[ExprId]) -> Vec<ExprId> {
         .collect()
 }
 
+/// Binds the mutable rows `rows` of `∂τ/∂x` (`[f64; count]` each) from
+/// `body`, whose outputs are the rows' entries and then, with `paired`,
+/// the links' vectors (42 a link, bound to `links`), whose pairs the call
+/// `pairs` then adds.
+fn partial_rows(
+    body: &Straight,
+    rows: &[Ident],
+    count: usize,
+    paired: Option<(&PairedTree, TokenStream)>,
+) -> TokenStream {
+    let (statements, outputs) = (&body.statements, &body.outputs);
+    let (n, entries) = (Literal::usize_unsuffixed(rows.len()), rows.len() * count);
+    let values = (0..rows.len()).map(|i| {
+        let row = &outputs[i * count..(i + 1) * count];
+        quote!([#(#row),*])
+    });
+    let values = quote!([#(#values),*]);
+    let count = Literal::usize_unsuffixed(count);
+    match paired {
+        None => quote! {
+            let [#(mut #rows),*]: [[f64; #count]; #n] = {
+                #statements
+                #values
+            };
+        },
+        Some((paired, pairs)) => {
+            let links = outputs[entries..].chunks(42).map(|link| {
+                let parts = link.chunks(6).map(|part| quote!([#(#part),*]));
+                quote!([#(#parts),*])
+            });
+            let l = Literal::usize_unsuffixed(paired.speeds.len());
+            quote! {
+                let ([#(mut #rows),*], links): ([[f64; #count]; #n], [[[f64; 6]; 7]; #l]) = {
+                    #statements
+                    (#values, [#(#links),*])
+                };
+                #pairs
+            }
+        }
+    }
+}
+
 /// `pub fn accelerations_jacobian(..)` from `function`, whose results are
 /// `∂τ/∂q`, `∂τ/∂v`, `∂τ/∂u`; nothing for a system with constraints
 /// (which the model rejects). The columns that are not structural zeros
 /// are solved together: the rows of `∂τ/∂x` are arrays, substituted in
-/// place through `L D Lᵀ` one row operation at a time.
+/// place through `L D Lᵀ` one row operation at a time. With `paired`, the
+/// results are the rest of `∂τ/∂q` and `∂τ/∂v`, `∂τ/∂u` and the links'
+/// vectors, whose pairs a loop of the runtime adds to the rows.
 pub fn emit_accelerations_jacobian(
     model: &Model,
     pool: &Pool,
     equations: &Equations,
     names: &Names,
     function: &Function,
+    paired: Option<&PairedTree>,
 ) -> TokenStream {
     let (nv, nu) = (model.nv(), model.inputs.len());
     let widths = [nv, nv, nu];
     let blocks: [&[ExprId]; 3] = [0, 1, 2].map(|k| function.results[k].expressions.as_slice());
+    // With a paired tree, the links' vectors (42 a link).
+    let vectors: &[ExprId] = function
+        .results
+        .get(3)
+        .map_or(&[], |v| v.expressions.as_slice());
     // The sines and cosines of the angles are computed once, with `M` and
     // `f`, and the partials' body takes them.
-    let angles = angle_functions(pool, &blocks.concat());
+    let angles = angle_functions(pool, &[&blocks.concat(), vectors].concat());
     let given = Given {
         array: format_ident!("angles"),
         expressions: &angles,
@@ -78,7 +169,7 @@ pub fn emit_accelerations_jacobian(
     else {
         return TokenStream::new();
     };
-    let columns = solved_columns(pool, &blocks, widths);
+    let columns = solved_columns(pool, &blocks, widths, paired);
     // Row `i` of the solve (the `i`-th speed eliminated): `∂τ/∂x` of that
     // speed's equation in the columns solved.
     let roots: Vec<ExprId> = order
@@ -88,20 +179,20 @@ pub fn emit_accelerations_jacobian(
                 .iter()
                 .map(move |&(block, j)| blocks[block][speed * widths[block] + j])
         })
+        .chain(vectors.iter().copied())
         .collect();
-    let Straight {
-        statements,
-        outputs,
-        ..
-    } = match given {
+    let body = match given {
         Some(given) => straight_line_given(pool, names, &roots, given),
         None => straight_line(pool, names, &roots),
     };
-    let row_values = (0..nv).map(|i| {
-        let row = &outputs[i * columns.len()..(i + 1) * columns.len()];
-        quote!([#(#row),*])
-    });
     let rows: Vec<Ident> = (0..nv).map(|i| format_ident!("b{}", i)).collect();
+    let rows_of_partials = match paired {
+        None => partial_rows(&body, &rows, columns.len(), None),
+        Some(paired) => {
+            let pairs = tree_pairs(paired, &order, &columns, &rows);
+            partial_rows(&body, &rows, columns.len(), Some((paired, pairs)))
+        }
+    };
     let solve = negated_row_substitutions(&pattern, &rows);
     // `∂v̇ᵢ/∂x_j`, by the speed `i`: `dq{i}_{j}`, `dv{i}_{j}`, `du{i}_{j}`.
     let entry = |block: usize, i: usize, j: usize| {
@@ -127,10 +218,6 @@ pub fn emit_accelerations_jacobian(
     let (dq, dv, du) = (block(0), block(1), block(2));
     let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
     let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
-    let (n, count) = (
-        Literal::usize_unsuffixed(nv),
-        Literal::usize_unsuffixed(columns.len()),
-    );
     let (name, docs) = (
         &function.name,
         function.docs.iter().map(|line| raw_string(line)),
@@ -155,10 +242,7 @@ pub fn emit_accelerations_jacobian(
             }
             // `∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the columns of `∂τ/∂x` that are not
             // structurally zero, row by row in the order of elimination.
-            let [#(mut #rows),*]: [[f64; #count]; #n] = {
-                #statements
-                [#(#row_values),*]
-            };
+            #rows_of_partials
             #solve
             #(#unpacked)*
             let jacobian: (#square, #square, #wide) = (#dq, #dv, #du);

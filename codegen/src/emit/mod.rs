@@ -56,12 +56,19 @@ pub fn emit(
     let nc = model.constraints.len();
     let mut items: Vec<TokenStream> = functions
         .iter()
-        .map(|function| match (function.body, target) {
+        .map(|function| match (&function.body, target) {
             (Body::Explicit, _) => emit_function(model, pool, &names, function),
             // They return the runtime's errors.
             (_, Target::NoStd) => TokenStream::new(),
-            (Body::AccelerationsJacobian, Target::Std) => {
-                derivatives::emit_accelerations_jacobian(model, pool, equations, &names, function)
+            (Body::AccelerationsJacobian(paired), Target::Std) => {
+                derivatives::emit_accelerations_jacobian(
+                    model,
+                    pool,
+                    equations,
+                    &names,
+                    function,
+                    paired.as_ref(),
+                )
             }
             (Body::Linearize, Target::Std) => {
                 derivatives::emit_linearize(model, pool, &names, function)

@@ -25,7 +25,7 @@
 //! tree is linear in the number of links where `M v̇` is quadratic. For a
 //! tree of revolute and prismatic joints the partials of its inertia and
 //! gravity terms also have a recursion of their own in the axes of `N`
-//! (`tree_partials`, through [`super::tree_residual_jacobian`]), which
+//! (`tree_partials`, through [`super::tree_jacobian`]), which
 //! differentiates only the rest of the residual (the applied loads, springs
 //! and dampers) symbolically; the outputs keep whichever route costs fewer
 //! operations.
@@ -244,7 +244,8 @@ mod tests {
         let (nq, nu, np) = (model.nq(), model.inputs.len(), model.parameters.len());
         let directions = tangent_directions(&model, &mut pool);
         let general = residual_jacobian(&mut pool, &tau, &directions, nu);
-        let tree = super::super::tree_residual_jacobian(&model, &mut pool);
+        let tree =
+            super::super::tree_jacobian(&model, &mut pool).map(|tree| tree.combined(&mut pool));
         let residual = |pool: &Pool, point: &Point, i: usize| -> f64 {
             let inertial: f64 = (0..nq)
                 .map(|j| pool.eval(equations.mass_matrix[i][j], point) * point.a[j])

@@ -20,6 +20,7 @@ use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
 pub use articulated::Articulated;
+pub use tree_partials::LinkVectors;
 
 /// The derived equations of one system, as expressions of the pool the model was resolved into.
 #[derive(Clone)]
@@ -208,15 +209,42 @@ pub fn inverse_dynamics(
     }
 }
 
-/// `∂τ/∂δ`, `∂τ/∂v` and `∂τ/∂u` of the inverse dynamics `τ = M v̇ − f` of
-/// a tree of revolute and prismatic joints: the inertia and gravity terms
-/// by the recursion of `tree_partials`, the applied loads, potentials and
-/// dissipation (everything else in `τ`) differentiated symbolically;
+/// The partials of the inverse dynamics `τ = M v̇ − f` of a tree of
+/// revolute and prismatic joints in two parts: the applied loads,
+/// potentials and dissipation (everything in `τ` but its inertia and
+/// gravity terms) differentiated symbolically, and the vectors of each
+/// link whose pairs give the rest (see `tree_partials`).
+pub struct TreeJacobian {
+    /// `∂/∂δ`, `∂/∂v`, `∂/∂u` of the loads, potentials and dissipation.
+    pub rest: derivatives::ResidualJacobian,
+    /// The links' vectors, parents before children.
+    pub links: Vec<LinkVectors>,
+}
+
+impl TreeJacobian {
+    /// `∂τ/∂δ`, `∂τ/∂v` and `∂τ/∂u` in full: the pairs' dot products added
+    /// to the rest.
+    pub fn combined(&self, pool: &mut Pool) -> derivatives::ResidualJacobian {
+        let n = self.rest.speeds.len();
+        let (by_q, by_v) = tree_partials::paired(&self.links, n, pool);
+        let mut jacobian = self.rest.clone();
+        for (block, inertial) in [
+            (&mut jacobian.coordinates, by_q),
+            (&mut jacobian.speeds, by_v),
+        ] {
+            for (row, inertial) in block.iter_mut().zip(inertial) {
+                for (entry, x) in row.iter_mut().zip(inertial) {
+                    *entry = pool.add(*entry, x);
+                }
+            }
+        }
+        jacobian
+    }
+}
+
+/// The [`TreeJacobian`] of a tree of revolute and prismatic joints;
 /// `None` for any other model.
-pub fn tree_residual_jacobian(
-    model: &Model,
-    pool: &mut Pool,
-) -> Option<derivatives::ResidualJacobian> {
+pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
     if !model.balls.is_empty() {
         return None;
     }
@@ -224,7 +252,7 @@ pub fn tree_residual_jacobian(
     let inertias = inertias(model);
     let tree =
         recursive::JointTree::new(model, model.tree.as_ref()?, &kinematics, &inertias, pool)?;
-    let (by_q, by_v) = tree_partials::inertial_partials(&tree, pool)?;
+    let links = tree_partials::link_vectors(&tree, pool)?;
     let loads = tree.applied_loads(pool);
     let rest: Vec<ExprId> = (0..model.nv())
         .map(|k| {
@@ -233,18 +261,8 @@ pub fn tree_residual_jacobian(
         })
         .collect();
     let directions = derivatives::tangent_directions(model, pool);
-    let mut jacobian = derivatives::residual_jacobian(pool, &rest, &directions, model.inputs.len());
-    for (block, inertial) in [
-        (&mut jacobian.coordinates, by_q),
-        (&mut jacobian.speeds, by_v),
-    ] {
-        for (row, inertial) in block.iter_mut().zip(inertial) {
-            for (entry, x) in row.iter_mut().zip(inertial) {
-                *entry = pool.add(*entry, x);
-            }
-        }
-    }
-    Some(jacobian)
+    let rest = derivatives::residual_jacobian(pool, &rest, &directions, model.inputs.len());
+    Some(TreeJacobian { rest, links })
 }
 
 fn inertias(model: &Model) -> Vec<Inertia<'_>> {

@@ -75,10 +75,23 @@ struct Subtree {
     force: Spatial,
 }
 
-/// `(∂τ/∂q, ∂τ/∂v)` of the inertia and gravity terms of `tree`, `None`
-/// unless every joint is a revolute or prismatic joint whose coordinate's
-/// rate is the speed of the same index.
-pub(super) fn inertial_partials(tree: &JointTree, pool: &mut Pool) -> Option<(Block, Block)> {
+/// What the partials of one link's joint pair with those of its ancestors
+/// and descendants, in `N`'s axes: the link's parent and speed, and seven
+/// spatial vectors of six entries (angular then linear), `Sⱼ`, `Ψ̇ⱼ`, `Ψ̈ⱼ`,
+/// `yⱼ`, `zⱼ`, `wⱼ`, `uⱼ`, in that order.
+pub struct LinkVectors {
+    /// The parent's index among the links (parents before children).
+    pub parent: Option<usize>,
+    /// The index of the joint's speed.
+    pub speed: usize,
+    /// `Sⱼ`, `Ψ̇ⱼ`, `Ψ̈ⱼ`, `yⱼ`, `zⱼ`, `wⱼ`, `uⱼ`.
+    pub vectors: [[ExprId; 6]; 7],
+}
+
+/// The [`LinkVectors`] of every link of `tree`, `None` unless every joint
+/// is a revolute or prismatic joint whose coordinate's rate is the speed
+/// of the same index.
+pub(super) fn link_vectors(tree: &JointTree, pool: &mut Pool) -> Option<Vec<LinkVectors>> {
     let one_speed = |l: &super::recursive::Link| {
         matches!(l.kind, JointKind::Revolute | JointKind::Prismatic) && l.columns.len() == 1
     };
@@ -87,41 +100,67 @@ pub(super) fn inertial_partials(tree: &JointTree, pool: &mut Pool) -> Option<(Bl
     }
     let links = forward(tree, pool);
     let subtrees = backward(tree, &links, pool);
-    let columns: Vec<Columns> = links
+    let vectors = links
         .iter()
         .zip(&subtrees)
-        .map(|(link, subtree)| columns(pool, link, subtree))
+        .zip(&tree.links)
+        .map(|((link, subtree), joint)| {
+            let Columns { y, z, w, u } = columns(pool, link, subtree);
+            let parts = [link.subspace, link.rate, link.second_rate, y, z, w, u];
+            LinkVectors {
+                parent: joint.parent,
+                speed: joint.columns[0].speed,
+                vectors: parts.map(|x| {
+                    let [a, b, c] = x.angular;
+                    let [d, e, f] = x.linear;
+                    [a, b, c, d, e, f]
+                }),
+            }
+        })
         .collect();
-    let n = links.len();
-    let speed = |l: usize| tree.links[l].columns[0].speed;
+    Some(vectors)
+}
+
+/// `(∂τ/∂q, ∂τ/∂v)` of the inertia and gravity terms of a tree of `n`
+/// speeds from its links' [`LinkVectors`], entry by entry:
+///
+/// ```text
+/// j ⪯ i:  ∂τᵢ/∂qⱼ = yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ    ∂τᵢ/∂q̇ⱼ = zᵢ · Sⱼ + 2 yᵢ · Ψ̇ⱼ
+/// j ≺ i:  ∂τⱼ/∂qᵢ = Sⱼ · wᵢ              ∂τⱼ/∂q̇ᵢ = Sⱼ · uᵢ
+/// ```
+pub(super) fn paired(links: &[LinkVectors], n: usize, pool: &mut Pool) -> (Block, Block) {
     let zero = pool.zero();
     let (mut by_q, mut by_v) = (vec![vec![zero; n]; n], vec![vec![zero; n]; n]);
-    for (i, Columns { y, z, .. }) in columns.iter().enumerate() {
+    for (i, link) in links.iter().enumerate() {
+        let [.., y, z, w, u] = &link.vectors;
         let mut ancestor = Some(i);
         while let Some(j) = ancestor {
-            // j ⪯ i: yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ and zᵢ · Sⱼ + 2 yᵢ · Ψ̇ⱼ.
             let other = &links[j];
-            let terms = [
-                spatial_dot(pool, y, &other.second_rate),
-                spatial_dot(pool, z, &other.rate),
-            ];
-            by_q[speed(i)][speed(j)] = pool.sum(terms);
-            let y_rate = spatial_dot(pool, y, &other.rate);
-            let terms = [
-                spatial_dot(pool, z, &other.subspace),
-                pool.add(y_rate, y_rate),
-            ];
-            by_v[speed(i)][speed(j)] = pool.sum(terms);
-            // j ≺ i: Sⱼ · wᵢ and Sⱼ · uᵢ.
+            let [s, rate, second_rate, ..] = &other.vectors;
+            let terms = [dot6(pool, y, second_rate), dot6(pool, z, rate)];
+            by_q[link.speed][other.speed] = pool.sum(terms);
+            let y_rate = dot6(pool, y, rate);
+            let terms = [dot6(pool, z, s), pool.add(y_rate, y_rate)];
+            by_v[link.speed][other.speed] = pool.sum(terms);
             if j != i {
-                let Columns { w, u, .. } = &columns[i];
-                by_q[speed(j)][speed(i)] = spatial_dot(pool, &other.subspace, w);
-                by_v[speed(j)][speed(i)] = spatial_dot(pool, &other.subspace, u);
+                by_q[other.speed][link.speed] = dot6(pool, s, w);
+                by_v[other.speed][link.speed] = dot6(pool, s, u);
             }
-            ancestor = tree.links[j].parent;
+            ancestor = other.parent;
         }
     }
-    Some((by_q, by_v))
+    (by_q, by_v)
+}
+
+/// `a · b` of a motion and a force, six entries each.
+fn dot6(pool: &mut Pool, a: &[ExprId; 6], b: &[ExprId; 6]) -> ExprId {
+    let (a_angular, a_linear) = ([a[0], a[1], a[2]], [a[3], a[4], a[5]]);
+    let (b_angular, b_linear) = ([b[0], b[1], b[2]], [b[3], b[4], b[5]]);
+    let terms = [
+        dot(pool, &a_angular, &b_angular),
+        dot(pool, &a_linear, &b_linear),
+    ];
+    pool.sum(terms)
 }
 
 /// What the entries of one joint `i`'s row and column are dot products
@@ -343,15 +382,6 @@ fn force_cross(pool: &mut Pool, m: &Spatial, f: &Spatial) -> Spatial {
         angular: add3(pool, &first, &second),
         linear: cross(pool, &m.angular, &f.linear),
     }
-}
-
-/// `a · b` of a motion and a force.
-fn spatial_dot(pool: &mut Pool, a: &Spatial, b: &Spatial) -> ExprId {
-    let terms = [
-        dot(pool, &a.angular, &b.angular),
-        dot(pool, &a.linear, &b.linear),
-    ];
-    pool.sum(terms)
 }
 
 fn add(pool: &mut Pool, a: &Spatial, b: &Spatial) -> Spatial {

@@ -3,22 +3,34 @@
 //! inverse dynamics `τ = M v̇ − f` (see
 //! [`crate::equations::derivatives`]).
 
-use super::{Argument, Body, Function, Value, doc_lines};
+use super::{Argument, Body, Function, PairedTree, Value, doc_lines};
 use crate::cost::operations;
 use crate::equations::derivatives::{
     ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
 };
-use crate::equations::{Equations, inverse_dynamics, tree_residual_jacobian};
+use crate::equations::{Equations, TreeJacobian, inverse_dynamics, tree_jacobian};
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
 
+/// The fewest operations of a tree's partials (unrolled) above which
+/// `accelerations_jacobian` adds the pairs of joints in a loop at run
+/// time: the unrolled code of larger ones streams from L2 at about twice
+/// the time per byte (BENCHMARKS.md, "where the jacobian's time goes").
+const PAIRS_LOOPED_ABOVE: usize = 6000;
+
 /// The partials of `τ` and how they were found, for the docs: of a tree
 /// of revolute and prismatic joints, those of the world-frame recursion
-/// where they cost fewer operations than the symbolic partials of `τ`.
-fn partials(model: &Model, equations: &Equations, pool: &mut Pool) -> (ResidualJacobian, String) {
+/// where they cost fewer operations than the symbolic partials of `τ`, and
+/// then, if they cost more than [`PAIRS_LOOPED_ABOVE`], that recursion in
+/// its parts too.
+fn partials(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+) -> (ResidualJacobian, String, Option<TreeJacobian>) {
     let (tau, recursive) = inverse_dynamics(model, equations, pool);
     let route = match recursive {
         true => "the Newton–Euler recursion over the kinematic tree",
@@ -27,15 +39,54 @@ fn partials(model: &Model, equations: &Equations, pool: &mut Pool) -> (ResidualJ
     let symbolic = format!("`τ`, derived by {route},\ndifferentiated symbolically");
     let directions = tangent_directions(model, pool);
     let jacobian = residual_jacobian(pool, &tau, &directions, model.inputs.len());
-    match tree_residual_jacobian(model, pool) {
-        Some(tree) if operations(pool, &entries(&tree)) < operations(pool, &entries(&jacobian)) => {
+    if let Some(tree) = tree_jacobian(model, pool) {
+        let combined = tree.combined(pool);
+        let cost = operations(pool, &entries(&combined));
+        if cost < operations(pool, &entries(&jacobian)) {
             let recursion = "the inertia and gravity terms of `τ` differentiated by the\n\
                              recursion of Carpentier and Mansard over the kinematic tree in\n\
                              the axes of `N`, its loads, springs and dampers symbolically";
-            (tree, recursion.to_string())
+            let looped = (cost > PAIRS_LOOPED_ABOVE).then_some(tree);
+            return (combined, recursion.to_string(), looped);
         }
-        _ => (jacobian, symbolic),
     }
+    (jacobian, symbolic, None)
+}
+
+/// The results of an `accelerations_jacobian` that adds the pairs of
+/// `tree`'s joints at run time (see [`PairedTree`]), of which `combined`
+/// are the partials in full.
+fn paired_results(
+    tree: TreeJacobian,
+    combined: &ResidualJacobian,
+    pool: &Pool,
+) -> (Vec<Value>, PairedTree) {
+    let nonzero = |block: &[Vec<ExprId>]| -> Vec<bool> {
+        (0..block.len())
+            .map(|j| block.iter().any(|row| !pool.is_zero(row[j])))
+            .collect()
+    };
+    let paired = PairedTree {
+        parents: tree.links.iter().map(|l| l.parent).collect(),
+        speeds: tree.links.iter().map(|l| l.speed).collect(),
+        nonzero: [nonzero(&combined.coordinates), nonzero(&combined.speeds)],
+    };
+    let vectors: Vec<Vec<ExprId>> = tree
+        .links
+        .iter()
+        .map(|l| l.vectors.iter().flatten().copied().collect())
+        .collect();
+    let (nv, nu) = (
+        combined.speeds.len(),
+        combined.inputs.first().map_or(0, Vec::len),
+    );
+    let results = vec![
+        Value::matrix(&tree.rest.coordinates, nv),
+        Value::matrix(&tree.rest.speeds, nv),
+        Value::matrix(&tree.rest.inputs, nu),
+        Value::matrix(&vectors, 42),
+    ];
+    (results, paired)
 }
 
 /// Every entry of `jacobian`.
@@ -68,7 +119,7 @@ pub fn inverse_dynamics_jacobian(
     pool: &mut Pool,
 ) -> Function {
     let nv = model.nv();
-    let (jacobian, how) = partials(model, equations, pool);
+    let (jacobian, how, _) = partials(model, equations, pool);
     let tangent = tangent_note(model);
     function(
         "inverse_dynamics_jacobian",
@@ -91,8 +142,22 @@ pub fn inverse_dynamics_jacobian(
 /// `accelerations_jacobian(t, q, v, u) -> Result<(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u), _>`.
 pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut Pool) -> Function {
     let (nv, nu) = (model.nv(), model.inputs.len());
-    let (jacobian, how) = partials(model, equations, pool);
+    let (jacobian, how, tree) = partials(model, equations, pool);
     let tangent = tangent_note(model);
+    let (results, paired) = match tree {
+        Some(tree) => {
+            let (results, paired) = paired_results(tree, &jacobian, pool);
+            (results, Some(paired))
+        }
+        None => (
+            vec![
+                Value::matrix(&jacobian.coordinates, nv),
+                Value::matrix(&jacobian.speeds, nv),
+                Value::matrix(&jacobian.inputs, nu),
+            ],
+            None,
+        ),
+    };
     function(
         "accelerations_jacobian",
         &format!(
@@ -106,12 +171,8 @@ pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut P
              `NonFiniteEquations` for a non-finite derivative.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Inputs],
-        vec![
-            Value::matrix(&jacobian.coordinates, nv),
-            Value::matrix(&jacobian.speeds, nv),
-            Value::matrix(&jacobian.inputs, nu),
-        ],
-        Body::AccelerationsJacobian,
+        results,
+        Body::AccelerationsJacobian(paired),
     )
 }
 

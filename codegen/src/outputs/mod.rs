@@ -29,16 +29,34 @@ pub struct Function {
     pub body: Body,
 }
 
+/// The tree of an `accelerations_jacobian` that adds the pairs of its
+/// joints at run time: its last result holds each link's seven spatial
+/// vectors (`Sⱼ`, `Ψ̇ⱼ`, `Ψ̈ⱼ`, `yⱼ`, `zⱼ`, `wⱼ`, `uⱼ`, 42 entries a row), its
+/// first two only the rest of `∂τ/∂q` and `∂τ/∂v` (loads, potentials,
+/// dissipation).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PairedTree {
+    /// Each link's parent among the links (parents before children).
+    pub parents: Vec<Option<usize>>,
+    /// Each link's speed.
+    pub speeds: Vec<usize>,
+    /// Whether each column of `∂τ/∂q` and of `∂τ/∂v`, pairs included, can
+    /// be nonzero.
+    pub nonzero: [Vec<bool>; 2],
+}
+
 /// How a generated function computes what it returns.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Body {
     /// Its results, by one straight-line body.
     Explicit,
     /// `accelerations_jacobian`: its results are the partials `∂τ/∂q`,
     /// `∂τ/∂v`, `∂τ/∂u` of the inverse dynamics, evaluated at the
     /// accelerations solved from `M v̇ = f`, and it returns
-    /// `−M⁻¹` times each (the factorisation that solved for `v̇` reused).
-    AccelerationsJacobian,
+    /// `−M⁻¹` times each (the factorisation that solved for `v̇` reused);
+    /// with a [`PairedTree`], the inertia and gravity terms are added at
+    /// run time from its links' vectors.
+    AccelerationsJacobian(Option<PairedTree>),
     /// `linearize`: its results are the kinematic rows of `A`; the rest is
     /// assembled from `accelerations_jacobian`.
     Linearize,

@@ -1,0 +1,138 @@
+//! The inertia and gravity terms of the partials `∂τ/∂q`, `∂τ/∂v` of a
+//! tree's inverse dynamics, pair of joints by pair of joints, added at run
+//! time to the rows that the generated `accelerations_jacobian` then
+//! solves: a loop over the tree's links and their ancestors reading seven
+//! spatial vectors a link (Carpentier and Mansard's recursion, see the
+//! engine's `tree_partials`), where the same dot products unrolled for
+//! every pair would be code that the processor streams from memory.
+
+/// One link of the tree: where its pairs go. An index `usize::MAX` is
+/// none (the root's parent, a column that is not solved).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TreeLink {
+    /// The parent's index among the links (parents before children).
+    pub parent: usize,
+    /// The row of the link's speed.
+    pub row: usize,
+    /// The column of `∂τ/∂q` by the link's speed.
+    pub by_q: usize,
+    /// The column of `∂τ/∂v` by the link's speed.
+    pub by_v: usize,
+}
+
+/// `a · b`, six entries.
+#[inline]
+fn dot(a: &[f64; 6], b: &[f64; 6]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
+}
+
+/// `rows[r][c] += value`, if there is such an entry.
+#[inline]
+fn add<const C: usize>(rows: &mut [&mut [f64; C]], r: usize, c: usize, value: f64) {
+    if let Some(entry) = rows.get_mut(r).and_then(|row| row.get_mut(c)) {
+        *entry += value;
+    }
+}
+
+/// Adds, for every link `i` and each `j` of it and its ancestors, with
+/// `vectors[k] = [Sₖ, Ψ̇ₖ, Ψ̈ₖ, yₖ, zₖ, wₖ, uₖ]` (motions and forces in one
+/// frame):
+///
+/// ```text
+/// ∂τᵢ/∂qⱼ += yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ        ∂τᵢ/∂q̇ⱼ += zᵢ · Sⱼ + 2 yᵢ · Ψ̇ⱼ
+/// ∂τⱼ/∂qᵢ += Sⱼ · wᵢ   (j ≠ i)      ∂τⱼ/∂q̇ᵢ += Sⱼ · uᵢ   (j ≠ i)
+/// ```
+///
+/// into `rows[row of τ][column of the variable]` as `links` places them.
+pub fn add_tree_pairs<const C: usize, const N: usize, const L: usize>(
+    mut rows: [&mut [f64; C]; N],
+    vectors: &[[[f64; 6]; 7]; L],
+    links: &[TreeLink; L],
+) {
+    for (i, ([.., y, z, w, u], link)) in vectors.iter().zip(links).enumerate() {
+        let mut j = i;
+        while let (Some([s, rate, second_rate, ..]), Some(other)) = (vectors.get(j), links.get(j)) {
+            add(
+                &mut rows,
+                link.row,
+                other.by_q,
+                dot(y, second_rate) + dot(z, rate),
+            );
+            let y_rate = dot(y, rate);
+            add(
+                &mut rows,
+                link.row,
+                other.by_v,
+                dot(z, s) + (y_rate + y_rate),
+            );
+            if j != i {
+                add(&mut rows, other.row, link.by_q, dot(s, w));
+                add(&mut rows, other.row, link.by_v, dot(s, u));
+            }
+            j = other.parent;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{TreeLink, add_tree_pairs};
+
+    /// A unit vector along entry `k` times `x`.
+    fn along(k: usize, x: f64) -> [f64; 6] {
+        let mut v = [0.0; 6];
+        v[k] = x;
+        v
+    }
+
+    #[test]
+    fn a_chain_of_two_gets_each_pair_once_and_skips_columns_not_solved() {
+        // Link 0 the root, link 1 its child; rows in the reverse order
+        // (speed 1 first); columns: ∂/∂q₁, ∂/∂v₀, ∂/∂v₁ (∂/∂q₀ not solved).
+        let none = usize::MAX;
+        let links = [
+            TreeLink {
+                parent: none,
+                row: 1,
+                by_q: none,
+                by_v: 1,
+            },
+            TreeLink {
+                parent: 0,
+                row: 0,
+                by_q: 0,
+                by_v: 2,
+            },
+        ];
+        // [S, Ψ̇, Ψ̈, y, z, w, u], each along one entry so that each dot
+        // product is one product of the two scales or zero.
+        let vectors = [
+            [
+                along(0, 1.0),
+                along(1, 2.0),
+                along(2, 3.0),
+                along(1, 5.0),
+                along(0, 7.0),
+                along(3, 11.0),
+                along(4, 13.0),
+            ],
+            [
+                along(3, 17.0),
+                along(4, 19.0),
+                along(5, 23.0),
+                along(5, 29.0),
+                along(4, 31.0),
+                along(0, 37.0),
+                along(0, 41.0),
+            ],
+        ];
+        let (mut first, mut second) = ([100.0; 3], [200.0; 3]);
+        add_tree_pairs([&mut first, &mut second], &vectors, &links);
+        // Row 1 (τ₀): ∂τ₀/∂v₀ = z₀·S₀ + 2 y₀·Ψ̇₀ = 7 + 2·10; ∂τ₀/∂q₁ = S₀·w₁
+        // = 37, ∂τ₀/∂v₁ = S₀·u₁ = 41 (j = 0 ≺ i = 1); ∂τ₀/∂q₀ not solved.
+        assert_eq!(second, [200.0 + 37.0, 200.0 + 27.0, 200.0 + 41.0]);
+        // Row 0 (τ₁): ∂τ₁/∂q₁ = y₁·Ψ̈₁ + z₁·Ψ̇₁ = 29·23 + 31·19,
+        // ∂τ₁/∂v₁ = z₁·S₁ + 2 y₁·Ψ̇₁ = 0, ∂τ₁/∂v₀ = z₁·S₀ + 2 y₁·Ψ̇₀ = 0.
+        assert_eq!(first, [100.0 + 29.0 * 23.0 + 31.0 * 19.0, 100.0, 100.0]);
+    }
+}
