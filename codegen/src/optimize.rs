@@ -12,7 +12,10 @@
 //! function computes each shared node once, so either form is charged only
 //! the nodes that its function's results chosen before it do not compute
 //! already: a DAG entry whose subexpressions its neighbours share is
-//! cheap, though costly alone. The
+//! cheap, though costly alone. Chosen one result at a time, the forms can
+//! still cost more together than the derived DAG forms (compact forms
+//! cheaper alone that share nothing with the results after them), so a
+//! function whose derived forms cost less in total keeps them. The
 //! readable forms come from the derivation's
 //! [`ReadableForms`](crate::readable::ReadableForms), which the renderer
 //! reads again for the docs.
@@ -55,15 +58,48 @@ fn optimize_all<'a>(
 ) {
     let mut chosen: HashMap<ExprId, ExprId> = HashMap::new();
     let mut split = AngleSums::new();
-    for group in groups {
+    for mut group in groups {
+        let derived: Vec<ExprId> = group.iter().map(|e| **e).collect();
         let mut computed = HashSet::new();
-        for e in group {
-            *e = *chosen
-                .entry(*e)
-                .or_insert_with(|| cheaper_form(pool, forms, &mut split, *e, &computed));
-            pool.post_order(&[*e], |n| computed.insert(n));
+        for e in group.iter_mut() {
+            **e = *chosen
+                .entry(**e)
+                .or_insert_with(|| cheaper_form(pool, forms, &mut split, **e, &computed));
+            pool.post_order(&[**e], |n| computed.insert(n));
+        }
+        let picked: Vec<ExprId> = group.iter().map(|e| **e).collect();
+        if function_cost(pool, &derived) < function_cost(pool, &picked) {
+            keep_derived(&mut group, &derived, &mut chosen);
         }
     }
+}
+
+/// Puts back the `derived` forms of a function's results, whose shared
+/// nodes made them cheaper together than the forms chosen one result at a
+/// time (each compact form cheaper than its DAG form alone, but sharing
+/// nothing with the results after it: the planar chains written with
+/// literals).
+fn keep_derived(
+    group: &mut [&mut ExprId],
+    derived: &[ExprId],
+    chosen: &mut HashMap<ExprId, ExprId>,
+) {
+    for (e, &d) in group.iter_mut().zip(derived) {
+        **e = d;
+        chosen.insert(d, d);
+    }
+}
+
+/// Arithmetic operations of a function computing `results`, each shared
+/// node counted once (as [`cost_past`] counts them).
+fn function_cost(pool: &Pool, results: &[ExprId]) -> usize {
+    let mut computed = HashSet::new();
+    let mut total = 0;
+    for &r in results {
+        total += cost_past(pool, r, &computed, usize::MAX);
+        pool.post_order(&[r], |n| computed.insert(n));
+    }
+    total
 }
 
 /// `e`, or its compact form if that costs fewer operations besides the
