@@ -36,6 +36,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROBOTS = os.path.join(ROOT, "tests", "reference", "urdf")
 FILES = ["panda.urdf", "ur5_robot.urdf", "solo12.urdf", "features.urdf"]
 FLOATING = ["solo12.urdf"]
+# Added later, drawn after all of the above (fixed base, then floating), so
+# that the states above do not change.
+ADDED = ["anymal_c.urdf"]
 FREE = ["root_joint_" + c for c in ["x", "y", "z", "qx", "qy", "qz", "qw"]]
 STATES = 10
 SEED = 20261123
@@ -224,7 +227,9 @@ def main():
         "M qdd = f; V leaves out the masses fixed to the ground.",
         [robot_entry(file, rng) for file in FILES]
         # Drawn after the fixed-base states, which therefore do not change.
-        + ([floating_entry(file, rng) for file in FLOATING] if args.floating else []),
+        + ([floating_entry(file, rng) for file in FLOATING] if args.floating else [])
+        + [robot_entry(file, rng) for file in ADDED]
+        + ([floating_entry(file, rng) for file in ADDED] if args.floating else []),
     )
 
 

@@ -36,10 +36,10 @@ mod seeds;
 mod trees;
 mod urdf;
 
-pub use build::{BuildError, Builder, Diagnostic, ModelFile, generate_file};
+pub use build::{BuildError, Builder, Diagnostic, ModelFile, Severity, generate_file};
 pub use emit::Target;
 pub use render::Style;
-pub use urdf::Urdf;
+pub use urdf::{Imported, Urdf};
 
 /// Tools for testing and benchmarking generated systems, not needed to
 /// generate code.

@@ -1,12 +1,14 @@
 //! URDF import against Pinocchio: the models `dalembert urdf` writes for
-//! three real robots (panda, ur5, solo12 of example-robot-data), evaluated
+//! four real robots (panda, ur5, solo12, ANYmal C of example-robot-data), evaluated
 //! by the interpreter on both routes (d'Alembert's, as the generator derives
 //! them, and Lagrange's), match Pinocchio's crba, nle, aba and energies in
 //! `tests/reference/urdf/pinocchio.json` (written by
 //! `scripts/urdf_reference.py` with Pinocchio's own URDF parser).
 
 use dalembert_codegen::Urdf;
-use dalembert_codegen::testing::{Interpreter, Route, Values};
+use dalembert_codegen::testing::{
+    Interpreter, Route, Values, cross, quaternion_rotation, transpose_vec,
+};
 use serde_json::Value;
 
 /// Relative agreement required: against the largest entry of the quantity.
@@ -174,9 +176,91 @@ fn feature_robot_matches_pinocchio() {
     matches_pinocchio("features");
 }
 
+/// ANYmal C, whose file lists links that no mass distribution has (its four
+/// depth cameras break the triangle inequality; the hatch's tensor has rank
+/// one): welded to the base they make bodies that are
+/// physical, and the import matches Pinocchio, on a fixed and on a floating
+/// base, without a warning.
+#[test]
+fn anymal_c_matches_pinocchio() {
+    let path = reference_dir().join("anymal_c.urdf");
+    for floating in [false, true] {
+        let imported = Urdf::read(&path)
+            .unwrap()
+            .floating(floating)
+            .import()
+            .unwrap();
+        assert!(imported.warnings.is_empty(), "{:?}", imported.warnings);
+    }
+    matches_pinocchio("anymal_c");
+    matches_pinocchio_on("anymal_c_floating", &[Route::Dalembert]);
+}
+
 /// Solo12 on a floating base (`--floating`) against Pinocchio's free flyer:
 /// d'Alembert's route only, as Lagrange's needs every speed to be a rate.
 #[test]
 fn floating_solo12_matches_pinocchio_free_flyer() {
     matches_pinocchio_on("solo12_floating", &[Route::Dalembert]);
+}
+
+/// A robot with no joint (a quadrotor's body) is one rigid body on
+/// `--floating`: against the closed form of a free body, with speeds
+/// `(v, ω)` of its origin in its own axes, centre `c` and central inertia
+/// `I_c`: `M = [[m 1, −m [c]×], [m [c]×, I_c − m [c]×²]]`, and at rest the
+/// forcing is gravity's wrench about the origin, `(m Rᵀ g, c × m Rᵀ g)`.
+#[test]
+fn a_robot_without_joints_floats_as_one_rigid_body() {
+    let text = r#"<robot name="quad">
+  <link name="base">
+    <inertial>
+      <origin xyz="0.01 -0.02 0.03"/>
+      <mass value="1.5"/>
+      <inertia ixx="0.02" iyy="0.03" izz="0.04" ixy="0.001" ixz="-0.002" iyz="0.003"/>
+    </inertial>
+  </link>
+</robot>"#;
+    let model = Urdf::new("quad.urdf", text).floating(true).model().unwrap();
+    let interpreter = Interpreter::new(&model, Route::Dalembert).unwrap();
+    assert_eq!((interpreter.nq(), interpreter.nv()), (7, 6));
+    let (m, c) = (1.5, [0.01, -0.02, 0.03]);
+    let inertia = [
+        [0.02, 0.001, -0.002],
+        [0.001, 0.03, 0.003],
+        [-0.002, 0.003, 0.04],
+    ];
+    let skew = [[0.0, -c[2], c[1]], [c[2], 0.0, -c[0]], [-c[1], c[0], 0.0]];
+    let mut expected = [[0.0; 6]; 6];
+    for i in 0..3 {
+        expected[i][i] = m;
+        for j in 0..3 {
+            expected[i][3 + j] = -m * skew[i][j];
+            expected[3 + i][j] = m * skew[i][j];
+            let cc: f64 = (0..3).map(|k| skew[i][k] * skew[k][j]).sum();
+            expected[3 + i][3 + j] = inertia[i][j] - m * cc;
+        }
+    }
+    // A turned body at rest: unit quaternion (x, y, z, w) of half-angles.
+    let (x, y, z, w) = (0.2, -0.4, 0.1, (1.0_f64 - 0.04 - 0.16 - 0.01).sqrt());
+    let q = [0.3, -0.2, 1.0, x, y, z, w];
+    // Gravity in the body's axes, and its moment about the origin.
+    let weight = transpose_vec(&quaternion_rotation([x, y, z, w]), [0.0, 0.0, -9.81 * m]);
+    let moment = cross(c, weight);
+    let at = Values {
+        parameters: &[],
+        t: 0.0,
+        q: &q,
+        qd: &[0.0; 6],
+        u: &[],
+    };
+    let mass = interpreter.mass_matrix(&at);
+    assert!(
+        relative_error(&mass.concat(), &expected.concat()) < 1e-14,
+        "{mass:?}"
+    );
+    let f = interpreter.forcing(&at);
+    let gravity: Vec<f64> = weight.into_iter().chain(moment).collect();
+    assert!(
+        relative_error(&f, &gravity) < 1e-14,
+        "{f:?} against {gravity:?}"
+    );
 }

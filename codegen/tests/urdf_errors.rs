@@ -1,12 +1,15 @@
 //! Bad URDF input: every error names the file, the line and the link or
 //! joint, says what is wrong, and nothing is written — through the library
 //! (`Urdf::model`), `Builder::urdf` and the `dalembert urdf` command (empty
-//! stdout, the error on stderr, a non-zero exit status).
+//! stdout, the error on stderr, a non-zero exit status). Input that real
+//! files have and Pinocchio imports (inertias no mass distribution has,
+//! rounding, a robot name that is not an identifier) imports with a
+//! warning, located the same way.
 
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-use dalembert_codegen::{BuildError, Builder, Urdf};
+use dalembert_codegen::{BuildError, Builder, Severity, Urdf};
 
 /// Two links joined by `joint` (a fragment of `<joint>` children), with
 /// `link_b` as the second link's body.
@@ -100,9 +103,12 @@ fn nothing_moves() {
     assert_error(
         &robot("fixed", "", ""),
         1,
-        &["robot `r` has no revolute, continuous or prismatic joint"],
+        &[
+            "robot `r` has no revolute, continuous or prismatic joint",
+            "--floating",
+        ],
     );
-    assert_error("<robot name=\"r\">\n</robot>", 1, &["no revolute"]);
+    assert_error("<robot name=\"r\">\n</robot>", 1, &["no `<link>`"]);
 }
 
 #[test]
@@ -136,14 +142,117 @@ fn an_inertia_not_positive_semi_definite() {
     assert_error(&text, 3, &["link `b`", "not positive semi-definite"]);
 }
 
+/// The warnings of importing `text` as `robot.urdf`, which succeeds: (line,
+/// message) each.
+fn warnings(text: &str) -> Vec<(Option<usize>, String)> {
+    let imported = Urdf::new("robot.urdf", text)
+        .import()
+        .unwrap_or_else(|e| panic!("the import fails: {e}"));
+    dalembert_codegen::check(&imported.model).unwrap();
+    imported
+        .warnings
+        .iter()
+        .map(|d| {
+            assert_eq!(d.severity(), Severity::Warning);
+            assert!(d.to_string().starts_with("warning: "), "{d}");
+            (d.line(), d.message().to_owned())
+        })
+        .collect()
+}
+
 #[test]
-fn an_inertia_breaking_the_triangle_inequality() {
+fn an_inertia_breaking_the_triangle_inequality_is_imported_with_a_warning() {
     let text = robot(
         "revolute",
         "",
         &inertial("1", [1.0, 1.0, 3.0, 0.0, 0.0, 0.0]),
     );
-    assert_error(&text, 3, &["link `b`", "triangle inequality"]);
+    let found = warnings(&text);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, Some(3));
+    for piece in ["link `b`", "triangle inequality", "as Pinocchio does"] {
+        assert!(found[0].1.contains(piece), "`{piece}` not in {found:?}");
+    }
+    let model = Urdf::new("robot.urdf", text.as_str()).model().unwrap();
+    assert!(model.contains("inertia: [1, 1, 3]"), "{model}");
+}
+
+#[test]
+fn inertias_are_checked_once_welded() {
+    // Alone, the tool's tensor is not positive semi-definite (moments −1,
+    // 1, 3, as Tiago's antennas); welded to `b` it is part of a body that
+    // is, and the dynamics see only that body.
+    let text = robot(
+        "revolute",
+        "",
+        &inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
+    )
+    .replace(
+        "</robot>",
+        &format!(
+            r#"  <link name="tool">{}</link>
+  <joint name="weld" type="fixed"><parent link="b"/><child link="tool"/></joint>
+</robot>"#,
+            inertial("0.001", [1e-6, 1e-6, 1e-6, 2e-6, 0.0, 0.0])
+        ),
+    );
+    assert_eq!(warnings(&text), []);
+    // Welded to a fixed root, it never moves: nothing to check.
+    let on_the_root = text.replace(
+        "<parent link=\"b\"/><child link=\"tool\"/>",
+        "<parent link=\"a\"/><child link=\"tool\"/>",
+    );
+    assert_eq!(warnings(&on_the_root), []);
+}
+
+#[test]
+fn rounding_in_an_inertia_is_written_as_zero() {
+    // iCub's hips: diagonal entries of −5e-20 kg m², which the language
+    // would take for negative moments.
+    let text = robot(
+        "revolute",
+        "",
+        &inertial("0.5", [-5.42101e-20, -5.42101e-20, 0.0, 0.0, 2.4e-35, 0.0]),
+    )
+    .replace(
+        "<child link=\"b\"/>",
+        "<child link=\"b\"/><origin xyz=\"0 0 0\"/>",
+    )
+    .replace("<inertial>", "<inertial><origin xyz=\"0 0.1 0\"/>");
+    assert_eq!(warnings(&text), []);
+    let model = Urdf::new("robot.urdf", text.as_str()).model().unwrap();
+    assert!(model.contains("inertia: [0, 0, 0]"), "{model}");
+}
+
+#[test]
+fn a_joint_that_moves_no_mass() {
+    // Romeo's fingers: links without `<inertial>` beyond a moving joint.
+    assert_error(
+        &robot("revolute", "", ""),
+        4,
+        &["joint `j` moves no mass", "link `b`", "singular"],
+    );
+    let massless = inertial("0", [0.0; 6]);
+    assert_error(
+        &robot("prismatic", "", &massless),
+        4,
+        &["joint `j` moves no mass"],
+    );
+}
+
+#[test]
+fn a_robot_name_that_is_not_an_identifier_is_prefixed() {
+    let text = robot(
+        "revolute",
+        "",
+        &inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
+    )
+    .replace("name=\"r\"", "name=\"2dof_planar\"");
+    let found = warnings(&text);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!(found[0].1.contains("`Robot2dofPlanar`"), "{found:?}");
+    let model = Urdf::new("robot.urdf", text.as_str()).model().unwrap();
+    assert!(model.contains("pub Robot2dofPlanar {"), "{model}");
 }
 
 #[test]
@@ -263,21 +372,24 @@ fn names_and_struct_name() {
 
 #[test]
 fn joint_names_that_cannot_be_coordinates() {
-    let keyword = robot("revolute", "", "").replace("name=\"j\"", "name=\"type\"");
+    let mass = inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]);
+    let keyword = robot("revolute", "", &mass).replace("name=\"j\"", "name=\"type\"");
     assert_error(
         &keyword,
         4,
         &["joint `type`", "coordinate would be named `type`"],
     );
-    let twins = r#"<robot name="r">
+    let twins = format!(
+        r#"<robot name="r">
   <link name="a"/>
-  <link name="b"/>
-  <link name="c"/>
+  <link name="b">{mass}</link>
+  <link name="c">{mass}</link>
   <joint name="a-b" type="revolute"><parent link="a"/><child link="b"/></joint>
   <joint name="a_b" type="revolute"><parent link="a"/><child link="c"/></joint>
-</robot>"#;
+</robot>"#
+    );
     assert_error(
-        twins,
+        &twins,
         6,
         &["joint `a_b`", "coordinate would be named `a_b`"],
     );
@@ -368,4 +480,25 @@ fn the_command_prints_the_model() {
     let expected = Urdf::read(&panda).unwrap().name("Arm").model().unwrap();
     assert_eq!(text, expected);
     dalembert_codegen::check(&text).unwrap();
+}
+
+#[test]
+fn the_command_prints_the_model_and_its_warnings() {
+    let dir = scratch("cli_warnings");
+    let input = dir.join("odd.urdf");
+    let text = robot(
+        "revolute",
+        "",
+        &inertial("1", [1.0, 1.0, 3.0, 0.0, 0.0, 0.0]),
+    );
+    std::fs::write(&input, &text).unwrap();
+    let out = dalembert(&["urdf", input.to_str().unwrap()]);
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.starts_with("warning: link `b`") && stderr.contains("odd.urdf:3:"),
+        "{stderr}"
+    );
+    let expected = Urdf::new(&input, text).model().unwrap();
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
 }

@@ -24,7 +24,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use dalembert_codegen::testing::{Family, Spelling};
-use dalembert_codegen::{BuildError, ModelFile, Style, Urdf};
+use dalembert_codegen::{BuildError, ModelFile, Severity, Style, Urdf};
 
 const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
@@ -198,7 +198,8 @@ fn parse_urdf(args: impl Iterator<Item = OsString>) -> Result<Command, String> {
     Ok(Command::Urdf { robot, options })
 }
 
-/// The `.dal` model of the URDF robot at `robot`.
+/// The `.dal` model of the URDF robot at `robot`; its warnings go to
+/// stderr.
 fn urdf(robot: &PathBuf, options: UrdfOptions) -> Result<String, BuildError> {
     let mut urdf = Urdf::read(robot)?
         .floating(options.floating)
@@ -206,7 +207,11 @@ fn urdf(robot: &PathBuf, options: UrdfOptions) -> Result<String, BuildError> {
     if let Some(name) = options.name {
         urdf = urdf.name(name);
     }
-    urdf.model()
+    let imported = urdf.import()?;
+    for warning in &imported.warnings {
+        eprintln!("{warning}\n");
+    }
+    Ok(imported.model)
 }
 
 /// Runs `command`, printing its result to stdout and errors to stderr.
@@ -251,7 +256,11 @@ fn print(text: &str) -> ExitCode {
 /// Reports `error` on stderr, rustc style.
 fn report(error: &BuildError) -> ExitCode {
     eprintln!("{error}");
-    let count = error.diagnostics().len();
+    let count = error
+        .diagnostics()
+        .iter()
+        .filter(|d| d.severity() == Severity::Error)
+        .count();
     if count > 1 {
         eprintln!("\nerror: aborting due to {count} errors");
     }

@@ -1,6 +1,6 @@
-//! Language errors located in a `.dal` file and shown the way rustc shows
-//! them: message, `path:line:column`, the offending source line and a caret
-//! under the offending text.
+//! Language errors (and the URDF import's warnings) located in a file and
+//! shown the way rustc shows them: message, `path:line:column`, the
+//! offending source line and a caret under the offending text.
 //!
 //! Positions come from the spans of the [`syn::Error`]s the engine returns:
 //! outside a procedural macro, `proc-macro2` (with its `span-locations`
@@ -9,13 +9,24 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-/// One error in a model file, with its position when the error points at
-/// text of the file.
+/// One error (or warning) in a model file, with its position when it points
+/// at text of the file.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
     path: PathBuf,
+    severity: Severity,
     message: String,
     location: Option<Location>,
+}
+
+/// Whether a [`Diagnostic`] stops the build.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Severity {
+    /// Nothing is written.
+    Error,
+    /// The output is written; the user should know (a URDF file's inertia
+    /// that no mass distribution has, say).
+    Warning,
 }
 
 /// Where in the file a [`Diagnostic`] points.
@@ -39,6 +50,7 @@ impl Diagnostic {
             .into_iter()
             .map(|e| Diagnostic {
                 path: path.to_owned(),
+                severity: Severity::Error,
                 message: e.to_string(),
                 location: locate(source, e.span()),
             })
@@ -51,11 +63,13 @@ impl Diagnostic {
     pub(crate) fn in_text(
         path: &Path,
         source: &str,
+        severity: Severity,
         range: Option<std::ops::Range<usize>>,
         message: String,
     ) -> Self {
         Diagnostic {
             path: path.to_owned(),
+            severity,
             message,
             location: range.and_then(|r| locate_range(source, r)),
         }
@@ -64,6 +78,11 @@ impl Diagnostic {
     /// The model file.
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// Whether it is an error or a warning.
+    pub fn severity(&self) -> Severity {
+        self.severity
     }
 
     /// What is wrong (and what is expected).
@@ -119,7 +138,11 @@ fn locate_range(source: &str, range: std::ops::Range<usize>) -> Option<Location>
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "error: {}", self.message)?;
+        let label = match self.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        writeln!(f, "{label}: {}", self.message)?;
         let Some(l) = &self.location else {
             return write!(f, "  --> {}", self.path.display());
         };

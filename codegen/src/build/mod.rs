@@ -17,7 +17,7 @@ mod diagnostic;
 mod error;
 mod model_file;
 
-pub use diagnostic::Diagnostic;
+pub use diagnostic::{Diagnostic, Severity};
 pub use error::BuildError;
 pub use model_file::ModelFile;
 
@@ -99,7 +99,8 @@ impl Builder {
     }
 
     /// Whether to print `cargo:rerun-if-changed` for every model and model
-    /// directory (default `true`; turn it off outside build scripts).
+    /// directory, and the URDF import's warnings as `cargo:warning=`
+    /// (default `true`; turn it off outside build scripts).
     pub fn emit_rerun_if_changed(&mut self, on: bool) -> &mut Self {
         self.emit_rerun_if_changed = on;
         self
@@ -187,9 +188,17 @@ impl Builder {
     }
 
     /// The model imported from the URDF file `path`, reported as
-    /// `path (imported)` if the engine finds errors in it.
+    /// `path (imported)` if the engine finds errors in it. Its warnings go
+    /// to Cargo (`cargo:warning=`) when the builder prints Cargo's
+    /// directives.
     fn urdf_model(&self, path: &Path) -> Result<ModelFile, BuildError> {
-        let text = crate::Urdf::read(path)?.model()?;
+        let imported = crate::Urdf::read(path)?.import()?;
+        if self.emit_rerun_if_changed {
+            for warning in &imported.warnings {
+                println!("cargo:warning={}", warning.to_string().replace('\n', " "));
+            }
+        }
+        let text = imported.model;
         let mut imported = path.as_os_str().to_owned();
         imported.push(" (imported)");
         Ok(ModelFile::new(imported, text))

@@ -1,10 +1,9 @@
 //! The numeric algebra of the import: rotations from URDF's roll, pitch,
 //! yaw, rigid placements and their composition, and mass properties moved
 //! between frames and merged (parallel-axis theorem) when a fixed joint
-//! welds a link to its parent's body. Also the physical checks on a link's
-//! inertia: a mass that is not negative, a tensor that is positive
-//! semi-definite and whose principal moments satisfy the triangle
-//! inequality.
+//! welds a link to its parent's body. Also the physical checks on a body's
+//! inertia: a tensor that is positive semi-definite and whose principal
+//! moments satisfy the triangle inequality, up to rounding.
 
 pub(super) type Vec3 = [f64; 3];
 pub(super) type Mat3 = [[f64; 3]; 3];
@@ -194,12 +193,31 @@ pub(super) enum InertiaFault {
 /// boundary up to rounding.
 const TOLERANCE: f64 = 1e-9;
 
+/// Absolute tolerance of the checks, in kg m²: the moments of a tensor that
+/// is zero up to rounding (iCub's head lists entries of 1e-35) are noise
+/// whatever their signs. A gram at a micrometre has 1e-15.
+const NEGLIGIBLE: f64 = 1e-15;
+
+/// How far a principal moment of a tensor with these `moments` may be off
+/// and still count as rounding.
+fn slack(moments: &Vec3) -> f64 {
+    TOLERANCE * moments.iter().map(|m| m.abs()).sum::<f64>() + NEGLIGIBLE
+}
+
+/// `tensor` with the entries that are rounding (within the checks'
+/// tolerance) written as zero: a diagonal entry of `-5e-20` (iCub's hips)
+/// would be a negative moment to the language.
+pub(super) fn without_rounding(tensor: &Mat3) -> Mat3 {
+    let slack = slack(&principal_moments(tensor));
+    tensor.map(|row| row.map(|x| if x.abs() <= slack { 0.0 } else { x }))
+}
+
 /// Checks that `tensor` is the inertia of some mass distribution: its
 /// principal moments are non-negative and each is at most the sum of the
 /// other two.
 pub(super) fn check_inertia(tensor: &Mat3) -> Result<(), InertiaFault> {
     let moments = principal_moments(tensor);
-    let slack = TOLERANCE * moments.iter().map(|m| m.abs()).sum::<f64>();
+    let slack = slack(&moments);
     if moments.iter().any(|&m| m < -slack) {
         return Err(InertiaFault::NotPositiveSemiDefinite { moments });
     }
@@ -319,6 +337,17 @@ mod tests {
             check_inertia(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 3.0]]),
             Err(InertiaFault::TriangleInequality { .. })
         ));
+        // Zero up to rounding, as iCub's head: no fault, whatever the signs.
+        assert_eq!(
+            check_inertia(&[[2.4e-35, 0.0, 0.0], [0.0, -2.4e-35, 0.0], [0.0, 0.0, 0.0]]),
+            Ok(())
+        );
+        assert_eq!(
+            without_rounding(&[[-5e-20, 0.0, 1e-30], [0.0, -5e-20, 0.0], [1e-30, 0.0, 0.0]]),
+            [[0.0; 3]; 3]
+        );
+        let kept = [[1.0, 1e-3, 0.0], [1e-3, 2.0, 0.0], [0.0, 0.0, 2.5]];
+        assert_eq!(without_rounding(&kept), kept);
         let moments = principal_moments(&[[2.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 0.0, 5.0]]);
         assert!((moments[0] - 1.0).abs() < 1e-14 && (moments[1] - 3.0).abs() < 1e-14);
     }

@@ -23,7 +23,7 @@ mod xml;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use crate::build::{BuildError, Diagnostic};
+use crate::build::{BuildError, Diagnostic, Severity};
 
 /// A URDF robot read from disk, and the options of its import.
 ///
@@ -53,17 +53,47 @@ pub(crate) struct Options {
 }
 
 /// Something wrong with the robot, at the bytes `range` of the file
-/// (`None`: the whole file).
+/// (`None`: the whole file): an error, or a warning that lets the import
+/// go on.
 #[derive(Clone, Debug)]
 pub(crate) struct Problem {
+    severity: Severity,
     range: Option<Range<usize>>,
     message: String,
 }
 
 impl Problem {
     fn new(range: Option<Range<usize>>, message: String) -> Self {
-        Problem { range, message }
+        Problem {
+            severity: Severity::Error,
+            range,
+            message,
+        }
     }
+
+    fn warning(range: Option<Range<usize>>, message: String) -> Self {
+        Problem {
+            severity: Severity::Warning,
+            range,
+            message,
+        }
+    }
+
+    fn is_error(&self) -> bool {
+        self.severity == Severity::Error
+    }
+}
+
+/// A robot imported: the model's text and what the user should know about
+/// it (see [`Urdf::import`]).
+#[derive(Clone, Debug)]
+pub struct Imported {
+    /// The text of the `.dal` model.
+    pub model: String,
+    /// Warnings located in the URDF file: inertias that no mass
+    /// distribution has (imported as written, as Pinocchio does), a struct
+    /// name made from a robot name that is not an identifier.
+    pub warnings: Vec<Diagnostic>,
 }
 
 impl Urdf {
@@ -120,20 +150,36 @@ impl Urdf {
         &self.path
     }
 
-    /// The robot as the text of a `.dal` model, or every problem found,
-    /// located in the URDF file.
+    /// The robot as the text of a `.dal` model, or every error found,
+    /// located in the URDF file. Warnings are dropped: [`Urdf::import`]
+    /// returns them.
     pub fn model(&self) -> Result<String, BuildError> {
-        self.model_text().map_err(|problems| {
-            BuildError::Model(
-                problems
-                    .into_iter()
-                    .map(|p| Diagnostic::in_text(&self.path, &self.source, p.range, p.message))
-                    .collect(),
-            )
-        })
+        self.import().map(|imported| imported.model)
     }
 
-    fn model_text(&self) -> Result<String, Vec<Problem>> {
+    /// The robot as the text of a `.dal` model with the warnings found, or
+    /// every error (and warning) found, located in the URDF file.
+    pub fn import(&self) -> Result<Imported, BuildError> {
+        let (model, problems) = match self.model_text() {
+            Ok((model, warnings)) => (Some(model), warnings),
+            Err(problems) => (None, problems),
+        };
+        let diagnostics = problems
+            .into_iter()
+            .map(|p| Diagnostic::in_text(&self.path, &self.source, p.severity, p.range, p.message))
+            .collect();
+        match model {
+            Some(model) => Ok(Imported {
+                model,
+                warnings: diagnostics,
+            }),
+            None => Err(BuildError::Model(diagnostics)),
+        }
+    }
+
+    /// The model text and its warnings, or the problems (at least one an
+    /// error).
+    fn model_text(&self) -> Result<(String, Vec<Problem>), Vec<Problem>> {
         let robot = xml::read(&self.source)?;
         let tree = tree::tree(&robot)?;
         write::model_text(&robot, &tree, &self.options)

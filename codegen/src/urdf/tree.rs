@@ -1,14 +1,14 @@
 //! The robot as a tree: every joint's parent and child resolved to links,
 //! the one root found, and the rules of a tree checked (known links, one
 //! parent per link, one root, no cycle), with the joint rules the import
-//! needs (a supported type, a non-zero axis) and the physical checks on the
-//! links' inertias. The joints come out in Pinocchio's order: depth-first
+//! needs (a supported type, a non-zero axis) and masses that are not
+//! negative (the inertias are checked body by body, once welded links are
+//! merged, where the model is written). The joints come out in Pinocchio's order: depth-first
 //! from the root, children in the order their joints appear in the file.
 
 use std::collections::HashMap;
 
 use super::Problem;
-use super::inertia::{InertiaFault, check_inertia};
 use super::xml::{JointType, Robot};
 
 /// The checked tree of a [`Robot`], by index into its links and joints.
@@ -39,17 +39,17 @@ impl Tree {
 /// Builds and checks the tree of `robot`, or every problem found.
 pub(super) fn tree(robot: &Robot) -> Result<Tree, Vec<Problem>> {
     let mut problems = Vec::new();
-    if !robot.joints.iter().any(|j| j.kind != JointType::Fixed) {
+    if robot.links.is_empty() {
         problems.push(Problem::new(
             Some(robot.range.start..robot.range.start + 1),
             format!(
-                "robot `{}` has no revolute, continuous or prismatic joint: nothing moves, \
-                 so there is no coordinate to write",
+                "robot `{}` has no `<link>`: expected at least the root link",
                 robot.name
             ),
         ));
+        return Err(problems);
     }
-    check_links(robot, &mut problems);
+    check_masses(robot, &mut problems);
     check_joints(robot, &mut problems);
     let mut index: HashMap<&str, usize> = HashMap::new();
     for (i, link) in robot.links.iter().enumerate() {
@@ -189,9 +189,8 @@ fn cycle(robot: &Robot, parent_joint: &[Option<usize>], start: usize) -> Problem
     )
 }
 
-/// Masses and inertias: not negative, and a tensor some mass distribution
-/// has.
-fn check_links(robot: &Robot, problems: &mut Vec<Problem>) {
+/// Masses: zero or positive.
+fn check_masses(robot: &Robot, problems: &mut Vec<Problem>) {
     for link in &robot.links {
         let Some(inertial) = &link.inertial else {
             continue;
@@ -205,23 +204,6 @@ fn check_links(robot: &Robot, problems: &mut Vec<Problem>) {
                 ),
             ));
         }
-        let fault = match check_inertia(&inertial.inertia) {
-            Ok(()) => continue,
-            Err(InertiaFault::NotPositiveSemiDefinite { moments }) => format!(
-                "is not positive semi-definite (principal moments {}, {}, {}): \
-                 every principal moment must be zero or positive",
-                moments[0], moments[1], moments[2]
-            ),
-            Err(InertiaFault::TriangleInequality { moments }) => format!(
-                "breaks the triangle inequality (principal moments {}, {}, {}): \
-                 each principal moment must be at most the sum of the other two",
-                moments[0], moments[1], moments[2]
-            ),
-        };
-        problems.push(Problem::new(
-            Some(inertial.inertia_range.clone()),
-            format!("link `{}`: the inertia {fault}", link.name),
-        ));
     }
 }
 

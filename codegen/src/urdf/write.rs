@@ -10,7 +10,9 @@
 
 use std::collections::HashSet;
 
-use super::inertia::{MassProperties, Placement, Vec3};
+use super::inertia::{
+    InertiaFault, MassProperties, Placement, Vec3, check_inertia, without_rounding,
+};
 use super::tree::Tree;
 use super::xml::{JointType, Robot};
 use super::{Options, Problem};
@@ -34,12 +36,15 @@ const RESERVED: [&str; 11] = [
     "N", "O", "t", "dt", "sin", "cos", "tan", "sqrt", "exp", "ln", "abs",
 ];
 
-/// The model text of `robot`, or the names that cannot be written.
+/// The model text of `robot` with the warnings found, or the problems (at
+/// least one an error: names that cannot be written, nothing that moves, a
+/// joint that moves no mass, a body whose inertia no matrix of masses can
+/// have).
 pub(super) fn model_text(
     robot: &Robot,
     tree: &Tree,
     options: &Options,
-) -> Result<String, Vec<Problem>> {
+) -> Result<(String, Vec<Problem>), Vec<Problem>> {
     let mut problems = Vec::new();
     let mut names = Names::default();
     let struct_name = struct_name(robot, options, &mut problems);
@@ -49,6 +54,19 @@ pub(super) fn model_text(
         .copied()
         .filter(|&j| robot.joints[j].kind != JointType::Fixed)
         .collect();
+    if moving.is_empty() && !options.floating {
+        problems.push(Problem::new(
+            Some(robot.range.start..robot.range.start + 1),
+            format!(
+                "robot `{}` has no revolute, continuous or prismatic joint: nothing moves, \
+                 so there is no coordinate to write (with `--floating` the root link moves freely)",
+                robot.name
+            ),
+        ));
+    }
+    for &j in &moving {
+        check_moves_mass(robot, tree, j, &mut problems);
+    }
     if options.floating {
         for suffix in FREE_NAMES {
             let name = match suffix {
@@ -84,7 +102,7 @@ pub(super) fn model_text(
         }
         coordinates[j] = name;
     }
-    if !problems.is_empty() {
+    if problems.iter().any(Problem::is_error) {
         return Err(problems);
     }
     let mut writer = Writer {
@@ -94,28 +112,68 @@ pub(super) fn model_text(
         names,
         coordinates,
         lines: Vec::new(),
+        problems,
     };
     writer.model(&struct_name, &moving);
-    Ok(writer.lines.join("\n") + "\n")
+    if writer.problems.iter().any(Problem::is_error) {
+        return Err(writer.problems);
+    }
+    Ok((writer.lines.join("\n") + "\n", writer.problems))
 }
 
-/// The struct's name: `--name`, else the robot's name in UpperCamelCase.
-fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) -> String {
-    let name = match &options.name {
-        Some(name) => name.clone(),
-        None => upper_camel_case(&robot.name),
-    };
-    if !is_identifier(&name) {
-        let from = match &options.name {
-            Some(_) => "the name given".to_owned(),
-            None => format!("the robot's name `{}`", robot.name),
-        };
-        problems.push(Problem::new(
-            Some(robot.range.start..robot.range.start + 1),
-            format!("{from} gives the struct name `{name}`, which is not a Rust identifier; choose one with `--name`"),
-        ));
+/// An error if the moving joint `j` carries no mass: no link beyond it has
+/// a positive `<inertial>` mass, so its column of the mass matrix is zero.
+fn check_moves_mass(robot: &Robot, tree: &Tree, j: usize, problems: &mut Vec<Problem>) {
+    let mut links = vec![tree.child[j]];
+    while let Some(link) = links.pop() {
+        if robot.links[link]
+            .inertial
+            .as_ref()
+            .is_some_and(|inertial| inertial.mass > 0.0)
+        {
+            return;
+        }
+        links.extend(tree.children[link].iter().map(|&k| tree.child[k]));
     }
-    name
+    let joint = &robot.joints[j];
+    problems.push(Problem::new(
+        Some(joint.range.clone()),
+        format!(
+            "joint `{}` moves no mass: neither link `{}` nor any link beyond it has an \
+             `<inertial>` with a positive mass, so the mass matrix would be singular; give \
+             those links their masses, or make the joint `fixed`",
+            joint.name, joint.child.0
+        ),
+    ));
+}
+
+/// The struct's name: `--name`, else the robot's name in UpperCamelCase,
+/// prefixed with `Robot` (and a warning) where that is not an identifier.
+fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) -> String {
+    let at = Some(robot.range.start..robot.range.start + 1);
+    if let Some(name) = &options.name {
+        if !is_identifier(name) {
+            problems.push(Problem::new(
+                at,
+                format!("the name given, `{name}`, is not a Rust identifier"),
+            ));
+        }
+        return name.clone();
+    }
+    let name = upper_camel_case(&robot.name);
+    if is_identifier(&name) {
+        return name;
+    }
+    let prefixed = format!("Robot{name}");
+    problems.push(Problem::warning(
+        at,
+        format!(
+            "the robot's name `{}` gives `{name}`, which is not a Rust identifier; the struct \
+             is named `{prefixed}` (choose another with `--name`)",
+            robot.name
+        ),
+    ));
+    prefixed
 }
 
 /// `ur5_robot` → `Ur5Robot`, `panda` → `Panda`.
@@ -197,6 +255,8 @@ struct Writer<'a> {
     /// Per joint, its coordinate (empty for fixed joints).
     coordinates: Vec<String>,
     lines: Vec<String>,
+    /// The bodies' inertias found wrong (errors) or not physical (warnings).
+    problems: Vec<Problem>,
 }
 
 impl Writer<'_> {
@@ -438,6 +498,8 @@ impl Writer<'_> {
         if total.is_empty() {
             return;
         }
+        total.inertia = without_rounding(&total.inertia);
+        self.check_body_inertia(link, &welded, &total);
         if !welded.is_empty() {
             self.statement(format!("// With the welded link(s) {}.", welded.join(", ")));
         }
@@ -456,6 +518,47 @@ impl Writer<'_> {
             number(total.mass),
             entries.join(", ")
         ));
+    }
+
+    /// The inertia of the body of `link` (with the links `welded` to it),
+    /// about its center: an error if it is not positive semi-definite (the
+    /// mass matrix could lose its definiteness), a warning if it breaks the
+    /// triangle inequality (no mass distribution has it, but the dynamics
+    /// are well defined: imported as written, as Pinocchio does).
+    fn check_body_inertia(&mut self, link: usize, welded: &[String], total: &MassProperties) {
+        let Err(fault) = check_inertia(&total.inertia) else {
+            return;
+        };
+        let name = &self.robot.links[link].name;
+        let whose = if welded.is_empty() {
+            format!("link `{name}`")
+        } else {
+            format!(
+                "link `{name}` with its welded link(s) {}",
+                welded.join(", ")
+            )
+        };
+        let range = self.robot.links[link].inertial.as_ref().map_or_else(
+            || self.robot.links[link].range.clone(),
+            |i| i.inertia_range.clone(),
+        );
+        self.problems.push(match fault {
+            InertiaFault::NotPositiveSemiDefinite { moments: [a, b, c] } => Problem::new(
+                Some(range),
+                format!(
+                    "{whose}: the inertia is not positive semi-definite (principal moments \
+                     {a}, {b}, {c}): every principal moment must be zero or positive"
+                ),
+            ),
+            InertiaFault::TriangleInequality { moments: [a, b, c] } => Problem::warning(
+                Some(range),
+                format!(
+                    "{whose}: the inertia breaks the triangle inequality (principal moments \
+                     {a}, {b}, {c}): no mass distribution has it, since each principal moment \
+                     is at most the sum of the other two; imported as written, as Pinocchio does"
+                ),
+            ),
+        });
     }
 
     /// `link` and the links welded to it by fixed joints, with their
