@@ -171,7 +171,15 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
     }
     let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool, &mut forms);
     docs.extend(equation_lines);
-    let mut functions = outputs::standard(&model, &equations);
+    let looped = target == Target::Std;
+    let mut functions = outputs::standard(&model, &equations, &mut pool, looped);
+    // A looped `M`'s vectors are new expressions, optimised as the outputs are.
+    if let Some(mass) = functions
+        .first_mut()
+        .filter(|f| matches!(f.body, outputs::Body::MassPairs(_)))
+    {
+        optimize::optimize_functions(std::slice::from_mut(mass), &mut pool, &mut forms);
+    }
     let mut requested = outputs::requested(&model, &equations, &mut pool)?;
     optimize::optimize_functions(&mut requested.functions, &mut pool, &mut forms);
     functions.extend(requested.functions);

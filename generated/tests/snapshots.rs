@@ -18,7 +18,8 @@ fn generated_code() {
     }
 }
 
-/// Operations per call of every chain's functions, one line per model.
+/// Operations per call of every chain's functions, one line per model
+/// (and the run-time loop of a `mass_matrix` that takes its pairs in one).
 #[test]
 fn chain_operation_counts() {
     let mut table = String::new();
@@ -35,8 +36,31 @@ fn chain_operation_counts() {
                 common::operations(&code, function)
             ));
         }
+        if let Some((pairs, operations)) = mass_pair_operations(&code) {
+            table.push_str(&format!(
+                "{:18} mass_matrix pairs looped: {pairs} pairs, {operations} operations\n",
+                model.name
+            ));
+        }
     }
     insta::assert_snapshot!("chain_operation_counts", table);
+}
+
+/// The pairs of speeds that `mass_matrix` takes in a loop at run time
+/// (`dalembert::dynamics::tree_mass_matrix`, its table of `TreeSpeed`s
+/// `{ end, speed }`, speed `i` paired with the entries from `i` to before
+/// `end`), if it does, and that loop's operations: a dot product of six
+/// (11 operations) a pair.
+fn mass_pair_operations(code: &str) -> Option<(usize, usize)> {
+    let tokens = flat_tokens(code);
+    let text = |t: &proc_macro2::TokenTree| t.to_string();
+    let ends: Vec<usize> = tokens
+        .windows(5)
+        .filter(|w| text(&w[0]) == "TreeSpeed" && text(&w[2]) == "end")
+        .map(|w| text(&w[4]).parse().expect("an end"))
+        .collect();
+    let pairs: usize = ends.iter().enumerate().map(|(i, end)| end - i).sum();
+    (!ends.is_empty()).then_some((pairs, 11 * pairs))
 }
 
 /// Operations per call of the URDF robots' `mass_matrix`, `forcing` and

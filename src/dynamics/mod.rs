@@ -11,7 +11,7 @@ use nalgebra::SVector;
 pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots, pivot_tolerance};
 pub(crate) use cholesky::{cholesky, factor_mass_matrix};
 pub use error::DynamicsError;
-pub use pairs::{TreeLink, add_tree_pairs};
+pub use pairs::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
 pub use rows::scale_and_subtract;
 
 use crate::MultibodySystem;

@@ -1,10 +1,15 @@
-//! The inertia and gravity terms of the partials `∂τ/∂q`, `∂τ/∂v` of a
-//! tree's inverse dynamics, pair of joints by pair of joints, added at run
-//! time to the rows that the generated `accelerations_jacobian` then
-//! solves: a loop over the tree's links and their ancestors reading seven
-//! spatial vectors a link (Carpentier and Mansard's recursion, see the
-//! engine's `tree_partials`), where the same dot products unrolled for
-//! every pair would be code that the processor streams from memory.
+//! Loops over the pairs of joints of a tree, which the generated code of a
+//! large tree calls where the same dot products unrolled for every pair
+//! would be code that the processor streams from memory:
+//!
+//! * the inertia and gravity terms of the partials `∂τ/∂q`, `∂τ/∂v` of its
+//!   inverse dynamics, pair of joints by pair of joints, added at run time
+//!   to the rows that the generated `accelerations_jacobian` then solves: a
+//!   loop over the tree's links and their ancestors reading seven spatial
+//!   vectors a link (Carpentier and Mansard's recursion, see the engine's
+//!   `tree_partials`), [`add_tree_pairs`];
+//! * its mass matrix by composite rigid bodies, two spatial vectors a speed
+//!   (see the engine's `tree_mass`), [`tree_mass_matrix`].
 
 /// One link of the tree: where its pairs go. An index `usize::MAX` is
 /// none (the root's parent, a column that is not solved).
@@ -74,9 +79,50 @@ pub fn add_tree_pairs<const C: usize, const N: usize, const L: usize>(
     }
 }
 
+/// One speed of a tree for [`tree_mass_matrix`], the speeds depth-first
+/// (each subtree's together, after its joint's).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TreeSpeed {
+    /// One past the last of the speeds of its subtree (itself, its
+    /// joint's later speeds and its descendants').
+    pub end: usize,
+    /// The row and column of the speed in `M`.
+    pub speed: usize,
+}
+
+/// The mass matrix of a tree by composite rigid bodies: with
+/// `vectors[k] = [Sₖ, Fₖ]` (speed `k`'s motion subspace column and the
+/// momentum `Iᶜₖ Sₖ` of the subtree it moves at unit rate, in one frame
+/// about one point),
+///
+/// ```text
+/// Mᵢⱼ = Mⱼᵢ = Sᵢ · Fⱼ    for j from i to before speeds[i].end,
+/// ```
+///
+/// at the rows and columns that `speeds` gives; zero elsewhere. Each `i`
+/// runs over a contiguous range of `Fⱼ` with its `Sᵢ` at hand.
+pub fn tree_mass_matrix<const N: usize, const L: usize>(
+    vectors: &[[[f64; 6]; 2]; L],
+    speeds: &[TreeSpeed; L],
+) -> [[f64; N]; N] {
+    let mut m = [[0.0; N]; N];
+    for (i, ([s, _], own)) in vectors.iter().zip(speeds).enumerate() {
+        let moved = vectors.get(i..own.end).unwrap_or_default();
+        for ([_, force], other) in moved.iter().zip(speeds.get(i..).unwrap_or_default()) {
+            let value = dot(s, force);
+            for (r, c) in [(own.speed, other.speed), (other.speed, own.speed)] {
+                if let Some(entry) = m.get_mut(r).and_then(|row| row.get_mut(c)) {
+                    *entry = value;
+                }
+            }
+        }
+    }
+    m
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{TreeLink, add_tree_pairs};
+    use super::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
 
     /// A unit vector along entry `k` times `x`.
     fn along(k: usize, x: f64) -> [f64; 6] {
@@ -134,5 +180,31 @@ mod tests {
         // Row 0 (τ₁): ∂τ₁/∂q₁ = y₁·Ψ̈₁ + z₁·Ψ̇₁ = 29·23 + 31·19,
         // ∂τ₁/∂v₁ = z₁·S₁ + 2 y₁·Ψ̇₁ = 0, ∂τ₁/∂v₀ = z₁·S₀ + 2 y₁·Ψ̇₀ = 0.
         assert_eq!(first, [100.0 + 29.0 * 23.0 + 31.0 * 19.0, 100.0, 100.0]);
+    }
+
+    #[test]
+    fn a_tree_of_three_gets_its_ancestors_pairs_both_ways_and_zero_between_branches() {
+        // Speed 0 the root with two children, speeds 2 and 1 (rows of `M`
+        // in another order than the table's), depth-first.
+        let speeds = [
+            TreeSpeed { end: 3, speed: 0 },
+            TreeSpeed { end: 2, speed: 2 },
+            TreeSpeed { end: 3, speed: 1 },
+        ];
+        // [S, F]: S₀ along entry 0, S of speed 2 along 4, of speed 1
+        // along 1; each F with a share along the others, so that a pair
+        // taken wrongly (between the branches) shows.
+        let vectors = [
+            [along(0, 2.0), along(0, 3.0)],
+            [along(4, 5.0), [7.0, 0.0, 0.0, 0.0, 17.0, 0.0]],
+            [along(1, 11.0), [19.0, 13.0, 0.0, 0.0, 29.0, 0.0]],
+        ];
+        let m: [[f64; 3]; 3] = tree_mass_matrix(&vectors, &speeds);
+        // M₀₀ = S₀·F₀ = 6; M₂₂ = 5·17, M₀₂ = S₀·F₂ = 2·7; M₁₁ = 11·13,
+        // M₀₁ = 2·19; M₁₂ = 0 (two branches, though S₂·F₁ = 5·29).
+        assert_eq!(
+            m,
+            [[6.0, 38.0, 14.0], [38.0, 143.0, 0.0], [14.0, 0.0, 85.0]]
+        );
     }
 }

@@ -14,7 +14,7 @@ mod taylor;
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
-use crate::outputs::{Argument, Body, Function, NameList, Shape};
+use crate::outputs::{Argument, Body, Function, NameList, Shape, SpeedTree};
 use body::{Names, straight_line};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -57,7 +57,9 @@ pub fn emit(
     let mut items: Vec<TokenStream> = functions
         .iter()
         .map(|function| match (&function.body, target) {
-            (Body::Explicit, _) => emit_function(model, pool, &names, function),
+            (Body::Explicit | Body::MassPairs(_), _) => {
+                emit_function(model, pool, &names, function)
+            }
             // They return the runtime's errors.
             (_, Target::NoStd) => TokenStream::new(),
             (Body::AccelerationsJacobian(paired), Target::Std) => {
@@ -301,7 +303,8 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
         let name = argument_name(name, used);
         quote!(#name: #ty)
     });
-    let mut outputs = body.outputs.into_iter();
+    let entries = body.outputs;
+    let mut outputs = entries.iter().cloned();
     let (mut types, mut values) = (Vec::new(), Vec::new());
     for result in &function.results {
         let n = result.expressions.len();
@@ -318,8 +321,9 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
         types.push(ty);
         values.push(value);
     }
-    let (ty, value) = match (types.as_slice(), values.as_slice()) {
-        ([ty], [value]) => (ty.clone(), value.clone()),
+    let (ty, value) = match (types.as_slice(), values.as_slice(), &function.body) {
+        (_, _, Body::MassPairs(tree)) => tree_mass_matrix(model.nv(), tree, &entries),
+        ([ty], [value], _) => (ty.clone(), value.clone()),
         _ => (quote!((#(#types),*)), quote!((#(#values),*))),
     };
     let docs = function.docs.iter().map(|line| raw_string(line));
@@ -333,6 +337,30 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
             #value
         }
     }
+}
+
+/// The return type and value of a `mass_matrix` whose pairs the
+/// runtime's loop takes (`dalembert::dynamics::tree_mass_matrix`), from
+/// the entries `outputs` of each speed's `Sⱼ` and `Fⱼ` and the table of
+/// `tree`.
+fn tree_mass_matrix(
+    nv: usize,
+    tree: &SpeedTree,
+    outputs: &[TokenStream],
+) -> (TokenStream, TokenStream) {
+    let vectors = outputs.chunks(12).map(|speed| {
+        let [s, f] = [&speed[..6], &speed[6..]];
+        quote!([[#(#s),*], [#(#f),*]])
+    });
+    let table = tree.ends.iter().zip(&tree.speeds).map(|(&end, &speed)| {
+        let [end, speed] = [end, speed].map(Literal::usize_unsuffixed);
+        quote!(::dalembert::dynamics::TreeSpeed { end: #end, speed: #speed })
+    });
+    let (row, nv) = (array(nv), Literal::usize_unsuffixed(nv));
+    (
+        quote!([#row; #nv]),
+        quote!(::dalembert::dynamics::tree_mass_matrix(&[#(#vectors),*], &[#(#table),*])),
+    )
 }
 
 /// The runtime's traits, forwarding to the inherent functions (and to the

@@ -20,6 +20,7 @@ use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
 pub use articulated::Articulated;
+pub use tree_mass::SpeedVectors;
 pub use tree_partials::LinkVectors;
 
 /// The derived equations of one system, as expressions of the pool the model was resolved into.
@@ -263,6 +264,16 @@ pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
     let directions = derivatives::tangent_directions(model, pool);
     let rest = derivatives::residual_jacobian(pool, &rest, &directions, model.inputs.len());
     Some(TreeJacobian { rest, links })
+}
+
+/// The two vectors of each speed whose dot products are the entries of a
+/// tree's `M` (see `tree_mass`); `None` for a model that is no tree.
+pub fn tree_mass(model: &Model, pool: &mut Pool) -> Option<Vec<SpeedVectors>> {
+    let kinematics = Kinematics::new(model, pool);
+    let inertias = inertias(model);
+    let tree =
+        recursive::JointTree::new(model, model.tree.as_ref()?, &kinematics, &inertias, pool)?;
+    Some(tree_mass::speed_vectors(&tree, pool))
 }
 
 fn inertias(model: &Model) -> Vec<Inertia<'_>> {
@@ -514,4 +525,5 @@ mod lagrange_check;
 mod quaternion_check;
 mod recursive;
 pub mod regressor;
+mod tree_mass;
 mod tree_partials;

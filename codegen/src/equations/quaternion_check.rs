@@ -30,7 +30,7 @@ const TOP: &str = "pub Top {
 
 /// A free body off its joint's origin with loads everywhere, and a
 /// pendulum on it: for the two routes against each other.
-const LOADED: &str = "pub Loaded {
+pub(super) const LOADED: &str = "pub Loaded {
     parameters m, a, b, g;
     coordinates s;
     inputs F, T;

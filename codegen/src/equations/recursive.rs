@@ -273,12 +273,7 @@ impl JointTree {
         for (j, link) in self.links.iter().enumerate() {
             let c = &composites[j];
             for (i, own) in link.columns.iter().enumerate() {
-                let e = &own.axis;
-                let (linear, angular) = match own.turns {
-                    true => (cross(pool, e, &c.moment), mat_vec(pool, &c.inertia, e)),
-                    false => (e.map(|x| pool.mul(c.mass, x)), cross(pool, &c.moment, e)),
-                };
-                let (mut linear, mut angular) = (group3(pool, &linear), group3(pool, &angular));
+                let (mut linear, mut angular) = c.momentum(pool, own);
                 let column = own.speed;
                 for other in &link.columns[..=i] {
                     m[other.speed][column] = other.project(pool, &linear, &angular);
@@ -330,7 +325,7 @@ impl JointTree {
 
     /// Mass, first moment and inertia of every subtree about its link's
     /// origin, in its link's axes, leaves first.
-    fn composites(&self, pool: &mut Pool) -> Vec<Composite> {
+    pub(super) fn composites(&self, pool: &mut Pool) -> Vec<Composite> {
         let mut composites = self.link_inertias(pool);
         for l in (0..self.links.len()).rev() {
             let Some(p) = self.links[l].parent else {
@@ -507,6 +502,27 @@ impl Link {
                 .iter()
                 .fold([pool.zero(); 3], |a, b| add3(pool, &a, b)),
         }
+    }
+}
+
+impl Composite {
+    /// The momentum (resultant, moment about the link's origin, each entry
+    /// grouped) of the subtree moving at unit rate of `column`, a speed of
+    /// its link: `(e × h, K e)` for a turn about `e`, `(m e, h × e)` for a
+    /// slide along it.
+    pub(super) fn momentum(&self, pool: &mut Pool, column: &Column) -> (Vec3, Vec3) {
+        let e = &column.axis;
+        let (linear, angular) = match column.turns {
+            true => (
+                cross(pool, e, &self.moment),
+                mat_vec(pool, &self.inertia, e),
+            ),
+            false => (
+                e.map(|x| pool.mul(self.mass, x)),
+                cross(pool, &self.moment, e),
+            ),
+        };
+        (group3(pool, &linear), group3(pool, &angular))
     }
 }
 

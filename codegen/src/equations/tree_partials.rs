@@ -30,7 +30,8 @@
 //! differentiated link by link in the body-frame recursion.
 
 use super::recursive::{
-    Composite, JointTree, group3, grouped as grouped_composite, rotate_tensor, shifted,
+    Column, Composite, JointTree, Link, group3, grouped as grouped_composite, rotate_tensor,
+    shifted,
 };
 use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Mat3, Vec3, add3, cross, dot, identity, mat_mul, mat_vec};
@@ -42,9 +43,9 @@ type Block = Vec<Vec<ExprId>>;
 /// A spatial vector in `N`'s axes at `N`'s origin: `(ω, v)` for a motion,
 /// `(n, f)` for a force.
 #[derive(Clone, Copy)]
-struct Spatial {
-    angular: Vec3,
-    linear: Vec3,
+pub(super) struct Spatial {
+    pub(super) angular: Vec3,
+    pub(super) linear: Vec3,
 }
 
 /// The recursion's state of one link.
@@ -92,7 +93,7 @@ pub struct LinkVectors {
 /// is a revolute or prismatic joint whose coordinate's rate is the speed
 /// of the same index.
 pub(super) fn link_vectors(tree: &JointTree, pool: &mut Pool) -> Option<Vec<LinkVectors>> {
-    let one_speed = |l: &super::recursive::Link| {
+    let one_speed = |l: &Link| {
         matches!(l.kind, JointKind::Revolute | JointKind::Prismatic) && l.columns.len() == 1
     };
     if !pool.rates_are_speeds() || !tree.links.iter().all(one_speed) {
@@ -110,11 +111,7 @@ pub(super) fn link_vectors(tree: &JointTree, pool: &mut Pool) -> Option<Vec<Link
             LinkVectors {
                 parent: joint.parent,
                 speed: joint.columns[0].speed,
-                vectors: parts.map(|x| {
-                    let [a, b, c] = x.angular;
-                    let [d, e, f] = x.linear;
-                    [a, b, c, d, e, f]
-                }),
+                vectors: parts.map(|x| x.entries()),
             }
         })
         .collect();
@@ -153,7 +150,7 @@ pub(super) fn paired(links: &[LinkVectors], n: usize, pool: &mut Pool) -> (Block
 }
 
 /// `a · b` of a motion and a force, six entries each.
-fn dot6(pool: &mut Pool, a: &[ExprId; 6], b: &[ExprId; 6]) -> ExprId {
+pub(super) fn dot6(pool: &mut Pool, a: &[ExprId; 6], b: &[ExprId; 6]) -> ExprId {
     let (a_angular, a_linear) = ([a[0], a[1], a[2]], [a[3], a[4], a[5]]);
     let (b_angular, b_linear) = ([b[0], b[1], b[2]], [b[3], b[4], b[5]]);
     let terms = [
@@ -216,27 +213,9 @@ fn forward(tree: &JointTree, pool: &mut Pool) -> Vec<Moving> {
     let mut links: Vec<Moving> = Vec::with_capacity(tree.links.len());
     for link in &tree.links {
         let parent = link.parent.map_or(&base, |p| &links[p]);
-        let offset = mat_vec(pool, &parent.rotation, &link.offset);
-        let origin = add3(pool, &parent.origin, &offset);
-        let origin = group3(pool, &origin);
-        let rotation = mat_mul(pool, &parent.rotation, &link.rotation);
-        let rotation = rotation.map(|row| group3(pool, &row));
+        let (rotation, origin) = placed(pool, (&parent.rotation, &parent.origin), link);
         let column = &link.columns[0];
-        let axis = mat_vec(pool, &rotation, &column.axis);
-        let axis = group3(pool, &axis);
-        let subspace = match column.turns {
-            true => Spatial {
-                angular: axis,
-                linear: {
-                    let moment = cross(pool, &origin, &axis);
-                    group3(pool, &moment)
-                },
-            },
-            false => Spatial {
-                angular: [zero; 3],
-                linear: axis,
-            },
-        };
+        let subspace = subspace(pool, (&rotation, &origin), column);
         let (v, a) = (&parent.twist, &parent.acceleration);
         let rate = motion_cross(pool, v, &subspace);
         let rate = grouped(pool, &rate);
@@ -263,6 +242,40 @@ fn forward(tree: &JointTree, pool: &mut Pool) -> Vec<Moving> {
         });
     }
     links
+}
+
+/// The rotation to `N`'s axes and the origin from `N`'s of `link`, from
+/// those of its parent.
+pub(super) fn placed(pool: &mut Pool, parent: (&Mat3, &Vec3), link: &Link) -> (Mat3, Vec3) {
+    let (parent_rotation, parent_origin) = parent;
+    let offset = mat_vec(pool, parent_rotation, &link.offset);
+    let origin = add3(pool, parent_origin, &offset);
+    let origin = group3(pool, &origin);
+    let rotation = mat_mul(pool, parent_rotation, &link.rotation);
+    let rotation = rotation.map(|row| group3(pool, &row));
+    (rotation, origin)
+}
+
+/// The motion subspace `S` of one speed `column` of a link placed at
+/// `placement` (rotation to `N`'s axes, origin): `(e, o × e)` for a turn
+/// about `e` through `o`, `(0, e)` for a slide.
+pub(super) fn subspace(pool: &mut Pool, placement: (&Mat3, &Vec3), column: &Column) -> Spatial {
+    let (rotation, origin) = placement;
+    let axis = mat_vec(pool, rotation, &column.axis);
+    let axis = group3(pool, &axis);
+    match column.turns {
+        true => Spatial {
+            angular: axis,
+            linear: {
+                let moment = cross(pool, origin, &axis);
+                group3(pool, &moment)
+            },
+        },
+        false => Spatial {
+            angular: [pool.zero(); 3],
+            linear: axis,
+        },
+    }
 }
 
 /// The composites of every subtree inwards, from each link's inertia moved
@@ -425,6 +438,13 @@ fn grouped(pool: &mut Pool, x: &Spatial) -> Spatial {
 }
 
 impl Spatial {
+    /// The six entries, angular then linear.
+    pub(super) fn entries(&self) -> [ExprId; 6] {
+        let [a, b, c] = self.angular;
+        let [d, e, f] = self.linear;
+        [a, b, c, d, e, f]
+    }
+
     fn zero(pool: &Pool) -> Spatial {
         let zero = pool.zero();
         Spatial {

@@ -9,6 +9,7 @@
 mod derivatives;
 mod dynamics;
 mod kinematic;
+mod mass;
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool};
@@ -45,6 +46,17 @@ pub struct PairedTree {
     pub nonzero: [Vec<bool>; 2],
 }
 
+/// The tree of a `mass_matrix` whose pairs of speeds a loop of the runtime
+/// takes: its result holds each speed's `Sⱼ` and `Fⱼ` (12 entries a row).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SpeedTree {
+    /// Where each speed's subtree ends among the speeds (depth-first: the
+    /// speeds it moves are those from it to before its end).
+    pub ends: Vec<usize>,
+    /// The index of each speed.
+    pub speeds: Vec<usize>,
+}
+
 /// How a generated function computes what it returns.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Body {
@@ -57,6 +69,9 @@ pub enum Body {
     /// with a [`PairedTree`], the inertia and gravity terms are added at
     /// run time from its links' vectors.
     AccelerationsJacobian(Option<PairedTree>),
+    /// `mass_matrix` of a large tree: its result is each speed's vectors,
+    /// whose dot products a loop of the runtime puts into `M`.
+    MassPairs(SpeedTree),
     /// `linearize`: its results are the kinematic rows of `A`; the rest is
     /// assembled from `accelerations_jacobian`.
     Linearize,
@@ -161,17 +176,18 @@ pub fn doc_lines(text: &str) -> Vec<String> {
 use Argument::{Coordinates, Inputs, Speeds, Time};
 
 /// The functions every system has: `M`, `f`, `T`, `V`, and with
-/// constraints `A`, `b`, the residuals and the velocity forms.
-pub fn standard(model: &Model, equations: &Equations) -> Vec<Function> {
+/// constraints `A`, `b`, the residuals and the velocity forms; with
+/// `looped` (a crate with the runtime), a large tree's `M` by a loop of
+/// the runtime (see [`mass::mass_matrix`]).
+pub fn standard(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+    looped: bool,
+) -> Vec<Function> {
     let nv = model.nv();
     let mut functions = vec![
-        Function::new(
-            "mass_matrix",
-            "The mass matrix `M(q)` (symmetric, positive definite where the\n\
-             coordinates are independent).",
-            &[Coordinates],
-            Value::matrix(&equations.mass_matrix, nv),
-        ),
+        mass::mass_matrix(model, equations, pool, looped),
         Function::new(
             "forcing",
             "The forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`: applied and\n\

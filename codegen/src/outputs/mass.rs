@@ -1,0 +1,78 @@
+//! `mass_matrix`: its entries unrolled, or, for a tree whose unrolled `M`
+//! is large, two vectors a speed in straight-line code whose dot products
+//! a loop of the runtime takes (see `equations::tree_mass`).
+
+use super::{Argument, Body, Function, SpeedTree, Value};
+use crate::cost::operations;
+use crate::equations::{Equations, tree_mass};
+use crate::expr::Pool;
+use crate::model::Model;
+
+/// The fewest operations of an unrolled `M` (as [`operations`] counts
+/// them in the pool) above which a tree's `mass_matrix` takes its pairs of
+/// speeds in a loop at run time: the spatial chain of 30 (9703–10707 in
+/// the three spellings), whose unrolled code streams from L2, gains; the
+/// planar one of 30 (5181–6437, its planar zeros folded) and the spatial
+/// one of 12 (1781–2040) lose (BENCHMARKS.md, "Large models: unrolled
+/// against looped code", the subsection of 25 Nov 2026 on `mass_matrix`).
+const MASS_PAIRS_LOOPED_ABOVE: usize = 8000;
+
+/// The docs of `mass_matrix`.
+const DOCS: &str = "The mass matrix `M(q)` (symmetric, positive definite where the\n\
+                    coordinates are independent).";
+
+/// `mass_matrix(q)`: with `looped` (a crate with the runtime), a tree's
+/// whose unrolled entries cost more than [`MASS_PAIRS_LOOPED_ABOVE`]
+/// operations returns each speed's vectors for the runtime's loop.
+pub fn mass_matrix(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+    looped: bool,
+) -> Function {
+    let nv = model.nv();
+    let unrolled = || {
+        Function::new(
+            "mass_matrix",
+            DOCS,
+            &[Argument::Coordinates],
+            Value::matrix(&equations.mass_matrix, nv),
+        )
+    };
+    let entries: Vec<_> = equations.mass_matrix.iter().flatten().copied().collect();
+    if !looped || operations(pool, &entries) <= MASS_PAIRS_LOOPED_ABOVE {
+        return unrolled();
+    }
+    let Some(speeds) = tree_mass(model, pool) else {
+        return unrolled();
+    };
+    let tree = SpeedTree {
+        ends: speeds.iter().map(|s| s.end).collect(),
+        speeds: speeds.iter().map(|s| s.speed).collect(),
+    };
+    let vectors: Vec<Vec<_>> = speeds
+        .iter()
+        .map(|s| s.vectors.iter().flatten().copied().collect())
+        .collect();
+    let docs = format!(
+        "{DOCS}\n\n\
+         By composite rigid bodies, in `N`'s axes about `O`: for each speed\n\
+         `j`, the column `Sⱼ` of its joint's motion subspace (`(e, o × e)`\n\
+         for a turn about the unit axis `e` through `o`, `(0, e)` for a\n\
+         slide) and the momentum `Fⱼ = Iᶜⱼ Sⱼ` of the subtree beyond the\n\
+         joint moving at the speed's unit rate, in straight-line code; then\n\
+         `Mᵢⱼ = Mⱼᵢ = Sᵢ · Fⱼ` for each speed `i` and each `j` of its subtree\n\
+         (`i` itself, its joint's later speeds and its descendants'; the\n\
+         other pairs are zero), by a loop of the runtime over the tree's\n\
+         table, depth-first (`dalembert::dynamics::tree_mass_matrix`)."
+    );
+    Function {
+        body: Body::MassPairs(tree),
+        ..Function::new(
+            "mass_matrix",
+            &docs,
+            &[Argument::Coordinates],
+            Value::matrix(&vectors, 12),
+        )
+    }
+}
