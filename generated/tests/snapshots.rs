@@ -131,13 +131,13 @@ fn tree_parents(code: &str) -> Option<Vec<Option<usize>>> {
 
 /// The links of the loop `dalembert::dynamics::tree_link_vectors` and its
 /// operations, counted in its source (`src/dynamics/tree_vectors.rs`):
-/// per link 237 outwards, 399 for its own inertia in `N` with its rate,
+/// per link 237 outwards, 351 for its own inertia in `N` with its rate,
 /// momentum and force, 330 for `y, z, w, u`; 37 to add each subtree into
 /// its parent; 3 to negate gravity.
 fn link_operations(parents: &[Option<usize>]) -> (usize, usize) {
     let children = parents.iter().flatten().count();
     let links = parents.len();
-    (links, 966 * links + 37 * children + 3)
+    (links, 918 * links + 37 * children + 3)
 }
 
 /// The pairs of joints that the jacobian adds in a loop at run time

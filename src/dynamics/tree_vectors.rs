@@ -226,7 +226,7 @@ fn own(state: &LinkState, link: &Moving) -> Subtree {
     let t = mat3(|i, j| inertia.tensor[j][i]);
     let columns = [cross(&w, &t[0]), cross(&w, &t[1]), cross(&w, &t[2])];
     let inertia_rate = plus_diagonal(
-        mat3(|i, j| columns[j][i] + columns[i][j] - v[i] * moment[j] - moment[i] * v[j]),
+        symmetric(|i, j| columns[j][i] + columns[i][j] - v[i] * moment[j] - moment[i] * v[j]),
         2.0 * dot(&moment, &v),
     );
     let momentum = inertia.times(&link.twist);
@@ -242,11 +242,11 @@ fn own(state: &LinkState, link: &Moving) -> Subtree {
     }
 }
 
-/// `R K Rᵀ`.
+/// `R K Rᵀ` of a symmetric `K`.
 #[inline(always)]
 fn rotated(r: &Mat3, k: &Mat3) -> Mat3 {
     let rk = mat_mul(r, k);
-    mat3(|i, j| dot(&rk[i], &r[j]))
+    symmetric(|i, j| dot(&rk[i], &r[j]))
 }
 
 /// The tensor `k` about a body's point `d` (from `N`'s origin) moved to
@@ -255,7 +255,7 @@ fn rotated(r: &Mat3, k: &Mat3) -> Mat3 {
 #[inline(always)]
 fn shifted(k: &Mat3, m: f64, d: &Vec3, c: &Vec3) -> Mat3 {
     let md = vec3(|i| m * d[i]);
-    let outer = mat3(|i, j| k[i][j] - c[i] * d[j] - d[i] * c[j] + md[i] * d[j]);
+    let outer = symmetric(|i, j| k[i][j] - c[i] * d[j] - d[i] * c[j] + md[i] * d[j]);
     plus_diagonal(outer, 2.0 * dot(c, d) - dot(&md, d))
 }
 
@@ -412,4 +412,12 @@ fn mat3(f: impl Fn(usize, usize) -> f64) -> Mat3 {
         [f(1, 0), f(1, 1), f(1, 2)],
         [f(2, 0), f(2, 1), f(2, 2)],
     ]
+}
+
+/// The symmetric matrix of entries `f(i, j)` for `i ≤ j`.
+#[inline(always)]
+fn symmetric(f: impl Fn(usize, usize) -> f64) -> Mat3 {
+    let [a, b, c] = [f(0, 0), f(0, 1), f(0, 2)];
+    let [d, e, g] = [f(1, 1), f(1, 2), f(2, 2)];
+    [[a, b, c], [b, d, e], [c, e, g]]
 }
