@@ -58,7 +58,7 @@ fn robot_operation_counts() {
 }
 
 /// Operations per call of `accelerations` and `accelerations_jacobian` of
-/// the chains and robots that ask for the derivatives, and the solve of
+/// the chains, the branching tree and the robots that ask for the derivatives, and the solve of
 /// the jacobian: how many columns of `∂τ/∂x` it takes and its operations at
 /// run time (each row operation `scale_and_subtract` loops over the
 /// columns, so the body counts leave it out).
@@ -72,6 +72,7 @@ fn derivative_operation_counts() {
         "spatial_chain_12",
         "panda",
         "ur5_robot",
+        "spatial_tree_14",
     ] {
         let path = std::path::Path::new(env!("OUT_DIR")).join(format!("derivatives/{name}.rs"));
         let code = std::fs::read_to_string(&path).expect("the generated copy");

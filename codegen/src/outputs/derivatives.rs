@@ -24,9 +24,10 @@ const TREE_LOOPED_ABOVE: usize = 6000;
 
 /// The partials of `τ` and how they were found, for the docs: of a tree
 /// of revolute and prismatic joints, those of the world-frame recursion
-/// where they cost fewer operations than the symbolic partials of `τ`, and
-/// then, if they cost more than [`TREE_LOOPED_ABOVE`], that recursion in
-/// its parts too.
+/// where they cost fewer operations than the symbolic partials of `τ` or
+/// where both cost more than [`TREE_LOOPED_ABOVE`], and then, in the
+/// latter case, that recursion in its parts too (whose loops cost no
+/// code).
 fn partials(
     model: &Model,
     equations: &Equations,
@@ -43,12 +44,13 @@ fn partials(
     if let Some(tree) = tree_jacobian(model, pool) {
         let combined = tree.combined(pool);
         let cost = operations(pool, &entries(&combined));
-        if cost < operations(pool, &entries(&jacobian)) {
+        let symbolic_cost = operations(pool, &entries(&jacobian));
+        let looped = cost.min(symbolic_cost) > TREE_LOOPED_ABOVE;
+        if cost < symbolic_cost || looped {
             let recursion = "the inertia and gravity terms of `τ` differentiated by the\n\
                              recursion of Carpentier and Mansard over the kinematic tree in\n\
                              the axes of `N`, its loads, springs and dampers symbolically";
-            let looped = (cost > TREE_LOOPED_ABOVE).then_some(tree);
-            return (combined, recursion.to_string(), looped);
+            return (combined, recursion.to_string(), looped.then_some(tree));
         }
     }
     (jacobian, symbolic, None)
