@@ -5,7 +5,7 @@
 //! parameters it also writes `chain_references.rs`: a `reference()`
 //! constructor per system, holding the reference data's masses, lengths and
 //! gravity. Into `OUT_DIR/derivatives/` it writes a copy of some of those
-//! models (seed examples, chains, two robots) asking for the exact
+//! models (seed examples, chains, a branching tree, two robots) asking for the exact
 //! derivatives, and their code, which `src/lib.rs` includes in the module
 //! `derivatives`.
 
@@ -16,7 +16,7 @@ use dalembert_codegen::testing::{Family, Spelling, chain, chain_parameters};
 
 /// The models whose copy asks for the derivatives: `models/NAME.dal`, or a
 /// URDF robot by its file name.
-const WITH_DERIVATIVES: [&str; 12] = [
+const WITH_DERIVATIVES: [&str; 13] = [
     "double_pendulum",
     "rotating_bar",
     "dzhanibekov",
@@ -27,6 +27,7 @@ const WITH_DERIVATIVES: [&str; 12] = [
     "spatial_chain_02",
     "spatial_chain_06",
     "spatial_chain_12",
+    "spatial_tree_14",
     "panda.urdf",
     "ur5_robot.urdf",
 ];

@@ -1,7 +1,8 @@
 //! Per-call cost of the exact derivatives against the forward dynamics: the
 //! generated `accelerations_jacobian` (∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u) and
 //! `accelerations` of the chains (n = 2, 6, 12, both families) and of the
-//! panda and ur5 robots, from `dalembert_generated::derivatives`. Same
+//! panda and ur5 robots and of a branching tree of 14 links, from
+//! `dalembert_generated::derivatives`. Same
 //! method as `chains.rs`: 1000 fixed pseudo-random states, one call per
 //! iteration.
 //!
@@ -63,6 +64,7 @@ fn derivatives(c: &mut Criterion) {
         )*};
     }
     dalembert_generated::chains_and_robots_with_derivatives!(bench);
+    bench!(spatial_tree_14::SpatialTree14);
 }
 
 criterion_group! {

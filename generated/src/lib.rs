@@ -131,6 +131,10 @@ model!(
     /// The spatial chain of 30 links.
     spatial_chain_30
 );
+model!(
+    /// A branching tree of 14 links, one joint a slide.
+    spatial_tree_14
+);
 
 // The 60-link chains, with the `large` feature only (generated from
 // `dalembert_codegen::testing::chain` by build.rs, for the benches).
@@ -344,7 +348,8 @@ pub mod derivatives {
         spatial_chain_06,
         spatial_chain_12,
         panda,
-        ur5_robot
+        ur5_robot,
+        spatial_tree_14
     );
 }
 

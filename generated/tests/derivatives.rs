@@ -215,6 +215,13 @@ fn robots_match_central_differences() {
     check!(3; panda::Panda {}, ur5_robot::Ur5 {});
 }
 
+/// A branching tree large enough for the world-frame partials in loops
+/// (`dalembert::dynamics::tree_link_vectors`), with a slide among its joints.
+#[test]
+fn a_branching_tree_matches_central_differences() {
+    check!(6; spatial_tree_14::SpatialTree14 {});
+}
+
 #[test]
 fn cart_pole_matches_central_differences() {
     let cart_pole = CartPole {

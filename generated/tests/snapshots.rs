@@ -82,7 +82,7 @@ fn robot_operation_counts() {
 }
 
 /// Operations per call of `accelerations` and `accelerations_jacobian` of
-/// the chains and robots that ask for the derivatives, and the solve of
+/// the chains, the branching tree and the robots that ask for the derivatives, and the solve of
 /// the jacobian: how many columns of `∂τ/∂x` it takes and its operations at
 /// run time (each row operation `scale_and_subtract` loops over the
 /// columns, so the body counts leave it out).
@@ -96,6 +96,7 @@ fn derivative_operation_counts() {
         "spatial_chain_12",
         "panda",
         "ur5_robot",
+        "spatial_tree_14",
     ] {
         let path = std::path::Path::new(env!("OUT_DIR")).join(format!("derivatives/{name}.rs"));
         let code = std::fs::read_to_string(&path).expect("the generated copy");
@@ -109,7 +110,12 @@ fn derivative_operation_counts() {
         table.push_str(&format!(
             "{name:16} solve: {columns} columns, {operations} operations\n"
         ));
-        if let Some((pairs, operations)) = pair_operations(&code) {
+        if let Some(parents) = tree_parents(&code) {
+            let (links, operations) = link_operations(&parents);
+            table.push_str(&format!(
+                "{name:16} links looped: {links} links, {operations} operations\n"
+            ));
+            let (pairs, operations) = pair_operations(&parents);
             table.push_str(&format!(
                 "{name:16} pairs looped: {pairs} pairs, {operations} operations\n"
             ));
@@ -134,12 +140,9 @@ fn flat_tokens(code: &str) -> Vec<proc_macro2::TokenTree> {
     tokens
 }
 
-/// The pairs of joints that the jacobian adds in a loop at run time
-/// (`dalembert::dynamics::add_tree_pairs`, its table of `TreeLink`s), if
-/// it does, and that loop's operations: per link and each of it and its
-/// ancestors 4 dot products of six (11 operations each) and 5 additions,
-/// and with each ancestor 2 more dot products and 2 additions.
-fn pair_operations(code: &str) -> Option<(usize, usize)> {
+/// The parent of each link of the tree whose partials the jacobian
+/// computes in loops at run time (its table of `TreeLink`s), if it does.
+fn tree_parents(code: &str) -> Option<Vec<Option<usize>>> {
     let tokens = flat_tokens(code);
     let text = |t: &proc_macro2::TokenTree| t.to_string();
     // `TreeLink { parent: P, … }`, `P` a number or `usize::MAX`.
@@ -148,9 +151,26 @@ fn pair_operations(code: &str) -> Option<(usize, usize)> {
         .filter(|w| text(&w[0]) == "TreeLink" && text(&w[2]) == "parent")
         .map(|w| text(&w[4]).parse().ok())
         .collect();
-    if parents.is_empty() {
-        return None;
-    }
+    (!parents.is_empty()).then_some(parents)
+}
+
+/// The links of the loop `dalembert::dynamics::tree_link_vectors` and its
+/// operations, counted in its source (`src/dynamics/tree_vectors.rs`):
+/// per link 237 outwards, 351 for its own inertia in `N` with its rate,
+/// momentum and force, 330 for `y, z, w, u`; 37 to add each subtree into
+/// its parent; 3 to negate gravity.
+fn link_operations(parents: &[Option<usize>]) -> (usize, usize) {
+    let children = parents.iter().flatten().count();
+    let links = parents.len();
+    (links, 918 * links + 37 * children + 3)
+}
+
+/// The pairs of joints that the jacobian adds in a loop at run time
+/// (`dalembert::dynamics::add_tree_pairs`) and that loop's operations: per
+/// link and each of it and its ancestors 4 dot products of six (11
+/// operations each) and 5 additions, and with each ancestor 2 more dot
+/// products and 2 additions.
+fn pair_operations(parents: &[Option<usize>]) -> (usize, usize) {
     let depth = |mut link: usize| {
         let mut depth = 0;
         while let Some(parent) = parents[link] {
@@ -160,7 +180,7 @@ fn pair_operations(code: &str) -> Option<(usize, usize)> {
     };
     let ancestors: usize = (0..parents.len()).map(depth).sum();
     let pairs = parents.len() + ancestors;
-    Some((pairs, 49 * pairs + 24 * ancestors))
+    (pairs, 49 * pairs + 24 * ancestors)
 }
 
 /// The columns of the jacobian's solve (`let [mut b0, …]: [[f64; C]; N]`) and

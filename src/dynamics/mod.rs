@@ -5,6 +5,7 @@ mod cholesky;
 mod error;
 mod pairs;
 mod rows;
+mod tree_vectors;
 
 use nalgebra::SVector;
 
@@ -13,6 +14,7 @@ pub(crate) use cholesky::{cholesky, factor_mass_matrix};
 pub use error::DynamicsError;
 pub use pairs::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
 pub use rows::scale_and_subtract;
+pub use tree_vectors::{LinkState, tree_link_vectors};
 
 use crate::MultibodySystem;
 

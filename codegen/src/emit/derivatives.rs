@@ -1,16 +1,18 @@
 //! The outputs that solve through the mass matrix: `accelerations_jacobian`
 //! (`∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the partials of the inverse dynamics at the
 //! solved `v̇`, every column but those of structural zeros through the one
-//! `L D Lᵀ` factorisation that solved for `v̇`; for a large tree the pairs
-//! of joints of the world-frame partials added by a loop of the runtime,
-//! `dalembert::dynamics::add_tree_pairs`, rather than unrolled) and
+//! `L D Lᵀ` factorisation that solved for `v̇`; for a large tree the
+//! world-frame partials computed by loops of the runtime rather than
+//! unrolled: each link's vectors by `dalembert::dynamics::tree_link_vectors`
+//! from the links' states, their pairs by
+//! `dalembert::dynamics::add_tree_pairs`) and
 //! `linearize` (the state-space matrices `A`, `B` of `ẋ = (q̇, v̇)` about a
 //! state).
 
 use super::body::{Given, Names, Straight, straight_line, straight_line_given};
 use super::solve::{Factorised, factorised, negated_row_substitutions};
 use super::{array, raw_string};
-use crate::equations::Equations;
+use crate::equations::{Equations, LinkState};
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
 use crate::outputs::{Function, PairedTree};
@@ -45,10 +47,11 @@ fn solved_columns(
         .collect()
 }
 
-/// The call adding the pairs of `paired`'s joints to the rows `rows` (in
-/// the elimination `order`, the columns `columns`), from the array
-/// `links` of the links' vectors: `dalembert::dynamics::add_tree_pairs`
-/// with the tree as a table.
+/// The calls adding the inertia and gravity terms of `paired`'s partials
+/// to the rows `rows` (in the elimination `order`, the columns `columns`),
+/// from the array `states` of the links' states and `gravity`: the links'
+/// vectors by `dalembert::dynamics::tree_link_vectors`, their pairs by
+/// `dalembert::dynamics::add_tree_pairs`, with the tree as a table.
 fn tree_pairs(
     paired: &PairedTree,
     order: &[usize],
@@ -68,8 +71,36 @@ fn tree_pairs(
         let parent = index(parent);
         quote!(::dalembert::dynamics::TreeLink { parent: #parent, row: #row, by_q: #by_q, by_v: #by_v })
     });
+    let l = Literal::usize_unsuffixed(paired.speeds.len());
     quote! {
-        ::dalembert::dynamics::add_tree_pairs([#(&mut #rows),*], &links, &[#(#table),*]);
+        const TREE: [::dalembert::dynamics::TreeLink; #l] = [#(#table),*];
+        let mut vectors = [[[0.0; 6]; 7]; #l];
+        ::dalembert::dynamics::tree_link_vectors(&states, &TREE, &gravity, &mut vectors);
+        ::dalembert::dynamics::add_tree_pairs([#(&mut #rows),*], &vectors, &TREE);
+    }
+}
+
+/// `dalembert::dynamics::LinkState` of the entries `entries`, in the order
+/// of the engine's `LinkState::entries`.
+fn link_state(entries: &[TokenStream]) -> TokenStream {
+    let matrix = |rows: &[TokenStream]| {
+        let rows = rows.chunks(3).map(|row| quote!([#(#row),*]));
+        quote!([#(#rows),*])
+    };
+    let (rotation, offset, axis) = (matrix(&entries[..9]), &entries[9..12], &entries[12..18]);
+    let [speed, acceleration, mass] = [&entries[18], &entries[19], &entries[20]];
+    let (moment, inertia) = (&entries[21..24], matrix(&entries[24..33]));
+    quote! {
+        ::dalembert::dynamics::LinkState {
+            rotation: #rotation,
+            offset: [#(#offset),*],
+            axis: [#(#axis),*],
+            speed: #speed,
+            acceleration: #acceleration,
+            mass: #mass,
+            moment: [#(#moment),*],
+            inertia: #inertia,
+        }
     }
 }
 
@@ -87,8 +118,8 @@ fn angle_functions(pool: &Pool, roots: &[ExprId]) -> Vec<ExprId> {
 
 /// Binds the mutable rows `rows` of `∂τ/∂x` (`[f64; count]` each) from
 /// `body`, whose outputs are the rows' entries and then, with `paired`,
-/// the links' vectors (42 a link, bound to `links`), whose pairs the call
-/// `pairs` then adds.
+/// the links' states (bound to `states`) and gravity (to `gravity`), from
+/// which the calls `pairs` then add the rest.
 fn partial_rows(
     body: &Straight,
     rows: &[Ident],
@@ -111,15 +142,17 @@ fn partial_rows(
             };
         },
         Some((paired, pairs)) => {
-            let links = outputs[entries..].chunks(42).map(|link| {
-                let parts = link.chunks(6).map(|part| quote!([#(#part),*]));
-                quote!([#(#parts),*])
-            });
+            let (states, gravity) = outputs[entries..].split_at(outputs.len() - entries - 3);
+            let states = states.chunks(LinkState::ENTRIES).map(link_state);
             let l = Literal::usize_unsuffixed(paired.speeds.len());
             quote! {
-                let ([#(mut #rows),*], links): ([[f64; #count]; #n], [[[f64; 6]; 7]; #l]) = {
+                let ([#(mut #rows),*], states, gravity): (
+                    [[f64; #count]; #n],
+                    [::dalembert::dynamics::LinkState; #l],
+                    [f64; 3],
+                ) = {
                     #statements
-                    (#values, [#(#links),*])
+                    (#values, [#(#states),*], [#(#gravity),*])
                 };
                 #pairs
             }
@@ -132,8 +165,9 @@ fn partial_rows(
 /// (which the model rejects). The columns that are not structural zeros
 /// are solved together: the rows of `∂τ/∂x` are arrays, substituted in
 /// place through `L D Lᵀ` one row operation at a time. With `paired`, the
-/// results are the rest of `∂τ/∂q` and `∂τ/∂v`, `∂τ/∂u` and the links'
-/// vectors, whose pairs a loop of the runtime adds to the rows.
+/// results are the rest of `∂τ/∂q` and `∂τ/∂v`, `∂τ/∂u`, the links' states
+/// and gravity, from which loops of the runtime add the inertia and
+/// gravity terms to the rows.
 pub fn emit_accelerations_jacobian(
     model: &Model,
     pool: &Pool,
@@ -145,14 +179,14 @@ pub fn emit_accelerations_jacobian(
     let (nv, nu) = (model.nv(), model.inputs.len());
     let widths = [nv, nv, nu];
     let blocks: [&[ExprId]; 3] = [0, 1, 2].map(|k| function.results[k].expressions.as_slice());
-    // With a paired tree, the links' vectors (42 a link).
-    let vectors: &[ExprId] = function
-        .results
-        .get(3)
-        .map_or(&[], |v| v.expressions.as_slice());
+    // With a paired tree, the links' states and gravity.
+    let states: Vec<ExprId> = function.results[3..]
+        .iter()
+        .flat_map(|v| v.expressions.iter().copied())
+        .collect();
     // The sines and cosines of the angles are computed once, with `M` and
     // `f`, and the partials' body takes them.
-    let angles = angle_functions(pool, &[&blocks.concat(), vectors].concat());
+    let angles = angle_functions(pool, &[blocks.concat(), states.clone()].concat());
     let given = Given {
         array: format_ident!("angles"),
         expressions: &angles,
@@ -179,7 +213,7 @@ pub fn emit_accelerations_jacobian(
                 .iter()
                 .map(move |&(block, j)| blocks[block][speed * widths[block] + j])
         })
-        .chain(vectors.iter().copied())
+        .chain(states)
         .collect();
     let body = match given {
         Some(given) => straight_line_given(pool, names, &roots, given),

@@ -21,7 +21,7 @@ use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
 pub use articulated::Articulated;
 pub use tree_mass::SpeedVectors;
-pub use tree_partials::LinkVectors;
+pub use tree_partials::{LinkState, LinkVectors};
 
 /// The derived equations of one system, as expressions of the pool the model was resolved into.
 #[derive(Clone)]
@@ -220,6 +220,10 @@ pub struct TreeJacobian {
     pub rest: derivatives::ResidualJacobian,
     /// The links' vectors, parents before children.
     pub links: Vec<LinkVectors>,
+    /// What the runtime computes the links' vectors from, in the same
+    /// order, and gravity in `N`'s axes.
+    pub states: Vec<LinkState>,
+    pub gravity: Vec3,
 }
 
 impl TreeJacobian {
@@ -254,6 +258,7 @@ pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
     let tree =
         recursive::JointTree::new(model, model.tree.as_ref()?, &kinematics, &inertias, pool)?;
     let links = tree_partials::link_vectors(&tree, pool)?;
+    let states = tree_partials::link_states(&tree, pool);
     let loads = tree.applied_loads(pool);
     let rest: Vec<ExprId> = (0..model.nv())
         .map(|k| {
@@ -263,7 +268,12 @@ pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
         .collect();
     let directions = derivatives::tangent_directions(model, pool);
     let rest = derivatives::residual_jacobian(pool, &rest, &directions, model.inputs.len());
-    Some(TreeJacobian { rest, links })
+    Some(TreeJacobian {
+        rest,
+        links,
+        states,
+        gravity: tree.gravity,
+    })
 }
 
 /// The two vectors of each speed whose dot products are the entries of a

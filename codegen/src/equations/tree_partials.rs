@@ -89,6 +89,72 @@ pub struct LinkVectors {
     pub vectors: [[ExprId; 6]; 7],
 }
 
+/// One link of the tree at a state, what the runtime's recursion
+/// (`dalembert::dynamics::tree_link_vectors`) computes its [`LinkVectors`]
+/// from: its placement in its parent, its joint's axis `(e, 0)` of a turn
+/// or `(0, e)` of a slide in its axes, the joint's speed and acceleration,
+/// and its inertia about its origin in its axes.
+pub struct LinkState {
+    /// Maps the link's components to its parent's.
+    pub rotation: Mat3,
+    /// From the parent's origin to the link's, in the parent's axes.
+    pub offset: Vec3,
+    pub axis: [ExprId; 6],
+    pub speed: ExprId,
+    pub acceleration: ExprId,
+    pub mass: ExprId,
+    /// The first moment about the link's origin, in its axes.
+    pub moment: Vec3,
+    /// The inertia tensor about the link's origin, in its axes.
+    pub inertia: Mat3,
+}
+
+impl LinkState {
+    /// How many entries [`LinkState::entries`] has.
+    pub const ENTRIES: usize = 33;
+
+    /// Every entry in the order of the runtime's `LinkState` fields
+    /// (`rotation` and `inertia` row by row).
+    pub fn entries(&self) -> [ExprId; Self::ENTRIES] {
+        let mut entries = self.rotation.concat();
+        entries.extend(self.offset);
+        entries.extend(self.axis);
+        entries.extend([self.speed, self.acceleration, self.mass]);
+        entries.extend(self.moment);
+        entries.extend(self.inertia.concat());
+        entries.try_into().expect("33 entries")
+    }
+}
+
+/// The [`LinkState`] of every link of `tree` (whose [`link_vectors`] are
+/// found).
+pub(super) fn link_states(tree: &JointTree, pool: &mut Pool) -> Vec<LinkState> {
+    let zero = pool.zero();
+    let inertias = tree.link_inertias(pool);
+    tree.links
+        .iter()
+        .zip(inertias)
+        .map(|(link, inertia)| {
+            let column = &link.columns[0];
+            let [a, b, c] = column.axis;
+            let axis = match column.turns {
+                true => [a, b, c, zero, zero, zero],
+                false => [zero, zero, zero, a, b, c],
+            };
+            LinkState {
+                rotation: link.rotation,
+                offset: link.offset,
+                axis,
+                speed: pool.sym(Sym::Speed(column.speed as u32)),
+                acceleration: pool.sym(Sym::Accel(column.speed as u32)),
+                mass: inertia.mass,
+                moment: inertia.moment,
+                inertia: inertia.inertia,
+            }
+        })
+        .collect()
+}
+
 /// The [`LinkVectors`] of every link of `tree`, `None` unless every joint
 /// is a revolute or prismatic joint whose coordinate's rate is the speed
 /// of the same index.

@@ -8,7 +8,7 @@ use crate::cost::operations;
 use crate::equations::derivatives::{
     ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
 };
-use crate::equations::{Equations, TreeJacobian, inverse_dynamics, tree_jacobian};
+use crate::equations::{Equations, LinkState, TreeJacobian, inverse_dynamics, tree_jacobian};
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 use proc_macro2::{Ident, Span};
@@ -16,16 +16,18 @@ use proc_macro2::{Ident, Span};
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
 
 /// The fewest operations of a tree's partials (unrolled) above which
-/// `accelerations_jacobian` adds the pairs of joints in a loop at run
-/// time: the unrolled code of larger ones streams from L2 at about twice
-/// the time per byte (BENCHMARKS.md, "where the jacobian's time goes").
-const PAIRS_LOOPED_ABOVE: usize = 6000;
+/// `accelerations_jacobian` computes them in loops at run time, link by
+/// link and pair of joints by pair: the unrolled code of larger ones
+/// streams from L2 at about twice the time per byte (BENCHMARKS.md,
+/// "where the jacobian's time goes").
+const TREE_LOOPED_ABOVE: usize = 6000;
 
 /// The partials of `τ` and how they were found, for the docs: of a tree
 /// of revolute and prismatic joints, those of the world-frame recursion
-/// where they cost fewer operations than the symbolic partials of `τ`, and
-/// then, if they cost more than [`PAIRS_LOOPED_ABOVE`], that recursion in
-/// its parts too.
+/// where they cost fewer operations than the symbolic partials of `τ` or
+/// where both cost more than [`TREE_LOOPED_ABOVE`], and then, in the
+/// latter case, that recursion in its parts too (whose loops cost no
+/// code).
 fn partials(
     model: &Model,
     equations: &Equations,
@@ -42,20 +44,21 @@ fn partials(
     if let Some(tree) = tree_jacobian(model, pool) {
         let combined = tree.combined(pool);
         let cost = operations(pool, &entries(&combined));
-        if cost < operations(pool, &entries(&jacobian)) {
+        let symbolic_cost = operations(pool, &entries(&jacobian));
+        let looped = cost.min(symbolic_cost) > TREE_LOOPED_ABOVE;
+        if cost < symbolic_cost || looped {
             let recursion = "the inertia and gravity terms of `τ` differentiated by the\n\
                              recursion of Carpentier and Mansard over the kinematic tree in\n\
                              the axes of `N`, its loads, springs and dampers symbolically";
-            let looped = (cost > PAIRS_LOOPED_ABOVE).then_some(tree);
-            return (combined, recursion.to_string(), looped);
+            return (combined, recursion.to_string(), looped.then_some(tree));
         }
     }
     (jacobian, symbolic, None)
 }
 
-/// The results of an `accelerations_jacobian` that adds the pairs of
-/// `tree`'s joints at run time (see [`PairedTree`]), of which `combined`
-/// are the partials in full.
+/// The results of an `accelerations_jacobian` that computes the inertia
+/// and gravity terms of `tree`'s partials at run time (see
+/// [`PairedTree`]), of which `combined` are the partials in full.
 fn paired_results(
     tree: TreeJacobian,
     combined: &ResidualJacobian,
@@ -71,11 +74,7 @@ fn paired_results(
         speeds: tree.links.iter().map(|l| l.speed).collect(),
         nonzero: [nonzero(&combined.coordinates), nonzero(&combined.speeds)],
     };
-    let vectors: Vec<Vec<ExprId>> = tree
-        .links
-        .iter()
-        .map(|l| l.vectors.iter().flatten().copied().collect())
-        .collect();
+    let states: Vec<Vec<ExprId>> = tree.states.iter().map(|l| l.entries().to_vec()).collect();
     let (nv, nu) = (
         combined.speeds.len(),
         combined.inputs.first().map_or(0, Vec::len),
@@ -84,7 +83,8 @@ fn paired_results(
         Value::matrix(&tree.rest.coordinates, nv),
         Value::matrix(&tree.rest.speeds, nv),
         Value::matrix(&tree.rest.inputs, nu),
-        Value::matrix(&vectors, 42),
+        Value::matrix(&states, LinkState::ENTRIES),
+        Value::vector(tree.gravity.to_vec()),
     ];
     (results, paired)
 }

@@ -30,9 +30,10 @@ pub struct Function {
     pub body: Body,
 }
 
-/// The tree of an `accelerations_jacobian` that adds the pairs of its
-/// joints at run time: its last result holds each link's seven spatial
-/// vectors (`Sⱼ`, `Ψ̇ⱼ`, `Ψ̈ⱼ`, `yⱼ`, `zⱼ`, `wⱼ`, `uⱼ`, 42 entries a row), its
+/// The tree of an `accelerations_jacobian` that computes the inertia and
+/// gravity terms of its partials at run time, link by link and pair of
+/// joints by pair: its fourth result holds each link's state (the entries
+/// of the runtime's `LinkState`, a row a link), its fifth gravity, its
 /// first two only the rest of `∂τ/∂q` and `∂τ/∂v` (loads, potentials,
 /// dissipation).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -67,7 +68,7 @@ pub enum Body {
     /// accelerations solved from `M v̇ = f`, and it returns
     /// `−M⁻¹` times each (the factorisation that solved for `v̇` reused);
     /// with a [`PairedTree`], the inertia and gravity terms are added at
-    /// run time from its links' vectors.
+    /// run time from its links' states.
     AccelerationsJacobian(Option<PairedTree>),
     /// `mass_matrix` of a large tree: its result is each speed's vectors,
     /// whose dot products a loop of the runtime puts into `M`.

@@ -10,10 +10,12 @@ pub struct Model {
 
 impl Model {
     /// Whether the model is small enough to snapshot in full: every model
-    /// but the benchmark chains longer than two links.
+    /// but the benchmark chains longer than two links and the branching
+    /// trees of many links (`*_tree_N`).
     #[allow(dead_code)] // not every test file uses every helper
     pub fn is_small(&self) -> bool {
-        !self.name.contains("_chain_") || self.name.ends_with("_02")
+        let sized = self.name.contains("_chain_") || self.name.contains("_tree_");
+        !sized || self.name.ends_with("_02")
     }
 
     /// The Rust source `build.rs` wrote for this model: what the crate
