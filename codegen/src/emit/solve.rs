@@ -509,7 +509,10 @@ fn forward_substitution(pattern: &[Vec<bool>], order: &Order) -> TokenStream {
     out
 }
 
-/// `D Lᵀ x = y`: `xᵢ = yᵢ / Dᵢ − Σₖ Lₖᵢ xₖ`.
+/// `D Lᵀ x = y`: `xᵢ = yᵢ / Dᵢ − Σₖ Lₖᵢ xₖ`, the `xₖ` subtracted in the
+/// order they were solved, the one just solved last: each `xᵢ` then waits
+/// on the one before by a product and a subtraction (subtracted first, it
+/// waited on the whole chain of the others' subtractions).
 fn backward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
@@ -517,7 +520,7 @@ fn backward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
         let (y, r) = (format_ident!("y{}", i), format_ident!("r{}", i));
         let value = minus_products(
             quote!(#y * #r),
-            (i + 1..nq).filter(|&k| pattern[k][i]).map(|k| {
+            (i + 1..nq).rev().filter(|&k| pattern[k][i]).map(|k| {
                 let (l, x) = (entry(k, i), format_ident!("x{}", k));
                 (quote!(#l), quote!(#x))
             }),
