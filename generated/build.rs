@@ -99,6 +99,7 @@ fn main() {
         .urdf("../tests/reference/urdf/ur5_robot.urdf")
         .urdf("../tests/reference/urdf/solo12.urdf")
         .urdf("../tests/reference/urdf/features.urdf")
+        .urdf("../tests/reference/urdf/anymal_c.urdf")
         .urdf("trees/cart_pole_1.urdf")
         .urdf("trees/cart_pole_3.urdf")
         .urdf("trees/cart_pole_6.urdf")

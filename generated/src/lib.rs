@@ -168,6 +168,11 @@ model!(
     features
 );
 model!(
+    /// ANYmal C quadruped on a fixed base: 12 revolute joints, its fixed
+    /// links (four of them with inertias no mass distribution has) welded.
+    anymal_c
+);
+model!(
     /// Solo12 on a floating base (`dalembert urdf solo12.urdf --floating`,
     /// checked in as `models/floating_solo12.dal`): 19 coordinates, 18 speeds.
     floating_solo12
@@ -265,6 +270,7 @@ model!(
     seed_spatial_chain_30
 );
 
+pub use anymal_c::Anymal;
 pub use binary_tree::BinaryTree;
 pub use cart_pole_1::CartPole1;
 pub use cart_pole_3::CartPole3;

@@ -5,7 +5,7 @@
 //! accelerations of the generated `accelerations` method (ABA's `q̈`).
 //! And the imported model text, for review, as insta snapshots.
 
-use dalembert_generated::{FeatureTree, FloatingSolo, Panda, Solo, Ur5};
+use dalembert_generated::{Anymal, FeatureTree, FloatingSolo, Panda, Solo, Ur5};
 use serde_json::Value;
 
 /// Relative agreement required, against the largest entry of the quantity.
@@ -108,6 +108,11 @@ fn ur5_matches_pinocchio() {
 #[test]
 fn solo12_matches_pinocchio() {
     check!(Solo, "solo12");
+}
+
+#[test]
+fn anymal_c_matches_pinocchio() {
+    check!(Anymal, "anymal_c");
 }
 
 #[test]
