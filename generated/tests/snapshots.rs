@@ -155,14 +155,10 @@ fn tree_parents(code: &str) -> Option<Vec<Option<usize>>> {
 }
 
 /// The links of the loop `dalembert::dynamics::tree_link_vectors` and its
-/// operations, counted in its source (`src/dynamics/tree_vectors.rs`) for
-/// a general link: per link 237 outwards, 351 for its own inertia in `N`
-/// with its rate, momentum and force, 330 for `y, z, w, u`; 37 to add each
-/// subtree into its parent; 3 to negate gravity. An upper bound: the loop
-/// takes cheaper paths by the entries of each link's state, 27 fewer for a
-/// turn about the link's `z` or `y` axis, 15 for a joint axis along `z` or
-/// `y` and 18 more for a revolute one, 36 for an inertia tensor that is
-/// diagonal.
+/// operations, counted in its source (`src/dynamics/tree_vectors.rs`):
+/// per link 237 outwards, 351 for its own inertia in `N` with its rate,
+/// momentum and force, 330 for `y, z, w, u`; 37 to add each subtree into
+/// its parent; 3 to negate gravity.
 fn link_operations(parents: &[Option<usize>]) -> (usize, usize) {
     let children = parents.iter().flatten().count();
     let links = parents.len();

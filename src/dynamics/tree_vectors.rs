@@ -59,10 +59,13 @@ pub fn tree_link_vectors<const L: usize>(
     gravity: &Vec3,
     vectors: &mut [[[f64; 6]; 7]; L],
 ) {
-    let mut moving = [Moving::ZERO; L];
-    let mut subtrees = [Subtree::ZERO; L];
-    outwards(states, links, gravity, &mut moving, &mut subtrees);
-    inwards(links, &moving, &mut subtrees, vectors);
+    let mut moving = [Moving::default(); L];
+    outwards(states, links, gravity, &mut moving);
+    let mut subtrees = [Subtree::default(); L];
+    inwards(states, links, &moving, &mut subtrees);
+    for ((vectors, link), subtree) in vectors.iter_mut().zip(&moving).zip(&subtrees) {
+        *vectors = link_vectors(link, subtree);
+    }
 }
 
 /// `[S, Ψ̇, Ψ̈, y, z, w, u]` of a link from its outward step and its
@@ -92,7 +95,7 @@ fn link_vectors(link: &Moving, subtree: &Subtree) -> [[f64; 6]; 7] {
 }
 
 /// A spatial vector: `(ω, v)` of a motion, `(n, f)` of a force.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct Spatial {
     angular: Vec3,
     linear: Vec3,
@@ -100,7 +103,7 @@ struct Spatial {
 
 /// The outward step's state of one link: placement in `N`, motion
 /// subspace `S`, its rates `Ψ̇`, `Ψ̈`, twist and acceleration.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct Moving {
     rotation: Mat3,
     origin: Vec3,
@@ -113,7 +116,7 @@ struct Moving {
 
 /// A spatial inertia about `N`'s origin: mass `m`, first moment `c`,
 /// inertia tensor `K`.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct Inertia {
     mass: f64,
     moment: Vec3,
@@ -122,7 +125,7 @@ struct Inertia {
 
 /// A subtree's composites: inertia, its rate `(ċ, K̇)`, momentum and
 /// inertia force.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct Subtree {
     inertia: Inertia,
     moment_rate: Vec3,
@@ -132,15 +135,12 @@ struct Subtree {
 }
 
 /// Every link outwards from the base (at rest, accelerating at `−g`), into
-/// `moving`, and its own inertia in `N` with rate, momentum and force into
-/// `subtrees` on the way: the outward steps depend on each other, the own
-/// inertias do not and fill the time the steps wait.
+/// `moving`.
 fn outwards<const L: usize>(
     states: &[LinkState; L],
     links: &[TreeLink; L],
     gravity: &Vec3,
     moving: &mut [Moving; L],
-    subtrees: &mut [Subtree; L],
 ) {
     let base = Moving {
         rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
@@ -148,14 +148,13 @@ fn outwards<const L: usize>(
             angular: [0.0; 3],
             linear: [-gravity[0], -gravity[1], -gravity[2]],
         },
-        ..Moving::ZERO
+        ..Moving::default()
     };
-    for (j, ((state, link), subtree)) in states.iter().zip(links).zip(subtrees).enumerate() {
+    for (j, (state, link)) in states.iter().zip(links).enumerate() {
         let (done, rest) = moving.split_at_mut(j);
         let parent = done.get(link.parent).unwrap_or(&base);
         if let Some(this) = rest.first_mut() {
             *this = step_outwards(parent, state);
-            *subtree = own(state, this);
         }
     }
 }
@@ -163,16 +162,14 @@ fn outwards<const L: usize>(
 /// The link of `state` from its parent's `parent`.
 #[inline(always)]
 fn step_outwards(parent: &Moving, state: &LinkState) -> Moving {
-    let rotation = turned(&parent.rotation, &state.rotation);
+    let rotation = mat_mul(&parent.rotation, &state.rotation);
     let origin = add3(&parent.origin, &mat_vec(&parent.rotation, &state.offset));
     let [a0, a1, a2, b0, b1, b2] = state.axis;
-    let angular = times_axis(&rotation, &[a0, a1, a2]);
-    let moved = cross(&origin, &angular);
-    let linear = if [b0, b1, b2] == [0.0; 3] {
-        moved
-    } else {
-        add3(&moved, &times_axis(&rotation, &[b0, b1, b2]))
-    };
+    let angular = mat_vec(&rotation, &[a0, a1, a2]);
+    let linear = add3(
+        &cross(&origin, &angular),
+        &mat_vec(&rotation, &[b0, b1, b2]),
+    );
     let subspace = Spatial { angular, linear };
     let (v, a) = (&parent.twist, &parent.acceleration);
     let rate = motion_cross(v, &subspace);
@@ -190,22 +187,20 @@ fn step_outwards(parent: &Moving, state: &LinkState) -> Moving {
     }
 }
 
-/// The composites of every subtree, leaves first, summed in `subtrees`
-/// from the links' own, and each link's vectors into `vectors` as soon as
-/// its subtree is complete (all its descendants come after it).
+/// The composites of every subtree into `subtrees`, leaves first.
 fn inwards<const L: usize>(
+    states: &[LinkState; L],
     links: &[TreeLink; L],
     moving: &[Moving; L],
     subtrees: &mut [Subtree; L],
-    vectors: &mut [[[f64; 6]; 7]; L],
 ) {
-    for (j, ((link, this), vectors)) in links.iter().zip(moving).zip(vectors).enumerate().rev() {
+    for ((subtree, state), link) in subtrees.iter_mut().zip(states).zip(moving) {
+        *subtree = own(state, link);
+    }
+    for (j, link) in links.iter().enumerate().rev() {
         let (before, rest) = subtrees.split_at_mut(j);
-        if let Some(subtree) = rest.first() {
-            *vectors = link_vectors(this, subtree);
-            if let Some(parent) = before.get_mut(link.parent) {
-                parent.add(subtree);
-            }
+        if let (Some(parent), Some(this)) = (before.get_mut(link.parent), rest.first()) {
+            parent.add(this);
         }
     }
 }
@@ -247,16 +242,10 @@ fn own(state: &LinkState, link: &Moving) -> Subtree {
     }
 }
 
-/// `R K Rᵀ` of a symmetric `K`; `R K` by scaling the columns of `R` where
-/// `K` is diagonal (a body in its principal axes), 9 operations instead
-/// of 45.
+/// `R K Rᵀ` of a symmetric `K`.
 #[inline(always)]
 fn rotated(r: &Mat3, k: &Mat3) -> Mat3 {
-    let rk = if [k[0][1], k[0][2], k[1][2]] == [0.0; 3] {
-        mat3(|i, j| r[i][j] * k[j][j])
-    } else {
-        mat_mul(r, k)
-    };
+    let rk = mat_mul(r, k);
     symmetric(|i, j| dot(&rk[i], &r[j]))
 }
 
@@ -270,62 +259,6 @@ fn shifted(k: &Mat3, m: f64, d: &Vec3, c: &Vec3) -> Mat3 {
     plus_diagonal(outer, 2.0 * dot(c, d) - dot(&md, d))
 }
 
-/// The parent's rotation `p` turned by the link's `r`: where `r` is a turn
-/// about the link's `z` or `y` axis (as most joints'), by [`turn_about`],
-/// 12 operations instead of 45.
-#[inline(always)]
-fn turned(p: &Mat3, r: &Mat3) -> Mat3 {
-    if let Some(turned) = turn_about::<2, 0, 1>(p, r) {
-        turned
-    } else if let Some(turned) = turn_about::<1, 2, 0>(p, r) {
-        turned
-    } else {
-        mat_mul(p, r)
-    }
-}
-
-/// `p r` if `r` turns about the coordinate axis `K` (its row and column
-/// `K` that axis, its entries `I, J` `[[c, −s], [s, c]]`, with `(K, I, J)`
-/// a cyclic order): column `K` of `p` kept and the two others combined.
-#[inline(always)]
-fn turn_about<const K: usize, const I: usize, const J: usize>(p: &Mat3, r: &Mat3) -> Option<Mat3> {
-    let (c, s) = (r[I][I], r[J][I]);
-    let turns = r[K] == unit(K) && [r[I][K], r[J][K], r[J][J], r[I][J]] == [0.0, 0.0, c, -s];
-    turns.then(|| {
-        let mut turned = *p;
-        for (row, p) in turned.iter_mut().zip(p) {
-            row[I] = p[I] * c + p[J] * s;
-            row[J] = p[J] * c - p[I] * s;
-        }
-        turned
-    })
-}
-
-/// `m a`: a column of `m` where `a` is the `z` or `y` axis (most joints'
-/// axis), no operation instead of 15.
-#[inline(always)]
-fn times_axis(m: &Mat3, a: &Vec3) -> Vec3 {
-    if *a == unit(2) {
-        column::<2>(m)
-    } else if *a == unit(1) {
-        column::<1>(m)
-    } else {
-        mat_vec(m, a)
-    }
-}
-
-/// Column `K` of `m`.
-#[inline(always)]
-fn column<const K: usize>(m: &Mat3) -> Vec3 {
-    vec3(|i| m[i][K])
-}
-
-/// The coordinate axis `k`.
-#[inline(always)]
-fn unit(k: usize) -> Vec3 {
-    vec3(|i| if i == k { 1.0 } else { 0.0 })
-}
-
 /// `m + x 1`.
 #[inline(always)]
 fn plus_diagonal(mut m: Mat3, x: f64) -> Mat3 {
@@ -335,16 +268,7 @@ fn plus_diagonal(mut m: Mat3, x: f64) -> Mat3 {
     m
 }
 
-/// Zeros, constants rather than `Default` values: the arrays of links
-/// start as one `memset` instead of a copy of a default value per link.
-const ZERO3: Vec3 = [0.0; 3];
-
 impl Spatial {
-    const ZERO: Spatial = Spatial {
-        angular: ZERO3,
-        linear: ZERO3,
-    };
-
     #[inline(always)]
     fn add(&self, other: &Spatial) -> Spatial {
         Spatial {
@@ -377,18 +301,6 @@ impl Spatial {
     }
 }
 
-impl Moving {
-    const ZERO: Moving = Moving {
-        rotation: [ZERO3; 3],
-        origin: ZERO3,
-        subspace: Spatial::ZERO,
-        rate: Spatial::ZERO,
-        second_rate: Spatial::ZERO,
-        twist: Spatial::ZERO,
-        acceleration: Spatial::ZERO,
-    };
-}
-
 impl Inertia {
     /// `I x = (K ω + c × v, m v − c × ω)`.
     #[inline(always)]
@@ -403,18 +315,6 @@ impl Inertia {
 }
 
 impl Subtree {
-    const ZERO: Subtree = Subtree {
-        inertia: Inertia {
-            mass: 0.0,
-            moment: ZERO3,
-            tensor: [ZERO3; 3],
-        },
-        moment_rate: ZERO3,
-        inertia_rate: [ZERO3; 3],
-        momentum: Spatial::ZERO,
-        force: Spatial::ZERO,
-    };
-
     /// `İ x = (K̇ ω + ċ × v, −ċ × ω)`.
     #[inline(always)]
     fn rate_times(&self, x: &Spatial) -> Spatial {
@@ -428,7 +328,6 @@ impl Subtree {
     }
 
     /// Adds `other`'s composites.
-    #[inline(always)]
     fn add(&mut self, other: &Subtree) {
         self.inertia.mass += other.inertia.mass;
         add_to(&mut self.inertia.moment, &other.inertia.moment);
@@ -521,40 +420,4 @@ fn symmetric(f: impl Fn(usize, usize) -> f64) -> Mat3 {
     let [a, b, c] = [f(0, 0), f(0, 1), f(0, 2)];
     let [d, e, g] = [f(1, 1), f(1, 2), f(2, 2)];
     [[a, b, c], [b, d, e], [c, e, g]]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{mat_mul, mat_vec, rotated, times_axis, turned, unit};
-
-    /// A rotation far from the axes, as a parent's.
-    const PARENT: [[f64; 3]; 3] = [[0.36, 0.48, -0.8], [-0.8, 0.6, 0.0], [0.48, 0.64, 0.6]];
-
-    #[test]
-    fn the_cheaper_paths_give_the_general_products() {
-        let (c, s) = (0.28, 0.96);
-        let about_z = [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]];
-        let about_y = [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]];
-        // About x: not taken by the cheaper path, the general product.
-        let about_x = [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]];
-        for r in [about_z, about_y, about_x, PARENT] {
-            let (fast, general) = (turned(&PARENT, &r), mat_mul(&PARENT, &r));
-            for (a, b) in fast.iter().flatten().zip(general.iter().flatten()) {
-                assert!((a - b).abs() < 1e-15, "{fast:?} against {general:?}");
-            }
-        }
-        for a in [unit(0), unit(1), unit(2), [0.6, 0.0, 0.8]] {
-            assert_eq!(times_axis(&PARENT, &a), mat_vec(&PARENT, &a));
-        }
-        let diagonal = [[0.1, 0.0, 0.0], [0.0, 0.2, 0.0], [0.0, 0.0, 0.3]];
-        let general = mat_mul(&mat_mul(&PARENT, &diagonal), &transposed(&PARENT));
-        let fast = rotated(&PARENT, &diagonal);
-        for (a, b) in fast.iter().flatten().zip(general.iter().flatten()) {
-            assert!((a - b).abs() < 1e-15, "{fast:?} against {general:?}");
-        }
-    }
-
-    fn transposed(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-        [0, 1, 2].map(|i| [m[0][i], m[1][i], m[2][i]])
-    }
 }
