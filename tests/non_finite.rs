@@ -71,6 +71,26 @@ fn non_finite_parameters_are_errors() {
     }
 }
 
+/// The emitted `L D Lᵀ` solve tests `M` and `f` only when a pivot fails or
+/// `q̈` is not finite; it reports what the runtime's checks before the
+/// factorisation report.
+#[test]
+fn non_finite_equations_come_before_a_singular_or_non_finite_solve() {
+    let (q, qd) = ([0.3, -0.4], [0.5, 0.1]);
+    let solved =
+        |m: f64, g: f64| accelerations(&DoublePendulum { m, L: 1.0, g }, 0.0, &q, &qd, &[]);
+    for bad in BAD {
+        // `f` alone, then `M` and `f`, then `f` with a singular `M`.
+        assert_eq!(solved(1.0, bad), Err(DynamicsError::NonFiniteEquations));
+        assert_eq!(solved(bad, 9.81), Err(DynamicsError::NonFiniteEquations));
+        assert_eq!(solved(0.0, bad), Err(DynamicsError::NonFiniteEquations));
+    }
+    assert!(matches!(
+        solved(0.0, 9.81),
+        Err(DynamicsError::SingularMassMatrix { index: 0, .. })
+    ));
+}
+
 #[test]
 fn non_finite_states_and_inputs_are_errors() {
     let pendulum = DoublePendulum {

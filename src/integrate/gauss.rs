@@ -226,40 +226,45 @@ where
             .iter()
             .chain(&state.v)
             .fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut stages = guess.unwrap_or([Rate::ZERO; MAX_STAGES]);
+    // Two sets of slopes, the iteration's last and the one it computes,
+    // which trade places by reference: no copy of the stages per sweep.
+    let mut buffers = [
+        guess.unwrap_or([Rate::ZERO; MAX_STAGES]),
+        [Rate::ZERO; MAX_STAGES],
+    ];
+    let [mut stages, mut updated] = buffers.each_mut();
     let mut from_start = guess.is_none();
     let mut previous_change = f64::INFINITY;
     let mut iterations = 0;
     while iterations < MAX_ITERATIONS {
-        let mut updated = [Rate::ZERO; MAX_STAGES];
         let sweep = if from_start { 1 } else { scheme.stages };
         for (i, slope) in updated.iter_mut().enumerate().take(sweep) {
             let point = if from_start {
                 *state
             } else {
-                let combined = scheme.combine(&scheme.a[i], &stages);
+                let combined = scheme.combine(&scheme.a[i], stages);
                 kernel.stage(state, &combined, h, scheme.c[i])
             };
             *slope = kernel.rate(&point)?;
         }
         if from_start {
-            stages = [updated[0]; MAX_STAGES];
+            *stages = [updated[0]; MAX_STAGES];
             from_start = false;
             continue;
         }
         iterations += 1;
         let change = updated
             .iter()
-            .zip(&stages)
+            .zip(stages.iter())
             .take(scheme.stages)
             .fold(0.0f64, |m, (new, old)| m.max(new.largest_difference(old)))
             * h.abs();
-        stages = updated;
+        std::mem::swap(&mut stages, &mut updated);
         if change <= f64::EPSILON * size {
-            return Ok(stages);
+            return Ok(*stages);
         }
         if change >= previous_change && change <= ROUNDING_PLATEAU * size {
-            return Ok(stages);
+            return Ok(*stages);
         }
         previous_change = change;
     }

@@ -196,9 +196,9 @@ pub fn emit_accelerations_jacobian(
         prelude,
         substitutions,
         solution,
+        unsolved,
         pattern,
         order,
-        ..
     }) = factorised(model, pool, equations, names, given)
     else {
         return TokenStream::new();
@@ -272,7 +272,7 @@ pub fn emit_accelerations_jacobian(
                 [#(#solution),*]
             };
             if !finite(qdd) {
-                return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations);
+                return ::core::result::Result::Err(#unsolved);
             }
             // `∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the columns of `∂τ/∂x` that are not
             // structurally zero, row by row in the order of elimination.

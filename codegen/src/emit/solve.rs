@@ -46,7 +46,7 @@ pub fn emit_accelerations(
         return TokenStream::new();
     };
     let nv = model.nv();
-    let (doc, body) = match &equations.articulated {
+    let (doc, body, unsolved) = match &equations.articulated {
         Some(articulated)
             if articulated_is_cheaper(model, pool, equations, articulated, &factorised.pattern) =>
         {
@@ -60,6 +60,7 @@ pub fn emit_accelerations(
                     " largest pivot, is an error.",
                 ],
                 articulated_body(model, pool, articulated, names),
+                quote!(::dalembert::DynamicsError::NonFiniteAccelerations),
             )
         }
         _ => {
@@ -67,6 +68,7 @@ pub fn emit_accelerations(
                 prelude,
                 substitutions,
                 solution,
+                unsolved,
                 ..
             } = &factorised;
             (
@@ -79,6 +81,7 @@ pub fn emit_accelerations(
                     " times the largest diagonal entry of `M`, is an error.",
                 ],
                 quote!(#prelude #substitutions let qdd = [#(#solution),*];),
+                unsolved.clone(),
             )
         }
     };
@@ -98,7 +101,7 @@ pub fn emit_accelerations(
             if finite(&qdd) {
                 ::core::result::Result::Ok(qdd)
             } else {
-                ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteAccelerations)
+                ::core::result::Result::Err(#unsolved)
             }
         }
     }
@@ -119,14 +122,18 @@ pub fn state_check() -> TokenStream {
 pub struct Factorised {
     /// The checks of the state (`t`, `q`, `qd`, `u`), the entries of `M`
     /// that the factorisation reads and `f` evaluated in one straight-line
-    /// body, bound to `m{i}_{j}` and `f{i}`, checked, and factorised
-    /// (`l{i}_{j}`, the reciprocal pivots `r{j}`), returning the runtime's
-    /// errors; binds the closure `finite(&[f64]) -> bool`.
+    /// body, bound to `m{i}_{j}` and `f{i}`, and factorised (`l{i}_{j}`,
+    /// the reciprocal pivots `r{j}`), returning the runtime's errors; binds
+    /// the closures `finite(&[f64]) -> bool` and `equations_or`, which tests
+    /// `M` and `f` only on the error paths (see [`deferred_check`]).
     pub prelude: TokenStream,
     /// Forward and backward substitution from `f{i}` to `x{i}`.
     pub substitutions: TokenStream,
     /// The names `x{i}` of the solution.
     pub solution: Vec<Ident>,
+    /// The error for a solution that is not finite: `NonFiniteEquations`
+    /// if `M` or `f` is not finite, else `NonFiniteAccelerations`.
+    pub unsolved: TokenStream,
     /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero, in the
     /// order of elimination.
     pub pattern: Vec<Vec<bool>>,
@@ -183,7 +190,14 @@ pub struct Elimination {
 
 /// The elimination of `M x = f` that fills in less, in the speeds' order
 /// or the reverse; `None` for a system with constraints or no coordinates.
-pub fn elimination(model: &Model, pool: &Pool, equations: &Equations) -> Option<Elimination> {
+/// A pivot that fails returns `SingularMassMatrix`, passed through the
+/// closure `checked` if any (`Err(checked(error))`).
+pub fn elimination(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    checked: Option<&Ident>,
+) -> Option<Elimination> {
     let nq = model.nv();
     if !model.constraints.is_empty() || nq == 0 {
         return None;
@@ -196,7 +210,7 @@ pub fn elimination(model: &Model, pool: &Pool, equations: &Equations) -> Option<
         })
         .into_iter()
         .min_by_key(|(_, pattern)| factorisation_operations(pattern))?;
-    let factor = factorisation(model, &pattern, &order);
+    let factor = factorisation(model, &pattern, &order, checked);
     let forward = forward_substitution(&pattern, &order);
     let backward = backward_substitution(&pattern);
     let mut solution: Vec<Ident> = vec![format_ident!("x0"); nq];
@@ -253,7 +267,7 @@ pub fn factorised(
         solution,
         pattern,
         order,
-    } = elimination(model, pool, equations)?;
+    } = elimination(model, pool, equations, Some(&format_ident!("equations_or")))?;
     // `M`'s entries the factorisation reads and `f`, computed together so
     // that they share their subexpressions (sines and cosines above all),
     // in a block that keeps the model's names out of the solver's.
@@ -287,21 +301,44 @@ pub fn factorised(
             };
         },
     };
+    let deferred = deferred_check(&bound);
     let prelude = quote! {
         #check
         #binding
-        if !finite(&[#(#bound),*]) {
-            return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
-        }
+        #deferred
         #factor
     };
     Some(Factorised {
         prelude,
         substitutions,
         solution,
+        unsolved: quote!(equations_or(
+            ::dalembert::DynamicsError::NonFiniteAccelerations
+        )),
         pattern,
         order,
     })
+}
+
+/// Binds the closure `equations_or(error)`: `NonFiniteEquations` if one of
+/// `bound` (`M`'s entries that the factorisation reads, and `f`) is not
+/// finite, else `error`. The runtime checks `M` and `f` before it
+/// factorises; the emitted solve tests them only where it fails, with the
+/// same outcome: a non-finite entry of `M` makes a pivot fail (an infinite
+/// diagonal makes the tolerance infinite; a NaN pivot fails its test; a
+/// non-finite `wᵢⱼ` below the diagonal subtracts the non-finite `wᵢⱼ Lᵢⱼ =
+/// wᵢⱼ² rⱼ ≥ 0` from the pivot `Dᵢ`), and with every pivot positive a
+/// non-finite `fᵢ` leaves `yᵢ`, then `xᵢ = yᵢ rᵢ − …`, not finite.
+fn deferred_check(bound: &[Ident]) -> TokenStream {
+    quote! {
+        let equations_or = |error: ::dalembert::DynamicsError| {
+            if finite(&[#(#bound),*]) {
+                error
+            } else {
+                ::dalembert::DynamicsError::NonFiniteEquations
+            }
+        };
+    }
 }
 
 /// The articulated-body route, up to `let qdd = [..];`: one straight-line
@@ -440,8 +477,14 @@ fn unscaled(i: usize, j: usize) -> Ident {
 }
 
 /// The columns of `M = L D Lᵀ` (no square roots): the entries `Lᵢⱼ Dⱼ`,
-/// the pivot `Dⱼ` and its test, its reciprocal, then `Lᵢⱼ`.
-fn factorisation(model: &Model, pattern: &[Vec<bool>], order: &Order) -> TokenStream {
+/// the pivot `Dⱼ` and its test, its reciprocal, then `Lᵢⱼ`. A failed
+/// pivot's error goes through the closure `checked`, if any.
+fn factorisation(
+    model: &Model,
+    pattern: &[Vec<bool>],
+    order: &Order,
+    checked: Option<&Ident>,
+) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
     let shared = |i: usize, j: usize| (0..j).filter(move |&k| pattern[i][k] && pattern[j][k]);
@@ -463,14 +506,21 @@ fn factorisation(model: &Model, pattern: &[Vec<bool>], order: &Order) -> TokenSt
             }),
         );
         let (p, r) = (format_ident!("p{}", j), format_ident!("r{}", j));
+        let singular = quote! {
+            ::dalembert::DynamicsError::SingularMassMatrix {
+                index: #jj,
+                coordinate: #coordinate,
+                pivot: #p,
+            }
+        };
+        let error = match checked {
+            Some(checked) => quote!(#checked(#singular)),
+            None => singular,
+        };
         out.extend(quote! {
             let #p = #pivot;
             if !(#p > tolerance) {
-                return ::core::result::Result::Err(::dalembert::DynamicsError::SingularMassMatrix {
-                    index: #jj,
-                    coordinate: #coordinate,
-                    pivot: #p,
-                });
+                return ::core::result::Result::Err(#error);
             }
             let #r = 1.0 / #p;
         });

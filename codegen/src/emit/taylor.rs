@@ -466,7 +466,7 @@ pub fn emit_taylor(
     names: &Names,
     function: &Function,
 ) -> TokenStream {
-    let Some(solver) = elimination(model, pool, equations) else {
+    let Some(solver) = elimination(model, pool, equations, None) else {
         return TokenStream::new();
     };
     let nv = model.nv();

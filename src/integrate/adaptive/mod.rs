@@ -172,6 +172,7 @@ where
         dense,
     } = run;
     let kernel = Kernel::new(dynamics);
+    let rows = Rows::of(pair);
     let scale = Scale::from(&options);
     let mut state = initial;
     let mut slope = kernel.rate(&state)?;
@@ -199,22 +200,22 @@ where
                 Failure::StepSizeTooSmall { h },
             ));
         }
-        let trial = attempt(&kernel, pair, &state, &slope, h)?;
+        let trial = attempt(&kernel, pair, &rows, &state, &slope, h)?;
         let mut next = trial.state;
         if last {
             next.t = t_end;
         }
         let weights = scale.weights(&state, &next);
         let (error, new_slope) = match &pair.estimate {
-            ErrorEstimate::Embedded { e, e_new } => {
+            ErrorEstimate::Embedded { e_new, .. } => {
                 let new_slope = kernel.rate(&next)?;
-                let estimate = Rate::combination(e, &trial.stages);
+                let estimate = rows.error[0].apply(&trial.stages);
                 let estimate = combined_with(&estimate, *e_new, &new_slope);
                 (h.abs() * weights.norm(&estimate), Some(new_slope))
             }
-            ErrorEstimate::FifthAndThird { e5, e3 } => {
-                let fifth = weights.norm(&Rate::combination(e5, &trial.stages));
-                let third = weights.norm(&Rate::combination(e3, &trial.stages));
+            ErrorEstimate::FifthAndThird { .. } => {
+                let fifth = weights.norm(&rows.error[0].apply(&trial.stages));
+                let third = weights.norm(&rows.error[1].apply(&trial.stages));
                 let blend = (fifth * fifth + 0.01 * third * third).sqrt();
                 let error = if blend > 0.0 {
                     h.abs() * fifth * fifth / blend
@@ -276,10 +277,68 @@ struct Trial<const NQ: usize, const NV: usize, const S: usize> {
     state: State<NQ, NV>,
 }
 
+/// A row of a tableau without its zero weights: `(stage, weight)` for the
+/// first `count` entries, in the row's order. A quarter of DOP853's
+/// weights are zero; skipping them leaves every sum as it was (a product
+/// `0 · k` of a finite slope adds a zero, and a sum that starts from `+0`
+/// is never `−0`).
+#[derive(Clone, Copy)]
+struct Terms<const S: usize> {
+    terms: [(usize, f64); S],
+    count: usize,
+}
+
+impl<const S: usize> Terms<S> {
+    /// The non-zero weights of `row`.
+    fn of(row: &[f64; S]) -> Self {
+        let mut terms = [(0, 0.0); S];
+        let mut count = 0;
+        for (j, &w) in row.iter().enumerate().filter(|(_, w)| **w != 0.0) {
+            terms[count] = (j, w);
+            count += 1;
+        }
+        Self { terms, count }
+    }
+
+    /// `Σⱼ wⱼ · stages[j]` over the row's terms.
+    #[inline(always)]
+    fn apply<const NQ: usize, const NV: usize>(&self, stages: &[Rate<NQ, NV>; S]) -> Rate<NQ, NV> {
+        let mut sum = Rate::ZERO;
+        for &(j, w) in self.terms.iter().take(self.count) {
+            sum.add_scaled(w, &stages[j]);
+        }
+        sum
+    }
+}
+
+/// The rows of a pair without their zero weights, built once per
+/// integration: the stages', the propagated solution's and the error
+/// estimate's (`e`, or `e5` then `e3`).
+struct Rows<const S: usize> {
+    a: [Terms<S>; S],
+    b: Terms<S>,
+    error: [Terms<S>; 2],
+}
+
+impl<const S: usize> Rows<S> {
+    fn of<const T: usize>(pair: &EmbeddedPair<S, T>) -> Self {
+        let error = match &pair.estimate {
+            ErrorEstimate::Embedded { e, .. } => [Terms::of(e), Terms::of(&[0.0; S])],
+            ErrorEstimate::FifthAndThird { e5, e3 } => [Terms::of(e5), Terms::of(e3)],
+        };
+        Self {
+            a: pair.a.each_ref().map(Terms::of),
+            b: Terms::of(&pair.b),
+            error,
+        }
+    }
+}
+
 /// One trial step of length `h` from `state`, whose slope is `slope`.
 fn attempt<D, const NQ: usize, const NV: usize, const S: usize, const T: usize>(
     kernel: &Kernel<'_, D>,
     pair: &EmbeddedPair<S, T>,
+    rows: &Rows<S>,
     state: &State<NQ, NV>,
     slope: &Rate<NQ, NV>,
     h: f64,
@@ -290,10 +349,10 @@ where
     let mut stages = [Rate::ZERO; S];
     stages[0] = *slope;
     for i in 1..S {
-        let combined = Rate::combination_of_first(i, &pair.a[i], &stages);
+        let combined = rows.a[i].apply(&stages);
         stages[i] = kernel.rate(&kernel.stage(state, &combined, h, pair.c[i]))?;
     }
-    let state = kernel.step_end(state, &Rate::combination(&pair.b, &stages), h);
+    let state = kernel.step_end(state, &rows.b.apply(&stages), h);
     Ok(Trial { stages, state })
 }
 
