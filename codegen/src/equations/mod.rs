@@ -116,10 +116,7 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
     let kinematics = Kinematics::new(model, pool);
     let nv = model.nv();
     let inertias = inertias(model);
-    let tree = model
-        .tree
-        .as_ref()
-        .and_then(|tree| recursive::JointTree::new(model, tree, &kinematics, &inertias, pool));
+    let tree = joint_tree(model, &kinematics, pool);
     // The recursion carries the applied forces and torques; the general
     // route takes them through their partial velocities.
     let (mass_matrix, bias, loads_done) = match &tree {
@@ -176,12 +173,7 @@ pub fn inverse_dynamics(
 ) -> (Vec<ExprId>, bool) {
     let nv = model.nv();
     let kinematics = Kinematics::new(model, pool);
-    let inertias = inertias(model);
-    let tree = model
-        .tree
-        .as_ref()
-        .and_then(|tree| recursive::JointTree::new(model, tree, &kinematics, &inertias, pool));
-    match tree {
+    match joint_tree(model, &kinematics, pool) {
         Some(tree) => {
             let inertial = recursive::inverse_dynamics(&tree, pool);
             let forces = (0..nv)
@@ -254,9 +246,7 @@ pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
         return None;
     }
     let kinematics = Kinematics::new(model, pool);
-    let inertias = inertias(model);
-    let tree =
-        recursive::JointTree::new(model, model.tree.as_ref()?, &kinematics, &inertias, pool)?;
+    let tree = joint_tree(model, &kinematics, pool)?;
     let links = tree_partials::link_vectors(&tree, pool)?;
     let states = tree_partials::link_states(&tree, pool);
     let loads = tree.applied_loads(pool);
@@ -280,10 +270,19 @@ pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
 /// tree's `M` (see `tree_mass`); `None` for a model that is no tree.
 pub fn tree_mass(model: &Model, pool: &mut Pool) -> Option<Vec<SpeedVectors>> {
     let kinematics = Kinematics::new(model, pool);
-    let inertias = inertias(model);
-    let tree =
-        recursive::JointTree::new(model, model.tree.as_ref()?, &kinematics, &inertias, pool)?;
+    let tree = joint_tree(model, &kinematics, pool)?;
     Some(tree_mass::speed_vectors(&tree, pool))
+}
+
+/// The tree of joints of `model` with its masses and loads, for the
+/// recursive routes; `None` for a model that is no tree.
+fn joint_tree(
+    model: &Model,
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+) -> Option<recursive::JointTree> {
+    let inertias = inertias(model);
+    recursive::JointTree::new(model, model.tree.as_ref()?, kinematics, &inertias, pool)
 }
 
 fn inertias(model: &Model) -> Vec<Inertia<'_>> {
