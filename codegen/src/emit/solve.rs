@@ -259,6 +259,8 @@ pub fn factorised(
     names: &Names,
     also: Option<&Given<'_>>,
 ) -> Option<Factorised> {
+    // The closure that the error paths call (see [`deferred_check`]).
+    let equations_or = format_ident!("equations_or");
     let Elimination {
         entries,
         factor,
@@ -267,7 +269,7 @@ pub fn factorised(
         solution,
         pattern,
         order,
-    } = elimination(model, pool, equations, Some(&format_ident!("equations_or")))?;
+    } = elimination(model, pool, equations, Some(&equations_or))?;
     // `M`'s entries the factorisation reads and `f`, computed together so
     // that they share their subexpressions (sines and cosines above all),
     // in a block that keeps the model's names out of the solver's.
@@ -301,7 +303,7 @@ pub fn factorised(
             };
         },
     };
-    let deferred = deferred_check(&bound);
+    let deferred = deferred_check(&equations_or, &bound);
     let prelude = quote! {
         #check
         #binding
@@ -312,7 +314,7 @@ pub fn factorised(
         prelude,
         substitutions,
         solution,
-        unsolved: quote!(equations_or(
+        unsolved: quote!(#equations_or(
             ::dalembert::DynamicsError::NonFiniteAccelerations
         )),
         pattern,
@@ -329,9 +331,9 @@ pub fn factorised(
 /// non-finite `wᵢⱼ` below the diagonal subtracts the non-finite `wᵢⱼ Lᵢⱼ =
 /// wᵢⱼ² rⱼ ≥ 0` from the pivot `Dᵢ`), and with every pivot positive a
 /// non-finite `fᵢ` leaves `yᵢ`, then `xᵢ = yᵢ rᵢ − …`, not finite.
-fn deferred_check(bound: &[Ident]) -> TokenStream {
+fn deferred_check(equations_or: &Ident, bound: &[Ident]) -> TokenStream {
     quote! {
-        let equations_or = |error: ::dalembert::DynamicsError| {
+        let #equations_or = |error: ::dalembert::DynamicsError| {
             if finite(&[#(#bound),*]) {
                 error
             } else {
