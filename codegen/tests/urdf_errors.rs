@@ -27,6 +27,11 @@ fn robot(joint_type: &str, joint: &str, link_b: &str) -> String {
     )
 }
 
+/// A kilogram with unit principal moments: a link that moves mass.
+fn unit_mass() -> String {
+    inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+}
+
 /// An inertial with this mass and `ixx iyy izz ixy iyz ixz`.
 fn inertial(mass: &str, [xx, yy, zz, xy, yz, xz]: [f64; 6]) -> String {
     format!(
@@ -182,12 +187,7 @@ fn inertias_are_checked_once_welded() {
     // Alone, the tool's tensor is not positive semi-definite (moments −1,
     // 1, 3, as Tiago's antennas); welded to `b` it is part of a body that
     // is, and the dynamics see only that body.
-    let text = robot(
-        "revolute",
-        "",
-        &inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
-    )
-    .replace(
+    let text = robot("revolute", "", &unit_mass()).replace(
         "</robot>",
         &format!(
             r#"  <link name="tool">{}</link>
@@ -242,12 +242,7 @@ fn a_joint_that_moves_no_mass() {
 
 #[test]
 fn a_robot_name_that_is_not_an_identifier_is_prefixed() {
-    let text = robot(
-        "revolute",
-        "",
-        &inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
-    )
-    .replace("name=\"r\"", "name=\"2dof_planar\"");
+    let text = robot("revolute", "", &unit_mass()).replace("name=\"r\"", "name=\"2dof_planar\"");
     let found = warnings(&text);
     assert_eq!(found.len(), 1, "{found:?}");
     assert!(found[0].1.contains("`Robot2dofPlanar`"), "{found:?}");
@@ -316,7 +311,7 @@ fn damping_becomes_a_dissipation_function() {
     let text = robot(
         "revolute",
         "\n    <dynamics damping=\"0.25\"/>",
-        &inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
+        &unit_mass(),
     );
     let plain = Urdf::new("robot.urdf", text.as_str()).model().unwrap();
     assert!(!plain.contains("dissipation"), "{plain}");
@@ -347,13 +342,9 @@ fn damping_becomes_a_dissipation_function() {
 
 #[test]
 fn names_and_struct_name() {
-    let text = robot(
-        "continuous",
-        "",
-        &inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
-    )
-    .replace("name=\"j\"", "name=\"my-joint\"")
-    .replace("name=\"r\"", "name=\"small_arm\"");
+    let text = robot("continuous", "", &unit_mass())
+        .replace("name=\"j\"", "name=\"my-joint\"")
+        .replace("name=\"r\"", "name=\"small_arm\"");
     let model = Urdf::new("robot.urdf", text.as_str()).model().unwrap();
     assert!(model.contains("pub SmallArm {"), "{model}");
     assert!(model.contains("coordinates my_joint;"), "{model}");
@@ -372,7 +363,7 @@ fn names_and_struct_name() {
 
 #[test]
 fn joint_names_that_cannot_be_coordinates() {
-    let mass = inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]);
+    let mass = unit_mass();
     let keyword = robot("revolute", "", &mass).replace("name=\"j\"", "name=\"type\"");
     assert_error(
         &keyword,
@@ -425,11 +416,7 @@ fn builder_reports_the_error_and_writes_nothing() {
 fn builder_writes_the_robot_named_after_the_file() {
     let dir = scratch("builder_ok");
     let input = dir.join("arm.urdf");
-    let text = robot(
-        "revolute",
-        "",
-        &inertial("1", [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
-    );
+    let text = robot("revolute", "", &unit_mass());
     std::fs::write(&input, &text).unwrap();
     let written = Builder::new()
         .urdf(&input)
