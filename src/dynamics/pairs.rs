@@ -31,10 +31,10 @@ fn dot(a: &[f64; 6], b: &[f64; 6]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
 }
 
-/// `rows[r][c] += value`, if there is such an entry.
+/// `row[c] += value`, if there is such an entry.
 #[inline]
-fn add<const C: usize>(rows: &mut [&mut [f64; C]], r: usize, c: usize, value: f64) {
-    if let Some(entry) = rows.get_mut(r).and_then(|row| row.get_mut(c)) {
+fn add<const C: usize>(row: &mut [f64; C], c: usize, value: f64) {
+    if let Some(entry) = row.get_mut(c) {
         *entry += value;
     }
 }
@@ -55,26 +55,24 @@ pub fn add_tree_pairs<const C: usize, const N: usize, const L: usize>(
     links: &[TreeLink; L],
 ) {
     for (i, ([.., y, z, w, u], link)) in vectors.iter().zip(links).enumerate() {
+        let mut own = [0.0; C];
         let mut j = i;
         while let (Some([s, rate, second_rate, ..]), Some(other)) = (vectors.get(j), links.get(j)) {
-            add(
-                &mut rows,
-                link.row,
-                other.by_q,
-                dot(y, second_rate) + dot(z, rate),
-            );
+            add(&mut own, other.by_q, dot(y, second_rate) + dot(z, rate));
             let y_rate = dot(y, rate);
-            add(
-                &mut rows,
-                link.row,
-                other.by_v,
-                dot(z, s) + (y_rate + y_rate),
-            );
-            if j != i {
-                add(&mut rows, other.row, link.by_q, dot(s, w));
-                add(&mut rows, other.row, link.by_v, dot(s, u));
+            add(&mut own, other.by_v, dot(z, s) + (y_rate + y_rate));
+            if j != i
+                && let Some(row) = rows.get_mut(other.row)
+            {
+                add(row, link.by_q, dot(s, w));
+                add(row, link.by_v, dot(s, u));
             }
             j = other.parent;
+        }
+        if let Some(row) = rows.get_mut(link.row) {
+            for (entry, value) in row.iter_mut().zip(own) {
+                *entry += value;
+            }
         }
     }
 }
