@@ -352,10 +352,16 @@ where
     }
 
     /// After stage `i`: the next stage, or the trial step's end.
+    #[inline(always)]
     fn after_stage(&mut self, i: usize) -> Next<NQ, NV> {
         if i + 1 < self.tableau.stages {
             return Ok(Some(self.stage(i + 1)));
         }
+        self.end_trial()
+    }
+
+    /// The trial step's end, then its slope (DOPRI5) or its error (DOP853).
+    fn end_trial(&mut self) -> Next<NQ, NV> {
         self.end = self
             .kernel
             .step_end(&self.state, &self.tableau.b.apply(&self.slopes), self.h);
