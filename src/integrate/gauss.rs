@@ -193,21 +193,38 @@ where
 {
     let kernel = Kernel::new(dynamics);
     let extrapolation = scheme.extrapolation();
+    // Two sets of slopes kept from step to step: the iteration's last and
+    // the one it computes trade places by reference, and the next step's
+    // first guess is written into the one the iteration ended off: no
+    // zeroing and no copy of the stages, per sweep or per step.
+    let mut buffers = [[Rate::ZERO; MAX_STAGES]; 2];
     let mut guess = None;
     let step = |state: &State<NQ, NV>, h: f64| {
-        let stages = solve_stages(&kernel, scheme, state, h, guess)?;
-        guess = Some(std::array::from_fn(|i| {
-            scheme.combine(&extrapolation[i], &stages)
-        }));
-        Ok(kernel.step_end(state, &scheme.combine(&scheme.b, &stages), h))
+        let at = solve_stages(&kernel, scheme, state, h, &mut buffers, guess)?;
+        let (stages, next_guess) = split(&mut buffers, at);
+        for (slope, row) in next_guess.iter_mut().zip(&extrapolation) {
+            *slope = scheme.combine(row, stages);
+        }
+        guess = Some(1 - at);
+        Ok(kernel.step_end(state, &scheme.combine(&scheme.b, stages), h))
     };
     kernel.fixed_steps(initial, t_end, steps, step, observer)
 }
 
+/// The set of slopes `buffers[first]`, and the other one.
+fn split<const NQ: usize, const NV: usize>(
+    buffers: &mut [Stages<NQ, NV>; 2],
+    first: usize,
+) -> (&mut Stages<NQ, NV>, &mut Stages<NQ, NV>) {
+    let [a, b] = buffers.each_mut();
+    if first == 0 { (a, b) } else { (b, a) }
+}
+
 /// The stage slopes `Kᵢ = F(y + h Σⱼ aᵢⱼ Kⱼ)` of one step from `state`, by
-/// fixed-point iteration from `guess` until the change is rounding; without
-/// a guess, the first sweep evaluates the slope at `state` alone and takes
-/// it for every stage.
+/// fixed-point iteration from the first guess `buffers[guess]` until the
+/// change is rounding; without a guess, the first sweep evaluates the slope
+/// at `state` alone and takes it for every stage. Returns which of the two
+/// `buffers` holds the slopes.
 ///
 /// Every evaluation of the method happens at the one call in the sweep.
 fn solve_stages<D, const NQ: usize, const NV: usize>(
@@ -215,8 +232,9 @@ fn solve_stages<D, const NQ: usize, const NV: usize>(
     scheme: &Collocation,
     state: &State<NQ, NV>,
     h: f64,
-    guess: Option<Stages<NQ, NV>>,
-) -> Result<Stages<NQ, NV>, IntegrationError<NQ>>
+    buffers: &mut [Stages<NQ, NV>; 2],
+    guess: Option<usize>,
+) -> Result<usize, IntegrationError<NQ>>
 where
     D: Dynamics<NQ, NV>,
 {
@@ -226,13 +244,10 @@ where
             .iter()
             .chain(&state.v)
             .fold(0.0f64, |m, x| m.max(x.abs()));
-    // Two sets of slopes, the iteration's last and the one it computes,
-    // which trade places by reference: no copy of the stages per sweep.
-    let mut buffers = [
-        guess.unwrap_or([Rate::ZERO; MAX_STAGES]),
-        [Rate::ZERO; MAX_STAGES],
-    ];
-    let [mut stages, mut updated] = buffers.each_mut();
+    // The iteration's last slopes and the ones it computes trade places by
+    // reference: no copy of the stages per sweep.
+    let mut at = guess.unwrap_or(0);
+    let (mut stages, mut updated) = split(buffers, at);
     let mut from_start = guess.is_none();
     let mut previous_change = f64::INFINITY;
     let mut iterations = 0;
@@ -260,11 +275,12 @@ where
             .fold(0.0f64, |m, (new, old)| m.max(new.largest_difference(old)))
             * h.abs();
         std::mem::swap(&mut stages, &mut updated);
+        at = 1 - at;
         if change <= f64::EPSILON * size {
-            return Ok(*stages);
+            return Ok(at);
         }
         if change >= previous_change && change <= ROUNDING_PLATEAU * size {
-            return Ok(*stages);
+            return Ok(at);
         }
         previous_change = change;
     }

@@ -11,9 +11,9 @@
 
 use std::ops::ControlFlow;
 
-use super::tableaux::EmbeddedPair;
+use super::rows::{Slopes, Tableau};
 use super::{AdaptiveOptions, ExplicitPair, adaptive_dense};
-use crate::integrate::runge_kutta::{Kernel, Rate};
+use crate::integrate::runge_kutta::Rate;
 use crate::integrate::{Dynamics, IntegrationError, Solution, State};
 
 /// The coefficients `r₂…r₈` of the nested interpolant of one step (see
@@ -25,28 +25,16 @@ pub(super) struct Interpolant<const NQ: usize, const NV: usize> {
 }
 
 impl<const NQ: usize, const NV: usize> Interpolant<NQ, NV> {
-    /// The continuous extension of `pair` over the step of length `h` from
-    /// `start` (slope `stages[0]`) to `end` (slope `end_slope`), evaluating
-    /// the pair's extra stages.
-    pub(super) fn new<D, const S: usize, const T: usize>(
-        kernel: &Kernel<'_, D>,
-        pair: &EmbeddedPair<S, T>,
+    /// The continuous extension of `tableau`'s step of length `h` from
+    /// `start` to `end`, from its `slopes` (the stages, the slope at `end`
+    /// and the extra stages).
+    pub(super) fn new(
+        tableau: &Tableau,
         start: &State<NQ, NV>,
         end: &State<NQ, NV>,
-        stages: &[Rate<NQ, NV>; S],
-        end_slope: &Rate<NQ, NV>,
+        slopes: &Slopes<NQ, NV>,
         h: f64,
-    ) -> Result<Self, IntegrationError<NQ>>
-    where
-        D: Dynamics<NQ, NV>,
-    {
-        let mut slopes = [Rate::ZERO; T];
-        slopes[..S].copy_from_slice(stages);
-        slopes[S] = *end_slope;
-        for (k, (c, a)) in pair.dense.extra.iter().enumerate() {
-            let combined = Rate::combination(a, &slopes);
-            slopes[S + 1 + k] = kernel.rate(&kernel.stage(start, &combined, h, *c))?;
-        }
+    ) -> Self {
         let mut interpolant = Self {
             start: *start,
             h,
@@ -54,17 +42,18 @@ impl<const NQ: usize, const NV: usize> Interpolant<NQ, NV> {
         };
         let r = &mut interpolant.r;
         r[0] = difference(end, start);
-        let mut r3 = stages[0];
+        let mut r3 = slopes[0];
         r3.scale(h);
         r3.add_scaled(-1.0, &r[0]);
         let mut r4 = r[0].minus(&r3);
-        r4.add_scaled(-h, end_slope);
+        r4.add_scaled(-h, &slopes[tableau.stages]);
         (r[1], r[2]) = (r3, r4);
-        for (row, d) in r[3..].iter_mut().zip(pair.dense.d) {
-            *row = Rate::combination(d, &slopes);
+        let rows = tableau.d.iter().take(tableau.dense_rows);
+        for (row, d) in r[3..].iter_mut().zip(rows) {
+            *row = d.apply(slopes);
             row.scale(h);
         }
-        Ok(interpolant)
+        interpolant
     }
 
     /// The interpolated state at the fraction `theta` of the step (the

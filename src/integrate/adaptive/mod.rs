@@ -18,6 +18,7 @@
 //! extensions (dense output) and the location of events are in `dense.rs`.
 
 mod dense;
+mod rows;
 mod tableaux;
 
 use std::ops::ControlFlow;
@@ -25,7 +26,8 @@ use std::ops::ControlFlow;
 use dense::Interpolant;
 pub(crate) use dense::{Continuous, observe, watch};
 pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
-use tableaux::{DOP853, DOPRI5, EmbeddedPair, ErrorEstimate};
+use rows::{Estimate, MAX_SLOPES, Slopes, Tableau};
+use tableaux::{DOP853, DOPRI5};
 
 use super::runge_kutta::{Kernel, Rate};
 use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics};
@@ -131,6 +133,12 @@ where
 }
 
 /// [`adaptive_dense`] of `run` with the tableau of `pair`.
+///
+/// Every evaluation of the integration, from the initial slope to the
+/// dense output's extra stages, happens at the one call in this loop, for
+/// either pair: with that single call site the compiler inlines the
+/// system's accelerations into it (see `rows.rs`). The [`Stepper`] says
+/// where to evaluate next, and takes each slope.
 fn integrate_with<D, const NQ: usize, const NV: usize>(
     run: Run<'_, D, NQ, NV>,
     pair: ExplicitPair,
@@ -139,10 +147,27 @@ fn integrate_with<D, const NQ: usize, const NV: usize>(
 where
     D: Dynamics<NQ, NV>,
 {
-    match pair {
-        ExplicitPair::DormandPrince54 => integrate(run, &DOPRI5, on_step),
-        ExplicitPair::Dop853 => integrate(run, &DOP853, on_step),
+    let tableau = match pair {
+        ExplicitPair::DormandPrince54 => Tableau::of(&DOPRI5),
+        ExplicitPair::Dop853 => Tableau::of(&DOP853),
+    };
+    let kernel = Kernel::new(run.dynamics);
+    let mut pending = Some(Evaluation {
+        at: run.initial,
+        purpose: Purpose::Start,
+    });
+    let mut stepper = Stepper::new(&kernel, &tableau, run, on_step);
+    while let Some(Evaluation { at, purpose }) = pending {
+        let slope = kernel.rate(&at)?;
+        pending = stepper.take(purpose, slope)?;
     }
+    Ok(Solution {
+        end: stepper.state,
+        statistics: Statistics {
+            rhs_evaluations: kernel.evaluations(),
+            ..stepper.statistics
+        },
+    })
 }
 
 /// What an adaptive integration is asked to do.
@@ -155,205 +180,332 @@ struct Run<'a, D, const NQ: usize, const NV: usize> {
     dense: bool,
 }
 
-/// [`adaptive_dense`] with the tableau `pair`.
-fn integrate<D, const NQ: usize, const NV: usize, const S: usize, const T: usize>(
-    run: Run<'_, D, NQ, NV>,
-    pair: &EmbeddedPair<S, T>,
-    mut on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+/// What the slope at a state is wanted for.
+#[derive(Clone, Copy)]
+enum Purpose {
+    /// The slope at the initial state.
+    Start,
+    /// Hairer's first step: the slope after an explicit Euler step of
+    /// length `guess` from the initial state, whose slope has the weighted
+    /// norm `speed`.
+    InitialStep { guess: f64, speed: f64 },
+    /// Stage `i` of the trial step.
+    Stage(usize),
+    /// The slope at the trial step's end, before it is settled: the
+    /// error estimate's (DOPRI5), the next step's first stage, the dense
+    /// output's.
+    End,
+    /// The slope at the settled end of an accepted step that the settling
+    /// moved: the next step's first stage.
+    Settled,
+    /// Extra stage `k` of the dense output.
+    Extra(usize),
+}
+
+/// A state whose slope is wanted, and what for.
+struct Evaluation<const NQ: usize, const NV: usize> {
+    at: State<NQ, NV>,
+    purpose: Purpose,
+}
+
+/// The next evaluation, none when the integration is over, or why it
+/// stopped.
+type Next<const NQ: usize, const NV: usize> =
+    Result<Option<Evaluation<NQ, NV>>, IntegrationError<NQ>>;
+
+/// An adaptive integration between two evaluations of the slope: the step
+/// under way, the controller's state and the work done.
+struct Stepper<'k, 'a, D, F, const NQ: usize, const NV: usize> {
+    kernel: &'k Kernel<'a, D>,
+    tableau: &'k Tableau,
+    scale: Scale,
+    t_end: f64,
+    options: AdaptiveOptions,
+    dense: bool,
+    on_step: F,
+    /// Where the step under way starts, and the slope there.
+    state: State<NQ, NV>,
+    start_slope: Rate<NQ, NV>,
+    /// The step's length, and whether it ends at `t_end`.
+    h: f64,
+    last: bool,
+    /// The step's slopes (the first is `start_slope`).
+    slopes: Slopes<NQ, NV>,
+    /// The trial step's end, and where the dynamics settled it once accepted.
+    end: State<NQ, NV>,
+    settled: State<NQ, NV>,
+    /// The factor from the step's length to the next one's.
+    factor: f64,
+    after_rejection: bool,
+    statistics: Statistics,
+}
+
+impl<'k, 'a, D, F, const NQ: usize, const NV: usize> Stepper<'k, 'a, D, F, NQ, NV>
 where
     D: Dynamics<NQ, NV>,
+    F: FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
 {
-    let Run {
-        dynamics,
-        initial,
-        t_end,
-        options,
-        dense,
-    } = run;
-    let kernel = Kernel::new(dynamics);
-    let rows = Rows::of(pair);
-    let scale = Scale::from(&options);
-    let mut state = initial;
-    let mut slope = kernel.rate(&state)?;
-    let mut h = match options.initial_step {
-        Some(h) => h,
-        None => initial_step(&kernel, &state, &slope, t_end, pair.order, &scale)?,
-    };
-    let mut statistics = Statistics::default();
-    let mut after_rejection = false;
-    while state.t < t_end {
-        if statistics.accepted_steps + statistics.rejected_steps == options.max_steps {
-            let steps = options.max_steps;
-            return Err(IntegrationError::at(
-                &state,
-                Failure::TooManySteps { steps },
-            ));
+    fn new(
+        kernel: &'k Kernel<'a, D>,
+        tableau: &'k Tableau,
+        run: Run<'a, D, NQ, NV>,
+        on_step: F,
+    ) -> Self {
+        Self {
+            kernel,
+            tableau,
+            scale: Scale::from(&run.options),
+            t_end: run.t_end,
+            options: run.options,
+            dense: run.dense,
+            on_step,
+            state: run.initial,
+            start_slope: Rate::ZERO,
+            h: 0.0,
+            last: false,
+            slopes: [Rate::ZERO; MAX_SLOPES],
+            end: run.initial,
+            settled: run.initial,
+            factor: 1.0,
+            after_rejection: false,
+            statistics: Statistics::default(),
         }
-        let last = state.t + 1.01 * h >= t_end;
-        if last {
-            h = t_end - state.t;
-        }
-        if h.is_nan() || h <= 16.0 * f64::EPSILON * state.t.abs() {
-            return Err(IntegrationError::at(
-                &state,
-                Failure::StepSizeTooSmall { h },
-            ));
-        }
-        let trial = attempt(&kernel, pair, &rows, &state, &slope, h)?;
-        let mut next = trial.state;
-        if last {
-            next.t = t_end;
-        }
-        let weights = scale.weights(&state, &next);
-        let (error, new_slope) = match &pair.estimate {
-            ErrorEstimate::Embedded { e_new, .. } => {
-                let new_slope = kernel.rate(&next)?;
-                let estimate = rows.error[0].apply(&trial.stages);
-                let estimate = combined_with(&estimate, *e_new, &new_slope);
-                (h.abs() * weights.norm(&estimate), Some(new_slope))
+    }
+
+    /// Takes the `slope` evaluated for `purpose`; says where to evaluate
+    /// next.
+    #[inline(always)]
+    fn take(&mut self, purpose: Purpose, slope: Rate<NQ, NV>) -> Next<NQ, NV> {
+        let stages = self.tableau.stages;
+        match purpose {
+            Purpose::Start => {
+                self.start_slope = slope;
+                match self.options.initial_step {
+                    Some(h) => {
+                        self.h = h;
+                        self.begin_step()
+                    }
+                    None => Ok(Some(self.initial_probe())),
+                }
             }
-            ErrorEstimate::FifthAndThird { .. } => {
-                let fifth = weights.norm(&rows.error[0].apply(&trial.stages));
-                let third = weights.norm(&rows.error[1].apply(&trial.stages));
+            Purpose::InitialStep { guess, speed } => {
+                self.h = self.initial_step(guess, speed, &slope);
+                self.begin_step()
+            }
+            Purpose::Stage(i) => {
+                self.slopes[i] = slope;
+                self.after_stage(i)
+            }
+            Purpose::End => {
+                self.slopes[stages] = slope;
+                match self.tableau.estimate {
+                    Estimate::Embedded { .. } => self.judge(),
+                    Estimate::FifthAndThird => self.after_end(),
+                }
+            }
+            Purpose::Settled => {
+                self.start_slope = slope;
+                self.extra_stage(0)
+            }
+            Purpose::Extra(k) => {
+                self.slopes[stages + 1 + k] = slope;
+                self.extra_stage(k + 1)
+            }
+        }
+    }
+
+    /// The next step from `state`, if `t_end` is not reached: its first
+    /// stage to evaluate.
+    fn begin_step(&mut self) -> Next<NQ, NV> {
+        let state = &self.state;
+        let running = state.t < self.t_end;
+        if !running {
+            return Ok(None);
+        }
+        let steps = self.statistics.accepted_steps + self.statistics.rejected_steps;
+        if steps == self.options.max_steps {
+            let steps = self.options.max_steps;
+            return Err(IntegrationError::at(state, Failure::TooManySteps { steps }));
+        }
+        self.last = state.t + 1.01 * self.h >= self.t_end;
+        if self.last {
+            self.h = self.t_end - state.t;
+        }
+        let h = self.h;
+        if h.is_nan() || h <= 16.0 * f64::EPSILON * state.t.abs() {
+            return Err(IntegrationError::at(state, Failure::StepSizeTooSmall { h }));
+        }
+        self.slopes[0] = self.start_slope;
+        Ok(Some(self.stage(1)))
+    }
+
+    /// Stage `i` of the step under way.
+    #[inline(always)]
+    fn stage(&self, i: usize) -> Evaluation<NQ, NV> {
+        let combined = self.tableau.a[i].apply(&self.slopes);
+        Evaluation {
+            at: self
+                .kernel
+                .stage(&self.state, &combined, self.h, self.tableau.c[i]),
+            purpose: Purpose::Stage(i),
+        }
+    }
+
+    /// After stage `i`: the next stage, or the trial step's end.
+    #[inline(always)]
+    fn after_stage(&mut self, i: usize) -> Next<NQ, NV> {
+        if i + 1 < self.tableau.stages {
+            return Ok(Some(self.stage(i + 1)));
+        }
+        self.end_trial()
+    }
+
+    /// The trial step's end, then its slope (DOPRI5) or its error (DOP853).
+    fn end_trial(&mut self) -> Next<NQ, NV> {
+        self.end = self
+            .kernel
+            .step_end(&self.state, &self.tableau.b.apply(&self.slopes), self.h);
+        if self.last {
+            self.end.t = self.t_end;
+        }
+        match self.tableau.estimate {
+            Estimate::Embedded { .. } => Ok(Some(Evaluation {
+                at: self.end,
+                purpose: Purpose::End,
+            })),
+            Estimate::FifthAndThird => self.judge(),
+        }
+    }
+
+    /// The trial step's error, and the step accepted or rejected.
+    fn judge(&mut self) -> Next<NQ, NV> {
+        let weights = self.scale.weights(&self.state, &self.end);
+        let slopes = &self.slopes;
+        let [e, e3] = &self.tableau.error;
+        let error = match self.tableau.estimate {
+            Estimate::Embedded { e_new } => {
+                let estimate = combined_with(&e.apply(slopes), e_new, &slopes[self.tableau.stages]);
+                self.h.abs() * weights.norm(&estimate)
+            }
+            Estimate::FifthAndThird => {
+                let fifth = weights.norm(&e.apply(slopes));
+                let third = weights.norm(&e3.apply(slopes));
                 let blend = (fifth * fifth + 0.01 * third * third).sqrt();
-                let error = if blend > 0.0 {
-                    h.abs() * fifth * fifth / blend
+                if blend > 0.0 {
+                    self.h.abs() * fifth * fifth / blend
                 } else {
                     0.0
-                };
-                (error, None)
-            }
-        };
-        let factor = step_factor(pair, error, after_rejection);
-        if error <= 1.0 {
-            statistics.accepted_steps += 1;
-            let settled = kernel.settle(&next)?;
-            // The slope at the unsettled end: the error estimate's, or one
-            // evaluation when the next step (not settled) or the dense
-            // output needs it.
-            let end_slope = match new_slope {
-                Some(new_slope) => Some(new_slope),
-                None if dense || settled == next => Some(kernel.rate(&next)?),
-                None => None,
-            };
-            slope = match end_slope {
-                Some(end_slope) if settled == next => end_slope,
-                _ => kernel.rate(&settled)?,
-            };
-            let interpolant = match (dense, &end_slope) {
-                (true, Some(end_slope)) => {
-                    let stages = &trial.stages;
-                    Some(Interpolant::new(
-                        &kernel, pair, &state, &next, stages, end_slope, h,
-                    )?)
                 }
-                _ => None,
-            };
-            let extension = interpolant.as_ref().map(|i| i as &dyn Continuous<NQ, NV>);
-            let step = DenseStep::new(dynamics, &state, &settled, extension);
-            if let ControlFlow::Break(end) = on_step(&step) {
-                state = end;
-                break;
             }
-            state = settled;
-            after_rejection = false;
-        } else {
-            statistics.rejected_steps += 1;
-            after_rejection = true;
-        }
-        h *= factor;
-    }
-    statistics.rhs_evaluations = kernel.evaluations();
-    Ok(Solution {
-        end: state,
-        statistics,
-    })
-}
-
-/// The stage slopes and the propagated solution of one trial step.
-struct Trial<const NQ: usize, const NV: usize, const S: usize> {
-    stages: [Rate<NQ, NV>; S],
-    state: State<NQ, NV>,
-}
-
-/// A row of a tableau without its zero weights: `(stage, weight)` for the
-/// first `count` entries, in the row's order. A quarter of DOP853's
-/// weights are zero; skipping them leaves every sum as it was (a product
-/// `0 · k` of a finite slope adds a zero, and a sum that starts from `+0`
-/// is never `−0`).
-#[derive(Clone, Copy)]
-struct Terms<const S: usize> {
-    terms: [(usize, f64); S],
-    count: usize,
-}
-
-impl<const S: usize> Terms<S> {
-    /// The non-zero weights of `row`.
-    fn of(row: &[f64; S]) -> Self {
-        let mut terms = [(0, 0.0); S];
-        let mut count = 0;
-        for (j, &w) in row.iter().enumerate().filter(|(_, w)| **w != 0.0) {
-            terms[count] = (j, w);
-            count += 1;
-        }
-        Self { terms, count }
-    }
-
-    /// `Σⱼ wⱼ · stages[j]` over the row's terms.
-    #[inline(always)]
-    fn apply<const NQ: usize, const NV: usize>(&self, stages: &[Rate<NQ, NV>; S]) -> Rate<NQ, NV> {
-        let mut sum = Rate::ZERO;
-        for &(j, w) in self.terms.iter().take(self.count) {
-            sum.add_scaled(w, &stages[j]);
-        }
-        sum
-    }
-}
-
-/// The rows of a pair without their zero weights, built once per
-/// integration: the stages', the propagated solution's and the error
-/// estimate's (`e`, or `e5` then `e3`).
-struct Rows<const S: usize> {
-    a: [Terms<S>; S],
-    b: Terms<S>,
-    error: [Terms<S>; 2],
-}
-
-impl<const S: usize> Rows<S> {
-    fn of<const T: usize>(pair: &EmbeddedPair<S, T>) -> Self {
-        let error = match &pair.estimate {
-            ErrorEstimate::Embedded { e, .. } => [Terms::of(e), Terms::of(&[0.0; S])],
-            ErrorEstimate::FifthAndThird { e5, e3 } => [Terms::of(e5), Terms::of(e3)],
         };
-        Self {
-            a: pair.a.each_ref().map(Terms::of),
-            b: Terms::of(&pair.b),
-            error,
+        self.factor = step_factor(self.tableau, error, self.after_rejection);
+        if error <= 1.0 {
+            self.statistics.accepted_steps += 1;
+            self.settled = self.kernel.settle(&self.end)?;
+            let end_slope_wanted = self.dense || self.settled == self.end;
+            match self.tableau.estimate {
+                Estimate::FifthAndThird if end_slope_wanted => Ok(Some(Evaluation {
+                    at: self.end,
+                    purpose: Purpose::End,
+                })),
+                _ => self.after_end(),
+            }
+        } else {
+            self.statistics.rejected_steps += 1;
+            self.after_rejection = true;
+            self.h *= self.factor;
+            self.begin_step()
         }
     }
-}
 
-/// One trial step of length `h` from `state`, whose slope is `slope`.
-fn attempt<D, const NQ: usize, const NV: usize, const S: usize, const T: usize>(
-    kernel: &Kernel<'_, D>,
-    pair: &EmbeddedPair<S, T>,
-    rows: &Rows<S>,
-    state: &State<NQ, NV>,
-    slope: &Rate<NQ, NV>,
-    h: f64,
-) -> Result<Trial<NQ, NV, S>, IntegrationError<NQ>>
-where
-    D: Dynamics<NQ, NV>,
-{
-    let mut stages = [Rate::ZERO; S];
-    stages[0] = *slope;
-    for i in 1..S {
-        let combined = rows.a[i].apply(&stages);
-        stages[i] = kernel.rate(&kernel.stage(state, &combined, h, pair.c[i]))?;
+    /// After the slope at an accepted step's end (when it was wanted): the
+    /// slope at the settled end if the settling moved it, else the extra
+    /// stages.
+    fn after_end(&mut self) -> Next<NQ, NV> {
+        if self.settled != self.end {
+            return Ok(Some(Evaluation {
+                at: self.settled,
+                purpose: Purpose::Settled,
+            }));
+        }
+        self.start_slope = self.slopes[self.tableau.stages];
+        self.extra_stage(0)
     }
-    let state = kernel.step_end(state, &rows.b.apply(&stages), h);
-    Ok(Trial { stages, state })
+
+    /// The dense output's extra stage `k`, or the accepted step shown.
+    fn extra_stage(&mut self, k: usize) -> Next<NQ, NV> {
+        let tableau = self.tableau;
+        if !self.dense || k == tableau.extras {
+            return self.show_step();
+        }
+        let combined = tableau.extra[k].apply(&self.slopes);
+        Ok(Some(Evaluation {
+            at: self
+                .kernel
+                .stage(&self.state, &combined, self.h, tableau.extra_c[k]),
+            purpose: Purpose::Extra(k),
+        }))
+    }
+
+    /// The accepted step shown to `on_step`, then the next one begun.
+    fn show_step(&mut self) -> Next<NQ, NV> {
+        let interpolant = self
+            .dense
+            .then(|| Interpolant::new(self.tableau, &self.state, &self.end, &self.slopes, self.h));
+        let extension = interpolant.as_ref().map(|i| i as &dyn Continuous<NQ, NV>);
+        let step = DenseStep::new(
+            self.kernel.dynamics(),
+            &self.state,
+            &self.settled,
+            extension,
+        );
+        if let ControlFlow::Break(end) = (self.on_step)(&step) {
+            self.state = end;
+            return Ok(None);
+        }
+        self.state = self.settled;
+        self.after_rejection = false;
+        self.h *= self.factor;
+        self.begin_step()
+    }
+
+    /// Hairer's first step, its probe: an explicit Euler step from the
+    /// sizes of the initial state and of its slope.
+    fn initial_probe(&self) -> Evaluation<NQ, NV> {
+        let state = &self.state;
+        let as_rate = Rate {
+            dq: state.q,
+            dv: state.v,
+        };
+        let weights = self.scale.weights(state, state);
+        let size = weights.norm(&as_rate);
+        let speed = weights.norm(&self.start_slope);
+        let guess = if size < 1e-5 || speed < 1e-5 {
+            1e-6
+        } else {
+            0.01 * size / speed
+        };
+        let guess = guess.min(self.t_end - state.t);
+        Evaluation {
+            at: self.kernel.advance(state, &self.start_slope, guess),
+            purpose: Purpose::InitialStep { guess, speed },
+        }
+    }
+
+    /// Hairer's first step, from the probe's `slope`: the slope's change
+    /// over the probe's step of length `guess`, and the initial slope's
+    /// weighted norm `speed`.
+    fn initial_step(&self, guess: f64, speed: f64, slope: &Rate<NQ, NV>) -> f64 {
+        let weights = self.scale.weights(&self.state, &self.state);
+        let change = weights.norm(&slope.minus(&self.start_slope)) / guess;
+        let largest = speed.max(change);
+        let step = if largest <= 1e-15 {
+            (guess * 1e-3).max(1e-6)
+        } else {
+            (0.01 / largest).powf(1.0 / f64::from(self.tableau.order))
+        };
+        step.min(100.0 * guess)
+    }
 }
 
 /// `estimate + w · slope`.
@@ -368,60 +520,19 @@ fn combined_with<const NQ: usize, const NV: usize>(
 /// The factor from this step to the next: Hairer's controller. A non-finite
 /// error estimate (an overflowing trial) rejects the step with the smallest
 /// factor.
-fn step_factor<const S: usize, const T: usize>(
-    pair: &EmbeddedPair<S, T>,
-    error: f64,
-    after_rejection: bool,
-) -> f64 {
+fn step_factor(tableau: &Tableau, error: f64, after_rejection: bool) -> f64 {
     let max_factor = if after_rejection || error > 1.0 {
         1.0
     } else {
-        pair.max_factor
+        tableau.max_factor
     };
     if !error.is_finite() {
-        return pair.min_factor;
+        return tableau.min_factor;
     }
     if error == 0.0 {
         return max_factor;
     }
-    (SAFETY * error.powf(-pair.exponent)).clamp(pair.min_factor, max_factor)
-}
-
-/// Hairer's first step: from the sizes of the state, of its slope and of the
-/// slope's change over a tiny explicit Euler step (one evaluation).
-fn initial_step<D, const NQ: usize, const NV: usize>(
-    kernel: &Kernel<'_, D>,
-    state: &State<NQ, NV>,
-    slope: &Rate<NQ, NV>,
-    t_end: f64,
-    order: i32,
-    scale: &Scale,
-) -> Result<f64, IntegrationError<NQ>>
-where
-    D: Dynamics<NQ, NV>,
-{
-    let as_rate = Rate {
-        dq: state.q,
-        dv: state.v,
-    };
-    let weights = scale.weights(state, state);
-    let size = weights.norm(&as_rate);
-    let speed = weights.norm(slope);
-    let guess = if size < 1e-5 || speed < 1e-5 {
-        1e-6
-    } else {
-        0.01 * size / speed
-    };
-    let guess = guess.min(t_end - state.t);
-    let euler = kernel.advance(state, slope, guess);
-    let change = weights.norm(&kernel.rate(&euler)?.minus(slope)) / guess;
-    let largest = speed.max(change);
-    let step = if largest <= 1e-15 {
-        (guess * 1e-3).max(1e-6)
-    } else {
-        (0.01 / largest).powf(1.0 / f64::from(order))
-    };
-    Ok(step.min(100.0 * guess))
+    (SAFETY * error.powf(-tableau.exponent)).clamp(tableau.min_factor, max_factor)
 }
 
 /// The error scale `atol + rtol · max(|y₀|, |y₁|)` of each entry.
