@@ -157,6 +157,12 @@ const VOCABULARY: &[&str] = &[
     "170141183460469231731687303715884105727",
     "2f64",
     "0x10",
+    // Found by this sweep: a raw identifier as a coordinate panicked the
+    // emitter (`r#m_dot`), keywords expanded to code rustc cannot parse.
+    "r#m",
+    "type",
+    "self",
+    "_",
     "\"text\"",
     "'c'",
     "///doc\n",
@@ -191,6 +197,9 @@ const EXTREMES: &[&str] = &[
     "constraint dt(theta1) * 0 == 0;",
     "constraint theta1 - theta1 + dt(theta1) - dt(theta1) == 0;",
     "constraint theta1 == theta1;",
+    // Found by the acceptance sweep: these two panicked the emitter.
+    "coordinates r#s; point S = O + r#s * N.x; particle ps { mass: m, at: S };",
+    "joint spherical r#ball { parent: N, child: Bz, at: O }; body bz { mass: m, center: O + Bz.x, frame: Bz, inertia: [1, 1, 1] };",
     "body b2 { mass: m, center: G1, frame: B1, inertia: [0, 0, 0] };",
     "body b2 { mass: 1e-308, center: G1, frame: B1, inertia: [1e308, 1e308, 1e308, 1e308, 1e308, 1e308] };",
     "frame C = B1.rotate_x(1e308 * theta1); body c { mass: m, center: O, frame: C, inertia: [1, 2, 3] };",
@@ -494,6 +503,11 @@ fn extreme_numbers_exponents_and_nesting_get_an_answer() {
         assert_answers(&format!("{base}    potential {nested};\n}}"));
         let minus = format!("{}theta1", "-".repeat(depth));
         assert_answers(&format!("{base}    potential {minus};\n}}"));
+    }
+    // Found by this sweep: a long sum's syntax tree is as deep as it is long.
+    for terms in [2049, 2050, 20_000] {
+        let sum = vec!["theta1"; terms].join(" + ");
+        assert_answers(&format!("{base}    potential {sum};\n}}"));
     }
 }
 

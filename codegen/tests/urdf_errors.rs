@@ -358,7 +358,20 @@ fn names_and_struct_name() {
         .name("2Arm")
         .model()
         .unwrap_err();
-    assert!(bad.to_string().contains("not a Rust identifier"), "{bad}");
+    assert!(
+        bad.to_string().contains("expected a Rust identifier"),
+        "{bad}"
+    );
+    let builtin = Urdf::new("robot.urdf", text.as_str())
+        .name("N")
+        .model()
+        .unwrap_err();
+    assert!(
+        builtin
+            .to_string()
+            .contains("nor a built-in name of the language (`N`, `O`"),
+        "{builtin}"
+    );
 }
 
 #[test]

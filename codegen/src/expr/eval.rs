@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use super::{Env, ExprId, Func, Node, Pool};
+use super::{Env, ExprId, Func, Node, Pool, Sym, SymKinds};
 
 impl Func {
     /// `self(x)` in `f64`.
@@ -22,7 +22,22 @@ impl Func {
     }
 }
 
+/// The environment of a constant: it has no symbols to value.
+struct NoSymbols;
+
+impl Env for NoSymbols {
+    fn value(&self, _: Sym) -> f64 {
+        f64::NAN
+    }
+}
+
 impl Pool {
+    /// The value of `e` if it is a constant (it contains no symbol):
+    /// `ln(0)` is `-inf`, `sqrt(-1)` NaN.
+    pub fn constant_value(&self, e: ExprId) -> Option<f64> {
+        (self.kinds(e) == SymKinds::EMPTY).then(|| self.eval(e, &NoSymbols))
+    }
+
     /// The value of `e` with symbols valued by `env`.
     pub fn eval(&self, e: ExprId, env: &dyn Env) -> f64 {
         self.eval_many(&[e], env)[0]

@@ -23,6 +23,12 @@ use super::cursor::Cursor;
 /// the parser reports an error instead of risking the stack.
 const MAX_DEPTH: usize = 256;
 
+/// How many binary operators one expression may have. A chain `a + b + ...`
+/// parses in a loop, but its syntax tree is as deep as it is long, and the
+/// later layers walk it recursively: with nesting, this bounds the tree's
+/// depth (a sum of 12 000 terms overflowed the compiler's stack).
+const MAX_OPERATORS: usize = 2048;
+
 /// Binding power of `+` and `-`.
 const ADDITIVE: u8 = 1;
 /// Binding power of `*` and `/`.
@@ -35,15 +41,19 @@ const POWER: u8 = 4;
 /// Parses one expression, stopping at the first token that cannot continue
 /// it.
 pub fn expression(cursor: &mut Cursor) -> syn::Result<Expr> {
-    binary(cursor, 0, 0)
+    binary(cursor, 0, 0, &mut 0)
 }
 
 /// Parses comma-separated expressions up to the end of `cursor`'s group
 /// (call arguments, array items); a trailing comma is allowed.
-fn expression_list(cursor: &mut Cursor, depth: usize) -> syn::Result<Vec<Expr>> {
+fn expression_list(
+    cursor: &mut Cursor,
+    depth: usize,
+    operators: &mut usize,
+) -> syn::Result<Vec<Expr>> {
     let mut items = Vec::new();
     while !cursor.is_end() {
-        items.push(binary(cursor, 0, depth)?);
+        items.push(binary(cursor, 0, depth, operators)?);
         if cursor.eat_punct(',').is_none() && !cursor.is_end() {
             return Err(cursor.expected(format!("`,` or {}", cursor.end_name())));
         }
@@ -52,19 +62,35 @@ fn expression_list(cursor: &mut Cursor, depth: usize) -> syn::Result<Vec<Expr>> 
 }
 
 /// Parses an expression whose operators all bind at least as tightly as
-/// `min_power`.
-fn binary(cursor: &mut Cursor, min_power: u8, depth: usize) -> syn::Result<Expr> {
-    let mut lhs = prefix(cursor, depth)?;
+/// `min_power`; `operators` counts those of the whole expression so far.
+fn binary(
+    cursor: &mut Cursor,
+    min_power: u8,
+    depth: usize,
+    operators: &mut usize,
+) -> syn::Result<Expr> {
+    let mut lhs = prefix(cursor, depth, operators)?;
     while let Some((op, op_span)) = peek_operator(cursor) {
         let power = binding_power(op);
         if power < min_power {
             break;
         }
+        *operators += 1;
+        if *operators > MAX_OPERATORS {
+            return Err(syn::Error::new(
+                op_span,
+                format!(
+                    "expression too long (more than {MAX_OPERATORS} operators); split it into \
+                     several statements (loads and potentials add up, points can be built from \
+                     points)"
+                ),
+            ));
+        }
         cursor.next_token();
         // Left-associative operators parse their right operand one level
         // tighter; `^` parses it at its own level, so it groups to the right.
         let rhs_power = if op == BinOp::Pow { power } else { power + 1 };
-        let rhs = binary(cursor, rhs_power, depth + 1)?;
+        let rhs = binary(cursor, rhs_power, depth + 1, operators)?;
         lhs = Expr::Binary {
             op,
             op_span,
@@ -76,14 +102,14 @@ fn binary(cursor: &mut Cursor, min_power: u8, depth: usize) -> syn::Result<Expr>
 }
 
 /// Parses an operand: a unary minus and its operand, or a primary.
-fn prefix(cursor: &mut Cursor, depth: usize) -> syn::Result<Expr> {
+fn prefix(cursor: &mut Cursor, depth: usize, operators: &mut usize) -> syn::Result<Expr> {
     if depth > MAX_DEPTH {
         return Err(cursor.error(format!(
             "expression nested too deeply (more than {MAX_DEPTH} levels)"
         )));
     }
     if let Some(op) = cursor.eat_punct('-') {
-        let operand = binary(cursor, UNARY, depth + 1)?;
+        let operand = binary(cursor, UNARY, depth + 1, operators)?;
         return Ok(Expr::Neg {
             op,
             operand: Box::new(operand),
@@ -95,12 +121,12 @@ fn prefix(cursor: &mut Cursor, depth: usize) -> syn::Result<Expr> {
             cursor.found()
         )));
     }
-    primary(cursor, depth)
+    primary(cursor, depth, operators)
 }
 
 /// Parses a number, a name, a member, a call, a method call, an array or a
 /// parenthesised expression.
-fn primary(cursor: &mut Cursor, depth: usize) -> syn::Result<Expr> {
+fn primary(cursor: &mut Cursor, depth: usize, operators: &mut usize) -> syn::Result<Expr> {
     match cursor.peek() {
         Some(TokenTree::Literal(literal)) => {
             let number = number(literal.clone())?;
@@ -110,12 +136,12 @@ fn primary(cursor: &mut Cursor, depth: usize) -> syn::Result<Expr> {
         Some(TokenTree::Ident(first)) => {
             let first = first.clone();
             cursor.next_token();
-            path(cursor, first, depth)
+            path(cursor, first, depth, operators)
         }
         Some(TokenTree::Group(group)) if group.delimiter() != Delimiter::Brace => {
             let group = group.clone();
             cursor.next_token();
-            grouped(&group, depth + 1)
+            grouped(&group, depth + 1, operators)
         }
         _ => Err(cursor.expected("an expression")),
     }
@@ -123,15 +149,15 @@ fn primary(cursor: &mut Cursor, depth: usize) -> syn::Result<Expr> {
 
 /// Parses `( inner )`, `[a, b, ...]`, or an invisible group (a macro
 /// fragment such as `$e:expr`), which reads as its contents.
-fn grouped(group: &Group, depth: usize) -> syn::Result<Expr> {
+fn grouped(group: &Group, depth: usize, operators: &mut usize) -> syn::Result<Expr> {
     let mut cursor = Cursor::group(group);
     if group.delimiter() == Delimiter::Bracket {
         return Ok(Expr::Array {
-            items: expression_list(&mut cursor, depth)?,
+            items: expression_list(&mut cursor, depth, operators)?,
             span: group.span(),
         });
     }
-    let inner = binary(&mut cursor, 0, depth)?;
+    let inner = binary(&mut cursor, 0, depth, operators)?;
     if !cursor.is_end() {
         return Err(cursor.expected(format!("an operator or {}", cursor.end_name())));
     }
@@ -146,11 +172,16 @@ fn grouped(group: &Group, depth: usize) -> syn::Result<Expr> {
 
 /// Parses what follows the name `first`: nothing, `(args)`, `.member` or
 /// `.method(args)`.
-fn path(cursor: &mut Cursor, first: Ident, depth: usize) -> syn::Result<Expr> {
+fn path(
+    cursor: &mut Cursor,
+    first: Ident,
+    depth: usize,
+    operators: &mut usize,
+) -> syn::Result<Expr> {
     if let Some(args) = cursor.eat_group(Delimiter::Parenthesis) {
         return Ok(Expr::Call {
             parens: args.span(),
-            args: expression_list(&mut Cursor::group(&args), depth + 1)?,
+            args: expression_list(&mut Cursor::group(&args), depth + 1, operators)?,
             func: first,
         });
     }
@@ -161,7 +192,7 @@ fn path(cursor: &mut Cursor, first: Ident, depth: usize) -> syn::Result<Expr> {
     match cursor.eat_group(Delimiter::Parenthesis) {
         Some(args) => Ok(Expr::MethodCall {
             parens: args.span(),
-            args: expression_list(&mut Cursor::group(&args), depth + 1)?,
+            args: expression_list(&mut Cursor::group(&args), depth + 1, operators)?,
             receiver: first,
             method: member,
         }),
@@ -411,5 +442,18 @@ mod tests {
                 "expression nested too deeply (more than 256 levels)"
             );
         }
+    }
+
+    #[test]
+    fn long_chains_are_an_error_not_a_stack_overflow() {
+        let longest = format!("x{}", " + x".repeat(MAX_OPERATORS));
+        assert!(expression(&mut cursor(&longest)).is_ok());
+        let message = "expression too long (more than 2048 operators); split it into several \
+                       statements (loads and potentials add up, points can be built from points)";
+        let (found, start) = error(&format!("{longest} - x + x"));
+        assert_eq!((found.as_str(), start), (message, at(longest.len() + 1)));
+        let groups = format!("(x{})", " * x".repeat(100)).repeat(30);
+        let (found, _) = error(&groups.replace(")(", ") + ("));
+        assert_eq!(found, message);
     }
 }

@@ -26,6 +26,7 @@ use std::collections::HashMap;
 /// expressions live in; all errors are reported together.
 pub fn resolve(system: &System) -> syn::Result<(Model, Pool)> {
     let mut resolver = Resolver::new(system);
+    resolver.check_plain(&system.name);
     for statement in &system.statements {
         resolver.statement(statement);
     }

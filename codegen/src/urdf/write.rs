@@ -155,7 +155,11 @@ fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) ->
         if !is_identifier(name) {
             problems.push(Problem::new(
                 at,
-                format!("the name given, `{name}`, is not a Rust identifier"),
+                format!(
+                    "the name given, `{name}`, cannot name the struct: expected a Rust identifier \
+                     that is not a keyword nor a built-in name of the language ({})",
+                    RESERVED.map(|r| format!("`{r}`")).join(", ")
+                ),
             ));
         }
         return name.clone();

@@ -167,6 +167,34 @@ impl Resolver {
     /// Evaluates an expression to a typed value, reporting what is wrong at
     /// the innermost offending token.
     pub(super) fn value(&mut self, e: &Expr, usage: Use) -> Option<Value> {
+        let value = self.typed_value(e, usage)?;
+        self.finite_constant(e, value)
+    }
+
+    /// `value`, unless it is a constant scalar without a finite value (a
+    /// literal beyond the range of `f64`, `ln(0)`, `sqrt(-1)`, `exp(1000)`):
+    /// emitted, it would make `M` or `f` infinite or NaN at every state.
+    fn finite_constant(&mut self, e: &Expr, value: Value) -> Option<Value> {
+        let Value::Scalar(s) = value else {
+            return Some(value);
+        };
+        let x = match self.pool.constant_value(s) {
+            Some(x) if !x.is_finite() => x,
+            _ => return Some(value),
+        };
+        let message = match e {
+            Expr::Number { text, .. } => format!(
+                "the number `{text}` is too large for a 64-bit float; expected a magnitude below about 1.8e308"
+            ),
+            _ => format!(
+                "this constant has no finite value (it is {x}); expected arguments in each function's domain (`ln` of a positive number, `sqrt` of one not negative) and values within the range of a 64-bit float"
+            ),
+        };
+        self.errors.push(e.range(), message);
+        None
+    }
+
+    fn typed_value(&mut self, e: &Expr, usage: Use) -> Option<Value> {
         match e {
             Expr::Number { text, span } => match self.pool.decimal(text) {
                 Some(n) => Some(Value::Scalar(n)),

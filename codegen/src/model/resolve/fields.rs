@@ -9,7 +9,7 @@ use crate::expr::{ExprId, Func, Number, Pool};
 use crate::language::ast::{Expr, Field};
 use crate::model::closure::FrameAxis;
 use crate::model::unit_axis;
-use proc_macro2::Ident;
+use proc_macro2::{Ident, Span};
 
 impl Resolver {
     /// Picks the named fields out of a `{ ... }` block, reporting unknown,
@@ -98,10 +98,12 @@ impl Resolver {
             return None;
         }
         let mut values = Vec::with_capacity(6);
+        let mut negative_moment = false;
         for (i, item) in items.iter().enumerate() {
             let value = self.scalar(item, MASS);
             if let Some(n) = value.and_then(|v| self.pool.as_number(v)) {
                 if i < 3 && n.is_negative() {
+                    negative_moment = true;
                     self.errors.push(
                         item.range(),
                         "a principal moment of inertia cannot be negative",
@@ -118,7 +120,43 @@ impl Resolver {
         } else {
             (zero, zero, zero)
         };
-        Some([[v[0], xy, zx], [xy, v[1], yz], [zx, yz, v[2]]])
+        let tensor = [[v[0], xy, zx], [xy, v[1], yz], [zx, yz, v[2]]];
+        if v.len() == 6 && !negative_moment {
+            self.check_principal_moments(&tensor, *span);
+        }
+        Some(tensor)
+    }
+
+    /// With products of inertia, the principal moments are the tensor's
+    /// eigenvalues: a numeric tensor must have none negative (be positive
+    /// semidefinite), which holds when its principal minors are not
+    /// negative (to rounding). The diagonal is checked entry by entry above.
+    fn check_principal_moments(&mut self, tensor: &[[ExprId; 3]; 3], span: Span) {
+        let numbers = tensor.map(|row| row.map(|e| self.pool.as_number(e).map(Number::to_f64)));
+        let Some(i) = numbers
+            .iter()
+            .map(|row| row.iter().copied().collect::<Option<Vec<f64>>>())
+            .collect::<Option<Vec<Vec<f64>>>>()
+        else {
+            return;
+        };
+        let scale = i.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let minor = |a: usize, b: usize| i[a][a] * i[b][b] - i[a][b] * i[b][a];
+        let determinant = i[0][0] * minor(1, 2) - i[0][1] * (i[1][0] * i[2][2] - i[1][2] * i[2][0])
+            + i[0][2] * (i[1][0] * i[2][1] - i[1][1] * i[2][0]);
+        let tolerance = 1e-12;
+        let minors_hold = [minor(0, 1), minor(1, 2), minor(0, 2)]
+            .iter()
+            .all(|m| *m >= -tolerance * scale * scale);
+        if minors_hold && determinant >= -tolerance * scale * scale * scale {
+            return;
+        }
+        self.errors.push(
+            span,
+            "this inertia has a negative principal moment: its products of inertia are too \
+             large for its moments (expected Ixx Iyy ≥ Ixy², Iyy Izz ≥ Iyz², Izz Ixx ≥ Izx² \
+             and a determinant not negative)",
+        );
     }
 
     /// A joint axis: `x`, `y`, `z`, or a constant direction `[ax, ay, az]`.

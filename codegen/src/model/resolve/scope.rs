@@ -43,9 +43,41 @@ impl Binding {
     }
 }
 
+/// Whether `name` can be written in the generated Rust as it is and with a
+/// suffix (`q_dot`, `ball_qx`): not a raw identifier (`r#q`) nor a Rust
+/// keyword (`type`, `self`, `_`).
+pub(super) fn is_plain(name: &Ident) -> bool {
+    let text = name.to_string();
+    !text.starts_with("r#") && syn::parse_str::<Ident>(&text).is_ok()
+}
+
 impl Resolver {
+    /// Reports `name` if it is not [plain](is_plain); whether it is.
+    pub(super) fn check_plain(&mut self, name: &Ident) -> bool {
+        if is_plain(name) {
+            return true;
+        }
+        let what = match name.to_string().starts_with("r#") {
+            true => "a raw identifier",
+            false => "a Rust keyword",
+        };
+        self.errors.push(
+            name.span(),
+            format!(
+                "`{name}` is {what}, but the generated code binds every name as a Rust \
+                 variable or field and makes other names from it; choose a plain identifier \
+                 that is not a keyword"
+            ),
+        );
+        false
+    }
+
     pub(super) fn define(&mut self, name: &Ident, binding: Binding) -> bool {
         let text = name.to_string();
+        if !self.check_plain(name) {
+            self.bindings.insert(text, (Binding::Invalid, name.span()));
+            return false;
+        }
         if BUILTINS.contains(&text.as_str()) || FUNCTIONS.iter().any(|(f, _)| *f == text) {
             self.errors.push(
                 name.span(),

@@ -5,7 +5,7 @@
 use super::Resolver;
 use super::evaluate::{CONSTRAINT, DISSIPATION, GEOMETRY, GRAVITY, KINEMATICS, LOAD, POTENTIAL};
 use super::list;
-use super::scope::Binding;
+use super::scope::{Binding, is_plain};
 use crate::expr::{ExprId, Sym, SymKinds};
 use crate::language::ast::{Expr, Field, OutputRequest, SpanRange, Statement};
 use crate::model::closure::{ClosureKind, closure_rows};
@@ -330,7 +330,9 @@ impl Resolver {
             self.check_free_joint_origin(e, *base, offset);
         }
         let child = child.and_then(|e| self.child_name(e));
-        let (Some(parent), Some((base, offset)), Some(child)) = (parent, at_value, child) else {
+        let (Some(parent), Some((base, offset)), Some(child), true) =
+            (parent, at_value, child, is_plain(name))
+        else {
             return self.invalid_joint(name, fields);
         };
         let named = |suffix: &str| Ident::new(&format!("{name}_{suffix}"), name.span());
