@@ -590,30 +590,39 @@ impl Column {
 
 /// The inertia force of a mass and its moment about the link's origin,
 /// `∫ a dm` and `∫ r × a dm` with `a = a_O + A r` (see
-/// [`Motion::transport`]). For a mass whose second moment
-/// `J = ∫ r rᵀ dm` about the origin is one entry (a rod along an axis of
-/// its link, a particle on one), they are `m a_O + A h` and
-/// `h × a_O + N` with `h = m c` and `N_i = ε_ijk (A J)_kj`, two products
-/// of a column of `A` that its points use already; any other mass takes
-/// `m a_G` and `I α + ω × I ω + c × m a_G` from its central inertia `I`,
-/// which folds its symmetries (the second moment measured slower on the
-/// UR5, BENCHMARKS.md).
+/// [`Motion::transport`]): through its second moment `J = ∫ r rᵀ dm`
+/// about the origin when that is one entry (a rod along an axis of its
+/// link, a particle on one), else through its central inertia, which
+/// folds its symmetries (the second moment measured slower on the UR5,
+/// BENCHMARKS.md).
 fn inertia_wrench(pool: &mut Pool, mass: &Mass, motion: &Motion) -> (Vec3, Vec3) {
-    let c = &mass.center;
-    let h = c.map(|x| pool.mul(mass.mass, x));
+    let h = mass.center.map(|x| pool.mul(mass.mass, x));
     let j = second_moment(pool, mass, &h);
-    if j.iter().flatten().filter(|&&x| !pool.is_zero(x)).count() <= 1 {
-        let carried = motion.accel.map(|a| pool.mul(mass.mass, a));
-        let transported = motion.transport(pool, &h);
-        let force = add3(pool, &carried, &transported);
-        let a_j = [0, 1, 2].map(|column| motion.transport(pool, &j[column]));
-        let spin = [0, 1, 2].map(|i| {
-            let (k, l) = ((i + 1) % 3, (i + 2) % 3);
-            pool.sub(a_j[k][l], a_j[l][k])
-        });
-        let lever = cross(pool, &h, &motion.accel);
-        return (force, add3(pool, &lever, &spin));
+    match j.iter().flatten().filter(|&&x| !pool.is_zero(x)).count() <= 1 {
+        true => rod_wrench(pool, mass, motion, &h, &j),
+        false => body_wrench(pool, mass, motion),
     }
+}
+
+/// `m a_O + A h` and `h × a_O + N` with `h = m c` and
+/// `N_i = ε_ijk (A J)_kj`: for a one-entry `J`, two products of a column
+/// of `A` that the link's points use already.
+fn rod_wrench(pool: &mut Pool, mass: &Mass, motion: &Motion, h: &Vec3, j: &Mat3) -> (Vec3, Vec3) {
+    let carried = motion.accel.map(|a| pool.mul(mass.mass, a));
+    let transported = motion.transport(pool, h);
+    let force = add3(pool, &carried, &transported);
+    let a_j = [0, 1, 2].map(|column| motion.transport(pool, &j[column]));
+    let spin = [0, 1, 2].map(|i| {
+        let (k, l) = ((i + 1) % 3, (i + 2) % 3);
+        pool.sub(a_j[k][l], a_j[l][k])
+    });
+    let lever = cross(pool, h, &motion.accel);
+    (force, add3(pool, &lever, &spin))
+}
+
+/// `m a_G` and `I α + ω × I ω + c × m a_G`, from the central inertia `I`.
+fn body_wrench(pool: &mut Pool, mass: &Mass, motion: &Motion) -> (Vec3, Vec3) {
+    let c = &mass.center;
     let a = motion.point_acceleration(pool, c);
     let a = group3(pool, &a);
     let force = a.map(|x| pool.mul(mass.mass, x));
