@@ -434,11 +434,7 @@ impl JointTree {
             };
             // a_J = a_p + α_p × d + ω_p × (ω_p × d) (+ 2 ω_p × ḋ for a slide),
             // then into the link's axes.
-            let tangential = cross(pool, &parent.alpha, d);
-            let omega_d = cross(pool, &parent.omega, d);
-            let centripetal = cross(pool, &parent.omega, &omega_d);
-            let accel = add3(pool, &parent.accel, &tangential);
-            let mut accel = add3(pool, &accel, &centripetal);
+            let mut accel = parent.point_acceleration(pool, d);
             let carried = transpose_mul(pool, r, &parent.omega);
             let alpha = transpose_mul(pool, r, &parent.alpha);
             let (omega, alpha) = match link.kind {
@@ -480,6 +476,60 @@ impl JointTree {
             });
         }
         motions
+    }
+}
+
+impl Motion {
+    /// The acceleration `a + α × d + ω × (ω × d)` of the point `d` from the
+    /// link's origin (in its axes), written `a + A d` with the link's matrix
+    /// `A = [α]× + ω ωᵀ − |ω|² 1`, each entry one operand: the points of a
+    /// link (its masses' centres and its children's joints) share `A`'s
+    /// columns, and a point on an axis of the link (a chain's next joint,
+    /// a rod's centre) costs a product per component.
+    fn point_acceleration(&self, pool: &mut Pool, d: &Vec3) -> Vec3 {
+        let relative = self.transport(pool, d);
+        add3(pool, &self.accel, &relative)
+    }
+
+    /// `A d`, with `A = [α]× + ω ωᵀ − |ω|² 1` the matrix that takes a
+    /// point's offset from the link's origin to its acceleration relative
+    /// to the origin's: the sum of `A`'s columns weighted by `d`'s nonzero
+    /// components.
+    fn transport(&self, pool: &mut Pool, d: &Vec3) -> Vec3 {
+        let mut sum = [pool.zero(); 3];
+        for (k, &dk) in d.iter().enumerate() {
+            if pool.is_zero(dk) {
+                continue;
+            }
+            let column = self.transport_column(pool, k);
+            let part = column.map(|x| pool.mul(dk, x));
+            sum = add3(pool, &sum, &part);
+        }
+        sum
+    }
+
+    /// Column `k` of `A = [α]× + ω ωᵀ − |ω|² 1`: the acceleration relative
+    /// to the origin of the point at unit distance along axis `k`, each
+    /// entry grouped.
+    fn transport_column(&self, pool: &mut Pool, k: usize) -> Vec3 {
+        let w = &self.omega;
+        let axis = crate::model::unit_axis(pool, k);
+        let tangential = cross(pool, &self.alpha, &axis);
+        let column = [0, 1, 2].map(|i| {
+            let centripetal = match i == k {
+                true => {
+                    let squares: Vec<ExprId> = (0..3)
+                        .filter(|&j| j != k)
+                        .map(|j| pool.mul(w[j], w[j]))
+                        .collect();
+                    let sum = pool.sum(squares);
+                    pool.neg(sum)
+                }
+                false => pool.mul(w[i], w[k]),
+            };
+            pool.add(tangential[i], centripetal)
+        });
+        group3(pool, &column)
     }
 }
 
@@ -538,23 +588,71 @@ impl Column {
     }
 }
 
-/// The inertia force `m a_G` of a mass and its moment about the link's
-/// joint point, `I α + ω × Iω + c × m a_G`, at `q̈ = 0`.
+/// The inertia force of a mass and its moment about the link's origin,
+/// `∫ a dm` and `∫ r × a dm` with `a = a_O + A r` (see
+/// [`Motion::transport`]): through its second moment `J = ∫ r rᵀ dm`
+/// about the origin when that is one entry (a rod along an axis of its
+/// link, a particle on one), else through its central inertia, which
+/// folds its symmetries (the second moment measured slower on the UR5,
+/// BENCHMARKS.md).
 fn inertia_wrench(pool: &mut Pool, mass: &Mass, motion: &Motion) -> (Vec3, Vec3) {
+    let h = mass.center.map(|x| pool.mul(mass.mass, x));
+    let j = second_moment(pool, mass, &h);
+    match j.iter().flatten().filter(|&&x| !pool.is_zero(x)).count() <= 1 {
+        true => rod_wrench(pool, mass, motion, &h, &j),
+        false => body_wrench(pool, mass, motion),
+    }
+}
+
+/// `m a_O + A h` and `h × a_O + N` with `h = m c` and
+/// `N_i = ε_ijk (A J)_kj`: for a one-entry `J`, two products of a column
+/// of `A` that the link's points use already.
+fn rod_wrench(pool: &mut Pool, mass: &Mass, motion: &Motion, h: &Vec3, j: &Mat3) -> (Vec3, Vec3) {
+    let carried = motion.accel.map(|a| pool.mul(mass.mass, a));
+    let transported = motion.transport(pool, h);
+    let force = add3(pool, &carried, &transported);
+    let a_j = [0, 1, 2].map(|column| motion.transport(pool, &j[column]));
+    let spin = [0, 1, 2].map(|i| {
+        let (k, l) = ((i + 1) % 3, (i + 2) % 3);
+        pool.sub(a_j[k][l], a_j[l][k])
+    });
+    let lever = cross(pool, h, &motion.accel);
+    (force, add3(pool, &lever, &spin))
+}
+
+/// `m a_G` and `I α + ω × I ω + c × m a_G`, from the central inertia `I`.
+fn body_wrench(pool: &mut Pool, mass: &Mass, motion: &Motion) -> (Vec3, Vec3) {
     let c = &mass.center;
-    let tangential = cross(pool, &motion.alpha, c);
-    let omega_c = cross(pool, &motion.omega, c);
-    let centripetal = cross(pool, &motion.omega, &omega_c);
-    let a = add3(pool, &motion.accel, &tangential);
-    let a = add3(pool, &a, &centripetal);
+    let a = motion.point_acceleration(pool, c);
     let a = group3(pool, &a);
     let force = a.map(|x| pool.mul(mass.mass, x));
     let i_alpha = mat_vec(pool, &mass.inertia, &motion.alpha);
-    let h = mat_vec(pool, &mass.inertia, &motion.omega);
-    let gyroscopic = cross(pool, &motion.omega, &h);
+    let momentum = mat_vec(pool, &mass.inertia, &motion.omega);
+    let gyroscopic = cross(pool, &motion.omega, &momentum);
     let lever = cross(pool, c, &force);
     let moment = add3(pool, &i_alpha, &gyroscopic);
     (force, add3(pool, &moment, &lever))
+}
+
+/// The second moment `J = ∫ r rᵀ dm` of a mass about its link's origin,
+/// from its central inertia `I`: `J = ½ tr(I) 1 − I + c hᵀ` (symmetric,
+/// so its rows are its columns).
+fn second_moment(pool: &mut Pool, mass: &Mass, h: &Vec3) -> Mat3 {
+    let k = &mass.inertia;
+    let trace = pool.sum([k[0][0], k[1][1], k[2][2]]);
+    let half = pool.rational(1, 2);
+    let half_trace = pool.mul(half, trace);
+    [0, 1, 2].map(|i| {
+        [0, 1, 2].map(|j| {
+            let minus = pool.neg(k[i][j]);
+            let outer = pool.mul(mass.center[i], h[j]);
+            let central = match i == j {
+                true => pool.add(half_trace, minus),
+                false => minus,
+            };
+            pool.add(central, outer)
+        })
+    })
 }
 
 /// Each component as one operand ([`Pool::group`]).
