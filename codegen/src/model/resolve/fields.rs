@@ -65,8 +65,8 @@ impl Resolver {
 
     pub(super) fn mass(&mut self, e: &Expr) -> Option<ExprId> {
         let mass = self.scalar(e, MASS)?;
-        if let Some(n) = self.pool.as_number(mass) {
-            if n.is_zero() || n.is_negative() {
+        if let Some(x) = self.pool.constant_value(mass) {
+            if x <= 0.0 {
                 self.errors.push(
                     e.range(),
                     "a mass must be positive; a frame without mass needs no body at all",
@@ -101,8 +101,8 @@ impl Resolver {
         let mut negative_moment = false;
         for (i, item) in items.iter().enumerate() {
             let value = self.scalar(item, MASS);
-            if let Some(n) = value.and_then(|v| self.pool.as_number(v)) {
-                if i < 3 && n.is_negative() {
+            if let Some(x) = value.and_then(|v| self.pool.constant_value(v)) {
+                if i < 3 && x < 0.0 {
                     negative_moment = true;
                     self.errors.push(
                         item.range(),
@@ -132,7 +132,7 @@ impl Resolver {
     /// semidefinite), which holds when its principal minors are not
     /// negative (to rounding). The diagonal is checked entry by entry above.
     fn check_principal_moments(&mut self, tensor: &[[ExprId; 3]; 3], span: Span) {
-        let numbers = tensor.map(|row| row.map(|e| self.pool.as_number(e).map(Number::to_f64)));
+        let numbers = tensor.map(|row| row.map(|e| self.pool.constant_value(e)));
         let Some(i) = numbers
             .iter()
             .map(|row| row.iter().copied().collect::<Option<Vec<f64>>>())
