@@ -18,7 +18,7 @@ mod statements;
 use super::{Errors, Frame, Model, NEWTONIAN, ORIGIN, Point, Tree};
 use crate::expr::{Pool, Sym};
 use crate::language::ast::System;
-use proc_macro2::Span;
+use proc_macro2::{Ident, Span};
 use scope::{Binding, defined_names};
 use std::collections::HashMap;
 
@@ -44,6 +44,12 @@ struct Resolver {
     /// Whether a `dt(..)` has been read (a `speeds` statement must come
     /// before: it changes what `dt` of its coordinates means).
     used_dt: bool,
+    /// The joint that each coordinate moves, by the coordinate's index: a
+    /// joint's coordinate is its own.
+    joint_of_coordinate: HashMap<u32, Ident>,
+    /// Whether a joint statement was rejected: it may have been meant to
+    /// make the system's coordinates (a free or spherical joint).
+    rejected_joint: bool,
     model: Model,
 }
 
@@ -62,6 +68,8 @@ impl Resolver {
             bindings,
             defined_anywhere: defined_names(system),
             used_dt: false,
+            joint_of_coordinate: HashMap::new(),
+            rejected_joint: false,
             model: Model {
                 docs: system.docs.clone(),
                 public: system.public,

@@ -464,3 +464,28 @@ fn closures_that_cannot_hold_or_constrain_nothing_say_so() {
         35,
     );
 }
+
+#[test]
+fn a_torque_may_react_on_another_frame_fixed_to_its_own() {
+    // Legal physics: `F` and `B` are distinct frames (welded by a constant
+    // angle), so the torque and its reaction do not cancel by statement.
+    let source = pendulum("frame F = B.rotate_x(l);\n    torque u * N.z on B reacting F;");
+    assert!(errors(&source).is_empty(), "{:?}", errors(&source));
+    let itself = errors(&pendulum("torque u * N.z on B reacting B;"));
+    assert_eq!(itself.len(), 1, "{itself:?}");
+    assert!(itself[0].0.contains("cannot react on the frame it acts on"));
+    // `torque u * N.z on B reacting B;` on line 7: the second `B`
+    // starts at column 33 (proc-macro columns count from 0).
+    assert_eq!((itself[0].1, itself[0].2), (7, 33));
+}
+
+#[test]
+fn a_coordinate_moved_by_a_joint_may_also_turn_a_frame_statement() {
+    // Only two joints sharing a coordinate are refused: a `frame`
+    // statement is how a coupled motion is spelled out.
+    let source = pendulum(
+        "joint revolute J { parent: B, child: C, axis: z, coordinate: theta, at: G };\n    \
+         frame D = C.rotate_z(theta);\n    particle p { mass: m, at: J + l * D.x };",
+    );
+    assert!(errors(&source).is_empty(), "{:?}", errors(&source));
+}

@@ -389,7 +389,12 @@ impl Resolver {
                 Value::Point(p, offset.add(&minus_v, pool))
             }
             (op, a, b) => {
-                self.errors.push(op_span, operator_mismatch(op, &a, &b));
+                // A frame where a point is meant: the frame is the mistake.
+                let at = match a {
+                    Value::Frame(_) => lhs.range(),
+                    _ => op_span.into(),
+                };
+                self.errors.push(at, operator_mismatch(op, &a, &b));
                 return None;
             }
         };
@@ -443,6 +448,11 @@ pub(super) fn operator_mismatch(op: BinOp, a: &Value, b: &Value) -> String {
     match op {
         BinOp::Add | BinOp::Sub if a == "a point" || b == "a point" => format!(
             "cannot {} {a} and {b}: a point is written `P + vector` or `P - vector`",
+            if op == BinOp::Add { "add" } else { "subtract" }
+        ),
+        BinOp::Add | BinOp::Sub if a == "a frame" => format!(
+            "cannot {} {a} and {b}: a frame has no position of its own; a point is written \
+             `P + vector` from a point (`O` or one defined above)",
             if op == BinOp::Add { "add" } else { "subtract" }
         ),
         BinOp::Add | BinOp::Sub => format!(

@@ -11,9 +11,11 @@ use proc_macro2::Ident;
 
 impl Resolver {
     /// Everything generated is indexed by the coordinates: a system without
-    /// any has no equations to derive.
+    /// any has no equations to derive. Not reported after a rejected joint
+    /// statement (already reported), which may have been the free or
+    /// spherical joint meant to make them.
     pub(super) fn check_has_coordinates(&mut self) {
-        if self.model.coordinates.is_empty() {
+        if self.model.coordinates.is_empty() && !self.rejected_joint {
             self.errors.push(
                 self.model.name.span(),
                 "a system needs at least one generalized coordinate: add `coordinates q1, ...;`",

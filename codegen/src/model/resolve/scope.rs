@@ -32,6 +32,8 @@ impl Binding {
             Binding::Scalar(Sym::Param(_)) => "a parameter",
             Binding::Scalar(Sym::Coord(_)) => "a coordinate",
             Binding::Scalar(Sym::Input(_)) => "an input",
+            Binding::Scalar(Sym::Speed(_)) => "a speed",
+            Binding::Scalar(Sym::Time) => "time",
             Binding::Scalar(_) => "a built-in scalar",
             Binding::Frame(_) => "a frame",
             Binding::Point(_) => "a point",

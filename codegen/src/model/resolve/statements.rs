@@ -269,7 +269,7 @@ impl Resolver {
                      `spherical` or `free`"
                 ),
             );
-            return;
+            return self.invalid_joint(name, fields);
         };
         if matches!(kind, JointKind::Spherical | JointKind::Free) {
             return self.ball_joint(name, fields, kind);
@@ -282,14 +282,20 @@ impl Resolver {
         );
         let parent = parent.and_then(|e| self.frame(e));
         let axis = axis.and_then(|e| self.axis_name(e));
-        let coordinate = coordinate.and_then(|e| self.scalar(e, GEOMETRY));
+        let coordinate = coordinate.and_then(|e| self.joint_coordinate_name(e));
         let at = at.and_then(|e| self.point_value(e, GEOMETRY));
         let child = child.and_then(|e| self.child_name(e));
-        let (Some(parent), Some(axis), Some(coordinate), Some((base, offset)), Some(child)) =
-            (parent, axis, coordinate, at, child)
+        let (
+            Some(parent),
+            Some(axis),
+            Some((index, coordinate)),
+            Some((base, offset)),
+            Some(child),
+        ) = (parent, axis, coordinate, at, child)
         else {
             return self.invalid_joint(name, fields);
         };
+        self.joint_of_coordinate.insert(index, name.clone());
         if kind == JointKind::Revolute {
             if self.define_frame(child, parent, axis, coordinate, None) {
                 self.define_point(name, Some((base, offset)));
@@ -338,6 +344,9 @@ impl Resolver {
         let named = |suffix: &str| Ident::new(&format!("{name}_{suffix}"), name.span());
         let position = free.then(|| ["x", "y", "z"].map(|c| self.joint_coordinate(&named(c))));
         let quaternion = ["qx", "qy", "qz", "qw"].map(|c| self.joint_coordinate(&named(c)));
+        for &i in position.iter().flatten().chain(&quaternion) {
+            self.joint_of_coordinate.insert(i, name.clone());
+        }
         let velocity = free.then(|| ["vx", "vy", "vz"].map(|c| self.add_speed(&named(c), false)));
         let angular = ["wx", "wy", "wz"].map(|c| self.add_speed(&named(c), false));
         let q = quaternion.map(|i| self.pool.sym(Sym::Coord(i)));
@@ -396,11 +405,53 @@ impl Resolver {
     /// Defines the names of a joint with errors (already reported) as
     /// invalid, so that their uses stay silent.
     pub(super) fn invalid_joint(&mut self, name: &Ident, fields: &[Field]) {
+        self.rejected_joint = true;
         self.define(name, Binding::Invalid);
         if let Some(Expr::Name(child)) = fields.iter().find(|f| f.name == "child").map(|f| &f.value)
         {
             self.define(child, Binding::Invalid);
         }
+    }
+
+    /// A revolute or prismatic joint's `coordinate`: the name of a declared
+    /// coordinate that no other joint moves (its index and symbol). A
+    /// parameter, `t` or an expression would make a fixed or driven joint
+    /// whose frame has no coordinate of its own; a coordinate shared with
+    /// another joint couples them, which `frame` statements spell out.
+    fn joint_coordinate_name(&mut self, e: &Expr) -> Option<(u32, ExprId)> {
+        let Expr::Name(ident) = e else {
+            self.errors.push(
+                e.range(),
+                "expected the name of a coordinate: a joint turns or slides by one declared \
+                 coordinate (for a motion given by an expression, write the `frame` and \
+                 `point` statements)",
+            );
+            return None;
+        };
+        let index = match self.lookup(ident)? {
+            Binding::Scalar(Sym::Coord(index)) => index,
+            other => {
+                self.errors.push(
+                    ident.span(),
+                    format!(
+                        "`{ident}` is {}; a joint's coordinate must be one of the declared \
+                         coordinates (`coordinates q1, ...;`)",
+                        other.describe()
+                    ),
+                );
+                return None;
+            }
+        };
+        if let Some(joint) = self.joint_of_coordinate.get(&index) {
+            let message = format!(
+                "coordinate `{ident}` already moves joint `{joint}`; each joint needs a \
+                 coordinate of its own (for joints that move together, write their `frame` \
+                 and `point` statements)"
+            );
+            self.errors.push(ident.span(), message);
+            return None;
+        }
+        Some((index, self.pool.sym(Sym::Coord(index))))
     }
 
     /// Declares a coordinate a joint makes (its speed comes with the joint).
@@ -530,7 +581,7 @@ impl Resolver {
         let vector = self.vector(value, LOAD);
         let on = self.frame(on);
         let reacting = match reacting {
-            Some(e) => self.frame(e).map(Some),
+            Some(e) => self.reacting_frame(e, on),
             None => Some(None),
         };
         if let (Some(vector), Some(on), Some(reacting)) = (vector, on, reacting) {
@@ -540,6 +591,21 @@ impl Resolver {
                 reacting,
             });
         }
+    }
+
+    /// The frame `G` of `torque vec on F reacting G;`: another frame than
+    /// `F` (on `F` itself, the torque and its reaction would cancel).
+    fn reacting_frame(&mut self, e: &Expr, on: Option<FrameId>) -> Option<Option<FrameId>> {
+        let reacting = self.frame(e)?;
+        if on == Some(reacting) {
+            self.errors.push(
+                e.range(),
+                "a torque cannot react on the frame it acts on (the two would cancel); \
+                 expected the other frame of the motor, such as the parent of the driven one",
+            );
+            return None;
+        }
+        Some(Some(reacting))
     }
 
     pub(super) fn constraint(&mut self, keyword: &Ident, lhs: &Expr, rhs: &Expr) {
