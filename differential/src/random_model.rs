@@ -357,16 +357,17 @@ impl RandomModel {
                 Magnitude::Time => "k * cos(t)".to_owned(),
             };
             let direction = format!("{}.{}", frames[load.frame % frames.len()], AXES[load.axis]);
+            // A link whose frame is also its parent's (`N`, say) cannot
+            // take a reaction on it (the language refuses a torque that
+            // reacts on its own frame): it takes the torque alone.
+            let parent = &frames[self.links[link - 1].parent % link];
             statements.push(match load.torque {
                 None => format!("force {magnitude} * {direction} at {};", points[link]),
-                Some(false) => format!("torque {magnitude} * {direction} on {};", frames[link]),
-                Some(true) => {
-                    let parent = self.links[link - 1].parent % link;
-                    format!(
-                        "torque {magnitude} * {direction} on {} reacting {};",
-                        frames[link], frames[parent]
-                    )
-                }
+                Some(true) if *parent != frames[link] => format!(
+                    "torque {magnitude} * {direction} on {} reacting {parent};",
+                    frames[link]
+                ),
+                Some(_) => format!("torque {magnitude} * {direction} on {};", frames[link]),
             });
         }
         for &(i, j) in &self.potentials {

@@ -136,14 +136,29 @@ fn primary(cursor: &mut Cursor, depth: usize, operators: &mut usize) -> syn::Res
         Some(TokenTree::Ident(first)) => {
             let first = first.clone();
             cursor.next_token();
-            path(cursor, first, depth, operators)
+            let path = path(cursor, first, depth, operators)?;
+            no_chained_dot(cursor).map(|()| path)
         }
         Some(TokenTree::Group(group)) if group.delimiter() != Delimiter::Brace => {
             let group = group.clone();
             cursor.next_token();
-            grouped(&group, depth + 1, operators)
+            let grouped = grouped(&group, depth + 1, operators)?;
+            no_chained_dot(cursor).map(|()| grouped)
         }
         _ => Err(cursor.expected("an expression")),
+    }
+}
+
+/// A `.` follows only a frame's name: `N.x.y`, `(N).x` or
+/// `N.rotate_z(a).rotate_x(b)` are reported at the second `.`, which would
+/// otherwise read as a missing `;`.
+fn no_chained_dot(cursor: &Cursor) -> syn::Result<()> {
+    match cursor.peek_punct('.') {
+        Some(_) => Err(cursor.error(
+            "expected an operator, found `.`: a `.` follows only a frame's name (`F.x`, \
+             `F.rotate_z(angle)`), so chained rotations take one `frame` statement each",
+        )),
+        None => Ok(()),
     }
 }
 
@@ -290,6 +305,22 @@ mod tests {
     /// Line 1, column `column` (0-based, as proc_macro2 counts).
     fn at(column: usize) -> LineColumn {
         LineColumn { line: 1, column }
+    }
+
+    #[test]
+    fn a_dot_after_a_member_a_call_or_parentheses_is_reported_there() {
+        for (source, column) in [
+            ("N.x.y", 3),
+            ("N.rotate_z(a).rotate_x(b)", 13),
+            ("(N).x", 3),
+        ] {
+            let (message, start) = error(source);
+            assert!(
+                message.contains("a `.` follows only a frame's name"),
+                "{message}"
+            );
+            assert_eq!(start, at(column), "{source}");
+        }
     }
 
     #[test]
