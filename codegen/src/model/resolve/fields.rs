@@ -63,13 +63,15 @@ impl Resolver {
         found
     }
 
-    pub(super) fn mass(&mut self, e: &Expr) -> Option<ExprId> {
+    /// A mass: positive where it is a constant (one of parameters may
+    /// take any value at run time); `massless` says what to do instead.
+    pub(super) fn mass(&mut self, e: &Expr, massless: &str) -> Option<ExprId> {
         let mass = self.scalar(e, MASS)?;
         if let Some(x) = self.pool.constant_value(mass) {
             if x <= 0.0 {
                 self.errors.push(
                     e.range(),
-                    "a mass must be positive; a frame without mass needs no body at all",
+                    format!("a mass must be positive; {massless} at all"),
                 );
                 return None;
             }

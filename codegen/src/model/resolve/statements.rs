@@ -223,7 +223,7 @@ impl Resolver {
     pub(super) fn body(&mut self, name: &Ident, fields: &[Field]) {
         let [mass, center, frame, inertia] =
             self.fields(name, "body", fields, ["mass", "center", "frame", "inertia"]);
-        let mass = mass.and_then(|e| self.mass(e));
+        let mass = mass.and_then(|e| self.mass(e, "a frame without mass needs no body"));
         let center = center.and_then(|e| self.point(e, GEOMETRY));
         let frame = frame.and_then(|e| self.frame(e));
         let inertia = inertia.and_then(|e| self.inertia(e));
@@ -245,7 +245,7 @@ impl Resolver {
 
     pub(super) fn particle(&mut self, name: &Ident, fields: &[Field]) {
         let [mass, at] = self.fields(name, "particle", fields, ["mass", "at"]);
-        let mass = mass.and_then(|e| self.mass(e));
+        let mass = mass.and_then(|e| self.mass(e, "a point without mass needs no particle"));
         let at = at.and_then(|e| self.point(e, GEOMETRY));
         if let Some(at) = at {
             self.check_fixed_in_time(name, "particle", at, None);
