@@ -489,3 +489,29 @@ fn a_coordinate_moved_by_a_joint_may_also_turn_a_frame_statement() {
     );
     assert!(errors(&source).is_empty(), "{:?}", errors(&source));
 }
+
+#[test]
+fn a_moment_that_is_zero_but_for_rounding_is_not_negative() {
+    // sin(1.6)² + cos(1.6)² − 1 is zero; in floating point it is −1.1e-16,
+    // which a principal moment of 1 beside it puts within rounding.
+    let rounded = "body bar { mass: m, center: G, frame: B, \
+                   inertia: [1, 1, sin(1.6)^2 + cos(1.6)^2 - 1] };";
+    assert!(
+        errors(&pendulum(rounded)).is_empty(),
+        "{:?}",
+        errors(&pendulum(rounded))
+    );
+    // Beyond rounding, an evaluated moment is negative; an exact one at any size.
+    assert_error(
+        &pendulum("body bar { mass: m, center: G, frame: B, inertia: [1, 1, 1 - sqrt(2)] };"),
+        "cannot be negative",
+        7,
+        61,
+    );
+    assert_error(
+        &pendulum("body bar { mass: m, center: G, frame: B, inertia: [1, 1, -1/10^30] };"),
+        "cannot be negative",
+        7,
+        61,
+    );
+}

@@ -99,20 +99,21 @@ impl Resolver {
             );
             return None;
         }
-        let mut values = Vec::with_capacity(6);
+        let values: Vec<Option<ExprId>> =
+            items.iter().map(|item| self.scalar(item, MASS)).collect();
+        let moments = values[..3]
+            .iter()
+            .map(|v| v.and_then(|v| self.pool.constant_value(v)));
+        let scale = moments.flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
         let mut negative_moment = false;
-        for (i, item) in items.iter().enumerate() {
-            let value = self.scalar(item, MASS);
-            if let Some(x) = value.and_then(|v| self.pool.constant_value(v)) {
-                if i < 3 && x < 0.0 {
-                    negative_moment = true;
-                    self.errors.push(
-                        item.range(),
-                        "a principal moment of inertia cannot be negative",
-                    );
-                }
+        for (item, value) in items.iter().zip(&values).take(3) {
+            if value.is_some_and(|v| self.is_negative_moment(v, scale)) {
+                negative_moment = true;
+                self.errors.push(
+                    item.range(),
+                    "a principal moment of inertia cannot be negative",
+                );
             }
-            values.push(value);
         }
         let values: Option<Vec<_>> = values.into_iter().collect();
         let v = values?;
@@ -127,6 +128,20 @@ impl Resolver {
             self.check_principal_moments(&tensor, *span);
         }
         Some(tensor)
+    }
+
+    /// Whether the principal moment `moment` is a constant below zero:
+    /// exactly, for a rational number, and by more than rounding (`1e-12` of
+    /// `scale`, the largest constant moment of the body) for an expression
+    /// evaluated in floating point (`sqrt(2)^2 - 2` is zero).
+    fn is_negative_moment(&self, moment: ExprId, scale: f64) -> bool {
+        match self.pool.as_rational(moment) {
+            Some(r) => r.num < 0,
+            None => self
+                .pool
+                .constant_value(moment)
+                .is_some_and(|x| x < -1e-12 * scale),
+        }
     }
 
     /// With products of inertia, the principal moments are the tensor's
