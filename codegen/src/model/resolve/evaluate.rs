@@ -446,19 +446,18 @@ pub(super) fn describe_kind(kind: SymKinds) -> &'static str {
 pub(super) fn operator_mismatch(op: BinOp, a: &Value, b: &Value) -> String {
     let (a, b) = (a.describe(), b.describe());
     match op {
-        BinOp::Add | BinOp::Sub if a == "a point" || b == "a point" => format!(
-            "cannot {} {a} and {b}: a point is written `P + vector` or `P - vector`",
-            if op == BinOp::Add { "add" } else { "subtract" }
-        ),
-        BinOp::Add | BinOp::Sub if a == "a frame" => format!(
-            "cannot {} {a} and {b}: a frame has no position of its own; a point is written \
-             `P + vector` from a point (`O` or one defined above)",
-            if op == BinOp::Add { "add" } else { "subtract" }
-        ),
-        BinOp::Add | BinOp::Sub => format!(
-            "cannot {} {a} and {b}: both sides must be scalars, or both vectors",
-            if op == BinOp::Add { "add" } else { "subtract" }
-        ),
+        BinOp::Add | BinOp::Sub => {
+            let verb = if op == BinOp::Add { "add" } else { "subtract" };
+            let expected = if a == "a point" || b == "a point" {
+                "a point is written `P + vector` or `P - vector`"
+            } else if a == "a frame" {
+                "a frame has no position of its own; a point is written `P + vector` from a \
+                 point (`O` or one defined above)"
+            } else {
+                "both sides must be scalars, or both vectors"
+            };
+            format!("cannot {verb} {a} and {b}: {expected}")
+        }
         BinOp::Mul => {
             format!("cannot multiply {a} by {b}: expected a scalar times a scalar or a vector")
         }
