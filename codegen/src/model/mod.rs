@@ -20,6 +20,7 @@ mod vector;
 pub use errors::Errors;
 pub use output::{Output, OutputKind};
 pub use resolve::resolve;
+pub(crate) use resolve::{builtin_names, is_builtin, is_plain};
 pub use singular::RateDivisor;
 pub use tree::{JointKind, Tree};
 pub use vector::{FrameId, NEWTONIAN, Vector};

@@ -20,6 +20,7 @@ use crate::expr::{Pool, Sym};
 use crate::language::ast::System;
 use proc_macro2::{Ident, Span};
 use scope::{Binding, defined_names};
+pub(crate) use scope::{builtin_names, is_builtin, is_plain};
 use std::collections::HashMap;
 
 /// Resolves and checks a parsed system: the model and the pool its

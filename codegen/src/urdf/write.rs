@@ -16,6 +16,7 @@ use super::inertia::{
 use super::tree::Tree;
 use super::xml::{JointType, Robot};
 use super::{Options, Problem};
+use crate::model::{builtin_names, is_builtin, is_plain};
 
 /// The gravity of the model: the acceleration along `−N.z`, the root
 /// link's z axis (Pinocchio's default).
@@ -29,11 +30,6 @@ const FREE_JOINT: &str = "root_joint";
 /// The suffixes of the names a free joint makes.
 const FREE_NAMES: [&str; 14] = [
     "x", "y", "z", "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy", "wz", "",
-];
-
-/// Names the language gives a meaning to: they cannot name anything else.
-const RESERVED: [&str; 11] = [
-    "N", "O", "t", "dt", "sin", "cos", "tan", "sqrt", "exp", "ln", "abs",
 ];
 
 /// The model text of `robot` with the warnings found, or the problems (at
@@ -158,7 +154,10 @@ fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) ->
                 format!(
                     "the name given, `{name}`, cannot name the struct: expected a Rust identifier \
                      that is not a keyword nor a built-in name of the language ({})",
-                    RESERVED.map(|r| format!("`{r}`")).join(", ")
+                    builtin_names()
+                        .map(|r| format!("`{r}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ),
             ));
         }
@@ -207,10 +206,11 @@ fn sanitize(name: &str) -> String {
         .collect()
 }
 
-/// Whether `name` can name an item of the model: a Rust identifier that is
-/// not a keyword nor one of the language's built-in names.
+/// Whether `name` can name an item of the model: a plain Rust identifier
+/// (not a keyword nor raw) that is not one of the language's built-in names,
+/// as the model layer checks every name.
 fn is_identifier(name: &str) -> bool {
-    !RESERVED.contains(&name) && syn::parse_str::<syn::Ident>(name).is_ok()
+    is_plain(name) && !is_builtin(name)
 }
 
 /// The names used so far in the model.

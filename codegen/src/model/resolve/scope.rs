@@ -10,7 +10,7 @@ use proc_macro2::{Ident, Span};
 use std::collections::HashMap;
 
 /// The built-in names, which no statement may define again.
-pub(super) const BUILTINS: [&str; 3] = ["N", "O", "t"];
+const BUILTINS: [&str; 3] = ["N", "O", "t"];
 
 /// What a name stands for at the point of use.
 #[derive(Clone, Copy, Debug)]
@@ -46,17 +46,27 @@ impl Binding {
 }
 
 /// Whether `name` can be written in the generated Rust as it is and with a
-/// suffix (`q_dot`, `ball_qx`): not a raw identifier (`r#q`) nor a Rust
-/// keyword (`type`, `self`, `_`).
-pub(super) fn is_plain(name: &Ident) -> bool {
-    let text = name.to_string();
-    !text.starts_with("r#") && syn::parse_str::<Ident>(&text).is_ok()
+/// suffix (`q_dot`, `ball_qx`): an identifier, not a raw identifier (`r#q`)
+/// nor a Rust keyword (`type`, `self`, `_`).
+pub(crate) fn is_plain(name: &str) -> bool {
+    !name.starts_with("r#") && syn::parse_str::<Ident>(name).is_ok()
+}
+
+/// The language's built-in names, then its functions (`dt` last): names
+/// no statement may define again.
+pub(crate) fn builtin_names() -> impl Iterator<Item = &'static str> {
+    BUILTINS.into_iter().chain(FUNCTIONS.map(|(name, _)| name))
+}
+
+/// Whether `name` is one of [`builtin_names`].
+pub(crate) fn is_builtin(name: &str) -> bool {
+    builtin_names().any(|builtin| builtin == name)
 }
 
 impl Resolver {
     /// Reports `name` if it is not [plain](is_plain); whether it is.
     pub(super) fn check_plain(&mut self, name: &Ident) -> bool {
-        if is_plain(name) {
+        if is_plain(&name.to_string()) {
             return true;
         }
         let what = match name.to_string().starts_with("r#") {
@@ -80,7 +90,7 @@ impl Resolver {
             self.bindings.insert(text, (Binding::Invalid, name.span()));
             return false;
         }
-        if BUILTINS.contains(&text.as_str()) || FUNCTIONS.iter().any(|(f, _)| *f == text) {
+        if is_builtin(&text) {
             self.errors.push(
                 name.span(),
                 format!(

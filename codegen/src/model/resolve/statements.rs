@@ -337,7 +337,7 @@ impl Resolver {
         }
         let child = child.and_then(|e| self.child_name(e));
         let (Some(parent), Some((base, offset)), Some(child), true) =
-            (parent, at_value, child, is_plain(name))
+            (parent, at_value, child, is_plain(&name.to_string()))
         else {
             return self.invalid_joint(name, fields);
         };
