@@ -13,6 +13,7 @@
 
 use dalembert::constrained::constrained_accelerations;
 use dalembert::{ConstrainedSystem, MultibodySystem};
+use dalembert_fixtures::reference::{assert_near, assert_near_all};
 
 /// dal_sympy's values at one state.
 struct Expected<const N: usize, const NU: usize> {
@@ -34,17 +35,15 @@ struct Constraints<const N: usize, const NC: usize> {
     residual: [f64; NC],
 }
 
+/// dal_sympy's values are good to 30 digits: every comparison at 1e-11.
+const TOLERANCE: f64 = 1e-11;
+
 fn close(what: &str, actual: f64, expected: f64) {
-    assert!(
-        (actual - expected).abs() <= 1e-11 * expected.abs().max(1.0),
-        "{what}: {actual} vs {expected}"
-    );
+    assert_near(what, actual, expected, TOLERANCE);
 }
 
 fn close_all(what: &str, actual: &[f64], expected: &[f64]) {
-    for (k, (a, e)) in actual.iter().zip(expected).enumerate() {
-        close(&format!("{what}[{k}]"), *a, *e);
-    }
+    assert_near_all(what, actual, expected, TOLERANCE);
 }
 
 fn close_rows<const C: usize>(what: &str, actual: &[[f64; C]], expected: &[[f64; C]]) {

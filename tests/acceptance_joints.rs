@@ -8,6 +8,7 @@
 //! closed form.
 
 use dalembert_codegen::testing::{cross, quaternion_rotation, transpose_vec};
+use dalembert_fixtures::reference::{assert_near, assert_near_all};
 
 dalembert::dalembert! {
     /// A bob on a ball joint at the tip of a turning arm, in Z-Y-X angles.
@@ -185,20 +186,6 @@ const REFERENCES: [Reference; 2] = [
     },
 ];
 
-fn close(what: &str, actual: f64, expected: f64, tolerance: f64) {
-    assert!(
-        (actual - expected).abs() <= tolerance * expected.abs().max(1.0),
-        "{what}: {actual} vs {expected}"
-    );
-}
-
-fn close_all(what: &str, actual: &[f64], expected: &[f64], tolerance: f64) {
-    assert_eq!(actual.len(), expected.len(), "{what}: length");
-    for (k, (a, e)) in actual.iter().zip(expected).enumerate() {
-        close(&format!("{what}[{k}]"), *a, *e, tolerance);
-    }
-}
-
 /// The Hamilton product `p ⊗ r` of quaternions `(x, y, z, w)`.
 fn product([px, py, pz, pw]: [f64; 4], [rx, ry, rz, rw]: [f64; 4]) -> [f64; 4] {
     [
@@ -242,16 +229,16 @@ fn body_rates(
 fn the_euler_angle_swing_matches_dal_sympy() {
     for r in &REFERENCES {
         for (k, row) in EULER.mass_matrix(&r.q).iter().enumerate() {
-            close_all(&format!("M[{k}]"), row, &r.mass[k], 1e-11);
+            assert_near_all(&format!("M[{k}]"), row, &r.mass[k], 1e-11);
         }
-        close_all(
+        assert_near_all(
             "f",
             &EULER.forcing(0.0, &r.q, &r.v, &r.u),
             &r.forcing,
             1e-11,
         );
-        close("T", EULER.kinetic_energy(&r.q, &r.v), r.kinetic, 1e-11);
-        close("V", EULER.potential_energy(&r.q), r.potential, 1e-11);
+        assert_near("T", EULER.kinetic_energy(&r.q, &r.v), r.kinetic, 1e-11);
+        assert_near("V", EULER.potential_energy(&r.q), r.potential, 1e-11);
     }
 }
 
@@ -278,8 +265,8 @@ fn a_ball_joint_on_a_turning_arm_moves_as_its_euler_angles() {
         let [x, y, z, w] = quaternion_of_angles(angles);
         let q = [r.q[0], x, y, z, w];
         let v = [r.v[0], omega[0], omega[1], omega[2]];
-        close("T", swing.kinetic_energy(&q, &v), r.kinetic, 1e-11);
-        close("V", swing.potential_energy(&q), r.potential, 1e-11);
+        assert_near("T", swing.kinetic_energy(&q, &v), r.kinetic, 1e-11);
+        assert_near("V", swing.potential_energy(&q), r.potential, 1e-11);
         let ball = dalembert::accelerations(&swing, 0.0, &q, &v, &r.u).expect("regular");
         let expected = [
             accelerations[0],
@@ -287,10 +274,10 @@ fn a_ball_joint_on_a_turning_arm_moves_as_its_euler_angles() {
             omega_rate[1],
             omega_rate[2],
         ];
-        close_all("v̇", &ball, &expected, 1e-10);
+        assert_near_all("v̇", &ball, &expected, 1e-10);
         let half = product([x, y, z, w], [omega[0], omega[1], omega[2], 0.0]).map(|c| c / 2.0);
         let rates = swing.coordinate_rates(&q, &v);
-        close_all(
+        assert_near_all(
             "q̇",
             &rates,
             &[r.v[0], half[0], half[1], half[2], half[3]],
@@ -333,7 +320,7 @@ fn a_free_body_off_its_joint_point_falls_by_newton_and_euler() {
         cross(omega, v_joint),
     );
     let linear = [0, 1, 2].map(|i| gravity[i] - spin[i] - whirl[i] - transport[i]);
-    close_all(
+    assert_near_all(
         "v̇",
         &vdot,
         &[
@@ -343,7 +330,7 @@ fn a_free_body_off_its_joint_point_falls_by_newton_and_euler() {
     );
     let centre = [0, 1, 2]
         .map(|i| q[i] + [0.3, -0.2, 0.5][i] + (0..3).map(|j| rotation[i][j] * c[j]).sum::<f64>());
-    close(
+    assert_near(
         "V",
         body.potential_energy(&q),
         body.m * body.g * centre[2],

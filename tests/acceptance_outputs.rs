@@ -4,6 +4,7 @@
 //! central finite differences of `dalembert::accelerations`, and the
 //! regressor against `inverse_dynamics` with the inputs at zero.
 
+use dalembert_fixtures::reference::assert_near;
 use std::fmt::Debug;
 
 dalembert::dalembert! {
@@ -60,13 +61,6 @@ fn shifted<const N: usize>(x: &[f64; N], j: usize, h: f64) -> [f64; N] {
     y
 }
 
-fn close(what: &str, actual: f64, expected: f64, tolerance: f64) {
-    assert!(
-        (actual - expected).abs() <= tolerance * expected.abs().max(1.0),
-        "{what}: {actual} vs {expected}"
-    );
-}
-
 #[test]
 fn constants_fields_and_derives_are_as_written() {
     assert_eq!((Api::NQ, Api::NV, Api::NU, Api::NC), (3, 3, 2, 0));
@@ -88,11 +82,11 @@ fn inverse_dynamics_is_mass_matrix_times_accelerations_minus_forcing() {
     let tau = SYSTEM.inverse_dynamics(T, &Q, &V, &vdot, &U);
     for i in 0..3 {
         let expected = (0..3).map(|j| mass[i][j] * vdot[j]).sum::<f64>() - forcing[i];
-        close(&format!("tau[{i}]"), tau[i], expected, 1e-12);
+        assert_near(&format!("tau[{i}]"), tau[i], expected, 1e-12);
     }
     let zero = SYSTEM.inverse_dynamics(T, &Q, &V, &accelerations(&Q, &V, &U), &U);
     zero.iter()
-        .for_each(|x| close("tau at the accelerations", *x, 0.0, 1e-11));
+        .for_each(|x| assert_near("tau at the accelerations", *x, 0.0, 1e-11));
 }
 
 #[test]
@@ -104,14 +98,14 @@ fn accelerations_jacobian_matches_central_differences() {
         let by_q = central(|h| accelerations(&shifted(&Q, j, h), &V, &U));
         let by_v = central(|h| accelerations(&Q, &shifted(&V, j, h), &U));
         for i in 0..3 {
-            close(&format!("dvdot{i}/dq{j}"), dq[i][j], by_q[i], 1e-7);
-            close(&format!("dvdot{i}/dv{j}"), dv[i][j], by_v[i], 1e-7);
+            assert_near(&format!("dvdot{i}/dq{j}"), dq[i][j], by_q[i], 1e-7);
+            assert_near(&format!("dvdot{i}/dv{j}"), dv[i][j], by_v[i], 1e-7);
         }
     }
     for j in 0..2 {
         let by_u = central(|h| accelerations(&Q, &V, &shifted(&U, j, h)));
         for (i, row) in du.iter().enumerate() {
-            close(&format!("dvdot{i}/du{j}"), row[j], by_u[i], 1e-7);
+            assert_near(&format!("dvdot{i}/du{j}"), row[j], by_u[i], 1e-7);
         }
     }
 }
@@ -123,23 +117,23 @@ fn linearize_is_the_first_order_state_equation() {
         let by_q = central(|h| accelerations(&shifted(&Q, j, h), &V, &U));
         let by_v = central(|h| accelerations(&Q, &shifted(&V, j, h), &U));
         for i in 0..3 {
-            close(&format!("dq{i}/dq{j}"), a[i][j], 0.0, 1e-12);
-            close(
+            assert_near(&format!("dq{i}/dq{j}"), a[i][j], 0.0, 1e-12);
+            assert_near(
                 &format!("dq{i}/dv{j}"),
                 a[i][3 + j],
                 f64::from(u8::from(i == j)),
                 1e-12,
             );
-            close(&format!("dv{i}/dq{j}"), a[3 + i][j], by_q[i], 1e-7);
-            close(&format!("dv{i}/dv{j}"), a[3 + i][3 + j], by_v[i], 1e-7);
+            assert_near(&format!("dv{i}/dq{j}"), a[3 + i][j], by_q[i], 1e-7);
+            assert_near(&format!("dv{i}/dv{j}"), a[3 + i][3 + j], by_v[i], 1e-7);
         }
     }
     for j in 0..2 {
         let by_u = central(|h| accelerations(&Q, &V, &shifted(&U, j, h)));
         let (rates, accelerations) = b.split_at(3);
         for (i, (rate, acceleration)) in rates.iter().zip(accelerations).enumerate() {
-            close(&format!("dq{i}/du{j}"), rate[j], 0.0, 1e-12);
-            close(&format!("dv{i}/du{j}"), acceleration[j], by_u[i], 1e-7);
+            assert_near(&format!("dq{i}/du{j}"), rate[j], 0.0, 1e-12);
+            assert_near(&format!("dv{i}/du{j}"), acceleration[j], by_u[i], 1e-7);
         }
     }
 }
@@ -151,6 +145,6 @@ fn regressor_times_base_parameters_is_inverse_dynamics_without_inputs() {
     let tau = SYSTEM.inverse_dynamics(T, &Q, &V, &vdot, &[0.0, 0.0]);
     for i in 0..3 {
         let product = y[i].iter().zip(&pi).map(|(y, p)| y * p).sum::<f64>();
-        close(&format!("Y pi[{i}]"), product, tau[i], 1e-12);
+        assert_near(&format!("Y pi[{i}]"), product, tau[i], 1e-12);
     }
 }
