@@ -70,7 +70,10 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
     /// ([`cholesky_accelerations`](crate::dynamics::cholesky_accelerations),
     /// whose checks and errors [`accelerations`](crate::accelerations)
     /// documents). Generated systems override it with their emitted solver,
-    /// unrolled for their size.
+    /// unrolled for their size; generated systems with constraints, with
+    /// the accelerations the constraints allow
+    /// ([`constrained_accelerations`](crate::constrained::constrained_accelerations),
+    /// the multipliers dropped).
     fn accelerations(
         &self,
         t: f64,

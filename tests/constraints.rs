@@ -108,6 +108,15 @@ fn seed_3_accelerations_and_multipliers_match_the_reference() {
             &array::<2>(&s["lambda"]),
             1e-12,
         );
+        // The runtime's one entry point gives the same motion: with
+        // constraints, the accelerations they allow, not `M⁻¹ f`.
+        let vdot = dalembert::accelerations(&SEED_3, t, &q, &qd, &u).unwrap();
+        assert_close(
+            &format!("state {i} dalembert::accelerations"),
+            &vdot,
+            &array::<3>(&s["qdd"]),
+            1e-12,
+        );
     }
 }
 

@@ -30,7 +30,10 @@ pub const SINGULAR_RATES_TOLERANCE: f64 = 1e-8;
 
 /// The accelerations `v̇` that solve `M(q) v̇ = f(t, q, v, u)`: the system's
 /// own [`MultibodySystem::accelerations`], which for generated systems is
-/// their emitted solver, unrolled for their size.
+/// their emitted solver, unrolled for their size. For a generated system
+/// with constraints it is the `v̇` of `M v̇ = f + Aᵀ λ`, `A v̇ = b`
+/// ([`constrained_accelerations`](crate::constrained::constrained_accelerations),
+/// whose errors it returns).
 ///
 /// Allocates nothing and never returns a non-finite value: a non-finite
 /// state or equation, or a mass matrix that is not safely positive definite

@@ -365,14 +365,25 @@ fn tree_mass_matrix(
 
 /// The runtime's traits, forwarding to the inherent functions (and to the
 /// emitted `accelerations` and `check_coordinate_rates` when the system has
-/// them).
+/// them). A system with constraints answers `accelerations` with the
+/// constrained `v̇` of `M v̇ = f + Aᵀ λ`, `A v̇ = b` (the runtime's
+/// `constrained_accelerations`, multipliers dropped), so that
+/// `dalembert::accelerations` gives the motion the constraints allow.
 fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> TokenStream {
     let [has_solver, has_check] = emitted;
     let [nq, nv, nu, nc] = sizes;
     let (coordinates, vector) = (array(nq), array(nv));
     let (inputs, rows_out) = (array(nu), array(nc));
     let [nq, nv, nu, nc_lit] = [nq, nv, nu, nc].map(Literal::usize_unsuffixed);
-    let accelerations = if has_solver {
+    let solve = if nc > 0 {
+        Some(quote! {
+            ::dalembert::constrained::constrained_accelerations(self, t, q, v, u)
+                .map(|(vdot, _)| vdot)
+        })
+    } else {
+        has_solver.then(|| quote!(#name::accelerations(self, t, q, v, u)))
+    };
+    let accelerations = solve.map(|solve| {
         quote! {
             #[inline]
             fn accelerations(
@@ -382,12 +393,10 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> Toke
                 v: &#vector,
                 u: &#inputs,
             ) -> ::core::result::Result<#vector, ::dalembert::DynamicsError> {
-                #name::accelerations(self, t, q, v, u)
+                #solve
             }
         }
-    } else {
-        TokenStream::new()
-    };
+    });
     let check = has_check.then(|| {
         quote! {
             #[inline]
