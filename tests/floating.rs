@@ -53,6 +53,23 @@ dalembert::dalembert! {
 }
 
 dalembert::dalembert! {
+    /// A floating base carrying an arm on a hinge, on a ball-jointed tail:
+    /// every parameter that enters linearly, for the regressor.
+    pub FloatingArm {
+        parameters m1, c1, J1, J2, J3, m2, a, K1, K3, L, m3, d, g;
+        joint free base { parent: N, child: B, at: O };
+        coordinates q1;
+        joint revolute hinge { parent: B, child: C, axis: y, coordinate: q1, at: base + L * B.x };
+        joint spherical tail { parent: B, child: D, at: base - L * B.x };
+        body hull { mass: m1, center: base + c1 * B.z, frame: B, inertia: [J1, J2, J3, 0.1, 0, 0] };
+        body arm { mass: m2, center: hinge + a * C.x, frame: C, inertia: [K1, K1, K3] };
+        body fin { mass: m3, center: tail - d * D.x, frame: D, inertia: [0.01, 0.02, 0.03] };
+        gravity -g * N.z;
+        outputs inverse_dynamics, regressor;
+    }
+}
+
+dalembert::dalembert! {
     /// The same top in Z-Y-X Euler angles.
     pub EulerTop {
         parameters m, a, c, I1, I2, I3, g;
@@ -536,4 +553,61 @@ fn body_rates_integrated_into_gimbal_lock_stop_naming_the_coordinate() {
     // The same motion up to just before the lock integrates.
     let before = rk4(&dynamics, start, 1.5, 100, |_| {}).expect("no gimbal lock yet");
     assert!((before.end.q[1] - 1.5).abs() < 1e-12);
+}
+
+/// The regressor of a system with free and spherical joints: `Y π` is the
+/// inverse dynamics at states with unit quaternions, and the base
+/// parameters hold every parameter that enters linearly.
+#[test]
+fn a_floating_regressor_times_its_base_parameters_is_the_inverse_dynamics() {
+    let arm = FloatingArm {
+        m1: 3.0,
+        c1: 0.05,
+        J1: 0.4,
+        J2: 0.5,
+        J3: 0.6,
+        m2: 1.2,
+        a: 0.3,
+        K1: 0.02,
+        K3: 0.03,
+        L: 0.5,
+        m3: 0.4,
+        d: 0.2,
+        g: 9.81,
+    };
+    let pi = arm.base_parameters();
+    let unit = |x: [f64; 4]| x.map(|c| c / norm(&x));
+    for k in 0..5 {
+        let s = f64::from(k);
+        let (b, d) = (
+            unit([0.3 + s, -0.2, 0.5 - 0.1 * s, 0.9]),
+            unit([-0.1, 0.4 * s, 0.2, 0.7]),
+        );
+        let q = [
+            0.1 * s,
+            -0.3,
+            1.0,
+            b[0],
+            b[1],
+            b[2],
+            b[3],
+            0.7 - 0.2 * s,
+            d[0],
+            d[1],
+            d[2],
+            d[3],
+        ];
+        let v: [f64; 10] = core::array::from_fn(|i| (0.37 * (i as f64 + s)).sin() * 2.0);
+        let vdot: [f64; 10] = core::array::from_fn(|i| (0.61 * (i as f64) - s).cos() * 3.0);
+        let tau = arm.inverse_dynamics(0.0, &q, &v, &vdot, &[]);
+        let y = arm.regressor(&q, &v, &vdot);
+        let scale = norm(&tau).max(1.0);
+        for (i, (row, tau)) in y.iter().zip(tau).enumerate() {
+            let product: f64 = row.iter().zip(&pi).map(|(y, p)| y * p).sum();
+            assert!(
+                (product - tau).abs() <= 1e-12 * scale,
+                "state {k}, row {i}: Y π = {product}, τ = {tau}"
+            );
+        }
+    }
 }

@@ -104,14 +104,13 @@ impl Resolver {
     /// constraints, the accelerations and their derivatives live on the
     /// constraint manifold, which they do not handle yet (`linearize(..)` with the independent
     /// coordinates does, and its own problems are checked by
-    /// `linearize_problem`). The regressor and the Taylor coefficients are
-    /// taken in the coordinates, so they need every speed to be its
-    /// coordinate's rate.
+    /// `linearize_problem`). The Taylor coefficients are taken in the
+    /// coordinates, so they need every speed to be its coordinate's rate.
     pub(super) fn check_solved_outputs(&mut self) {
-        use crate::model::OutputKind::{AccelerationsJacobian, Linearize, Regressor, Taylor};
+        use crate::model::OutputKind::{AccelerationsJacobian, Linearize, Taylor};
         if self.model.nq() != self.model.nv() {
             for output in &self.model.outputs {
-                if matches!(output.kind, Regressor | Taylor) {
+                if output.kind == Taylor {
                     let name = &output.function;
                     self.errors.push(
                         name.span(),
