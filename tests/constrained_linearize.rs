@@ -5,7 +5,9 @@
 //! position), the slider-crank with the crank angle independent against
 //! central differences of the constrained accelerations along the
 //! manifold, and the error where the chosen coordinates do not determine
-//! the others.
+//! the others. And `accelerations_jacobian` of constrained systems (seed
+//! example 3, a knife-edge sled with a nonholonomic row) against central
+//! differences of `dalembert::accelerations`, on and off the manifold.
 
 use dalembert::DynamicsError;
 use dalembert::constrained::constrained_accelerations;
@@ -28,7 +30,7 @@ macro_rules! seed_example_3 {
                 torque M * N.z on B;
                 constraint x - l/2 * sin(theta) == 0;
                 constraint y + l/2 * cos(theta) == 0;
-                outputs linearize($independent);
+                outputs linearize($independent), accelerations_jacobian;
             }
         }
     };
@@ -37,6 +39,24 @@ macro_rules! seed_example_3 {
 seed_example_3!(ByAngle, theta);
 // `x` and `theta` follow from `y` except where `sin θ = 0`.
 seed_example_3!(ByHeight, y);
+
+dalembert::dalembert! {
+    /// A knife-edge sled: it slides only along its own axis `B.x`, pushed
+    /// along it and turned by the inputs, on a slope.
+    pub Sled {
+        parameters m, I, c, g;
+        coordinates x, y, theta;
+        inputs push, turn;
+        frame B = N.rotate_z(theta);
+        point G = O + x * N.x + y * N.y + c * B.x;
+        body sled { mass: m, center: G, frame: B, inertia: [0, 0, I] };
+        gravity -g * N.y;
+        force push * B.x at G;
+        torque turn * N.z on B;
+        constraint -sin(theta) * dt(x) + cos(theta) * dt(y) == 0;
+        outputs accelerations_jacobian;
+    }
+}
 
 const BAR: ByAngle = ByAngle {
     m: 1.7,
@@ -194,4 +214,91 @@ fn slider_crank_matches_differences_along_the_manifold() {
             assert_eq!(b[i][0], 0.0);
         }
     }
+}
+
+/// Central differences, step `h`, of `accelerations` along each of `n`
+/// directions that `shift(j, h)` moves, against `jacobian` (entry `[i][j]`
+/// the derivative of `v̇ᵢ`), to `1e-7` relative.
+fn matches_differences<const NV: usize, const N: usize>(
+    what: &str,
+    jacobian: &[[f64; N]; NV],
+    accelerations: impl Fn(usize, f64) -> [f64; NV],
+) {
+    let h = 1e-6;
+    for j in 0..N {
+        let (ahead, behind) = (accelerations(j, h), accelerations(j, -h));
+        for (i, row) in jacobian.iter().enumerate() {
+            let difference = (ahead[i] - behind[i]) / (2.0 * h);
+            let scale = difference.abs().max(1.0);
+            assert!(
+                (row[j] - difference).abs() <= 1e-7 * scale,
+                "{what}[{i}][{j}]: {} against differences {difference}",
+                row[j]
+            );
+        }
+    }
+}
+
+fn shifted<const N: usize>(x: &[f64; N], j: usize, h: f64) -> [f64; N] {
+    let mut x = *x;
+    x[j] += h;
+    x
+}
+
+/// The derivatives of the constrained accelerations, on the manifold and
+/// off it (the accelerations are a function of the whole state).
+fn jacobian_matches_differences<S: dalembert::MultibodySystem<3, 3, NU>, const NU: usize>(
+    system: &S,
+    jacobian: impl Fn(
+        &[f64; 3],
+        &[f64; 3],
+        &[f64; NU],
+    ) -> ([[f64; 3]; 3], [[f64; 3]; 3], [[f64; NU]; 3]),
+    states: &[([f64; 3], [f64; 3])],
+    u: &[f64; NU],
+) {
+    let vdot = |q: &[f64; 3], v: &[f64; 3], u: &[f64; NU]| {
+        dalembert::accelerations(system, 0.0, q, v, u).expect("solvable")
+    };
+    for (q, v) in states {
+        let (by_q, by_v, by_u) = jacobian(q, v, u);
+        matches_differences("dv/dq", &by_q, |j, h| vdot(&shifted(q, j, h), v, u));
+        matches_differences("dv/dv", &by_v, |j, h| vdot(q, &shifted(v, j, h), u));
+        matches_differences("dv/du", &by_u, |j, h| vdot(q, v, &shifted(u, j, h)));
+    }
+}
+
+#[test]
+fn accelerations_jacobian_of_seed_example_3_matches_differences() {
+    let (q, v) = assembled(BAR.l, 0.7, -1.3);
+    let off = (
+        [q[0] + 0.05, q[1] - 0.02, q[2]],
+        [v[0] - 0.3, v[1], v[2] + 0.1],
+    );
+    jacobian_matches_differences(
+        &BAR,
+        |q, v, u| BAR.accelerations_jacobian(0.0, q, v, u).expect("regular"),
+        &[(q, v), off],
+        &[0.4],
+    );
+}
+
+#[test]
+fn accelerations_jacobian_of_a_nonholonomic_sled_matches_differences() {
+    let sled = Sled {
+        m: 2.5,
+        I: 0.3,
+        c: 0.4,
+        g: 9.81,
+    };
+    let theta: f64 = 0.6;
+    let along = [theta.cos(), theta.sin(), 0.0];
+    let on = ([0.2, -0.1, theta], [1.5 * along[0], 1.5 * along[1], 0.8]);
+    let off = ([0.2, -0.1, theta], [0.3, 1.1, -0.5]);
+    jacobian_matches_differences(
+        &sled,
+        |q, v, u| sled.accelerations_jacobian(0.0, q, v, u).expect("regular"),
+        &[on, off],
+        &[0.7, -0.2],
+    );
 }

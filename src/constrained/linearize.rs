@@ -33,9 +33,11 @@ pub const DEPENDENT_PIVOT_TOLERANCE: f64 = 1e-12;
 
 /// The partial derivatives of the residuals of the constrained equations
 /// at the solved accelerations `v̇` and multipliers `λ`; entry `[i][j]` is
-/// the derivative of component `i` by variable `j`.
+/// the derivative of component `i` by variable `j`. They give the
+/// accelerations' own derivatives
+/// ([`constrained_accelerations_jacobian`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ConstrainedPartials<const NV: usize, const NU: usize, const NC: usize> {
+pub struct AccelerationPartials<const NV: usize, const NU: usize, const NC: usize> {
     /// `∂r/∂q` of `r = M v̇ − f − Aᵀ λ` (`v̇`, `λ` held).
     pub residual_by_q: [[f64; NV]; NV],
     /// `∂r/∂v`.
@@ -46,8 +48,46 @@ pub struct ConstrainedPartials<const NV: usize, const NU: usize, const NC: usize
     pub constraint_by_q: [[f64; NV]; NC],
     /// `∂c/∂v`.
     pub constraint_by_v: [[f64; NV]; NC],
+}
+
+/// What [`linearize_on_constraints`] takes: the [`AccelerationPartials`]
+/// and `∂ψ/∂q` of the constraints' velocity form.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConstrainedPartials<const NV: usize, const NU: usize, const NC: usize> {
+    /// The partials of the residuals.
+    pub accelerations: AccelerationPartials<NV, NU, NC>,
     /// `∂ψ/∂q` of the velocity form `ψ = A v + ψ₀`.
     pub velocity_by_q: [[f64; NV]; NC],
+}
+
+/// `(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u)` of the constrained accelerations, entry
+/// `[i][j]` the derivative of `v̇ᵢ`.
+pub type AccelerationsJacobian<const NV: usize, const NU: usize> =
+    ([[f64; NV]; NV], [[f64; NV]; NV], [[f64; NU]; NV]);
+
+/// The derivatives of the accelerations `v̇(t, q, v, u)` of
+/// `M v̇ = f + Aᵀ λ`, `A v̇ = b` by `q`, `v` and `u`, from the `partials`
+/// of the residuals at the solved `v̇` and `λ` (see the module's docs),
+/// for a system with mass matrix `mass` and constraint Jacobian `jacobian`
+/// at the state; `coordinates` names the speeds for the errors. They hold
+/// off the constraint manifold too: `v̇` is a function of the whole state.
+/// Errors: a mass matrix that is not positive definite, dependent
+/// constraint rows ([`DynamicsError::DependentConstraints`]), a
+/// non-finite derivative ([`DynamicsError::NonFiniteEquations`]).
+pub fn constrained_accelerations_jacobian<const NV: usize, const NU: usize, const NC: usize>(
+    mass: &[[f64; NV]; NV],
+    jacobian: &[[f64; NV]; NC],
+    partials: &AccelerationPartials<NV, NU, NC>,
+    coordinates: &[&'static str; NV],
+) -> Result<AccelerationsJacobian<NV, NU>, DynamicsError> {
+    let (by_q, by_v, by_u) = solved_partials(mass, jacobian, partials, coordinates)?;
+    let (by_q, by_v, by_u) = (array(&by_q), array(&by_v), array(&by_u));
+    let finite = |rows: &[[f64; NV]]| rows.iter().flatten().all(|x| x.is_finite());
+    let all_finite = finite(&by_q) && finite(&by_v) && by_u.iter().flatten().all(|x| x.is_finite());
+    match all_finite {
+        true => Ok((by_q, by_v, by_u)),
+        false => Err(DynamicsError::NonFiniteEquations),
+    }
 }
 
 /// The blocks of `A = [[F, E], [∂v̇/∂q E + ∂v̇/∂v F, ∂v̇/∂v E]]` and of the
@@ -81,22 +121,8 @@ pub fn linearize_on_constraints<const NV: usize, const NU: usize, const NC: usiz
     independent: &[bool; NV],
     coordinates: &[&'static str; NV],
 ) -> Result<ConstrainedLinearization<NV, NU>, DynamicsError> {
-    let a = SMatrix::<f64, NC, NV>::from_fn(|i, j| jacobian[i][j]);
-    let saddle = SaddlePoint::new(mass, a, coordinates)?;
-    let block = |rows: &[[f64; NV]]| SMatrix::<f64, NV, NV>::from_fn(|i, j| rows[i][j]);
-    let rows = |rows: &[[f64; NV]; NC]| SMatrix::<f64, NC, NV>::from_fn(|i, j| rows[i][j]);
-    let by_q = saddle.solve(
-        &block(&partials.residual_by_q),
-        &rows(&partials.constraint_by_q),
-    );
-    let by_v = saddle.solve(
-        &block(&partials.residual_by_v),
-        &rows(&partials.constraint_by_v),
-    );
-    let by_u = saddle.solve(
-        &SMatrix::<f64, NV, NU>::from_fn(|i, j| partials.residual_by_u[i][j]),
-        &SMatrix::<f64, NC, NU>::zeros(),
-    );
+    let (by_q, by_v, by_u) = solved_partials(mass, jacobian, &partials.accelerations, coordinates)?;
+    let a = matrix(jacobian);
     let mut dependent = [0; NC];
     for (slot, j) in dependent
         .iter_mut()
@@ -117,7 +143,7 @@ pub fn linearize_on_constraints<const NV: usize, const NU: usize, const NC: usiz
         }
     }
     // F: −A_D⁻¹ ∂ψ/∂q E in the dependent rows.
-    let velocity = rows(&partials.velocity_by_q) * e;
+    let velocity = matrix(&partials.velocity_by_q) * e;
     let moved = solve_dependent(velocity)?;
     let mut f = SMatrix::<f64, NV, NV>::zeros();
     for (d, &i) in dependent.iter().enumerate() {
@@ -125,15 +151,12 @@ pub fn linearize_on_constraints<const NV: usize, const NU: usize, const NC: usiz
             f[(i, j)] = -moved[(d, j)];
         }
     }
-    let array = |m: SMatrix<f64, NV, NV>| -> [[f64; NV]; NV] {
-        std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
-    };
     let linearization = ConstrainedLinearization {
-        kinematic_by_q: array(f),
-        kinematic_by_v: array(e),
-        dynamic_by_q: array(by_q * e + by_v * f),
-        dynamic_by_v: array(by_v * e),
-        dynamic_by_u: std::array::from_fn(|i| std::array::from_fn(|j| by_u[(i, j)])),
+        kinematic_by_q: array(&f),
+        kinematic_by_v: array(&e),
+        dynamic_by_q: array(&(by_q * e + by_v * f)),
+        dynamic_by_v: array(&(by_v * e)),
+        dynamic_by_u: array(&by_u),
     };
     let finite = |m: &[[f64; NV]; NV]| m.iter().flatten().all(|x| x.is_finite());
     let all_finite = [
@@ -153,6 +176,48 @@ pub fn linearize_on_constraints<const NV: usize, const NU: usize, const NC: usiz
         true => Ok(linearization),
         false => Err(DynamicsError::NonFiniteEquations),
     }
+}
+
+/// `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` through the saddle-point system (see
+/// [`constrained_accelerations_jacobian`]).
+#[allow(clippy::type_complexity)]
+fn solved_partials<const NV: usize, const NU: usize, const NC: usize>(
+    mass: &[[f64; NV]; NV],
+    jacobian: &[[f64; NV]; NC],
+    partials: &AccelerationPartials<NV, NU, NC>,
+    coordinates: &[&'static str; NV],
+) -> Result<
+    (
+        SMatrix<f64, NV, NV>,
+        SMatrix<f64, NV, NV>,
+        SMatrix<f64, NV, NU>,
+    ),
+    DynamicsError,
+> {
+    let saddle = SaddlePoint::new(mass, matrix(jacobian), coordinates)?;
+    let by_q = saddle.solve(
+        &matrix(&partials.residual_by_q),
+        &matrix(&partials.constraint_by_q),
+    );
+    let by_v = saddle.solve(
+        &matrix(&partials.residual_by_v),
+        &matrix(&partials.constraint_by_v),
+    );
+    let by_u = saddle.solve(
+        &matrix(&partials.residual_by_u),
+        &SMatrix::<f64, NC, NU>::zeros(),
+    );
+    Ok((by_q, by_v, by_u))
+}
+
+/// Rows of an array as a matrix.
+fn matrix<const R: usize, const C: usize>(rows: &[[f64; C]; R]) -> SMatrix<f64, R, C> {
+    SMatrix::from_fn(|i, j| rows[i][j])
+}
+
+/// A matrix as rows of an array.
+fn array<const R: usize, const C: usize>(m: &SMatrix<f64, R, C>) -> [[f64; C]; R] {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
 }
 
 /// `A_D⁻¹ rhs` by Gaussian elimination of the dependent block `A_D` with

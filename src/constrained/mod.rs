@@ -10,7 +10,9 @@
 //!   their own are handled;
 //! * [`linearize_on_constraints`] linearises the equations on the
 //!   constraint manifold with independent coordinates (what a generated
-//!   `linearize` calls for a constrained system);
+//!   `linearize` calls for a constrained system), and
+//!   [`constrained_accelerations_jacobian`] gives the accelerations'
+//!   derivatives (what its `accelerations_jacobian` calls);
 //! * [`project_onto_constraints`] moves a state back onto the constraint
 //!   manifold (positions, then speeds), and [`project_onto_energy_level`]
 //!   the speeds of a conservative system onto its energy level;
@@ -28,8 +30,8 @@ mod stabilisation;
 pub(crate) mod test_systems;
 
 pub use linearize::{
-    ConstrainedLinearization, ConstrainedPartials, DEPENDENT_PIVOT_TOLERANCE,
-    linearize_on_constraints,
+    AccelerationPartials, AccelerationsJacobian, ConstrainedLinearization, ConstrainedPartials,
+    DEPENDENT_PIVOT_TOLERANCE, constrained_accelerations_jacobian, linearize_on_constraints,
 };
 pub use multipliers::{
     ACCELERATION_RANK_TOLERANCE, CONSISTENCY_TOLERANCE, ConstraintSolver, NEAR_MANIFOLD,

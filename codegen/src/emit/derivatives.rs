@@ -398,27 +398,19 @@ pub fn emit_linearize(
     linearize_function(model, function, body)
 }
 
-/// `pub fn linearize(..)` of a system with constraints, from `function`,
-/// whose results are the partials of `linearize_on_constraints`
-/// (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, `∂c/∂q`, `∂c/∂v`, `∂ψ/∂q`), evaluated at
-/// the accelerations and multipliers of `constrained_accelerations`, with
-/// the independent coordinates of the model's `linearize(..)`.
-pub fn emit_constrained_linearize(
+/// The statements binding `partials`, the runtime's
+/// `AccelerationPartials` (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, `∂c/∂q`, `∂c/∂v`,
+/// the first results of `function`) evaluated at the accelerations and
+/// multipliers of `constrained_accelerations`, and with `velocity` the
+/// `ConstrainedPartials` that also hold `∂ψ/∂q` (its last result).
+fn constrained_partials(
     model: &Model,
     pool: &Pool,
     names: &Names,
     function: &Function,
+    velocity: bool,
 ) -> TokenStream {
     let (nv, nu, nc) = (model.nv(), model.inputs.len(), model.constraints.len());
-    let independent: Vec<bool> = (0..nv)
-        .map(|j| {
-            model
-                .outputs
-                .iter()
-                .flat_map(|o| &o.independent)
-                .any(|(i, _)| *i == j)
-        })
-        .collect();
     let Straight {
         statements,
         outputs,
@@ -439,7 +431,28 @@ pub fn emit_constrained_linearize(
         }
     };
     let (r_q, r_v, r_u) = (block(nv, nv), block(nv, nv), block(nv, nu));
-    let (c_q, c_v, psi_q) = (block(nc, nv), block(nc, nv), block(nc, nv));
+    let (c_q, c_v) = (block(nc, nv), block(nc, nv));
+    let accelerations = quote! {
+        ::dalembert::constrained::AccelerationPartials {
+            residual_by_q: #r_q,
+            residual_by_v: #r_v,
+            residual_by_u: #r_u,
+            constraint_by_q: #c_q,
+            constraint_by_v: #c_v,
+        }
+    };
+    let partials = match velocity {
+        true => {
+            let psi_q = block(nc, nv);
+            quote! {
+                ::dalembert::constrained::ConstrainedPartials {
+                    accelerations: #accelerations,
+                    velocity_by_q: #psi_q,
+                }
+            }
+        }
+        false => accelerations,
+    };
     let multipliers = (0..nc).map(|j| {
         let name = format_ident!("lambda{}", j);
         match used.contains(&Sym::Multiplier(j as u32)) {
@@ -447,6 +460,39 @@ pub fn emit_constrained_linearize(
             false => quote!(_),
         }
     });
+    quote! {
+        let (accelerations, [#(#multipliers),*]) =
+            ::dalembert::constrained::constrained_accelerations(self, t, q, qd, u)?;
+        let partials = {
+            let qdd = &accelerations;
+            #statements
+            #partials
+        };
+    }
+}
+
+/// `pub fn linearize(..)` of a system with constraints, from `function`,
+/// whose results are the partials of `linearize_on_constraints`
+/// (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, `∂c/∂q`, `∂c/∂v`, `∂ψ/∂q`), evaluated at
+/// the accelerations and multipliers of `constrained_accelerations`, with
+/// the independent coordinates of the model's `linearize(..)`.
+pub fn emit_constrained_linearize(
+    model: &Model,
+    pool: &Pool,
+    names: &Names,
+    function: &Function,
+) -> TokenStream {
+    let nv = model.nv();
+    let independent: Vec<bool> = (0..nv)
+        .map(|j| {
+            model
+                .outputs
+                .iter()
+                .flat_map(|o| &o.independent)
+                .any(|(i, _)| *i == j)
+        })
+        .collect();
+    let partials = constrained_partials(model, pool, names, function, true);
     let [kq, kv, dq, dv] = ["kq", "kv", "dq", "dv"].map(|prefix| entry_names(prefix, nv, nv));
     let du: Vec<Ident> = (0..nv).map(|i| format_ident!("du{}", i)).collect();
     let (kq_pattern, kv_pattern, dq_pattern, dv_pattern) =
@@ -454,20 +500,7 @@ pub fn emit_constrained_linearize(
     let (kinematic_rows, dynamic_rows) = (joined_rows(&kq, &kv), joined_rows(&dq, &dv));
     let zero_rows = zero_rows(model);
     let body = quote! {
-        let (accelerations, [#(#multipliers),*]) =
-            ::dalembert::constrained::constrained_accelerations(self, t, q, qd, u)?;
-        let partials = {
-            let qdd = &accelerations;
-            #statements
-            ::dalembert::constrained::ConstrainedPartials {
-                residual_by_q: #r_q,
-                residual_by_v: #r_v,
-                residual_by_u: #r_u,
-                constraint_by_q: #c_q,
-                constraint_by_v: #c_v,
-                velocity_by_q: #psi_q,
-            }
-        };
+        #partials
         let ::dalembert::constrained::ConstrainedLinearization {
             kinematic_by_q: #kq_pattern,
             kinematic_by_v: #kv_pattern,
@@ -487,4 +520,39 @@ pub fn emit_constrained_linearize(
         ))
     };
     linearize_function(model, function, body)
+}
+
+/// `pub fn accelerations_jacobian(..)` of a system with constraints, from
+/// `function`, whose results are the runtime's `AccelerationPartials`:
+/// `constrained_accelerations_jacobian` solves them.
+pub fn emit_constrained_accelerations_jacobian(
+    model: &Model,
+    pool: &Pool,
+    names: &Names,
+    function: &Function,
+) -> TokenStream {
+    let (nv, nu) = (model.nv(), model.inputs.len());
+    let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
+    let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
+    let docs = function.docs.iter().map(|line| raw_string(line));
+    let partials = constrained_partials(model, pool, names, function, false);
+    quote! {
+        #(#[doc = #docs])*
+        #[inline]
+        pub fn accelerations_jacobian(
+            &self,
+            t: f64,
+            q: &#coordinates,
+            qd: &#vector,
+            u: &#inputs,
+        ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
+            #partials
+            ::dalembert::constrained::constrained_accelerations_jacobian(
+                &self.mass_matrix(q),
+                &self.constraint_jacobian(q),
+                &partials,
+                &Self::COORDINATES,
+            )
+        }
+    }
 }

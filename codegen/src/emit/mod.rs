@@ -78,6 +78,9 @@ pub fn emit(
             (Body::ConstrainedLinearize, Target::Std) => {
                 derivatives::emit_constrained_linearize(model, pool, &names, function)
             }
+            (Body::ConstrainedAccelerationsJacobian, Target::Std) => {
+                derivatives::emit_constrained_accelerations_jacobian(model, pool, &names, function)
+            }
             (Body::Taylor, Target::Std) => {
                 taylor::emit_taylor(model, pool, equations, &names, function)
             }

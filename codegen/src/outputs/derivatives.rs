@@ -233,6 +233,55 @@ pub fn constrained_linearize(
     pool: &mut Pool,
     independent: &[String],
 ) -> Function {
+    let mut results = acceleration_partials(model, equations, pool);
+    results.push(by(
+        pool,
+        &equations.constraint_velocity,
+        Sym::Coord,
+        model.nv(),
+    ));
+    let dependent: Vec<String> = model
+        .coordinates
+        .iter()
+        .map(ToString::to_string)
+        .filter(|c| !independent.contains(c))
+        .collect();
+    function(
+        "linearize",
+        &format!(
+            "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
+             state `x = (q, v)` on the constraint manifold and input `u`, with the\n\
+             independent coordinates `{}` (the dependent `{}` follow from the\n\
+             constraints), by the method of Peterson, Gede and Hubbard (2014), as\n\
+             SymPy's `Linearizer`. The accelerations `v̇(t, q, v, u)` of\n\
+             `M v̇ = f + Aᵀ λ`, `A v̇ = b` are differentiated exactly (the partials of\n\
+             `M v̇ − f − Aᵀ λ` and `A v̇ − b` at the solved `v̇`, `λ`, through the\n\
+             saddle-point system). A perturbation that keeps the constraints is\n\
+             `δq = E δq`, `δv = E δv + F δq`, where `E` and `F` read only the\n\
+             independent entries (`δq_D = −A_D⁻¹ A_I δq_I`,\n\
+             `δv_D = −A_D⁻¹ (A_I δv_I + ∂ψ/∂q δq)`), so\n\
+             `A = [[F, E], [∂v̇/∂q E + ∂v̇/∂v F, ∂v̇/∂v E]]` and `B = [[0], [∂v̇/∂u]]`:\n\
+             the columns of the dependent entries are zero, and the rows and columns\n\
+             of the independent coordinates and their speeds are the reduced `A` of\n\
+             SymPy's `Linearizer`, whose eigenvalues about an equilibrium are the\n\
+             nonzero ones of `A`. The state must be on the manifold. Errors: those\n\
+             of `dalembert::constrained::constrained_accelerations`, and\n\
+             `SingularDependentCoordinates` naming a dependent coordinate where the\n\
+             independent ones do not determine it (`A_D` singular).",
+            independent.join("`, `"),
+            dependent.join("`, `"),
+        ),
+        &[Time, Coordinates, Speeds, Inputs],
+        results,
+        Body::ConstrainedLinearize,
+    )
+}
+
+/// The partials, at the solved `v̇` and `λ`, of the residuals
+/// `r = M v̇ − f − Aᵀ λ` (by `q`, `v`, `u`) and `c = A v̇ − b` (by `q`,
+/// `v`) of a system with constraints: what the runtime's
+/// `AccelerationPartials` holds.
+fn acceleration_partials(model: &Model, equations: &Equations, pool: &mut Pool) -> Vec<Value> {
     let (nv, nu) = (model.nv(), model.inputs.len());
     let (tau, _) = inverse_dynamics(model, equations, pool);
     let jacobian = &equations.constraint_jacobian;
@@ -269,55 +318,51 @@ pub fn constrained_linearize(
             pool.sum(terms)
         })
         .collect();
-    let mut by = |rows: &[ExprId], symbol: fn(u32) -> Sym, n: usize| -> Value {
-        let block: Vec<Vec<ExprId>> = rows
-            .iter()
-            .map(|&e| (0..n).map(|j| pool.diff(e, symbol(j as u32))).collect())
-            .collect();
-        Value::matrix(&block, n)
-    };
-    let results = vec![
-        by(&residual, Sym::Coord, nv),
-        by(&residual, Sym::Speed, nv),
-        by(&residual, Sym::Input, nu),
-        by(&constraint, Sym::Coord, nv),
-        by(&constraint, Sym::Speed, nv),
-        by(&equations.constraint_velocity, Sym::Coord, nv),
-    ];
-    let dependent: Vec<String> = model
-        .coordinates
+    vec![
+        by(pool, &residual, Sym::Coord, nv),
+        by(pool, &residual, Sym::Speed, nv),
+        by(pool, &residual, Sym::Input, nu),
+        by(pool, &constraint, Sym::Coord, nv),
+        by(pool, &constraint, Sym::Speed, nv),
+    ]
+}
+
+/// The derivatives of `rows` by the first `n` symbols of a kind, as a
+/// matrix.
+fn by(pool: &mut Pool, rows: &[ExprId], symbol: fn(u32) -> Sym, n: usize) -> Value {
+    let block: Vec<Vec<ExprId>> = rows
         .iter()
-        .map(ToString::to_string)
-        .filter(|c| !independent.contains(c))
+        .map(|&e| (0..n).map(|j| pool.diff(e, symbol(j as u32))).collect())
         .collect();
+    Value::matrix(&block, n)
+}
+
+/// `accelerations_jacobian(t, q, v, u)` of a system with constraints: its
+/// results are the partials of the residuals (see
+/// [`acceleration_partials`]), and the runtime's
+/// `constrained_accelerations_jacobian` solves them through the
+/// saddle-point system.
+pub fn constrained_accelerations_jacobian(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+) -> Function {
     function(
-        "linearize",
-        &format!(
-            "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
-             state `x = (q, v)` on the constraint manifold and input `u`, with the\n\
-             independent coordinates `{}` (the dependent `{}` follow from the\n\
-             constraints), by the method of Peterson, Gede and Hubbard (2014), as\n\
-             SymPy's `Linearizer`. The accelerations `v̇(t, q, v, u)` of\n\
-             `M v̇ = f + Aᵀ λ`, `A v̇ = b` are differentiated exactly (the partials of\n\
-             `M v̇ − f − Aᵀ λ` and `A v̇ − b` at the solved `v̇`, `λ`, through the\n\
-             saddle-point system). A perturbation that keeps the constraints is\n\
-             `δq = E δq`, `δv = E δv + F δq`, where `E` and `F` read only the\n\
-             independent entries (`δq_D = −A_D⁻¹ A_I δq_I`,\n\
-             `δv_D = −A_D⁻¹ (A_I δv_I + ∂ψ/∂q δq)`), so\n\
-             `A = [[F, E], [∂v̇/∂q E + ∂v̇/∂v F, ∂v̇/∂v E]]` and `B = [[0], [∂v̇/∂u]]`:\n\
-             the columns of the dependent entries are zero, and the rows and columns\n\
-             of the independent coordinates and their speeds are the reduced `A` of\n\
-             SymPy's `Linearizer`, whose eigenvalues about an equilibrium are the\n\
-             nonzero ones of `A`. The state must be on the manifold. Errors: those\n\
-             of `dalembert::constrained::constrained_accelerations`, and\n\
-             `SingularDependentCoordinates` naming a dependent coordinate where the\n\
-             independent ones do not determine it (`A_D` singular).",
-            independent.join("`, `"),
-            dependent.join("`, `"),
-        ),
+        "accelerations_jacobian",
+        "The derivatives of the accelerations `v̇(t, q, v, u)` of\n\
+         `M v̇ = f + Aᵀ λ`, `A v̇ = b` at a state: `(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u)`, entry\n\
+         `[i][j]` the derivative of `v̇ᵢ` by the `j`-th variable. Exact: the\n\
+         partials of the residuals `M v̇ − f − Aᵀ λ` and `A v̇ − b`, derived\n\
+         symbolically and evaluated at the `v̇`, `λ` of\n\
+         `dalembert::constrained::constrained_accelerations`, go through the\n\
+         saddle-point system `M ∂v̇ − Aᵀ ∂λ = −∂r`, `A ∂v̇ = −∂c`. They hold off the\n\
+         constraint manifold too: `v̇` is a function of the whole state. Errors:\n\
+         those of `constrained_accelerations`, a mass matrix that is not positive\n\
+         definite, `DependentConstraints` where the rows of `A` are dependent,\n\
+         `NonFiniteEquations` for a non-finite derivative.",
         &[Time, Coordinates, Speeds, Inputs],
-        results,
-        Body::ConstrainedLinearize,
+        acceleration_partials(model, equations, pool),
+        Body::ConstrainedAccelerationsJacobian,
     )
 }
 

@@ -80,6 +80,10 @@ pub enum Body {
     /// partials of the residuals that the runtime's
     /// `linearize_on_constraints` takes.
     ConstrainedLinearize,
+    /// `accelerations_jacobian` of a system with constraints: its results
+    /// are the partials of the residuals that the runtime's
+    /// `constrained_accelerations_jacobian` takes.
+    ConstrainedAccelerationsJacobian,
     /// `taylor_coefficients`: its results are `M` and `f`, whose Taylor
     /// coefficients it computes order by order, solving each order with one
     /// factorisation of `M`.
@@ -293,6 +297,11 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                         model, equations, pool,
                     ))
             }
+            OutputKind::AccelerationsJacobian if !model.constraints.is_empty() => requested
+                .functions
+                .push(derivatives::constrained_accelerations_jacobian(
+                    model, equations, pool,
+                )),
             OutputKind::AccelerationsJacobian => requested
                 .functions
                 .push(derivatives::accelerations_jacobian(model, equations, pool)),

@@ -100,11 +100,11 @@ impl Resolver {
         }
     }
 
-    /// `accelerations_jacobian` and `taylor` solve `M v̇ = f`: with
-    /// constraints, the accelerations and their derivatives live on the
-    /// constraint manifold, which they do not handle yet (`linearize(..)` with the independent
-    /// coordinates does, and its own problems are checked by
-    /// `linearize_problem`). The Taylor coefficients are taken in the
+    /// `taylor` solves `M v̇ = f`, so it takes no constraints;
+    /// `accelerations_jacobian` takes them (through the saddle-point
+    /// system) where every speed is its coordinate's rate; `linearize(..)`
+    /// with the independent coordinates has its own problems, checked by
+    /// `linearize_problem`. The Taylor coefficients are taken in the
     /// coordinates, so they need every speed to be its coordinate's rate.
     pub(super) fn check_solved_outputs(&mut self) {
         use crate::model::OutputKind::{AccelerationsJacobian, Linearize, Taylor};
@@ -131,17 +131,27 @@ impl Resolver {
                     self.errors.push(span, message);
                 }
             }
-            if matches!(output.kind, AccelerationsJacobian | Taylor)
-                && !self.model.constraints.is_empty()
-            {
-                let name = &output.function;
+            if self.model.constraints.is_empty() {
+                continue;
+            }
+            let name = &output.function;
+            if output.kind == Taylor {
                 self.errors.push(
                     name.span(),
                     format!(
-                        "`{name}` is not available for a system with constraints yet \
-                         (the derivatives would have to be taken on the constraint manifold): \
-                         remove it from `outputs`, or ask for `linearize(..)` with the \
-                         independent coordinates"
+                        "`{name}` is not available for a system with constraints yet (its \
+                         coefficients solve `M v̇ = f` order by order): remove it from \
+                         `outputs`"
+                    ),
+                );
+            } else if output.kind == AccelerationsJacobian
+                && (self.model.nq() != self.model.nv() || !self.model.balls.is_empty())
+            {
+                self.errors.push(
+                    name.span(),
+                    format!(
+                        "`{name}` is not available yet for a system with constraints and free \
+                         or spherical joints: remove it from `outputs`"
                     ),
                 );
             }

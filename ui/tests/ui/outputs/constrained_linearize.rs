@@ -1,4 +1,4 @@
-//! `accelerations_jacobian` of a system with constraints is not generated,
+//! `taylor` of a system with constraints is not generated,
 //! and its `linearize` needs the independent coordinates: each is an error
 //! at its name.
 
@@ -12,7 +12,7 @@ dalembert! {
         point G = O + x * N.x + y * N.y;
         body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
         gravity -g * N.y;
-        outputs linearize, accelerations_jacobian;
+        outputs linearize, taylor;
         constraint x - l/2 * sin(theta) == 0;
         constraint y + l/2 * cos(theta) == 0;
     }
