@@ -216,7 +216,7 @@ fn robots_match_central_differences() {
 }
 
 /// A branching tree large enough for the world-frame partials in loops
-/// (`dalembert::dynamics::tree_link_vectors`), with a slide among its joints.
+/// (`dalembert::dynamics::TreeRecursion`), with a slide among its joints.
 #[test]
 fn a_branching_tree_matches_central_differences() {
     check!(6; spatial_tree_14::SpatialTree14 {});

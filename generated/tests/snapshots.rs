@@ -115,9 +115,12 @@ fn derivative_operation_counts() {
             table.push_str(&format!(
                 "{name:16} links looped: {links} links, {operations} operations\n"
             ));
-            let (pairs, operations) = pair_operations(&parents);
+            let (pairs, operations, mass) = pair_operations(&parents);
             table.push_str(&format!(
                 "{name:16} pairs looped: {pairs} pairs, {operations} operations\n"
+            ));
+            table.push_str(&format!(
+                "{name:16} mass looped: {pairs} entries, {mass} operations\n"
             ));
         }
     }
@@ -154,23 +157,25 @@ fn tree_parents(code: &str) -> Option<Vec<Option<usize>>> {
     (!parents.is_empty()).then_some(parents)
 }
 
-/// The links of the loop `dalembert::dynamics::tree_link_vectors` and its
-/// operations, counted in its source (`src/dynamics/tree_vectors.rs`):
-/// per link 237 outwards, 351 for its own inertia in `N` with its rate,
-/// momentum and force, 330 for `y, z, w, u`; 37 to add each subtree into
-/// its parent; 3 to negate gravity.
+/// The links of the loops of `dalembert::dynamics::TreeRecursion` and
+/// their operations, counted in its source (`src/dynamics/tree_vectors.rs`):
+/// per link, in the first pass, 225 outwards, 351 for its own inertia in
+/// `N` with its rate, momentum and force, 42 for `y` and 11 for its entry
+/// of `f`; in the second, 108 for what `q̈` changes and 288 for `z, w, u`;
+/// 43 to add each subtree into its parent (37 and 6); 3 to negate gravity.
 fn link_operations(parents: &[Option<usize>]) -> (usize, usize) {
     let children = parents.iter().flatten().count();
     let links = parents.len();
-    (links, 918 * links + 37 * children + 3)
+    (links, 1025 * links + 43 * children + 3)
 }
 
 /// The pairs of joints that the jacobian adds in a loop at run time
 /// (`dalembert::dynamics::add_tree_pairs`) and that loop's operations: per
 /// link and each of it and its ancestors 4 dot products of six (11
 /// operations each) and 5 additions, and with each ancestor 2 more dot
-/// products and 2 additions.
-fn pair_operations(parents: &[Option<usize>]) -> (usize, usize) {
+/// products and 2 additions; and the operations of its mass matrix
+/// (`TreeRecursion::mass_and_bias`), one dot product of six a pair.
+fn pair_operations(parents: &[Option<usize>]) -> (usize, usize, usize) {
     let depth = |mut link: usize| {
         let mut depth = 0;
         while let Some(parent) = parents[link] {
@@ -180,7 +185,7 @@ fn pair_operations(parents: &[Option<usize>]) -> (usize, usize) {
     };
     let ancestors: usize = (0..parents.len()).map(depth).sum();
     let pairs = parents.len() + ancestors;
-    (pairs, 49 * pairs + 24 * ancestors)
+    (pairs, 49 * pairs + 24 * ancestors, 11 * pairs)
 }
 
 /// The columns of the jacobian's solve (`let [mut b0, …]: [[f64; C]; N]`) and

@@ -14,7 +14,7 @@ pub(crate) use cholesky::{cholesky, factor_mass_matrix};
 pub use error::DynamicsError;
 pub use pairs::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
 pub use rows::scale_and_subtract;
-pub use tree_vectors::{LinkState, tree_link_vectors};
+pub use tree_vectors::{LinkState, TreeRecursion};
 
 use crate::MultibodySystem;
 

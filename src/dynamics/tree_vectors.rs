@@ -1,11 +1,15 @@
-//! The seven spatial vectors of each link of a tree that
-//! [`add_tree_pairs`](super::add_tree_pairs) pairs, computed at run time by
-//! a loop over the links: Carpentier and Mansard's recursion in the axes of
-//! `N` (the engine's `tree_partials` derives the same formulas
-//! symbolically), one step outwards and one inwards a link, from each
-//! link's placement in its parent, joint axis, speed, acceleration and
-//! inertia. Where the same steps unrolled for every link would be code that
-//! the processor streams from memory, this loop stays in its cache.
+//! The recursion over the links of a large tree that its generated
+//! `accelerations_jacobian` runs at run time, in a loop: Carpentier and
+//! Mansard's recursion in the axes of `N` (the engine's `tree_partials`
+//! derives the same formulas symbolically), one step outwards and one
+//! inwards a link, from each link's placement in its parent, joint axis,
+//! speed and inertia. A first pass at `q̈ = 0` gives the mass matrix (by
+//! composite rigid bodies) and the tree's share of the forcing, which the
+//! generated code solves for `q̈`; a second adds what `q̈` changes and
+//! gives the seven spatial vectors of each link that
+//! [`add_tree_pairs`](super::add_tree_pairs) pairs. Where the same steps
+//! unrolled for every link would be code that the processor streams from
+//! memory, this loop stays in its cache.
 //!
 //! Spatial vectors are in `N`'s axes at `N`'s origin: `(ω, v)` for a
 //! motion, `(n, f)` for a force.
@@ -28,8 +32,6 @@ pub struct LinkState {
     pub axis: [f64; 6],
     /// The joint's speed `q̇`.
     pub speed: f64,
-    /// The joint's acceleration `q̈`.
-    pub acceleration: f64,
     /// The link's mass.
     pub mass: f64,
     /// The link's first moment about its origin, in its axes.
@@ -38,45 +40,174 @@ pub struct LinkState {
     pub inertia: Mat3,
 }
 
-/// Writes into `vectors` `[Sⱼ, Ψ̇ⱼ, Ψ̈ⱼ, yⱼ, zⱼ, wⱼ, uⱼ]` of every link `j` of the tree whose
-/// links are `states` (parents before children, placed by `links`' parents)
-/// under gravity `gravity` (in `N`'s axes), each `(angular, linear)`:
-///
-/// ```text
-/// Sⱼ = (R a, o × R a + R b)   for the axis (a, b) in the link's axes
-/// Ψ̇ⱼ = v_λ × Sⱼ               Ψ̈ⱼ = a_λ × Sⱼ + v_λ × Ψ̇ⱼ
-/// vⱼ = v_λ + Sⱼ q̇ⱼ             aⱼ = a_λ + Sⱼ q̈ⱼ + Ψ̇ⱼ q̇ⱼ   (the base at −g)
-/// yⱼ = Iᶜⱼ Sⱼ                  zⱼ = İᶜⱼ Sⱼ − Sⱼ ×* hᶜⱼ
-/// uⱼ = İᶜⱼ Sⱼ + Sⱼ ×* hᶜⱼ + 2 Iᶜⱼ Ψ̇ⱼ
-/// wⱼ = Sⱼ ×* Fⱼ + Iᶜⱼ Ψ̈ⱼ + İᶜⱼ Ψ̇ⱼ + Ψ̇ⱼ ×* hᶜⱼ
-/// ```
-///
-/// with `Iᶜⱼ`, its rate `İᶜⱼ`, the momentum `hᶜⱼ` and the inertia force
-/// `Fⱼ` summed over the subtree of `j`.
-pub fn tree_link_vectors<const L: usize>(
-    states: &[LinkState; L],
-    links: &[TreeLink; L],
-    gravity: &Vec3,
-    vectors: &mut [[[f64; 6]; 7]; L],
-) {
-    let mut moving = [Moving::default(); L];
-    outwards(states, links, gravity, &mut moving);
-    let mut subtrees = [Subtree::default(); L];
-    inwards(states, links, &moving, &mut subtrees);
-    for ((vectors, link), subtree) in vectors.iter_mut().zip(&moving).zip(&subtrees) {
-        *vectors = link_vectors(link, subtree);
+/// The recursion over a tree's links in its two passes around the solve
+/// of `M q̈ = f`: [`TreeRecursion::sweep`] outwards and inwards at `q̈ = 0`,
+/// which gives `M` and the tree's share of `f`
+/// ([`TreeRecursion::mass_and_bias`]); then, with the solved `q̈`,
+/// [`TreeRecursion::link_vectors`] adds what the accelerations change and
+/// writes the vectors that [`add_tree_pairs`](super::add_tree_pairs) pairs.
+pub struct TreeRecursion<const L: usize> {
+    moving: [Moving; L],
+    subtrees: [Subtree; L],
+    /// `yⱼ = Iᶜⱼ Sⱼ`: the momentum of the subtree of `j` moved by its joint
+    /// at unit rate.
+    unit_momenta: [Spatial; L],
+}
+
+impl<const L: usize> Default for TreeRecursion<L> {
+    /// Zeros, for [`TreeRecursion::sweep`] to fill in place (a recursion
+    /// returned by value would be copied: kilobytes).
+    #[inline]
+    fn default() -> Self {
+        TreeRecursion {
+            moving: [Moving::ZERO; L],
+            subtrees: [Subtree::ZERO; L],
+            unit_momenta: [Spatial::ZERO; L],
+        }
     }
 }
 
-/// `[S, Ψ̇, Ψ̈, y, z, w, u]` of a link from its outward step and its
-/// subtree's composites.
+impl<const L: usize> TreeRecursion<L> {
+    /// Both sweeps over the tree whose links are `states` (parents before
+    /// children, placed by `links`' parents) under gravity `gravity` (in
+    /// `N`'s axes), at `q̈ = 0`: each link's placement, `Sⱼ`, `Ψ̇ⱼ`, twist,
+    /// `Ψ̈ⱼ` and acceleration (the base at `−g`), and each subtree's `Iᶜⱼ`,
+    /// `İᶜⱼ`, `hᶜⱼ`, inertia force `Fⱼ` and `yⱼ = Iᶜⱼ Sⱼ`.
+    pub fn sweep(&mut self, states: &[LinkState; L], links: &[TreeLink; L], gravity: &Vec3) {
+        outwards(states, links, gravity, &mut self.moving);
+        inwards(states, links, &self.moving, &mut self.subtrees);
+        for ((y, link), subtree) in self
+            .unit_momenta
+            .iter_mut()
+            .zip(&self.moving)
+            .zip(&self.subtrees)
+        {
+            *y = subtree.inertia.times(&link.subspace);
+        }
+    }
+
+    /// The mass matrix and the inertia and gravity terms of `τ` at
+    /// `q̈ = 0`, at the rows that `links` gives (by composite rigid bodies):
+    ///
+    /// ```text
+    /// Mᵢⱼ = Mⱼᵢ = Sᵢ · Iᶜⱼ Sⱼ   for i an ancestor of j or j itself
+    /// τ⁰ⱼ = Sⱼ · Fⱼ
+    /// ```
+    ///
+    /// zero between branches. Only `M[row of j][row of i]` is written, `j`
+    /// the descendant: the other half stays zero.
+    pub fn mass_and_bias<const N: usize>(
+        &self,
+        links: &[TreeLink; L],
+    ) -> ([[f64; N]; N], [f64; N]) {
+        let (mut mass, mut bias) = ([[0.0; N]; N], [0.0; N]);
+        for (((link, moving), subtree), y) in links
+            .iter()
+            .zip(&self.moving)
+            .zip(&self.subtrees)
+            .zip(&self.unit_momenta)
+        {
+            put(&mut bias, link.row, dot6(&moving.subspace, &subtree.force));
+            if let Some(row) = mass.get_mut(link.row) {
+                let mut i = Some(link);
+                let mut ancestor = Some(moving);
+                while let (Some(other), Some(above)) = (i, ancestor) {
+                    put(row, other.row, dot6(&above.subspace, y));
+                    (i, ancestor) = (links.get(other.parent), self.moving.get(other.parent));
+                }
+            }
+        }
+        (mass, bias)
+    }
+
+    /// Writes into `vectors` `[Sⱼ, Ψ̇ⱼ, Ψ̈ⱼ, yⱼ, zⱼ, wⱼ, uⱼ]` of every link
+    /// `j` at the accelerations `accelerations` (by the rows that `links`
+    /// gives), each `(angular, linear)`:
+    ///
+    /// ```text
+    /// Ψ̇ⱼ = v_λ × Sⱼ                Ψ̈ⱼ = a_λ × Sⱼ + v_λ × Ψ̇ⱼ
+    /// vⱼ = v_λ + Sⱼ q̇ⱼ             aⱼ = a_λ + Sⱼ q̈ⱼ + Ψ̇ⱼ q̇ⱼ   (the base at −g)
+    /// yⱼ = Iᶜⱼ Sⱼ                  zⱼ = İᶜⱼ Sⱼ − Sⱼ ×* hᶜⱼ
+    /// uⱼ = İᶜⱼ Sⱼ + Sⱼ ×* hᶜⱼ + 2 Iᶜⱼ Ψ̇ⱼ
+    /// wⱼ = Sⱼ ×* Fⱼ + Iᶜⱼ Ψ̈ⱼ + İᶜⱼ Ψ̇ⱼ + Ψ̇ⱼ ×* hᶜⱼ
+    /// ```
+    ///
+    /// with `Iᶜⱼ`, its rate `İᶜⱼ`, the momentum `hᶜⱼ` and the inertia force
+    /// `Fⱼ` summed over the subtree of `j`. The accelerations add `Δa_λ × Sⱼ`
+    /// to `Ψ̈ⱼ`, with `Δaⱼ = Δa_λ + Sⱼ q̈ⱼ` the share of `aⱼ` that `q̈` moves,
+    /// and `Σₖ Iₖ Δaₖ = Iᶜⱼ Δa_λ + Σₘ yₘ q̈ₘ` (`k`, `m` over the subtree of
+    /// `j`) to `Fⱼ`.
+    pub fn link_vectors<const N: usize>(
+        &mut self,
+        links: &[TreeLink; L],
+        accelerations: &[f64; N],
+        vectors: &mut [[[f64; 6]; 7]; L],
+    ) {
+        let mut moved = [Spatial::ZERO; L];
+        let mut pushed = [Spatial::ZERO; L];
+        let mut driven = [Spatial::ZERO; L];
+        for (j, ((link, moving), y)) in links
+            .iter()
+            .zip(&mut self.moving)
+            .zip(&self.unit_momenta)
+            .enumerate()
+        {
+            let above = moved.get(link.parent).copied().unwrap_or_default();
+            let qdd = accelerations.get(link.row).copied().unwrap_or_default();
+            moving.second_rate = moving
+                .second_rate
+                .add(&motion_cross(&above, &moving.subspace));
+            if let (Some(moved), Some(pushed), Some(driven)) =
+                (moved.get_mut(j), pushed.get_mut(j), driven.get_mut(j))
+            {
+                *moved = above.add(&moving.subspace.scale(qdd));
+                *pushed = above;
+                *driven = y.scale(qdd);
+            }
+        }
+        for (j, link) in links.iter().enumerate().rev() {
+            let (before, rest) = driven.split_at_mut(j);
+            if let (Some(parent), Some(this)) = (before.get_mut(link.parent), rest.first()) {
+                *parent = parent.add(this);
+            }
+        }
+        for (((vectors, moving), (subtree, y)), (driven, pushed)) in vectors
+            .iter_mut()
+            .zip(&self.moving)
+            .zip(self.subtrees.iter_mut().zip(&self.unit_momenta))
+            .zip(driven.iter().zip(&pushed))
+        {
+            subtree.force = subtree
+                .force
+                .add(&subtree.inertia.times(pushed))
+                .add(driven);
+            *vectors = link_vectors(moving, subtree, y);
+        }
+    }
+}
+
+/// `values[i] = value`, if there is such an entry.
 #[inline(always)]
-fn link_vectors(link: &Moving, subtree: &Subtree) -> [[f64; 6]; 7] {
+fn put<const N: usize>(values: &mut [f64; N], i: usize, value: f64) {
+    if let Some(entry) = values.get_mut(i) {
+        *entry = value;
+    }
+}
+
+/// `a · b` of a motion and a force.
+#[inline(always)]
+fn dot6(a: &Spatial, b: &Spatial) -> f64 {
+    dot(&a.angular, &b.angular) + dot(&a.linear, &b.linear)
+}
+
+/// `[S, Ψ̇, Ψ̈, y, z, w, u]` of a link from its outward step, its
+/// subtree's composites and `y`.
+#[inline(always)]
+fn link_vectors(link: &Moving, subtree: &Subtree, y: &Spatial) -> [[f64; 6]; 7] {
     let (s, rate) = (&link.subspace, &link.rate);
     let turned = subtree.rate_times(s);
     let carried = force_cross(s, &subtree.momentum);
     let pushed = subtree.inertia.times(rate);
-    let y = subtree.inertia.times(s);
     let z = turned.sub(&carried);
     let u = turned.add(&carried).add(&pushed).add(&pushed);
     let w = force_cross(s, &subtree.force)
@@ -103,7 +234,7 @@ struct Spatial {
 
 /// The outward step's state of one link: placement in `N`, motion
 /// subspace `S`, its rates `Ψ̇`, `Ψ̈`, twist and acceleration.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 struct Moving {
     rotation: Mat3,
     origin: Vec3,
@@ -116,7 +247,7 @@ struct Moving {
 
 /// A spatial inertia about `N`'s origin: mass `m`, first moment `c`,
 /// inertia tensor `K`.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 struct Inertia {
     mass: f64,
     moment: Vec3,
@@ -125,7 +256,7 @@ struct Inertia {
 
 /// A subtree's composites: inertia, its rate `(ċ, K̇)`, momentum and
 /// inertia force.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 struct Subtree {
     inertia: Inertia,
     moment_rate: Vec3,
@@ -134,8 +265,8 @@ struct Subtree {
     force: Spatial,
 }
 
-/// Every link outwards from the base (at rest, accelerating at `−g`), into
-/// `moving`.
+/// Every link outwards from the base (at rest, accelerating at `−g`) at
+/// `q̈ = 0`, into `moving`.
 fn outwards<const L: usize>(
     states: &[LinkState; L],
     links: &[TreeLink; L],
@@ -148,7 +279,7 @@ fn outwards<const L: usize>(
             angular: [0.0; 3],
             linear: [-gravity[0], -gravity[1], -gravity[2]],
         },
-        ..Moving::default()
+        ..Moving::ZERO
     };
     for (j, (state, link)) in states.iter().zip(links).enumerate() {
         let (done, rest) = moving.split_at_mut(j);
@@ -181,9 +312,7 @@ fn step_outwards(parent: &Moving, state: &LinkState) -> Moving {
         rate,
         second_rate,
         twist: v.add(&subspace.scale(state.speed)),
-        acceleration: a
-            .add(&subspace.scale(state.acceleration))
-            .add(&rate.scale(state.speed)),
+        acceleration: a.add(&rate.scale(state.speed)),
     }
 }
 
@@ -269,6 +398,13 @@ fn plus_diagonal(mut m: Mat3, x: f64) -> Mat3 {
 }
 
 impl Spatial {
+    /// Zero, as a constant: arrays of it are set to zero in place, where
+    /// arrays of `Default::default()` were each element copied in.
+    const ZERO: Spatial = Spatial {
+        angular: [0.0; 3],
+        linear: [0.0; 3],
+    };
+
     #[inline(always)]
     fn add(&self, other: &Spatial) -> Spatial {
         Spatial {
@@ -314,7 +450,31 @@ impl Inertia {
     }
 }
 
+impl Moving {
+    const ZERO: Moving = Moving {
+        rotation: [[0.0; 3]; 3],
+        origin: [0.0; 3],
+        subspace: Spatial::ZERO,
+        rate: Spatial::ZERO,
+        second_rate: Spatial::ZERO,
+        twist: Spatial::ZERO,
+        acceleration: Spatial::ZERO,
+    };
+}
+
 impl Subtree {
+    const ZERO: Subtree = Subtree {
+        inertia: Inertia {
+            mass: 0.0,
+            moment: [0.0; 3],
+            tensor: [[0.0; 3]; 3],
+        },
+        moment_rate: [0.0; 3],
+        inertia_rate: [[0.0; 3]; 3],
+        momentum: Spatial::ZERO,
+        force: Spatial::ZERO,
+    };
+
     /// `İ x = (K̇ ω + ċ × v, −ċ × ω)`.
     #[inline(always)]
     fn rate_times(&self, x: &Spatial) -> Spatial {
@@ -420,4 +580,128 @@ fn symmetric(f: impl Fn(usize, usize) -> f64) -> Mat3 {
     let [a, b, c] = [f(0, 0), f(0, 1), f(0, 2)];
     let [d, e, g] = [f(1, 1), f(1, 2), f(2, 2)];
     [[a, b, c], [b, d, e], [c, e, g]]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{LinkState, TreeRecursion};
+    use crate::dynamics::{TreeLink, add_tree_pairs};
+
+    const NONE: usize = usize::MAX;
+    /// The masses and lengths of a double pendulum in the plane `z = 0`,
+    /// each mass at the tip of its link, and gravity along `−y`.
+    const M1: f64 = 1.5;
+    const M2: f64 = 0.7;
+    const L1: f64 = 0.8;
+    const L2: f64 = 0.6;
+    const G: f64 = 9.81;
+
+    /// The pendulum's links, their speeds' rows reversed (as the generated
+    /// code eliminates a chain), columns `∂/∂q₀, ∂/∂q₁, ∂/∂v₀, ∂/∂v₁`.
+    const LINKS: [TreeLink; 2] = [
+        TreeLink {
+            parent: NONE,
+            row: 1,
+            by_q: 0,
+            by_v: 2,
+        },
+        TreeLink {
+            parent: 0,
+            row: 0,
+            by_q: 1,
+            by_v: 3,
+        },
+    ];
+
+    /// A link turning about `z` by `angle` at `offset` from its parent's
+    /// origin, with its mass `mass` a point at `(length, 0, 0)` in its axes.
+    fn turning(angle: f64, offset: f64, speed: f64, mass: f64, length: f64) -> LinkState {
+        let (s, c) = angle.sin_cos();
+        let l2 = mass * length * length;
+        LinkState {
+            rotation: [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]],
+            offset: [offset, 0.0, 0.0],
+            axis: [0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+            speed,
+            mass,
+            moment: [mass * length, 0.0, 0.0],
+            inertia: [[0.0, 0.0, 0.0], [0.0, l2, 0.0], [0.0, 0.0, l2]],
+        }
+    }
+
+    fn states(q: [f64; 2], v: [f64; 2]) -> [LinkState; 2] {
+        [
+            turning(q[0], 0.0, v[0], M1, L1),
+            turning(q[1], L1, v[1], M2, L2),
+        ]
+    }
+
+    /// The textbook `M(q)` and `τ(q, q̇, q̈) = M q̈ + C q̇ + G` of the double
+    /// pendulum (angles from `x`, the second relative to the first).
+    fn closed_form(q: [f64; 2], v: [f64; 2], a: [f64; 2]) -> ([[f64; 2]; 2], [f64; 2]) {
+        let (s2, c2) = q[1].sin_cos();
+        let c12 = (q[0] + q[1]).cos();
+        let m11 = M1 * L1 * L1 + M2 * (L1 * L1 + L2 * L2 + 2.0 * L1 * L2 * c2);
+        let m12 = M2 * (L2 * L2 + L1 * L2 * c2);
+        let m22 = M2 * L2 * L2;
+        let h = M2 * L1 * L2 * s2;
+        let tau = [
+            m11 * a[0] + m12 * a[1] - h * (2.0 * v[0] * v[1] + v[1] * v[1])
+                + (M1 + M2) * G * L1 * q[0].cos()
+                + M2 * G * L2 * c12,
+            m12 * a[0] + m22 * a[1] + h * v[0] * v[0] + M2 * G * L2 * c12,
+        ];
+        ([[m11, m12], [m12, m22]], tau)
+    }
+
+    fn close(got: f64, want: f64, tolerance: f64) -> bool {
+        (got - want).abs() <= tolerance * want.abs().max(1.0)
+    }
+
+    #[test]
+    fn the_first_pass_gives_the_double_pendulums_mass_matrix_and_bias_at_its_rows() {
+        let (q, v) = ([0.4, -1.1], [0.9, -0.3]);
+        let mut tree = TreeRecursion::default();
+        tree.sweep(&states(q, v), &LINKS, &[0.0, -G, 0.0]);
+        let (mass, bias): ([[f64; 2]; 2], [f64; 2]) = tree.mass_and_bias(&LINKS);
+        let (m, tau) = closed_form(q, v, [0.0; 2]);
+        // Rows reversed: row 0 is speed 1; `M₀₁` at the row of speed 1,
+        // the descendant, and the other half zero.
+        for (i, j) in [(0, 0), (0, 1), (1, 1)] {
+            assert!(close(mass[1 - j][1 - i], m[i][j], 1e-14), "M{i}{j}");
+        }
+        assert_eq!(mass[1][0], 0.0);
+        assert!(close(bias[1], tau[0], 1e-14) && close(bias[0], tau[1], 1e-14));
+    }
+
+    #[test]
+    fn the_second_pass_pairs_to_the_central_differences_of_the_closed_form() {
+        let (q, v, a) = ([0.4, -1.1], [0.9, -0.3], [-2.0, 1.3]);
+        let mut tree = TreeRecursion::default();
+        tree.sweep(&states(q, v), &LINKS, &[0.0, -G, 0.0]);
+        let mut vectors = [[[0.0; 6]; 7]; 2];
+        tree.link_vectors(&LINKS, &[a[1], a[0]], &mut vectors);
+        let (mut row0, mut row1) = ([0.0; 4], [0.0; 4]);
+        add_tree_pairs([&mut row0, &mut row1], &vectors, &LINKS);
+        let h = 1e-6;
+        for (k, column) in [(0, 0), (1, 1)] {
+            let (mut plus, mut minus) = (q, q);
+            plus[k] += h;
+            minus[k] -= h;
+            let by_q = [0, 1].map(|i| {
+                (closed_form(plus, v, a).1[i] - closed_form(minus, v, a).1[i]) / (2.0 * h)
+            });
+            let (mut plus, mut minus) = (v, v);
+            plus[k] += h;
+            minus[k] -= h;
+            let by_v = [0, 1].map(|i| {
+                (closed_form(q, plus, a).1[i] - closed_form(q, minus, a).1[i]) / (2.0 * h)
+            });
+            // Speed 0's row is 1, speed 1's is 0.
+            for (i, row) in [(0, &row1), (1, &row0)] {
+                assert!(close(row[column], by_q[i], 1e-7), "∂τ{i}/∂q{k}");
+                assert!(close(row[column + 2], by_v[i], 1e-7), "∂τ{i}/∂v{k}");
+            }
+        }
+    }
 }

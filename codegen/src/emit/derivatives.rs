@@ -1,16 +1,20 @@
 //! The outputs that solve through the mass matrix: `accelerations_jacobian`
 //! (`∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the partials of the inverse dynamics at the
 //! solved `v̇`, every column but those of structural zeros through the one
-//! `L D Lᵀ` factorisation that solved for `v̇`; for a large tree the
-//! world-frame partials computed by loops of the runtime rather than
-//! unrolled: each link's vectors by `dalembert::dynamics::tree_link_vectors`
-//! from the links' states, their pairs by
-//! `dalembert::dynamics::add_tree_pairs`) and
+//! `L D Lᵀ` factorisation that solved for `v̇`; for a large tree `M`, `f`
+//! and the world-frame partials computed by loops of the runtime rather
+//! than unrolled: `M` and the inertia and gravity terms of `f` by the first
+//! pass of `dalembert::dynamics::TreeRecursion` from the links' states,
+//! each link's vectors by its second pass at the solved `v̇`, their pairs
+//! by `dalembert::dynamics::add_tree_pairs`) and
 //! `linearize` (the state-space matrices `A`, `B` of `ẋ = (q̇, v̇)` about a
 //! state).
 
 use super::body::{Given, Names, Straight, straight_line, straight_line_given};
-use super::solve::{Factorised, factorised, negated_row_substitutions};
+use super::solve::{
+    Elimination, Factorised, deferred_check, elimination, factorised, mass,
+    negated_row_substitutions, state_check,
+};
 use super::{array, raw_string};
 use crate::equations::{Equations, LinkState};
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
@@ -47,17 +51,10 @@ fn solved_columns(
         .collect()
 }
 
-/// The calls adding the inertia and gravity terms of `paired`'s partials
-/// to the rows `rows` (in the elimination `order`, the columns `columns`),
-/// from the array `states` of the links' states and `gravity`: the links'
-/// vectors by `dalembert::dynamics::tree_link_vectors`, their pairs by
-/// `dalembert::dynamics::add_tree_pairs`, with the tree as a table.
-fn tree_pairs(
-    paired: &PairedTree,
-    order: &[usize],
-    columns: &[(usize, usize)],
-    rows: &[Ident],
-) -> TokenStream {
+/// The tree of `paired` as the runtime's table of
+/// `dalembert::dynamics::TreeLink`s, bound to `TREE`: each link's parent,
+/// its row in the elimination `order` and its columns among `columns`.
+fn tree_table(paired: &PairedTree, order: &[usize], columns: &[(usize, usize)]) -> TokenStream {
     let none = || quote!(usize::MAX);
     let index = |i: Option<usize>| {
         i.map_or_else(none, |i| {
@@ -72,12 +69,21 @@ fn tree_pairs(
         quote!(::dalembert::dynamics::TreeLink { parent: #parent, row: #row, by_q: #by_q, by_v: #by_v })
     });
     let l = Literal::usize_unsuffixed(paired.speeds.len());
-    quote! {
-        const TREE: [::dalembert::dynamics::TreeLink; #l] = [#(#table),*];
-        let mut vectors = [[[0.0; 6]; 7]; #l];
-        ::dalembert::dynamics::tree_link_vectors(&states, &TREE, &gravity, &mut vectors);
-        ::dalembert::dynamics::add_tree_pairs([#(&mut #rows),*], &vectors, &TREE);
+    quote!(const TREE: [::dalembert::dynamics::TreeLink; #l] = [#(#table),*];)
+}
+
+/// Whether the link of speed `a` is that of speed `b` or beyond it in the
+/// tree of `paired`.
+fn descends(paired: &PairedTree, a: usize, b: usize) -> bool {
+    let link = |speed: usize| paired.speeds.iter().position(|&s| s == speed);
+    let (mut at, target) = (link(a), link(b));
+    while let Some(l) = at {
+        if Some(l) == target {
+            return true;
+        }
+        at = paired.parents[l];
     }
+    false
 }
 
 /// `dalembert::dynamics::LinkState` of the entries `entries`, in the order
@@ -88,15 +94,14 @@ fn link_state(entries: &[TokenStream]) -> TokenStream {
         quote!([#(#rows),*])
     };
     let (rotation, offset, axis) = (matrix(&entries[..9]), &entries[9..12], &entries[12..18]);
-    let [speed, acceleration, mass] = [&entries[18], &entries[19], &entries[20]];
-    let (moment, inertia) = (&entries[21..24], matrix(&entries[24..33]));
+    let [speed, mass] = [&entries[18], &entries[19]];
+    let (moment, inertia) = (&entries[20..23], matrix(&entries[23..32]));
     quote! {
         ::dalembert::dynamics::LinkState {
             rotation: #rotation,
             offset: [#(#offset),*],
             axis: [#(#axis),*],
             speed: #speed,
-            acceleration: #acceleration,
             mass: #mass,
             moment: [#(#moment),*],
             inertia: #inertia,
@@ -116,48 +121,194 @@ fn angle_functions(pool: &Pool, roots: &[ExprId]) -> Vec<ExprId> {
         .collect()
 }
 
-/// Binds the mutable rows `rows` of `∂τ/∂x` (`[f64; count]` each) from
-/// `body`, whose outputs are the rows' entries and then, with `paired`,
-/// the links' states (bound to `states`) and gravity (to `gravity`), from
-/// which the calls `pairs` then add the rest.
-fn partial_rows(
-    body: &Straight,
-    rows: &[Ident],
-    count: usize,
-    paired: Option<(&PairedTree, TokenStream)>,
-) -> TokenStream {
-    let (statements, outputs) = (&body.statements, &body.outputs);
-    let (n, entries) = (Literal::usize_unsuffixed(rows.len()), rows.len() * count);
-    let values = (0..rows.len()).map(|i| {
+/// The partials of `τ` that the solve takes: the blocks `∂τ/∂q`, `∂τ/∂v`,
+/// `∂τ/∂u` (row-major, `widths` columns each) and the columns solved, as
+/// `(block, column)`.
+struct Partials<'a> {
+    blocks: [&'a [ExprId]; 3],
+    widths: [usize; 3],
+    columns: &'a [(usize, usize)],
+}
+
+impl Partials<'_> {
+    /// The entries of the rows of the solve, row `i` that of the `i`-th
+    /// speed of `order` eliminated.
+    fn rows(&self, order: &[usize]) -> Vec<ExprId> {
+        order
+            .iter()
+            .flat_map(|&speed| {
+                self.columns
+                    .iter()
+                    .map(move |&(block, j)| self.blocks[block][speed * self.widths[block] + j])
+            })
+            .collect()
+    }
+}
+
+/// The rows `[f64; count]` of `outputs` (all of them, or the first
+/// `rows.len() * count`).
+fn row_values(outputs: &[TokenStream], rows: usize, count: usize) -> TokenStream {
+    let values = (0..rows).map(|i| {
         let row = &outputs[i * count..(i + 1) * count];
         quote!([#(#row),*])
     });
-    let values = quote!([#(#values),*]);
-    let count = Literal::usize_unsuffixed(count);
-    match paired {
-        None => quote! {
-            let [#(mut #rows),*]: [[f64; #count]; #n] = {
-                #statements
-                #values
-            };
-        },
-        Some((paired, pairs)) => {
-            let (states, gravity) = outputs[entries..].split_at(outputs.len() - entries - 3);
-            let states = states.chunks(LinkState::ENTRIES).map(link_state);
-            let l = Literal::usize_unsuffixed(paired.speeds.len());
-            quote! {
-                let ([#(mut #rows),*], states, gravity): (
-                    [[f64; #count]; #n],
-                    [::dalembert::dynamics::LinkState; #l],
-                    [f64; 3],
-                ) = {
-                    #statements
-                    (#values, [#(#states),*], [#(#gravity),*])
-                };
-                #pairs
-            }
+    quote!([#(#values),*])
+}
+
+/// The solve of a system whose `M` and `f` are unrolled: `q̈` through the
+/// `L D Lᵀ` factorisation (with `accelerations`' checks and errors), then
+/// the mutable rows `rows` of `∂τ/∂x` (`[f64; columns.len()]` each) by a
+/// straight-line body that takes the sines and cosines computed with `M`
+/// and `f`. Also the fill pattern and the order of elimination.
+fn unrolled_rows(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    names: &Names,
+    partials: &Partials<'_>,
+    rows: &[Ident],
+) -> Option<(TokenStream, Vec<Vec<bool>>, Vec<usize>)> {
+    let columns = partials.columns;
+    let angles = angle_functions(pool, &partials.blocks.concat());
+    let given = Given {
+        array: format_ident!("angles"),
+        expressions: &angles,
+    };
+    let given = (!angles.is_empty()).then_some(&given);
+    let Factorised {
+        prelude,
+        substitutions,
+        solution,
+        unsolved,
+        pattern,
+        order,
+    } = factorised(model, pool, equations, names, given)?;
+    let roots = partials.rows(&order);
+    let body = match given {
+        Some(given) => straight_line_given(pool, names, &roots, given),
+        None => straight_line(pool, names, &roots),
+    };
+    let (statements, count) = (&body.statements, Literal::usize_unsuffixed(columns.len()));
+    let (n, values) = (
+        Literal::usize_unsuffixed(rows.len()),
+        row_values(&body.outputs, rows.len(), columns.len()),
+    );
+    let code = quote! {
+        #prelude
+        let qdd = &{
+            #substitutions
+            [#(#solution),*]
+        };
+        if !finite(qdd) {
+            return ::core::result::Result::Err(#unsolved);
         }
-    }
+        let [#(mut #rows),*]: [[f64; #count]; #n] = {
+            #statements
+            #values
+        };
+    };
+    Some((code, pattern, order))
+}
+
+/// The solve of a large tree: one straight-line body computing the rest of
+/// the rows `rows` of `∂τ/∂x` (loads, potentials, dissipation), the links'
+/// states, gravity and the rest of `τ` (`function`'s results, see
+/// [`PairedTree`]); the runtime's recursion at `q̈ = 0` for `M` and the
+/// inertia and gravity terms of `f`; `q̈` through the `L D Lᵀ` factorisation
+/// (with `accelerations`' checks and errors); then the recursion's second
+/// pass at `q̈` and the pairs added to the rows. Also the fill pattern and
+/// the order of elimination.
+fn looped_rows(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    names: &Names,
+    partials: &Partials<'_>,
+    (function, paired): (&Function, &PairedTree),
+    rows: &[Ident],
+) -> Option<(TokenStream, Vec<Vec<bool>>, Vec<usize>)> {
+    let equations_or = format_ident!("equations_or");
+    let elimination = elimination(model, pool, equations, Some(&equations_or))?;
+    let deferred = deferred_check(&equations_or, &elimination.bound());
+    let Elimination {
+        entries,
+        factor,
+        substitutions,
+        right_hand_side,
+        pattern,
+        order,
+        ..
+    } = elimination;
+    let rest: Vec<ExprId> = function.results[3..]
+        .iter()
+        .flat_map(|v| v.expressions.iter().copied())
+        .collect();
+    let columns = partials.columns;
+    let roots = [partials.rows(&order), rest].concat();
+    let body = straight_line(pool, names, &roots);
+    let (nv, entry_count) = (model.nv(), rows.len() * columns.len());
+    let values = row_values(&body.outputs, rows.len(), columns.len());
+    let states = &body.outputs[entry_count..body.outputs.len() - 3 - nv];
+    let gravity = &body.outputs[body.outputs.len() - 3 - nv..body.outputs.len() - nv];
+    let residual = &body.outputs[body.outputs.len() - nv..];
+    let states = states.chunks(LinkState::ENTRIES).map(link_state);
+    let l = Literal::usize_unsuffixed(paired.speeds.len());
+    let (count, n) = (
+        Literal::usize_unsuffixed(columns.len()),
+        Literal::usize_unsuffixed(nv),
+    );
+    let statements = &body.statements;
+    let row = |speed: usize| {
+        Literal::usize_unsuffixed(order.iter().position(|&s| s == speed).unwrap_or(speed))
+    };
+    // The runtime writes each entry at the descendant's row.
+    let mass_entries = entries.iter().map(|&(i, j)| {
+        let (name, (r, c)) = (
+            mass(i, j),
+            match descends(paired, j, i) {
+                true => (row(j), row(i)),
+                false => (row(i), row(j)),
+            },
+        );
+        quote!(let #name = mass[#r][#c];)
+    });
+    let forcing = right_hand_side.iter().enumerate().map(|(k, name)| {
+        let (r, k) = (row(k), Literal::usize_unsuffixed(k));
+        quote!(let #name = -(bias[#r] + residual[#k]);)
+    });
+    let solved = (0..nv).map(|i| format_ident!("x{}", i));
+    let (check, table) = (state_check(), tree_table(paired, &order, columns));
+    let code = quote! {
+        #check
+        let ([#(mut #rows),*], states, gravity, residual): (
+            [[f64; #count]; #n],
+            [::dalembert::dynamics::LinkState; #l],
+            [f64; 3],
+            [f64; #n],
+        ) = {
+            #statements
+            (#values, [#(#states),*], [#(#gravity),*], [#(#residual),*])
+        };
+        #table
+        let mut tree = ::dalembert::dynamics::TreeRecursion::default();
+        tree.sweep(&states, &TREE, &gravity);
+        let (mass, bias): ([[f64; #n]; #n], [f64; #n]) = tree.mass_and_bias(&TREE);
+        #(#mass_entries)*
+        #(#forcing)*
+        #deferred
+        #factor
+        #substitutions
+        let accelerations = [#(#solved),*];
+        if !finite(&accelerations) {
+            return ::core::result::Result::Err(#equations_or(
+                ::dalembert::DynamicsError::NonFiniteAccelerations
+            ));
+        }
+        let mut vectors = [[[0.0; 6]; 7]; #l];
+        tree.link_vectors(&TREE, &accelerations, &mut vectors);
+        ::dalembert::dynamics::add_tree_pairs([#(&mut #rows),*], &vectors, &TREE);
+    };
+    Some((code, pattern, order))
 }
 
 /// `pub fn accelerations_jacobian(..)` from `function`, whose results are
@@ -165,9 +316,9 @@ fn partial_rows(
 /// (which the model rejects). The columns that are not structural zeros
 /// are solved together: the rows of `∂τ/∂x` are arrays, substituted in
 /// place through `L D Lᵀ` one row operation at a time. With `paired`, the
-/// results are the rest of `∂τ/∂q` and `∂τ/∂v`, `∂τ/∂u`, the links' states
-/// and gravity, from which loops of the runtime add the inertia and
-/// gravity terms to the rows.
+/// results are the rest of `∂τ/∂q` and `∂τ/∂v`, `∂τ/∂u`, the links' states,
+/// gravity and the rest of `τ`, from which loops of the runtime compute
+/// `M`, `f` and the inertia and gravity terms of the rows.
 pub fn emit_accelerations_jacobian(
     model: &Model,
     pool: &Pool,
@@ -179,53 +330,27 @@ pub fn emit_accelerations_jacobian(
     let (nv, nu) = (model.nv(), model.inputs.len());
     let widths = [nv, nv, nu];
     let blocks: [&[ExprId]; 3] = [0, 1, 2].map(|k| function.results[k].expressions.as_slice());
-    // With a paired tree, the links' states and gravity.
-    let states: Vec<ExprId> = function.results[3..]
-        .iter()
-        .flat_map(|v| v.expressions.iter().copied())
-        .collect();
-    // The sines and cosines of the angles are computed once, with `M` and
-    // `f`, and the partials' body takes them.
-    let angles = angle_functions(pool, &[blocks.concat(), states.clone()].concat());
-    let given = Given {
-        array: format_ident!("angles"),
-        expressions: &angles,
-    };
-    let given = (!angles.is_empty()).then_some(&given);
-    let Some(Factorised {
-        prelude,
-        substitutions,
-        solution,
-        unsolved,
-        pattern,
-        order,
-    }) = factorised(model, pool, equations, names, given)
-    else {
-        return TokenStream::new();
-    };
     let columns = solved_columns(pool, &blocks, widths, paired);
-    // Row `i` of the solve (the `i`-th speed eliminated): `∂τ/∂x` of that
-    // speed's equation in the columns solved.
-    let roots: Vec<ExprId> = order
-        .iter()
-        .flat_map(|&speed| {
-            columns
-                .iter()
-                .map(move |&(block, j)| blocks[block][speed * widths[block] + j])
-        })
-        .chain(states)
-        .collect();
-    let body = match given {
-        Some(given) => straight_line_given(pool, names, &roots, given),
-        None => straight_line(pool, names, &roots),
-    };
     let rows: Vec<Ident> = (0..nv).map(|i| format_ident!("b{}", i)).collect();
-    let rows_of_partials = match paired {
-        None => partial_rows(&body, &rows, columns.len(), None),
-        Some(paired) => {
-            let pairs = tree_pairs(paired, &order, &columns, &rows);
-            partial_rows(&body, &rows, columns.len(), Some((paired, pairs)))
-        }
+    let partials = Partials {
+        blocks,
+        widths,
+        columns: &columns,
+    };
+    let solved = match paired {
+        None => unrolled_rows(model, pool, equations, names, &partials, &rows),
+        Some(paired) => looped_rows(
+            model,
+            pool,
+            equations,
+            names,
+            &partials,
+            (function, paired),
+            &rows,
+        ),
+    };
+    let Some((rows_of_partials, pattern, order)) = solved else {
+        return TokenStream::new();
     };
     let solve = negated_row_substitutions(&pattern, &rows);
     // `∂v̇ᵢ/∂x_j`, by the speed `i`: `dq{i}_{j}`, `dv{i}_{j}`, `du{i}_{j}`.
@@ -266,14 +391,6 @@ pub fn emit_accelerations_jacobian(
             qd: &#vector,
             u: &#inputs,
         ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
-            #prelude
-            let qdd = &{
-                #substitutions
-                [#(#solution),*]
-            };
-            if !finite(qdd) {
-                return ::core::result::Result::Err(#unsolved);
-            }
             // `∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the columns of `∂τ/∂x` that are not
             // structurally zero, row by row in the order of elimination.
             #rows_of_partials

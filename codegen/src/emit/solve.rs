@@ -188,6 +188,18 @@ pub struct Elimination {
     pub order: Vec<usize>,
 }
 
+impl Elimination {
+    /// The names that the factorisation and substitutions read: `M`'s
+    /// entries `m{i}_{j}` and `f`'s `f{i}`.
+    pub fn bound(&self) -> Vec<Ident> {
+        self.entries
+            .iter()
+            .map(|&(i, j)| mass(i, j))
+            .chain(self.right_hand_side.iter().cloned())
+            .collect()
+    }
+}
+
 /// The elimination of `M x = f` that fills in less, in the speeds' order
 /// or the reverse; `None` for a system with constraints or no coordinates.
 /// A pivot that fails returns `SingularMassMatrix`, passed through the
@@ -261,15 +273,17 @@ pub fn factorised(
 ) -> Option<Factorised> {
     // The closure that the error paths call (see [`deferred_check`]).
     let equations_or = format_ident!("equations_or");
+    let elimination = elimination(model, pool, equations, Some(&equations_or))?;
+    let bound = elimination.bound();
     let Elimination {
         entries,
         factor,
         substitutions,
-        right_hand_side,
         solution,
         pattern,
         order,
-    } = elimination(model, pool, equations, Some(&equations_or))?;
+        ..
+    } = elimination;
     // `M`'s entries the factorisation reads and `f`, computed together so
     // that they share their subexpressions (sines and cosines above all),
     // in a block that keeps the model's names out of the solver's.
@@ -283,11 +297,6 @@ pub fn factorised(
     let body = straight_line(pool, names, &roots);
     let statements = &body.statements;
     let (outputs, given_outputs) = body.outputs.split_at(roots.len() - given.len());
-    let bound: Vec<Ident> = entries
-        .iter()
-        .map(|&(i, j)| mass(i, j))
-        .chain(right_hand_side.iter().cloned())
-        .collect();
     let check = state_check();
     let binding = match also {
         None => quote! {
@@ -331,7 +340,7 @@ pub fn factorised(
 /// non-finite `wᵢⱼ` below the diagonal subtracts the non-finite `wᵢⱼ Lᵢⱼ =
 /// wᵢⱼ² rⱼ ≥ 0` from the pivot `Dᵢ`), and with every pivot positive a
 /// non-finite `fᵢ` leaves `yᵢ`, then `xᵢ = yᵢ rᵢ − …`, not finite.
-fn deferred_check(equations_or: &Ident, bound: &[Ident]) -> TokenStream {
+pub fn deferred_check(equations_or: &Ident, bound: &[Ident]) -> TokenStream {
     quote! {
         let #equations_or = |error: ::dalembert::DynamicsError| {
             if finite(&[#(#bound),*]) {

@@ -208,6 +208,9 @@ pub fn inverse_dynamics(
 /// gravity terms) differentiated symbolically, and the vectors of each
 /// link whose pairs give the rest (see `tree_partials`).
 pub struct TreeJacobian {
+    /// The loads', potentials' and dissipation's share of `τ`, which is
+    /// minus their share of `f`.
+    pub residual: Vec<ExprId>,
     /// `∂/∂δ`, `∂/∂v`, `∂/∂u` of the loads, potentials and dissipation.
     pub rest: derivatives::ResidualJacobian,
     /// The links' vectors, parents before children.
@@ -250,15 +253,16 @@ pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
     let links = tree_partials::link_vectors(&tree, pool)?;
     let states = tree_partials::link_states(&tree, pool);
     let loads = tree.applied_loads(pool);
-    let rest: Vec<ExprId> = (0..model.nv())
+    let residual: Vec<ExprId> = (0..model.nv())
         .map(|k| {
             let active = potential_and_dissipation_force(model, &kinematics, pool, k);
             pool.sub(loads[k], active)
         })
         .collect();
     let directions = derivatives::tangent_directions(model, pool);
-    let rest = derivatives::residual_jacobian(pool, &rest, &directions, model.inputs.len());
+    let rest = derivatives::residual_jacobian(pool, &residual, &directions, model.inputs.len());
     Some(TreeJacobian {
+        residual,
         rest,
         links,
         states,

@@ -90,10 +90,11 @@ pub struct LinkVectors {
 }
 
 /// One link of the tree at a state, what the runtime's recursion
-/// (`dalembert::dynamics::tree_link_vectors`) computes its [`LinkVectors`]
-/// from: its placement in its parent, its joint's axis `(e, 0)` of a turn
-/// or `(0, e)` of a slide in its axes, the joint's speed and acceleration,
-/// and its inertia about its origin in its axes.
+/// (`dalembert::dynamics::TreeRecursion`) computes its [`LinkVectors`]
+/// from, with the accelerations it is given after its first pass: its
+/// placement in its parent, its joint's axis `(e, 0)` of a turn or
+/// `(0, e)` of a slide in its axes, the joint's speed, and its inertia
+/// about its origin in its axes.
 pub struct LinkState {
     /// Maps the link's components to its parent's.
     pub rotation: Mat3,
@@ -101,7 +102,6 @@ pub struct LinkState {
     pub offset: Vec3,
     pub axis: [ExprId; 6],
     pub speed: ExprId,
-    pub acceleration: ExprId,
     pub mass: ExprId,
     /// The first moment about the link's origin, in its axes.
     pub moment: Vec3,
@@ -111,7 +111,7 @@ pub struct LinkState {
 
 impl LinkState {
     /// How many entries [`LinkState::entries`] has.
-    pub const ENTRIES: usize = 33;
+    pub const ENTRIES: usize = 32;
 
     /// Every entry in the order of the runtime's `LinkState` fields
     /// (`rotation` and `inertia` row by row).
@@ -119,10 +119,10 @@ impl LinkState {
         let mut entries = self.rotation.concat();
         entries.extend(self.offset);
         entries.extend(self.axis);
-        entries.extend([self.speed, self.acceleration, self.mass]);
+        entries.extend([self.speed, self.mass]);
         entries.extend(self.moment);
         entries.extend(self.inertia.concat());
-        entries.try_into().expect("33 entries")
+        entries.try_into().expect("32 entries")
     }
 }
 
@@ -146,7 +146,6 @@ pub(super) fn link_states(tree: &JointTree, pool: &mut Pool) -> Vec<LinkState> {
                 offset: link.offset,
                 axis,
                 speed: pool.sym(Sym::Speed(column.speed as u32)),
-                acceleration: pool.sym(Sym::Accel(column.speed as u32)),
                 mass: inertia.mass,
                 moment: inertia.moment,
                 inertia: inertia.inertia,

@@ -85,6 +85,7 @@ fn paired_results(
         Value::matrix(&tree.rest.inputs, nu),
         Value::matrix(&states, LinkState::ENTRIES),
         Value::vector(tree.gravity.to_vec()),
+        Value::vector(tree.residual),
     ];
     (results, paired)
 }

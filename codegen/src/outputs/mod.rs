@@ -32,10 +32,11 @@ pub struct Function {
 
 /// The tree of an `accelerations_jacobian` that computes the inertia and
 /// gravity terms of its partials at run time, link by link and pair of
-/// joints by pair: its fourth result holds each link's state (the entries
-/// of the runtime's `LinkState`, a row a link), its fifth gravity, its
-/// first two only the rest of `∂τ/∂q` and `∂τ/∂v` (loads, potentials,
-/// dissipation).
+/// joints by pair, and its mass matrix and forcing by the same recursion
+/// at `q̈ = 0`: its fourth result holds each link's state (the entries of
+/// the runtime's `LinkState`, a row a link), its fifth gravity, its sixth
+/// the rest of `τ` (loads, potentials, dissipation: minus their share of
+/// `f`), its first two only the rest of `∂τ/∂q` and `∂τ/∂v`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PairedTree {
     /// Each link's parent among the links (parents before children).
