@@ -2,8 +2,9 @@
 # Every URDF file of the example-robot-data wheel (PyPI), on a fixed and on a
 # floating base, against Pinocchio's numbers: one line a file and base (the
 # worst relative errors of M, f, T, V and q̈ on d'Alembert's route, and on
-# Lagrange's on a fixed base; or who refuses the file and why), the counts at
-# the end. Not in CI: it needs the network and Pinocchio.
+# Lagrange's on a fixed base, and of RNEA and its derivatives in q and v; or
+# who refuses the file and why), the counts at the end. Not in CI: it needs
+# the network and Pinocchio. About 2 minutes once built.
 #
 #   bash scripts/urdf_numeric_sweep.sh [VERSION]   # default 6.0.0
 #
@@ -12,8 +13,8 @@
 # side (urdf_reference.py's entries: 10 random states a case, in dalembert's
 # coordinate order), codegen/examples/urdf_numeric_sweep.rs imports each file
 # as `dalembert urdf [--floating]` does, evaluates it with the interpreter and
-# compares. A case matches when M, f, T and V agree to 1e-12 of their largest
-# entry and q̈ to 1e-12 times the condition number of M.
+# compares. A case matches when M, f, T, V, RNEA and its partials agree to
+# 1e-12 of their largest entry and q̈ to 1e-12 times the condition number of M.
 set -euo pipefail
 version="${1:-6.0.0}"
 root="$(cd "$(dirname "$0")/.." && pwd)"

@@ -41,7 +41,7 @@ FLOATING = ["solo12.urdf"]
 ADDED = ["anymal_c.urdf"]
 # Added later still, drawn last: the double pendulum, whose products of
 # inertia of 1e-13 beside moments of 1e-3 the import once wrote as zero.
-ADDED_LATER = ["double_pendulum.urdf"]
+ADDED_LATER = ["regressions/double_pendulum.urdf"]
 FREE = ["root_joint_" + c for c in ["x", "y", "z", "qx", "qy", "qz", "qw"]]
 STATES = 10
 SEED = 20261123

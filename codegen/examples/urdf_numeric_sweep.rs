@@ -2,23 +2,24 @@
 //! the reference written by `scripts/urdf_numeric_sweep.py` (a URDF file on
 //! a fixed or floating base, with Pinocchio's numbers or its refusal) is
 //! imported as `dalembert urdf` imports it, evaluated by the interpreter
-//! (d'Alembert's route; Lagrange's too on a fixed base) and compared: one
+//! (d'Alembert's route; Lagrange's too on a fixed base; and asking for
+//! `inverse_dynamics` and `inverse_dynamics_jacobian`) and compared: one
 //! line a case, the totals at the end.
 //!
 //! ```sh
 //! cargo run --release -p dalembert-codegen --example urdf_numeric_sweep -- REFERENCE.json
 //! ```
 //!
-//! A case matches when `M`, `f`, `T` and `V` agree to [`TOLERANCE`] of
-//! their largest entry and `q̈` to [`TOLERANCE`] times the condition number
-//! of `M` (the most any solver can promise).
+//! A case matches when `M`, `f`, `T`, `V`, RNEA and its partials agree to
+//! [`TOLERANCE`] of their largest entry and `q̈` to [`TOLERANCE`] times the
+//! condition number of `M` (the most any solver can promise).
 
 #[path = "../tests/pinocchio/mod.rs"]
 mod pinocchio;
 
 use dalembert_codegen::Urdf;
-use dalembert_codegen::testing::Route;
-use pinocchio::{QUANTITIES, worst_errors};
+use dalembert_codegen::testing::{Interpreter, Route};
+use pinocchio::{QUANTITIES, for_each_state, keep_worst, relative_error, vector, worst_errors};
 use serde_json::Value;
 
 /// Relative agreement required, against the largest entry of a quantity.
@@ -39,6 +40,52 @@ fn import(case: &Value) -> Result<String, String> {
     Urdf::read(case["path"].as_str().unwrap())
         .and_then(|urdf| urdf.floating(case["base"] == "floating").model())
         .map_err(|e| e.to_string().lines().next().unwrap_or_default().to_owned())
+}
+
+/// The worst relative errors of the model's `inverse_dynamics` (RNEA, at
+/// zero inputs) and `inverse_dynamics_jacobian`'s `∂τ/∂q` (tangent space)
+/// and `∂τ/∂v` against Pinocchio's `rnea` and `computeRNEADerivatives` at
+/// the entry's states and accelerations (the partials' errors over the
+/// larger of their largest entry and `M`'s).
+fn inverse_dynamics_errors(model: &str, entry: &Value) -> Result<[f64; 3], String> {
+    let close = model.rfind('}').ok_or("no closing brace")?;
+    let asking = format!(
+        "{}    outputs inverse_dynamics, inverse_dynamics_jacobian;\n{}",
+        &model[..close],
+        &model[close..]
+    );
+    let interpreter = Interpreter::new(&asking, Route::Dalembert).map_err(|e| e.to_string())?;
+    let mut worst = [0.0_f64; 3];
+    let zero_inputs = |_: &Value| vec![0.0; interpreter.nu()];
+    for_each_state(entry, zero_inputs, |state, at| {
+        let a = vector(&state["a"]);
+        let rnea = interpreter.output("inverse_dynamics", at, &a).unwrap();
+        let partials = interpreter
+            .output("inverse_dynamics_jacobian", at, &a)
+            .unwrap();
+        let n = a.len();
+        let flat = |key: &str| -> Vec<f64> {
+            state[key]
+                .as_array()
+                .unwrap()
+                .iter()
+                .flat_map(vector)
+                .collect()
+        };
+        // The partials against M's size too: where they vanish Pinocchio
+        // leaves rounding (2.7e-20 on the iris' rotors) that sets no scale.
+        let mass = flat("M");
+        let against_mass = |ours: &[f64], key: &str| {
+            relative_error(&[ours, &mass].concat(), &[flat(key), mass.clone()].concat())
+        };
+        let errors = [
+            relative_error(&rnea, &vector(&state["rnea"])),
+            against_mass(&partials[..n * n], "rnea_dq"),
+            against_mass(&partials[n * n..2 * n * n], "rnea_dv"),
+        ];
+        keep_worst(&mut worst, errors);
+    });
+    Ok(worst)
 }
 
 /// The case's errors on each route, as text, and whether they are within
@@ -69,6 +116,20 @@ fn compare(model: &str, case: &Value) -> (String, bool) {
             }
         }
         text += "; ";
+    }
+    match inverse_dynamics_errors(model, entry) {
+        Ok(worst) => {
+            text += "RNEA:";
+            for (what, error) in ["tau", "dq", "dv"].iter().zip(worst) {
+                matches &= error <= TOLERANCE;
+                text += &format!(" {what} {error:.1e}");
+            }
+            text += "; ";
+        }
+        Err(error) => {
+            matches = false;
+            text += &format!("RNEA: {error}; ");
+        }
     }
     (format!("{text}cond(M) {cond:.1e}"), matches)
 }

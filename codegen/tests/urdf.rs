@@ -121,7 +121,10 @@ fn anymal_c_matches_pinocchio() {
 /// condition number (5e4 floating) makes its agreement 1e-12 at best.
 #[test]
 fn double_pendulum_keeps_its_small_products_of_inertia() {
-    for robot in ["double_pendulum", "double_pendulum_floating"] {
+    for robot in [
+        "regressions/double_pendulum",
+        "regressions/double_pendulum_floating",
+    ] {
         let worst = robot_worst_errors(robot, Route::Dalembert);
         for (error, what) in worst.iter().zip(QUANTITIES).take(4) {
             assert!(*error <= 1e-14, "{robot}: {what} is off by {error:e}");

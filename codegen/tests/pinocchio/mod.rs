@@ -79,38 +79,55 @@ pub fn worst_errors(model: &str, entry: &Value, route: Route) -> Result<[f64; 5]
         return Err(format!("(nq, nv) = {sizes:?}, Pinocchio's {expected:?}"));
     }
     let mut worst = [0.0_f64; 5];
+    for_each_state(
+        entry,
+        |state| vector(&state["tau"]),
+        |state, at| {
+            let m = interpreter.mass_matrix(at);
+            let f = interpreter.forcing(at);
+            let errors = [
+                relative_error(&m.concat(), &matrix(&state["M"]).concat()),
+                relative_error(&f, &vector(&state["f"])),
+                relative_error(
+                    &[interpreter.kinetic_energy(at)],
+                    &[state["T"].as_f64().unwrap()],
+                ),
+                relative_error(
+                    &[interpreter.potential_energy(at)],
+                    &[state["V"].as_f64().unwrap()],
+                ),
+                relative_error(&solve(&m, &f), &vector(&state["qdd"])),
+            ];
+            keep_worst(&mut worst, errors);
+        },
+    );
+    Ok(worst)
+}
+
+/// Calls `visit` with each state of `entry` and its values: `q` and `q̇`
+/// from the state, the inputs from `inputs(state)`.
+pub fn for_each_state(
+    entry: &Value,
+    inputs: impl Fn(&Value) -> Vec<f64>,
+    mut visit: impl FnMut(&Value, &Values<'_>),
+) {
     for state in entry["states"].as_array().unwrap() {
-        let (q, qd, tau) = (
-            vector(&state["q"]),
-            vector(&state["qd"]),
-            vector(&state["tau"]),
-        );
+        let (q, qd, u) = (vector(&state["q"]), vector(&state["qd"]), inputs(state));
         let at = Values {
             parameters: &[],
             t: 0.0,
             q: &q,
             qd: &qd,
-            u: &tau,
+            u: &u,
         };
-        let m = interpreter.mass_matrix(&at);
-        let f = interpreter.forcing(&at);
-        let errors = [
-            relative_error(&m.concat(), &matrix(&state["M"]).concat()),
-            relative_error(&f, &vector(&state["f"])),
-            relative_error(
-                &[interpreter.kinetic_energy(&at)],
-                &[state["T"].as_f64().unwrap()],
-            ),
-            relative_error(
-                &[interpreter.potential_energy(&at)],
-                &[state["V"].as_f64().unwrap()],
-            ),
-            relative_error(&solve(&m, &f), &vector(&state["qdd"])),
-        ];
-        for (w, e) in worst.iter_mut().zip(errors) {
-            // NaN (a singular M) counts as the worst.
-            *w = if e.is_nan() { f64::INFINITY } else { w.max(e) };
-        }
+        visit(state, &at);
     }
-    Ok(worst)
+}
+
+/// Raises each worst error to the state's; NaN (a singular `M`) counts as
+/// the worst.
+pub fn keep_worst(worst: &mut [f64], errors: impl IntoIterator<Item = f64>) {
+    for (w, e) in worst.iter_mut().zip(errors) {
+        *w = if e.is_nan() { f64::INFINITY } else { w.max(e) };
+    }
 }
