@@ -5,8 +5,9 @@
 //! `rotation` along `integrate_configuration` (the tangent space: one
 //! column per speed) and along `coordinate_rates`, their `… in F` versions
 //! against the same vectors turned by `rotation(F)`, `inverse_dynamics`
-//! against `M v̇ − f`, and `linearize` at rest against central differences
-//! of `accelerations` in the tangent space.
+//! against `M v̇ − f`, and `linearize` (at rest and moving) against central
+//! differences of `accelerations` in the tangent space and the documented
+//! kinematic rows `δ̇ = δν − ad(ν̄) δ`.
 
 use dalembert::MultibodySystem;
 use dalembert_fixtures::reference::assert_near;
@@ -280,19 +281,19 @@ fn check_inverse_dynamics<S, const NQ: usize, const NV: usize, const NU: usize>(
     );
 }
 
-/// `linearize` at rest (`v = 0`): `A = [[0, I], [∂v̇/∂δ, ∂v̇/∂v]]` and
+/// `linearize` at `(q, v, u)`: `A = [[K, I], [∂v̇/∂δ, ∂v̇/∂v]]` and
 /// `B = [[0], [∂v̇/∂u]]`, the partials by central differences of
-/// `accelerations` along `q ⊕ s e_j`, `v + s e_j` and `u + s e_k`.
-fn check_linearize_at_rest<S, const NQ: usize, const NV: usize, const NU: usize, const N2: usize>(
+/// `accelerations` along `q ⊕ s e_j`, `v + s e_j` and `u + s e_k`, and `K`
+/// the kinematic rows `δ̇ = δν − ad(ν̄) δ` given (zero at rest).
+fn check_linearize<S, const NQ: usize, const NV: usize, const NU: usize, const N2: usize>(
     system: &S,
     (a, b): ([[f64; N2]; N2], [[f64; NU]; N2]),
-    q: [f64; NQ],
-    u: [f64; NU],
+    (q, v, u): ([f64; NQ], [f64; NV], [f64; NU]),
+    kinematic: [[f64; NV]; NV],
 ) where
     S: MultibodySystem<NQ, NV, NU>,
 {
     assert_eq!(N2, 2 * NV);
-    let rest = [0.0; NV];
     let accelerations = |q: &[f64; NQ], v: &[f64; NV], u: &[f64; NU]| {
         system
             .accelerations(0.0, q, v, u)
@@ -300,30 +301,23 @@ fn check_linearize_at_rest<S, const NQ: usize, const NV: usize, const NU: usize,
     };
     for j in 0..NV {
         let e: [f64; NV] = unit_vector(j);
-        let by_q =
-            central(|s| accelerations(&system.integrate_configuration(&q, &e, s), &rest, &u));
-        let by_v = central(|s| accelerations(&q, &e.map(|x| s * x), &u));
+        let by_q = central(|s| accelerations(&system.integrate_configuration(&q, &e, s), &v, &u));
+        let by_v = central(|s| accelerations(&q, &std::array::from_fn(|i| v[i] + s * e[i]), &u));
         for i in 0..NV {
-            assert_near(&format!("A[{i}][{j}]"), a[i][j], 0.0, 0.0);
-            let identity = if i == j { 1.0 } else { 0.0 };
-            assert_near(&format!("A[{i}][{}]", NV + j), a[i][NV + j], identity, 0.0);
-            assert_near(
-                &format!("A[{}][{j}]", NV + i),
-                a[NV + i][j],
-                by_q[i],
-                DIFFERENCES,
-            );
-            let entry = a[NV + i][NV + j];
+            assert_near(&format!("A[{i}][{j}]"), a[i][j], kinematic[i][j], 1e-15);
+            assert_near(&format!("A[{i}][{}]", NV + j), a[i][NV + j], e[i], 0.0);
+            let (row, by_q, by_v) = (&a[NV + i], by_q[i], by_v[i]);
+            assert_near(&format!("A[{}][{j}]", NV + i), row[j], by_q, DIFFERENCES);
             assert_near(
                 &format!("A[{}][{}]", NV + i, NV + j),
-                entry,
-                by_v[i],
+                row[NV + j],
+                by_v,
                 DIFFERENCES,
             );
         }
     }
     for (k, e) in (0..NU).map(|k| (k, unit_vector::<NU>(k))) {
-        let by_u = central(|s| accelerations(&q, &rest, &std::array::from_fn(|i| u[i] + s * e[i])));
+        let by_u = central(|s| accelerations(&q, &v, &std::array::from_fn(|i| u[i] + s * e[i])));
         for i in 0..NV {
             assert_near(&format!("B[{i}][{k}]"), b[i][k], 0.0, 0.0);
             assert_near(
@@ -332,6 +326,16 @@ fn check_linearize_at_rest<S, const NQ: usize, const NV: usize, const NU: usize,
                 by_u[i],
                 DIFFERENCES,
             );
+        }
+    }
+}
+
+/// Writes `−[x]×` into the 3 × 3 block of `k` at `(row, column)`.
+fn minus_cross(k: &mut [[f64; 7]; 7], (row, column): (usize, usize), x: &[f64]) {
+    let cross = [[0.0, -x[2], x[1]], [x[2], 0.0, -x[0]], [-x[1], x[0], 0.0]];
+    for i in 0..3 {
+        for j in 0..3 {
+            k[row + i][column + j] = -cross[i][j];
         }
     }
 }
@@ -622,9 +626,24 @@ fn linearize_at_rest_is_the_tangent_space_state_equation() {
     let (q, _, _) = flyer_state();
     let u = [0.7];
     let linear = FLYER.linearize(0.0, &q, &[0.0; 7], &u).expect("regular");
-    check_linearize_at_rest(&FLYER, linear, q, u);
+    check_linearize(&FLYER, linear, (q, [0.0; 7], u), [[0.0; 7]; 7]);
     let (q, _, _) = swing_state();
     let u = [-0.4];
     let linear = SWING.linearize(0.0, &q, &[0.0; 4], &u).expect("regular");
-    check_linearize_at_rest(&SWING, linear, q, u);
+    check_linearize(&SWING, linear, (q, [0.0; 4], u), [[0.0; 4]; 4]);
+}
+
+/// Moving, the free joint's kinematic rows are (docs/language.md)
+/// `δ̇_v = δv − ω̄ × δ_v − v̄ × δ_ω` and `δ̇_ω = δω − ω̄ × δ_ω`, in the
+/// child's axes; the hinge's is `δ̇_a = δȧ`.
+#[test]
+fn linearize_while_moving_has_the_documented_kinematic_rows() {
+    let (q, v, _) = flyer_state();
+    let u = [0.7];
+    let mut kinematic = [[0.0; 7]; 7];
+    minus_cross(&mut kinematic, (0, 0), &v[3..6]);
+    minus_cross(&mut kinematic, (0, 3), &v[0..3]);
+    minus_cross(&mut kinematic, (3, 3), &v[3..6]);
+    let linear = FLYER.linearize(0.0, &q, &v, &u).expect("regular");
+    check_linearize(&FLYER, linear, (q, v, u), kinematic);
 }
