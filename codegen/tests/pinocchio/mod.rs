@@ -18,7 +18,7 @@ pub fn vector(v: &Value) -> Vec<f64> {
         .collect()
 }
 
-fn matrix(v: &Value) -> Vec<Vec<f64>> {
+pub fn matrix(v: &Value) -> Vec<Vec<f64>> {
     v.as_array().unwrap().iter().map(vector).collect()
 }
 
