@@ -39,6 +39,9 @@ FLOATING = ["solo12.urdf"]
 # Added later, drawn after all of the above (fixed base, then floating), so
 # that the states above do not change.
 ADDED = ["anymal_c.urdf"]
+# Added later still, drawn last: the double pendulum, whose products of
+# inertia of 1e-13 beside moments of 1e-3 the import once wrote as zero.
+ADDED_LATER = ["regressions/double_pendulum.urdf"]
 FREE = ["root_joint_" + c for c in ["x", "y", "z", "qx", "qy", "qz", "qw"]]
 STATES = 10
 SEED = 20261123
@@ -68,20 +71,40 @@ def file_order_coordinates(path):
     return order
 
 
-def state_values(model, data, order, q_angles, v, tau):
-    """Pinocchio's quantities at one state, permuted into `order`."""
-    q = pin.neutral(model)
+def set_angles(model, q, order, angles):
+    """Writes the joints' angles (or displacements) into Pinocchio's `q`, a
+    continuous joint's as (cos, sin); returns the joints' indices in v."""
     idx_v = []
-    for name, angle in zip(order, q_angles):
-        jid = model.getJointId(name)
-        joint = model.joints[jid]
+    for name, angle in zip(order, angles):
+        joint = model.joints[model.getJointId(name)]
         if joint.nq == 2:  # continuous: (cos, sin)
             q[joint.idx_q] = math.cos(angle)
             q[joint.idx_q + 1] = math.sin(angle)
         else:
             q[joint.idx_q] = angle
         idx_v.append(joint.idx_v)
-    perm = np.array(idx_v)
+    return idx_v
+
+
+def self_check(M, v, T, qdd, f):
+    """Pinocchio's algorithms agree with each other at a state: T = 1/2 v^T M v
+    (1e-12 relative) and M qdd = f (1e-9 of the larger of |f| and |M| |qdd|,
+    so that an ill-conditioned M, whose qdd is large, passes and a singular
+    one, whose qdd is garbage, does not)."""
+    if len(v) == 0:
+        raise ValueError("nothing moves: Pinocchio's model has nv = 0")
+    if abs(T - 0.5 * v @ M @ v) > 1e-12 * max(1.0, abs(T)):
+        raise ValueError(f"T = {T} but 1/2 v^T M v = {0.5 * v @ M @ v}")
+    scale = max(np.abs(f).max(), np.abs(M).max() * np.abs(qdd).max())
+    residual = np.abs(M @ qdd - f).max()
+    if not residual <= 1e-9 * scale:
+        raise ValueError(f"M qdd - f = {residual:.3e} (cond M = {np.linalg.cond(M):.3e})")
+
+
+def state_values(model, data, order, q_angles, v, tau):
+    """Pinocchio's quantities at one state, permuted into `order`."""
+    q = pin.neutral(model)
+    perm = np.array(set_angles(model, q, order, q_angles), dtype=int)
     vp = np.zeros(model.nv)
     taup = np.zeros(model.nv)
     vp[perm] = v
@@ -99,8 +122,7 @@ def state_values(model, data, order, q_angles, v, tau):
     nle, g, qdd = nle[perm], g[perm], qdd[perm]
     f = np.asarray(tau) - nle
     # Self-checks: T = 1/2 v^T M v, M qdd = f.
-    assert abs(T - 0.5 * v @ M @ v) <= 1e-12 * max(1.0, abs(T)), (T, 0.5 * v @ M @ v)
-    assert np.allclose(M @ qdd, f, rtol=1e-9, atol=1e-9 * np.abs(f).max())
+    self_check(M, v, T, qdd, f)
     floats = lambda a: [float(x) for x in a]
     return {
         "q": floats(q_angles), "qd": floats(v), "tau": floats(tau),
@@ -154,6 +176,8 @@ def write_document(path, schema, generator, seed, notes, models):
         json.dump(document, out, indent=1)
         out.write("\n")
     print(f"wrote {path}")
+
+
 def floating_state(model, data, order, rng):
     """Pinocchio's quantities at one random state of the free-flyer model, in
     dalembert's order: the base first, then the joints of `order`."""
@@ -161,15 +185,8 @@ def floating_state(model, data, order, rng):
     q[:3] = rng.uniform(-1.0, 1.0, 3)
     quaternion = rng.normal(size=4)
     q[3:7] = quaternion / np.linalg.norm(quaternion)
-    idx_q, idx_v = [], list(range(6))
-    for name in order:
-        joint = model.joints[model.getJointId(name)]
-        assert joint.nq == 1, name
-        idx_q.append(joint.idx_q)
-        idx_v.append(joint.idx_v)
     angles = rng.uniform(-math.pi, math.pi, len(order))
-    q[idx_q] = angles
-    perm = np.array(idx_v)
+    perm = np.array(list(range(6)) + set_angles(model, q, order, angles))
     v = rng.uniform(-2.0, 2.0, model.nv)
     tau_joints = rng.uniform(-10.0, 10.0, len(order))
     vp = np.zeros(model.nv)
@@ -185,8 +202,7 @@ def floating_state(model, data, order, rng):
     M = M[np.ix_(perm, perm)]
     nle, qdd, tau = nle[perm], qdd[perm], taup[perm]
     f = tau - nle
-    assert abs(T - 0.5 * v @ M @ v) <= 1e-12 * max(1.0, abs(T))
-    assert np.allclose(M @ qdd, f, rtol=1e-9, atol=1e-9 * np.abs(f).max())
+    self_check(M, v, T, qdd, f)
     floats = lambda a: [float(x) for x in a]
     return {
         "q": floats(list(q[:7]) + list(angles)), "qd": floats(v), "tau": floats(tau_joints),
@@ -203,7 +219,9 @@ def floating_entry(file, rng):
     assert len(order) + 6 == model.nv, (order, model.nv)
     return {
         "robot": os.path.splitext(file)[0] + "_floating", "urdf": file, "name": model.name,
-        "nq": model.nq, "nv": model.nv, "gravity": [float(x) for x in model.gravity.linear],
+        # dalembert's nq: the base's 7, then one angle per joint (continuous too).
+        "nq": len(FREE) + len(order), "nv": model.nv,
+        "gravity": [float(x) for x in model.gravity.linear],
         "coordinates": FREE + order, "pinocchio_order": list(model.names)[1:],
         "states": [floating_state(model, data, order, rng) for _ in range(STATES)],
     }
@@ -228,8 +246,16 @@ def main():
         [robot_entry(file, rng) for file in FILES]
         # Drawn after the fixed-base states, which therefore do not change.
         + ([floating_entry(file, rng) for file in FLOATING] if args.floating else [])
-        + [robot_entry(file, rng) for file in ADDED]
-        + ([floating_entry(file, rng) for file in ADDED] if args.floating else []),
+        + added_entries(ADDED, rng, args.floating)
+        + added_entries(ADDED_LATER, rng, args.floating),
+    )
+
+
+def added_entries(files, rng, floating):
+    """The entries of robots added later: fixed base, then (with --floating)
+    floating, drawn after everything before them."""
+    return [robot_entry(file, rng) for file in files] + (
+        [floating_entry(file, rng) for file in files] if floating else []
     )
 
 

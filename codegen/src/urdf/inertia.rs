@@ -204,12 +204,22 @@ fn slack(moments: &Vec3) -> f64 {
     TOLERANCE * moments.iter().map(|m| m.abs()).sum::<f64>() + NEGLIGIBLE
 }
 
-/// `tensor` with the entries that are rounding (within the checks'
-/// tolerance) written as zero: a diagonal entry of `-5e-20` (iCub's hips)
-/// would be a negative moment to the language.
+/// `tensor` with its rounding written as zero, and nothing else changed (as
+/// Pinocchio keeps every entry): entries below [`NEGLIGIBLE`] (iCub's head
+/// lists 1e-35), and a negative diagonal entry within the checks' slack,
+/// which the language would refuse as a negative moment (`-5e-20` at
+/// iCub's hips). A product of inertia far below the moments but above
+/// [`NEGLIGIBLE`] is kept: `-3.854e-13` beside `1.2e-3` (the double
+/// pendulum of example-robot-data) moves `M` by 1e-12 of its largest entry.
 pub(super) fn without_rounding(tensor: &Mat3) -> Mat3 {
     let slack = slack(&principal_moments(tensor));
-    tensor.map(|row| row.map(|x| if x.abs() <= slack { 0.0 } else { x }))
+    let mut cleaned = tensor.map(|row| row.map(|x| if x.abs() <= NEGLIGIBLE { 0.0 } else { x }));
+    for (k, row) in cleaned.iter_mut().enumerate() {
+        if (-slack..0.0).contains(&row[k]) {
+            row[k] = 0.0;
+        }
+    }
+    cleaned
 }
 
 /// Checks that `tensor` is the inertia of some mass distribution: its
@@ -348,6 +358,18 @@ mod tests {
         );
         let kept = [[1.0, 1e-3, 0.0], [1e-3, 2.0, 0.0], [0.0, 0.0, 2.5]];
         assert_eq!(without_rounding(&kept), kept);
+        // A product far below the moments is data, not rounding (the double
+        // pendulum's link2); a negative moment within rounding is zero.
+        let small = [
+            [1.2e-3, -3.9e-13, 0.0],
+            [-3.9e-13, 1.2e-3, 0.0],
+            [0.0, 0.0, 1.5e-5],
+        ];
+        assert_eq!(without_rounding(&small), small);
+        assert_eq!(
+            without_rounding(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1e-12]]),
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.0]]
+        );
         let moments = principal_moments(&[[2.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 0.0, 5.0]]);
         assert!((moments[0] - 1.0).abs() < 1e-14 && (moments[1] - 3.0).abs() < 1e-14);
     }
