@@ -207,7 +207,7 @@ fn sanitize(name: &str) -> String {
 }
 
 /// Whether `name` can name an item of the model: a plain Rust identifier
-/// (not a keyword nor raw) that is not one of the language's built-in names,
+/// (not a keyword, raw, nor `Some`-like) that is not one of the language's built-in names,
 /// as the model layer checks every name.
 fn is_identifier(name: &str) -> bool {
     is_plain(name) && !is_builtin(name)

@@ -12,6 +12,10 @@ use std::collections::HashMap;
 /// The built-in names, which no statement may define again.
 const BUILTINS: [&str; 3] = ["N", "O", "t"];
 
+/// The variants of `Option` and `Result` in Rust's prelude: in a `let`
+/// of the generated code they are patterns, not new variables.
+const PRELUDE_VARIANTS: [&str; 4] = ["Some", "None", "Ok", "Err"];
+
 /// What a name stands for at the point of use.
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Binding {
@@ -46,10 +50,13 @@ impl Binding {
 }
 
 /// Whether `name` can be written in the generated Rust as it is and with a
-/// suffix (`q_dot`, `ball_qx`): an identifier, not a raw identifier (`r#q`)
-/// nor a Rust keyword (`type`, `self`, `_`).
+/// suffix (`q_dot`, `ball_qx`): an identifier, not a raw identifier (`r#q`),
+/// a Rust keyword (`type`, `self`, `_`) nor a variant of the prelude
+/// (`Some`, `Ok`).
 pub(crate) fn is_plain(name: &str) -> bool {
-    !name.starts_with("r#") && syn::parse_str::<Ident>(name).is_ok()
+    !name.starts_with("r#")
+        && !PRELUDE_VARIANTS.contains(&name)
+        && syn::parse_str::<Ident>(name).is_ok()
 }
 
 /// The language's built-in names, then its functions (`dt` last): names
@@ -66,19 +73,26 @@ pub(crate) fn is_builtin(name: &str) -> bool {
 impl Resolver {
     /// Reports `name` if it is not [plain](is_plain); whether it is.
     pub(super) fn check_plain(&mut self, name: &Ident) -> bool {
-        if is_plain(&name.to_string()) {
+        let text = name.to_string();
+        if is_plain(&text) {
             return true;
         }
-        let what = match name.to_string().starts_with("r#") {
-            true => "a raw identifier",
-            false => "a Rust keyword",
+        let (what, other) = if text.starts_with("r#") {
+            ("a raw identifier", "that is not a keyword")
+        } else if PRELUDE_VARIANTS.contains(&text.as_str()) {
+            (
+                "a variant of Rust's prelude (of `Option` or `Result`)",
+                "other than `Some`, `None`, `Ok` and `Err`",
+            )
+        } else {
+            ("a Rust keyword", "that is not a keyword")
         };
         self.errors.push(
             name.span(),
             format!(
                 "`{name}` is {what}, but the generated code binds every name as a Rust \
                  variable or field and makes other names from it; choose a plain identifier \
-                 that is not a keyword"
+                 {other}"
             ),
         );
         false
