@@ -139,6 +139,34 @@ fn caret_keeps_tabs_and_counts_characters() {
     );
 }
 
+/// The line and column of the one error of `source`, and the report.
+fn only_error_position(source: &str) -> ((Option<usize>, Option<usize>), String) {
+    let error = ModelFile::new("bom.dal", source).check().unwrap_err();
+    let [diagnostic] = error.diagnostics() else {
+        panic!("expected one diagnostic: {error}");
+    };
+    ((diagnostic.line(), diagnostic.column()), error.to_string())
+}
+
+#[test]
+fn byte_order_mark_is_not_a_column() {
+    // An editor's BOM and CRLF line breaks: rustc ignores the first and
+    // the `\r` of the second, so columns count from the line's first
+    // character, as the macro's do.
+    let (position, _) = only_error_position(
+        "\u{feff}pub P {\r\n  parameters m;\r\n  coordinates x;\r\n  particle p { mass: zz, at: O };\r\n}\r\n",
+    );
+    assert_eq!(position, (Some(4), Some(22)));
+    let (position, report) = only_error_position(
+        "\u{feff}pub P { coordinates x; parameters m; particle p { mass: zz, at: O }; }",
+    );
+    assert_eq!(position, (Some(1), Some(57)));
+    assert!(
+        report.contains("\n1 | pub P {"),
+        "the BOM is not shown: {report}"
+    );
+}
+
 #[test]
 fn io_and_configuration_errors_name_the_problem() {
     let dir = scratch("io_errors");

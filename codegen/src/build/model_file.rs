@@ -5,6 +5,9 @@ use std::path::{Path, PathBuf};
 
 use super::{BuildError, Diagnostic};
 
+/// U+FEFF at the start of a UTF-8 file.
+const BYTE_ORDER_MARK: char = '\u{feff}';
+
 /// The text of a `.dal` model file (the `dalembert!` macro's language) and
 /// where it was read from.
 #[derive(Clone, Debug)]
@@ -21,11 +24,18 @@ impl ModelFile {
         Ok(ModelFile::new(path, source))
     }
 
-    /// A model with text `source`, reported as read from `path`.
+    /// A model with text `source`, reported as read from `path`. A leading
+    /// byte-order mark, which some editors write and rustc ignores, is
+    /// dropped, so that columns on the first line count from its first
+    /// character.
     pub fn new(path: impl AsRef<Path>, source: impl Into<String>) -> Self {
+        let mut source = source.into();
+        if source.starts_with(BYTE_ORDER_MARK) {
+            source.drain(..BYTE_ORDER_MARK.len_utf8());
+        }
         ModelFile {
             path: path.as_ref().to_owned(),
-            source: source.into(),
+            source,
         }
     }
 
