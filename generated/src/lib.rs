@@ -10,10 +10,13 @@
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
-/// Includes the file generated from `models/$name.dal` as module `$name`.
+/// Includes the file generated from `models/$name.dal` as module `$name`,
+/// under clippy's pedantic and nursery lints too: a generated file must
+/// compile in a user's crate that denies them, as the macro's expansion does.
 macro_rules! model {
     ($(#[$doc:meta])* $name:ident) => {
         $(#[$doc])*
+        #[warn(clippy::pedantic, clippy::nursery)]
         pub mod $name {
             include!(concat!(env!("OUT_DIR"), "/", stringify!($name), ".rs"));
         }
@@ -168,7 +171,7 @@ model!(
     features
 );
 model!(
-    /// ANYmal C quadruped on a fixed base: 12 revolute joints, its fixed
+    /// `ANYmal` C quadruped on a fixed base: 12 revolute joints, its fixed
     /// links (four of them with inertias no mass distribution has) welded.
     anymal_c
 );
@@ -336,6 +339,7 @@ pub mod derivatives {
         ($($name:ident),*) => {
             $(
                 #[doc = concat!("`", stringify!($name), "` with its derivatives.")]
+                #[warn(clippy::pedantic, clippy::nursery)]
                 pub mod $name {
                     include!(concat!(env!("OUT_DIR"), "/derivatives/", stringify!($name), ".rs"));
                 }

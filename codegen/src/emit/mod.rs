@@ -106,15 +106,25 @@ pub fn emit(
         }
         Target::NoStd => TokenStream::new(),
     };
+    let allowed = allowed_lints();
     quote! {
         #strukt
-        #[allow(non_snake_case, clippy::all)]
+        #allowed
         impl #name {
             #constants
             #(#items)*
         }
         #traits
     }
+}
+
+/// The lints every generated item allows: parameters are named as written
+/// (`L`), and straight-line code for a model is long, dense in names and
+/// literals, and not written for a human, so that a user's crate with
+/// `#![deny(clippy::pedantic)]` (or `nursery`) compiles the build step's
+/// `include!`d file as it compiles the macro's expansion.
+fn allowed_lints() -> TokenStream {
+    quote!(#[allow(non_snake_case, clippy::all, clippy::pedantic, clippy::nursery)])
 }
 
 fn names(model: &Model, target: Target) -> Names {
@@ -177,10 +187,11 @@ fn emit_struct(model: &Model, docs: &[String]) -> TokenStream {
         quote!(#[doc = #doc] pub #p: f64)
     });
     let docs = docs.iter().map(|line| quote!(#[doc = #line]));
+    let allowed = allowed_lints();
     quote! {
         #(#docs)*
         #[derive(::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq)]
-        #[allow(non_snake_case)]
+        #allowed
         #vis struct #name {
             #(#fields,)*
         }
@@ -411,7 +422,9 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> Toke
             }
         }
     });
+    let allowed = allowed_lints();
     let system = quote! {
+        #allowed
         impl ::dalembert::MultibodySystem<#nq, #nv, #nu> for #name {
             const COORDINATES: [&'static str; #nq] = #name::COORDINATES;
             const SPEEDS: [&'static str; #nv] = #name::SPEEDS;
@@ -449,6 +462,7 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> Toke
     }
     quote! {
         #system
+        #allowed
         impl ::dalembert::ConstrainedSystem<#nq, #nv, #nu, #nc_lit> for #name {
             #[inline]
             fn constraint_jacobian(&self, q: &#coordinates) -> [#vector; #nc_lit] {

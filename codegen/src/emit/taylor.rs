@@ -23,9 +23,9 @@
 
 use std::collections::HashMap;
 
-use super::array;
 use super::body::{Names, number, straight_line};
 use super::solve::{Elimination, elimination, mass, state_check};
+use super::{allowed_lints, array};
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool, Sym, SymKinds};
 use crate::model::Model;
@@ -672,7 +672,9 @@ pub fn emit_trait_impl(name: &Ident, sizes: [usize; 3]) -> TokenStream {
     let [nq, nv, nu] = sizes;
     let (coordinates, speeds, inputs) = (array(nq), array(nv), array(nu));
     let [nq, nv, nu] = sizes.map(Literal::usize_unsuffixed);
+    let allowed = allowed_lints();
     quote! {
+        #allowed
         impl ::dalembert::TaylorSystem<#nq, #nv, #nu> for #name {
             #[inline]
             fn taylor_coefficients<const K: usize>(
