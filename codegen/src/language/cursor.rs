@@ -10,6 +10,7 @@ use std::fmt::Display;
 use proc_macro2::{Delimiter, Group, Ident, Punct, Spacing, Span, TokenStream, TokenTree};
 
 /// The tokens of one group (or of the whole input) and a position in them.
+#[derive(Clone)]
 pub struct Cursor {
     tokens: Vec<TokenTree>,
     position: usize,

@@ -28,10 +28,7 @@ pub fn parse_system(input: TokenStream) -> syn::Result<System> {
     let mut errors = Errors::default();
     let statements = statements(&mut Cursor::group(&body), &mut errors);
     if !cursor.is_end() {
-        errors.push(cursor.error(format!(
-            "unexpected tokens after the system's closing brace, starting with {}",
-            cursor.found()
-        )));
+        errors.push(trailing_tokens(&cursor));
     }
     errors.finish(System {
         docs,
@@ -39,6 +36,32 @@ pub fn parse_system(input: TokenStream) -> syn::Result<System> {
         name,
         statements,
     })
+}
+
+/// The error at tokens after the system's closing brace: a second system
+/// (doc comments, `pub`, a name and braces), which needs its own macro or
+/// file, or anything else.
+fn trailing_tokens(cursor: &Cursor) -> syn::Error {
+    let mut ahead = cursor.clone();
+    let second = match doc_comments(&mut ahead) {
+        Ok(_) => {
+            ahead.eat_keyword(keyword::PUB);
+            ahead
+                .eat_ident()
+                .filter(|_| ahead.eat_group(Delimiter::Brace).is_some())
+        }
+        Err(_) => None,
+    };
+    match second {
+        Some(name) => cursor.error(format!(
+            "a second system `{name}`: a `dalembert!` or a `.dal` file holds one system; \
+             give `{name}` its own"
+        )),
+        None => cursor.error(format!(
+            "unexpected tokens after the system's closing brace, starting with {}",
+            cursor.found()
+        )),
+    }
 }
 
 /// Spanned errors collected while parsing goes on.
@@ -651,6 +674,18 @@ mod tests {
             (
                 "pub S { } extra",
                 "unexpected tokens after the system's closing brace, starting with `extra`",
+                10,
+            ),
+            (
+                "pub S { } /// T.\npub T { }",
+                "a second system `T`: a `dalembert!` or a `.dal` file holds one system; \
+                 give `T` its own",
+                10,
+            ),
+            (
+                "pub S { } T { }",
+                "a second system `T`: a `dalembert!` or a `.dal` file holds one system; \
+                 give `T` its own",
                 10,
             ),
             (
