@@ -38,6 +38,7 @@ Commands:
   urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
                             print the .dal model of a URDF robot (--damping: joint
                             damping as a dissipation function)
+  help                      print this help
 
 Options:
   -h, --help                print this help
@@ -111,9 +112,20 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
         return Err("missing command".into());
     };
     let name = name.to_string_lossy().into_owned();
-    if name == "chain" {
-        return parse_chain(positional);
-    }
+    // The command is known before its model file is asked for, so that a
+    // misspelt command is reported as one.
+    let command: fn(PathBuf, Style) -> Command = match name.as_str() {
+        "chain" => return parse_chain(positional),
+        "help" => return Ok(Command::Help),
+        "eom" => |model, style| Command::Eom { model, style },
+        "generate" => |model, _| Command::Generate { model },
+        "check" => |model, _| Command::Check { model },
+        _ => {
+            return Err(format!(
+                "unknown command `{name}`: expected `eom`, `generate`, `check`, `chain` or `urdf`"
+            ));
+        }
+    };
     let model = PathBuf::from(
         positional
             .next()
@@ -125,17 +137,10 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
     if latex && name != "eom" {
         return Err(format!("`--latex` applies to `eom`, not `{name}`"));
     }
-    match name.as_str() {
-        "eom" => Ok(Command::Eom {
-            model,
-            style: if latex { Style::Latex } else { Style::Unicode },
-        }),
-        "generate" => Ok(Command::Generate { model }),
-        "check" => Ok(Command::Check { model }),
-        _ => Err(format!(
-            "unknown command `{name}`: expected `eom`, `generate`, `check` or `chain`"
-        )),
-    }
+    Ok(command(
+        model,
+        if latex { Style::Latex } else { Style::Unicode },
+    ))
 }
 
 /// The arguments of `chain FAMILY N [SPELLING]`.
@@ -300,6 +305,7 @@ mod tests {
         );
         assert_eq!(parse_str(&["check", "m.dal"]), Ok(Command::Check { model }));
         assert_eq!(parse_str(&["check", "--help"]), Ok(Command::Help));
+        assert_eq!(parse_str(&["help"]), Ok(Command::Help));
         assert_eq!(
             parse_str(&["urdf", "r.urdf", "--name", "Arm", "--damping"]),
             Ok(Command::Urdf {
@@ -327,6 +333,14 @@ mod tests {
                 spelling: Spelling::FramesAndPoints,
             })
         );
+    }
+
+    #[test]
+    fn an_unknown_command_is_reported_as_one() {
+        for args in [&["frobnicate"][..], &["frobnicate", "m.dal"]] {
+            let error = parse_str(args).unwrap_err();
+            assert!(error.starts_with("unknown command `frobnicate`"), "{error}");
+        }
     }
 
     #[test]
