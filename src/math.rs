@@ -40,7 +40,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// caller's body, the others in a function of their own: returned through
 /// memory, a pair of results stored as two 64-bit halves and read back as
 /// one 128-bit vector (as AVX builds do) misses the store-to-load
-/// forwarding, a stall that cost the double pendulum a third of its
+/// forwarding, a stall of about 4 of the double pendulum's 38 ns per
 /// evaluation (BENCHMARKS.md, "The host CPU's slowdowns"). Only in
 /// optimised builds: inlined into a generated function of thousands of
 /// nested `let` scopes, the unoptimised build's debug information
