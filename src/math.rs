@@ -35,8 +35,39 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// compiler runs it on several angles at once. Larger angles, infinities
 /// and NaN are then recomputed by [`libm::sincos`]. Both results are within
 /// a few units in the last place of 1 of the exact values, as `libm`'s.
-#[inline(never)]
+///
+/// The angles of a system of at most [`INLINED_ANGLES`] are computed in the
+/// caller's body, the others in a function of their own: returned through
+/// memory, a pair of results stored as two 64-bit halves and read back as
+/// one 128-bit vector (as AVX builds do) misses the store-to-load
+/// forwarding, a stall of about 4 of the double pendulum's 38 ns per
+/// evaluation (BENCHMARKS.md, "The host CPU's slowdowns"). Only in
+/// optimised builds: inlined into a generated function of thousands of
+/// nested `let` scopes, the unoptimised build's debug information
+/// overflowed the compiler's stack.
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn sin_cos_all<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
+    if K <= INLINED_ANGLES {
+        sin_cos_each(x)
+    } else {
+        sin_cos_out_of_line(x)
+    }
+}
+
+/// The most angles whose sines and cosines [`sin_cos_all`] computes in its
+/// caller's body.
+pub const INLINED_ANGLES: usize = 2;
+
+/// [`sin_cos_each`] behind a call, for many angles.
+#[inline(never)]
+fn sin_cos_out_of_line<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
+    sin_cos_each(x)
+}
+
+/// The sines and the cosines of the angles `x`: the body of [`sin_cos_all`].
+#[inline(always)]
+fn sin_cos_each<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
     let mut sines = [0.0; K];
     let mut cosines = [0.0; K];
     for k in 0..K {
@@ -115,7 +146,7 @@ fn reduced_sin_cos(x: f64) -> (f64, f64) {
 
 #[cfg(test)]
 mod tests {
-    use super::{REDUCED_DIRECTLY, sin_cos, sin_cos_all};
+    use super::{INLINED_ANGLES, REDUCED_DIRECTLY, sin_cos, sin_cos_all};
 
     /// Tiny to huge angles, of either sign, near multiples of π/2 too.
     fn angles() -> Vec<f64> {
@@ -159,16 +190,22 @@ mod tests {
     /// in its last place: the sine of an angle near a multiple of π is
     /// small, and still accurate), in batches of 7, over the angles above,
     /// a dense sweep of the directly reduced range and either side of its
-    /// limit; NaN where `libm` gives NaN.
+    /// limit; NaN where `libm` gives NaN. Batches of two take the path
+    /// inlined into the caller, of seven the one behind a call.
     #[test]
     fn batches_agree_with_libm() {
+        batches_of_agree_with_libm::<INLINED_ANGLES>();
+        batches_of_agree_with_libm::<7>();
+    }
+
+    fn batches_of_agree_with_libm<const K: usize>() {
         let mut all = angles();
         all.extend((-200_000..=200_000).map(|i| f64::from(i) * 1e-3 * 1.000_3));
         let limit = REDUCED_DIRECTLY;
         all.extend([limit, -limit, limit.next_up(), limit.next_down(), 0.0, -0.0]);
         all.extend([f64::NAN, f64::INFINITY, f64::NEG_INFINITY, f64::MAX]);
-        for batch in all.chunks(7) {
-            let mut angles = [0.0; 7];
+        for batch in all.chunks(K) {
+            let mut angles = [0.0; K];
             angles[..batch.len()].copy_from_slice(batch);
             let (sines, cosines) = sin_cos_all(angles);
             for (k, &x) in angles.iter().enumerate() {

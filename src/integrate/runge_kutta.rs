@@ -327,6 +327,12 @@ const RK4_WEIGHTS: [f64; 4] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0];
 
 /// The four stages of a classical RK4 step of length `h` from `state`.
 ///
+/// Each slope is added into the weighted sum as soon as it is known (the
+/// same operations in the same order as summing the four at the end): kept
+/// in an array, the slopes were stored piecewise and read back 256 bits at
+/// a time in AVX builds, a failed store-to-load forwarding on every step
+/// (BENCHMARKS.md, "The host CPU's slowdowns").
+///
 /// The stages are a loop around one evaluation: with a single call site the
 /// compiler inlines the system's accelerations into it, as into a bare loop
 /// of calls; four call sites kept them out of line, and each evaluation of
@@ -340,15 +346,15 @@ fn rk4_stages<D, const NQ: usize, const NV: usize>(
 where
     D: Dynamics<NQ, NV>,
 {
-    let mut slopes = [Rate::ZERO; 4];
+    let mut weighted = Rate::ZERO;
     let mut stage = *state;
-    for (i, slope) in slopes.iter_mut().enumerate() {
-        *slope = kernel.rate(&stage)?;
+    for (i, weight) in RK4_WEIGHTS.into_iter().enumerate() {
+        let slope = kernel.rate(&stage)?;
+        weighted.add_scaled(weight, &slope);
         if let Some(fraction) = RK4_NODES.get(i) {
-            stage = kernel.advance(state, slope, fraction * h);
+            stage = kernel.advance(state, &slope, fraction * h);
         }
     }
-    let weighted = Rate::combination(&RK4_WEIGHTS, &slopes);
     Ok(kernel.step_end(state, &weighted, h))
 }
 
