@@ -11,6 +11,8 @@
 
 use dalembert::DynamicsError;
 use dalembert::constrained::constrained_accelerations;
+use dalembert_fixtures::differences::central_differences;
+use dalembert_fixtures::reference::assert_near_all;
 use dalembert_fixtures::slider_crank::{SLIDER_CRANK, SliderCrank};
 use nalgebra::SMatrix;
 
@@ -216,33 +218,18 @@ fn slider_crank_matches_differences_along_the_manifold() {
     }
 }
 
-/// Central differences, step `h`, of `accelerations` along each of `n`
-/// directions that `shift(j, h)` moves, against `jacobian` (entry `[i][j]`
-/// the derivative of `v̇ᵢ`), to `1e-7` relative.
-fn matches_differences<const NV: usize, const N: usize>(
-    what: &str,
-    jacobian: &[[f64; N]; NV],
-    accelerations: impl Fn(usize, f64) -> [f64; NV],
-) {
-    let h = 1e-6;
-    for j in 0..N {
-        let (ahead, behind) = (accelerations(j, h), accelerations(j, -h));
-        for (i, row) in jacobian.iter().enumerate() {
-            let difference = (ahead[i] - behind[i]) / (2.0 * h);
-            let scale = difference.abs().max(1.0);
-            assert!(
-                (row[j] - difference).abs() <= 1e-7 * scale,
-                "{what}[{i}][{j}]: {} against differences {difference}",
-                row[j]
-            );
-        }
-    }
-}
+/// The step of the central differences.
+const STEP: f64 = 1e-6;
 
-fn shifted<const N: usize>(x: &[f64; N], j: usize, h: f64) -> [f64; N] {
-    let mut x = *x;
-    x[j] += h;
-    x
+/// `exact` against `numeric`, entry by entry, to `1e-7` relative.
+fn matches<const NV: usize, const N: usize>(
+    what: &str,
+    exact: &[[f64; N]; NV],
+    numeric: &[[f64; N]; NV],
+) {
+    for (i, (exact, numeric)) in exact.iter().zip(numeric).enumerate() {
+        assert_near_all(&format!("{what}[{i}]"), exact, numeric, 1e-7);
+    }
 }
 
 /// The derivatives of the constrained accelerations, on the manifold and
@@ -262,9 +249,21 @@ fn jacobian_matches_differences<S: dalembert::MultibodySystem<3, 3, NU>, const N
     };
     for (q, v) in states {
         let (by_q, by_v, by_u) = jacobian(q, v, u);
-        matches_differences("dv/dq", &by_q, |j, h| vdot(&shifted(q, j, h), v, u));
-        matches_differences("dv/dv", &by_v, |j, h| vdot(q, &shifted(v, j, h), u));
-        matches_differences("dv/du", &by_u, |j, h| vdot(q, v, &shifted(u, j, h)));
+        matches(
+            "dv/dq",
+            &by_q,
+            &central_differences(q, STEP, |q| vdot(q, v, u)),
+        );
+        matches(
+            "dv/dv",
+            &by_v,
+            &central_differences(v, STEP, |v| vdot(q, v, u)),
+        );
+        matches(
+            "dv/du",
+            &by_u,
+            &central_differences(u, STEP, |u| vdot(q, v, u)),
+        );
     }
 }
 

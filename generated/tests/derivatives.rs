@@ -10,6 +10,7 @@
 
 use dalembert::MultibodySystem;
 use dalembert_codegen::testing::Random;
+use dalembert_fixtures::differences::central_differences;
 use dalembert_generated::CartPole;
 use dalembert_generated::derivatives::*;
 use nalgebra::SMatrix;
@@ -44,24 +45,6 @@ impl<const NQ: usize, const NV: usize, const NU: usize> State<NQ, NV, NU> {
             u: std::array::from_fn(|_| random.uniform(-2.0, 2.0)),
         }
     }
-}
-
-/// `(g(x + h eⱼ) − g(x − h eⱼ)) / 2h` for every `j`: column `j` of `∂g/∂x`.
-fn central_differences<const N: usize, const M: usize>(
-    x: &[f64; M],
-    g: impl Fn(&[f64; M]) -> [f64; N],
-) -> [[f64; M]; N] {
-    let mut jacobian = [[0.0; M]; N];
-    for j in 0..M {
-        let (mut plus, mut minus) = (*x, *x);
-        plus[j] += STEP;
-        minus[j] -= STEP;
-        let (high, low) = (g(&plus), g(&minus));
-        for i in 0..N {
-            jacobian[i][j] = (high[i] - low[i]) / (2.0 * STEP);
-        }
-    }
-    jacobian
 }
 
 /// `max |exact − numeric| ≤ TOLERANCE · (1 + max |numeric|)`, entry by entry.
@@ -131,17 +114,19 @@ fn check<S: MultibodySystem<NQ, NV, NU>, const NQ: usize, const NV: usize, const
         assert_matches(
             "∂v̇/∂q",
             &by_q,
-            &central_differences(&[0.0; NV], |delta| accelerations(&moved(delta), &v, &u)),
+            &central_differences(&[0.0; NV], STEP, |delta| {
+                accelerations(&moved(delta), &v, &u)
+            }),
         );
         assert_matches(
             "∂v̇/∂v",
             &by_v,
-            &central_differences(&v, |v| accelerations(&q, v, &u)),
+            &central_differences(&v, STEP, |v| accelerations(&q, v, &u)),
         );
         assert_matches(
             "∂v̇/∂u",
             &by_u,
-            &central_differences(&u, |u| accelerations(&q, &v, u)),
+            &central_differences(&u, STEP, |u| accelerations(&q, &v, u)),
         );
         // τ = M v̇ − f at an arbitrary v̇, not only the solved one.
         let a: [f64; NV] = std::array::from_fn(|i| vdot[i] + random.uniform(-1.0, 1.0));
@@ -153,9 +138,13 @@ fn check<S: MultibodySystem<NQ, NV, NU>, const NQ: usize, const NV: usize, const
         assert_matches(
             "∂τ/∂q",
             &tau_q,
-            &central_differences(&[0.0; NV], |delta| tau(&moved(delta), &v)),
+            &central_differences(&[0.0; NV], STEP, |delta| tau(&moved(delta), &v)),
         );
-        assert_matches("∂τ/∂v", &tau_v, &central_differences(&v, |v| tau(&q, v)));
+        assert_matches(
+            "∂τ/∂v",
+            &tau_v,
+            &central_differences(&v, STEP, |v| tau(&q, v)),
+        );
         // The same entries, emitted in two functions that may choose
         // different forms for them: equal to rounding.
         let m = system.mass_matrix(&q);
