@@ -66,11 +66,21 @@ fn sin_cos_out_of_line<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
 }
 
 /// The sines and the cosines of the angles `x`: the body of [`sin_cos_all`].
+///
+/// The angles go through the kernel in two loops, an even count of them
+/// then the odd one out: over an odd count the compiler kept the single
+/// loop scalar, one angle at a time (the eleven angles of the spatial chain
+/// of 12 on SSE2), where an even count runs two angles an instruction
+/// (BENCHMARKS.md, "Spatial 12 at the peer's instruction set").
 #[inline(always)]
 fn sin_cos_each<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
     let mut sines = [0.0; K];
     let mut cosines = [0.0; K];
-    for k in 0..K {
+    let even = K & !1;
+    for k in 0..even {
+        (sines[k], cosines[k]) = reduced_sin_cos(x[k]);
+    }
+    for k in even..K {
         (sines[k], cosines[k]) = reduced_sin_cos(x[k]);
     }
     for k in 0..K {
