@@ -159,14 +159,17 @@ fn tree_parents(code: &str) -> Option<Vec<Option<usize>>> {
 
 /// The links of the loops of `dalembert::dynamics::TreeRecursion` and
 /// their operations, counted in its source (`src/dynamics/tree_vectors.rs`):
-/// per link, in the first pass, 225 outwards, 351 for its own inertia in
+/// per link, in the first pass, 189 outwards, 351 for its own inertia in
 /// `N` with its rate, momentum and force, 42 for `y` and 11 for its entry
-/// of `f`; in the second, 108 for what `q̈` changes and 288 for `z, w, u`;
-/// 43 to add each subtree into its parent (37 and 6); 3 to negate gravity.
+/// of `f`; in the second, 114 for `Ψ̈`'s term `a_λ × S` and what `q̈`
+/// changes and 288 for `z, w, u`; 43 to add each subtree into its parent
+/// (37 and 6); 3 to negate gravity. The general path of each step: a turn
+/// skips 18 of the outward step's (`R b`, `b = 0`), a slide 27, and an
+/// inertia tensor diagonal in its link's axes 36 of `R K Rᵀ`.
 fn link_operations(parents: &[Option<usize>]) -> (usize, usize) {
     let children = parents.iter().flatten().count();
     let links = parents.len();
-    (links, 1025 * links + 43 * children + 3)
+    (links, 995 * links + 43 * children + 3)
 }
 
 /// The pairs of joints that the jacobian adds in a loop at run time

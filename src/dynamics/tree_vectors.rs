@@ -52,6 +52,8 @@ pub struct TreeRecursion<const L: usize> {
     /// `yⱼ = Iᶜⱼ Sⱼ`: the momentum of the subtree of `j` moved by its joint
     /// at unit rate.
     unit_momenta: [Spatial; L],
+    /// The base's acceleration, `(0, −g)`.
+    base: Spatial,
 }
 
 impl<const L: usize> Default for TreeRecursion<L> {
@@ -63,6 +65,7 @@ impl<const L: usize> Default for TreeRecursion<L> {
             moving: [Moving::ZERO; L],
             subtrees: [Subtree::ZERO; L],
             unit_momenta: [Spatial::ZERO; L],
+            base: Spatial::ZERO,
         }
     }
 }
@@ -71,10 +74,16 @@ impl<const L: usize> TreeRecursion<L> {
     /// Both sweeps over the tree whose links are `states` (parents before
     /// children, placed by `links`' parents) under gravity `gravity` (in
     /// `N`'s axes), at `q̈ = 0`: each link's placement, `Sⱼ`, `Ψ̇ⱼ`, twist,
-    /// `Ψ̈ⱼ` and acceleration (the base at `−g`), and each subtree's `Iᶜⱼ`,
-    /// `İᶜⱼ`, `hᶜⱼ`, inertia force `Fⱼ` and `yⱼ = Iᶜⱼ Sⱼ`.
+    /// the share `v_λ × Ψ̇ⱼ` of `Ψ̈ⱼ` (the rest waits for the accelerations,
+    /// [`TreeRecursion::link_vectors`]) and acceleration (the base at `−g`),
+    /// and each subtree's `Iᶜⱼ`, `İᶜⱼ`, `hᶜⱼ`, inertia force `Fⱼ` and
+    /// `yⱼ = Iᶜⱼ Sⱼ`.
     pub fn sweep(&mut self, states: &[LinkState; L], links: &[TreeLink; L], gravity: &Vec3) {
-        outwards(states, links, gravity, &mut self.moving);
+        self.base = Spatial {
+            angular: [0.0; 3],
+            linear: [-gravity[0], -gravity[1], -gravity[2]],
+        };
+        outwards(states, links, &self.base, &mut self.moving);
         inwards(states, links, &self.moving, &mut self.subtrees);
         for ((y, link), subtree) in self
             .unit_momenta
@@ -133,9 +142,10 @@ impl<const L: usize> TreeRecursion<L> {
     /// ```
     ///
     /// with `Iᶜⱼ`, its rate `İᶜⱼ`, the momentum `hᶜⱼ` and the inertia force
-    /// `Fⱼ` summed over the subtree of `j`. The accelerations add `Δa_λ × Sⱼ`
-    /// to `Ψ̈ⱼ`, with `Δaⱼ = Δa_λ + Sⱼ q̈ⱼ` the share of `aⱼ` that `q̈` moves,
-    /// and `Σₖ Iₖ Δaₖ = Iᶜⱼ Δa_λ + Σₘ yₘ q̈ₘ` (`k`, `m` over the subtree of
+    /// `Fⱼ` summed over the subtree of `j`. `Ψ̈ⱼ`'s first term is taken here,
+    /// at `a_λ = a⁰_λ + Δa_λ` (the sweep's acceleration and the share that
+    /// `q̈` moves, `Δaⱼ = Δa_λ + Sⱼ q̈ⱼ`), and the accelerations add
+    /// `Σₖ Iₖ Δaₖ = Iᶜⱼ Δa_λ + Σₘ yₘ q̈ₘ` (`k`, `m` over the subtree of
     /// `j`) to `Fⱼ`.
     pub fn link_vectors<const N: usize>(
         &mut self,
@@ -146,20 +156,22 @@ impl<const L: usize> TreeRecursion<L> {
         let mut moved = [Spatial::ZERO; L];
         let mut pushed = [Spatial::ZERO; L];
         let mut driven = [Spatial::ZERO; L];
-        for (j, ((link, moving), y)) in links
-            .iter()
-            .zip(&mut self.moving)
-            .zip(&self.unit_momenta)
-            .enumerate()
-        {
-            let above = moved.get(link.parent).copied().unwrap_or_default();
+        for (j, (link, y)) in links.iter().zip(&self.unit_momenta).enumerate() {
+            let (done, rest) = self.moving.split_at_mut(j);
+            let (above, parent) = match (moved.get(link.parent), done.get(link.parent)) {
+                (Some(above), Some(parent)) => (*above, parent.acceleration),
+                _ => (Spatial::ZERO, self.base),
+            };
             let qdd = accelerations.get(link.row).copied().unwrap_or_default();
-            moving.second_rate = moving
-                .second_rate
-                .add(&motion_cross(&above, &moving.subspace));
-            if let (Some(moved), Some(pushed), Some(driven)) =
-                (moved.get_mut(j), pushed.get_mut(j), driven.get_mut(j))
-            {
+            if let (Some(moving), Some(moved), Some(pushed), Some(driven)) = (
+                rest.first_mut(),
+                moved.get_mut(j),
+                pushed.get_mut(j),
+                driven.get_mut(j),
+            ) {
+                moving.second_rate = moving
+                    .second_rate
+                    .add(&motion_cross(&parent.add(&above), &moving.subspace));
                 *moved = above.add(&moving.subspace.scale(qdd));
                 *pushed = above;
                 *driven = y.scale(qdd);
@@ -184,6 +196,15 @@ impl<const L: usize> TreeRecursion<L> {
             *vectors = link_vectors(moving, subtree, y);
         }
     }
+}
+
+/// Whether `link`, the `j`-th, is the child of the link just before it
+/// (true of the first, a root): then the outward sweep hands the parent's
+/// values over in a local rather than through the array just written, whose
+/// load, of a store not yet complete and in other pieces, waits for it.
+#[inline(always)]
+fn follows_its_parent(link: &TreeLink, j: usize) -> bool {
+    link.parent == j.wrapping_sub(1)
 }
 
 /// `values[i] = value`, if there is such an entry.
@@ -233,7 +254,8 @@ struct Spatial {
 }
 
 /// The outward step's state of one link: placement in `N`, motion
-/// subspace `S`, its rates `Ψ̇`, `Ψ̈`, twist and acceleration.
+/// subspace `S`, its rates `Ψ̇`, `Ψ̈` (only `v_λ × Ψ̇` of it until
+/// [`TreeRecursion::link_vectors`]), twist and acceleration at `q̈ = 0`.
 #[derive(Clone, Copy)]
 struct Moving {
     rotation: Mat3,
@@ -265,27 +287,29 @@ struct Subtree {
     force: Spatial,
 }
 
-/// Every link outwards from the base (at rest, accelerating at `−g`) at
+/// Every link outwards from the base (at rest, accelerating at `base`) at
 /// `q̈ = 0`, into `moving`.
 fn outwards<const L: usize>(
     states: &[LinkState; L],
     links: &[TreeLink; L],
-    gravity: &Vec3,
+    base: &Spatial,
     moving: &mut [Moving; L],
 ) {
     let base = Moving {
         rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-        acceleration: Spatial {
-            angular: [0.0; 3],
-            linear: [-gravity[0], -gravity[1], -gravity[2]],
-        },
+        acceleration: *base,
         ..Moving::ZERO
     };
+    let mut previous = base;
     for (j, (state, link)) in states.iter().zip(links).enumerate() {
-        let (done, rest) = moving.split_at_mut(j);
-        let parent = done.get(link.parent).unwrap_or(&base);
-        if let Some(this) = rest.first_mut() {
-            *this = step_outwards(parent, state);
+        let parent = if follows_its_parent(link, j) {
+            &previous
+        } else {
+            moving.get(link.parent).unwrap_or(&base)
+        };
+        previous = step_outwards(parent, state);
+        if let Some(this) = moving.get_mut(j) {
+            *this = previous;
         }
     }
 }
@@ -295,16 +319,10 @@ fn outwards<const L: usize>(
 fn step_outwards(parent: &Moving, state: &LinkState) -> Moving {
     let rotation = mat_mul(&parent.rotation, &state.rotation);
     let origin = add3(&parent.origin, &mat_vec(&parent.rotation, &state.offset));
-    let [a0, a1, a2, b0, b1, b2] = state.axis;
-    let angular = mat_vec(&rotation, &[a0, a1, a2]);
-    let linear = add3(
-        &cross(&origin, &angular),
-        &mat_vec(&rotation, &[b0, b1, b2]),
-    );
-    let subspace = Spatial { angular, linear };
+    let subspace = subspace(&rotation, &origin, &state.axis);
     let (v, a) = (&parent.twist, &parent.acceleration);
     let rate = motion_cross(v, &subspace);
-    let second_rate = motion_cross(a, &subspace).add(&motion_cross(v, &rate));
+    let second_rate = motion_cross(v, &rate);
     Moving {
         rotation,
         origin,
@@ -313,6 +331,34 @@ fn step_outwards(parent: &Moving, state: &LinkState) -> Moving {
         second_rate,
         twist: v.add(&subspace.scale(state.speed)),
         acceleration: a.add(&rate.scale(state.speed)),
+    }
+}
+
+/// `S` in `N` of a joint whose subspace in its link's axes at its origin is
+/// `(e, b)`, the link at `rotation` and `origin`: `(R e, o × R e + R b)`,
+/// without the products by the zero half of a turn (`b = 0`) or a slide
+/// (`e = 0`).
+#[inline(always)]
+fn subspace(rotation: &Mat3, origin: &Vec3, axis: &[f64; 6]) -> Spatial {
+    let [a0, a1, a2, b0, b1, b2] = *axis;
+    let (e, b) = ([a0, a1, a2], [b0, b1, b2]);
+    if b == [0.0; 3] {
+        let angular = mat_vec(rotation, &e);
+        Spatial {
+            angular,
+            linear: cross(origin, &angular),
+        }
+    } else if e == [0.0; 3] {
+        Spatial {
+            angular: [0.0; 3],
+            linear: mat_vec(rotation, &b),
+        }
+    } else {
+        let angular = mat_vec(rotation, &e);
+        Spatial {
+            angular,
+            linear: add3(&cross(origin, &angular), &mat_vec(rotation, &b)),
+        }
     }
 }
 
@@ -371,10 +417,16 @@ fn own(state: &LinkState, link: &Moving) -> Subtree {
     }
 }
 
-/// `R K Rᵀ` of a symmetric `K`.
+/// `R K Rᵀ` of a symmetric `K`; of a diagonal one (principal axes, most
+/// links) as `Σₖ Kₖₖ rₖ rₖᵀ` over the columns `rₖ` of `R`, without the
+/// products by its zeros.
 #[inline(always)]
 fn rotated(r: &Mat3, k: &Mat3) -> Mat3 {
-    let rk = mat_mul(r, k);
+    let rk = if k[0][1] == 0.0 && k[0][2] == 0.0 && k[1][2] == 0.0 {
+        mat3(|i, j| r[i][j] * k[j][j])
+    } else {
+        mat_mul(r, k)
+    };
     symmetric(|i, j| dot(&rk[i], &r[j]))
 }
 
@@ -584,7 +636,7 @@ fn symmetric(f: impl Fn(usize, usize) -> f64) -> Mat3 {
 
 #[cfg(test)]
 mod tests {
-    use super::{LinkState, TreeRecursion};
+    use super::{LinkState, Mat3, TreeRecursion, Vec3, rotated, subspace};
     use crate::dynamics::{TreeLink, add_tree_pairs};
 
     const NONE: usize = usize::MAX;
@@ -701,6 +753,94 @@ mod tests {
             for (i, row) in [(0, &row1), (1, &row0)] {
                 assert!(close(row[column], by_q[i], 1e-7), "∂τ{i}/∂q{k}");
                 assert!(close(row[column + 2], by_v[i], 1e-7), "∂τ{i}/∂v{k}");
+            }
+        }
+    }
+
+    /// The rotation by `angle` about the unit `axis` (Rodrigues).
+    fn turn(axis: Vec3, angle: f64) -> Mat3 {
+        let (s, c) = angle.sin_cos();
+        let [x, y, z] = axis;
+        let k = [[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]];
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| {
+                let kk: f64 = (0..3).map(|m| k[i][m] * k[m][j]).sum();
+                f64::from(u8::from(i == j)) + s * k[i][j] + (1.0 - c) * kk
+            })
+        })
+    }
+
+    fn unit(v: Vec3) -> Vec3 {
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        v.map(|x| x / norm)
+    }
+
+    /// A link's orientation, turned about no coordinate axis.
+    fn orientation() -> Mat3 {
+        turn(unit([0.3, -0.8, 0.5]), 0.9)
+    }
+
+    #[test]
+    fn a_rotated_tensor_is_the_triple_product_diagonal_or_not() {
+        let r = orientation();
+        let diagonal = [[0.4, 0.0, 0.0], [0.0, 0.25, 0.0], [0.0, 0.0, 0.1]];
+        let full = [[0.4, 0.03, -0.02], [0.03, 0.25, 0.05], [-0.02, 0.05, 0.1]];
+        for k in [diagonal, full] {
+            let got = rotated(&r, &k);
+            for (i, row) in got.iter().enumerate() {
+                for (j, entry) in row.iter().enumerate() {
+                    let want: f64 = (0..3)
+                        .flat_map(|a| (0..3).map(move |b| (a, b)))
+                        .map(|(a, b)| r[i][a] * k[a][b] * r[j][b])
+                        .sum();
+                    assert!(
+                        close(*entry, want, 1e-15),
+                        "({i}, {j}): {entry} against {want}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The motion of the point of the link at `N`'s origin, and of its
+    /// axes, as the joint of axis `axis` (in the link's axes) moves by
+    /// `±h` from the link at `rotation`, `origin`, by central differences:
+    /// `(ω, v)` at `N`'s origin.
+    fn moved_by_central_differences(rotation: &Mat3, origin: &Vec3, axis: &[f64; 6]) -> [f64; 6] {
+        let h = 1e-6;
+        let rotate = |m: &Mat3, x: &Vec3| -> Vec3 {
+            std::array::from_fn(|i| (0..3).map(|j| m[i][j] * x[j]).sum())
+        };
+        let (e, b) = ([axis[0], axis[1], axis[2]], [axis[3], axis[4], axis[5]]);
+        let (e_n, b_n) = (rotate(rotation, &e), rotate(rotation, &b));
+        let norm = e_n.iter().map(|x| x * x).sum::<f64>().sqrt();
+        // The point at `N`'s origin, turned about the line through `origin`
+        // along `e_n` by `norm · t` and slid along `b_n` by `t`.
+        let point = |t: f64| -> Vec3 {
+            let r = if norm == 0.0 {
+                turn([0.0, 0.0, 1.0], 0.0)
+            } else {
+                turn(e_n.map(|x| x / norm), norm * t)
+            };
+            let away = rotate(&r, &origin.map(|x| -x));
+            std::array::from_fn(|i| origin[i] + away[i] + b_n[i] * t)
+        };
+        let (plus, minus) = (point(h), point(-h));
+        let v: Vec3 = std::array::from_fn(|i| (plus[i] - minus[i]) / (2.0 * h));
+        [e_n[0], e_n[1], e_n[2], v[0], v[1], v[2]]
+    }
+
+    #[test]
+    fn a_joints_subspace_in_n_moves_the_point_at_ns_origin_as_its_motion_does() {
+        let (rotation, origin) = (orientation(), [0.7, -0.2, 1.1]);
+        let turning = [0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
+        let sliding = [0.0, 0.0, 0.0, 0.6, 0.0, 0.8];
+        let screwing = [0.0, 1.0, 0.0, 0.0, 0.3, 0.0];
+        for axis in [turning, sliding, screwing] {
+            let got = subspace(&rotation, &origin, &axis).flat();
+            let want = moved_by_central_differences(&rotation, &origin, &axis);
+            for (g, w) in got.iter().zip(want) {
+                assert!(close(*g, w, 1e-8), "{axis:?}: {got:?} against {want:?}");
             }
         }
     }
