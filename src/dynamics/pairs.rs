@@ -39,6 +39,20 @@ fn add<const C: usize>(row: &mut [f64; C], c: usize, value: f64) {
     }
 }
 
+/// Link `k` and its ancestors, from `k` to the root.
+fn lineage<'a, const L: usize>(
+    vectors: &'a [[[f64; 6]; 7]; L],
+    links: &'a [TreeLink; L],
+    k: usize,
+) -> impl Iterator<Item = (&'a [[f64; 6]; 7], &'a TreeLink)> {
+    let mut j = k;
+    core::iter::from_fn(move || {
+        let here = (vectors.get(j)?, links.get(j)?);
+        j = here.1.parent;
+        Some(here)
+    })
+}
+
 /// Adds, for every link `i` and each `j` of it and its ancestors, with
 /// `vectors[k] = [Sₖ, Ψ̇ₖ, Ψ̈ₖ, yₖ, zₖ, wₖ, uₖ]` (motions and forces in one
 /// frame):
@@ -49,29 +63,26 @@ fn add<const C: usize>(row: &mut [f64; C], c: usize, value: f64) {
 /// ```
 ///
 /// into `rows[row of τ][column of the variable]` as `links` places them.
+/// Link `i`'s own row is found once and its entries added one by one (each
+/// gets at most one value from the pairs); the ancestors' rows, one entry
+/// pair each, in a second walk up the tree.
 pub fn add_tree_pairs<const C: usize, const N: usize, const L: usize>(
     mut rows: [&mut [f64; C]; N],
     vectors: &[[[f64; 6]; 7]; L],
     links: &[TreeLink; L],
 ) {
     for (i, ([.., y, z, w, u], link)) in vectors.iter().zip(links).enumerate() {
-        let mut own = [0.0; C];
-        let mut j = i;
-        while let (Some([s, rate, second_rate, ..]), Some(other)) = (vectors.get(j), links.get(j)) {
-            add(&mut own, other.by_q, dot(y, second_rate) + dot(z, rate));
-            let y_rate = dot(y, rate);
-            add(&mut own, other.by_v, dot(z, s) + (y_rate + y_rate));
-            if j != i
-                && let Some(row) = rows.get_mut(other.row)
-            {
+        if let Some(row) = rows.get_mut(link.row) {
+            for ([s, rate, second_rate, ..], other) in lineage(vectors, links, i) {
+                add(row, other.by_q, dot(y, second_rate) + dot(z, rate));
+                let y_rate = dot(y, rate);
+                add(row, other.by_v, dot(z, s) + (y_rate + y_rate));
+            }
+        }
+        for ([s, ..], other) in lineage(vectors, links, link.parent) {
+            if let Some(row) = rows.get_mut(other.row) {
                 add(row, link.by_q, dot(s, w));
                 add(row, link.by_v, dot(s, u));
-            }
-            j = other.parent;
-        }
-        if let Some(row) = rows.get_mut(link.row) {
-            for (entry, value) in row.iter_mut().zip(own) {
-                *entry += value;
             }
         }
     }
