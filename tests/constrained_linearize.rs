@@ -5,25 +5,32 @@
 //! position), the slider-crank with the crank angle independent against
 //! central differences of the constrained accelerations along the
 //! manifold, and the error where the chosen coordinates do not determine
-//! the others. And `accelerations_jacobian` of constrained systems (seed
-//! example 3, a knife-edge sled with a nonholonomic row) against central
-//! differences of `dalembert::accelerations`, on and off the manifold.
+//! the others; the nonholonomic knife-edge sled against SymPy's own
+//! `KanesMethod.linearize`; seed example 3 in body-axis speeds (a `speeds`
+//! statement) and a spherical joint held to a plane by two rows on its
+//! quaternion against the closed forms of their one-coordinate pendulums.
+//! And `accelerations_jacobian` of constrained systems (seed example 3, the
+//! sled, the held spherical joint) against central differences of
+//! `dalembert::accelerations` (along `integrate_configuration` for the
+//! spherical joint), on and off the manifold.
 
-use dalembert::DynamicsError;
 use dalembert::constrained::constrained_accelerations;
+use dalembert::{DynamicsError, MultibodySystem};
 use dalembert_fixtures::differences::central_differences;
 use dalembert_fixtures::reference::assert_near_all;
 use dalembert_fixtures::slider_crank::{SLIDER_CRANK, SliderCrank};
 use nalgebra::SMatrix;
 
-/// Seed example 3 as `$name`, linearised with `$independent` independent.
+/// Seed example 3 as `$name`, linearised with `$independent` independent,
+/// with the statements `$speeds` (a `speeds` statement) if given.
 macro_rules! seed_example_3 {
-    ($name:ident, $independent:ident) => {
+    ($name:ident, $independent:ident $(, $($speeds:tt)+)?) => {
         dalembert::dalembert! {
             /// Seed example 3, linearised with one coordinate independent.
             pub $name {
                 parameters m, l, g;
                 coordinates x, y, theta;
+                $($($speeds)+)?
                 inputs M;
                 frame B = N.rotate_z(theta);
                 point G = O + x * N.x + y * N.y;
@@ -56,7 +63,7 @@ dalembert::dalembert! {
         force push * B.x at G;
         torque turn * N.z on B;
         constraint -sin(theta) * dt(x) + cos(theta) * dt(y) == 0;
-        outputs accelerations_jacobian;
+        outputs accelerations_jacobian, linearize(x, y, theta; dt(x), dt(theta));
     }
 }
 
@@ -233,27 +240,28 @@ fn matches<const NV: usize, const N: usize>(
 }
 
 /// The derivatives of the constrained accelerations, on the manifold and
-/// off it (the accelerations are a function of the whole state).
-fn jacobian_matches_differences<S: dalembert::MultibodySystem<3, 3, NU>, const NU: usize>(
+/// off it (the accelerations are a function of the whole state), those by
+/// `q` along `integrate_configuration` (`q + δ` for plain coordinates, the
+/// tangent space of a spherical joint).
+fn jacobian_matches_differences<S: MultibodySystem<NQ, 3, NU>, const NQ: usize, const NU: usize>(
     system: &S,
     jacobian: impl Fn(
-        &[f64; 3],
+        &[f64; NQ],
         &[f64; 3],
         &[f64; NU],
     ) -> ([[f64; 3]; 3], [[f64; 3]; 3], [[f64; NU]; 3]),
-    states: &[([f64; 3], [f64; 3])],
+    states: &[([f64; NQ], [f64; 3])],
     u: &[f64; NU],
 ) {
-    let vdot = |q: &[f64; 3], v: &[f64; 3], u: &[f64; NU]| {
+    let vdot = |q: &[f64; NQ], v: &[f64; 3], u: &[f64; NU]| {
         dalembert::accelerations(system, 0.0, q, v, u).expect("solvable")
     };
     for (q, v) in states {
         let (by_q, by_v, by_u) = jacobian(q, v, u);
-        matches(
-            "dv/dq",
-            &by_q,
-            &central_differences(q, STEP, |q| vdot(q, v, u)),
-        );
+        let along = central_differences(&[0.0; 3], STEP, |delta| {
+            vdot(&system.integrate_configuration(q, delta, 1.0), v, u)
+        });
+        matches("dv/dq", &by_q, &along);
         matches(
             "dv/dv",
             &by_v,
@@ -300,4 +308,188 @@ fn accelerations_jacobian_of_a_nonholonomic_sled_matches_differences() {
         &[on, off],
         &[0.7, -0.2],
     );
+}
+
+/// The sled's reduced `A` and `B` (states `x, y, θ, ẋ, θ̇`; the speed `ẏ`
+/// dependent) against SymPy's own `KanesMethod.linearize(A_and_B=True)`
+/// about the same state on the manifold, moving along its blade while
+/// turning (`scripts/sled_linearize_reference.py` made the numbers; its
+/// header says how).
+#[test]
+fn nonholonomic_sled_matches_sympys_linearizer() {
+    let sled = Sled {
+        m: 2.5,
+        I: 0.3,
+        c: 0.4,
+        g: 9.81,
+    };
+    let (theta, speed, rate) = (0.6_f64, 1.5, 0.8);
+    let q = [0.2, -0.1, theta];
+    let v = [speed * theta.cos(), speed * theta.sin(), rate];
+    let (a, b) = sled
+        .linearize(0.0, &q, &v, &[0.7, -0.2])
+        .expect("linearisable");
+    let sympy_a: [[f64; 5]; 5] = [
+        [0.0, 0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.8174424717684752, 0.6841368083416922, 0.0],
+        [0.0, 0.0, 0.0, 0.0, 1.0],
+        [
+            0.0,
+            0.0,
+            -5.31133191457069,
+            -0.5473094466733538,
+            -0.31874891655035886,
+        ],
+        [
+            0.0,
+            0.0,
+            6.740254991421808,
+            -1.384718073728362,
+            -2.142857142857143,
+        ],
+    ];
+    let sympy_b: [[f64; 2]; 5] = [
+        [0.0, 0.0],
+        [0.0, 0.0],
+        [0.0, 0.0],
+        [0.3301342459638714, 0.0],
+        [0.0, 1.4285714285714284],
+    ];
+    // x, y, θ, ẋ, θ̇ in the state (x, y, θ, ẋ, ẏ, θ̇).
+    let independent = [0, 1, 2, 3, 5];
+    for (r, &i) in independent.iter().enumerate() {
+        let row: Vec<f64> = independent.iter().map(|&j| a[i][j]).collect();
+        assert_near_all(&format!("A[{i}]"), &row, &sympy_a[r], 1e-12);
+        assert_near_all(&format!("B[{i}]"), &b[i], &sympy_b[r], 1e-12);
+        assert_eq!(a[i][4], 0.0, "the dependent speed's column");
+    }
+}
+
+// Seed example 3 in body-axis speeds: the velocity of `G` along `B.x` and
+// `B.y`, and the rate of `theta`.
+seed_example_3!(
+    BodyAxisBar,
+    theta,
+    speeds u1, u2, w {
+        x: cos(theta) * u1 - sin(theta) * u2,
+        y: sin(theta) * u1 + cos(theta) * u2,
+        theta: w
+    };
+);
+
+dalembert::dalembert! {
+    /// A bob on a spherical joint at `O`, held to turn about `N.y` only by
+    /// two rows on its quaternion: a compound pendulum, pushed about `B.y`.
+    pub HeldBall {
+        parameters m, d, g;
+        inputs u;
+        joint spherical ball { parent: N, child: B, at: O };
+        body bob { mass: m, center: ball - d * B.z + 0.05 * B.x, frame: B, inertia: [0.02, 0.03, 0.04, 0.002, -0.001, 0.003] };
+        gravity -g * N.z;
+        torque u * B.y on B;
+        constraint ball_qx == 0;
+        constraint ball_qz == 0;
+        outputs accelerations_jacobian, linearize(ball_wy);
+    }
+}
+
+/// The reduced rows and columns `(i, j)` of `a` against `expected`, to
+/// `1e-12` relative, and the other columns zero.
+fn reduced_matrix_is<const N: usize>(
+    a: &[[f64; N]; N],
+    independent: [usize; 2],
+    expected: [[f64; 2]; 2],
+) {
+    for (r, &i) in independent.iter().enumerate() {
+        let row = independent.map(|j| a[i][j]);
+        assert_near_all(&format!("A[{i}]"), &row, &expected[r], 1e-12);
+    }
+    for (i, row) in a.iter().enumerate() {
+        for (j, x) in row.iter().enumerate() {
+            if !independent.contains(&j) {
+                assert_eq!(*x, 0.0, "A[{i}][{j}]: a dependent column");
+            }
+        }
+    }
+}
+
+/// In body-axis speeds the bar's `(θ, w)` rows and columns are still the
+/// one-coordinate pendulum's `[[0, 1], [−3g cos θ / 2l, 0]]` (`θ̇ = w`).
+#[test]
+fn seed_example_3_in_body_axis_speeds_is_the_one_coordinate_pendulum() {
+    let bar = BodyAxisBar {
+        m: 1.7,
+        l: 1.1,
+        g: 9.81,
+    };
+    for (theta, rate) in [(0.0, 0.0), (0.4_f64, -1.3), (2.0, 0.7)] {
+        let (q, _) = assembled(bar.l, theta, rate);
+        // G moves along B.x at (l/2) θ̇.
+        let v = [bar.l / 2.0 * rate, 0.0, rate];
+        let (a, _) = bar.linearize(0.0, &q, &v, &[0.3]).expect("linearisable");
+        let stiffness = -3.0 * bar.g * theta.cos() / (2.0 * bar.l);
+        reduced_matrix_is(&a, [2, 5], [[0.0, 1.0], [stiffness, 0.0]]);
+    }
+}
+
+const HELD: HeldBall = HeldBall {
+    m: 1.3,
+    d: 0.6,
+    g: 9.81,
+};
+
+/// The quaternion `(x, y, z, w)` turned by `theta` about `y`, and the speeds
+/// of turning about `B.y` at `rate`.
+fn held_state(theta: f64, rate: f64) -> ([f64; 4], [f64; 3]) {
+    let (s, c) = (theta / 2.0).sin_cos();
+    ([0.0, s, 0.0, c], [0.0, rate, 0.0])
+}
+
+/// Turning about `B.y` only, the bob is a compound pendulum: its centre at
+/// `−d B.z + e B.x` (`B.x = (cos θ, 0, −sin θ)`, `B.z = (sin θ, 0, cos θ)`)
+/// has the potential `m g z = −m g (d cos θ + e sin θ)`, so the stiffness
+/// is `−m g (d cos θ + e sin θ) / I_O` with `I_O = I_yy + m (d² + e²)`
+/// about `O`, and the torque turns it by `1 / I_O`.
+#[test]
+fn held_spherical_joint_is_a_compound_pendulum() {
+    let HeldBall { m, d, g } = HELD;
+    let e = 0.05;
+    let inertia = 0.03 + m * (d * d + e * e);
+    for (theta, rate) in [(0.0, 0.0), (0.5_f64, 1.1), (-2.4, -0.6)] {
+        let (q, v) = held_state(theta, rate);
+        let (a, b) = HELD.linearize(0.0, &q, &v, &[0.2]).expect("linearisable");
+        let stiffness = -m * g * (d * theta.cos() + e * theta.sin()) / inertia;
+        reduced_matrix_is(&a, [1, 4], [[0.0, 1.0], [stiffness, 0.0]]);
+        assert_near_all("B[4]", &b[4], &[1.0 / inertia], 1e-12);
+    }
+}
+
+#[test]
+fn accelerations_jacobian_of_a_held_spherical_joint_matches_tangent_differences() {
+    let (on_q, on_v) = held_state(0.7, 1.2);
+    // Off the manifold: turned about x and z too, and turning about them.
+    let off_q = HELD.integrate_configuration(&on_q, &[0.2, 0.0, -0.1], 1.0);
+    jacobian_matches_differences(
+        &HELD,
+        |q, v, u| HELD.accelerations_jacobian(0.0, q, v, u).expect("regular"),
+        &[(on_q, on_v), (off_q, [0.3, 1.2, -0.4])],
+        &[0.3],
+    );
+}
+
+/// With the blade along `N.y` the no-slip row is `ẋ = 0`: the speed of `y`
+/// does not follow from those of `x` and `θ`.
+#[test]
+fn a_choice_of_speeds_that_does_not_determine_the_others_is_an_error_naming_one() {
+    let sled = Sled {
+        m: 2.5,
+        I: 0.3,
+        c: 0.4,
+        g: 9.81,
+    };
+    let q = [0.2, -0.1, std::f64::consts::FRAC_PI_2];
+    match sled.linearize(0.0, &q, &[0.0, 1.5, 0.8], &[0.0, 0.0]) {
+        Err(DynamicsError::SingularDependentSpeeds { speed, .. }) => assert_eq!(speed, "dt(y)"),
+        other => panic!("expected SingularDependentSpeeds, got {other:?}"),
+    }
 }

@@ -9,7 +9,7 @@
 //!   constraints, singular positions and coordinates without inertia of
 //!   their own are handled;
 //! * [`linearize_on_constraints`] linearises the equations on the
-//!   constraint manifold with independent coordinates (what a generated
+//!   constraint manifold with independent coordinates and speeds (what a generated
 //!   `linearize` calls for a constrained system), and
 //!   [`constrained_accelerations_jacobian`] gives the accelerations'
 //!   derivatives (what its `accelerations_jacobian` calls);
@@ -31,7 +31,8 @@ pub(crate) mod test_systems;
 
 pub use linearize::{
     AccelerationPartials, AccelerationsJacobian, ConstrainedLinearization, ConstrainedPartials,
-    DEPENDENT_PIVOT_TOLERANCE, constrained_accelerations_jacobian, linearize_on_constraints,
+    DEPENDENT_PIVOT_TOLERANCE, ManifoldChart, constrained_accelerations_jacobian,
+    linearize_on_constraints,
 };
 pub use multipliers::{
     ACCELERATION_RANK_TOLERANCE, CONSISTENCY_TOLERANCE, ConstraintSolver, NEAR_MANIFOLD,

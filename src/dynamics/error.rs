@@ -89,11 +89,23 @@ pub enum DynamicsError {
     /// constrained system do not determine the others here: the
     /// constraints' Jacobian by the dependent coordinates is singular (its
     /// elimination met a pivot not larger than `1e-12` times the largest
-    /// entry), at the column of `coordinate`. Choose other independent
+    /// entry of the holonomic rows), at the column of `coordinate`. Choose other independent
     /// coordinates near this configuration.
     SingularDependentCoordinates {
         /// The dependent coordinate whose column failed.
         coordinate: &'static str,
+        /// The pivot.
+        pivot: f64,
+    },
+    /// The independent speeds chosen for the linearisation of a
+    /// constrained system do not determine the others here: the
+    /// constraints' Jacobian by the dependent speeds is singular (its
+    /// elimination met a pivot not larger than `1e-12` times the largest
+    /// entry of the rows), at the column of `speed`. Choose other independent speeds
+    /// near this state.
+    SingularDependentSpeeds {
+        /// The dependent speed whose column failed.
+        speed: &'static str,
         /// The pivot.
         pivot: f64,
     },
@@ -155,6 +167,12 @@ impl fmt::Display for DynamicsError {
                 "the independent coordinates do not determine `{coordinate}` here: the \
                  constraints' Jacobian by the dependent coordinates is singular (pivot \
                  {pivot:.3e}); choose other independent coordinates"
+            ),
+            Self::SingularDependentSpeeds { speed, pivot } => write!(
+                f,
+                "the independent speeds do not determine `{speed}` here: the constraints' \
+                 Jacobian by the dependent speeds is singular (pivot {pivot:.3e}); choose \
+                 other independent speeds"
             ),
         }
     }

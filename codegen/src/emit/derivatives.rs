@@ -16,6 +16,7 @@ use super::solve::{
     negated_row_substitutions, state_check,
 };
 use super::{array, raw_string};
+use crate::equations::derivatives::direction_names;
 use crate::equations::{Equations, LinkState};
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
@@ -519,7 +520,8 @@ pub fn emit_linearize(
 /// `AccelerationPartials` (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, `∂c/∂q`, `∂c/∂v`,
 /// the first results of `function`) evaluated at the accelerations and
 /// multipliers of `constrained_accelerations`, and with `velocity` the
-/// `ConstrainedPartials` that also hold `∂ψ/∂q` (its last result).
+/// `ConstrainedPartials` that also hold `∂ψ/∂δ`, `∂φ/∂δ` and the kinematic
+/// rows `K_δ`, `K_v` (its last results).
 fn constrained_partials(
     model: &Model,
     pool: &Pool,
@@ -560,11 +562,15 @@ fn constrained_partials(
     };
     let partials = match velocity {
         true => {
-            let psi_q = block(nc, nv);
+            let (psi_q, phi_q) = (block(nc, nv), block(nc, nv));
+            let (k_q, k_v) = (block(nv, nv), block(nv, nv));
             quote! {
                 ::dalembert::constrained::ConstrainedPartials {
                     accelerations: #accelerations,
                     velocity_by_q: #psi_q,
+                    position_by_q: #phi_q,
+                    kinematic_by_q: #k_q,
+                    kinematic_by_v: #k_v,
                 }
             }
         }
@@ -590,9 +596,10 @@ fn constrained_partials(
 
 /// `pub fn linearize(..)` of a system with constraints, from `function`,
 /// whose results are the partials of `linearize_on_constraints`
-/// (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, `∂c/∂q`, `∂c/∂v`, `∂ψ/∂q`), evaluated at
-/// the accelerations and multipliers of `constrained_accelerations`, with
-/// the independent coordinates of the model's `linearize(..)`.
+/// (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, `∂c/∂q`, `∂c/∂v`, `∂ψ/∂δ`, `∂φ/∂δ`, `K_δ`,
+/// `K_v`), evaluated at the accelerations and multipliers of
+/// `constrained_accelerations`, with the independent entries of the
+/// model's `linearize(..)`.
 pub fn emit_constrained_linearize(
     model: &Model,
     pool: &Pool,
@@ -600,15 +607,12 @@ pub fn emit_constrained_linearize(
     function: &Function,
 ) -> TokenStream {
     let nv = model.nv();
-    let independent: Vec<bool> = (0..nv)
-        .map(|j| {
-            model
-                .outputs
-                .iter()
-                .flat_map(|o| &o.independent)
-                .any(|(i, _)| *i == j)
-        })
-        .collect();
+    let chart = model.outputs.iter().find_map(|o| o.chart.as_ref());
+    let (coordinates, speeds) = chart.map_or((vec![true; nv], vec![true; nv]), |c| {
+        (c.coordinates.clone(), c.speeds.clone())
+    });
+    let holonomic = model.constraints.iter().map(|c| !c.nonholonomic);
+    let direction_names = direction_names(model);
     let partials = constrained_partials(model, pool, names, function, true);
     let [kq, kv, dq, dv] = ["kq", "kv", "dq", "dv"].map(|prefix| entry_names(prefix, nv, nv));
     let du: Vec<Ident> = (0..nv).map(|i| format_ident!("du{}", i)).collect();
@@ -628,8 +632,13 @@ pub fn emit_constrained_linearize(
             &self.mass_matrix(q),
             &self.constraint_jacobian(q),
             &partials,
-            &[#(#independent),*],
-            &Self::COORDINATES,
+            &::dalembert::constrained::ManifoldChart {
+                holonomic: [#(#holonomic),*],
+                coordinates: [#(#coordinates),*],
+                speeds: [#(#speeds),*],
+                coordinate_names: [#(#direction_names),*],
+                speed_names: Self::SPEEDS,
+            },
         )?;
         ::core::result::Result::Ok((
             [#(#kinematic_rows,)* #(#dynamic_rows),*],
@@ -653,6 +662,7 @@ pub fn emit_constrained_accelerations_jacobian(
     let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
     let docs = function.docs.iter().map(|line| raw_string(line));
     let partials = constrained_partials(model, pool, names, function, false);
+    let direction_names = direction_names(model);
     quote! {
         #(#[doc = #docs])*
         #[inline]
@@ -668,7 +678,7 @@ pub fn emit_constrained_accelerations_jacobian(
                 &self.mass_matrix(q),
                 &self.constraint_jacobian(q),
                 &partials,
-                &Self::COORDINATES,
+                &[#(#direction_names),*],
             )
         }
     }

@@ -108,6 +108,17 @@ pub fn plain_speeds(model: &Model) -> Vec<(usize, usize)> {
         .collect()
 }
 
+/// The names of the tangent directions (one per speed): a plain
+/// coordinate's own, or the speed's along which a free or spherical
+/// joint's coordinates move.
+pub fn direction_names(model: &Model) -> Vec<String> {
+    let mut names: Vec<String> = model.speeds.iter().map(|s| s.written()).collect();
+    for (k, c) in plain_speeds(model) {
+        names[k] = model.coordinates[c].to_string();
+    }
+    names
+}
+
 /// The kinematic rows of a linearisation in the tangent space: with
 /// `q = q̄ ⊕ δ` and `v = v̄ + δv`, `δ̇ = K_δ δ + K_v δv` to first order;
 /// `(K_δ, K_v)`, rows and columns by speed. For a plain coordinate `c`

@@ -145,8 +145,21 @@ pub struct OutputRequest {
     /// Further names after commas: `linearize(theta, phi)`'s other
     /// independent coordinates.
     pub more: Vec<Ident>,
+    /// The names after `;`: `linearize(x, y, theta; dt(x), w)`'s
+    /// independent speeds.
+    pub speeds: Vec<SpeedName>,
     /// The frame after `in`, whose axes the output is expressed in.
     pub axes: Option<Ident>,
+}
+
+/// A speed as `linearize(..; ..)` names it: `dt(q)`, the rate of a
+/// coordinate, or the name of a speed of its own.
+#[derive(Clone, Debug)]
+pub struct SpeedName {
+    /// The coordinate in `dt(..)`, or the speed's name.
+    pub name: Ident,
+    /// Whether it was written `dt(name)`.
+    pub rate: bool,
 }
 
 /// `name: value` inside the braces of `body`, `particle` and `joint`.

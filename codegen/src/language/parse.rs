@@ -8,7 +8,7 @@
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use syn::Lit;
 
-use super::ast::{Expr, Field, OutputRequest, Statement, System};
+use super::ast::{Expr, Field, OutputRequest, SpeedName, Statement, System};
 use super::cursor::Cursor;
 use super::expression::expression;
 use super::keyword::{self, STATEMENTS};
@@ -357,6 +357,7 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
             name,
             of: None,
             more: Vec::new(),
+            speeds: Vec::new(),
             axes: None,
         });
     };
@@ -365,6 +366,13 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
     let mut more = Vec::new();
     while inside.eat_punct(',').is_some() {
         more.push(inside.expect_ident("a coordinate after `,`")?);
+    }
+    let mut speeds = Vec::new();
+    if inside.eat_punct(';').is_some() {
+        speeds.push(speed_name(&mut inside)?);
+        while inside.eat_punct(',').is_some() {
+            speeds.push(speed_name(&mut inside)?);
+        }
     }
     let axes = match inside.eat_keyword(keyword::IN) {
         Some(_) => Some(inside.expect_ident("a frame after `in`")?),
@@ -377,8 +385,26 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
         name,
         of: Some(of),
         more,
+        speeds,
         axes,
     })
+}
+
+/// Parses one speed of `linearize(..; ..)`: `dt(q)` or a speed's name.
+fn speed_name(cursor: &mut Cursor) -> syn::Result<SpeedName> {
+    let name = cursor.expect_ident("a speed, `dt(q)` or its name, after `;` or `,`")?;
+    if name != "dt" {
+        return Ok(SpeedName { name, rate: false });
+    }
+    let group = cursor
+        .eat_group(Delimiter::Parenthesis)
+        .ok_or_else(|| cursor.expected("`(` and a coordinate after `dt`"))?;
+    let mut inside = Cursor::group(&group);
+    let name = inside.expect_ident("a coordinate in `dt(..)`")?;
+    if !inside.is_end() {
+        return Err(inside.expected("`)` after the coordinate in `dt(..)`"));
+    }
+    Ok(SpeedName { name, rate: true })
 }
 
 #[cfg(test)]

@@ -7,7 +7,8 @@
 //! of [`KINDS`].
 
 use super::{FrameId, Model, PointId};
-use crate::expr::Pool;
+use crate::equations::derivatives::plain_speeds;
+use crate::expr::{Pool, Sym};
 use proc_macro2::{Ident, Span};
 use quote::format_ident;
 
@@ -139,9 +140,27 @@ pub struct Output {
     pub subject: Option<String>,
     /// The name of the frame of [`Output::axes`], for the docs.
     pub axes_name: String,
-    /// `linearize(a, b)`'s independent coordinates, as written, with their
-    /// indices.
-    pub independent: Vec<(usize, Ident)>,
+    /// `linearize(a, b; ..)`'s independent coordinates, as written: a
+    /// coordinate, or a speed of a free or spherical joint for the tangent
+    /// direction along it.
+    pub independent: Vec<(Sym, Ident)>,
+    /// `linearize(..; dt(a), w)`'s independent speeds, as written: the
+    /// coordinate of `dt(..)`, or a speed.
+    pub independent_speeds: Vec<(Sym, Ident)>,
+    /// `linearize(..)`'s independent entries, found by [`chart`] once the
+    /// model is checked.
+    pub chart: Option<Chart>,
+}
+
+/// The independent entries of a linearisation on the constraint manifold:
+/// whether each tangent direction of the coordinates (one per speed) and
+/// each speed is independent.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Chart {
+    /// By tangent direction.
+    pub coordinates: Vec<bool>,
+    /// By speed.
+    pub speeds: Vec<bool>,
 }
 
 /// The function name of an output written `name`, `name(subject)` or
@@ -159,50 +178,198 @@ pub fn function_name(name: &Ident, subject: Option<&Ident>, axes: Option<&Ident>
     ident
 }
 
-/// What is wrong with a `linearize` output of `model` (whose expressions
-/// are in `pool`), at which token: a
-/// system with constraints is linearised on the constraint manifold, so
-/// it names as many independent coordinates as it has degrees of freedom
-/// (`NQ − NC`; the others are found from the holonomic constraints), and
-/// a system without names none.
-pub fn linearize_problem(model: &Model, pool: &Pool, output: &Output) -> Option<(Span, String)> {
+/// The [`Chart`] of a `linearize` output of `model` (whose expressions
+/// are in `pool`), or what is wrong with it, at which token: a system with
+/// constraints is linearised on the constraint manifold, so it names as
+/// many independent coordinates as it has speeds less holonomic rows (the
+/// tangent directions of a free or spherical joint by the joint's speeds),
+/// and, after `;`, as many independent speeds as it has speeds less rows
+/// (by default, with holonomic rows only, the speeds of the independent
+/// coordinates); a system without constraints names none.
+pub fn chart(model: &Model, pool: &mut Pool, output: &Output) -> Result<Chart, (Span, String)> {
     let name = &output.function;
-    let (nq, nc) = (model.nq(), model.constraints.len());
+    let (nv, nc) = (model.nv(), model.constraints.len());
+    let holonomic = model.constraints.iter().filter(|c| !c.nonholonomic).count();
     if nc == 0 {
-        let (_, first) = output.independent.first()?;
-        return Some((
-            first.span(),
+        return match output.independent.first() {
+            Some((_, first)) => Err((
+                first.span(),
+                format!(
+                    "`{name}` takes independent coordinates only for a system with \
+                     constraints: write `{name}` alone"
+                ),
+            )),
+            None => Ok(Chart {
+                coordinates: vec![true; nv],
+                speeds: vec![true; nv],
+            }),
+        };
+    }
+    let coordinates = independent_directions(model, output, holonomic)?;
+    if output.independent_speeds.is_empty() && holonomic == nc {
+        let speeds = coordinates.clone();
+        return Ok(Chart {
+            coordinates,
+            speeds,
+        });
+    }
+    let speeds = independent_speeds(model, pool, output)?;
+    Ok(Chart {
+        coordinates,
+        speeds,
+    })
+}
+
+/// The names as written, comma-separated.
+fn written(names: &[(Sym, Ident)]) -> String {
+    let names: Vec<String> = names.iter().map(|(_, n)| n.to_string()).collect();
+    names.join(", ")
+}
+
+/// Whether each tangent direction (one per speed) is among the independent
+/// coordinates of `output`, which must be as many as the speeds less the
+/// `holonomic` rows; or what is wrong, at which token.
+fn independent_directions(
+    model: &Model,
+    output: &Output,
+    holonomic: usize,
+) -> Result<Vec<bool>, (Span, String)> {
+    let (name, nv) = (&output.function, model.nv());
+    let plain = plain_speeds(model);
+    let ball_speeds: Vec<usize> = model
+        .balls
+        .iter()
+        .flat_map(|b| {
+            let linear = b.translation.map(|(_, v)| v);
+            b.angular.into_iter().chain(linear.into_iter().flatten())
+        })
+        .collect();
+    let mut coordinates = vec![false; nv];
+    for (sym, ident) in &output.independent {
+        let direction = match *sym {
+            Sym::Coord(c) => plain
+                .iter()
+                .find(|&&(_, p)| p == c as usize)
+                .map(|&(k, _)| k),
+            Sym::Speed(k) => ball_speeds.contains(&(k as usize)).then_some(k as usize),
+            _ => None,
+        };
+        let Some(k) = direction else {
+            let what = match sym {
+                Sym::Coord(_) => "a component of a free or spherical joint's quaternion",
+                _ => "a speed that is not a free or spherical joint's",
+            };
+            return Err((
+                ident.span(),
+                format!(
+                    "`{ident}` is {what}: `{name}(..)` names plain coordinates, and a free or \
+                     spherical joint's tangent directions by the joint's speeds \
+                     (`J_wx`, `J_vx`, ..)"
+                ),
+            ));
+        };
+        coordinates[k] = true;
+    }
+    if output.independent.len() + holonomic != nv {
+        let plain_names: Vec<String> = plain
+            .iter()
+            .map(|&(_, c)| model.coordinates[c].to_string())
+            .collect();
+        let span = output
+            .independent
+            .first()
+            .map_or(name.span(), |(_, first)| first.span());
+        return Err((
+            span,
             format!(
-                "`{name}` takes independent coordinates only for a system with constraints: \
-                 write `{name}` alone"
+                "`{name}` linearises a system with constraints on the constraint manifold: \
+                 name its {} independent coordinate(s) in parentheses, as `{name}({})` ({}, \
+                 less {holonomic} holonomic constraint(s)); the others are found from the \
+                 constraints",
+                nv.saturating_sub(holonomic),
+                plain_names.last().map_or("J_wx", String::as_str),
+                match model.balls.is_empty() {
+                    true => format!(
+                        "{} coordinates `{}`",
+                        plain_names.len(),
+                        plain_names.join("`, `")
+                    ),
+                    false => format!(
+                        "{nv} tangent directions, a free or spherical joint's named by its \
+                         speeds"
+                    ),
+                },
             ),
         ));
     }
-    let problem = if model.constraints.iter().any(|c| c.nonholonomic) {
-        "is not available yet for a system with nonholonomic constraints: remove it from \
-         `outputs`"
-            .to_string()
-    } else if nq != model.nv() || !model.balls.is_empty() || !pool.rates_are_speeds() {
-        "is not available yet for a system with constraints whose speeds are not its \
-         coordinates' rates (a free or spherical joint, a `speeds` statement): remove it \
-         from `outputs`"
-            .to_string()
-    } else if output.independent.len() + nc != nq {
-        let written: Vec<String> = model.coordinates.iter().map(ToString::to_string).collect();
-        format!(
-            "linearises a system with constraints on the constraint manifold: name its \
-             {} independent coordinate(s) in parentheses, as `{name}({})` ({nq} coordinates \
-             `{}`, less {nc} constraint(s)); the others are found from the constraints",
-            nq.saturating_sub(nc),
-            written.last().map_or("", String::as_str),
-            written.join("`, `"),
-        )
-    } else {
-        return None;
-    };
-    let span = match output.independent.first() {
-        Some((_, first)) if nq == model.nv() && output.independent.len() + nc != nq => first.span(),
-        _ => name.span(),
-    };
-    Some((span, format!("`{name}` {problem}")))
+    Ok(coordinates)
+}
+
+/// Whether each speed is among the independent speeds of `output` (after
+/// `;`), which must be as many as the speeds less the rows; or what is
+/// wrong, at which token.
+fn independent_speeds(
+    model: &Model,
+    pool: &mut Pool,
+    output: &Output,
+) -> Result<Vec<bool>, (Span, String)> {
+    let (name, nv, nc) = (&output.function, model.nv(), model.constraints.len());
+    let plain = plain_speeds(model);
+    let mut speeds = vec![false; nv];
+    for (sym, ident) in &output.independent_speeds {
+        let speed = match *sym {
+            Sym::Coord(c) => plain
+                .iter()
+                .find(|&&(k, p)| p == c as usize && pool.rate(c) == pool.sym(Sym::Speed(k as u32)))
+                .map(|&(k, _)| k),
+            Sym::Speed(k) => Some(k as usize),
+            _ => None,
+        };
+        let Some(k) = speed else {
+            return Err((
+                ident.span(),
+                format!(
+                    "`dt({ident})` is not one of the speeds (a `speeds` statement or a joint \
+                     gives this coordinate's rate): name the speed itself"
+                ),
+            ));
+        };
+        if speeds[k] {
+            return Err((
+                ident.span(),
+                format!("the speed of `{ident}` is named twice"),
+            ));
+        }
+        speeds[k] = true;
+    }
+    if output.independent_speeds.len() + nc != nv {
+        let span = output
+            .independent_speeds
+            .first()
+            .map_or(name.span(), |(_, first)| first.span());
+        let example_speeds: Vec<String> = model.speeds[nc.min(nv)..]
+            .iter()
+            .map(|s| s.written())
+            .collect();
+        let given = match output.independent_speeds.is_empty() {
+            true => String::new(),
+            false => format!(
+                " (`{}` are {})",
+                written(&output.independent_speeds),
+                output.independent_speeds.len()
+            ),
+        };
+        return Err((
+            span,
+            format!(
+                "`{name}` linearises a system with nonholonomic constraints: name its {} \
+                 independent speed(s) after `;`, as `{name}({}; {})` ({nv} speeds, less \
+                 {nc} constraint(s)){given}; the others are found from the constraints",
+                nv.saturating_sub(nc),
+                written(&output.independent),
+                example_speeds.join(", "),
+            ),
+        ));
+    }
+    Ok(speeds)
 }

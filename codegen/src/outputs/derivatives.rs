@@ -6,10 +6,12 @@
 use super::{Argument, Body, Function, PairedTree, Value, doc_lines};
 use crate::cost::operations;
 use crate::equations::derivatives::{
-    ResidualJacobian, plain_speeds, residual_jacobian, tangent_directions, tangent_kinematics,
+    ResidualJacobian, TangentDirections, along, direction_names, plain_speeds, residual_jacobian,
+    tangent_directions, tangent_kinematics,
 };
 use crate::equations::{Equations, LinkState, TreeJacobian, inverse_dynamics, tree_jacobian};
 use crate::expr::{ExprId, Pool, Sym};
+use crate::model::Chart;
 use crate::model::Model;
 use proc_macro2::{Ident, Span};
 
@@ -222,55 +224,75 @@ pub fn linearize(model: &Model, pool: &mut Pool) -> Function {
 }
 
 /// `linearize(t, q, v, u) -> Result<(A, B), _>` of a system with
-/// holonomic constraints, on the constraint manifold with the independent
-/// coordinates `independent` (as written): its results are the partials,
-/// at the solved `v̇` and `λ`, of the residuals `r = M v̇ − f − Aᵀ λ` (by
-/// `q`, `v`, `u`) and `c = A v̇ − b` (by `q`, `v`), and `∂ψ/∂q` of the
-/// constraints' velocity form `ψ`; the runtime's
-/// `linearize_on_constraints` does the rest.
+/// constraints, on the constraint manifold with the independent entries of
+/// `chart`: its results are the partials, at the solved `v̇` and `λ`, of
+/// the residuals `r = M v̇ − f − Aᵀ λ` (by `q` in the tangent space, `v`,
+/// `u`) and `c = A v̇ − b` (by `q`, `v`), then `∂ψ/∂δ` of the constraints'
+/// velocity form `ψ`, `∂φ/∂δ` of their holonomic residuals and the
+/// kinematic rows `(K_δ, K_v)`; the runtime's `linearize_on_constraints`
+/// does the rest.
 pub fn constrained_linearize(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
-    independent: &[String],
+    chart: &Chart,
 ) -> Function {
-    let mut results = acceleration_partials(model, equations, pool);
-    results.push(by(
-        pool,
+    let nv = model.nv();
+    let directions = tangent_directions(model, pool);
+    let mut results = acceleration_partials(model, equations, pool, &directions);
+    for rows in [
         &equations.constraint_velocity,
-        Sym::Coord,
-        model.nv(),
-    ));
-    let dependent: Vec<String> = model
-        .coordinates
-        .iter()
-        .map(ToString::to_string)
-        .filter(|c| !independent.contains(c))
-        .collect();
+        &equations.constraint_residual,
+    ] {
+        let block: Vec<Vec<ExprId>> = rows
+            .iter()
+            .map(|&e| directions.iter().map(|d| along(pool, e, d)).collect())
+            .collect();
+        results.push(Value::matrix(&block, nv));
+    }
+    let (by_coordinates, by_speeds) = tangent_kinematics(model, pool, &directions);
+    results.push(Value::matrix(&by_coordinates, nv));
+    results.push(Value::matrix(&by_speeds, nv));
+    let speed_names: Vec<String> = model.speeds.iter().map(|s| s.written()).collect();
+    let split = |names: &[String], independent: &[bool], want: bool| -> String {
+        let chosen: Vec<&str> = names
+            .iter()
+            .zip(independent)
+            .filter(|&(_, &i)| i == want)
+            .map(|(n, _)| n.as_str())
+            .collect();
+        chosen.join("`, `")
+    };
+    let coordinate_names = direction_names(model);
     function(
         "linearize",
         &format!(
             "The linearisation `δẋ = A δx + B δu` of the equations of motion about a\n\
-             state `x = (q, v)` on the constraint manifold and input `u`, with the\n\
-             independent coordinates `{}` (the dependent `{}` follow from the\n\
-             constraints), by the method of Peterson, Gede and Hubbard (2014), as\n\
-             SymPy's `Linearizer`. The accelerations `v̇(t, q, v, u)` of\n\
-             `M v̇ = f + Aᵀ λ`, `A v̇ = b` are differentiated exactly (the partials of\n\
+             state `x = (q, v)` on the constraint manifold and input `u`, with `q = q̄ ⊕ δ`\n\
+             (`δ` in the tangent space, one entry per speed) and `v = v̄ + δv`, the\n\
+             independent coordinates `{}` (the dependent `{}` follow from the holonomic\n\
+             constraints) and the independent speeds `{}` (the dependent `{}` from all\n\
+             the constraints' velocity forms), by the method of Peterson, Gede and\n\
+             Hubbard (2014), as SymPy's `Linearizer`. The accelerations `v̇(t, q, v, u)`\n\
+             of `M v̇ = f + Aᵀ λ`, `A v̇ = b` are differentiated exactly (the partials of\n\
              `M v̇ − f − Aᵀ λ` and `A v̇ − b` at the solved `v̇`, `λ`, through the\n\
              saddle-point system). A perturbation that keeps the constraints is\n\
-             `δq = E δq`, `δv = E δv + F δq`, where `E` and `F` read only the\n\
-             independent entries (`δq_D = −A_D⁻¹ A_I δq_I`,\n\
-             `δv_D = −A_D⁻¹ (A_I δv_I + ∂ψ/∂q δq)`), so\n\
-             `A = [[F, E], [∂v̇/∂q E + ∂v̇/∂v F, ∂v̇/∂v E]]` and `B = [[0], [∂v̇/∂u]]`:\n\
-             the columns of the dependent entries are zero, and the rows and columns\n\
-             of the independent coordinates and their speeds are the reduced `A` of\n\
+             `δ = E_q δ`, `δv = E_v δv + F δ`, where `E_q`, `E_v` and `F` read only the\n\
+             independent entries (`δ_D = −Φ_D⁻¹ Φ_I δ_I` for `Φ = ∂φ/∂δ` of the\n\
+             holonomic rows, `δv_D = −A_D⁻¹ (A_I δv_I + ∂ψ/∂δ δ)`), so with the\n\
+             kinematic rows `δ̇ = K_δ δ + K_v δv`\n\
+             `A = [[K_δ E_q + K_v F, K_v E_v], [∂v̇/∂q E_q + ∂v̇/∂v F, ∂v̇/∂v E_v]]` and\n\
+             `B = [[0], [∂v̇/∂u]]`: the columns of the dependent entries are zero, and\n\
+             the rows and columns of the independent ones are the reduced `A` of\n\
              SymPy's `Linearizer`, whose eigenvalues about an equilibrium are the\n\
-             nonzero ones of `A`. The state must be on the manifold. Errors: those\n\
-             of `dalembert::constrained::constrained_accelerations`, and\n\
-             `SingularDependentCoordinates` naming a dependent coordinate where the\n\
-             independent ones do not determine it (`A_D` singular).",
-            independent.join("`, `"),
-            dependent.join("`, `"),
+             nonzero ones of `A`. The state must be on the manifold. Errors: those of\n\
+             `dalembert::constrained::constrained_accelerations`, and\n\
+             `SingularDependentCoordinates` or `SingularDependentSpeeds` naming a\n\
+             dependent entry where the independent ones do not determine it.",
+            split(&coordinate_names, &chart.coordinates, true),
+            split(&coordinate_names, &chart.coordinates, false),
+            split(&speed_names, &chart.speeds, true),
+            split(&speed_names, &chart.speeds, false),
         ),
         &[Time, Coordinates, Speeds, Inputs],
         results,
@@ -279,10 +301,15 @@ pub fn constrained_linearize(
 }
 
 /// The partials, at the solved `v̇` and `λ`, of the residuals
-/// `r = M v̇ − f − Aᵀ λ` (by `q`, `v`, `u`) and `c = A v̇ − b` (by `q`,
-/// `v`) of a system with constraints: what the runtime's
-/// `AccelerationPartials` holds.
-fn acceleration_partials(model: &Model, equations: &Equations, pool: &mut Pool) -> Vec<Value> {
+/// `r = M v̇ − f − Aᵀ λ` (by `q` along the tangent `directions`, `v`, `u`)
+/// and `c = A v̇ − b` (by `q` along them, `v`) of a system with
+/// constraints: what the runtime's `AccelerationPartials` holds.
+fn acceleration_partials(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+    directions: &TangentDirections,
+) -> Vec<Value> {
     let (nv, nu) = (model.nv(), model.inputs.len());
     let (tau, _) = inverse_dynamics(model, equations, pool);
     let jacobian = &equations.constraint_jacobian;
@@ -319,23 +346,15 @@ fn acceleration_partials(model: &Model, equations: &Equations, pool: &mut Pool) 
             pool.sum(terms)
         })
         .collect();
+    let residual = residual_jacobian(pool, &residual, directions, nu);
+    let constraint = residual_jacobian(pool, &constraint, directions, 0);
     vec![
-        by(pool, &residual, Sym::Coord, nv),
-        by(pool, &residual, Sym::Speed, nv),
-        by(pool, &residual, Sym::Input, nu),
-        by(pool, &constraint, Sym::Coord, nv),
-        by(pool, &constraint, Sym::Speed, nv),
+        Value::matrix(&residual.coordinates, nv),
+        Value::matrix(&residual.speeds, nv),
+        Value::matrix(&residual.inputs, nu),
+        Value::matrix(&constraint.coordinates, nv),
+        Value::matrix(&constraint.speeds, nv),
     ]
-}
-
-/// The derivatives of `rows` by the first `n` symbols of a kind, as a
-/// matrix.
-fn by(pool: &mut Pool, rows: &[ExprId], symbol: fn(u32) -> Sym, n: usize) -> Value {
-    let block: Vec<Vec<ExprId>> = rows
-        .iter()
-        .map(|&e| (0..n).map(|j| pool.diff(e, symbol(j as u32))).collect())
-        .collect();
-    Value::matrix(&block, n)
 }
 
 /// `accelerations_jacobian(t, q, v, u)` of a system with constraints: its
@@ -348,9 +367,12 @@ pub fn constrained_accelerations_jacobian(
     equations: &Equations,
     pool: &mut Pool,
 ) -> Function {
+    let directions = tangent_directions(model, pool);
+    let tangent = tangent_note(model);
     function(
         "accelerations_jacobian",
-        "The derivatives of the accelerations `v̇(t, q, v, u)` of\n\
+        &format!(
+            "The derivatives of the accelerations `v̇(t, q, v, u)` of\n\
          `M v̇ = f + Aᵀ λ`, `A v̇ = b` at a state: `(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u)`, entry\n\
          `[i][j]` the derivative of `v̇ᵢ` by the `j`-th variable. Exact: the\n\
          partials of the residuals `M v̇ − f − Aᵀ λ` and `A v̇ − b`, derived\n\
@@ -360,9 +382,10 @@ pub fn constrained_accelerations_jacobian(
          constraint manifold too: `v̇` is a function of the whole state. Errors:\n\
          those of `constrained_accelerations`, a mass matrix that is not positive\n\
          definite, `DependentConstraints` where the rows of `A` are dependent,\n\
-         `NonFiniteEquations` for a non-finite derivative.",
+         `NonFiniteEquations` for a non-finite derivative.{tangent}"
+        ),
         &[Time, Coordinates, Speeds, Inputs],
-        acceleration_partials(model, equations, pool),
+        acceleration_partials(model, equations, pool, &directions),
         Body::ConstrainedAccelerationsJacobian,
     )
 }
@@ -421,7 +444,8 @@ mod tests {
         let code = crate::generate(&source).expect("generates");
         assert!(code.contains("pub fn linearize("), "{code}");
         assert!(code.contains("linearize_on_constraints"), "{code}");
-        assert!(code.contains("&[false, false, true]"), "{code}");
+        assert!(code.contains("coordinates: [false, false, true]"), "{code}");
+        assert!(code.contains("speeds: [false, false, true]"), "{code}");
     }
 
     #[test]

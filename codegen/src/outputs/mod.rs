@@ -307,17 +307,11 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 .functions
                 .push(derivatives::accelerations_jacobian(model, equations, pool)),
             OutputKind::Linearize if !model.constraints.is_empty() => {
-                let independent: Vec<String> = output
-                    .independent
-                    .iter()
-                    .map(|(_, c)| c.to_string())
-                    .collect();
-                requested.functions.push(derivatives::constrained_linearize(
-                    model,
-                    equations,
-                    pool,
-                    &independent,
-                ))
+                if let Some(chart) = &output.chart {
+                    requested.functions.push(derivatives::constrained_linearize(
+                        model, equations, pool, chart,
+                    ))
+                }
             }
             OutputKind::Linearize => {
                 if !asked(OutputKind::AccelerationsJacobian) {

@@ -101,13 +101,12 @@ impl Resolver {
     }
 
     /// `taylor` solves `M v̇ = f`, so it takes no constraints;
-    /// `accelerations_jacobian` takes them (through the saddle-point
-    /// system) where every speed is its coordinate's rate; `linearize(..)`
-    /// with the independent coordinates has its own problems, checked by
-    /// `linearize_problem`. The Taylor coefficients are taken in the
+    /// `linearize(..)` finds its independent entries by
+    /// [`chart`](crate::model::output::chart), which says what is wrong
+    /// with them. The Taylor coefficients are taken in the
     /// coordinates, so they need every speed to be its coordinate's rate.
     pub(super) fn check_solved_outputs(&mut self) {
-        use crate::model::OutputKind::{AccelerationsJacobian, Linearize, Taylor};
+        use crate::model::OutputKind::{Linearize, Taylor};
         if self.model.nq() != self.model.nv() {
             for output in &self.model.outputs {
                 if output.kind == Taylor {
@@ -123,38 +122,27 @@ impl Resolver {
                 }
             }
         }
-        for output in &self.model.outputs {
+        for index in 0..self.model.outputs.len() {
+            let output = &self.model.outputs[index];
             if output.kind == Linearize {
-                if let Some((span, message)) =
-                    crate::model::output::linearize_problem(&self.model, &self.pool, output)
-                {
-                    self.errors.push(span, message);
+                match crate::model::output::chart(&self.model, &mut self.pool, output) {
+                    Ok(chart) => self.model.outputs[index].chart = Some(chart),
+                    Err((span, message)) => self.errors.push(span, message),
                 }
             }
-            if self.model.constraints.is_empty() {
+            let output = &self.model.outputs[index];
+            if self.model.constraints.is_empty() || output.kind != Taylor {
                 continue;
             }
             let name = &output.function;
-            if output.kind == Taylor {
-                self.errors.push(
-                    name.span(),
-                    format!(
-                        "`{name}` is not available for a system with constraints yet (its \
-                         coefficients solve `M v̇ = f` order by order): remove it from \
-                         `outputs`"
-                    ),
-                );
-            } else if output.kind == AccelerationsJacobian
-                && (self.model.nq() != self.model.nv() || !self.model.balls.is_empty())
-            {
-                self.errors.push(
-                    name.span(),
-                    format!(
-                        "`{name}` is not available yet for a system with constraints and free \
-                         or spherical joints: remove it from `outputs`"
-                    ),
-                );
-            }
+            self.errors.push(
+                name.span(),
+                format!(
+                    "`{name}` is not available for a system with constraints yet (its \
+                     coefficients solve `M v̇ = f` order by order): remove it from \
+                     `outputs`"
+                ),
+            );
         }
     }
 

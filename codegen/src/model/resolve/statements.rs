@@ -751,17 +751,31 @@ impl Resolver {
             );
             return;
         }
-        let (mut point, mut frame, mut independent) = (None, None, Vec::new());
+        let (mut point, mut frame) = (None, None);
+        let (mut independent, mut independent_speeds) = (Vec::new(), Vec::new());
         if let (false, Some(extra)) = (subject == Subject::Coordinates, request.more.first()) {
             let message = format!("`{name}` takes one point or frame: remove `, {extra}`");
             self.errors.push(extra.span(), message);
+            return;
+        }
+        if let (false, Some(extra)) = (subject == Subject::Coordinates, request.speeds.first()) {
+            let message = format!("`{name}` takes no speeds: remove `; {}`", extra.name);
+            self.errors.push(extra.name.span(), message);
             return;
         }
         match (subject, &request.of) {
             (Subject::None | Subject::Coordinates, None) => {}
             (Subject::Coordinates, Some(of)) => {
                 independent = self.independent_coordinates(of, &request.more);
-                if independent.len() != 1 + request.more.len() {
+                let speeds: Vec<(Ident, bool)> = request
+                    .speeds
+                    .iter()
+                    .map(|s| (s.name.clone(), s.rate))
+                    .collect();
+                independent_speeds = self.independent_symbols(&speeds, "speeds");
+                if independent.len() != 1 + request.more.len()
+                    || independent_speeds.len() != speeds.len()
+                {
                     return;
                 }
             }
@@ -830,31 +844,53 @@ impl Resolver {
                 .as_ref()
                 .map_or("N".to_string(), Ident::to_string),
             independent,
+            independent_speeds,
+            chart: None,
         });
     }
 
-    /// `linearize(a, b)`'s names as coordinates, each once; an error at
-    /// each name that is not one.
-    fn independent_coordinates(&mut self, first: &Ident, more: &[Ident]) -> Vec<(usize, Ident)> {
-        let mut independent: Vec<(usize, Ident)> = Vec::new();
-        for name in std::iter::once(first).chain(more) {
-            match self.lookup(name) {
-                Some(Binding::Scalar(Sym::Coord(i)))
-                    if independent.iter().any(|(j, _)| *j == i as usize) =>
-                {
-                    self.errors
-                        .push(name.span(), format!("`{name}` is named twice"));
+    /// `linearize(a, b)`'s names as coordinates (or a free or spherical
+    /// joint's speeds, for its tangent directions), each once; an error at
+    /// each name that is neither.
+    fn independent_coordinates(&mut self, first: &Ident, more: &[Ident]) -> Vec<(Sym, Ident)> {
+        let names: Vec<(Ident, bool)> = std::iter::once(first)
+            .chain(more)
+            .map(|n| (n.clone(), false))
+            .collect();
+        self.independent_symbols(&names, "coordinates")
+    }
+
+    /// The symbols of `names` (with whether each was written `dt(..)`) as
+    /// `linearize(..)` names independent `what`: coordinates, or speeds; each
+    /// once, an error at each that is neither.
+    fn independent_symbols(&mut self, names: &[(Ident, bool)], what: &str) -> Vec<(Sym, Ident)> {
+        let mut independent: Vec<(Sym, Ident)> = Vec::new();
+        for (name, rate) in names {
+            let sym = match self.lookup(name) {
+                Some(Binding::Scalar(sym @ Sym::Coord(_))) if *rate || what == "coordinates" => {
+                    Some(sym)
                 }
-                Some(Binding::Scalar(Sym::Coord(i))) => {
-                    independent.push((i as usize, name.clone()))
-                }
+                Some(Binding::Scalar(sym @ Sym::Speed(_))) if !rate => Some(sym),
                 Some(other) => {
+                    let hint = match what {
+                        "speeds" => format!(" (a coordinate's speed as `dt({name})`)"),
+                        _ => String::new(),
+                    };
                     let message = format!(
-                        "`{name}` is {}; `linearize(..)` names the independent coordinates",
+                        "`{name}` is {}; `linearize(..)` names the independent {what}{hint}",
                         other.describe()
                     );
                     self.errors.push(name.span(), message);
+                    None
                 }
+                None => None,
+            };
+            match sym {
+                Some(sym) if independent.iter().any(|(s, _)| *s == sym) => {
+                    self.errors
+                        .push(name.span(), format!("`{name}` is named twice"));
+                }
+                Some(sym) => independent.push((sym, name.clone())),
                 None => {}
             }
         }
