@@ -100,29 +100,12 @@ impl Resolver {
         }
     }
 
-    /// `taylor` solves `M v̇ = f`, so it takes no constraints;
-    /// `accelerations_jacobian` takes them (through the saddle-point
-    /// system) where every speed is its coordinate's rate; `linearize(..)`
-    /// with the independent coordinates has its own problems, checked by
-    /// `linearize_problem`. The Taylor coefficients are taken in the
-    /// coordinates, so they need every speed to be its coordinate's rate.
+    /// `accelerations_jacobian` takes constraints (through the
+    /// saddle-point system) where every speed is its coordinate's rate;
+    /// `linearize(..)` with the independent coordinates has its own
+    /// problems, checked by `linearize_problem`.
     pub(super) fn check_solved_outputs(&mut self) {
-        use crate::model::OutputKind::{AccelerationsJacobian, Linearize, Taylor};
-        if self.model.nq() != self.model.nv() {
-            for output in &self.model.outputs {
-                if output.kind == Taylor {
-                    let name = &output.function;
-                    self.errors.push(
-                        name.span(),
-                        format!(
-                            "`{name}` is not available yet for a system whose speeds are not \
-                             its coordinates' rates (a free or spherical joint): remove it \
-                             from `outputs`"
-                        ),
-                    );
-                }
-            }
-        }
+        use crate::model::OutputKind::{AccelerationsJacobian, Linearize};
         for output in &self.model.outputs {
             if output.kind == Linearize {
                 if let Some((span, message)) =
@@ -135,16 +118,7 @@ impl Resolver {
                 continue;
             }
             let name = &output.function;
-            if output.kind == Taylor {
-                self.errors.push(
-                    name.span(),
-                    format!(
-                        "`{name}` is not available for a system with constraints yet (its \
-                         coefficients solve `M v̇ = f` order by order): remove it from \
-                         `outputs`"
-                    ),
-                );
-            } else if output.kind == AccelerationsJacobian
+            if output.kind == AccelerationsJacobian
                 && (self.model.nq() != self.model.nv() || !self.model.balls.is_empty())
             {
                 self.errors.push(
