@@ -11,8 +11,9 @@
 //! ```
 //!
 //! `--taylor` runs only the charts with the Taylor integrator: seed example
-//! 1 (chaotic) and the same pendulum at 0.2 rad (regular), whose ratio of
-//! DOP853's time to Taylor's at the final-state error 1e-12 it prints.
+//! 1 (chaotic), the same pendulum at 0.2 rad (regular), whose ratio of
+//! DOP853's time to Taylor's at the final-state error 1e-12 it prints, and
+//! seed example 3 (constrained: Taylor unstabilised and with projection).
 //!
 //! Output goes to `DIR` (default `target/charts`). `--scipy` adds the SciPy
 //! `solve_ivp(DOP853)` line written by `scripts/scipy_baseline.sh` to the
@@ -25,12 +26,13 @@ use std::path::{Path, PathBuf};
 use dalembert::constrained::constraint_drift;
 use dalembert::integrate::{self, AdaptiveOptions, Dynamics, ExplicitPair, GaussLegendre};
 use dalembert::{
-    Constrained, ConstrainedSystem, IntegrationError, Solution, Stabilisation, State,
+    Constrained, ConstrainedSystem, IntegrationError, Solution, Stabilisation, State, TaylorSystem,
     Unconstrained, energy,
 };
 use dalembert_fixtures::seeds::{CHAOTIC, CHAOTIC_END, CHAOTIC_START};
 use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 use dalembert_fixtures::stability::{ON_AXIS, STIFF, STIFF_START, TOWARDS_AXIS, chaotic_reference};
+use dalembert_generated::taylor_constrained_pendulum::TaylorConstrainedPendulum;
 use dalembert_generated::taylor_double_pendulum::TaylorDoublePendulum;
 use dalembert_lab::clap::{Arg, Command, value_parser};
 use dalembert_lab::indicatif::{ProgressBar, ProgressStyle};
@@ -95,28 +97,29 @@ fn main() -> Result<(), Box<dyn Error>> {
 
     chaotic_pendulum(&out, repeats, &scipy)?;
     regular_pendulum(&out, repeats)?;
-    if options.get_flag("taylor") {
-        return Ok(());
-    }
     let pendulum = SEED_3;
     let start = pendulum.assembled(1.0, 2.0);
+    let taylor_pendulum = TaylorConstrainedPendulum {
+        m: pendulum.m,
+        l: pendulum.l,
+        g: pendulum.g,
+    };
     constrained(
-        "seed example 3",
-        "seed_3",
-        &out,
-        repeats,
-        &pendulum,
+        ("seed example 3", "seed_3"),
+        (&out, repeats),
+        (&pendulum, Some(&taylor_pendulum)),
         start,
         10.0,
     )?;
+    if options.get_flag("taylor") {
+        return Ok(());
+    }
     let crank = SLIDER_CRANK;
     let start = crank.assembled(0.0, CRANK_SPEED);
     constrained(
-        "slider-crank",
-        "slider_crank",
-        &out,
-        repeats,
-        &crank,
+        ("slider-crank", "slider_crank"),
+        (&out, repeats),
+        (&crank, None::<&TaylorConstrainedPendulum>),
         start,
         2.0,
     )?;
@@ -228,8 +231,10 @@ fn runs<'a, E: Dynamics<NQ, NQ>, const NQ: usize>(
     runs
 }
 
-/// The runs of the Taylor integrator over `tolerances`.
+/// The runs of the Taylor integrator over `tolerances`, its name suffixed
+/// by `label`.
 fn taylor_runs<'a, E: integrate::TaylorDynamics<NQ, NQ>, const NQ: usize>(
+    label: &str,
     dynamics: &'a E,
     (start, t_end): (State<NQ, NQ>, f64),
     tolerances: &[f64],
@@ -239,7 +244,11 @@ fn taylor_runs<'a, E: integrate::TaylorDynamics<NQ, NQ>, const NQ: usize>(
         .map(|&tolerance| {
             let options = integrate::TaylorOptions::with_tolerance(tolerance);
             let run = move || integrate::taylor(dynamics, start, t_end, options, |_| {});
-            ("Taylor".to_owned(), tolerance, Box::new(run) as Run<'a, NQ>)
+            (
+                format!("Taylor{label}"),
+                tolerance,
+                Box::new(run) as Run<'a, NQ>,
+            )
         })
         .collect()
 }
@@ -291,7 +300,7 @@ fn regular_pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         ],
         &[],
     );
-    all.extend(taylor_runs(&dynamics, (start, t_end), &decades(6, 17)));
+    all.extend(taylor_runs("", &dynamics, (start, t_end), &decades(6, 17)));
     let points = sweep("0.2 rad", repeats, all, &judge);
     write_work_precision(
         out,
@@ -385,6 +394,7 @@ fn chaotic_pendulum(out: &Path, repeats: usize, scipy: &Path) -> Result<(), Box<
     let taylor_dynamics = Unconstrained::without_inputs(&taylor_system);
     let mut runs = runs;
     runs.extend(taylor_runs(
+        "",
         &taylor_dynamics,
         (CHAOTIC_START, CHAOTIC_END),
         &decades(6, 16),
@@ -473,15 +483,17 @@ fn read_scipy(path: &Path) -> Vec<WorkPoint> {
 /// checked against Gauss 6 with projection, then RK4 and DOP853 without
 /// stabilisation, with Baumgarte's and with projection, and Gauss 6 with
 /// projection.
-fn constrained<S: ConstrainedSystem<3, 3, 1, 2>>(
-    title: &str,
-    name: &str,
-    out: &Path,
-    repeats: usize,
-    system: &S,
+fn constrained<S, T>(
+    (title, name): (&str, &str),
+    (out, repeats): (&Path, usize),
+    (system, taylor): (&S, Option<&T>),
     start: State<3, 3>,
     t_end: f64,
-) -> Result<(), Box<dyn Error>> {
+) -> Result<(), Box<dyn Error>>
+where
+    S: ConstrainedSystem<3, 3, 1, 2>,
+    T: ConstrainedSystem<3, 3, 1, 2> + TaylorSystem<3, 3, 1>,
+{
     let inputs = |_: f64, _: &[f64; 3], _: &[f64; 3]| [0.0];
     let gain = 10.0;
     let modes = [
@@ -525,6 +537,17 @@ fn constrained<S: ConstrainedSystem<3, 3, 1, 2>>(
             (start, t_end),
             &[(ExplicitPair::Dop853, &tolerances)],
             &methods,
+        ));
+    }
+    let taylor_modes = taylor.map(|taylor| {
+        [modes[0], modes[2]].map(|(label, mode)| (label, Constrained::new(taylor, inputs, mode)))
+    });
+    for (label, dynamics) in taylor_modes.iter().flatten() {
+        all.extend(taylor_runs(
+            label,
+            dynamics,
+            (start, t_end),
+            &decades(6, 16),
         ));
     }
     let points = sweep(title, repeats, all, &judge);

@@ -66,6 +66,16 @@ model!(
     /// driven, with the Taylor coefficients of its motion.
     taylor_functions
 );
+model!(
+    /// Seed example 3 (constrained) with the Taylor coefficients of its
+    /// motion.
+    taylor_constrained_pendulum
+);
+model!(
+    /// A torque-free symmetric body on a ball joint (a quaternion, speeds
+    /// that are not rates) with the Taylor coefficients of its motion.
+    taylor_ball_top
+);
 
 // Benchmark chains: `models/{planar,spatial}_chain_NN.dal`, written by
 // `dalembert chain FAMILY N` (`dalembert_codegen::testing::chain`); tests/chains.rs checks

@@ -16,6 +16,9 @@
 //! * [`project_onto_constraints`] moves a state back onto the constraint
 //!   manifold (positions, then speeds), and [`project_onto_energy_level`]
 //!   the speeds of a conservative system onto its energy level;
+//! * [`constrained_series`] solves the orders of a constrained motion's
+//!   Taylor series with one factorisation (what a generated
+//!   `taylor_coefficients` calls);
 //! * a [`Stabilisation`] chooses how [`Constrained`](crate::Constrained)
 //!   dynamics keep an integration on the manifold, and
 //!   [`constraint_drift`] measures how far it is off.
@@ -24,6 +27,7 @@ mod linearize;
 mod multipliers;
 mod projection;
 mod rank;
+mod series;
 mod sparse;
 mod stabilisation;
 #[cfg(test)]
@@ -36,9 +40,10 @@ pub use linearize::{
 };
 pub use multipliers::{
     ACCELERATION_RANK_TOLERANCE, CONSISTENCY_TOLERANCE, ConstraintSolver, NEAR_MANIFOLD,
-    RANK_TOLERANCE, baumgarte_accelerations, constrained_accelerations,
+    RANK_TOLERANCE, SaddlePoint, baumgarte_accelerations, constrained_accelerations,
 };
 pub(crate) use projection::checked;
 pub use projection::{project_onto_constraints, project_onto_energy_level};
+pub use series::{SeriesSolver, constrained_series};
 pub use sparse::STIFFNESS;
 pub use stabilisation::{Stabilisation, constraint_drift};

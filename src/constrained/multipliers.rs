@@ -495,39 +495,88 @@ impl ConstraintSolver {
     where
         S: ConstrainedSystem<NQ, NV, NU, NC>,
     {
-        let forcing = system.forcing(t, q, v, u);
+        let equations = SaddlePoint {
+            mass: &system.mass_matrix(q),
+            forcing: system.forcing(t, q, v, u),
+            jacobian: &system.constraint_jacobian(q),
+            bias,
+        };
+        self.solve_saddle_point(system, t, q, equations, |solution, _| Ok(solution))
+    }
+
+    /// `v̇` and `λ` of `equations` at `(t, q)` (the residual there says
+    /// whether dependent rows that disagree are forgiven), then `then` with
+    /// them and the factorised metric, for more right-hand sides.
+    pub(crate) fn solve_saddle_point<
+        S,
+        R,
+        const NQ: usize,
+        const NV: usize,
+        const NU: usize,
+        const NC: usize,
+    >(
+        self,
+        system: &S,
+        t: f64,
+        q: &[f64; NQ],
+        equations: SaddlePoint<'_, NV, NC>,
+        then: impl FnOnce(
+            ([f64; NV], [f64; NC]),
+            ConstraintMetric<'_, NV, NC>,
+        ) -> Result<R, DynamicsError>,
+    ) -> Result<R, DynamicsError>
+    where
+        S: ConstrainedSystem<NQ, NV, NU, NC>,
+    {
+        let SaddlePoint {
+            mass,
+            forcing,
+            jacobian,
+            bias,
+        } = equations;
         if !all_finite(&forcing) {
             return Err(DynamicsError::NonFiniteEquations);
         }
         if !all_finite(&bias) {
             return Err(DynamicsError::NonFiniteConstraints);
         }
-        let jacobian = system.constraint_jacobian(q);
-        let (vdot, lambda) = ConstraintMetric::with(
+        ConstraintMetric::with(
             self,
             ACCELERATION_RANK_TOLERANCE,
-            &system.mass_matrix(q),
+            mass,
             &pivot_names::<S, NQ, NV, NU>(),
-            &jacobian,
+            jacobian,
             |metric| {
                 let (f, b) = (SVector::from(forcing), SVector::from(bias));
-                match metric.solve(&f, &b, Dependents::MustAgree) {
+                let (vdot, lambda) = match metric.solve(&f, &b, Dependents::MustAgree) {
                     Err(DynamicsError::InconsistentConstraints { .. })
-                        if on_the_manifold(&system.constraint_residual(t, q), &jacobian, q) =>
+                        if on_the_manifold(&system.constraint_residual(t, q), jacobian, q) =>
                     {
                         metric.solve(&f, &b, Dependents::LeastSquares)
                     }
                     solution => solution,
+                }?;
+                let (vdot, lambda): ([f64; NV], [f64; NC]) = (vdot.into(), lambda.into());
+                if !(all_finite(&vdot) && all_finite(&lambda)) {
+                    return Err(DynamicsError::NonFiniteAccelerations);
                 }
+                then((vdot, lambda), metric)
             },
-        )?;
-        let (vdot, lambda): ([f64; NV], [f64; NC]) = (vdot.into(), lambda.into());
-        if all_finite(&vdot) && all_finite(&lambda) {
-            Ok((vdot, lambda))
-        } else {
-            Err(DynamicsError::NonFiniteAccelerations)
-        }
+        )
     }
+}
+
+/// The saddle-point system `M v̇ = f + Aᵀ λ`, `A v̇ = b` at one state.
+#[derive(Clone, Copy, Debug)]
+pub struct SaddlePoint<'a, const NV: usize, const NC: usize> {
+    /// `M`.
+    pub mass: &'a [[f64; NV]; NV],
+    /// `f`.
+    pub forcing: [f64; NV],
+    /// `A`.
+    pub jacobian: &'a [[f64; NV]; NC],
+    /// `b`.
+    pub bias: [f64; NC],
 }
 
 /// Whether the holonomic `residual` at `q` is within [`NEAR_MANIFOLD`] of

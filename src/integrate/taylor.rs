@@ -32,10 +32,12 @@ use std::ops::ControlFlow;
 
 use super::adaptive::{Continuous, DenseStep, Event, observe, watch};
 use super::dynamics::InputLaw;
-use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained};
+use super::{
+    Constrained, Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained,
+};
 use crate::series;
 use crate::system::{Expansion, TaylorSystem};
-use crate::{DynamicsError, MultibodySystem};
+use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
 
 /// The highest order the integrator uses (`ε ≈ 3e−20`).
 pub const MAX_ORDER: usize = 31;
@@ -74,6 +76,31 @@ where
     ) -> Result<Expansion<K, NQ, NV>, DynamicsError> {
         let u = self.inputs.inputs(t, q, v);
         self.system.taylor_coefficients::<K>(t, q, v, &u, order)
+    }
+}
+
+/// The series of a constrained system are those of its index-1 form
+/// `A v̇ = b`, solved by the default [`ConstraintSolver`](crate::constrained::ConstraintSolver)
+/// whatever [`with_solver`](Constrained::with_solver) chose: a
+/// [`Stabilisation::Projection`](crate::Stabilisation::Projection) settles
+/// each step's end, Baumgarte's terms are not expanded (the motion is that
+/// of [`Stabilisation::None`](crate::Stabilisation::None)).
+impl<S, F, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>
+    TaylorDynamics<NQ, NV> for Constrained<'_, S, F, NU, NC>
+where
+    S: TaylorSystem<NQ, NV, NU> + ConstrainedSystem<NQ, NV, NU, NC>,
+    F: InputLaw<NQ, NV, NU>,
+{
+    #[inline]
+    fn expansion<const K: usize>(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        order: usize,
+    ) -> Result<Expansion<K, NQ, NV>, DynamicsError> {
+        let u = self.inputs(t, q, v);
+        self.system().taylor_coefficients::<K>(t, q, v, &u, order)
     }
 }
 

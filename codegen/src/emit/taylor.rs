@@ -88,6 +88,7 @@ struct Program {
     coordinates: Vec<Slot>,
     speeds: Vec<Slot>,
     accelerations: Vec<Slot>,
+    multipliers: Vec<Slot>,
     time: Option<Slot>,
 }
 
@@ -95,8 +96,10 @@ struct Program {
 const MOVING: SymKinds = SymKinds::COORD.union(SymKinds::SPEED).union(SymKinds::TIME);
 
 impl Program {
-    /// The series of the state: `q`, `q̇` and `q̈`.
-    fn new(pool: Pool, n: usize) -> Self {
+    /// The series of the state: `q`, `v` and `v̇`, then the multipliers
+    /// `λ` of `sizes[2]` constraints.
+    fn new(pool: Pool, sizes: [usize; 3]) -> Self {
+        let [nq, nv, nc] = sizes;
         let mut program = Program {
             pool,
             operations: Vec::new(),
@@ -105,12 +108,19 @@ impl Program {
             coordinates: Vec::new(),
             speeds: Vec::new(),
             accelerations: Vec::new(),
+            multipliers: Vec::new(),
             time: None,
         };
-        program.coordinates = (0..n).map(|_| program.push(Operation::State)).collect();
-        program.speeds = (0..n).map(|_| program.push(Operation::State)).collect();
-        program.accelerations = (0..n).map(|_| program.push(Operation::State)).collect();
+        program.coordinates = program.states(nq);
+        program.speeds = program.states(nv);
+        program.accelerations = program.states(nv);
+        program.multipliers = program.states(nc);
         program
+    }
+
+    /// `n` series set by the recursion itself.
+    fn states(&mut self, n: usize) -> Vec<Slot> {
+        (0..n).map(|_| self.push(Operation::State)).collect()
     }
 
     fn push(&mut self, operation: Operation) -> Slot {
@@ -138,6 +148,16 @@ impl Program {
         };
         self.nodes.insert(e, slot);
         Operand::Series(slot)
+    }
+
+    /// The operands of `entries`, in order.
+    fn lower_all(&mut self, entries: &[ExprId]) -> Vec<Operand> {
+        entries.iter().map(|&e| self.lower(e)).collect()
+    }
+
+    /// The operands of a matrix's rows.
+    fn lower_rows(&mut self, rows: &[Vec<ExprId>]) -> Vec<Vec<Operand>> {
+        rows.iter().map(|row| self.lower_all(row)).collect()
     }
 
     /// The series of `e` (constant if `e` does not move).
@@ -319,26 +339,67 @@ impl Program {
     }
 }
 
-/// The program of `M` and `f`, and the operands of their entries.
+/// The expressions of the equations that the program lowers: `M` and `f`,
+/// and the constraints' `A` and `b` (none without constraints).
+struct Expressions {
+    matrix: Vec<Vec<ExprId>>,
+    forcing: Vec<ExprId>,
+    jacobian: Vec<Vec<ExprId>>,
+    bias: Vec<ExprId>,
+}
+
+impl Expressions {
+    /// Every expression replaced by `form(expression)`.
+    fn map(&self, mut form: impl FnMut(ExprId) -> ExprId) -> Self {
+        let mut rows = |rows: &[Vec<ExprId>]| -> Vec<Vec<ExprId>> {
+            rows.iter()
+                .map(|row| row.iter().map(|&e| form(e)).collect())
+                .collect()
+        };
+        let (matrix, jacobian) = (rows(&self.matrix), rows(&self.jacobian));
+        Expressions {
+            matrix,
+            forcing: self.forcing.iter().map(|&e| form(e)).collect(),
+            jacobian,
+            bias: self.bias.iter().map(|&e| form(e)).collect(),
+        }
+    }
+}
+
+/// The program of the equations, the operands of their entries, and the
+/// series of the coordinates' rates `N(q) v`.
 struct Lowered {
     program: Program,
     matrix: Vec<Vec<Operand>>,
     forcing: Vec<Operand>,
+    jacobian: Vec<Vec<Operand>>,
+    bias: Vec<Operand>,
+    rates: Vec<Slot>,
 }
 
 impl Lowered {
-    /// The entries of `M` and `f` lowered in `pool`.
-    fn new(pool: Pool, nv: usize, (mass_matrix, forcing): (&[Vec<ExprId>], &[ExprId])) -> Self {
-        let mut program = Program::new(pool, nv);
-        let matrix = mass_matrix
-            .iter()
-            .map(|row| row.iter().map(|&e| program.lower(e)).collect())
+    /// The entries of `expressions` lowered in `pool`, then the rates of
+    /// `nq` coordinates (a speed where it is its coordinate's rate).
+    fn new(pool: Pool, nq: usize, expressions: &Expressions) -> Self {
+        let sizes = [nq, expressions.forcing.len(), expressions.bias.len()];
+        let mut program = Program::new(pool, sizes);
+        let matrix = program.lower_rows(&expressions.matrix);
+        let forcing = program.lower_all(&expressions.forcing);
+        let jacobian = program.lower_rows(&expressions.jacobian);
+        let bias = program.lower_all(&expressions.bias);
+        let rates = (0..nq as u32)
+            .map(|i| {
+                let rate = program.pool.rate(i);
+                program.series(rate)
+            })
             .collect();
-        let forcing = forcing.iter().map(|&e| program.lower(e)).collect();
         Lowered {
             program,
             matrix,
             forcing,
+            jacobian,
+            bias,
+            rates,
         }
     }
 
@@ -354,24 +415,21 @@ impl Lowered {
     }
 }
 
-/// `M` and `f` lowered as derived, or with their angle sums recombined
+/// The equations lowered as derived, or with their angle sums recombined
 /// (within [`RECOMBINATION_BUDGET`]) when that takes fewer recurrences.
-fn lowered(pool: &Pool, nv: usize, equations: &Equations) -> Lowered {
-    let derived = Lowered::new(
-        pool.clone(),
-        nv,
-        (&equations.mass_matrix, &equations.forcing),
-    );
+fn lowered(pool: &Pool, nq: usize, equations: &Equations) -> Lowered {
+    let expressions = Expressions {
+        matrix: equations.mass_matrix.clone(),
+        forcing: equations.forcing.clone(),
+        jacobian: equations.constraint_jacobian.clone(),
+        bias: equations.constraint_bias.clone(),
+    };
+    let derived = Lowered::new(pool.clone(), nq, &expressions);
     let mut pool = pool.clone();
     let mut forms = ReadableForms::default();
-    let mut recombine = |e: ExprId| forms.get(&mut pool, e, RECOMBINATION_BUDGET).unwrap_or(e);
-    let mass_matrix: Vec<Vec<ExprId>> = equations
-        .mass_matrix
-        .iter()
-        .map(|row| row.iter().map(|&e| recombine(e)).collect())
-        .collect();
-    let forcing: Vec<ExprId> = equations.forcing.iter().map(|&e| recombine(e)).collect();
-    let recombined = Lowered::new(pool, nv, (&mass_matrix, &forcing));
+    let recombined =
+        expressions.map(|e| forms.get(&mut pool, e, RECOMBINATION_BUDGET).unwrap_or(e));
+    let recombined = Lowered::new(pool, nq, &recombined);
     if recombined.recurrences() < derived.recurrences() {
         recombined
     } else {
@@ -382,8 +440,8 @@ fn lowered(pool: &Pool, nv: usize, equations: &Equations) -> Lowered {
 /// Names of the program's series and constants in the emitted code.
 struct Written<'a> {
     pool: &'a Pool,
-    slots: Vec<Ident>,
-    constants: HashMap<ExprId, Ident>,
+    slots: &'a [Ident],
+    constants: &'a HashMap<ExprId, Ident>,
 }
 
 impl Written<'_> {
@@ -414,6 +472,26 @@ impl Written<'_> {
                 quote!(::dalembert::series::constant_at(#c, k))
             }
         }
+    }
+
+    /// `sign Σⱼ₌₁ᵏ eⱼ xₖ₋ⱼ` for each entry `e` that moves and its series
+    /// `x` of `by`: what the motion of the entries adds to order `k`.
+    fn tails<'b>(
+        &'b self,
+        entries: &'b [Operand],
+        by: &'b [Ident],
+        sign: TokenStream,
+    ) -> impl Iterator<Item = TokenStream> + 'b {
+        entries
+            .iter()
+            .zip(by)
+            .filter_map(move |(entry, x)| match entry {
+                Operand::Series(slot) => {
+                    let m = &self.slots[*slot];
+                    Some(quote!(#sign ::dalembert::series::convolution_tail(&self.#m, &self.#x, k)))
+                }
+                Operand::Constant(_) => None,
+            })
     }
 
     /// Coefficient 0 of an operand.
@@ -457,8 +535,10 @@ impl Written<'_> {
     }
 }
 
-/// `pub fn taylor_coefficients<const K: usize>(..)`; nothing for a system
-/// the model rejects (constraints, speeds that are not rates).
+/// `pub fn taylor_coefficients<const K: usize>(..)`: order by order with
+/// the factorisation of `M₀` that `accelerations` uses, or, for a system
+/// with constraints, with the runtime's factorisation of the saddle point
+/// ([`emit_constrained`]); nothing for a system without coordinates.
 pub fn emit_taylor(
     model: &Model,
     pool: &Pool,
@@ -466,52 +546,237 @@ pub fn emit_taylor(
     names: &Names,
     function: &Function,
 ) -> TokenStream {
-    let Some(solver) = elimination(model, pool, equations, None) else {
+    let constrained = !equations.constraint_jacobian.is_empty();
+    let solver = elimination(model, pool, equations, None);
+    if solver.is_none() && !constrained {
         return TokenStream::new();
-    };
-    let nv = model.nv();
-    let Lowered {
-        program:
-            Program {
-                pool,
-                operations,
-                coordinates,
-                speeds,
-                accelerations,
-                time,
-                ..
-            },
-        matrix,
-        forcing,
-    } = lowered(pool, nv, equations);
-    // Every constant the program reads, bound once.
-    let mut constants: Vec<ExprId> = Vec::new();
-    let mut read = |e: ExprId| {
-        if !matches!(pool.node(e), Node::Number(_)) && !constants.contains(&e) {
-            constants.push(e);
-        }
-    };
-    for operation in &operations {
-        if let Operation::Linear { constant, terms } = operation {
-            read(*constant);
-            terms.iter().for_each(|(w, _)| read(*w));
-        }
     }
-    for operand in matrix.iter().flatten().chain(&forcing) {
-        if let Operand::Constant(e) = operand {
-            read(*e);
-        }
+    let lowered = lowered(pool, model.nq(), equations);
+    let prelude = Prelude::new(names, lowered);
+    match solver {
+        Some(solver) if !constrained => emit_unconstrained(model, &prelude, solver, function),
+        _ => emit_constrained(model, &prelude, function),
     }
-    let temporary = |i: usize| format_ident!("{}{}", names.temporary, i);
-    let written = Written {
-        pool: &pool,
-        slots: (0..operations.len()).map(temporary).collect(),
-        constants: constants
+}
+
+/// What both forms of `taylor_coefficients` share: the program written
+/// out, the declarations of its series and constants, and the work of an
+/// order before its solve.
+struct Prelude {
+    lowered: Lowered,
+    /// The name of each slot, then of each bound constant.
+    slots: Vec<Ident>,
+    constants: Vec<ExprId>,
+    constant_names: HashMap<ExprId, Ident>,
+    /// The fields of the struct `Series`.
+    fields: TokenStream,
+    /// The state check, the constants bound, the series declared and
+    /// `let mut series = Series::<K> { .. };`.
+    setup: TokenStream,
+    /// The statements computing order `k` of every node.
+    steps: Vec<TokenStream>,
+    /// `q`, `v`, `v̇` and `λ` series' names.
+    state: [Vec<Ident>; 4],
+    /// The series of the coordinates' rates.
+    rates: Vec<Ident>,
+}
+
+impl Prelude {
+    /// The program of `lowered` named after `names`, declared.
+    fn new(names: &Names, lowered: Lowered) -> Self {
+        let program = &lowered.program;
+        let (pool, operations) = (&program.pool, &program.operations);
+        // Every constant the program reads, bound once.
+        let mut constants: Vec<ExprId> = Vec::new();
+        let mut read = |e: ExprId| {
+            if !matches!(pool.node(e), Node::Number(_)) && !constants.contains(&e) {
+                constants.push(e);
+            }
+        };
+        for operation in operations {
+            if let Operation::Linear { constant, terms } = operation {
+                read(*constant);
+                terms.iter().for_each(|(w, _)| read(*w));
+            }
+        }
+        let entries = lowered.matrix.iter().flatten().chain(&lowered.forcing);
+        let constraints = lowered.jacobian.iter().flatten().chain(&lowered.bias);
+        for operand in entries.chain(constraints) {
+            if let Operand::Constant(e) = operand {
+                read(*e);
+            }
+        }
+        let temporary = |i: usize| format_ident!("{}{}", names.temporary, i);
+        let slots: Vec<Ident> = (0..operations.len()).map(temporary).collect();
+        let constant_names = constants
             .iter()
             .enumerate()
             .map(|(i, &e)| (e, temporary(operations.len() + i)))
-            .collect(),
-    };
+            .collect();
+        let named =
+            |list: &[Slot]| -> Vec<Ident> { list.iter().map(|&s| slots[s].clone()).collect() };
+        let state = [
+            named(&program.coordinates),
+            named(&program.speeds),
+            named(&program.accelerations),
+            named(&program.multipliers),
+        ];
+        let rates = named(&lowered.rates);
+        let mut prelude = Prelude {
+            fields: TokenStream::new(),
+            setup: TokenStream::new(),
+            steps: Vec::new(),
+            slots,
+            constants,
+            constant_names,
+            state,
+            rates,
+            lowered,
+        };
+        prelude.declare(names);
+        prelude
+    }
+
+    /// The names and statements around the program's own.
+    fn written(&self) -> Written<'_> {
+        Written {
+            pool: &self.lowered.program.pool,
+            slots: &self.slots,
+            constants: &self.constant_names,
+        }
+    }
+
+    /// Fills in `fields`, `setup` and `steps`.
+    fn declare(&mut self, names: &Names) {
+        let program = &self.lowered.program;
+        let written = self.written();
+        let bound: Vec<&Ident> = self
+            .constants
+            .iter()
+            .map(|e| &self.constant_names[e])
+            .collect();
+        let body = straight_line(&program.pool, names, &self.constants);
+        let (statements, outputs) = (&body.statements, &body.outputs);
+        let n_constants = Literal::usize_unsuffixed(self.constants.len());
+        let time_series = program.time.map(|slot| {
+            let x = &self.slots[slot];
+            quote!(let mut #x = ::dalembert::series::time::<K>(t);)
+        });
+        let intermediate: Vec<&Ident> = program
+            .operations
+            .iter()
+            .enumerate()
+            .filter(|(_, operation)| !matches!(operation, Operation::State))
+            .map(|(slot, _)| &self.slots[slot])
+            .collect();
+        let steps: Vec<TokenStream> = program
+            .operations
+            .iter()
+            .enumerate()
+            .map(|(slot, operation)| written.operation(slot, operation))
+            .collect();
+        let [q, v, a, lambda] = &self.state;
+        let all_series = &self.slots[..program.operations.len()];
+        let check = state_check();
+        let fields = quote! {
+            #(#all_series: &'a mut [f64; K],)*
+            #(#bound: f64,)*
+            order: usize,
+        };
+        let setup = quote! {
+            #check
+            let [#(#bound),*]: [f64; #n_constants] = {
+                #statements
+                [#(#outputs),*]
+            };
+            let [#(#q),*] = *q;
+            let [#(#v),*] = *qd;
+            #(let mut #q = ::dalembert::series::start::<K>(#q);)*
+            #(let mut #v = ::dalembert::series::start::<K>(#v);)*
+            #(let mut #a = [0.0; K];)*
+            #(let mut #lambda = [0.0; K];)*
+            #time_series
+            #(let mut #intermediate = [0.0; K];)*
+            let mut series = Series::<K> {
+                #(#all_series: &mut #all_series,)*
+                #(#bound,)*
+                order: order.min(K.saturating_sub(1)),
+            };
+        };
+        (self.fields, self.setup, self.steps) = (fields, setup, steps);
+    }
+
+    /// The integrals of order `k`: `vₖ = v̇ₖ₋₁ / k`, `qₖ = (N(q) v)ₖ₋₁ / k`.
+    fn integrals(&self) -> TokenStream {
+        let [q, v, a, _] = &self.state;
+        let rates = &self.rates;
+        quote! {
+            #(::dalembert::series::integral(&mut self.#v, &self.#a, k);)*
+            #(::dalembert::series::integral(&mut self.#q, &self.#rates, k);)*
+        }
+    }
+
+    /// The right-hand side of order `k` of row `i` of `M v̇ − Aᵀ λ = f`:
+    /// `fₖ − Σⱼ₌₁ᵏ (Mⱼ v̇ₖ₋ⱼ − Aⱼᵀ λₖ₋ⱼ)`, the entries that move only.
+    fn forcing_row(&self, i: usize) -> TokenStream {
+        let written = self.written();
+        let Lowered {
+            matrix,
+            forcing,
+            jacobian,
+            ..
+        } = &self.lowered;
+        let [_, _, a, lambda] = &self.state;
+        let f = written.at_order(forcing[i]);
+        let inertia = written.tails(&matrix[i], a, quote!(-));
+        let column: Vec<Operand> = jacobian.iter().map(|row| row[i]).collect();
+        let constraint = written.tails(&column, lambda, quote!(+));
+        quote!(#f #(#inertia)* #(#constraint)*)
+    }
+
+    /// The right-hand side of order `k` of row `r` of `A v̇ = b`:
+    /// `bₖ − Σⱼ₌₁ᵏ Aⱼ v̇ₖ₋ⱼ`.
+    fn bias_row(&self, r: usize) -> TokenStream {
+        let written = self.written();
+        let b = written.at_order(self.lowered.bias[r]);
+        let moving = written.tails(&self.lowered.jacobian[r], &self.state[2], quote!(-));
+        quote!(#b #(#moving)*)
+    }
+}
+
+/// The signature shared by both forms of `taylor_coefficients`.
+fn signature(model: &Model) -> TokenStream {
+    let (nq_lit, nv_lit) = (
+        Literal::usize_unsuffixed(model.nq()),
+        Literal::usize_unsuffixed(model.nv()),
+    );
+    let (coordinates_ty, speeds_ty, inputs_ty) = (
+        array(model.nq()),
+        array(model.nv()),
+        array(model.inputs.len()),
+    );
+    quote! {
+        pub fn taylor_coefficients<const K: usize>(
+            &self,
+            t: f64,
+            q: &#coordinates_ty,
+            qd: &#speeds_ty,
+            u: &#inputs_ty,
+            order: usize,
+        ) -> ::core::result::Result<([[f64; K]; #nq_lit], [[f64; K]; #nv_lit]), ::dalembert::DynamicsError>
+    }
+}
+
+/// `taylor_coefficients` of a system without constraints: `M₀ v̇ₖ = fₖ −
+/// Σⱼ₌₁ᵏ Mⱼ v̇ₖ₋ⱼ` with the unrolled `L D Lᵀ` solve of `accelerations`.
+fn emit_unconstrained(
+    model: &Model,
+    prelude: &Prelude,
+    solver: Elimination,
+    function: &Function,
+) -> TokenStream {
+    let nv = model.nv();
+    let written = prelude.written();
     let Elimination {
         entries,
         factor,
@@ -520,83 +785,25 @@ pub fn emit_taylor(
         solution,
         ..
     } = solver;
-    let slots =
-        |list: &[Slot]| -> Vec<Ident> { list.iter().map(|&s| written.slots[s].clone()).collect() };
-    let (q, v, a) = (slots(&coordinates), slots(&speeds), slots(&accelerations));
-    let bound: Vec<&Ident> = constants.iter().map(|e| &written.constants[e]).collect();
-    let body = straight_line(&pool, names, &constants);
-    let (statements, outputs) = (&body.statements, &body.outputs);
-    let n_constants = Literal::usize_unsuffixed(constants.len());
-    let time_series = time.map(|slot| {
-        let x = &written.slots[slot];
-        quote!(let mut #x = ::dalembert::series::time::<K>(t);)
-    });
-    let intermediate: Vec<&Ident> = operations
-        .iter()
-        .enumerate()
-        .filter(|(_, operation)| !matches!(operation, Operation::State))
-        .map(|(slot, _)| &written.slots[slot])
-        .collect();
-    let steps: Vec<TokenStream> = operations
-        .iter()
-        .enumerate()
-        .map(|(slot, operation)| written.operation(slot, operation))
-        .collect();
+    let [q, v, a, _] = &prelude.state;
+    let steps = &prelude.steps;
+    let integrals = prelude.integrals();
     let mass_entries: Vec<TokenStream> = entries
         .iter()
-        .map(|&(i, j)| written.value(matrix[i][j]))
+        .map(|&(i, j)| written.value(prelude.lowered.matrix[i][j]))
         .collect();
     let mass_names: Vec<Ident> = entries.iter().map(|&(i, j)| mass(i, j)).collect();
-    let rows: Vec<TokenStream> = (0..nv)
-        .map(|i| {
-            let f = written.at_order(forcing[i]);
-            let moving = matrix[i]
-                .iter()
-                .zip(&a)
-                .filter_map(|(entry, acceleration)| match entry {
-                    Operand::Series(slot) => {
-                        let m = &written.slots[*slot];
-                        Some(
-                            quote!(- ::dalembert::series::convolution_tail(&self.#m, &self.#acceleration, k)),
-                        )
-                    }
-                    Operand::Constant(_) => None,
-                });
-            quote!(#f #(#moving)*)
-        })
-        .collect();
-    let (nq_lit, nv_lit, ne_lit) = (
-        Literal::usize_unsuffixed(model.nq()),
+    let rows: Vec<TokenStream> = (0..nv).map(|i| prelude.forcing_row(i)).collect();
+    let (nv_lit, ne_lit) = (
         Literal::usize_unsuffixed(nv),
         Literal::usize_unsuffixed(entries.len()),
     );
-    let (coordinates_ty, speeds_ty, inputs_ty) =
-        (array(model.nq()), array(nv), array(model.inputs.len()));
-    let check = state_check();
     let unrolled = (1..=UNROLLED_ORDERS).map(Literal::usize_unsuffixed);
     let beyond = Literal::usize_unsuffixed(UNROLLED_ORDERS + 1);
-    let all_series = &written.slots;
-    let docs = function.docs.iter().map(|line| super::raw_string(line));
-    quote! {
-        #(#[doc = #docs])*
-        #[inline]
-        pub fn taylor_coefficients<const K: usize>(
-            &self,
-            t: f64,
-            q: &#coordinates_ty,
-            qd: &#speeds_ty,
-            u: &#inputs_ty,
-            order: usize,
-        ) -> ::core::result::Result<([[f64; K]; #nq_lit], [[f64; K]; #nv_lit]), ::dalembert::DynamicsError> {
-            /// The series of the expansion, borrowed (coordinates, speeds,
-            /// accelerations, then every node of `M` and `f` that moves),
-            /// the constants they read, and the highest order asked for.
-            struct Series<'a, const K: usize> {
-                #(#all_series: &'a mut [f64; K],)*
-                #(#bound: f64,)*
-                order: usize,
-            }
-            impl<const K: usize> Series<'_, K> {
+    let series_docs = "The series of the expansion, borrowed (coordinates, speeds,
+accelerations, then every node of `M` and `f` that moves),
+the constants they read, and the highest order asked for.";
+    let methods = quote! {
                 /// Order `k` of every series, after order `k − 1` of the
                 /// accelerations (`solved`) and its integrals: the entries
                 /// of `M₀` that the factorisation reads and the right-hand
@@ -608,8 +815,7 @@ pub fn emit_taylor(
                 fn advance(&mut self, k: usize, solved: [f64; #nv_lit]) -> ([f64; #ne_lit], [f64; #nv_lit]) {
                     if let ::core::option::Option::Some(below) = k.checked_sub(1) {
                         ::dalembert::series::assign_all([#(&mut self.#a),*], below, solved);
-                        #(::dalembert::series::integral(&mut self.#v, &self.#a, k);)*
-                        #(::dalembert::series::integral(&mut self.#q, &self.#v, k);)*
+                        #integrals
                         if k == self.order {
                             return ([0.0; #ne_lit], [0.0; #nv_lit]);
                         }
@@ -634,24 +840,8 @@ pub fn emit_taylor(
                         rhs
                     }
                 }
-            }
-            #check
-            let [#(#bound),*]: [f64; #n_constants] = {
-                #statements
-                [#(#outputs),*]
-            };
-            let [#(#q),*] = *q;
-            let [#(#v),*] = *qd;
-            #(let mut #q = ::dalembert::series::start::<K>(#q);)*
-            #(let mut #v = ::dalembert::series::start::<K>(#v);)*
-            #(let mut #a = [0.0; K];)*
-            #time_series
-            #(let mut #intermediate = [0.0; K];)*
-            let mut series = Series::<K> {
-                #(#all_series: &mut #all_series,)*
-                #(#bound,)*
-                order: order.min(K.saturating_sub(1)),
-            };
+    };
+    let orders = quote! {
             let ([#(#mass_names),*], mut rhs) = series.advance(0, [0.0; #nv_lit]);
             #factor
             let solve = |[#(#right_hand_side),*]: [f64; #nv_lit]| {
@@ -663,6 +853,121 @@ pub fn emit_taylor(
                 rhs = series.next(k, rhs, solve);
             }
             ::core::result::Result::Ok(([#(#q),*], [#(#v),*]))
+    };
+    wrapped(model, prelude, function, (series_docs, methods), orders)
+}
+
+/// `taylor_coefficients` of a system with constraints: order `k` of
+/// `M v̇ − Aᵀ λ = f`, `A v̇ = b` solved with the one factorisation of the
+/// saddle point at the expansion point that `constrained_accelerations`
+/// makes (`dalembert::constrained::constrained_series`), in a loop over the
+/// orders.
+fn emit_constrained(model: &Model, prelude: &Prelude, function: &Function) -> TokenStream {
+    let (nv, nc) = (model.nv(), prelude.state[3].len());
+    let written = prelude.written();
+    let [q, v, a, lambda] = &prelude.state;
+    let steps = &prelude.steps;
+    let integrals = prelude.integrals();
+    let values = |rows: &[Vec<Operand>]| -> Vec<TokenStream> {
+        rows.iter()
+            .map(|row| {
+                let entries = row.iter().map(|&e| written.value(e));
+                quote!([#(#entries),*])
+            })
+            .collect()
+    };
+    let (mass_rows, jacobian_rows) = (
+        values(&prelude.lowered.matrix),
+        values(&prelude.lowered.jacobian),
+    );
+    let forcing: Vec<TokenStream> = (0..nv).map(|i| prelude.forcing_row(i)).collect();
+    let bias: Vec<TokenStream> = (0..nc).map(|r| prelude.bias_row(r)).collect();
+    let (nv_lit, nc_lit) = (Literal::usize_unsuffixed(nv), Literal::usize_unsuffixed(nc));
+    let series_docs = "The series of the expansion, borrowed (coordinates, speeds,
+accelerations, multipliers, then every node of `M`, `f`,
+`A`, `b` and the coordinates' rates that moves), the
+constants they read, and the highest order asked for.";
+    let methods = quote! {
+                /// Order `k` of every series, after order `k − 1` of the
+                /// accelerations and multipliers (`solved`) and its
+                /// integrals: the right-hand sides of order `k` of
+                /// `M v̇ − Aᵀ λ = f` and `A v̇ = b` (zeros at `k = order`,
+                /// which only integrates).
+                #[inline(always)]
+                fn advance(
+                    &mut self,
+                    k: usize,
+                    solved: ([f64; #nv_lit], [f64; #nc_lit]),
+                ) -> ([f64; #nv_lit], [f64; #nc_lit]) {
+                    if let ::core::option::Option::Some(below) = k.checked_sub(1) {
+                        ::dalembert::series::assign_all([#(&mut self.#a),*], below, solved.0);
+                        ::dalembert::series::assign_all([#(&mut self.#lambda),*], below, solved.1);
+                        #integrals
+                        if k == self.order {
+                            return ([0.0; #nv_lit], [0.0; #nc_lit]);
+                        }
+                    }
+                    #(#steps)*
+                    ([#(#forcing),*], [#(#bias),*])
+                }
+                /// `M₀` and `A₀`, once order 0 is computed.
+                #[inline(always)]
+                fn saddle_point(&self) -> ([[f64; #nv_lit]; #nv_lit], [[f64; #nv_lit]; #nc_lit]) {
+                    ([#(#mass_rows),*], [#(#jacobian_rows),*])
+                }
+    };
+    let orders = quote! {
+            let (forcing, bias) = series.advance(0, ([0.0; #nv_lit], [0.0; #nc_lit]));
+            let (mass, jacobian) = series.saddle_point();
+            let equations = ::dalembert::constrained::SaddlePoint {
+                mass: &mass,
+                forcing,
+                jacobian: &jacobian,
+                bias,
+            };
+            ::dalembert::constrained::constrained_series(self, t, q, equations, |mut solved, solver| {
+                for k in 1..=series.order {
+                    let (forcing, bias) = series.advance(k, solved);
+                    if k < series.order {
+                        solved = solver.solve(forcing, bias)?;
+                    }
+                }
+                ::core::result::Result::Ok(())
+            })?;
+            ::core::result::Result::Ok(([#(#q),*], [#(#v),*]))
+    };
+    wrapped(model, prelude, function, (series_docs, methods), orders)
+}
+
+/// `taylor_coefficients` itself: its docs and signature, the struct
+/// `Series` (documented by `series_docs`, with the methods `methods`), the
+/// setup, then `orders`, which expands order by order and returns.
+fn wrapped(
+    model: &Model,
+    prelude: &Prelude,
+    function: &Function,
+    (series_docs, methods): (&str, TokenStream),
+    orders: TokenStream,
+) -> TokenStream {
+    let docs = function.docs.iter().map(|line| super::raw_string(line));
+    let series_docs = series_docs
+        .lines()
+        .map(|line| super::raw_string(&format!(" {line}")));
+    let signature = signature(model);
+    let (fields, setup) = (&prelude.fields, &prelude.setup);
+    quote! {
+        #(#[doc = #docs])*
+        #[inline]
+        #signature {
+            #(#[doc = #series_docs])*
+            struct Series<'a, const K: usize> {
+                #fields
+            }
+            impl<const K: usize> Series<'_, K> {
+                #methods
+            }
+            #setup
+            #orders
         }
     }
 }
@@ -694,47 +999,40 @@ pub fn emit_trait_impl(name: &Ident, sizes: [usize; 3]) -> TokenStream {
 #[cfg(test)]
 mod tests {
     /// `source`, a system's text, with `outputs taylor;` before its
-    /// closing brace.
-    fn asking_for_taylor(source: &str) -> String {
+    /// closing brace, generated: the body of `taylor_coefficients`.
+    fn taylor_body(source: &str) -> String {
         let end = source.rfind('}').expect("a closing brace");
-        format!("{}    outputs taylor;\n{}", &source[..end], &source[end..])
+        let source = format!("{}    outputs taylor;\n{}", &source[..end], &source[end..]);
+        let code = crate::generate(&source).expect("generates");
+        code[code.find("pub fn taylor_coefficients").expect("emitted")..].to_owned()
     }
 
-    /// The error `check` reports, at the line and column of `taylor`.
-    fn error_at_taylor(source: &str) -> String {
-        let error = crate::check(source).expect_err("rejected");
-        let line = source
-            .lines()
-            .position(|l| l.contains("outputs taylor"))
-            .expect("the line");
-        let start = error.span().start();
-        assert_eq!(start.line, line + 1, "{error}");
-        let column = source.lines().nth(line).and_then(|l| l.find("taylor"));
-        assert_eq!(Some(start.column), column, "{error}");
-        error.to_string()
-    }
-
+    /// Seed example 3: `M` is constant and `A` moves in its column of
+    /// `θ` only, so order `k` adds the tails of `A₀₂ λ₀` and `A₁₂ λ₁` to
+    /// the forcing of `θ` and one to each row's bias: four in all, solved
+    /// by the runtime's factorisation of the saddle point.
     #[test]
-    fn constrained_systems_have_no_taylor_output_and_the_error_says_where() {
-        let source = asking_for_taylor(crate::seeds::CONSTRAINED_PENDULUM);
-        let message = error_at_taylor(&source);
+    fn constrained_systems_add_the_tails_of_the_moving_constraint_rows() {
+        let body = taylor_body(crate::seeds::CONSTRAINED_PENDULUM);
+        assert_eq!(body.matches("convolution_tail(").count(), 4, "{body}");
         assert!(
-            message.contains("`taylor` is not available for a system with constraints"),
-            "{message}"
+            body.contains("::dalembert::constrained::constrained_series("),
+            "{body}"
         );
     }
 
+    /// A ball joint's four quaternion coordinates integrate the series of
+    /// `½ q ⊗ (ω, 0)`, not speeds: twelve Cauchy products, each of the
+    /// four components by each of the three of `ω` (a uniform ball has no
+    /// gyroscopic forcing to add others).
     #[test]
-    fn speeds_that_are_not_rates_have_no_taylor_output() {
-        let source = asking_for_taylor(
+    fn speeds_that_are_not_rates_integrate_the_series_of_the_rates() {
+        let body = taylor_body(
             "Ball { parameters m; joint spherical ball { parent: N, child: B, at: O };
                body b { mass: m, center: ball, frame: B, inertia: [m, m, m] }; }",
         );
-        let message = error_at_taylor(&source);
-        assert!(
-            message.contains("whose speeds are not its coordinates' rates"),
-            "{message}"
-        );
+        assert_eq!(body.matches("series::integral(").count(), 4 + 3, "{body}");
+        assert_eq!(body.matches("series::product(").count(), 12, "{body}");
     }
 
     /// One `sin_cos` per argument, one Cauchy product per distinct

@@ -96,9 +96,17 @@ pub fn regressor(
 }
 
 /// `taylor_coefficients(t, q, v, u, order)`: the series of `M` and `f`
-/// (its results) through a state, `v̇` solved order by order.
-pub fn taylor(model: &Model, equations: &Equations) -> Function {
+/// (its results) through a state, `v̇` solved order by order; its docs say
+/// how constraints and rates that are not speeds change the solve.
+pub fn taylor(model: &Model, equations: &Equations, pool: &Pool) -> Function {
     let nv = model.nv();
+    let mut docs = vec![TAYLOR_DOCS];
+    if !equations.constraint_jacobian.is_empty() {
+        docs.push(CONSTRAINED_TAYLOR_DOCS);
+    }
+    if !pool.rates_are_speeds() {
+        docs.push(RATES_TAYLOR_DOCS);
+    }
     Function {
         body: Body::Taylor,
         results: vec![
@@ -107,7 +115,7 @@ pub fn taylor(model: &Model, equations: &Equations) -> Function {
         ],
         ..Function::new(
             "taylor_coefficients",
-            TAYLOR_DOCS,
+            &docs.join("\n\n"),
             &[Time, Coordinates, Speeds, Inputs],
             Value::vector(Vec::new()),
         )
@@ -126,6 +134,21 @@ pair, …), computed order by order from the lower orders; order `k` of
 `L D Lᵀ` factorisation of `M₀ = M(q)`, and `q̇ₖ₊₁ = q̈ₖ / (k + 1)`,
 `qₖ₊₁ = q̇ₖ / (k + 1)`. The errors of `accelerations` (non-finite state,
 singular `M`); a non-finite coefficient is left for the caller to see.";
+
+/// What the docs of `taylor_coefficients` add for a system with
+/// constraints.
+const CONSTRAINED_TAYLOR_DOCS: &str =
+    "With constraints, order `k` solves `M₀ q̈ₖ − A₀ᵀ λₖ = fₖ − Σⱼ₌₁ᵏ (Mⱼ q̈ₖ₋ⱼ −
+Aⱼᵀ λₖ₋ⱼ)`, `A₀ q̈ₖ = bₖ − Σⱼ₌₁ᵏ Aⱼ q̈ₖ₋ⱼ` with the one factorisation of the
+saddle point that `constrained_accelerations` makes
+(`dalembert::constrained::constrained_series`), with its errors.";
+
+/// What the docs of `taylor_coefficients` add where the speeds are not
+/// the coordinates' rates.
+const RATES_TAYLOR_DOCS: &str =
+    "The coordinates integrate the series of their rates `N(q) q̇` instead of
+the speeds: `qₖ₊₁ = (N(q) q̇)ₖ / (k + 1)` (a quaternion is unit to the
+integrator's accuracy only).";
 
 /// `j` in subscript digits.
 fn subscript(j: usize) -> String {

@@ -323,7 +323,9 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                     .functions
                     .push(derivatives::linearize(model, pool));
             }
-            OutputKind::Taylor => requested.functions.push(dynamics::taylor(model, equations)),
+            OutputKind::Taylor => requested
+                .functions
+                .push(dynamics::taylor(model, equations, pool)),
             _ => requested
                 .functions
                 .extend(kinematic::function(model, &kinematics, pool, output)),

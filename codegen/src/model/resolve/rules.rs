@@ -100,28 +100,11 @@ impl Resolver {
         }
     }
 
-    /// `taylor` solves `M v̇ = f`, so it takes no constraints;
     /// `linearize(..)` finds its independent entries by
     /// [`chart`](crate::model::output::chart), which says what is wrong
-    /// with them. The Taylor coefficients are taken in the
-    /// coordinates, so they need every speed to be its coordinate's rate.
+    /// with them.
     pub(super) fn check_solved_outputs(&mut self) {
-        use crate::model::OutputKind::{Linearize, Taylor};
-        if self.model.nq() != self.model.nv() {
-            for output in &self.model.outputs {
-                if output.kind == Taylor {
-                    let name = &output.function;
-                    self.errors.push(
-                        name.span(),
-                        format!(
-                            "`{name}` is not available yet for a system whose speeds are not \
-                             its coordinates' rates (a free or spherical joint): remove it \
-                             from `outputs`"
-                        ),
-                    );
-                }
-            }
-        }
+        use crate::model::OutputKind::Linearize;
         for index in 0..self.model.outputs.len() {
             let output = &self.model.outputs[index];
             if output.kind == Linearize {
@@ -130,19 +113,6 @@ impl Resolver {
                     Err((span, message)) => self.errors.push(span, message),
                 }
             }
-            let output = &self.model.outputs[index];
-            if self.model.constraints.is_empty() || output.kind != Taylor {
-                continue;
-            }
-            let name = &output.function;
-            self.errors.push(
-                name.span(),
-                format!(
-                    "`{name}` is not available for a system with constraints yet (its \
-                     coefficients solve `M v̇ = f` order by order): remove it from \
-                     `outputs`"
-                ),
-            );
         }
     }
 

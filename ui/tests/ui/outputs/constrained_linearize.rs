@@ -1,6 +1,6 @@
-//! `taylor` of a system with constraints is not generated,
-//! and its `linearize` needs the independent coordinates: each is an error
-//! at its name.
+//! `linearize` of a system with constraints needs the independent
+//! coordinates: an error at its name (its `taylor`, beside it, is
+//! generated).
 
 use dalembert_macros::dalembert;
 
