@@ -120,8 +120,11 @@ pub trait TaylorSystem<const NQ: usize, const NV: usize, const NU: usize>:
 {
     /// The coefficients of orders `0..=order` (at most `K − 1`; the rest are
     /// zero) of the motion through `(t, q, v)` with the inputs `u` held
-    /// constant, or why they cannot be computed (a non-finite state, a
-    /// singular mass matrix).
+    /// constant (for a system with constraints, the motion of its index-1
+    /// form `M v̇ = f + Aᵀ λ`, `A v̇ = b`), or why they cannot be computed:
+    /// the errors of [`accelerations`](crate::accelerations) for the system
+    /// (a non-finite state, a singular mass matrix; with constraints, those
+    /// of [`constrained_accelerations`](crate::constrained::constrained_accelerations)).
     fn taylor_coefficients<const K: usize>(
         &self,
         t: f64,
