@@ -1,13 +1,14 @@
 //! Free and spherical joints end to end, through the macro: the emitted
 //! equations against Newton–Euler in closed form, the configuration update
 //! (a quaternion stays unit), a body thrown under gravity (parabola of the
-//! centre, torque-free precession), the Dzhanibekov effect in quaternions
+//! centre, torque-free precession; by DOP853 and by the Taylor series of
+//! `q̇ = N(q) v`), the Dzhanibekov effect in quaternions
 //! (energy and angular momentum conserved while the body flips) and the
 //! same body in Z-Y-X Euler angles stopping at gimbal lock, with the Euler
 //! angles' rates as speeds (a singular mass matrix) or the body rates (a
 //! singular `q̇ = N(q) v`).
 
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive};
+use dalembert::integrate::{AdaptiveOptions, ExplicitPair, TaylorOptions, adaptive, taylor};
 use dalembert::{DynamicsError, State, Unconstrained, accelerations, energy};
 use dalembert_codegen::testing::{cross, mat_vec, quaternion_rotation as rotation};
 
@@ -18,6 +19,7 @@ dalembert::dalembert! {
         joint free base { parent: N, child: B, at: O };
         body b { mass: m, center: base, frame: B, inertia: [I1, I1, I3] };
         gravity -g * N.z;
+        outputs taylor;
     }
 }
 
@@ -236,17 +238,39 @@ fn tight() -> AdaptiveOptions {
 fn a_thrown_body_follows_the_parabola_and_precesses_about_its_axis() {
     let start = thrown_start();
     let dynamics = Unconstrained::without_inputs(&THROWN);
-    let t = 2.0;
-    let end = adaptive(&dynamics, start, t, ExplicitPair::Dop853, tight(), |_| {})
+    let end = adaptive(&dynamics, start, 2.0, ExplicitPair::Dop853, tight(), |_| {})
         .expect("integrates")
         .end;
+    assert_thrown_motion(&start, &end, 1e-9);
+}
+
+/// The Taylor integrator's series of `q̇ = N(q) v` (the position's rate
+/// `R(q) v` as well as the quaternion's) follow the same closed form,
+/// tighter.
+#[test]
+fn the_taylor_series_of_a_thrown_body_follow_the_parabola_and_the_precession() {
+    let start = thrown_start();
+    let dynamics = Unconstrained::without_inputs(&THROWN);
+    let options = TaylorOptions::with_tolerance(1e-15);
+    let end = taylor(&dynamics, start, 2.0, options, |_| {})
+        .expect("integrates")
+        .end;
+    assert_thrown_motion(&start, &end, 1e-11);
+}
+
+/// `end` is the thrown body's motion from `start` to within `tolerance`.
+fn assert_thrown_motion(start: &State<7, 6>, end: &State<7, 6>, tolerance: f64) {
+    let t = end.t - start.t;
     // The centre: r₀ + v₀ t − ½ g t² N.z, with v₀ = R₀ v.
-    let v0 = mat_vec(&rotation(quaternion(&start.q[3..])), [1.0, 0.5, 3.0]);
+    let v0 = mat_vec(
+        &rotation(quaternion(&start.q[3..])),
+        [start.v[0], start.v[1], start.v[2]],
+    );
     for (i, v0) in v0.into_iter().enumerate() {
         let gravity = if i == 2 { -0.5 * THROWN.g * t * t } else { 0.0 };
         let expected = start.q[i] + v0 * t + gravity;
         assert!(
-            (end.q[i] - expected).abs() < 1e-9,
+            (end.q[i] - expected).abs() < tolerance,
             "r[{i}] {} vs {expected}",
             end.q[i]
         );
@@ -258,7 +282,11 @@ fn a_thrown_body_follows_the_parabola_and_precesses_about_its_axis() {
     let (s, c) = (lambda * t).sin_cos();
     let expected = [w1 * c - w2 * s, w1 * s + w2 * c, w3];
     for (i, expected) in expected.into_iter().enumerate() {
-        assert!((end.v[3 + i] - expected).abs() < 1e-9, "ω[{i}]");
+        assert!(
+            (end.v[3 + i] - expected).abs() < tolerance,
+            "ω[{i}] {} vs {expected}",
+            end.v[3 + i]
+        );
     }
 }
 
