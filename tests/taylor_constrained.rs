@@ -11,6 +11,7 @@ use std::f64::consts::PI;
 use dalembert::constrained::constraint_drift;
 use dalembert::integrate::{AdaptiveOptions, ExplicitPair, State, TaylorOptions, adaptive, taylor};
 use dalembert::{Constrained, Stabilisation, Unconstrained};
+use dalembert_codegen::testing::quaternion_rotation as rotation;
 use dalembert_fixtures::reference::{array, assert_close, reference};
 use dalembert_generated::taylor_ball_top::TaylorBallTop;
 use dalembert_generated::taylor_constrained_pendulum::TaylorConstrainedPendulum;
@@ -152,26 +153,6 @@ fn seed_3_keeps_its_constraints_and_energy() {
             "relative energy error {error:e} at {t_end} s"
         );
     }
-}
-
-/// `R(q)` of the unit quaternion `(x, y, z, w)`, mapping the body's
-/// components to `N`'s, column by column: each axis `e` turned as
-/// `e + 2w (u × e) + 2 u × (u × e)` with `u = (x, y, z)`.
-fn rotation([x, y, z, w]: [f64; 4]) -> [[f64; 3]; 3] {
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let u = [x, y, z];
-    let columns: [[f64; 3]; 3] = std::array::from_fn(|j| {
-        let e: [f64; 3] = std::array::from_fn(|i| f64::from(u8::from(i == j)));
-        let (once, twice) = (cross(u, e), cross(u, cross(u, e)));
-        std::array::from_fn(|i| e[i] + 2.0 * w * once[i] + 2.0 * twice[i])
-    });
-    std::array::from_fn(|i| std::array::from_fn(|j| columns[j][i]))
 }
 
 /// Rodrigues: the rotation by `angle` about the unit `axis`.
