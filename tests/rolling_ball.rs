@@ -30,6 +30,7 @@ use dalembert::constrained::{constrained_accelerations, constraint_drift};
 use dalembert::integrate::{AdaptiveOptions, ExplicitPair, State, TaylorOptions, adaptive, taylor};
 use dalembert::{Constrained, Stabilisation};
 use dalembert_codegen::testing::{cross, mat_vec, quaternion_rotation as rotation, transpose_vec};
+use dalembert_fixtures::differences::central_differences;
 use dalembert_fixtures::reference::{assert_close, flat};
 
 dalembert::dalembert! {
@@ -58,7 +59,7 @@ dalembert::dalembert! {
             + r * ((base_qw^2 + base_qx^2 - base_qy^2 - base_qz^2) * base_wx
                 + 2 * (base_qx * base_qy - base_qw * base_qz) * base_wy
                 + 2 * (base_qx * base_qz + base_qw * base_qy) * base_wz) == 0;
-        outputs taylor, linearize(base_vx, base_vy, base_wx, base_wy, base_wz; base_wx, base_wy, base_wz);
+        outputs taylor, accelerations_jacobian, linearize(base_vx, base_vy, base_wx, base_wy, base_wz; base_wx, base_wy, base_wz);
     }
 }
 
@@ -340,5 +341,37 @@ fn linearization_on_the_rolling_manifold_is_the_hand_derived_one() {
                 assert_eq!(row[j], 0.0, "a dependent column");
             }
         }
+    }
+}
+
+/// `accelerations_jacobian` against central differences (step 1e-6) of
+/// `constrained_accelerations`, by `q` along `integrate_configuration`
+/// (the tangent space `q ⊕ δ`), on the manifold and off it (lifted and
+/// slipping: `v̇` is a function of the whole state), to 1e-7 of the
+/// largest derivative.
+#[test]
+fn accelerations_jacobian_matches_differences() {
+    let vdot = |q: &[f64; 7], v: &[f64; 6]| {
+        constrained_accelerations(&BALL, 0.0, q, v, &[])
+            .expect("solvable")
+            .0
+    };
+    let rolling = spinning();
+    let mut off = rolling;
+    off.q[2] += 0.02;
+    off.v[0] += 0.3;
+    off.v[4] -= 1.0;
+    for state in [rolling, off] {
+        let (q, v) = (state.q, state.v);
+        let (by_q, by_v, _) = BALL
+            .accelerations_jacobian(0.0, &q, &v, &[])
+            .expect("regular");
+        let step = 1e-6;
+        let along = central_differences(&[0.0; 6], step, |delta| {
+            vdot(&BALL.integrate_configuration(&q, delta, 1.0), &v)
+        });
+        let by_speeds = central_differences(&v, step, |v| vdot(&q, v));
+        assert_close("∂v̇/∂q", &flat(&by_q), &flat(&along), 1e-7);
+        assert_close("∂v̇/∂v", &flat(&by_v), &flat(&by_speeds), 1e-7);
     }
 }
