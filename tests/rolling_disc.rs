@@ -97,7 +97,7 @@ fn upright_rolling_has_the_closed_form_equations() {
     }
 }
 
-/// On both sides of `Ω² = g / 3r` (2.6 rad/s here) the eigenvalues of the
+/// On both sides of `Ω² = g / 3r` (3.3 rad/s here) the eigenvalues of the
 /// reduced `A` are `±√λ²` and zeros (to 1e-7 of `|λ|`: a zero of a
 /// Jordan block of two comes out of the eigensolver as `±√ε`).
 #[test]
