@@ -1,7 +1,9 @@
 //! The knife edge and the Chaplygin sleigh: a body on a blade at `(x, y)`
 //! heading `θ`, which may not slip sideways (`−sin θ ẋ + cos θ ẏ = 0`), no
 //! forces; its mass centre `a` ahead of the blade along it (`a = 0`: the
-//! knife edge). Expected values derived by hand below.
+//! knife edge); and the sleigh in Kane's speeds (a `speeds` statement, the
+//! row `u2 = 0` on a speed), through `outputs taylor` and `linearize`.
+//! Expected values derived by hand below.
 //!
 //! With `v = cos θ ẋ + sin θ ẏ` the speed along the blade and `ω = θ̇`, the
 //! centre `G = P + a B.x` moves at `v B.x + a ω B.y` and accelerates at
@@ -25,7 +27,7 @@
 
 use dalembert::integrate::{AdaptiveOptions, ExplicitPair, State, TaylorOptions, adaptive, taylor};
 use dalembert::{Constrained, Stabilisation};
-use dalembert_fixtures::reference::assert_close;
+use dalembert_fixtures::reference::{assert_close, flat};
 
 dalembert::dalembert! {
     /// A body of mass `m` and central inertia `I` on a blade at `(x, y)`,
@@ -199,5 +201,76 @@ fn chaplygin_sleigh_follows_its_closed_form_and_keeps_its_energy() {
             check(s, 1e-11, 1e-12)
         })
         .expect("integrates");
+    }
+}
+
+dalembert::dalembert! {
+    /// The same sleigh in Kane's speeds: `u1` along the blade, `u2` across
+    /// it (held at zero by a row on the speed), `w` the turning rate.
+    pub KaneSleigh {
+        parameters m, I, a;
+        coordinates x, y, theta;
+        speeds u1, u2, w {
+            x: cos(theta) * u1 - sin(theta) * u2,
+            y: sin(theta) * u1 + cos(theta) * u2,
+            theta: w
+        };
+        frame B = N.rotate_z(theta);
+        point G = O + x * N.x + y * N.y + a * B.x;
+        body sleigh { mass: m, center: G, frame: B, inertia: [0, 0, I] };
+        constraint u2 == 0;
+        outputs taylor, linearize(x, y, theta; u1, w);
+    }
+}
+
+const KANE_SLEIGH: KaneSleigh = KaneSleigh {
+    m: SLEIGH.m,
+    I: SLEIGH.I,
+    a: SLEIGH.a,
+};
+
+/// In Kane's speeds (a `speeds` statement, the row on a speed's name) the
+/// Taylor series follow the same closed form over 60 s, to 1e-13, the
+/// speed across the blade zero to rounding.
+#[test]
+fn chaplygin_sleigh_in_kanes_speeds_follows_the_closed_form() {
+    let start = on_the_blade(0.0, 0.0, 0.2, 0.5, 3.0);
+    let kane_start = State {
+        t: 0.0,
+        q: start.q,
+        v: [0.5, 0.0, 3.0],
+    };
+    let dynamics = Constrained::without_inputs(&KANE_SLEIGH, Stabilisation::None);
+    let options = TaylorOptions::with_tolerance(1e-15);
+    let check = |s: &State<3, 3>| {
+        let what = format!("at {} s", s.t);
+        let reached = [s.q[2], s.v[0], s.v[2]];
+        assert_close(&what, &reached, &sleigh_closed_form(&start, s.t), 1e-13);
+        assert!(s.v[1].abs() < 1e-14, "{what}: u2 = {:e}", s.v[1]);
+    };
+    taylor(&dynamics, kane_start, 60.0, options, check).expect("integrates");
+}
+
+/// `linearize` in Kane's speeds, `(x, y, θ)` and `(u1, w)` independent, is
+/// the hand-derived: `ẋ = cos θ u1`, `ẏ = sin θ u1` (`u2 = 0`), `θ̇ = w`,
+/// `u̇1 = a w²`, `ẇ = −(m a / J) u1 w`; the columns of `u2` zero.
+#[test]
+fn chaplygin_sleigh_in_kanes_speeds_linearises_by_hand() {
+    let KaneSleigh { m, I: inertia, a } = KANE_SLEIGH;
+    let ratio = m * a / (inertia + m * a * a);
+    for (theta, u1, w) in [(0.2, 0.5, 3.0), (-2.0, -1.5, 0.7)] {
+        let (a_matrix, _) = KANE_SLEIGH
+            .linearize(0.0, &[0.3, -0.1, theta], &[u1, 0.0, w], &[])
+            .expect("linearisable");
+        let (s, c) = f64::sin_cos(theta);
+        let expected = [
+            [0.0, 0.0, -s * u1, c, 0.0, 0.0],
+            [0.0, 0.0, c * u1, s, 0.0, 0.0],
+            [0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+            [0.0, 0.0, 0.0, 0.0, 0.0, 2.0 * a * w],
+            [0.0; 6],
+            [0.0, 0.0, 0.0, -ratio * w, 0.0, -ratio * u1],
+        ];
+        assert_close("A", &flat(&a_matrix), &flat(&expected), 1e-12);
     }
 }
