@@ -3,7 +3,8 @@
 //! `I_a = m r²/2` about its axle, `I_d = m r²/4` about a diameter) rolling
 //! without slipping on a horizontal plane, linearised by `linearize` about
 //! upright steady rolling at the spin rate `Ω`, against the closed form
-//! derived here.
+//! derived here, and at a leaning, turning state against SymPy's own
+//! `KanesMethod.linearize` (`scripts/rolling_disc_linearize_reference.py`).
 //!
 //! Coordinates: the contact point `(x, y)`, the heading `ψ` (frame
 //! `A = N.rotate_z(ψ)`), the lean `θ` (`C = A.rotate_x(θ)`, the disc's
@@ -35,7 +36,7 @@
 
 use dalembert::integrate::{AdaptiveOptions, ExplicitPair, State, TaylorOptions, adaptive, taylor};
 use dalembert::{Constrained, Stabilisation, energy};
-use dalembert_fixtures::reference::{assert_close, assert_near_all};
+use dalembert_fixtures::reference::{assert_close, assert_near_all, flat};
 use nalgebra::SMatrix;
 
 dalembert::dalembert! {
@@ -137,20 +138,14 @@ fn lean_is_stable_above_the_closed_form_spin_rate() {
     }
 }
 
-/// Leaning, turning and spinning on the index-1 form for 3 s, away from
-/// upright rolling: `integrate::taylor` at 1e-15 and DOP853 at 1e-14 reach
+/// From [`leaning`], on the index-1 form for 3 s: `integrate::taylor` at 1e-15 and DOP853 at 1e-14 reach
 /// the same state to 1e-11, both rolling without slipping (the velocity
 /// form of the rows) and keeping the energy (the rows do no work) to
 /// 1e-12.
 #[test]
 fn a_leaning_disc_rolls_alike_by_taylor_and_dop853() {
-    let (psi, omega) = (0.4, 6.0);
-    let rolling = DISC.r * omega;
-    let start = State {
-        t: 0.0,
-        q: [0.1, 0.2, psi, 0.3, 0.0],
-        v: [rolling * psi.cos(), rolling * psi.sin(), 1.0, 0.2, omega],
-    };
+    let (q, v) = leaning();
+    let start = State { t: 0.0, q, v };
     let dynamics = Constrained::without_inputs(&DISC, Stabilisation::None);
     let initial = energy(&DISC, &start.q, &start.v);
     let options = TaylorOptions::with_tolerance(1e-15);
@@ -174,4 +169,86 @@ fn a_leaning_disc_rolls_alike_by_taylor_and_dop853() {
         let change = energy(&DISC, &end.q, &end.v) / initial - 1.0;
         assert!(change.abs() < 1e-12, "energy {change:e}");
     }
+}
+
+/// SymPy's reduced `A` of `KanesMethod(...).linearize(A_and_B=True)` at
+/// the state of [`leaning`], states
+/// `(x, y, ψ, θ, φ, u_ψ, u_θ, u_φ)`: printed by
+/// `scripts/rolling_disc_linearize_reference.py` (SymPy 1.14).
+const SYMPYS_REDUCED_A: [[f64; 8]; 8] = [
+    [
+        0.0,
+        0.0,
+        -0.7009530161555708,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.2763182982008655,
+    ],
+    [
+        0.0,
+        0.0,
+        1.657909789205193,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.11682550269259515,
+    ],
+    [0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0],
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+    [
+        0.0,
+        0.0,
+        -3.2199171476717948e-15,
+        -0.7771157152623784,
+        0.0,
+        2.1466114317811964e-15,
+        -12.561019218457023,
+        -0.41870064061523404,
+    ],
+    [
+        0.0,
+        0.0,
+        0.0,
+        23.689192682473887,
+        0.0,
+        7.443065195099398,
+        7.709882115452476e-17,
+        1.1464037869507269,
+    ],
+    [
+        0.0,
+        0.0,
+        1.6071654057714212e-15,
+        2.728160132327892,
+        0.0,
+        -0.3184454963752038,
+        2.119807513439467,
+        0.12373449984384916,
+    ],
+];
+
+/// Leaning by 0.3 rad, heading 0.4 rad, turning at 1 rad/s, the lean
+/// changing at 0.2 rad/s and spinning at 6 rad/s, rolling.
+fn leaning() -> ([f64; 5], [f64; 5]) {
+    let (psi, omega) = (0.4f64, 6.0);
+    let rolling = DISC.r * omega;
+    (
+        [0.1, 0.2, psi, 0.3, 0.5],
+        [rolling * psi.cos(), rolling * psi.sin(), 1.0, 0.2, omega],
+    )
+}
+
+/// Away from any equilibrium, where every term of `F` (the dependent
+/// speeds' change with the heading) and of the gyroscopic coupling counts,
+/// the reduced `A` is SymPy's own to 1e-12.
+#[test]
+fn leaning_and_turning_matches_sympys_linearizer() {
+    let (q, v) = leaning();
+    let (a, _) = DISC.linearize(0.0, &q, &v, &[]).expect("linearisable");
+    let reduced = INDEPENDENT.map(|i| INDEPENDENT.map(|j| a[i][j]));
+    assert_close("A", &flat(&reduced), &flat(&SYMPYS_REDUCED_A), 1e-12);
 }
