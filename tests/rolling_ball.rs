@@ -202,11 +202,20 @@ const PROJECTION: Stabilisation = Stabilisation::Projection {
     max_iterations: 5,
 };
 
-/// Checks `end`, two seconds after `start`, against the closed form.
+/// Checks `end`, two seconds after `start`, against the closed form, and
+/// that it is on the constraints.
 fn assert_closed_form(what: &str, start: &State<7, 6>, end: &State<7, 6>, tol: f64, turns: bool) {
     assert_close(what, &observed(end), &closed_form(start, end.t), tol);
     let drift = constraint_drift(&BALL, end);
     assert!(drift < tol, "{what}: height off by {drift:e}");
+    // The velocity form of the rows: the centre's vertical speed and the
+    // contact point's slip, against the centre's speed.
+    let speed = in_space(end).0.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let slip = BALL.constraint_velocity(end.t, &end.q, &end.v);
+    assert!(
+        slip.iter().all(|s| s.abs() < tol * speed),
+        "{what}: {slip:?}"
+    );
     if !turns {
         return;
     }
