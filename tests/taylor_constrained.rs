@@ -1,6 +1,7 @@
 //! The Taylor output of a constrained system (seed example 3, a pendulum
 //! in dependent coordinates) and of speeds that are not the coordinates'
-//! rates (a body on a ball joint, a quaternion), against values found
+//! rates (a body on a ball joint, a quaternion; seed example 3 in
+//! body-axis speeds, a `speeds` statement), against values found
 //! apart from the code under test: the SymPy reference accelerations of
 //! `tests/reference/seed_examples.json`, DOP853 at 1e-14, the period of
 //! the pendulum from its elliptic integral, the energy, and the closed form
@@ -10,9 +11,10 @@ use std::f64::consts::PI;
 
 use dalembert::constrained::constraint_drift;
 use dalembert::integrate::{AdaptiveOptions, ExplicitPair, State, TaylorOptions, adaptive, taylor};
-use dalembert::{Constrained, Stabilisation, Unconstrained};
+use dalembert::{Constrained, ConstrainedSystem, Stabilisation, TaylorSystem, Unconstrained};
 use dalembert_codegen::testing::quaternion_rotation as rotation;
-use dalembert_fixtures::reference::{array, assert_close, reference};
+use dalembert_fixtures::precession::free_precession;
+use dalembert_fixtures::reference::{array, assert_close, flat, reference};
 use dalembert_generated::taylor_ball_top::TaylorBallTop;
 use dalembert_generated::taylor_constrained_pendulum::TaylorConstrainedPendulum;
 
@@ -96,28 +98,44 @@ fn seed_3_series_sum_to_dop853s_motion() {
     }
 }
 
-/// A bar of length `l` pinned at its end swings from rest at `θ₀` with
-/// the period `4 √(2l / 3g) K(sin(θ₀/2))` (`K` the complete elliptic
-/// integral of the first kind, by the arithmetic-geometric mean): one
-/// period later the Taylor integrator at 1e-16 is back at the start, on
-/// the constraints to rounding.
-#[test]
-fn seed_3_swings_with_the_period_of_its_elliptic_integral() {
-    let (pendulum, _) = seed_3();
-    let theta0 = 1.0f64;
+/// The period `4 √(2l / 3g) K(sin(θ₀/2))` of a bar of length `l` pinned at
+/// its end, swinging from rest at `θ₀` (`K` the complete elliptic integral
+/// of the first kind, by the arithmetic-geometric mean).
+fn bar_period(l: f64, g: f64, theta0: f64) -> f64 {
     let (mut a, mut b) = (1.0f64, (theta0 / 2.0).cos());
     // Quadratic convergence: six steps reach the rounding from 1 and 0.88.
     for _ in 0..6 {
         (a, b) = ((a + b) / 2.0, (a * b).sqrt());
     }
     let elliptic_k = PI / (2.0 * a);
-    let period = 4.0 * (2.0 * pendulum.l / (3.0 * pendulum.g)).sqrt() * elliptic_k;
-    let start = assembled(&pendulum, theta0, 0.0);
-    let dynamics = Constrained::without_inputs(&pendulum, Stabilisation::None);
+    4.0 * (2.0 * l / (3.0 * g)).sqrt() * elliptic_k
+}
+
+/// Integrated by Taylor at 1e-16 from `start` (the bar at rest at `θ₀`,
+/// `q[2]`), the bar is at `−θ₀` half a `period` later and back at the start
+/// a period later, to 1e-12, on the constraints to rounding.
+fn assert_swings_back<S, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
+    system: &S,
+    start: State<NQ, NV>,
+    period: f64,
+) where
+    S: TaylorSystem<NQ, NV, NU> + ConstrainedSystem<NQ, NV, NU, NC>,
+{
+    let dynamics = Constrained::without_inputs(system, Stabilisation::None);
     let options = TaylorOptions::with_tolerance(1e-16);
-    let end = taylor(&dynamics, start, period, options, |_| {})
-        .expect("integrates")
-        .end;
+    let after = |t: f64| {
+        taylor(&dynamics, start, t, options, |_| {})
+            .expect("integrates")
+            .end
+    };
+    let halfway = after(period / 2.0);
+    assert_close(
+        "θ half a period later",
+        &[halfway.q[2]],
+        &[-start.q[2]],
+        1e-12,
+    );
+    let end = after(period);
     let (reached, expected): (Vec<f64>, Vec<f64>) = end
         .q
         .iter()
@@ -125,8 +143,58 @@ fn seed_3_swings_with_the_period_of_its_elliptic_integral() {
         .zip(start.q.iter().chain(&start.v))
         .unzip();
     assert_close("one period later", &reached, &expected, 1e-12);
-    let drift = constraint_drift(&pendulum, &end);
+    let drift = constraint_drift(system, &end);
     assert!(drift < 1e-14, "constraint residual {drift:e}");
+}
+
+/// Swinging from rest at 1 rad, half a period of the elliptic integral
+/// later the bar is at −1 rad, one period later back at the start.
+#[test]
+fn seed_3_swings_with_the_period_of_its_elliptic_integral() {
+    let (pendulum, _) = seed_3();
+    let period = bar_period(pendulum.l, pendulum.g, 1.0);
+    assert_swings_back(&pendulum, assembled(&pendulum, 1.0, 0.0), period);
+}
+
+dalembert::dalembert! {
+    /// Seed example 3 in body-axis speeds (a `speeds` statement): the
+    /// velocity of `G` along `B.x` and `B.y`, and the rate of `theta`.
+    pub BodyAxisBar {
+        parameters m, l, g;
+        coordinates x, y, theta;
+        speeds u1, u2, w {
+            x: cos(theta) * u1 - sin(theta) * u2,
+            y: sin(theta) * u1 + cos(theta) * u2,
+            theta: w
+        };
+        frame B = N.rotate_z(theta);
+        point G = O + x * N.x + y * N.y;
+        body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
+        gravity -g * N.y;
+        constraint x - l/2 * sin(theta) == 0;
+        constraint y + l/2 * cos(theta) == 0;
+        outputs taylor;
+    }
+}
+
+/// The same bar in body-axis speeds, `q̇ = N(q) v` and the constraints
+/// expanded together, swings with the same period.
+#[test]
+fn seed_3_in_body_axis_speeds_swings_with_the_same_period() {
+    let bar = BodyAxisBar {
+        m: 1.7,
+        l: 1.1,
+        g: 9.81,
+    };
+    let theta0 = 1.0f64;
+    let half = bar.l / 2.0;
+    // At rest: every speed zero.
+    let start = State {
+        t: 0.0,
+        q: [half * theta0.sin(), -half * theta0.cos(), theta0],
+        v: [0.0; 3],
+    };
+    assert_swings_back(&bar, start, bar_period(bar.l, bar.g, theta0));
 }
 
 /// From the work-precision chart's start (1 rad, 2 rad/s) over its ten
@@ -153,30 +221,6 @@ fn seed_3_keeps_its_constraints_and_energy() {
             "relative energy error {error:e} at {t_end} s"
         );
     }
-}
-
-/// Rodrigues: the rotation by `angle` about the unit `axis`.
-fn turn(axis: [f64; 3], angle: f64) -> [[f64; 3]; 3] {
-    let (s, c) = angle.sin_cos();
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| {
-            let cross = match (i, j) {
-                (0, 1) => -axis[2],
-                (0, 2) => axis[1],
-                (1, 0) => axis[2],
-                (1, 2) => -axis[0],
-                (2, 0) => -axis[1],
-                (2, 1) => axis[0],
-                _ => 0.0,
-            };
-            let identity = if i == j { c } else { 0.0 };
-            identity + (1.0 - c) * axis[i] * axis[j] + s * cross
-        })
-    })
-}
-
-fn times(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
 }
 
 /// The symmetric top on a ball joint and a start off every axis.
@@ -226,37 +270,18 @@ fn the_quaternion_series_stay_unit() {
     );
 }
 
-/// Free precession of a symmetric body (`I₁ = I₂ = 2`, `I₃ = 3`): in the
-/// body's axes `ω` turns about the symmetry axis at
-/// `Ω = (I₃ − I₁) ω₃ / I₁`, and the attitude is
-/// `R(t) = Rot(ĥ, |H| t / I₁) R₀ Rot(e₃, −Ω t)` with `ĥ` the fixed
-/// direction of the angular momentum. The Taylor integrator at 1e-15 follows
-/// both for ten seconds.
+/// `I₁ = I₂ = 2`, `I₃ = 3` on a ball joint: the Taylor integrator at
+/// 1e-15 follows free precession (`ω` and `R`) for ten seconds.
 #[test]
 fn free_precession_on_a_ball_joint_is_the_closed_form() {
     let (top, start) = ball_top();
-    let (i1, i3) = (top.I1, top.I3);
-    let w0 = start.v;
-    let spin = (i3 - i1) * w0[2] / i1;
-    let r0 = rotation(start.q);
-    let body_momentum = [i1 * w0[0], i1 * w0[1], i3 * w0[2]];
-    let momentum: [f64; 3] =
-        std::array::from_fn(|i| (0..3).map(|j| r0[i][j] * body_momentum[j]).sum());
-    let size = momentum.iter().map(|h| h * h).sum::<f64>().sqrt();
-    let axis = momentum.map(|h| h / size);
     let dynamics = Unconstrained::without_inputs(&top);
     let options = TaylorOptions::with_tolerance(1e-15);
     let t = 10.0;
     let end = taylor(&dynamics, start, t, options, |_| {})
         .expect("integrates")
         .end;
-    let (s, c) = (spin * t).sin_cos();
-    let omega = [w0[0] * c - w0[1] * s, w0[0] * s + w0[1] * c, w0[2]];
+    let (omega, expected) = free_precession((top.I1, top.I3), &rotation(start.q), start.v, t);
     assert_close("ω(10)", &end.v, &omega, 1e-12);
-    let expected = times(
-        &times(&turn(axis, size * t / i1), &r0),
-        &turn([0.0, 0.0, 1.0], -spin * t),
-    );
-    let flat = |r: [[f64; 3]; 3]| r.iter().flatten().copied().collect::<Vec<f64>>();
-    assert_close("R(10)", &flat(rotation(end.q)), &flat(expected), 1e-12);
+    assert_close("R(10)", &flat(&rotation(end.q)), &flat(&expected), 1e-12);
 }

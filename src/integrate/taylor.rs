@@ -25,8 +25,12 @@
 //! The inputs are held at their value at the start of each step (the
 //! series of a system driven by `u(t, q, v)` is that of the frozen inputs):
 //! drive it by steps no longer than the inputs' own time scale, or use the
-//! Runge–Kutta methods. Systems with constraints, or whose speeds are not
-//! the coordinates' rates, have no `taylor` output.
+//! Runge–Kutta methods. Systems with constraints integrate through
+//! [`Constrained`] (the series of their index-1 form, a projection settling
+//! each step's end if asked for); where the speeds are not the coordinates'
+//! rates (free and spherical joints, `speeds` statements) the series of
+//! `q̇ = N(q) v` are expanded with the rest, and each step's end has its
+//! quaternions renormalised (`q ⊕ 0`), as in every integrator.
 
 use std::ops::ControlFlow;
 
