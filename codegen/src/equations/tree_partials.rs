@@ -66,11 +66,13 @@ struct Moving {
 }
 
 /// The composites of a subtree: inertia `(m, first moment c, inertia about
-/// the origin K)`, its rate `(ċ, K̇)`, momentum and inertia force.
+/// the origin K)`, its rate `(ċ, K̇)`, momentum and inertia force. The rate
+/// of the first moment is the linear momentum (`ċ = m v + ω × c`, the mass
+/// times the velocity of the centre), so `ċ` is `momentum.linear`: one
+/// node, whose terms cancel where `İᶜ` and `hᶜ` meet in `z` and `u`.
 #[derive(Clone, Copy)]
 struct Subtree {
     inertia: Composite,
-    moment_rate: Vec3,
     inertia_rate: Mat3,
     momentum: Spatial,
     force: Spatial,
@@ -381,10 +383,7 @@ fn link_subtree(pool: &mut Pool, inertia: &Composite, link: &Moving) -> Subtree 
         angular: w,
         linear: v,
     } = link.twist;
-    // ċ = m v + ω × c; K̇ = A + Aᵀ + 2 (c·v) 1 − v cᵀ − c vᵀ with A = [ω]× K.
-    let carried = cross(pool, &w, &world.moment);
-    let pushed = v.map(|x| pool.mul(world.mass, x));
-    let moment_rate = add3(pool, &pushed, &carried);
+    // K̇ = A + Aᵀ + 2 (c·v) 1 − v cᵀ − c vᵀ with A = [ω]× K.
     let columns = [0, 1, 2].map(|j| {
         let column = [0, 1, 2].map(|i| world.inertia[i][j]);
         cross(pool, &w, &column)
@@ -411,7 +410,6 @@ fn link_subtree(pool: &mut Pool, inertia: &Composite, link: &Moving) -> Subtree 
     let gyroscopic = force_cross(pool, &link.twist, &momentum);
     Subtree {
         inertia: world,
-        moment_rate,
         inertia_rate,
         momentum,
         force: add(pool, &inertial, &gyroscopic),
@@ -431,11 +429,13 @@ fn inertia_times(pool: &mut Pool, inertia: &Composite, x: &Spatial) -> Spatial {
     }
 }
 
-/// `İᶜ x = (K̇ ω + ċ × v, −ċ × ω)` for the rate of a subtree's inertia.
+/// `İᶜ x = (K̇ ω + ċ × v, −ċ × ω)` for the rate of a subtree's inertia,
+/// `ċ` its linear momentum.
 fn rate_times(pool: &mut Pool, subtree: &Subtree, x: &Spatial) -> Spatial {
+    let moment_rate = &subtree.momentum.linear;
     let turned = mat_vec(pool, &subtree.inertia_rate, &x.angular);
-    let lever = cross(pool, &subtree.moment_rate, &x.linear);
-    let swung = cross(pool, &x.angular, &subtree.moment_rate);
+    let lever = cross(pool, moment_rate, &x.linear);
+    let swung = cross(pool, &x.angular, moment_rate);
     Spatial {
         angular: add3(pool, &turned, &lever),
         linear: swung,
@@ -523,7 +523,6 @@ impl Spatial {
 fn subtree_grouped(pool: &mut Pool, s: &Subtree) -> Subtree {
     Subtree {
         inertia: grouped_composite(pool, &s.inertia),
-        moment_rate: group3(pool, &s.moment_rate),
         inertia_rate: s.inertia_rate.map(|row| group3(pool, &row)),
         momentum: grouped(pool, &s.momentum),
         force: grouped(pool, &s.force),
@@ -541,7 +540,6 @@ fn subtree_sum(pool: &mut Pool, a: &Subtree, b: &Subtree) -> Subtree {
             moment: add3(pool, &a.inertia.moment, &b.inertia.moment),
             inertia: matrix_sum(pool, &a.inertia.inertia, &b.inertia.inertia),
         },
-        moment_rate: add3(pool, &a.moment_rate, &b.moment_rate),
         inertia_rate: matrix_sum(pool, &a.inertia_rate, &b.inertia_rate),
         momentum: add(pool, &a.momentum, &b.momentum),
         force: add(pool, &a.force, &b.force),
