@@ -17,17 +17,23 @@ pub const FUNCTION_COST: usize = 20;
 pub fn operations(pool: &Pool, roots: &[ExprId]) -> usize {
     pool.topo_order(roots)
         .into_iter()
-        .map(|e| match pool.node(e) {
-            Node::Number(_) | Node::Sym(_) | Node::Func(Func::Group, _) => 0,
-            Node::Add(terms) => terms.len() - 1,
-            Node::Mul(factors) => factors.len() - 1,
-            Node::Pow(_, _) => 1,
-            Node::Func(Func::Sin | Func::Cos, arg)
-                if matches!(pool.node(*arg), Node::Sym(Sym::Coord(_))) =>
-            {
-                SIN_COS_COST / 2
-            }
-            Node::Func(_, _) => FUNCTION_COST,
-        })
+        .map(|e| node_operations(pool, e))
         .sum()
+}
+
+/// Arithmetic operations (and charged functions) of the node `e` alone,
+/// its children computed.
+pub fn node_operations(pool: &Pool, e: ExprId) -> usize {
+    match pool.node(e) {
+        Node::Number(_) | Node::Sym(_) | Node::Func(Func::Group, _) => 0,
+        Node::Add(terms) => terms.len() - 1,
+        Node::Mul(factors) => factors.len() - 1,
+        Node::Pow(_, _) => 1,
+        Node::Func(Func::Sin | Func::Cos, arg)
+            if matches!(pool.node(*arg), Node::Sym(Sym::Coord(_))) =>
+        {
+            SIN_COS_COST / 2
+        }
+        Node::Func(_, _) => FUNCTION_COST,
+    }
 }

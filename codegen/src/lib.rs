@@ -18,6 +18,8 @@
 mod build;
 mod chain;
 mod cost;
+#[cfg(test)]
+mod duplicates;
 mod emit;
 mod equations;
 mod expr;

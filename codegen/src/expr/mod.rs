@@ -58,7 +58,7 @@ mod number;
 mod pool;
 mod rebuild;
 #[cfg(test)]
-mod test_util;
+pub(crate) mod test_util;
 #[cfg(test)]
 mod tests;
 
