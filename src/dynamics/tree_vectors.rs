@@ -104,25 +104,27 @@ impl<const L: usize> TreeRecursion<L> {
     /// ```
     ///
     /// zero between branches. Only `M[row of j][row of i]` is written, `j`
-    /// the descendant: the other half stays zero.
+    /// the descendant: the other half stays zero. The links depth-first,
+    /// each `i` runs over the contiguous range of its subtree's `yⱼ` with
+    /// its `Sᵢ` at hand.
     pub fn mass_and_bias<const N: usize>(
         &self,
         links: &[TreeLink; L],
     ) -> ([[f64; N]; N], [f64; N]) {
         let (mut mass, mut bias) = ([[0.0; N]; N], [0.0; N]);
-        for (((link, moving), subtree), y) in links
+        for (i, ((link, moving), subtree)) in links
             .iter()
             .zip(&self.moving)
             .zip(&self.subtrees)
-            .zip(&self.unit_momenta)
+            .enumerate()
         {
-            put(&mut bias, link.row, dot6(&moving.subspace, &subtree.force));
-            if let Some(row) = mass.get_mut(link.row) {
-                let mut i = Some(link);
-                let mut ancestor = Some(moving);
-                while let (Some(other), Some(above)) = (i, ancestor) {
-                    put(row, other.row, dot6(&above.subspace, y));
-                    (i, ancestor) = (links.get(other.parent), self.moving.get(other.parent));
+            let s = &moving.subspace;
+            put(&mut bias, link.row, dot6(s, &subtree.force));
+            let below = links.get(i..link.end).unwrap_or_default();
+            let momenta = self.unit_momenta.get(i..link.end).unwrap_or_default();
+            for (other, y) in below.iter().zip(momenta) {
+                if let Some(row) = mass.get_mut(other.row) {
+                    put(row, link.row, dot6(s, y));
                 }
             }
         }
@@ -656,12 +658,14 @@ mod tests {
             row: 1,
             by_q: 0,
             by_v: 2,
+            end: 2,
         },
         TreeLink {
             parent: 0,
             row: 0,
             by_q: 1,
             by_v: 3,
+            end: 2,
         },
     ];
 

@@ -51,7 +51,8 @@ pub(super) fn speed_vectors(tree: &JointTree, pool: &mut Pool) -> Vec<SpeedVecto
     let mut placements: Vec<(Mat3, Vec3)> = vec![(identity(pool), [zero; 3]); n];
     let mut last_speed = vec![0; n];
     let mut speeds: Vec<SpeedVectors> = Vec::new();
-    for l in depth_first(tree) {
+    let parents: Vec<Option<usize>> = tree.links.iter().map(|l| l.parent).collect();
+    for l in depth_first(&parents) {
         let link = &tree.links[l];
         let base = (identity(pool), [zero; 3]);
         let (parent_rotation, parent_origin) = link.parent.map_or(base, |p| placements[p]);
@@ -82,12 +83,13 @@ pub(super) fn speed_vectors(tree: &JointTree, pool: &mut Pool) -> Vec<SpeedVecto
     speeds
 }
 
-/// The links of `tree` depth-first (preorder), children in their order.
-fn depth_first(tree: &JointTree) -> Vec<usize> {
-    let children = |parent: Option<usize>| {
-        (0..tree.links.len()).filter(move |&l| tree.links[l].parent == parent)
-    };
-    let mut order = Vec::with_capacity(tree.links.len());
+/// The links of the tree of `parents` (each link's parent, parents before
+/// children) depth-first (preorder), children in their order: each
+/// subtree's links together, from its root.
+pub fn depth_first(parents: &[Option<usize>]) -> Vec<usize> {
+    let children =
+        |parent: Option<usize>| (0..parents.len()).filter(move |&l| parents[l] == parent);
+    let mut order = Vec::with_capacity(parents.len());
     let mut stack: Vec<usize> = children(None).rev().collect();
     while let Some(l) = stack.pop() {
         order.push(l);
