@@ -730,6 +730,58 @@ mod tests {
         assert!(close(bias[1], tau[0], 1e-14) && close(bias[0], tau[1], 1e-14));
     }
 
+    /// A body of mass `mass` sliding along `x` of its parent's axes, its
+    /// origin at `offset` (`x` the slide), its mass a point at `(0, 0.2, 0)`.
+    fn sliding(offset: [f64; 3], mass: f64) -> LinkState {
+        let d = 0.2;
+        LinkState {
+            rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            offset,
+            axis: [0.0, 0.0, 0.0, 1.0, 0.0, 0.0],
+            speed: 0.5,
+            mass,
+            moment: [0.0, mass * d, 0.0],
+            inertia: [
+                [mass * d * d, 0.0, 0.0],
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, mass * d * d],
+            ],
+        }
+    }
+
+    #[test]
+    fn two_branches_couple_through_their_common_root_only() {
+        // A carriage sliding along `x` carrying two sliders along `x`, each
+        // on its own branch (parents: none, 0, 0; depth-first, subtrees
+        // 0..3, 1..2, 2..3), gravity along `−x`: M is the masses moved by
+        // each pair of speeds, and zero between the branches.
+        let (m0, m1, m2) = (2.0, 0.7, 1.3);
+        let link = |parent: usize, row: usize, end: usize| TreeLink {
+            parent,
+            row,
+            by_q: NONE,
+            by_v: NONE,
+            end,
+        };
+        let links = [link(NONE, 0, 3), link(0, 1, 2), link(0, 2, 3)];
+        let states = [
+            sliding([0.4, 0.0, 0.0], m0),
+            sliding([-0.3, 0.5, 0.0], m1),
+            sliding([0.9, -0.2, 0.1], m2),
+        ];
+        let mut tree = TreeRecursion::default();
+        tree.sweep(&states, &links, &[-G, 0.0, 0.0]);
+        let (mass, bias): ([[f64; 3]; 3], [f64; 3]) = tree.mass_and_bias(&links);
+        let total = m0 + m1 + m2;
+        let want = [[total, 0.0, 0.0], [m1, m1, 0.0], [m2, 0.0, m2]];
+        for (got, want) in mass.iter().flatten().zip(want.iter().flatten()) {
+            assert!(close(*got, *want, 1e-15), "{mass:?}");
+        }
+        for (got, want) in bias.iter().zip([total * G, m1 * G, m2 * G]) {
+            assert!(close(*got, want, 1e-15), "{bias:?}");
+        }
+    }
+
     #[test]
     fn the_second_pass_pairs_to_the_central_differences_of_the_closed_form() {
         let (q, v, a) = ([0.4, -1.1], [0.9, -0.3], [-2.0, 1.3]);

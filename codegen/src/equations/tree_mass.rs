@@ -131,6 +131,26 @@ mod tests {
     use crate::random::Random;
     use crate::trees::Shape;
 
+    /// A trunk of four links whose last carries two limbs of three listed
+    /// interleaved (as the branching tree of 14 lists them) comes out each
+    /// limb together, in the order of their first links.
+    #[test]
+    fn depth_first_puts_each_subtree_together() {
+        let parents = [
+            None,
+            Some(0),
+            Some(1),
+            Some(2),
+            Some(3),
+            Some(3),
+            Some(4),
+            Some(5),
+            Some(6),
+            Some(7),
+        ];
+        assert_eq!(super::depth_first(&parents), [0, 1, 2, 3, 4, 6, 8, 5, 7, 9]);
+    }
+
     /// The pairs of the vectors give the recursion's `M` at random states
     /// (unit quaternions) of chains in every spelling, a branching tree
     /// (the binary tree of 31 joints, floating and fixed) and a free body
