@@ -23,6 +23,9 @@ pub struct TreeLink {
     pub by_q: usize,
     /// The column of `∂τ/∂v` by the link's speed.
     pub by_v: usize,
+    /// Where the link's subtree ends among the links (depth-first: its
+    /// subtree is the links from it to before `end`).
+    pub end: usize,
 }
 
 /// `a · b`, six entries.
@@ -151,12 +154,14 @@ mod tests {
                 row: 1,
                 by_q: none,
                 by_v: 1,
+                end: 2,
             },
             TreeLink {
                 parent: 0,
                 row: 0,
                 by_q: 0,
                 by_v: 2,
+                end: 2,
             },
         ];
         // [S, Ψ̇, Ψ̈, y, z, w, u], each along one entry so that each dot

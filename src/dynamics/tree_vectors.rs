@@ -104,25 +104,27 @@ impl<const L: usize> TreeRecursion<L> {
     /// ```
     ///
     /// zero between branches. Only `M[row of j][row of i]` is written, `j`
-    /// the descendant: the other half stays zero.
+    /// the descendant: the other half stays zero. The links depth-first,
+    /// each `i` runs over the contiguous range of its subtree's `yⱼ` with
+    /// its `Sᵢ` at hand.
     pub fn mass_and_bias<const N: usize>(
         &self,
         links: &[TreeLink; L],
     ) -> ([[f64; N]; N], [f64; N]) {
         let (mut mass, mut bias) = ([[0.0; N]; N], [0.0; N]);
-        for (((link, moving), subtree), y) in links
+        for (i, ((link, moving), subtree)) in links
             .iter()
             .zip(&self.moving)
             .zip(&self.subtrees)
-            .zip(&self.unit_momenta)
+            .enumerate()
         {
-            put(&mut bias, link.row, dot6(&moving.subspace, &subtree.force));
-            if let Some(row) = mass.get_mut(link.row) {
-                let mut i = Some(link);
-                let mut ancestor = Some(moving);
-                while let (Some(other), Some(above)) = (i, ancestor) {
-                    put(row, other.row, dot6(&above.subspace, y));
-                    (i, ancestor) = (links.get(other.parent), self.moving.get(other.parent));
+            let s = &moving.subspace;
+            put(&mut bias, link.row, dot6(s, &subtree.force));
+            let below = links.get(i..link.end).unwrap_or_default();
+            let momenta = self.unit_momenta.get(i..link.end).unwrap_or_default();
+            for (other, y) in below.iter().zip(momenta) {
+                if let Some(row) = mass.get_mut(other.row) {
+                    put(row, link.row, dot6(s, y));
                 }
             }
         }
@@ -656,12 +658,14 @@ mod tests {
             row: 1,
             by_q: 0,
             by_v: 2,
+            end: 2,
         },
         TreeLink {
             parent: 0,
             row: 0,
             by_q: 1,
             by_v: 3,
+            end: 2,
         },
     ];
 
@@ -724,6 +728,58 @@ mod tests {
         }
         assert_eq!(mass[1][0], 0.0);
         assert!(close(bias[1], tau[0], 1e-14) && close(bias[0], tau[1], 1e-14));
+    }
+
+    /// A body of mass `mass` sliding along `x` of its parent's axes, its
+    /// origin at `offset` (`x` the slide), its mass a point at `(0, 0.2, 0)`.
+    fn sliding(offset: [f64; 3], mass: f64) -> LinkState {
+        let d = 0.2;
+        LinkState {
+            rotation: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            offset,
+            axis: [0.0, 0.0, 0.0, 1.0, 0.0, 0.0],
+            speed: 0.5,
+            mass,
+            moment: [0.0, mass * d, 0.0],
+            inertia: [
+                [mass * d * d, 0.0, 0.0],
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, mass * d * d],
+            ],
+        }
+    }
+
+    #[test]
+    fn two_branches_couple_through_their_common_root_only() {
+        // A carriage sliding along `x` carrying two sliders along `x`, each
+        // on its own branch (parents: none, 0, 0; depth-first, subtrees
+        // 0..3, 1..2, 2..3), gravity along `−x`: M is the masses moved by
+        // each pair of speeds, and zero between the branches.
+        let (m0, m1, m2) = (2.0, 0.7, 1.3);
+        let link = |parent: usize, row: usize, end: usize| TreeLink {
+            parent,
+            row,
+            by_q: NONE,
+            by_v: NONE,
+            end,
+        };
+        let links = [link(NONE, 0, 3), link(0, 1, 2), link(0, 2, 3)];
+        let states = [
+            sliding([0.4, 0.0, 0.0], m0),
+            sliding([-0.3, 0.5, 0.0], m1),
+            sliding([0.9, -0.2, 0.1], m2),
+        ];
+        let mut tree = TreeRecursion::default();
+        tree.sweep(&states, &links, &[-G, 0.0, 0.0]);
+        let (mass, bias): ([[f64; 3]; 3], [f64; 3]) = tree.mass_and_bias(&links);
+        let total = m0 + m1 + m2;
+        let want = [[total, 0.0, 0.0], [m1, m1, 0.0], [m2, 0.0, m2]];
+        for (got, want) in mass.iter().flatten().zip(want.iter().flatten()) {
+            assert!(close(*got, *want, 1e-15), "{mass:?}");
+        }
+        for (got, want) in bias.iter().zip([total * G, m1 * G, m2 * G]) {
+            assert!(close(*got, want, 1e-15), "{bias:?}");
+        }
     }
 
     #[test]

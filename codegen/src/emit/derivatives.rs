@@ -52,9 +52,23 @@ fn solved_columns(
         .collect()
 }
 
+/// Where each link's subtree ends among the links of `parents` (parents
+/// before children, depth-first: each subtree is the links from its root
+/// to before its end).
+fn subtree_ends(parents: &[Option<usize>]) -> Vec<usize> {
+    let mut ends: Vec<usize> = (1..=parents.len()).collect();
+    for (i, parent) in parents.iter().enumerate().rev() {
+        if let Some(&p) = parent.as_ref() {
+            ends[p] = ends[p].max(ends[i]);
+        }
+    }
+    ends
+}
+
 /// The tree of `paired` as the runtime's table of
 /// `dalembert::dynamics::TreeLink`s, bound to `TREE`: each link's parent,
-/// its row in the elimination `order` and its columns among `columns`.
+/// its row in the elimination `order`, its columns among `columns` and
+/// where its subtree ends.
 fn tree_table(paired: &PairedTree, order: &[usize], columns: &[(usize, usize)]) -> TokenStream {
     let none = || quote!(usize::MAX);
     let index = |i: Option<usize>| {
@@ -63,11 +77,13 @@ fn tree_table(paired: &PairedTree, order: &[usize], columns: &[(usize, usize)]) 
             quote!(#i)
         })
     };
-    let table = paired.parents.iter().zip(&paired.speeds).map(|(&parent, &speed)| {
+    let ends = subtree_ends(&paired.parents);
+    let table = paired.parents.iter().zip(&paired.speeds).zip(ends).map(|((&parent, &speed), end)| {
         let row = index(order.iter().position(|&s| s == speed));
         let [by_q, by_v] = [0, 1].map(|block| index(columns.iter().position(|&c| c == (block, speed))));
         let parent = index(parent);
-        quote!(::dalembert::dynamics::TreeLink { parent: #parent, row: #row, by_q: #by_q, by_v: #by_v })
+        let end = Literal::usize_unsuffixed(end);
+        quote!(::dalembert::dynamics::TreeLink { parent: #parent, row: #row, by_q: #by_q, by_v: #by_v, end: #end })
     });
     let l = Literal::usize_unsuffixed(paired.speeds.len());
     quote!(const TREE: [::dalembert::dynamics::TreeLink; #l] = [#(#table),*];)

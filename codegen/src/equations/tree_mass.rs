@@ -51,7 +51,8 @@ pub(super) fn speed_vectors(tree: &JointTree, pool: &mut Pool) -> Vec<SpeedVecto
     let mut placements: Vec<(Mat3, Vec3)> = vec![(identity(pool), [zero; 3]); n];
     let mut last_speed = vec![0; n];
     let mut speeds: Vec<SpeedVectors> = Vec::new();
-    for l in depth_first(tree) {
+    let parents: Vec<Option<usize>> = tree.links.iter().map(|l| l.parent).collect();
+    for l in depth_first(&parents) {
         let link = &tree.links[l];
         let base = (identity(pool), [zero; 3]);
         let (parent_rotation, parent_origin) = link.parent.map_or(base, |p| placements[p]);
@@ -82,12 +83,13 @@ pub(super) fn speed_vectors(tree: &JointTree, pool: &mut Pool) -> Vec<SpeedVecto
     speeds
 }
 
-/// The links of `tree` depth-first (preorder), children in their order.
-fn depth_first(tree: &JointTree) -> Vec<usize> {
-    let children = |parent: Option<usize>| {
-        (0..tree.links.len()).filter(move |&l| tree.links[l].parent == parent)
-    };
-    let mut order = Vec::with_capacity(tree.links.len());
+/// The links of the tree of `parents` (each link's parent, parents before
+/// children) depth-first (preorder), children in their order: each
+/// subtree's links together, from its root.
+pub fn depth_first(parents: &[Option<usize>]) -> Vec<usize> {
+    let children =
+        |parent: Option<usize>| (0..parents.len()).filter(move |&l| parents[l] == parent);
+    let mut order = Vec::with_capacity(parents.len());
     let mut stack: Vec<usize> = children(None).rev().collect();
     while let Some(l) = stack.pop() {
         order.push(l);
@@ -128,6 +130,26 @@ mod tests {
     use crate::interpret::Values;
     use crate::random::Random;
     use crate::trees::Shape;
+
+    /// A trunk of four links whose last carries two limbs of three listed
+    /// interleaved (as the branching tree of 14 lists them) comes out each
+    /// limb together, in the order of their first links.
+    #[test]
+    fn depth_first_puts_each_subtree_together() {
+        let parents = [
+            None,
+            Some(0),
+            Some(1),
+            Some(2),
+            Some(3),
+            Some(3),
+            Some(4),
+            Some(5),
+            Some(6),
+            Some(7),
+        ];
+        assert_eq!(super::depth_first(&parents), [0, 1, 2, 3, 4, 6, 8, 5, 7, 9]);
+    }
 
     /// The pairs of the vectors give the recursion's `M` at random states
     /// (unit quaternions) of chains in every spelling, a branching tree

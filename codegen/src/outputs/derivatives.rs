@@ -9,7 +9,9 @@ use crate::equations::derivatives::{
     ResidualJacobian, TangentDirections, along, direction_names, plain_speeds, residual_jacobian,
     tangent_directions, tangent_kinematics,
 };
-use crate::equations::{Equations, LinkState, TreeJacobian, inverse_dynamics, tree_jacobian};
+use crate::equations::{
+    Equations, LinkState, TreeJacobian, depth_first, inverse_dynamics, tree_jacobian,
+};
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Chart;
 use crate::model::Model;
@@ -71,12 +73,23 @@ fn paired_results(
             .map(|j| block.iter().any(|row| !pool.is_zero(row[j])))
             .collect()
     };
+    let parents: Vec<Option<usize>> = tree.links.iter().map(|l| l.parent).collect();
+    // Depth-first, as the runtime's `TreeRecursion::mass_and_bias` takes
+    // them: each subtree's links together.
+    let order = depth_first(&parents);
+    let position = |link: usize| order.iter().position(|&l| l == link);
     let paired = PairedTree {
-        parents: tree.links.iter().map(|l| l.parent).collect(),
-        speeds: tree.links.iter().map(|l| l.speed).collect(),
+        parents: order
+            .iter()
+            .map(|&l| parents[l].and_then(position))
+            .collect(),
+        speeds: order.iter().map(|&l| tree.links[l].speed).collect(),
         nonzero: [nonzero(&combined.coordinates), nonzero(&combined.speeds)],
     };
-    let states: Vec<Vec<ExprId>> = tree.states.iter().map(|l| l.entries().to_vec()).collect();
+    let states: Vec<Vec<ExprId>> = order
+        .iter()
+        .map(|&l| tree.states[l].entries().to_vec())
+        .collect();
     let (nv, nu) = (
         combined.speeds.len(),
         combined.inputs.first().map_or(0, Vec::len),

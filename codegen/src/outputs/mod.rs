@@ -39,7 +39,8 @@ pub struct Function {
 /// `f`), its first two only the rest of `∂τ/∂q` and `∂τ/∂v`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PairedTree {
-    /// Each link's parent among the links (parents before children).
+    /// Each link's parent among the links (depth-first: parents before
+    /// children, each subtree's links together).
     pub parents: Vec<Option<usize>>,
     /// Each link's speed.
     pub speeds: Vec<usize>,
