@@ -213,6 +213,7 @@ pub fn linearize_on_constraints<const NV: usize, const NU: usize, const NC: usiz
         false => Err(DynamicsError::NonFiniteEquations),
     }
 }
+
 /// `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` through the saddle-point system (see
 /// [`constrained_accelerations_jacobian`]).
 #[allow(clippy::type_complexity)]
