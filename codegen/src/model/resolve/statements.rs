@@ -49,6 +49,32 @@ impl ScalarKind {
     }
 }
 
+/// What `linearize(..)` names as independent: coordinates (before `;`,
+/// where a free or spherical joint's speeds stand for its tangent
+/// directions) or speeds (after `;`).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Independent {
+    Coordinates,
+    Speeds,
+}
+
+impl Independent {
+    /// The word for them in messages.
+    fn noun(self) -> &'static str {
+        match self {
+            Independent::Coordinates => "coordinates",
+            Independent::Speeds => "speeds",
+        }
+    }
+
+    /// Whether a coordinate's name, written as its rate `dt(..)` or not,
+    /// names one of them: any coordinate among the coordinates, only its
+    /// rate among the speeds.
+    fn takes_coordinate(self, rate: bool) -> bool {
+        rate || self == Independent::Coordinates
+    }
+}
+
 impl Resolver {
     pub(super) fn statement(&mut self, statement: &Statement) {
         match statement {
@@ -772,7 +798,7 @@ impl Resolver {
                     .iter()
                     .map(|s| (s.name.clone(), s.rate))
                     .collect();
-                independent_speeds = self.independent_symbols(&speeds, "speeds");
+                independent_speeds = self.independent_symbols(&speeds, Independent::Speeds);
                 if independent.len() != 1 + request.more.len()
                     || independent_speeds.len() != speeds.len()
                 {
@@ -857,28 +883,33 @@ impl Resolver {
             .chain(more)
             .map(|n| (n.clone(), false))
             .collect();
-        self.independent_symbols(&names, "coordinates")
+        self.independent_symbols(&names, Independent::Coordinates)
     }
 
     /// The symbols of `names` (with whether each was written `dt(..)`) as
-    /// `linearize(..)` names independent `what`: coordinates, or speeds; each
-    /// once, an error at each that is neither.
-    fn independent_symbols(&mut self, names: &[(Ident, bool)], what: &str) -> Vec<(Sym, Ident)> {
+    /// `linearize(..)` names its independent coordinates or speeds (`which`);
+    /// each once, an error at each that is neither.
+    fn independent_symbols(
+        &mut self,
+        names: &[(Ident, bool)],
+        which: Independent,
+    ) -> Vec<(Sym, Ident)> {
         let mut independent: Vec<(Sym, Ident)> = Vec::new();
         for (name, rate) in names {
             let sym = match self.lookup(name) {
-                Some(Binding::Scalar(sym @ Sym::Coord(_))) if *rate || what == "coordinates" => {
+                Some(Binding::Scalar(sym @ Sym::Coord(_))) if which.takes_coordinate(*rate) => {
                     Some(sym)
                 }
                 Some(Binding::Scalar(sym @ Sym::Speed(_))) if !rate => Some(sym),
                 Some(other) => {
-                    let hint = match what {
-                        "speeds" => format!(" (a coordinate's speed as `dt({name})`)"),
-                        _ => String::new(),
+                    let hint = match which {
+                        Independent::Speeds => format!(" (a coordinate's speed as `dt({name})`)"),
+                        Independent::Coordinates => String::new(),
                     };
                     let message = format!(
-                        "`{name}` is {}; `linearize(..)` names the independent {what}{hint}",
-                        other.describe()
+                        "`{name}` is {}; `linearize(..)` names the independent {}{hint}",
+                        other.describe(),
+                        which.noun()
                     );
                     self.errors.push(name.span(), message);
                     None
