@@ -109,7 +109,7 @@ fn nothing_moves() {
         &robot("fixed", "", ""),
         1,
         &[
-            "robot `r` has no revolute, continuous or prismatic joint",
+            "the robot `r` has no revolute, continuous or prismatic joint",
             "--floating",
         ],
     );
@@ -372,6 +372,18 @@ fn names_and_struct_name() {
             .contains("nor a built-in name of the language (`N`, `O`"),
         "{builtin}"
     );
+}
+
+#[test]
+fn a_robot_without_a_name_needs_the_struct_named() {
+    let text = robot("continuous", "", &unit_mass()).replace("<robot name=\"r\">", "<robot>");
+    assert_error(&text, 1, &["`<robot>` has no attribute `name`", "`--name`"]);
+    let named = Urdf::new("robot.urdf", text.as_str())
+        .name("Arm")
+        .model()
+        .expect("imports with the struct named");
+    assert!(named.contains("pub Arm {"), "{named}");
+    assert!(named.starts_with("/// The robot of robot.urdf"), "{named}");
 }
 
 #[test]

@@ -43,8 +43,8 @@ pub(super) fn tree(robot: &Robot) -> Result<Tree, Vec<Problem>> {
         problems.push(Problem::new(
             Some(robot.range.start..robot.range.start + 1),
             format!(
-                "robot `{}` has no `<link>`: expected at least the root link",
-                robot.name
+                "the {} has no `<link>`: expected at least the root link",
+                robot.called()
             ),
         ));
         return Err(problems);

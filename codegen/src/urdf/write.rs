@@ -54,9 +54,9 @@ pub(super) fn model_text(
         problems.push(Problem::new(
             Some(robot.range.start..robot.range.start + 1),
             format!(
-                "robot `{}` has no revolute, continuous or prismatic joint: nothing moves, \
+                "the {} has no revolute, continuous or prismatic joint: nothing moves, \
                  so there is no coordinate to write (with `--floating` the root link moves freely)",
-                robot.name
+                robot.called()
             ),
         ));
     }
@@ -163,7 +163,16 @@ fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) ->
         }
         return name.clone();
     }
-    let name = upper_camel_case(&robot.name);
+    let Some(robot_name) = &robot.name else {
+        problems.push(Problem::new(
+            at,
+            "`<robot>` has no attribute `name`: expected one, or the struct's name given \
+             with `--name`"
+                .to_owned(),
+        ));
+        return String::new();
+    };
+    let name = upper_camel_case(robot_name);
     if is_identifier(&name) {
         return name;
     }
@@ -171,9 +180,8 @@ fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) ->
     problems.push(Problem::warning(
         at,
         format!(
-            "the robot's name `{}` gives `{name}`, which is not a Rust identifier; the struct \
-             is named `{prefixed}` (choose another with `--name`)",
-            robot.name
+            "the robot's name `{robot_name}` gives `{name}`, which is not a Rust identifier; \
+             the struct is named `{prefixed}` (choose another with `--name`)"
         ),
     ));
     prefixed
@@ -267,8 +275,9 @@ impl Writer<'_> {
     fn model(&mut self, struct_name: &str, moving: &[usize]) {
         let robot = self.robot;
         self.lines.push(format!(
-            "/// The robot `{}` of {}, imported by `dalembert urdf`.",
-            robot.name, self.options.file_name
+            "/// The {} of {}, imported by `dalembert urdf`.",
+            robot.called(),
+            self.options.file_name
         ));
         self.lines.push(format!(
             "/// {} joint coordinates in depth-first order from the root link `{}`; \

@@ -13,12 +13,24 @@ use super::Problem;
 /// A robot as its URDF file describes it, in file order.
 #[derive(Debug)]
 pub(super) struct Robot {
-    /// The `name` attribute of `<robot>`.
-    pub name: String,
+    /// The `name` attribute of `<robot>`, which a struct named by the
+    /// user (`--name`) does without.
+    pub name: Option<String>,
     /// Where `<robot>` starts.
     pub range: Range<usize>,
     pub links: Vec<Link>,
     pub joints: Vec<Joint>,
+}
+
+impl Robot {
+    /// How messages and docs call the robot, after an article: `robot
+    /// `name`` where it has a name, else `robot`.
+    pub fn called(&self) -> String {
+        match &self.name {
+            Some(name) => format!("robot `{name}`"),
+            None => "robot".to_owned(),
+        }
+    }
 }
 
 /// A `<link>`.
@@ -136,9 +148,7 @@ pub(super) fn read(source: &str) -> Result<Robot, Vec<Problem>> {
         );
         return Err(reader.problems);
     }
-    let name = reader
-        .attribute(root, "name", "the robot")
-        .unwrap_or_default();
+    let name = root.attribute("name").map(str::to_owned);
     let mut links = Vec::new();
     let mut joints = Vec::new();
     for node in root.children().filter(Node::is_element) {
@@ -150,7 +160,7 @@ pub(super) fn read(source: &str) -> Result<Robot, Vec<Problem>> {
     }
     if reader.problems.is_empty() {
         Ok(Robot {
-            name: name.to_owned(),
+            name,
             range: root.range(),
             links,
             joints,
@@ -429,7 +439,7 @@ mod tests {
                </robot>"#,
         )
         .unwrap();
-        assert_eq!(robot.name, "r");
+        assert_eq!(robot.name.as_deref(), Some("r"));
         assert!(robot.links[0].inertial.is_none());
         let inertial = robot.links[1].inertial.as_ref().unwrap();
         assert_eq!(inertial.origin.xyz, [1.0, 2.0, 3.0]);
