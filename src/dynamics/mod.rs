@@ -3,6 +3,7 @@
 
 mod cholesky;
 mod error;
+mod lanes;
 mod pairs;
 mod rows;
 mod tree_vectors;
