@@ -3,7 +3,6 @@
 
 mod cholesky;
 mod error;
-mod lanes;
 mod pairs;
 mod rows;
 mod tree_vectors;

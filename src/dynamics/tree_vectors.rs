@@ -11,29 +11,13 @@
 //! unrolled for every link would be code that the processor streams from
 //! memory, this loop stays in its cache.
 //!
-//! Each pass is split into its sequential part (the outward chain, the
-//! inward sums, the chains of what `q̈` changes) and the work of each link
-//! that needs no other link's once those are known (its own inertia in
-//! `N` with its rate, momentum and force; `y`; `z, w, u`): the latter runs
-//! for [`LANES`] links at once, their numbers gathered into lanes
-//! ([`super::lanes`]) and scattered back, the same operations in the same
-//! order per link.
-//!
 //! Spatial vectors are in `N`'s axes at `N`'s origin: `(ω, v)` for a
 //! motion, `(n, f)` for a force.
 
-use std::iter::StepBy;
-use std::ops::Range;
-
-use super::lanes::{Lanes, Scalar, gathered};
 use super::pairs::TreeLink;
 
-type Vec3<T = f64> = [T; 3];
-type Mat3<T = f64> = [[T; 3]; 3];
-
-/// How many links the independent steps take at once, one a lane: two
-/// fill a 128-bit SSE2 register.
-const LANES: usize = 2;
+type Vec3 = [f64; 3];
+type Mat3 = [[f64; 3]; 3];
 
 /// One link of a tree at a state, as the generated
 /// `accelerations_jacobian` computes it.
@@ -93,7 +77,7 @@ impl<const L: usize> TreeRecursion<L> {
     /// the share `v_λ × Ψ̇ⱼ` of `Ψ̈ⱼ` (the rest waits for the accelerations,
     /// [`TreeRecursion::link_vectors`]) and acceleration (the base at `−g`),
     /// and each subtree's `Iᶜⱼ`, `İᶜⱼ`, `hᶜⱼ`, inertia force `Fⱼ` and
-    /// `yⱼ = Iᶜⱼ Sⱼ` (in lanes, once the inward sums are done).
+    /// `yⱼ = Iᶜⱼ Sⱼ`.
     pub fn sweep(&mut self, states: &[LinkState; L], links: &[TreeLink; L], gravity: &Vec3) {
         self.base = Spatial {
             angular: [0.0; 3],
@@ -101,12 +85,13 @@ impl<const L: usize> TreeRecursion<L> {
         };
         outwards(states, links, &self.base, &mut self.moving);
         inwards(states, links, &self.moving, &mut self.subtrees);
-        let (wide, single) = runs::<LANES>(L);
-        for start in wide {
-            unit_momenta::<LANES>(&self.moving, &self.subtrees, &mut self.unit_momenta, start);
-        }
-        for j in single {
-            unit_momenta::<1>(&self.moving, &self.subtrees, &mut self.unit_momenta, j);
+        for ((y, link), subtree) in self
+            .unit_momenta
+            .iter_mut()
+            .zip(&self.moving)
+            .zip(&self.subtrees)
+        {
+            *y = subtree.inertia.times(&link.subspace);
         }
     }
 
@@ -163,129 +148,56 @@ impl<const L: usize> TreeRecursion<L> {
     /// at `a_λ = a⁰_λ + Δa_λ` (the sweep's acceleration and the share that
     /// `q̈` moves, `Δaⱼ = Δa_λ + Sⱼ q̈ⱼ`), and the accelerations add
     /// `Σₖ Iₖ Δaₖ = Iᶜⱼ Δa_λ + Σₘ yₘ q̈ₘ` (`k`, `m` over the subtree of
-    /// `j`) to `Fⱼ`. The chains `Δa` outwards and `Σₘ yₘ q̈ₘ` inwards run
-    /// link by link; the rest, in lanes.
+    /// `j`) to `Fⱼ`.
     pub fn link_vectors<const N: usize>(
-        &self,
+        &mut self,
         links: &[TreeLink; L],
         accelerations: &[f64; N],
         vectors: &mut [[[f64; 6]; 7]; L],
     ) {
-        let mut steps = [Accelerated::ZERO; L];
+        let mut moved = [Spatial::ZERO; L];
+        let mut pushed = [Spatial::ZERO; L];
+        let mut driven = [Spatial::ZERO; L];
         for (j, (link, y)) in links.iter().zip(&self.unit_momenta).enumerate() {
-            let (above, parent) = match (steps.get(link.parent), self.moving.get(link.parent)) {
-                (Some(above), Some(parent)) => (above.moved, parent.acceleration),
+            let (done, rest) = self.moving.split_at_mut(j);
+            let (above, parent) = match (moved.get(link.parent), done.get(link.parent)) {
+                (Some(above), Some(parent)) => (*above, parent.acceleration),
                 _ => (Spatial::ZERO, self.base),
             };
             let qdd = accelerations.get(link.row).copied().unwrap_or_default();
-            if let (Some(moving), Some(step)) = (self.moving.get(j), steps.get_mut(j)) {
-                *step = Accelerated {
-                    parent: parent.add(&above),
-                    moved: above.add(&moving.subspace.scale(qdd)),
-                    pushed: above,
-                    driven: y.scale(qdd),
-                };
+            if let (Some(moving), Some(moved), Some(pushed), Some(driven)) = (
+                rest.first_mut(),
+                moved.get_mut(j),
+                pushed.get_mut(j),
+                driven.get_mut(j),
+            ) {
+                moving.second_rate = moving
+                    .second_rate
+                    .add(&motion_cross(&parent.add(&above), &moving.subspace));
+                *moved = above.add(&moving.subspace.scale(qdd));
+                *pushed = above;
+                *driven = y.scale(qdd);
             }
         }
         for (j, link) in links.iter().enumerate().rev() {
-            let (before, rest) = steps.split_at_mut(j);
+            let (before, rest) = driven.split_at_mut(j);
             if let (Some(parent), Some(this)) = (before.get_mut(link.parent), rest.first()) {
-                parent.driven = parent.driven.add(&this.driven);
+                *parent = parent.add(this);
             }
         }
-        let (wide, single) = runs::<LANES>(L);
-        for start in wide {
-            self.accelerated_vectors::<LANES>(&steps, vectors, start);
-        }
-        for j in single {
-            self.accelerated_vectors::<1>(&steps, vectors, j);
-        }
-    }
-
-    /// The vectors of the `W` links from `start` (if there are so many),
-    /// with what the accelerations `steps` change: `a_λ × Sⱼ` into `Ψ̈ⱼ`,
-    /// `Iᶜⱼ Δa_λ + Σₘ yₘ q̈ₘ` into `Fⱼ`.
-    #[inline(always)]
-    fn accelerated_vectors<const W: usize>(
-        &self,
-        steps: &[Accelerated],
-        vectors: &mut [[[f64; 6]; 7]],
-        start: usize,
-    ) {
-        if let (Some(moving), Some(subtrees), Some(momenta), Some(steps), Some(vectors)) = (
-            run::<W, _>(&self.moving, start),
-            run(&self.subtrees, start),
-            run(&self.unit_momenta, start),
-            run(steps, start),
-            run_mut(vectors, start),
-        ) {
-            let mut moving = Moving::gather(moving);
-            let mut subtree = Subtree::gather(subtrees);
-            let parent = Spatial::gather(steps, |step| &step.parent);
-            let pushed = Spatial::gather(steps, |step| &step.pushed);
-            let driven = Spatial::gather(steps, |step| &step.driven);
-            moving.second_rate = moving
-                .second_rate
-                .add(&motion_cross(&parent, &moving.subspace));
+        for (((vectors, moving), (subtree, y)), (driven, pushed)) in vectors
+            .iter_mut()
+            .zip(&self.moving)
+            .zip(self.subtrees.iter_mut().zip(&self.unit_momenta))
+            .zip(driven.iter().zip(&pushed))
+        {
             subtree.force = subtree
                 .force
-                .add(&subtree.inertia.times(&pushed))
-                .add(&driven);
-            let y = Spatial::gather(momenta, |y| y);
-            write_vectors(vectors, &link_vectors(&moving, &subtree, &y));
+                .add(&subtree.inertia.times(pushed))
+                .add(driven);
+            *vectors = link_vectors(moving, subtree, y);
         }
     }
-}
-
-/// What the accelerations change at one link: `a_λ = a⁰_λ + Δa_λ` of its
-/// parent, its own `Δaⱼ`, `Δa_λ`, and `Σₘ yₘ q̈ₘ` over its subtree.
-#[derive(Clone, Copy)]
-struct Accelerated {
-    parent: Spatial,
-    moved: Spatial,
-    pushed: Spatial,
-    driven: Spatial,
-}
-
-impl Accelerated {
-    const ZERO: Accelerated = Accelerated {
-        parent: Spatial::ZERO,
-        moved: Spatial::ZERO,
-        pushed: Spatial::ZERO,
-        driven: Spatial::ZERO,
-    };
-}
-
-/// Writes lane `k` of `lanes` as the vectors of the `k`-th of `W` links:
-/// the one step that knows the layout of the pairs' `vectors`.
-#[inline(always)]
-fn write_vectors<const W: usize>(vectors: &mut [[[f64; 6]; 7]; W], lanes: &[[Lanes<W>; 6]; 7]) {
-    for (k, link) in vectors.iter_mut().enumerate() {
-        for (vector, lanes) in link.iter_mut().zip(lanes) {
-            for (entry, lanes) in vector.iter_mut().zip(lanes) {
-                *entry = lanes.lane(k);
-            }
-        }
-    }
-}
-
-/// The starts of the runs of `W` links among `len`, and the links left
-/// over, one at a time.
-fn runs<const W: usize>(len: usize) -> (StepBy<Range<usize>>, Range<usize>) {
-    let whole = len - len % W;
-    ((0..whole).step_by(W), whole..len)
-}
-
-/// The `W` items of `items` from `start`, if there are so many.
-#[inline(always)]
-fn run<const W: usize, T>(items: &[T], start: usize) -> Option<&[T; W]> {
-    items.get(start..)?.first_chunk()
-}
-
-/// The `W` items of `items` from `start`, if there are so many, to write.
-#[inline(always)]
-fn run_mut<const W: usize, T>(items: &mut [T], start: usize) -> Option<&mut [T; W]> {
-    items.get_mut(start..)?.first_chunk_mut()
 }
 
 /// Whether `link`, the `j`-th, is the child of the link just before it
@@ -314,7 +226,7 @@ fn dot6(a: &Spatial, b: &Spatial) -> f64 {
 /// `[S, Ψ̇, Ψ̈, y, z, w, u]` of a link from its outward step, its
 /// subtree's composites and `y`.
 #[inline(always)]
-fn link_vectors<T: Scalar>(link: &Moving<T>, subtree: &Subtree<T>, y: &Spatial<T>) -> [[T; 6]; 7] {
+fn link_vectors(link: &Moving, subtree: &Subtree, y: &Spatial) -> [[f64; 6]; 7] {
     let (s, rate) = (&link.subspace, &link.rate);
     let turned = subtree.rate_times(s);
     let carried = force_cross(s, &subtree.momentum);
@@ -337,44 +249,44 @@ fn link_vectors<T: Scalar>(link: &Moving<T>, subtree: &Subtree<T>, y: &Spatial<T
 }
 
 /// A spatial vector: `(ω, v)` of a motion, `(n, f)` of a force.
-#[derive(Clone, Copy)]
-struct Spatial<T = f64> {
-    angular: Vec3<T>,
-    linear: Vec3<T>,
+#[derive(Clone, Copy, Default)]
+struct Spatial {
+    angular: Vec3,
+    linear: Vec3,
 }
 
 /// The outward step's state of one link: placement in `N`, motion
 /// subspace `S`, its rates `Ψ̇`, `Ψ̈` (only `v_λ × Ψ̇` of it until
 /// [`TreeRecursion::link_vectors`]), twist and acceleration at `q̈ = 0`.
 #[derive(Clone, Copy)]
-struct Moving<T = f64> {
-    rotation: Mat3<T>,
-    origin: Vec3<T>,
-    subspace: Spatial<T>,
-    rate: Spatial<T>,
-    second_rate: Spatial<T>,
-    twist: Spatial<T>,
-    acceleration: Spatial<T>,
+struct Moving {
+    rotation: Mat3,
+    origin: Vec3,
+    subspace: Spatial,
+    rate: Spatial,
+    second_rate: Spatial,
+    twist: Spatial,
+    acceleration: Spatial,
 }
 
-/// A spatial inertia about `N`'s origin (or a link's own, about its
-/// origin in its axes): mass `m`, first moment `c`, inertia tensor `K`.
+/// A spatial inertia about `N`'s origin: mass `m`, first moment `c`,
+/// inertia tensor `K`.
 #[derive(Clone, Copy)]
-struct Inertia<T = f64> {
-    mass: T,
-    moment: Vec3<T>,
-    tensor: Mat3<T>,
+struct Inertia {
+    mass: f64,
+    moment: Vec3,
+    tensor: Mat3,
 }
 
 /// A subtree's composites: inertia, its rate `(ċ, K̇)`, momentum and
 /// inertia force.
 #[derive(Clone, Copy)]
-struct Subtree<T = f64> {
-    inertia: Inertia<T>,
-    moment_rate: Vec3<T>,
-    inertia_rate: Mat3<T>,
-    momentum: Spatial<T>,
-    force: Spatial<T>,
+struct Subtree {
+    inertia: Inertia,
+    moment_rate: Vec3,
+    inertia_rate: Mat3,
+    momentum: Spatial,
+    force: Spatial,
 }
 
 /// Every link outwards from the base (at rest, accelerating at `base`) at
@@ -452,20 +364,15 @@ fn subspace(rotation: &Mat3, origin: &Vec3, axis: &[f64; 6]) -> Spatial {
     }
 }
 
-/// The composites of every subtree into `subtrees`, leaves first: each
-/// link's own in lanes, then the sums into the parents link by link.
+/// The composites of every subtree into `subtrees`, leaves first.
 fn inwards<const L: usize>(
     states: &[LinkState; L],
     links: &[TreeLink; L],
     moving: &[Moving; L],
     subtrees: &mut [Subtree; L],
 ) {
-    let (wide, single) = runs::<LANES>(L);
-    for start in wide {
-        owns::<LANES>(states, moving, subtrees, start);
-    }
-    for j in single {
-        owns::<1>(states, moving, subtrees, j);
+    for ((subtree, state), link) in subtrees.iter_mut().zip(states).zip(moving) {
+        *subtree = own(state, link);
     }
     for (j, link) in links.iter().enumerate().rev() {
         let (before, rest) = subtrees.split_at_mut(j);
@@ -475,66 +382,17 @@ fn inwards<const L: usize>(
     }
 }
 
-/// [`own`] of the `W` links from `start` (if there are so many) into
-/// `subtrees`.
+/// The link of `state`'s own inertia in `N` at its placement and motion
+/// `link`, with its rate, momentum and inertia force.
 #[inline(always)]
-fn owns<const W: usize>(
-    states: &[LinkState],
-    moving: &[Moving],
-    subtrees: &mut [Subtree],
-    start: usize,
-) {
-    if let (Some(states), Some(moving), Some(subtrees)) = (
-        run::<W, _>(states, start),
-        run(moving, start),
-        run_mut::<W, _>(subtrees, start),
-    ) {
-        let body = Inertia {
-            mass: gathered(states, |state| state.mass),
-            moment: gathered3(states, |state| &state.moment),
-            tensor: gathered33(states, |state| &state.inertia),
-        };
-        let own = own(&body, &Moving::gather(moving));
-        for (k, subtree) in subtrees.iter_mut().enumerate() {
-            *subtree = own.lane(k);
-        }
-    }
-}
-
-/// `yⱼ = Iᶜⱼ Sⱼ` of the `W` links from `start` (if there are so many) into
-/// `momenta`.
-#[inline(always)]
-fn unit_momenta<const W: usize>(
-    moving: &[Moving],
-    subtrees: &[Subtree],
-    momenta: &mut [Spatial],
-    start: usize,
-) {
-    if let (Some(moving), Some(subtrees), Some(momenta)) = (
-        run::<W, _>(moving, start),
-        run(subtrees, start),
-        run_mut::<W, _>(momenta, start),
-    ) {
-        let inertia = Inertia::gather(subtrees, |subtree| &subtree.inertia);
-        let y = inertia.times(&Spatial::gather(moving, |link| &link.subspace));
-        for (k, momentum) in momenta.iter_mut().enumerate() {
-            *momentum = y.lane(k);
-        }
-    }
-}
-
-/// The link of own inertia `body` (about its origin, in its axes) in `N`
-/// at its placement and motion `link`, with its rate, momentum and inertia
-/// force.
-#[inline(always)]
-fn own<T: Scalar>(body: &Inertia<T>, link: &Moving<T>) -> Subtree<T> {
-    let (rotation, origin, mass) = (&link.rotation, &link.origin, body.mass);
-    let turned = mat_vec(rotation, &body.moment);
+fn own(state: &LinkState, link: &Moving) -> Subtree {
+    let (rotation, origin, mass) = (&link.rotation, &link.origin, state.mass);
+    let turned = mat_vec(rotation, &state.moment);
     let moment = add3(&turned, &vec3(|i| mass * origin[i]));
     let inertia = Inertia {
         mass,
         moment,
-        tensor: shifted(&rotated(rotation, &body.tensor), mass, origin, &moment),
+        tensor: shifted(&rotated(rotation, &state.inertia), mass, origin, &moment),
     };
     let Spatial {
         angular: w,
@@ -546,7 +404,7 @@ fn own<T: Scalar>(body: &Inertia<T>, link: &Moving<T>) -> Subtree<T> {
     let columns = [cross(&w, &t[0]), cross(&w, &t[1]), cross(&w, &t[2])];
     let inertia_rate = plus_diagonal(
         symmetric(|i, j| columns[j][i] + columns[i][j] - v[i] * moment[j] - moment[i] * v[j]),
-        T::splat(2.0) * dot(&moment, &v),
+        2.0 * dot(&moment, &v),
     );
     let momentum = inertia.times(&link.twist);
     let force = inertia
@@ -562,11 +420,11 @@ fn own<T: Scalar>(body: &Inertia<T>, link: &Moving<T>) -> Subtree<T> {
 }
 
 /// `R K Rᵀ` of a symmetric `K`; of a diagonal one (principal axes, most
-/// links; in lanes, when every lane's is) as `Σₖ Kₖₖ rₖ rₖᵀ` over the
-/// columns `rₖ` of `R`, without the products by its zeros.
+/// links) as `Σₖ Kₖₖ rₖ rₖᵀ` over the columns `rₖ` of `R`, without the
+/// products by its zeros.
 #[inline(always)]
-fn rotated<T: Scalar>(r: &Mat3<T>, k: &Mat3<T>) -> Mat3<T> {
-    let rk = if k[0][1].is_zero() && k[0][2].is_zero() && k[1][2].is_zero() {
+fn rotated(r: &Mat3, k: &Mat3) -> Mat3 {
+    let rk = if k[0][1] == 0.0 && k[0][2] == 0.0 && k[1][2] == 0.0 {
         mat3(|i, j| r[i][j] * k[j][j])
     } else {
         mat_mul(r, k)
@@ -578,17 +436,17 @@ fn rotated<T: Scalar>(r: &Mat3<T>, k: &Mat3<T>) -> Mat3<T> {
 /// `N`'s origin, for mass `m` and first moment `c` about `N`'s origin:
 /// `K + (2 c·d − m|d|²) 1 − c dᵀ − d cᵀ + m d dᵀ`.
 #[inline(always)]
-fn shifted<T: Scalar>(k: &Mat3<T>, m: T, d: &Vec3<T>, c: &Vec3<T>) -> Mat3<T> {
+fn shifted(k: &Mat3, m: f64, d: &Vec3, c: &Vec3) -> Mat3 {
     let md = vec3(|i| m * d[i]);
     let outer = symmetric(|i, j| k[i][j] - c[i] * d[j] - d[i] * c[j] + md[i] * d[j]);
-    plus_diagonal(outer, T::splat(2.0) * dot(c, d) - dot(&md, d))
+    plus_diagonal(outer, 2.0 * dot(c, d) - dot(&md, d))
 }
 
 /// `m + x 1`.
 #[inline(always)]
-fn plus_diagonal<T: Scalar>(mut m: Mat3<T>, x: T) -> Mat3<T> {
+fn plus_diagonal(mut m: Mat3, x: f64) -> Mat3 {
     for (i, row) in m.iter_mut().enumerate() {
-        row[i] = row[i] + x;
+        row[i] += x;
     }
     m
 }
@@ -600,11 +458,9 @@ impl Spatial {
         angular: [0.0; 3],
         linear: [0.0; 3],
     };
-}
 
-impl<T: Scalar> Spatial<T> {
     #[inline(always)]
-    fn add(&self, other: &Spatial<T>) -> Spatial<T> {
+    fn add(&self, other: &Spatial) -> Spatial {
         Spatial {
             angular: add3(&self.angular, &other.angular),
             linear: add3(&self.linear, &other.linear),
@@ -612,7 +468,7 @@ impl<T: Scalar> Spatial<T> {
     }
 
     #[inline(always)]
-    fn sub(&self, other: &Spatial<T>) -> Spatial<T> {
+    fn sub(&self, other: &Spatial) -> Spatial {
         Spatial {
             angular: vec3(|i| self.angular[i] - other.angular[i]),
             linear: vec3(|i| self.linear[i] - other.linear[i]),
@@ -620,7 +476,7 @@ impl<T: Scalar> Spatial<T> {
     }
 
     #[inline(always)]
-    fn scale(&self, s: T) -> Spatial<T> {
+    fn scale(&self, s: f64) -> Spatial {
         Spatial {
             angular: vec3(|i| s * self.angular[i]),
             linear: vec3(|i| s * self.linear[i]),
@@ -629,63 +485,21 @@ impl<T: Scalar> Spatial<T> {
 
     /// `(angular, linear)` as six entries.
     #[inline(always)]
-    fn flat(&self) -> [T; 6] {
+    fn flat(&self) -> [f64; 6] {
         let ([a, b, c], [d, e, f]) = (self.angular, self.linear);
         [a, b, c, d, e, f]
     }
 }
 
-impl<const W: usize> Spatial<Lanes<W>> {
-    /// `field` of each of `W` links, one a lane.
-    #[inline(always)]
-    fn gather<S>(each: &[S; W], field: impl Fn(&S) -> &Spatial) -> Self {
-        Spatial {
-            angular: gathered3(each, |item| &field(item).angular),
-            linear: gathered3(each, |item| &field(item).linear),
-        }
-    }
-
-    /// The link of lane `k`.
-    #[inline(always)]
-    fn lane(&self, k: usize) -> Spatial {
-        Spatial {
-            angular: vec3(|i| self.angular[i].lane(k)),
-            linear: vec3(|i| self.linear[i].lane(k)),
-        }
-    }
-}
-
-impl<T: Scalar> Inertia<T> {
+impl Inertia {
     /// `I x = (K ω + c × v, m v − c × ω)`.
     #[inline(always)]
-    fn times(&self, x: &Spatial<T>) -> Spatial<T> {
+    fn times(&self, x: &Spatial) -> Spatial {
         let (w, v) = (&x.angular, &x.linear);
         let swung = cross(&self.moment, w);
         Spatial {
             angular: add3(&mat_vec(&self.tensor, w), &cross(&self.moment, v)),
             linear: vec3(|i| self.mass * v[i] - swung[i]),
-        }
-    }
-}
-
-impl<const W: usize> Inertia<Lanes<W>> {
-    /// `field` of each of `W` links, one a lane.
-    #[inline(always)]
-    fn gather<S>(each: &[S; W], field: impl Fn(&S) -> &Inertia) -> Self {
-        Inertia {
-            mass: gathered(each, |item| field(item).mass),
-            moment: gathered3(each, |item| &field(item).moment),
-            tensor: gathered33(each, |item| &field(item).tensor),
-        }
-    }
-
-    /// The link of lane `k`.
-    #[inline(always)]
-    fn lane(&self, k: usize) -> Inertia {
-        Inertia {
-            mass: self.mass.lane(k),
-            moment: vec3(|i| self.moment[i].lane(k)),
-            tensor: mat3(|i, j| self.tensor[i][j].lane(k)),
         }
     }
 }
@@ -702,22 +516,6 @@ impl Moving {
     };
 }
 
-impl<const W: usize> Moving<Lanes<W>> {
-    /// `W` links' outward steps, one a lane.
-    #[inline(always)]
-    fn gather(each: &[Moving; W]) -> Self {
-        Moving {
-            rotation: gathered33(each, |link| &link.rotation),
-            origin: gathered3(each, |link| &link.origin),
-            subspace: Spatial::gather(each, |link| &link.subspace),
-            rate: Spatial::gather(each, |link| &link.rate),
-            second_rate: Spatial::gather(each, |link| &link.second_rate),
-            twist: Spatial::gather(each, |link| &link.twist),
-            acceleration: Spatial::gather(each, |link| &link.acceleration),
-        }
-    }
-}
-
 impl Subtree {
     const ZERO: Subtree = Subtree {
         inertia: Inertia {
@@ -730,6 +528,18 @@ impl Subtree {
         momentum: Spatial::ZERO,
         force: Spatial::ZERO,
     };
+
+    /// `İ x = (K̇ ω + ċ × v, −ċ × ω)`.
+    #[inline(always)]
+    fn rate_times(&self, x: &Spatial) -> Spatial {
+        Spatial {
+            angular: add3(
+                &mat_vec(&self.inertia_rate, &x.angular),
+                &cross(&self.moment_rate, &x.linear),
+            ),
+            linear: cross(&x.angular, &self.moment_rate),
+        }
+    }
 
     /// Adds `other`'s composites.
     fn add(&mut self, other: &Subtree) {
@@ -747,58 +557,6 @@ impl Subtree {
     }
 }
 
-impl<T: Scalar> Subtree<T> {
-    /// `İ x = (K̇ ω + ċ × v, −ċ × ω)`.
-    #[inline(always)]
-    fn rate_times(&self, x: &Spatial<T>) -> Spatial<T> {
-        Spatial {
-            angular: add3(
-                &mat_vec(&self.inertia_rate, &x.angular),
-                &cross(&self.moment_rate, &x.linear),
-            ),
-            linear: cross(&x.angular, &self.moment_rate),
-        }
-    }
-}
-
-impl<const W: usize> Subtree<Lanes<W>> {
-    /// `W` subtrees' composites, one a lane.
-    #[inline(always)]
-    fn gather(each: &[Subtree; W]) -> Self {
-        Subtree {
-            inertia: Inertia::gather(each, |subtree| &subtree.inertia),
-            moment_rate: gathered3(each, |subtree| &subtree.moment_rate),
-            inertia_rate: gathered33(each, |subtree| &subtree.inertia_rate),
-            momentum: Spatial::gather(each, |subtree| &subtree.momentum),
-            force: Spatial::gather(each, |subtree| &subtree.force),
-        }
-    }
-
-    /// The subtree of lane `k`.
-    #[inline(always)]
-    fn lane(&self, k: usize) -> Subtree {
-        Subtree {
-            inertia: self.inertia.lane(k),
-            moment_rate: vec3(|i| self.moment_rate[i].lane(k)),
-            inertia_rate: mat3(|i, j| self.inertia_rate[i][j].lane(k)),
-            momentum: self.momentum.lane(k),
-            force: self.force.lane(k),
-        }
-    }
-}
-
-/// `field` of each of `W` links, one a lane.
-#[inline(always)]
-fn gathered3<const W: usize, S>(each: &[S; W], field: impl Fn(&S) -> &Vec3) -> Vec3<Lanes<W>> {
-    vec3(|i| gathered(each, |item| field(item)[i]))
-}
-
-/// `field` of each of `W` links, one a lane.
-#[inline(always)]
-fn gathered33<const W: usize, S>(each: &[S; W], field: impl Fn(&S) -> &Mat3) -> Mat3<Lanes<W>> {
-    mat3(|i, j| gathered(each, |item| field(item)[i][j]))
-}
-
 /// `a += b`.
 #[inline(always)]
 fn add_to(a: &mut Vec3, b: &Vec3) {
@@ -809,7 +567,7 @@ fn add_to(a: &mut Vec3, b: &Vec3) {
 
 /// `m₁ × m₂ = (ω₁ × ω₂, ω₁ × v₂ + v₁ × ω₂)`.
 #[inline(always)]
-fn motion_cross<T: Scalar>(a: &Spatial<T>, b: &Spatial<T>) -> Spatial<T> {
+fn motion_cross(a: &Spatial, b: &Spatial) -> Spatial {
     Spatial {
         angular: cross(&a.angular, &b.angular),
         linear: add3(&cross(&a.angular, &b.linear), &cross(&a.linear, &b.angular)),
@@ -818,7 +576,7 @@ fn motion_cross<T: Scalar>(a: &Spatial<T>, b: &Spatial<T>) -> Spatial<T> {
 
 /// `m ×* f = (ω × n + v × f, ω × f)`.
 #[inline(always)]
-fn force_cross<T: Scalar>(m: &Spatial<T>, f: &Spatial<T>) -> Spatial<T> {
+fn force_cross(m: &Spatial, f: &Spatial) -> Spatial {
     Spatial {
         angular: add3(&cross(&m.angular, &f.angular), &cross(&m.linear, &f.linear)),
         linear: cross(&m.angular, &f.linear),
@@ -826,7 +584,7 @@ fn force_cross<T: Scalar>(m: &Spatial<T>, f: &Spatial<T>) -> Spatial<T> {
 }
 
 #[inline(always)]
-fn cross<T: Scalar>(a: &Vec3<T>, b: &Vec3<T>) -> Vec3<T> {
+fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -835,34 +593,34 @@ fn cross<T: Scalar>(a: &Vec3<T>, b: &Vec3<T>) -> Vec3<T> {
 }
 
 #[inline(always)]
-fn dot<T: Scalar>(a: &Vec3<T>, b: &Vec3<T>) -> T {
+fn dot(a: &Vec3, b: &Vec3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[inline(always)]
-fn add3<T: Scalar>(a: &Vec3<T>, b: &Vec3<T>) -> Vec3<T> {
+fn add3(a: &Vec3, b: &Vec3) -> Vec3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 #[inline(always)]
-fn mat_vec<T: Scalar>(m: &Mat3<T>, x: &Vec3<T>) -> Vec3<T> {
+fn mat_vec(m: &Mat3, x: &Vec3) -> Vec3 {
     vec3(|i| dot(&m[i], x))
 }
 
 #[inline(always)]
-fn mat_mul<T: Scalar>(a: &Mat3<T>, b: &Mat3<T>) -> Mat3<T> {
+fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
     mat3(|i, j| a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j])
 }
 
 /// `[f(0), f(1), f(2)]`.
 #[inline(always)]
-fn vec3<T>(f: impl Fn(usize) -> T) -> Vec3<T> {
+fn vec3(f: impl Fn(usize) -> f64) -> Vec3 {
     [f(0), f(1), f(2)]
 }
 
 /// The matrix of entries `f(i, j)`.
 #[inline(always)]
-fn mat3<T>(f: impl Fn(usize, usize) -> T) -> Mat3<T> {
+fn mat3(f: impl Fn(usize, usize) -> f64) -> Mat3 {
     [
         [f(0, 0), f(0, 1), f(0, 2)],
         [f(1, 0), f(1, 1), f(1, 2)],
@@ -872,7 +630,7 @@ fn mat3<T>(f: impl Fn(usize, usize) -> T) -> Mat3<T> {
 
 /// The symmetric matrix of entries `f(i, j)` for `i ≤ j`.
 #[inline(always)]
-fn symmetric<T: Copy>(f: impl Fn(usize, usize) -> T) -> Mat3<T> {
+fn symmetric(f: impl Fn(usize, usize) -> f64) -> Mat3 {
     let [a, b, c] = [f(0, 0), f(0, 1), f(0, 2)];
     let [d, e, g] = [f(1, 1), f(1, 2), f(2, 2)];
     [[a, b, c], [b, d, e], [c, e, g]]
