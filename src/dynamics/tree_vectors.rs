@@ -9,7 +9,12 @@
 //! gives the seven spatial vectors of each link that
 //! [`add_tree_pairs`](super::add_tree_pairs) pairs. Where the same steps
 //! unrolled for every link would be code that the processor streams from
-//! memory, this loop stays in its cache.
+//! memory, this loop stays in its cache. Each link's steps run on its own
+//! structures (array of structures), whose pairs of components LLVM packs
+//! into SSE2 registers; the same steps for two links at once, one a lane,
+//! were no faster (BENCHMARKS.md, "lanes across links"): the loops' time
+//! is spread over the loads, stores and copies of a link's working set
+//! more than over its arithmetic.
 //!
 //! Spatial vectors are in `N`'s axes at `N`'s origin: `(ω, v)` for a
 //! motion, `(n, f)` for a force.
