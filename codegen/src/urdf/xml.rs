@@ -23,8 +23,8 @@ pub(super) struct Robot {
 }
 
 impl Robot {
-    /// How messages and docs call the robot, after an article: `robot
-    /// `name`` where it has a name, else `robot`.
+    /// How messages and docs call the robot, after an article: the word
+    /// robot and, where it has one, its name in backticks.
     pub fn called(&self) -> String {
         match &self.name {
             Some(name) => format!("robot `{name}`"),
