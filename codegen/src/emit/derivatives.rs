@@ -17,7 +17,7 @@ use super::solve::{
 };
 use super::{array, raw_string};
 use crate::equations::derivatives::direction_names;
-use crate::equations::{Equations, LinkState};
+use crate::equations::{Equations, LinkState, subtree_ends};
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
 use crate::outputs::{Function, PairedTree};
@@ -50,19 +50,6 @@ fn solved_columns(
             _ => (0..nv).any(|i| !pool.is_zero(blocks[block][i * widths[block] + j])),
         })
         .collect()
-}
-
-/// Where each link's subtree ends among the links of `parents` (parents
-/// before children, depth-first: each subtree is the links from its root
-/// to before its end).
-fn subtree_ends(parents: &[Option<usize>]) -> Vec<usize> {
-    let mut ends: Vec<usize> = (1..=parents.len()).collect();
-    for (i, parent) in parents.iter().enumerate().rev() {
-        if let Some(&p) = parent.as_ref() {
-            ends[p] = ends[p].max(ends[i]);
-        }
-    }
-    ends
 }
 
 /// The tree of `paired` as the runtime's table of

@@ -20,7 +20,7 @@ use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
 pub use articulated::Articulated;
-pub use tree_mass::{SpeedVectors, depth_first};
+pub use tree_mass::{SpeedVectors, depth_first, subtree_ends};
 pub use tree_partials::{LinkState, LinkVectors};
 
 /// The derived equations of one system, as expressions of the pool the model was resolved into.

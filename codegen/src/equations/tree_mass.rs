@@ -73,14 +73,24 @@ pub(super) fn speed_vectors(tree: &JointTree, pool: &mut Pool) -> Vec<SpeedVecto
         last_speed[l] = speeds.len() - 1;
         placements[l] = (rotation, origin);
     }
-    // Each speed's subtree ends where its last descendant's does.
-    for i in (0..speeds.len()).rev() {
-        speeds[i].end = speeds[i].end.max(i + 1);
-        if let Some(p) = speeds[i].parent {
-            speeds[p].end = speeds[p].end.max(speeds[i].end);
-        }
+    let parents: Vec<Option<usize>> = speeds.iter().map(|s| s.parent).collect();
+    for (speed, end) in speeds.iter_mut().zip(subtree_ends(&parents)) {
+        speed.end = end;
     }
     speeds
+}
+
+/// Where each subtree ends among the nodes of `parents` (each node's
+/// parent, depth-first: each subtree is the nodes from its root to before
+/// its end): where its last descendant's does.
+pub fn subtree_ends(parents: &[Option<usize>]) -> Vec<usize> {
+    let mut ends: Vec<usize> = (1..=parents.len()).collect();
+    for (i, parent) in parents.iter().enumerate().rev() {
+        if let Some(&p) = parent.as_ref() {
+            ends[p] = ends[p].max(ends[i]);
+        }
+    }
+    ends
 }
 
 /// The links of the tree of `parents` (each link's parent, parents before
