@@ -387,6 +387,19 @@ fn a_robot_without_a_name_needs_the_struct_named() {
 }
 
 #[test]
+fn a_robot_without_a_name_and_a_broken_tree_reports_both() {
+    let text = robot("continuous", "", &unit_mass())
+        .replace("<robot name=\"r\">", "<robot>")
+        .replace("<parent link=\"a\"/>", "<parent link=\"x\"/>");
+    let found = errors(&text);
+    assert_eq!(found.len(), 2, "{found:?}");
+    assert_eq!(found[0].0, Some(1), "{found:?}");
+    assert!(found[0].1.contains("no attribute `name`"), "{found:?}");
+    assert_eq!(found[1].0, Some(5), "{found:?}");
+    assert!(found[1].1.contains("unknown parent link `x`"), "{found:?}");
+}
+
+#[test]
 fn joint_names_that_cannot_be_coordinates() {
     let mass = unit_mass();
     let keyword = robot("revolute", "", &mass).replace("name=\"j\"", "name=\"type\"");

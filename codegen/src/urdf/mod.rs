@@ -181,7 +181,17 @@ impl Urdf {
     /// error).
     fn model_text(&self) -> Result<(String, Vec<Problem>), Vec<Problem>> {
         let robot = xml::read(&self.source)?;
-        let tree = tree::tree(&robot)?;
-        write::model_text(&robot, &tree, &self.options)
+        // The struct's name is checked before the tree, so that a file
+        // with faults in both reports both at once.
+        let mut problems = Vec::new();
+        let struct_name = write::struct_name(&robot, &self.options, &mut problems);
+        let tree = match tree::tree(&robot) {
+            Ok(tree) => tree,
+            Err(faults) => {
+                problems.extend(faults);
+                return Err(problems);
+            }
+        };
+        write::model_text(&robot, &tree, &self.options, &struct_name, problems)
     }
 }

@@ -32,18 +32,19 @@ const FREE_NAMES: [&str; 14] = [
     "x", "y", "z", "qx", "qy", "qz", "qw", "vx", "vy", "vz", "wx", "wy", "wz", "",
 ];
 
-/// The model text of `robot` with the warnings found, or the problems (at
-/// least one an error: names that cannot be written, nothing that moves, a
-/// joint that moves no mass, a body whose inertia no matrix of masses can
-/// have).
+/// The model text of `robot`, its struct named `struct_name`, with the
+/// warnings found, or the problems (at least one an error: names that
+/// cannot be written, nothing that moves, a joint that moves no mass, a
+/// body whose inertia no matrix of masses can have), after those already
+/// found in `problems`.
 pub(super) fn model_text(
     robot: &Robot,
     tree: &Tree,
     options: &Options,
+    struct_name: &str,
+    mut problems: Vec<Problem>,
 ) -> Result<(String, Vec<Problem>), Vec<Problem>> {
-    let mut problems = Vec::new();
     let mut names = Names::default();
-    let struct_name = struct_name(robot, options, &mut problems);
     let order = tree.depth_first();
     let moving: Vec<usize> = order
         .iter()
@@ -110,7 +111,7 @@ pub(super) fn model_text(
         lines: Vec::new(),
         problems,
     };
-    writer.model(&struct_name, &moving);
+    writer.model(struct_name, &moving);
     if writer.problems.iter().any(Problem::is_error) {
         return Err(writer.problems);
     }
@@ -145,7 +146,7 @@ fn check_moves_mass(robot: &Robot, tree: &Tree, j: usize, problems: &mut Vec<Pro
 
 /// The struct's name: `--name`, else the robot's name in UpperCamelCase,
 /// prefixed with `Robot` (and a warning) where that is not an identifier.
-fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) -> String {
+pub(super) fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) -> String {
     let at = Some(robot.range.start..robot.range.start + 1);
     if let Some(name) = &options.name {
         if !is_identifier(name) {
