@@ -101,7 +101,7 @@ fn doc_comments(cursor: &mut Cursor) -> syn::Result<Vec<String>> {
 
 /// The text of one `[doc = "text"]` attribute.
 fn doc_text(attribute: &Group) -> syn::Result<String> {
-    let mut cursor = Cursor::group(attribute);
+    let mut cursor = Cursor::group(&meta_of(attribute));
     cursor.expect_keyword(
         keyword::DOC,
         "`doc` (the only attribute allowed is a `///` doc comment)",
@@ -117,6 +117,17 @@ fn doc_text(attribute: &Group) -> syn::Result<String> {
         return Err(cursor.expected("`]` after the doc comment's text"));
     }
     Ok(text)
+}
+
+/// The attribute `[..]` itself, or the invisible group that is all its
+/// contents: a doc comment that a `macro_rules!` passes on as a
+/// `#[$doc:meta]` fragment arrives as `[⟦doc = "text"⟧]`.
+fn meta_of(attribute: &Group) -> Group {
+    let mut tokens = attribute.stream().into_iter();
+    match (tokens.next(), tokens.next()) {
+        (Some(TokenTree::Group(inner)), None) if inner.delimiter() == Delimiter::None => inner,
+        _ => attribute.clone(),
+    }
 }
 
 /// The value of `literal` if it is a string literal.
@@ -441,6 +452,22 @@ mod tests {
     /// The names of `fields`, in order.
     fn field_names(fields: &[Field]) -> Vec<String> {
         fields.iter().map(|field| field.name.to_string()).collect()
+    }
+
+    /// A doc comment passed on by a `macro_rules!` as `#[$doc:meta]` is an
+    /// invisible group inside the brackets; it reads as the comment.
+    #[test]
+    fn a_doc_comment_from_a_meta_fragment_is_read() {
+        let meta = Group::new(
+            Delimiter::None,
+            r#"doc = " Forwarded.""#.parse().expect("lexes"),
+        );
+        let attribute = Group::new(Delimiter::Bracket, TokenTree::Group(meta).into());
+        let mut tokens: TokenStream = "#".parse().expect("lexes");
+        tokens.extend([TokenTree::Group(attribute)]);
+        tokens.extend("pub S { }".parse::<TokenStream>());
+        let system = parse_system(tokens).expect("parses");
+        assert_eq!(system.docs, [" Forwarded."]);
     }
 
     #[test]
