@@ -5,6 +5,8 @@
 //! next `;` and goes on, so one run reports every error it can; a missing
 //! `;` before a statement keyword resumes at that keyword.
 
+use std::fmt::Display;
+
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use syn::Lit;
 
@@ -373,10 +375,13 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
         });
     };
     let mut inside = Cursor::group(&group);
-    let of = inside.expect_ident(format!("a point, frame or coordinate in `{name}(..)`"))?;
+    let of = argument(
+        &mut inside,
+        format!("a point, frame or coordinate in `{name}(..)`"),
+    )?;
     let mut more = Vec::new();
     while inside.eat_punct(',').is_some() {
-        more.push(inside.expect_ident("a coordinate after `,`")?);
+        more.push(argument(&mut inside, "a coordinate after `,`")?);
     }
     let mut speeds = Vec::new();
     if inside.eat_punct(';').is_some() {
@@ -399,6 +404,22 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
         speeds,
         axes,
     })
+}
+
+/// Parses one point, frame or coordinate of an output's parentheses; a
+/// speed `dt(q)` there is an error at `dt` saying where speeds go.
+fn argument(cursor: &mut Cursor, expected: impl Display) -> syn::Result<Ident> {
+    let name = cursor.expect_ident(expected)?;
+    let is_group = |token: Option<&TokenTree>| matches!(token, Some(TokenTree::Group(group)) if group.delimiter() == Delimiter::Parenthesis);
+    if name == "dt" && is_group(cursor.peek()) {
+        return Err(syn::Error::new(
+            name.span(),
+            "`dt(..)` is a speed, where a point, frame or coordinate is expected: \
+             `linearize(..)` names its independent coordinates, then its independent \
+             speeds after `;`, as `linearize(x, theta; dt(theta))`",
+        ));
+    }
+    Ok(name)
 }
 
 /// Parses one speed of `linearize(..; ..)`: `dt(q)` or a speed's name.
