@@ -2,7 +2,9 @@
 //! the independent coordinates the model names: seed example 3 with `θ`
 //! independent against the closed form of the same pendulum in one
 //! coordinate (its small oscillations `±i √(3g / 2l)` at the hanging
-//! position), the slider-crank with the crank angle independent against
+//! position) and with `ẋ` its independent speed against the closed form of
+//! its exponents at rest off the equilibrium, the slider-crank with the
+//! crank angle independent against
 //! central differences of the constrained accelerations along the
 //! manifold, and the error where the chosen coordinates do not determine
 //! the others; the nonholonomic knife-edge sled against SymPy's own
