@@ -2,7 +2,9 @@
 //! the independent coordinates the model names: seed example 3 with `θ`
 //! independent against the closed form of the same pendulum in one
 //! coordinate (its small oscillations `±i √(3g / 2l)` at the hanging
-//! position), the slider-crank with the crank angle independent against
+//! position) and with `ẋ` its independent speed against the closed form of
+//! its exponents at rest off the equilibrium, the slider-crank with the
+//! crank angle independent against
 //! central differences of the constrained accelerations along the
 //! manifold, and the error where the chosen coordinates do not determine
 //! the others; the nonholonomic knife-edge sled against SymPy's own
@@ -21,10 +23,14 @@ use dalembert_fixtures::reference::assert_near_all;
 use dalembert_fixtures::slider_crank::{SLIDER_CRANK, SliderCrank};
 use nalgebra::SMatrix;
 
-/// Seed example 3 as `$name`, linearised with `$independent` independent,
-/// with the statements `$speeds` (a `speeds` statement) if given.
+/// Seed example 3 as `$name`, linearised with `$independent` independent
+/// (or with what `[..]` holds: `[theta; dt(x)]`), with the statements
+/// `$speeds` (a `speeds` statement) if given.
 macro_rules! seed_example_3 {
     ($name:ident, $independent:ident $(, $($speeds:tt)+)?) => {
+        seed_example_3!($name, [$independent] $(, $($speeds)+)?);
+    };
+    ($name:ident, [$($independent:tt)+] $(, $($speeds:tt)+)?) => {
         dalembert::dalembert! {
             /// Seed example 3, linearised with one coordinate independent.
             pub $name {
@@ -39,7 +45,7 @@ macro_rules! seed_example_3 {
                 torque M * N.z on B;
                 constraint x - l/2 * sin(theta) == 0;
                 constraint y + l/2 * cos(theta) == 0;
-                outputs linearize($independent), accelerations_jacobian;
+                outputs linearize($($independent)+), accelerations_jacobian;
             }
         }
     };
@@ -48,6 +54,9 @@ macro_rules! seed_example_3 {
 seed_example_3!(ByAngle, theta);
 // `x` and `theta` follow from `y` except where `sin θ = 0`.
 seed_example_3!(ByHeight, y);
+// `theta` and `y` follow from `x`, and their speeds from that of `x`,
+// except where `cos θ = 0`.
+seed_example_3!(BySlide, [theta; dt(x)]);
 
 dalembert::dalembert! {
     /// A knife-edge sled: it slides only along its own axis `B.x`, pushed
@@ -491,5 +500,34 @@ fn a_choice_of_speeds_that_does_not_determine_the_others_is_an_error_naming_one(
     match sled.linearize(0.0, &q, &[0.0, 1.5, 0.8], &[0.0, 0.0]) {
         Err(DynamicsError::SingularDependentSpeeds { speed, .. }) => assert_eq!(speed, "dt(y)"),
         other => panic!("expected SingularDependentSpeeds, got {other:?}"),
+    }
+}
+
+/// With `ẋ` as the independent speed of the bar pinned at one end, at rest
+/// at `θ₀`: `θ̇ = ẋ / (l/2 cos θ₀)` and `ẍ = l/2 (cos θ θ̈ − sin θ θ̇²)` with
+/// `θ̈ = −ω² sin θ`, `ω² = 3g / 2l`, so the exponents are
+/// `±i ω √(cos 2θ₀ / cos θ₀)` (not those of `θ̇` independent,
+/// `±i ω √(cos θ₀)`: off an equilibrium the choice matters), and four zeros.
+#[test]
+fn a_holonomic_system_takes_another_independent_speed() {
+    let bar = BySlide {
+        m: 1.7,
+        l: 1.1,
+        g: 9.81,
+    };
+    let omega = (3.0 * bar.g / (2.0 * bar.l)).sqrt();
+    for theta in [0.0_f64, 0.3, -0.6] {
+        let (q, v) = assembled(bar.l, theta, 0.0);
+        let (a, _) = bar.linearize(0.0, &q, &v, &[0.0]).expect("ẋ determines θ̇");
+        let eigenvalues = SMatrix::<f64, 6, 6>::from_fn(|i, j| a[i][j]).complex_eigenvalues();
+        let mut imaginary: Vec<f64> = eigenvalues.iter().map(|z| z.im).collect();
+        imaginary.sort_by(f64::total_cmp);
+        let rate = omega * ((2.0 * theta).cos() / theta.cos()).sqrt();
+        let expected = [-rate, 0.0, 0.0, 0.0, 0.0, rate];
+        assert_near_all("exponents", &imaginary, &expected, 1e-12);
+        assert!(
+            eigenvalues.iter().all(|z| z.re.abs() < 1e-12 * omega),
+            "{eigenvalues:?}"
+        );
     }
 }

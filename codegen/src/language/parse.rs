@@ -5,6 +5,8 @@
 //! next `;` and goes on, so one run reports every error it can; a missing
 //! `;` before a statement keyword resumes at that keyword.
 
+use std::fmt::Display;
+
 use proc_macro2::{Delimiter, Group, Ident, Literal, Span, TokenStream, TokenTree};
 use syn::Lit;
 
@@ -101,7 +103,7 @@ fn doc_comments(cursor: &mut Cursor) -> syn::Result<Vec<String>> {
 
 /// The text of one `[doc = "text"]` attribute.
 fn doc_text(attribute: &Group) -> syn::Result<String> {
-    let mut cursor = Cursor::group(attribute);
+    let mut cursor = Cursor::group(&meta_of(attribute));
     cursor.expect_keyword(
         keyword::DOC,
         "`doc` (the only attribute allowed is a `///` doc comment)",
@@ -117,6 +119,17 @@ fn doc_text(attribute: &Group) -> syn::Result<String> {
         return Err(cursor.expected("`]` after the doc comment's text"));
     }
     Ok(text)
+}
+
+/// The attribute `[..]` itself, or the invisible group that is all its
+/// contents: a doc comment that a `macro_rules!` passes on as a
+/// `#[$doc:meta]` fragment arrives as `[⟦doc = "text"⟧]`.
+fn meta_of(attribute: &Group) -> Group {
+    let mut tokens = attribute.stream().into_iter();
+    match (tokens.next(), tokens.next()) {
+        (Some(TokenTree::Group(inner)), None) if inner.delimiter() == Delimiter::None => inner,
+        _ => attribute.clone(),
+    }
 }
 
 /// The value of `literal` if it is a string literal.
@@ -362,10 +375,13 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
         });
     };
     let mut inside = Cursor::group(&group);
-    let of = inside.expect_ident(format!("a point, frame or coordinate in `{name}(..)`"))?;
+    let of = argument(
+        &mut inside,
+        format!("a point, frame or coordinate in `{name}(..)`"),
+    )?;
     let mut more = Vec::new();
     while inside.eat_punct(',').is_some() {
-        more.push(inside.expect_ident("a coordinate after `,`")?);
+        more.push(argument(&mut inside, "a coordinate after `,`")?);
     }
     let mut speeds = Vec::new();
     if inside.eat_punct(';').is_some() {
@@ -388,6 +404,22 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
         speeds,
         axes,
     })
+}
+
+/// Parses one point, frame or coordinate of an output's parentheses; a
+/// speed `dt(q)` there is an error at `dt` saying where speeds go.
+fn argument(cursor: &mut Cursor, expected: impl Display) -> syn::Result<Ident> {
+    let name = cursor.expect_ident(expected)?;
+    let is_group = |token: Option<&TokenTree>| matches!(token, Some(TokenTree::Group(group)) if group.delimiter() == Delimiter::Parenthesis);
+    if name == "dt" && is_group(cursor.peek()) {
+        return Err(syn::Error::new(
+            name.span(),
+            "`dt(..)` is a speed, where a point, frame or coordinate is expected: \
+             `linearize(..)` names its independent coordinates, then its independent \
+             speeds after `;`, as `linearize(x, theta; dt(theta))`",
+        ));
+    }
+    Ok(name)
 }
 
 /// Parses one speed of `linearize(..; ..)`: `dt(q)` or a speed's name.
@@ -441,6 +473,22 @@ mod tests {
     /// The names of `fields`, in order.
     fn field_names(fields: &[Field]) -> Vec<String> {
         fields.iter().map(|field| field.name.to_string()).collect()
+    }
+
+    /// A doc comment passed on by a `macro_rules!` as `#[$doc:meta]` is an
+    /// invisible group inside the brackets; it reads as the comment.
+    #[test]
+    fn a_doc_comment_from_a_meta_fragment_is_read() {
+        let meta = Group::new(
+            Delimiter::None,
+            r#"doc = " Forwarded.""#.parse().expect("lexes"),
+        );
+        let attribute = Group::new(Delimiter::Bracket, TokenTree::Group(meta).into());
+        let mut tokens: TokenStream = "#".parse().expect("lexes");
+        tokens.extend([TokenTree::Group(attribute)]);
+        tokens.extend("pub S { }".parse::<TokenStream>());
+        let system = parse_system(tokens).expect("parses");
+        assert_eq!(system.docs, [" Forwarded."]);
     }
 
     #[test]

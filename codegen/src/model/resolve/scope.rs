@@ -165,7 +165,18 @@ impl Resolver {
         new
     }
 
+    /// The binding of `ident`, or `None` with an error at it (used before
+    /// its definition, a function's name, or unknown).
     pub(super) fn lookup(&mut self, ident: &Ident) -> Option<Binding> {
+        self.lookup_expecting(
+            ident,
+            "a parameter, coordinate, input, frame or point defined above, or `t`",
+        )
+    }
+
+    /// [`Self::lookup`] where only one kind of name fits: an unknown name
+    /// is reported as not the `expected` one.
+    pub(super) fn lookup_expecting(&mut self, ident: &Ident, expected: &str) -> Option<Binding> {
         let text = ident.to_string();
         if let Some((binding, _)) = self.bindings.get(&text) {
             return match binding {
@@ -178,16 +189,14 @@ impl Resolver {
         } else if FUNCTIONS.iter().any(|(f, _)| *f == text) {
             format!("`{ident}` is a function: call it as `{ident}(...)`")
         } else {
-            format!(
-                "unknown name `{ident}`; expected a parameter, coordinate, input, frame or point defined above, or `t`"
-            )
+            format!("unknown name `{ident}`; expected {expected}")
         };
         self.errors.push(ident.span(), message);
         None
     }
 
     pub(super) fn frame_name(&mut self, ident: &Ident) -> Option<FrameId> {
-        match self.lookup(ident)? {
+        match self.lookup_expecting(ident, "a frame defined above")? {
             Binding::Frame(f) => Some(f),
             other => {
                 self.errors.push(

@@ -820,15 +820,17 @@ impl Resolver {
                     .push(name.span(), format!("`{name}` needs {what} after its name"));
                 return;
             }
-            (Subject::Point, Some(of)) => match self.lookup(of) {
-                Some(Binding::Point(p)) => point = Some(p),
-                Some(other) => {
-                    let message =
-                        format!("`{of}` is {}; `{name}` expects a point", other.describe());
-                    self.errors.push(of.span(), message);
+            (Subject::Point, Some(of)) => {
+                match self.lookup_expecting(of, "a point defined above") {
+                    Some(Binding::Point(p)) => point = Some(p),
+                    Some(other) => {
+                        let message =
+                            format!("`{of}` is {}; `{name}` expects a point", other.describe());
+                        self.errors.push(of.span(), message);
+                    }
+                    None => {}
                 }
-                None => {}
-            },
+            }
             (Subject::Frame, Some(of)) => frame = self.frame_name(of),
         }
         let axes = match &request.axes {
