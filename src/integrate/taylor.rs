@@ -35,6 +35,7 @@
 use std::ops::ControlFlow;
 
 use super::adaptive::{Continuous, DenseStep, Event, observe, watch};
+use super::arguments::{check_positive, check_span};
 use super::dynamics::InputLaw;
 use super::{
     Constrained, Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained,
@@ -177,6 +178,13 @@ pub fn taylor_dense<D, const NQ: usize, const NV: usize>(
 where
     D: TaylorDynamics<NQ, NV>,
 {
+    check_span(&initial, t_end, true)?;
+    let tolerance = options.tolerance;
+    check_positive(
+        &initial,
+        tolerance,
+        "the tolerance is not a positive finite number",
+    )?;
     // The series are kept to the smallest length that holds the order.
     let run = Run {
         dynamics,

@@ -29,6 +29,7 @@ pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
 use rows::{Estimate, MAX_SLOPES, Slopes, Tableau};
 use tableaux::{DOP853, DOPRI5};
 
+use super::arguments::{BAD_STEP, check_positive, check_span, check_tolerances};
 use super::runge_kutta::{Kernel, Rate};
 use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics};
 
@@ -147,6 +148,7 @@ fn integrate_with<D, const NQ: usize, const NV: usize>(
 where
     D: Dynamics<NQ, NV>,
 {
+    run.check()?;
     let tableau = match pair {
         ExplicitPair::DormandPrince54 => Tableau::of(&DOPRI5),
         ExplicitPair::Dop853 => Tableau::of(&DOP853),
@@ -178,6 +180,21 @@ struct Run<'a, D, const NQ: usize, const NV: usize> {
     options: AdaptiveOptions,
     /// Whether the steps need their continuous extension.
     dense: bool,
+}
+
+impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV> {
+    /// Whether the integration can start: its span, tolerances and first
+    /// step (see `arguments.rs`).
+    fn check(&self) -> Result<(), IntegrationError<NQ>> {
+        let (initial, options) = (&self.initial, &self.options);
+        check_span(initial, self.t_end, true)?;
+        let (relative, absolute) = (options.relative_tolerance, options.absolute_tolerance);
+        check_tolerances(initial, relative, absolute)?;
+        match options.initial_step {
+            Some(h) => check_positive(initial, h, BAD_STEP),
+            None => Ok(()),
+        }
+    }
 }
 
 /// What the slope at a state is wanted for.
