@@ -487,19 +487,30 @@ fn arguments_an_integration_cannot_start_from_are_errors() {
     {
         assert_eq!(result, Ok(start), "{name}");
     }
-    let message = integrate::rk4(
-        &Unconstrained::new(&pendulum(), |_, _, _| [0.0]),
-        start,
-        0.5,
-        10,
-        |_| {},
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(
-        message.starts_with("cannot integrate: the final time is before the initial time at t = 1"),
-        "{message}"
-    );
+    // A refused integration shows the observer nothing, and says why.
+    let pendulum = pendulum();
+    let dynamics = Unconstrained::new(&pendulum, |_, _, _| [0.0]);
+    let unseen = |_: &State<1, 1>| panic!("a refused integration shows no state");
+    let refused = [
+        integrate::rk4(&dynamics, start, 0.5, 10, unseen),
+        integrate::adaptive(&dynamics, start, 0.5, ExplicitPair::Dop853, good, unseen),
+        integrate::taylor(
+            &dynamics,
+            start,
+            0.5,
+            TaylorOptions::with_tolerance(1e-12),
+            unseen,
+        ),
+    ];
+    for result in refused {
+        let message = result.unwrap_err().to_string();
+        assert!(
+            message.starts_with(
+                "cannot integrate: the final time is before the initial time at t = 1"
+            ),
+            "{message}"
+        );
+    }
 }
 
 const SPRING: Oscillator = Oscillator { m: 2.0, k: 8.0 };

@@ -95,7 +95,6 @@ pub fn adaptive<D, const NQ: usize, const NV: usize>(
 where
     D: Dynamics<NQ, NV>,
 {
-    let on_step = observe(&initial, observer);
     let run = Run {
         dynamics,
         initial,
@@ -103,6 +102,8 @@ where
         options,
         dense: false,
     };
+    run.check()?;
+    let on_step = observe(&initial, observer);
     integrate_with(run, pair, on_step)
 }
 
@@ -130,6 +131,7 @@ where
         options,
         dense: true,
     };
+    run.check()?;
     integrate_with(run, pair, on_step)
 }
 
@@ -148,7 +150,6 @@ fn integrate_with<D, const NQ: usize, const NV: usize>(
 where
     D: Dynamics<NQ, NV>,
 {
-    run.check()?;
     let tableau = match pair {
         ExplicitPair::DormandPrince54 => Tableau::of(&DOPRI5),
         ExplicitPair::Dop853 => Tableau::of(&DOP853),
@@ -184,7 +185,9 @@ struct Run<'a, D, const NQ: usize, const NV: usize> {
 
 impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV> {
     /// Whether the integration can start: its span, tolerances and first
-    /// step (see `arguments.rs`).
+    /// step (see `arguments.rs`). Called before [`integrate_with`], whose
+    /// loop it leaves as it was.
+    #[inline(never)]
     fn check(&self) -> Result<(), IntegrationError<NQ>> {
         let (initial, options) = (&self.initial, &self.options);
         check_span(initial, self.t_end, true)?;
