@@ -295,3 +295,101 @@ fn the_animated_model_texts_are_the_simulated_systems() {
         );
     }
 }
+
+/// A brick thrown on a free joint, its centre off the joint's origin.
+const FREE_BRICK: &str = "pub FreeBrick {
+    parameters m;
+    joint free base { parent: N, child: B, at: O };
+    body brick { mass: m, center: base + 0.3 * B.x - 0.1 * B.z, frame: B, inertia: [1, 2, 3] };
+}";
+
+/// The rotation matrix of the unit quaternion `(x, y, z, w)` (columns: the
+/// turned frame's unit vectors), in the textbook form.
+fn rotation_of([x, y, z, w]: [f64; 4]) -> [[f64; 3]; 3] {
+    [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y - z * w),
+            2.0 * (x * z + y * w),
+        ],
+        [
+            2.0 * (x * y + z * w),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z - x * w),
+        ],
+        [
+            2.0 * (x * z - y * w),
+            2.0 * (y * z + x * w),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ]
+}
+
+/// A made-up tumbling throw: the joint's origin on a parabola, the
+/// attitude a unit quaternion turning about a tilted axis.
+fn thrown(t: f64) -> Vec<f64> {
+    let (s, c) = (0.9 * t).sin_cos();
+    let axis = [0.48, 0.6, 0.64];
+    vec![
+        0.5 * t,
+        -0.2 * t,
+        1.0 + 3.0 * t - 4.905 * t * t,
+        s * axis[0],
+        s * axis[1],
+        s * axis[2],
+        c,
+    ]
+}
+
+#[test]
+fn a_free_body_is_drawn_where_its_joint_puts_it_and_turned_by_its_quaternion() {
+    let scene = Scene::new(FREE_BRICK, &[2.0]).unwrap();
+    let mut recording = Recording::new();
+    for i in 0..=40 {
+        let t = i as f64 * 0.05;
+        recording.push(t, &thrown(t), 1.0);
+    }
+    let poses = scene.poses(&recording).unwrap();
+    let data = embedded_data(&scene.html(&recording).unwrap());
+    assert_eq!(data["bodies"], serde_json::json!(["brick"]));
+    assert_eq!(data["normal"], serde_json::Value::Null);
+    let base = data["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|p| p == "base")
+        .expect("the joint's point is drawn");
+    let points = data["points"].as_array().unwrap().len();
+    for (k, (t, pose)) in poses.iter().enumerate() {
+        let q = thrown(*t);
+        let rotation = rotation_of([q[3], q[4], q[5], q[6]]);
+        assert_rotation("brick", &pose.rotations[0], &rotation);
+        let offset = [0.3, 0.0, -0.1];
+        let centre: [f64; 3] =
+            std::array::from_fn(|i| q[i] + (0..3).map(|j| rotation[i][j] * offset[j]).sum::<f64>());
+        assert_close("centre", &pose.centres[0], &centre);
+        assert_close("base", &pose.points[base], &[q[0], q[1], q[2]]);
+        // The page's frame: the body's centre, then its quaternion (w, x,
+        // y, z), rounded for display, the same turn up to its sign.
+        let frame: Vec<f64> = data["frames"][k]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let drawn = &frame[3 * points..3 * points + 7];
+        for i in 0..3 {
+            assert!(
+                (drawn[i] - centre[i]).abs() < 1e-3,
+                "{drawn:?} vs {centre:?}"
+            );
+        }
+        let expected = [q[6], q[3], q[4], q[5]];
+        let off = |sign: f64| {
+            (0..4)
+                .map(|i| (sign * drawn[3 + i] - expected[i]).abs())
+                .fold(0.0, f64::max)
+        };
+        assert!(off(1.0).min(off(-1.0)) < 1e-4, "{drawn:?} vs {expected:?}");
+    }
+}

@@ -29,6 +29,19 @@
 //! group. The augmented Lagrangian method, second order, moves `q` by the
 //! system's update `q ⊕ Δ`, which keeps its order.
 //!
+//! # What an integration refuses
+//!
+//! Before its first evaluation, every integrator checks its arguments and
+//! returns [`Failure::InvalidArgument`] (at the initial state, saying what
+//! is wrong) for a time that is NaN, a final time before the initial one
+//! (integrations run forward only), an infinite final time with a fixed
+//! number of steps, no steps, a tolerance that is zero, negative or NaN
+//! (DOP853 and DOPRI5: finite relative and absolute tolerances, not both
+//! zero), and a first step or an [`rk4_step`] that is not positive and
+//! finite. A final time equal to the initial one is no error: the start is
+//! returned, no step taken. The adaptive methods and Taylor may run to
+//! `t_end = f64::INFINITY`, until a stopping event or their step budget.
+//!
 //! # Between steps
 //!
 //! The adaptive pairs give the state at any time inside a step
@@ -50,6 +63,7 @@
 //! | [`augmented_lagrangian`] | fixed | closed loops with redundant constraints or singular positions at a fixed step: the index-3 formulation of the IFToMM benchmarks' reference solutions (constrained dynamics only) |
 
 mod adaptive;
+mod arguments;
 mod augmented_lagrangian;
 mod dynamics;
 mod gauss;

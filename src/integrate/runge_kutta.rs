@@ -7,6 +7,7 @@
 
 use std::cell::Cell;
 
+use super::arguments::{BAD_STEP, check_fixed_steps, check_positive};
 use super::{Dynamics, IntegrationError, Solution, Statistics};
 
 /// A point of a trajectory: time, coordinates and speeds.
@@ -244,7 +245,8 @@ impl<'a, D> Kernel<'a, D> {
     /// time exactly (`t₀ + k (t_end − t₀) / steps`, the last one `t_end`
     /// itself). `observer` sees the initial state and every settled one.
     /// Returns the final state with the work done; stops at the first step
-    /// that fails.
+    /// that fails. Refuses what it cannot start from (see `arguments.rs`),
+    /// and takes no step when `t_end` is the initial time.
     pub(crate) fn fixed_steps<const NQ: usize, const NV: usize>(
         &self,
         initial: State<NQ, NV>,
@@ -256,8 +258,11 @@ impl<'a, D> Kernel<'a, D> {
     where
         D: Dynamics<NQ, NV>,
     {
+        check_fixed_steps(&initial, t_end, steps)?;
         observer(&initial);
         let span = t_end - initial.t;
+        // No time to cover: no step (a step of length zero is no step).
+        let steps = if span == 0.0 { 0 } else { steps };
         let mut state = initial;
         for k in 1..=steps {
             let t = if k == steps {
@@ -314,6 +319,7 @@ pub fn rk4_step<D, const NQ: usize, const NV: usize>(
 where
     D: Dynamics<NQ, NV>,
 {
+    check_positive(state, h, BAD_STEP)?;
     let kernel = Kernel::new(dynamics);
     kernel.settle(&rk4_stages(&kernel, state, h)?)
 }

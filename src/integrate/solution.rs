@@ -64,6 +64,14 @@ pub enum Failure {
         /// Iterations made.
         iterations: usize,
     },
+    /// The integration did not start: a time that is NaN, a final time
+    /// before the initial one (or infinite, for a fixed number of steps),
+    /// no steps, a step, a tolerance or a first step that is zero, negative
+    /// or NaN. The error's time and configuration are the initial state's.
+    InvalidArgument {
+        /// What is wrong.
+        reason: &'static str,
+    },
 }
 
 impl fmt::Display for Failure {
@@ -76,6 +84,7 @@ impl fmt::Display for Failure {
                 f,
                 "implicit stage equations did not converge in {iterations} iterations"
             ),
+            Self::InvalidArgument { reason } => write!(f, "cannot integrate: {reason}"),
         }
     }
 }

@@ -35,6 +35,7 @@
 use std::ops::ControlFlow;
 
 use super::adaptive::{Continuous, DenseStep, Event, observe, watch};
+use super::arguments::{check_positive, check_span};
 use super::dynamics::InputLaw;
 use super::{
     Constrained, Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained,
@@ -159,6 +160,7 @@ pub fn taylor<D, const NQ: usize, const NV: usize>(
 where
     D: TaylorDynamics<NQ, NV>,
 {
+    check(&initial, t_end, &options)?;
     let on_step = observe(&initial, observer);
     taylor_dense(dynamics, initial, t_end, options, on_step)
 }
@@ -177,6 +179,7 @@ pub fn taylor_dense<D, const NQ: usize, const NV: usize>(
 where
     D: TaylorDynamics<NQ, NV>,
 {
+    check(&initial, t_end, &options)?;
     // The series are kept to the smallest length that holds the order.
     let run = Run {
         dynamics,
@@ -210,6 +213,22 @@ where
 {
     let on_step = watch(event, &initial, on_event);
     taylor_dense(dynamics, initial, t_end, options, on_step)
+}
+
+/// Whether a Taylor integration can start from `initial` to `t_end` with
+/// `options` (see `arguments.rs`), before anything is shown.
+fn check<const NQ: usize, const NV: usize>(
+    initial: &State<NQ, NV>,
+    t_end: f64,
+    options: &TaylorOptions,
+) -> Result<(), IntegrationError<NQ>> {
+    check_span(initial, t_end, true)?;
+    let tolerance = options.tolerance;
+    check_positive(
+        initial,
+        tolerance,
+        "the tolerance is not a positive finite number",
+    )
 }
 
 /// What a Taylor integration is asked to do.

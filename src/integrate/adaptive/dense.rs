@@ -233,19 +233,25 @@ impl<G> Event<G> {
     }
 }
 
+/// The equal parts of each step whose ends' signs of the event function
+/// are compared: zeros further apart than a part are each found, in order.
+const SAMPLES_PER_STEP: usize = 8;
+
 /// Iterations of the root finder; Illinois converges superlinearly, so a
 /// zero is located to the last bits of the time long before.
 const MAX_ROOT_ITERATIONS: usize = 200;
 
 /// [`adaptive`](super::adaptive) watching the event `event`: every zero of
-/// its function on the way (at most one per step) is located on
-/// the step's continuous extension to a few units in the last place of the
-/// time and given to `on_event` as the interpolated state there; a stopping
-/// event ends the integration at its first zero, and the [`Solution`] ends
-/// there. A zero at the initial state itself is not an event (the function
-/// must leave zero and come back). Several zeros inside one step (a step
-/// longer than the time between them) count as none when the signs at the
-/// step's ends agree, as one of them otherwise: keep the tolerance small
+/// its function on the way is located on the step's continuous extension
+/// to a few units in the last place of the time and given to `on_event` as
+/// the interpolated state there, in the order of time; a stopping event
+/// ends the integration at its first zero, and the [`Solution`] ends there.
+/// A zero at the initial state itself is not an event (the function must
+/// leave zero and come back), nor is a zero the function touches without
+/// changing sign. The signs are compared at the ends of eight equal parts
+/// of each step, so several zeros inside one step are each found when they
+/// are further apart than an eighth of the step; two closer ones may pair
+/// off unseen (the signs at a part's ends agree): keep the tolerance small
 /// against the time between zeros. Allocates nothing.
 pub fn adaptive_with_events<D, G, const NQ: usize, const NV: usize>(
     dynamics: &D,
@@ -301,22 +307,28 @@ where
     let g = move |s: &State<NQ, NV>| function(s.t, &s.q, &s.v);
     let mut before = g(initial);
     move |step: &DenseStep<'_, NQ, NV, D>| {
-        let after = g(step.end());
-        let crossed = crossing.between(before, after);
-        before = after;
-        if !crossed {
-            return ControlFlow::Continue(());
-        }
         let at = |t| g(&step.state_at(t));
-        let bracket = (step.start().t, step.end().t);
-        let t = zero(at, bracket, (g(step.start()), after));
-        let state = step.state_at(t);
-        on_event(&state);
-        if stop {
-            ControlFlow::Break(state)
-        } else {
-            ControlFlow::Continue(())
+        let (start, end) = (step.start().t, step.end().t);
+        let mut from = (start, before);
+        for k in 1..=SAMPLES_PER_STEP {
+            let to = if k == SAMPLES_PER_STEP {
+                (end, g(step.end()))
+            } else {
+                let t = start + (end - start) * (k as f64 / SAMPLES_PER_STEP as f64);
+                (t, at(t))
+            };
+            if crossing.between(from.1, to.1) {
+                let t = zero(at, (from.0, to.0), (from.1, to.1));
+                let state = step.state_at(t);
+                on_event(&state);
+                if stop {
+                    return ControlFlow::Break(state);
+                }
+            }
+            from = to;
         }
+        before = from.1;
+        ControlFlow::Continue(())
     }
 }
 

@@ -29,6 +29,7 @@ pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
 use rows::{Estimate, MAX_SLOPES, Slopes, Tableau};
 use tableaux::{DOP853, DOPRI5};
 
+use super::arguments::{BAD_STEP, check_positive, check_span, check_tolerances};
 use super::runge_kutta::{Kernel, Rate};
 use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics};
 
@@ -94,7 +95,6 @@ pub fn adaptive<D, const NQ: usize, const NV: usize>(
 where
     D: Dynamics<NQ, NV>,
 {
-    let on_step = observe(&initial, observer);
     let run = Run {
         dynamics,
         initial,
@@ -102,6 +102,8 @@ where
         options,
         dense: false,
     };
+    run.check()?;
+    let on_step = observe(&initial, observer);
     integrate_with(run, pair, on_step)
 }
 
@@ -129,6 +131,7 @@ where
         options,
         dense: true,
     };
+    run.check()?;
     integrate_with(run, pair, on_step)
 }
 
@@ -178,6 +181,23 @@ struct Run<'a, D, const NQ: usize, const NV: usize> {
     options: AdaptiveOptions,
     /// Whether the steps need their continuous extension.
     dense: bool,
+}
+
+impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV> {
+    /// Whether the integration can start: its span, tolerances and first
+    /// step (see `arguments.rs`). Called before [`integrate_with`], whose
+    /// loop it leaves as it was.
+    #[inline(never)]
+    fn check(&self) -> Result<(), IntegrationError<NQ>> {
+        let (initial, options) = (&self.initial, &self.options);
+        check_span(initial, self.t_end, true)?;
+        let (relative, absolute) = (options.relative_tolerance, options.absolute_tolerance);
+        check_tolerances(initial, relative, absolute)?;
+        match options.initial_step {
+            Some(h) => check_positive(initial, h, BAD_STEP),
+            None => Ok(()),
+        }
+    }
 }
 
 /// What the slope at a state is wanted for.
