@@ -11,6 +11,7 @@ use dalembert::integrate::{
     augmented_lagrangian, gauss_legendre, rk4, sdirk,
 };
 use dalembert::{Constrained, DynamicsError, Stabilisation, State, energy};
+use dalembert_fixtures::reference::{array, assert_close, assert_near, reference};
 
 dalembert::dalembert! {
     /// Three equal cranks, `d` apart on the ground, carrying one coupler:
@@ -271,4 +272,95 @@ fn redundant_parallelogram_unstabilised_drifts_until_its_rows_contradict() {
     let (early, late) = (drift[1_000], drift[4_000]);
     println!("unstabilised: max |φ| {early:.2e} at 1 s, {late:.2e} at 4 s, stopped: {error}");
     assert!(late > 1e4 * early.max(1e-16), "{early:e} {late:e}");
+}
+
+dalembert::dalembert! {
+    /// A crank-rocker four-bar in dependent coordinates: the crank (`a`)
+    /// turns by `phi` about `O`, the coupler (`b`) hangs from its tip at
+    /// `psi` from `N.x`, the rocker (`c`) turns by `chi` about the pivot
+    /// `d` along `N.x`; two loop-closure rows join the coupler's far end
+    /// to the rocker's tip. Uniform rods in the vertical plane.
+    pub CrankRocker {
+        parameters a, b, c, d, m1, m2, m3, g;
+        coordinates phi, psi, chi;
+        frame C = N.rotate_z(phi);
+        frame D = N.rotate_z(psi);
+        frame R = N.rotate_z(chi);
+        point A = O + a * C.x;
+        body crank { mass: m1, center: O + a/2 * C.x, frame: C, inertia: [0, 0, m1*a^2/12] };
+        body coupler { mass: m2, center: A + b/2 * D.x, frame: D, inertia: [0, 0, m2*b^2/12] };
+        body rocker { mass: m3, center: O + d * N.x + c/2 * R.x, frame: R, inertia: [0, 0, m3*c^2/12] };
+        gravity -g * N.y;
+        constraint a*cos(phi) + b*cos(psi) == d + c*cos(chi);
+        constraint a*sin(phi) + b*sin(psi) == c*sin(chi);
+    }
+}
+
+#[test]
+fn crank_rocker_turns_its_crank_and_traces_the_coupler_curve_of_the_reference() {
+    let reference = reference("four_bar.json");
+    let parameter = |name: &str| reference["parameters"][name].as_f64().unwrap();
+    let linkage = CrankRocker {
+        a: parameter("a"),
+        b: parameter("b"),
+        c: parameter("c"),
+        d: parameter("d"),
+        m1: parameter("m1"),
+        m2: parameter("m2"),
+        m3: parameter("m3"),
+        g: parameter("g"),
+    };
+    let (p, e) = (parameter("p"), parameter("e"));
+    // The coupler point `p` along the coupler and `e` across it.
+    let coupler_point = |q: &[f64; 3]| {
+        let ([phi, psi, _], a) = (*q, linkage.a);
+        [
+            a * phi.cos() + p * psi.cos() - e * psi.sin(),
+            a * phi.sin() + p * psi.sin() + e * psi.cos(),
+        ]
+    };
+    let start = State {
+        t: 0.0,
+        q: array(&reference["initial"]["q"]),
+        v: array(&reference["initial"]["v"]),
+    };
+    let initial_energy = reference["energy"].as_f64().unwrap();
+    assert_near(
+        "E(0)",
+        energy(&linkage, &start.q, &start.v),
+        initial_energy,
+        1e-14,
+    );
+    let states = reference["states"].as_array().unwrap();
+    let projection = Stabilisation::Projection {
+        tolerance: 1e-12,
+        max_iterations: 5,
+    };
+    let dynamics = Constrained::without_inputs(&linkage, projection);
+    let (mut drift, mut energy_change, mut seen) = (0.0f64, 0.0f64, 0);
+    rk4(&dynamics, start, 1.0, 10_000, |s| {
+        drift = drift.max(constraint_drift(&linkage, s));
+        let change = energy(&linkage, &s.q, &s.v) - initial_energy;
+        energy_change = energy_change.max(change.abs() / initial_energy);
+        for expected in states {
+            if (s.t - expected["t"].as_f64().unwrap()).abs() < 1e-9 {
+                seen += 1;
+                let at = format!("t = {:.2}", s.t);
+                assert_near(&at, s.q[0], expected["phi"].as_f64().unwrap(), 1e-9);
+                assert_near(&at, s.v[0], expected["phi_dot"].as_f64().unwrap(), 1e-8);
+                let point: [f64; 2] = array(&expected["coupler_point"]);
+                assert_close(&at, &coupler_point(&s.q), &point, 1e-9);
+            }
+        }
+    })
+    .unwrap();
+    println!("crank-rocker, 1 s: max |φ| {drift:.2e}, max |ΔE|/E {energy_change:.2e}");
+    assert_eq!(seen, states.len());
+    let last = states.last().unwrap()["phi"].as_f64().unwrap();
+    assert!(
+        last - 0.5 > std::f64::consts::TAU,
+        "a full turn of the crank"
+    );
+    assert!(drift < 1e-12, "{drift:e}");
+    assert!(energy_change < 1e-10, "{energy_change:e}");
 }
