@@ -695,3 +695,70 @@ fn sleigh_on_a_circle_mixes_holonomic_and_nonholonomic_rows_with_inputs() {
     assert_close("position", &end.q[..2], &[R, 0.0], 1e-12);
     assert!(drift < 1e-12 && slip < 1e-12, "{drift:e} {slip:e}");
 }
+
+#[test]
+fn parallelogram_four_bar_crosses_its_flat_positions_on_its_branch() {
+    // The crank-rocker's model with crank = rocker and coupler = ground: at
+    // φ = 0 and π the three rods lie on the ground line and the two rows
+    // lose rank, where the antiparallelogram branch meets this one. On
+    // this branch the coupler stays level (ψ = 0, χ = φ) and the crank
+    // moves as one rod: (m₁/3 + m₂ + m₃/3) a² φ̈ = −(m₁/2 + m₂ + m₃/2) g a cos φ.
+    let linkage = CrankRocker {
+        a: 0.3,
+        b: 0.5,
+        c: 0.3,
+        d: 0.5,
+        m1: 0.5,
+        m2: 0.9,
+        m3: 0.7,
+        g: 9.81,
+    };
+    let CrankRocker {
+        a, m1, m2, m3, g, ..
+    } = linkage;
+    let crank =
+        |phi: f64| -(m1 / 2.0 + m2 + m3 / 2.0) * g * phi.cos() / ((m1 / 3.0 + m2 + m3 / 3.0) * a);
+    let (phi0, w0) = (0.7, 15.0);
+    let start = State {
+        t: 0.0,
+        q: [phi0, 0.0, phi0],
+        v: [w0, 0.0, w0],
+    };
+    let expected = scalar_motion(crank, phi0, w0, 3.0);
+    // The largest distance from the branch over 3 s, and the end.
+    let run = |stabilisation| {
+        let dynamics = Constrained::without_inputs(&linkage, stabilisation);
+        let mut off_branch = 0.0f64;
+        rk4(&dynamics, start, 3.0, 30_000, |s| {
+            off_branch = off_branch.max(s.q[1].abs()).max((s.q[2] - s.q[0]).abs());
+        })
+        .map(|solution| (off_branch, solution.end))
+    };
+    let projection = Stabilisation::Projection {
+        tolerance: 1e-12,
+        max_iterations: 5,
+    };
+    let (off_branch, end) = run(projection).unwrap();
+    let crossings = ((end.q[0] - phi0) / std::f64::consts::PI).floor();
+    println!(
+        "parallelogram four-bar, projection: {crossings} flat positions crossed, off the branch by {off_branch:.2e}, φ off by {:.2e}",
+        end.q[0] - expected
+    );
+    assert!(crossings >= 6.0, "{crossings}");
+    assert!(off_branch < 1e-9, "{off_branch:e}");
+    assert_near("φ(3 s)", end.q[0], expected, 1e-8);
+    // Neither of the other stabilisations crosses, as `Stabilisation`
+    // documents: unstabilised, the speeds' drift left by one crossing meets
+    // the vanishing gradient of the next (a jump of energy, off the
+    // branch); Baumgarte's terms, divided by that gradient, diverge.
+    let (unstabilised, _) = run(Stabilisation::None).unwrap();
+    assert!(unstabilised > 1e-3, "{unstabilised:e}");
+    let baumgarte = run(Stabilisation::Baumgarte {
+        alpha: 20.0,
+        beta: 20.0,
+    });
+    assert!(
+        matches!(baumgarte, Err(ref e) if matches!(e.cause, Failure::Dynamics(DynamicsError::NonFiniteEquations))),
+        "{baumgarte:?}"
+    );
+}
