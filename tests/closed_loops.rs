@@ -239,6 +239,31 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
     let settings = AugmentedLagrangian::for_step(1e-3);
     augmented_lagrangian(&dynamics, start, 10.0, 10_000, settings, |s| run.see(s, e0)).unwrap();
     check("augmented Lagrangian", run, expected, [1e-3, 1e-10, 1e-5]);
+    // Holding the energy too, and on the sparse solver.
+    let held = Stabilisation::EnergyProjection {
+        tolerance: 1e-12,
+        max_iterations: 5,
+        energy: e0,
+    };
+    let dynamics = Constrained::without_inputs(&p, held);
+    let mut run = Run::default();
+    rk4(&dynamics, start, 10.0, 10_000, |s| run.see(s, e0)).unwrap();
+    check(
+        "RK4, energy projection",
+        run,
+        expected,
+        [2e-9, 1e-13, 1e-13],
+    );
+    let dynamics =
+        Constrained::without_inputs(&p, projection).with_solver(ConstraintSolver::Sparse);
+    let mut run = Run::default();
+    rk4(&dynamics, start, 10.0, 10_000, |s| run.see(s, e0)).unwrap();
+    check(
+        "RK4, projection, sparse",
+        run,
+        expected,
+        [1e-8, 1e-12, 1e-9],
+    );
 }
 
 #[test]
