@@ -787,3 +787,53 @@ fn parallelogram_four_bar_crosses_its_flat_positions_on_its_branch() {
         "{baumgarte:?}"
     );
 }
+
+dalembert::dalembert! {
+    /// A particle held by a rheonomic holonomic row and an affine,
+    /// time-dependent nonholonomic row: the two ways `t` enters `b`.
+    pub TimedRows {
+        parameters m, l;
+        coordinates x, y, z;
+        particle p { mass: m, at: O + x * N.x + y * N.y + z * N.z };
+        constraint x^2 + l * y == l^2 * sin(t);
+        constraint dt(z) + y * dt(x) == cos(2 * t) + x * z;
+    }
+}
+
+#[test]
+fn bias_is_a_times_the_acceleration_less_the_rate_of_each_row_along_any_motion() {
+    // Along any motion q(t), on the manifold or not, a holonomic row's
+    // φ(t, q(t)) has φ̈ = A q̈ − b and a nonholonomic row's ψ(t, q, q̇) has
+    // ψ̇ = A q̈ − b: the rows written out by hand here, differentiated by
+    // central differences.
+    let rows = TimedRows { m: 0.4, l: 0.7 };
+    let l = rows.l;
+    let motion = |t: f64| {
+        let q = [(1.3 * t).sin(), (0.7 * t).cos(), t * t / 3.0 + 0.1];
+        let v = [1.3 * (1.3 * t).cos(), -0.7 * (0.7 * t).sin(), 2.0 * t / 3.0];
+        let a = [-1.69 * (1.3 * t).sin(), -0.49 * (0.7 * t).cos(), 2.0 / 3.0];
+        (q, v, a)
+    };
+    let holonomic = |t: f64| {
+        let ([x, y, _], _, _) = motion(t);
+        x * x + l * y - l * l * t.sin()
+    };
+    let nonholonomic = |t: f64| {
+        let ([x, y, z], [xd, _, zd], _) = motion(t);
+        zd + y * xd - (2.0 * t).cos() - x * z
+    };
+    let h = 1e-4;
+    for t in [0.0, 0.4, 1.7, 3.0] {
+        let (q, v, a) = motion(t);
+        let jacobian = rows.constraint_jacobian(&q);
+        let b = rows.constraint_bias(t, &q, &v);
+        let achieved = jacobian.map(|row| row.iter().zip(&a).map(|(x, y)| x * y).sum::<f64>());
+        let phi_ddot = (holonomic(t + h) - 2.0 * holonomic(t) + holonomic(t - h)) / (h * h);
+        let psi_dot = (nonholonomic(t + h) - nonholonomic(t - h)) / (2.0 * h);
+        assert_near("holonomic b", b[0], achieved[0] - phi_ddot, 1e-6);
+        assert_near("nonholonomic b", b[1], achieved[1] - psi_dot, 1e-7);
+        let residual = rows.constraint_residual(t, &q);
+        assert_near("φ", residual[0], holonomic(t), 1e-15);
+        assert_eq!(residual[1], 0.0, "a nonholonomic row has no residual");
+    }
+}
