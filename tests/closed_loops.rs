@@ -32,6 +32,7 @@ dalembert::dalembert! {
         gravity -g * N.y;
         closure middle { at: P2 + L * C2.x, to: K + d * D.x };
         closure right { at: P3 + L * C3.x, to: K + 2 * d * D.x };
+        outputs accelerations_jacobian;
     }
 }
 
@@ -103,6 +104,27 @@ fn redundant_parallelogram_has_rank_three_and_the_closed_form_accelerations() {
             ),
             "{error:?}"
         );
+    }
+}
+
+#[test]
+fn redundant_parallelogram_accelerations_jacobian_along_its_motion() {
+    // Along the mechanism's one direction (every crank alike, the coupler
+    // against them) the accelerations change as the closed form's:
+    // ∂φ̈/∂φ = k sin φ, ∂φ̈/∂φ̇ = 0; the rows' dependence costs no error.
+    let p = PARALLELOGRAM;
+    let k = (1.5 * p.m + p.mc) * p.g / ((p.m + p.mc) * p.L);
+    let along = [1.0, 1.0, 1.0, -1.0];
+    for (phi, phi_dot) in [(-std::f64::consts::FRAC_PI_2, 0.0), (-0.8, 2.5)] {
+        let State { q, v, .. } = p.assembled(phi, phi_dot);
+        let (by_q, by_v, _) = p.accelerations_jacobian(0.0, &q, &v, &[]).unwrap();
+        let times_along = |jacobian: [[f64; 4]; 4]| {
+            jacobian.map(|row| row.iter().zip(&along).map(|(a, b)| a * b).sum::<f64>())
+        };
+        let expected = along.map(|a| a * k * phi.sin());
+        assert_close("∂v̇/∂q along", &times_along(by_q), &expected, 1e-12);
+        let by_speed = times_along(by_v);
+        assert!(by_speed.iter().all(|x| x.abs() < 1e-12 * k), "{by_speed:?}");
     }
 }
 
