@@ -221,22 +221,21 @@ pub fn linearize_on_constraints<const NV: usize, const NU: usize, const NC: usiz
     }
 }
 
+/// `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u`.
+type SolvedPartials<const NV: usize, const NU: usize> = (
+    SMatrix<f64, NV, NV>,
+    SMatrix<f64, NV, NV>,
+    SMatrix<f64, NV, NU>,
+);
+
 /// `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` through the saddle-point system (see
 /// [`constrained_accelerations_jacobian`]).
-#[allow(clippy::type_complexity)]
 fn solved_partials<const NV: usize, const NU: usize, const NC: usize>(
     mass: &[[f64; NV]; NV],
     jacobian: &[[f64; NV]; NC],
     partials: &AccelerationPartials<NV, NU, NC>,
     coordinates: &[&'static str; NV],
-) -> Result<
-    (
-        SMatrix<f64, NV, NV>,
-        SMatrix<f64, NV, NV>,
-        SMatrix<f64, NV, NU>,
-    ),
-    DynamicsError,
-> {
+) -> Result<SolvedPartials<NV, NU>, DynamicsError> {
     let saddle = match SaddlePoint::new(mass, matrix(jacobian), coordinates) {
         Err(DynamicsError::DependentConstraints { .. }) => {
             return redundant_partials(mass, jacobian, partials, coordinates);
@@ -267,14 +266,7 @@ fn redundant_partials<const NV: usize, const NU: usize, const NC: usize>(
     jacobian: &[[f64; NV]; NC],
     partials: &AccelerationPartials<NV, NU, NC>,
     coordinates: &[&'static str; NV],
-) -> Result<
-    (
-        SMatrix<f64, NV, NV>,
-        SMatrix<f64, NV, NV>,
-        SMatrix<f64, NV, NU>,
-    ),
-    DynamicsError,
-> {
+) -> Result<SolvedPartials<NV, NU>, DynamicsError> {
     let solver = ConstraintSolver::RankRevealing;
     ConstraintMetric::with(
         solver,
