@@ -8,7 +8,9 @@
 //! `v̇(t, q, v, u)`; differentiating the residuals `r = M v̇ − f − Aᵀ λ`
 //! and `c = A v̇ − b` at the solved `(v̇, λ)` gives the saddle-point system
 //! `M ∂v̇ − Aᵀ ∂λ = −∂r`, `A ∂v̇ = −∂c` for each variable, solved here with
-//! the Schur complement `A M⁻¹ Aᵀ`. A perturbation of the coordinates is
+//! the Schur complement `A M⁻¹ Aᵀ`, or, where the rows are dependent
+//! (redundant rows, a singular position), by the rank-revealing solver of
+//! the accelerations. A perturbation of the coordinates is
 //! taken in the tangent space, `q = q̄ ⊕ δ` with one entry per speed (a
 //! plain coordinate moves by its entry, a free or spherical joint along
 //! its speeds), and `v = v̄ + δv`. On the manifold (`φ(q) = 0` for the
@@ -29,6 +31,9 @@
 
 use nalgebra::{Cholesky, Const, SMatrix};
 
+use super::multipliers::{
+    ACCELERATION_RANK_TOLERANCE, ConstraintMetric, ConstraintSolver, Dependents,
+};
 use crate::DynamicsError;
 use crate::dynamics::{cholesky, factor_mass_matrix};
 
@@ -107,9 +112,11 @@ pub type AccelerationsJacobian<const NV: usize, const NU: usize> =
 /// for a system with mass matrix `mass` and constraint Jacobian `jacobian`
 /// at the state; `coordinates` names the speeds for the errors. They hold
 /// off the constraint manifold too: `v̇` is a function of the whole state.
-/// Errors: a mass matrix that is not positive definite, dependent
-/// constraint rows ([`DynamicsError::DependentConstraints`]), a
-/// non-finite derivative ([`DynamicsError::NonFiniteEquations`]).
+/// Dependent rows (redundant ones, a singular position) are solved as the
+/// accelerations are, by [`ConstraintSolver::RankRevealing`]: exact along
+/// the motions the rows allow. Errors: a mass matrix that is not positive
+/// definite, a non-finite derivative
+/// ([`DynamicsError::NonFiniteEquations`]).
 pub fn constrained_accelerations_jacobian<const NV: usize, const NU: usize, const NC: usize>(
     mass: &[[f64; NV]; NV],
     jacobian: &[[f64; NV]; NC],
@@ -214,23 +221,27 @@ pub fn linearize_on_constraints<const NV: usize, const NU: usize, const NC: usiz
     }
 }
 
+/// `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u`.
+type SolvedPartials<const NV: usize, const NU: usize> = (
+    SMatrix<f64, NV, NV>,
+    SMatrix<f64, NV, NV>,
+    SMatrix<f64, NV, NU>,
+);
+
 /// `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` through the saddle-point system (see
 /// [`constrained_accelerations_jacobian`]).
-#[allow(clippy::type_complexity)]
 fn solved_partials<const NV: usize, const NU: usize, const NC: usize>(
     mass: &[[f64; NV]; NV],
     jacobian: &[[f64; NV]; NC],
     partials: &AccelerationPartials<NV, NU, NC>,
     coordinates: &[&'static str; NV],
-) -> Result<
-    (
-        SMatrix<f64, NV, NV>,
-        SMatrix<f64, NV, NV>,
-        SMatrix<f64, NV, NU>,
-    ),
-    DynamicsError,
-> {
-    let saddle = SaddlePoint::new(mass, matrix(jacobian), coordinates)?;
+) -> Result<SolvedPartials<NV, NU>, DynamicsError> {
+    let saddle = match SaddlePoint::new(mass, matrix(jacobian), coordinates) {
+        Err(DynamicsError::DependentConstraints { .. }) => {
+            return redundant_partials(mass, jacobian, partials, coordinates);
+        }
+        saddle => saddle?,
+    };
     let by_q = saddle.solve(
         &matrix(&partials.residual_by_q),
         &matrix(&partials.constraint_by_q),
@@ -244,6 +255,64 @@ fn solved_partials<const NV: usize, const NU: usize, const NC: usize>(
         &SMatrix::<f64, NC, NU>::zeros(),
     );
     Ok((by_q, by_v, by_u))
+}
+
+/// [`solved_partials`] where the rows are dependent (redundant rows, a
+/// singular position): each column by the rank-revealing solver, which
+/// holds the independent rows and gives the dependent ones the
+/// least-squares solution, as for the accelerations themselves.
+fn redundant_partials<const NV: usize, const NU: usize, const NC: usize>(
+    mass: &[[f64; NV]; NV],
+    jacobian: &[[f64; NV]; NC],
+    partials: &AccelerationPartials<NV, NU, NC>,
+    coordinates: &[&'static str; NV],
+) -> Result<SolvedPartials<NV, NU>, DynamicsError> {
+    let solver = ConstraintSolver::RankRevealing;
+    ConstraintMetric::with(
+        solver,
+        ACCELERATION_RANK_TOLERANCE,
+        mass,
+        coordinates,
+        jacobian,
+        |metric| {
+            Ok((
+                solve_columns(
+                    metric,
+                    &matrix(&partials.residual_by_q),
+                    &matrix(&partials.constraint_by_q),
+                )?,
+                solve_columns(
+                    metric,
+                    &matrix(&partials.residual_by_v),
+                    &matrix(&partials.constraint_by_v),
+                )?,
+                solve_columns(
+                    metric,
+                    &matrix(&partials.residual_by_u),
+                    &SMatrix::<f64, NC, NU>::zeros(),
+                )?,
+            ))
+        },
+    )
+}
+
+/// `∂v̇` of `M ∂v̇ − Aᵀ ∂λ = −∂r`, `A ∂v̇ = −∂c` column by column through
+/// `metric`, the dependent rows by least squares.
+fn solve_columns<const NV: usize, const NC: usize, const K: usize>(
+    metric: ConstraintMetric<'_, NV, NC>,
+    residual: &SMatrix<f64, NV, K>,
+    constraint: &SMatrix<f64, NC, K>,
+) -> Result<SMatrix<f64, NV, K>, DynamicsError> {
+    let mut solved = SMatrix::<f64, NV, K>::zeros();
+    for j in 0..K {
+        let (column, _) = metric.solve(
+            &(-residual.column(j)),
+            &(-constraint.column(j)),
+            Dependents::LeastSquares,
+        )?;
+        solved.set_column(j, &column);
+    }
+    Ok(solved)
 }
 
 /// The name of entry `j` (`j = NV` where the chart names too few

@@ -80,7 +80,9 @@ pub(crate) enum Dependents {
 ///   definite on the null space of `A`. It survives redundant constraints
 ///   (Bricard's mechanism, a planar loop written with spatial joints, a
 ///   constraint written twice), singular positions where `A` loses rank for
-///   an instant (the N-four-bar mechanism when it lies flat), and
+///   an instant (the N-four-bar mechanism when it lies flat; an integration
+///   crosses them with [`Stabilisation::Projection`](crate::Stabilisation),
+///   not unstabilised nor with Baumgarte's terms), and
 ///   coordinates with no inertia of their own that the constraints tie to
 ///   others. It returns the exact `v̇` and the multipliers `λ` of least
 ///   Euclidean norm (redundant rows share the load equally), and still

@@ -270,15 +270,27 @@ fn independent_directions(
         };
         coordinates[k] = true;
     }
+    let span = output
+        .independent
+        .first()
+        .map_or(name.span(), |(_, first)| first.span());
+    if holonomic >= nv {
+        return Err((
+            span,
+            format!(
+                "`{name}` linearises on the constraint manifold with one dependent coordinate \
+                 per holonomic constraint, but this system has {holonomic} holonomic \
+                 constraint(s) for {nv} coordinate(s): redundant constraints (or nothing left \
+                 to move), which `{name}` does not support; to linearise it, write the model \
+                 without its redundant constraints"
+            ),
+        ));
+    }
     if output.independent.len() + holonomic != nv {
         let plain_names: Vec<String> = plain
             .iter()
             .map(|&(_, c)| model.coordinates[c].to_string())
             .collect();
-        let span = output
-            .independent
-            .first()
-            .map_or(name.span(), |(_, first)| first.span());
         return Err((
             span,
             format!(

@@ -392,10 +392,11 @@ pub fn constrained_accelerations_jacobian(
          symbolically and evaluated at the `v̇`, `λ` of\n\
          `dalembert::constrained::constrained_accelerations`, go through the\n\
          saddle-point system `M ∂v̇ − Aᵀ ∂λ = −∂r`, `A ∂v̇ = −∂c`. They hold off the\n\
-         constraint manifold too: `v̇` is a function of the whole state. Errors:\n\
-         those of `constrained_accelerations`, a mass matrix that is not positive\n\
-         definite, `DependentConstraints` where the rows of `A` are dependent,\n\
-         `NonFiniteEquations` for a non-finite derivative.{tangent}"
+         constraint manifold too: `v̇` is a function of the whole state. Dependent\n\
+         rows of `A` (redundant, or at a singular position) are solved as the\n\
+         accelerations are. Errors: those of `constrained_accelerations`, a mass\n\
+         matrix that is not positive definite, `NonFiniteEquations` for a\n\
+         non-finite derivative.{tangent}"
         ),
         &[Time, Coordinates, Speeds, Inputs],
         acceleration_partials(model, equations, pool, &directions),

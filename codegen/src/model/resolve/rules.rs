@@ -32,7 +32,10 @@ impl Resolver {
         if !passes {
             self.errors.push(
                 span,
-                "this constraint involves no coordinate or speed: it constrains nothing",
+                "this constraint involves no coordinate or speed once simplified (`lhs - rhs` \
+                 depends on parameters and `t` only): it holds always or never and constrains \
+                 nothing; a constraint relates the coordinates, such as `x == l * sin(theta)`, \
+                 or their speeds `dt(q)`",
             );
         }
         passes
