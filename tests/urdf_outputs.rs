@@ -8,7 +8,8 @@
 //! origins and frames (Pinocchio's frame placements, velocities, classical
 //! accelerations and `LOCAL_WORLD_ALIGNED` frame jacobians); on a free
 //! flyer, the inverse dynamics, the accelerations and the kinematic outputs,
-//! whose speeds are the base's in its own axes as Pinocchio's are.
+//! whose speeds are the base's in its own axes as Pinocchio's are, and the
+//! inverse dynamics' derivatives against central differences.
 
 use dalembert_fixtures::reference::{assert_close, flat, reference};
 use serde_json::Value;
@@ -67,12 +68,18 @@ z1! {
 z1! {
     /// The arm on a free flyer; the base link `world` carries `link00`.
     FloatingZ1, world, root_joint,
+    outputs inverse_dynamics_jacobian;
     joint free root_joint { parent: N, child: world, at: O };
     body world_body { mass: 0.47247481, center: root_joint - 0.00334984 * world.x - 0.00013615 * world.y + 0.02495843 * world.z, frame: world, inertia: [0.00037937, 0.00041521, 0.00053066, -3.5e-7, -9.9e-7, -1.037e-5] };
 }
 
 /// Agreement with Pinocchio, relative to the quantity's largest entry.
 const TOLERANCE: f64 = 1e-12;
+
+/// The step and the agreement, relative to the largest entry, of the
+/// central differences that check the floating arm's derivatives.
+const STEP: f64 = 1e-6;
+const DIFFERENCES: f64 = 1e-7;
 
 fn numbers(value: &Value) -> Vec<f64> {
     match value {
@@ -253,5 +260,48 @@ fn floating_z1_matches_pinocchio() {
             dalembert::accelerations(&z1, 0.0, &q, &v, &joint_torques).expect("regular");
         check("floating", &accelerations, state, "aba");
         check_links!(z1, &state["frames"], (0.0, &q, &v, &vdot));
+    }
+}
+
+/// The floating arm's `inverse_dynamics_jacobian` is a body of some 3600
+/// temporaries, which this test builds in the default `dev` profile with
+/// full debug information (each temporary a `let` of its own, nested one
+/// scope a `let`, overflowed rustc's stack): against central differences
+/// of its `inverse_dynamics`, by `q` along `integrate_configuration` (the
+/// tangent space), by `v`, and by `v̇` against the mass matrix.
+#[test]
+fn floating_z1_inverse_dynamics_jacobian_matches_central_differences() {
+    use dalembert::MultibodySystem;
+    use dalembert_fixtures::differences::central_differences;
+    let document = reference("z1_outputs.json");
+    let z1 = FloatingZ1 {};
+    let u = [0.0; 7];
+    for state in document["floating"]
+        .as_array()
+        .expect("states")
+        .iter()
+        .take(3)
+    {
+        let (q, v, vdot) = (
+            array::<14>(&state["q"]),
+            array::<13>(&state["v"]),
+            array::<13>(&state["vdot"]),
+        );
+        let (by_q, by_v, by_vdot) = z1.inverse_dynamics_jacobian(0.0, &q, &v, &vdot, &u);
+        let along = central_differences(&[0.0; 13], STEP, |delta| {
+            z1.inverse_dynamics(
+                0.0,
+                &z1.integrate_configuration(&q, delta, 1.0),
+                &v,
+                &vdot,
+                &u,
+            )
+        });
+        assert_close("∂τ/∂q", &flat(&by_q), &flat(&along), DIFFERENCES);
+        let by_speeds =
+            central_differences(&v, STEP, |v| z1.inverse_dynamics(0.0, &q, v, &vdot, &u));
+        assert_close("∂τ/∂v", &flat(&by_v), &flat(&by_speeds), DIFFERENCES);
+        let mass = MultibodySystem::mass_matrix(&z1, &q);
+        assert_close("∂τ/∂v̇", &flat(&by_vdot), &flat(&mass), 1e-12);
     }
 }

@@ -184,6 +184,7 @@ fn write(
         bound: HashMap::new(),
         statements: TokenStream::new(),
         temporaries: 0,
+        declared: None,
     };
     let mut used = BTreeSet::new();
     for &e in &order {
@@ -196,6 +197,13 @@ fn write(
     let pairs = sin_cos_pairs(pool, &order);
     if angles == Angles::AtTop {
         writer.bind_angles(&angle_pairs(pool, &order, &pairs));
+    }
+    let bindings = order
+        .iter()
+        .filter(|&&e| writer.needs_binding(e, &uses))
+        .count();
+    if bindings > DECLARED_AHEAD_ABOVE {
+        writer.declared = Some(Vec::new());
     }
     for &e in &order {
         if !writer.needs_binding(e, &uses) {
@@ -210,12 +218,41 @@ fn write(
         }
     }
     let outputs = roots.iter().map(|&r| writer.expr(r)).collect();
+    let declarations = declarations(writer.declared.as_deref().unwrap_or_default());
     let statements = writer.statements;
     Straight {
-        statements: quote!(#loads #statements),
+        statements: quote!(#loads #declarations #statements),
         outputs,
         used,
     }
+}
+
+/// The most temporaries a body binds each with its own `let`. Each `let`
+/// opens a lexical scope nested in the one before, and with full debug
+/// information rustc recurses once per scope: a body of a few thousand
+/// (the `inverse_dynamics_jacobian` of a 7-joint arm on a free flyer)
+/// overflowed its stack in a default `dev` build. Above it, the
+/// temporaries are declared ahead, [`DECLARED_TOGETHER`] to a `let`, and
+/// each is assigned where it would have been bound (the same code once
+/// optimised).
+const DECLARED_AHEAD_ABOVE: usize = 1000;
+
+/// How many temporaries one `let` declares ahead.
+const DECLARED_TOGETHER: usize = 64;
+
+/// `let (x1, x2, …): (f64, f64, …);` declaring `names` ahead of their
+/// assignments, [`DECLARED_TOGETHER`] to a statement.
+fn declarations(names: &[Ident]) -> TokenStream {
+    names
+        .chunks(DECLARED_TOGETHER)
+        .map(|chunk| {
+            let types = chunk.iter().map(|_| quote!(::core::primitive::f64));
+            match chunk {
+                [name] => quote!(let #name: ::core::primitive::f64;),
+                _ => quote!(let (#(#chunk),*): (#(#types),*);),
+            }
+        })
+        .collect()
 }
 
 fn count_uses(
@@ -363,6 +400,10 @@ struct Writer<'a> {
     bound: HashMap<ExprId, TokenStream>,
     statements: TokenStream,
     temporaries: usize,
+    /// The temporaries declared ahead of their assignments, in a long body
+    /// ([`DECLARED_AHEAD_ABOVE`]); `None` in a short one, whose every
+    /// temporary has its own `let`.
+    declared: Option<Vec<Ident>>,
 }
 
 impl Writer<'_> {
@@ -474,14 +515,20 @@ impl Writer<'_> {
     }
 
     /// `let x = value;`, typed `f64` where the value holds no symbol, so
-    /// that no literal's type is left for Rust to guess.
+    /// that no literal's type is left for Rust to guess; in a long body
+    /// ([`DECLARED_AHEAD_ABOVE`]) `x = value;`, `x` declared ahead.
     fn bind(&mut self, e: ExprId) {
         let value = self.compound(e);
         let name = self.temporary_name(e);
-        self.statements.extend(if self.pool.kinds(e).is_empty() {
-            quote!(let #name: ::core::primitive::f64 = #value;)
-        } else {
-            quote!(let #name = #value;)
+        self.statements.extend(match &mut self.declared {
+            Some(declared) => {
+                declared.push(name.clone());
+                quote!(#name = #value;)
+            }
+            None if self.pool.kinds(e).is_empty() => {
+                quote!(let #name: ::core::primitive::f64 = #value;)
+            }
+            None => quote!(let #name = #value;),
         });
         self.bound.insert(e, quote!(#name));
     }
