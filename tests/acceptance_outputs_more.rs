@@ -978,9 +978,10 @@ fn base_parameters_are_independent() {
     assert!(independence(|q, v, a| RATES_TOP.regressor(q, v, a)) > 1e-5);
 }
 
-/// One state of `/work/shared/tools/dal_sympy.py`'s reading of a model
-/// (SymPy, 30 digits; its `--values` at the test's parameters): `t`, `q`,
-/// `v`, `u`, and the `M` and `f` it derives.
+/// One state of an independent SymPy reading of the language
+/// (`dal_sympy.py --values` at the test's parameters, 30 digits, kept
+/// outside this repository): `t`, `q`, `v`, `u`, and the `M` and `f` it
+/// derives.
 type SympyState = (f64, [f64; 2], [f64; 2], [f64; 1], [[f64; 2]; 2], [f64; 2]);
 
 /// `FullInertia` without its outputs, read by SymPy.
