@@ -47,15 +47,17 @@ pub(crate) fn check_span<const NQ: usize, const NV: usize>(
     )
 }
 
-/// A fixed-step integration of `steps` steps over the span from `initial.t`
-/// to `t_end` ([`check_span`]).
-pub(crate) fn check_fixed_steps<const NQ: usize, const NV: usize>(
+/// How many of the `steps` fixed steps over the span from `initial.t` to
+/// `t_end` ([`check_span`]) to take: all of them, or none when `t_end` is
+/// the initial time (a step of length zero is no step).
+pub(crate) fn fixed_steps_to_take<const NQ: usize, const NV: usize>(
     initial: &State<NQ, NV>,
     t_end: f64,
     steps: u64,
-) -> Result<(), IntegrationError<NQ>> {
+) -> Result<u64, IntegrationError<NQ>> {
     check_span(initial, t_end, false)?;
-    refuse(initial, steps == 0, "no steps to take to the final time")
+    refuse(initial, steps == 0, "no steps to take to the final time")?;
+    Ok(if t_end == initial.t { 0 } else { steps })
 }
 
 /// A step or a tolerance `value` at `state`: a positive finite number,

@@ -15,7 +15,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::arguments::check_fixed_steps;
+use super::arguments::fixed_steps_to_take;
 use super::{Constrained, Failure, InputLaw, IntegrationError, Solution, State, Statistics};
 use crate::constrained::checked as finite;
 use crate::dynamics::{factor_mass_matrix, pivot_names};
@@ -114,7 +114,7 @@ where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
     F: InputLaw<NQ, NV, NU>,
 {
-    check_fixed_steps(&initial, t_end, steps)?;
+    let steps = fixed_steps_to_take(&initial, t_end, steps)?;
     let system = dynamics.system();
     let u = dynamics.inputs(initial.t, &initial.q, &initial.v);
     let (vdot, lambda) = dynamics
@@ -133,8 +133,6 @@ where
     };
     observer(&initial);
     let span = t_end - initial.t;
-    // No time to cover: no step (a step of length zero is no step).
-    let steps = if span == 0.0 { 0 } else { steps };
     for k in 1..=steps {
         let t = if k == steps {
             t_end

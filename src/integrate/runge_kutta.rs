@@ -7,7 +7,7 @@
 
 use std::cell::Cell;
 
-use super::arguments::{BAD_STEP, check_fixed_steps, check_positive};
+use super::arguments::{BAD_STEP, check_positive, fixed_steps_to_take};
 use super::{Dynamics, IntegrationError, Solution, Statistics};
 
 /// A point of a trajectory: time, coordinates and speeds.
@@ -258,11 +258,9 @@ impl<'a, D> Kernel<'a, D> {
     where
         D: Dynamics<NQ, NV>,
     {
-        check_fixed_steps(&initial, t_end, steps)?;
+        let steps = fixed_steps_to_take(&initial, t_end, steps)?;
         observer(&initial);
         let span = t_end - initial.t;
-        // No time to cover: no step (a step of length zero is no step).
-        let steps = if span == 0.0 { 0 } else { steps };
         let mut state = initial;
         for k in 1..=steps {
             let t = if k == steps {

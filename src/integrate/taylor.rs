@@ -162,7 +162,7 @@ where
 {
     check(&initial, t_end, &options)?;
     let on_step = observe(&initial, observer);
-    taylor_dense(dynamics, initial, t_end, options, on_step)
+    integrate_dense(dynamics, initial, t_end, options, on_step)
 }
 
 /// [`taylor`] showing each step with its polynomial: `on_step` sees a
@@ -180,6 +180,20 @@ where
     D: TaylorDynamics<NQ, NV>,
 {
     check(&initial, t_end, &options)?;
+    integrate_dense(dynamics, initial, t_end, options, on_step)
+}
+
+/// [`taylor_dense`] once its arguments are checked.
+fn integrate_dense<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: State<NQ, NV>,
+    t_end: f64,
+    options: TaylorOptions,
+    on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+where
+    D: TaylorDynamics<NQ, NV>,
+{
     // The series are kept to the smallest length that holds the order.
     let run = Run {
         dynamics,
