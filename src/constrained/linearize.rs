@@ -229,90 +229,80 @@ type SolvedPartials<const NV: usize, const NU: usize> = (
 );
 
 /// `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` through the saddle-point system (see
-/// [`constrained_accelerations_jacobian`]).
+/// [`constrained_accelerations_jacobian`]): by the Schur complement, or,
+/// where the rows are dependent (redundant rows, a singular position), by
+/// the rank-revealing solver, which holds the independent rows and gives
+/// the dependent ones the least-squares solution, as for the
+/// accelerations themselves.
 fn solved_partials<const NV: usize, const NU: usize, const NC: usize>(
     mass: &[[f64; NV]; NV],
     jacobian: &[[f64; NV]; NC],
     partials: &AccelerationPartials<NV, NU, NC>,
     coordinates: &[&'static str; NV],
 ) -> Result<SolvedPartials<NV, NU>, DynamicsError> {
-    let saddle = match SaddlePoint::new(mass, matrix(jacobian), coordinates) {
-        Err(DynamicsError::DependentConstraints { .. }) => {
-            return redundant_partials(mass, jacobian, partials, coordinates);
-        }
-        saddle => saddle?,
-    };
-    let by_q = saddle.solve(
-        &matrix(&partials.residual_by_q),
-        &matrix(&partials.constraint_by_q),
-    );
-    let by_v = saddle.solve(
-        &matrix(&partials.residual_by_v),
-        &matrix(&partials.constraint_by_v),
-    );
-    let by_u = saddle.solve(
-        &matrix(&partials.residual_by_u),
-        &SMatrix::<f64, NC, NU>::zeros(),
-    );
-    Ok((by_q, by_v, by_u))
-}
-
-/// [`solved_partials`] where the rows are dependent (redundant rows, a
-/// singular position): each column by the rank-revealing solver, which
-/// holds the independent rows and gives the dependent ones the
-/// least-squares solution, as for the accelerations themselves.
-fn redundant_partials<const NV: usize, const NU: usize, const NC: usize>(
-    mass: &[[f64; NV]; NV],
-    jacobian: &[[f64; NV]; NC],
-    partials: &AccelerationPartials<NV, NU, NC>,
-    coordinates: &[&'static str; NV],
-) -> Result<SolvedPartials<NV, NU>, DynamicsError> {
-    let solver = ConstraintSolver::RankRevealing;
-    ConstraintMetric::with(
-        solver,
-        ACCELERATION_RANK_TOLERANCE,
-        mass,
-        coordinates,
-        jacobian,
-        |metric| {
-            Ok((
-                solve_columns(
-                    metric,
-                    &matrix(&partials.residual_by_q),
-                    &matrix(&partials.constraint_by_q),
-                )?,
-                solve_columns(
-                    metric,
-                    &matrix(&partials.residual_by_v),
-                    &matrix(&partials.constraint_by_v),
-                )?,
-                solve_columns(
-                    metric,
-                    &matrix(&partials.residual_by_u),
-                    &SMatrix::<f64, NC, NU>::zeros(),
-                )?,
-            ))
-        },
-    )
-}
-
-/// `∂v̇` of `M ∂v̇ − Aᵀ ∂λ = −∂r`, `A ∂v̇ = −∂c` column by column through
-/// `metric`, the dependent rows by least squares.
-fn solve_columns<const NV: usize, const NC: usize, const K: usize>(
-    metric: ConstraintMetric<'_, NV, NC>,
-    residual: &SMatrix<f64, NV, K>,
-    constraint: &SMatrix<f64, NC, K>,
-) -> Result<SMatrix<f64, NV, K>, DynamicsError> {
-    let mut solved = SMatrix::<f64, NV, K>::zeros();
-    for j in 0..K {
-        let (column, _) = metric.solve(
-            &(-residual.column(j)),
-            &(-constraint.column(j)),
-            Dependents::LeastSquares,
-        )?;
-        solved.set_column(j, &column);
+    match SaddlePoint::new(mass, matrix(jacobian), coordinates) {
+        Err(DynamicsError::DependentConstraints { .. }) => ConstraintMetric::with(
+            ConstraintSolver::RankRevealing,
+            ACCELERATION_RANK_TOLERANCE,
+            mass,
+            coordinates,
+            jacobian,
+            |metric| partials_through(&metric, partials),
+        ),
+        saddle => partials_through(&saddle?, partials),
     }
-    Ok(solved)
+}
+
+/// A solver of `M ∂v̇ − Aᵀ ∂λ = −∂r`, `A ∂v̇ = −∂c` for `∂v̇`, column by
+/// column.
+trait SaddleSolve<const NV: usize, const NC: usize> {
+    /// `∂v̇` for the columns of `residual` (`∂r`) and `constraint` (`∂c`).
+    fn columns<const K: usize>(
+        &self,
+        residual: &SMatrix<f64, NV, K>,
+        constraint: &SMatrix<f64, NC, K>,
+    ) -> Result<SMatrix<f64, NV, K>, DynamicsError>;
+}
+
+/// `∂v̇/∂q`, `∂v̇/∂v` and `∂v̇/∂u` of `partials` through `solver`.
+fn partials_through<const NV: usize, const NU: usize, const NC: usize>(
+    solver: &impl SaddleSolve<NV, NC>,
+    partials: &AccelerationPartials<NV, NU, NC>,
+) -> Result<SolvedPartials<NV, NU>, DynamicsError> {
+    Ok((
+        solver.columns(
+            &matrix(&partials.residual_by_q),
+            &matrix(&partials.constraint_by_q),
+        )?,
+        solver.columns(
+            &matrix(&partials.residual_by_v),
+            &matrix(&partials.constraint_by_v),
+        )?,
+        solver.columns(
+            &matrix(&partials.residual_by_u),
+            &SMatrix::<f64, NC, NU>::zeros(),
+        )?,
+    ))
+}
+
+/// Through the rank-revealing solver, the dependent rows by least squares.
+impl<const NV: usize, const NC: usize> SaddleSolve<NV, NC> for ConstraintMetric<'_, NV, NC> {
+    fn columns<const K: usize>(
+        &self,
+        residual: &SMatrix<f64, NV, K>,
+        constraint: &SMatrix<f64, NC, K>,
+    ) -> Result<SMatrix<f64, NV, K>, DynamicsError> {
+        let mut solved = SMatrix::<f64, NV, K>::zeros();
+        for j in 0..K {
+            let (column, _) = self.solve(
+                &(-residual.column(j)),
+                &(-constraint.column(j)),
+                Dependents::LeastSquares,
+            )?;
+            solved.set_column(j, &column);
+        }
+        Ok(solved)
+    }
 }
 
 /// The name of entry `j` (`j = NV` where the chart names too few
@@ -487,16 +477,18 @@ impl<const NV: usize, const NC: usize> SaddlePoint<NV, NC> {
             jacobian,
         })
     }
+}
 
-    /// `∂v̇` of `M ∂v̇ − Aᵀ ∂λ = −∂r`, `A ∂v̇ = −∂c`, column by column:
-    /// `∂λ = S⁻¹ (A M⁻¹ ∂r − ∂c)`, `∂v̇ = M⁻¹ Aᵀ ∂λ − M⁻¹ ∂r`.
-    fn solve<const K: usize>(
+/// Through the Schur complement: `∂λ = S⁻¹ (A M⁻¹ ∂r − ∂c)`,
+/// `∂v̇ = M⁻¹ Aᵀ ∂λ − M⁻¹ ∂r`.
+impl<const NV: usize, const NC: usize> SaddleSolve<NV, NC> for SaddlePoint<NV, NC> {
+    fn columns<const K: usize>(
         &self,
         residual: &SMatrix<f64, NV, K>,
         constraint: &SMatrix<f64, NC, K>,
-    ) -> SMatrix<f64, NV, K> {
+    ) -> Result<SMatrix<f64, NV, K>, DynamicsError> {
         let pushed = self.mass.solve(residual);
         let multipliers = self.schur.solve(&(self.jacobian * pushed - constraint));
-        self.spread * multipliers - pushed
+        Ok(self.spread * multipliers - pushed)
     }
 }
