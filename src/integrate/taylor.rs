@@ -160,9 +160,7 @@ pub fn taylor<D, const NQ: usize, const NV: usize>(
 where
     D: TaylorDynamics<NQ, NV>,
 {
-    check(&initial, t_end, &options)?;
-    let on_step = observe(&initial, observer);
-    integrate_dense(dynamics, initial, t_end, options, on_step)
+    Run::checked(dynamics, initial, t_end, options)?.dense(observe(&initial, observer))
 }
 
 /// [`taylor`] showing each step with its polynomial: `on_step` sees a
@@ -179,33 +177,7 @@ pub fn taylor_dense<D, const NQ: usize, const NV: usize>(
 where
     D: TaylorDynamics<NQ, NV>,
 {
-    check(&initial, t_end, &options)?;
-    integrate_dense(dynamics, initial, t_end, options, on_step)
-}
-
-/// [`taylor_dense`] once its arguments are checked.
-fn integrate_dense<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    options: TaylorOptions,
-    on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
-where
-    D: TaylorDynamics<NQ, NV>,
-{
-    // The series are kept to the smallest length that holds the order.
-    let run = Run {
-        dynamics,
-        initial,
-        t_end,
-        options,
-    };
-    match options.order() {
-        0..16 => run.integrate::<16>(on_step),
-        16..24 => run.integrate::<24>(on_step),
-        _ => run.integrate::<{ MAX_ORDER + 1 }>(on_step),
-    }
+    Run::checked(dynamics, initial, t_end, options)?.dense(on_step)
 }
 
 /// [`taylor`] watching `event`, as
@@ -229,22 +201,6 @@ where
     taylor_dense(dynamics, initial, t_end, options, on_step)
 }
 
-/// Whether a Taylor integration can start from `initial` to `t_end` with
-/// `options` (see `arguments.rs`), before anything is shown.
-fn check<const NQ: usize, const NV: usize>(
-    initial: &State<NQ, NV>,
-    t_end: f64,
-    options: &TaylorOptions,
-) -> Result<(), IntegrationError<NQ>> {
-    check_span(initial, t_end, true)?;
-    let tolerance = options.tolerance;
-    check_positive(
-        initial,
-        tolerance,
-        "the tolerance is not a positive finite number",
-    )
-}
-
 /// What a Taylor integration is asked to do.
 struct Run<'a, D, const NQ: usize, const NV: usize> {
     dynamics: &'a D,
@@ -253,10 +209,46 @@ struct Run<'a, D, const NQ: usize, const NV: usize> {
     options: TaylorOptions,
 }
 
-impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV>
+impl<'a, D, const NQ: usize, const NV: usize> Run<'a, D, NQ, NV>
 where
     D: TaylorDynamics<NQ, NV>,
 {
+    /// The integration of `dynamics` from `initial` to `t_end` with
+    /// `options`, if it can start (see `arguments.rs`): checked before
+    /// anything is shown.
+    fn checked(
+        dynamics: &'a D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        options: TaylorOptions,
+    ) -> Result<Self, IntegrationError<NQ>> {
+        check_span(&initial, t_end, true)?;
+        check_positive(
+            &initial,
+            options.tolerance,
+            "the tolerance is not a positive finite number",
+        )?;
+        Ok(Run {
+            dynamics,
+            initial,
+            t_end,
+            options,
+        })
+    }
+
+    /// The integration, its series kept to the smallest length that holds
+    /// the order.
+    fn dense(
+        self,
+        on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        match self.options.order() {
+            0..16 => self.integrate::<16>(on_step),
+            16..24 => self.integrate::<24>(on_step),
+            _ => self.integrate::<{ MAX_ORDER + 1 }>(on_step),
+        }
+    }
+
     /// The integration with series of `K` coefficients.
     fn integrate<const K: usize>(
         self,
