@@ -1,5 +1,5 @@
-//! Acceptance models written from DESIGN.md §3 against the independent
-//! SymPy reading of the language (`shared/tools/dal_sympy.py --values`, 30
+//! Acceptance models written from the language of `docs/language.md` against the independent
+//! SymPy reading of the language (`dal_sympy.py --values`, 30
 //! digits): a bead on a hoop spun at a set rate (time in the geometry), a
 //! spherical pendulum (`rotate_x` then `rotate_y`) whose bob has products of
 //! inertia, two bodies on a massless tilted frame with every kind of load

@@ -1,4 +1,4 @@
-//! Spherical and free joints (DESIGN.md §7) against independent routes: a
+//! Spherical and free joints (docs/architecture.md §4) against independent routes: a
 //! bob on a ball joint at the tip of a turning arm against the same system
 //! in Z-Y-X angles (whose `M`, `f`, `T`, `V` are checked against
 //! dal_sympy.py's numbers first), with the angles' rates and accelerations

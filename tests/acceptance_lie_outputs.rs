@@ -1,5 +1,5 @@
 //! The control outputs of `docs/language.md` ("Outputs") on systems whose
-//! configuration is not a vector space (DESIGN.md §7, free and spherical
+//! configuration is not a vector space (docs/architecture.md §4, free and spherical
 //! joints), checked as an outside tester would: the kinematic outputs of a
 //! point and a frame against central finite differences of `position` and
 //! `rotation` along `integrate_configuration` (the tangent space: one

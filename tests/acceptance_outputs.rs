@@ -1,4 +1,4 @@
-//! The generated API of DESIGN.md §4 and the control outputs of §7, checked
+//! The generated API of docs/architecture.md §4 and the control outputs, checked
 //! as an outside tester would: the derives and constants, `inverse_dynamics`
 //! against `M v̇ − f`, `accelerations_jacobian` and `linearize` against
 //! central finite differences of `dalembert::accelerations`, and the

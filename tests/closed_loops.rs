@@ -624,7 +624,7 @@ fn a_row_written_with_its_sides_swapped_has_the_sign_of_lhs_minus_rhs() {
     };
     let ParabolaBead { m, c, g } = bead;
     for (x, y, xd, yd) in [(0.4, 0.1, 1.0, -0.5), (-1.2, 2.0, 0.3, 2.5)] {
-        // DESIGN §4: A is the Jacobian of lhs − rhs = c x² − y, and
+        // docs/architecture.md §4: A is the Jacobian of lhs − rhs = c x² − y, and
         // A q̈ = b differentiates it twice: 2c x ẍ − ÿ = −2c ẋ².
         let (q, v) = ([x, y], [xd, yd]);
         assert_close(

@@ -1,4 +1,4 @@
-//! The three seed examples, exactly as DESIGN §3 writes them, for the unit
+//! The three seed examples, exactly as the language reference writes them, for the unit
 //! tests of every layer: the model files of `generated/models`, read at
 //! compile time so that there is one copy of each.
 

@@ -1,5 +1,5 @@
 //! Emission: the derived equations as Rust items — one public struct of
-//! parameters, its inherent functions (DESIGN §4) and the runtime traits.
+//! parameters, its inherent functions (docs/architecture.md §4) and the runtime traits.
 //! Emitted code names everything by absolute path, so user items called
 //! `Result` or `f64` cannot change its meaning. For `#![no_std]` crates
 //! ([`Target::NoStd`]) the elementary functions go through `libm` and the

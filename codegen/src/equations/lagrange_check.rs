@@ -5,7 +5,7 @@
 use crate::interpret::{Interpreter, Route, Sample};
 use crate::seeds::{CONSTRAINED_PENDULUM, DOUBLE_PENDULUM, ROTATING_BAR};
 
-/// Seed examples 1–3 as in DESIGN §3, and systems that exercise the rest of
+/// Seed examples 1–3 as in the language reference, and systems that exercise the rest of
 /// the language: 3-D rotations, products of inertia, particles, forces,
 /// reacting torques, potentials, dissipation, constant tilts and joints.
 const SYSTEMS: [&str; 11] = [
