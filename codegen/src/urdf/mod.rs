@@ -190,7 +190,8 @@ impl Urdf {
         check_outputs(chosen, &model, &with_outputs).map_err(|message| BuildError::Option {
             path: self.path.clone(),
             message: format!(
-                "{message} (each link `L` of the robot has a frame `L` and a point `L_origin`)"
+                "{message} (each link `L` of the robot has a frame `L` and a point `L_origin`, \
+                 unless the model's comment at the link names others)"
             ),
         })?;
         Ok(Imported {

@@ -101,7 +101,7 @@ pub(super) fn model_text(
         }
         coordinates[j] = name;
     }
-    let places = link_places(robot, tree, &mut names, &mut problems);
+    let places = link_places(robot, tree, &mut names);
     if problems.iter().any(Problem::is_error) {
         return Err(problems);
     }
@@ -258,42 +258,24 @@ impl Names {
 /// the order of the joints (depth first): the link's name sanitized, and
 /// that name with `_origin`. A name that is taken (a joint's coordinate, a
 /// built-in, a keyword, another link's sanitized name) or not an
-/// identifier gets a fresh one instead, and one warning lists them all.
-fn link_places(
-    robot: &Robot,
-    tree: &Tree,
-    names: &mut Names,
-    problems: &mut Vec<Problem>,
-) -> Vec<Place> {
+/// identifier gets a fresh one instead (`LF_HAA_2` for ANYmal's link named
+/// as its joint), which a comment at the link states.
+fn link_places(robot: &Robot, tree: &Tree, names: &mut Names) -> Vec<Place> {
     let mut places = vec![Place::default(); robot.links.len()];
-    let mut renamed = Vec::new();
     let links =
         std::iter::once(tree.root).chain(tree.depth_first().into_iter().map(|j| tree.child[j]));
     for link in links {
         let name = sanitize(&robot.links[link].name);
         let wanted = [name.clone(), format!("{name}_origin")];
-        let [frame, origin] =
-            wanted
-                .clone()
-                .map(|n| if names.claim(&n) { n } else { names.fresh(&n) });
-        for (got, wanted) in [&frame, &origin].into_iter().zip(&wanted) {
-            if got != wanted {
-                renamed.push((link, format!("`{wanted}` is `{got}`")));
-            }
-        }
-        places[link] = Place { frame, origin };
-    }
-    if let Some(&(first, _)) = renamed.first() {
-        let list: Vec<String> = renamed.into_iter().map(|(_, text)| text).collect();
-        problems.push(Problem::warning(
-            Some(robot.links[first].range.clone()),
-            format!(
-                "links' frames or points named otherwise, their names being taken (by a \
-                 joint's coordinate or input, another link, a keyword or a built-in name, or \
-                 starting with a digit): {}",
-                list.join(", ")
-            ),
-        ));
+        let [frame, origin] = wanted
+            .clone()
+            .map(|n| if names.claim(&n) { n } else { names.fresh(&n) });
+        let renamed = [&frame, &origin] != [&wanted[0], &wanted[1]];
+        places[link] = Place {
+            frame,
+            origin,
+            renamed,
+        };
     }
     places
 }
@@ -306,6 +288,22 @@ struct Place {
     frame: String,
     /// The point at the link's origin.
     origin: String,
+    /// Whether they are not named after the link, whose name is taken.
+    renamed: bool,
+}
+
+impl Place {
+    /// The sentence that says how the link's frame and origin are named,
+    /// if not after the link: empty otherwise.
+    fn naming(&self) -> String {
+        match self.renamed {
+            true => format!(
+                " Its frame is `{}` and its origin `{}`, as the link's name is taken.",
+                self.frame, self.origin
+            ),
+            false => String::new(),
+        }
+    }
 }
 
 struct Writer<'a> {
@@ -340,12 +338,14 @@ impl Writer<'_> {
         let root = self.tree.root;
         let floating = self.options.chosen.floating;
         if floating {
-            let Place { frame, origin } = self.places[root].clone();
+            let place = self.places[root].clone();
+            let Place { frame, origin, .. } = &place;
             self.comment(format!(
                 "Root link `{}`, floating: a free joint from the ground, first in q and v \
                  (position in N and unit quaternion; velocity and angular velocity in the \
-                 link's axes).",
-                self.robot.links[root].name
+                 link's axes).{}",
+                self.robot.links[root].name,
+                place.naming()
             ));
             self.statement(format!(
                 "joint free {FREE_JOINT} {{ parent: N, child: {frame}, at: O }};"
@@ -389,11 +389,13 @@ impl Writer<'_> {
     /// joint and its masses a body (see [`Writer::model`]).
     fn base(&mut self) {
         let root = self.tree.root;
-        let Place { frame, origin } = self.places[root].clone();
+        let place = self.places[root].clone();
+        let Place { frame, origin, .. } = &place;
         self.comment(format!(
             "Root link `{}`, fixed to the ground: its frame has N's axes, its origin is O. \
-             Masses welded to it do not move and are left out.",
-            self.robot.links[root].name
+             Masses welded to it do not move and are left out.{}",
+            self.robot.links[root].name,
+            place.naming()
         ));
         self.statement(format!("frame {frame} = N.rotate_z(0);"));
         self.statement(format!("point {origin} = O;"));
@@ -417,12 +419,16 @@ impl Writer<'_> {
     fn fixed(&mut self, j: usize) {
         let joint = &self.robot.joints[j];
         let parent = self.places[self.tree.parent[j]].clone();
-        let Place { frame, origin } = self.places[self.tree.child[j]].clone();
+        let place = self.places[self.tree.child[j]].clone();
+        let Place { frame, origin, .. } = &place;
         self.comment(format!(
-            "Fixed joint `{}`: link `{}` is welded to link `{}`.",
-            joint.name, joint.child.0, joint.parent.0
+            "Fixed joint `{}`: link `{}` is welded to link `{}`.{}",
+            joint.name,
+            joint.child.0,
+            joint.parent.0,
+            place.naming()
         ));
-        self.rotated_frames(&parent.frame, joint.origin.rpy, &frame, Some(&frame));
+        self.rotated_frames(&parent.frame, joint.origin.rpy, frame, Some(frame));
         let at = offset(&parent.origin, joint.origin.xyz, &parent.frame);
         self.statement(format!("point {origin} = {at};"));
     }
@@ -436,10 +442,11 @@ impl Writer<'_> {
         let child_name = &joint.child.0;
         let parent = self.places[self.tree.parent[j]].clone();
         self.comment(format!(
-            "Joint `{}` ({}): link `{}` carries link `{child_name}`.",
+            "Joint `{}` ({}): link `{}` carries link `{child_name}`.{}",
             joint.name,
             joint.kind.name(),
-            joint.parent.0
+            joint.parent.0,
+            self.places[child].naming()
         ));
         if let Some(mimicked) = &joint.mimic {
             self.statement(format!(
@@ -457,6 +464,7 @@ impl Writer<'_> {
         let Place {
             frame,
             origin: point,
+            ..
         } = self.places[child].clone();
         let coordinate = self.coordinates[j].clone();
         let length = norm(joint.axis);
@@ -529,7 +537,7 @@ impl Writer<'_> {
     /// The body of the link `link` and the links welded to it, in its
     /// frame with its origin; nothing if it is massless.
     fn body(&mut self, link: usize) {
-        let Place { frame, origin } = self.places[link].clone();
+        let Place { frame, origin, .. } = self.places[link].clone();
         let mut total = MassProperties::NONE;
         let mut welded = Vec::new();
         for (l, place) in self.links_of_body(link) {
