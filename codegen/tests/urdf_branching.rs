@@ -19,30 +19,15 @@
 // Shared with `tests/urdf.rs`, which uses the rest of it.
 #[allow(dead_code)]
 mod pinocchio;
+mod robots;
 
 use dalembert_codegen::Urdf;
 use dalembert_codegen::testing::{Interpreter, Route, Values};
 use pinocchio::{matrix, relative_error, solve, vector};
-use serde_json::Value;
+use robots::{entry, reference_dir};
 
 /// Agreement required, relative to the quantity's largest entry.
 const TOLERANCE: f64 = 1e-12;
-
-fn reference_dir() -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/reference")
-}
-
-fn entry(robot: &str) -> Value {
-    let path = reference_dir().join("robots/pinocchio.json");
-    let document: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    document["models"]["dynamics"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|m| m["robot"] == robot)
-        .unwrap_or_else(|| panic!("{robot} in pinocchio.json"))
-        .clone()
-}
 
 /// `M⁻¹ B` for the columns of `b` (rows of the result: `M`'s).
 fn solve_columns(m: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<Vec<f64>> {
@@ -71,7 +56,7 @@ fn negated(m: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
 /// Imports the robot of Pinocchio's `robot` entry and compares every
 /// quantity at every state; returns the worst relative error of each.
 fn compare(robot: &str) -> Vec<(&'static str, f64)> {
-    let entry = entry(robot);
+    let entry = entry("dynamics", robot);
     let urdf = Urdf::read(reference_dir().join(entry["urdf"].as_str().unwrap()))
         .unwrap()
         .floating(entry["floating"].as_bool().unwrap())

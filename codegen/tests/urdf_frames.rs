@@ -9,29 +9,16 @@
 //! geometry (what the outputs `position(L_origin)` and `rotation(L)`
 //! compute), and asked for as outputs through [`Urdf::outputs`].
 
+mod robots;
+
 use dalembert_codegen::Urdf;
 use dalembert_codegen::testing::{Interpreter, Values};
+use robots::{entry, reference_dir};
 use serde_json::Value;
 
 /// Agreement required: positions in metres (the robots are about a metre
 /// across), rotations entry by entry.
 const TOLERANCE: f64 = 1e-12;
-
-fn reference_dir() -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/reference")
-}
-
-fn entry(robot: &str) -> Value {
-    let path = reference_dir().join("robots/pinocchio.json");
-    let document: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    document["models"]["frames"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|m| m["robot"] == robot)
-        .unwrap_or_else(|| panic!("{robot} in pinocchio.json"))
-        .clone()
-}
 
 fn numbers(value: &Value) -> Vec<f64> {
     match value {
@@ -51,7 +38,7 @@ fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
 /// Checks every link of Pinocchio's `robot` entry at every state; returns
 /// the number of links checked.
 fn links_match_pinocchio(robot: &str) -> usize {
-    let entry = entry(robot);
+    let entry = entry("frames", robot);
     let links: Vec<&str> = entry["links"]
         .as_array()
         .unwrap()

@@ -36,7 +36,7 @@ pub enum BuildError {
     },
     /// An import's option does not fit the file: its outputs name a point
     /// or frame the imported model does not have, or are not a list.
-    Option {
+    ImportOption {
         /// The imported file.
         path: PathBuf,
         /// What is wrong, on one line.
@@ -89,7 +89,7 @@ impl fmt::Display for BuildError {
                 "error: two models would both be written to {}: rename one of them",
                 output.display()
             ),
-            BuildError::Option { path, message } => {
+            BuildError::ImportOption { path, message } => {
                 write!(f, "error: {}: {message}", path.display())
             }
             BuildError::NoFileName { path } => write!(

@@ -70,26 +70,6 @@ impl ImportOptions {
         self
     }
 
-    /// The struct's name, if one was chosen.
-    pub fn struct_name(&self) -> Option<&str> {
-        self.name.as_deref()
-    }
-
-    /// Whether the root floats.
-    pub fn is_floating(&self) -> bool {
-        self.floating
-    }
-
-    /// Whether joint damping is kept.
-    pub fn has_damping(&self) -> bool {
-        self.damping
-    }
-
-    /// The outputs asked for, as the list of an `outputs` statement.
-    pub fn output_list(&self) -> Option<&str> {
-        self.outputs.as_deref()
-    }
-
     /// `model` (the text of a `.dal` model, ending with its system's `}`)
     /// with `outputs LIST;` before that brace; `model` itself when no
     /// output was asked for. The caller checks the result (see

@@ -187,7 +187,7 @@ impl Urdf {
         };
         let chosen = &self.options.chosen;
         let with_outputs = chosen.with_outputs(&model);
-        check_outputs(chosen, &model, &with_outputs).map_err(|message| BuildError::Option {
+        check_outputs(chosen, &model, &with_outputs).map_err(|message| BuildError::ImportOption {
             path: self.path.clone(),
             message: format!(
                 "{message} (each link `L` of the robot has a frame `L` and a point `L_origin`, \
