@@ -8,12 +8,14 @@
 //! links welded by fixed joints, and [`write`] writes the model text.
 //!
 //! The model: one coordinate per revolute, continuous or prismatic joint,
-//! named after it, depth-first from the root link with children in file
-//! order; one input `tau_<coordinate>` each, acting along the joint axis
+//! named after it, in Pinocchio's order (depth-first from the root link, a
+//! link's child joints sorted by name); every link's frame `L` and point
+//! `L_origin`; one input `tau_<coordinate>` each, acting along the joint axis
 //! between the two bodies, so `forcing = tau − (velocity and gravity
 //! terms)`; gravity `(0, 0, −9.81)` in the root link's axes. Mimic joints
 //! are independent coordinates, as in Pinocchio by default. Geometry,
-//! limits and meshes are ignored.
+//! limits and meshes are ignored. The [`ImportOptions`] add a name, a
+//! floating base, damping and `outputs`.
 
 mod inertia;
 mod tree;
@@ -187,12 +189,14 @@ impl Urdf {
         };
         let chosen = &self.options.chosen;
         let with_outputs = chosen.with_outputs(&model);
-        check_outputs(chosen, &model, &with_outputs).map_err(|message| BuildError::ImportOption {
-            path: self.path.clone(),
-            message: format!(
-                "{message} (each link `L` of the robot has a frame `L` and a point `L_origin`, \
+        check_outputs(chosen, &model, &with_outputs).map_err(|message| {
+            BuildError::ImportOption {
+                path: self.path.clone(),
+                message: format!(
+                    "{message} (each link `L` of the robot has a frame `L` and a point `L_origin`, \
                  unless the model's comment at the link names others)"
-            ),
+                ),
+            }
         })?;
         Ok(Imported {
             model: with_outputs,
