@@ -363,9 +363,8 @@ impl Resolver {
         let a = self.value(lhs, usage);
         let b = self.value(rhs, usage);
         let (a, b) = (a?, b?);
-        if let (BinOp::Sub, Value::Point(p, p_offset), Value::Point(q, q_offset)) = (op, &a, &b) {
-            let between = self.between((*p, p_offset.clone()), (*q, q_offset.clone()));
-            return Some(Value::Vector(between));
+        if let (BinOp::Sub, Value::Point(..), Value::Point(..)) = (op, &a, &b) {
+            return Some(self.point_difference(a, b));
         }
         let pool = &mut self.pool;
         let result = match (op, a, b) {

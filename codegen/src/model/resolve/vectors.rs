@@ -23,7 +23,8 @@ pub(super) const VECTOR_FUNCTIONS: [(&str, usize); 5] = [
 
 impl Resolver {
     /// `func(args)` for one of [`VECTOR_FUNCTIONS`] (`arity` its number of
-    /// arguments).
+    /// arguments); out of line, as [`Resolver::point_difference`].
+    #[inline(never)]
     pub(super) fn vector_call(
         &mut self,
         func: &Ident,
@@ -84,6 +85,19 @@ impl Resolver {
         self.used_dt = true;
         let position = from_origin(&self.model, &mut self.pool, base, offset);
         self.with_geometry(|geometry, pool| geometry.rate(pool, &position))
+    }
+
+    /// `P - Q` of the points `to` and `from`, kept out of line: the
+    /// recursion through [`Resolver::binary`] of a long expression keeps a
+    /// small frame.
+    #[inline(never)]
+    pub(super) fn point_difference(&mut self, to: Value, from: Value) -> Value {
+        match (to, from) {
+            (Value::Point(p, p_offset), Value::Point(q, q_offset)) => {
+                Value::Vector(self.between((p, p_offset), (q, q_offset)))
+            }
+            (to, _) => to,
+        }
     }
 
     /// `P - Q` of two points: the vector from `Q` to `P`.
