@@ -6,14 +6,17 @@
 //! derived here, and at a leaning, turning state against SymPy's own
 //! `KanesMethod.linearize` (`scripts/rolling_disc_linearize_reference.py`).
 //!
-//! Coordinates: the contact point `(x, y)`, the heading `ψ` (frame
+//! Coordinates: the contact point `(x, y, z)` (`z` its height, which the
+//! `rolling` statement's contact row holds at zero), the heading `ψ` (frame
 //! `A = N.rotate_z(ψ)`), the lean `θ` (`C = A.rotate_x(θ)`, the disc's
 //! plane `C.x`, `C.z`, its axle `C.y`) and the spin `φ` about the axle. The
-//! centre is `G = (x, y, 0) + r C.z`; the disc's point at the contact,
+//! centre is `G = (x, y, z) + r C.z`; the disc's point at the contact,
 //! `G − r C.z`, moves at `ẋ N.x + ẏ N.y + r ω_C × C.z − r ω × C.z =
 //! ẋ N.x + ẏ N.y − r φ̇ C.x` (`ω = ω_C + φ̇ C.y`), so rolling is
-//! `ẋ = r φ̇ cos ψ`, `ẏ = r φ̇ sin ψ`: two nonholonomic rows, the speeds
-//! `ψ̇`, `θ̇`, `φ̇` independent.
+//! `ẋ = r φ̇ cos ψ`, `ẏ = r φ̇ sin ψ`: the statement's two nonholonomic
+//! rows, the speeds `ψ̇`, `θ̇`, `φ̇` independent (the contact row's
+//! velocity form is `ż = 0`, so the numbers are those of the disc written
+//! with the two rows by hand on `(x, y, ψ, θ, φ)`).
 //!
 //! About upright rolling (`θ = θ̇ = ψ̇ = 0`, `φ̇ = Ω`), to first order in
 //! `C`'s axes: `ω_C = (θ̇, 0, ψ̇)`, the axial spin `s = φ̇ + ψ̇ sin θ`,
