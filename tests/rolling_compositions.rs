@@ -1,4 +1,7 @@
-//! The `rolling` statement composed with a free joint: the thin disc of
+//! Rolling composed with joints and speeds of one's own, against the
+//! SymPy references of `tests/rolling_wheels.rs`.
+//!
+//! **A free joint.** The `rolling` statement on a free joint: the thin disc of
 //! `tests/rolling_wheels.rs`, its attitude a quaternion and its speeds the
 //! joint's (the centre's velocity and the angular velocity, in the disc's
 //! axes), rolls as SymPy's disc in Euler angles. At the states on the
@@ -13,6 +16,12 @@
 //! `ω̇_N = ψ̈ N.z + θ̈ A.x + θ̇ ψ̇ N.z × A.x + φ̈ C.y + φ̇ ω_C × C.y`
 //! (`ω_C = ψ̇ N.z + θ̇ A.x`); for the joint, `ω_B = Rᵀ ω_N`,
 //! `v_B = Rᵀ v_N`, and back `a_N = R (v̇_B + ω_B × v_B)`, `ω̇_N = R ω̇_B`.
+//!
+//! **A `speeds` statement.** The Chaplygin sleigh with the blade's velocity
+//! in its own axes as speeds, `u1 = v_P · B.x`, `u2 = v_P · B.y`,
+//! `u3 = θ̇`, held by `dot(velocity(P), B.y) == 0` (that is `u2 = 0`): at
+//! SymPy's states (speeds the rates), `u̇1 = ẍ cos θ + ÿ sin θ + θ̇ u2`,
+//! `u̇2 = −ẍ sin θ + ÿ cos θ − θ̇ u1`, `u̇3 = θ̈`.
 
 use dalembert::constrained::constrained_accelerations;
 use dalembert_codegen::testing::{cross, mat_vec, quaternion_rotation, transpose_vec};
@@ -31,6 +40,35 @@ dalembert::dalembert! {
         rolling contact { wheel: B, axle: B.y, center: base, radius: r, plane: N.z };
     }
 }
+
+dalembert::dalembert! {
+    /// The Chaplygin sleigh of `tests/rolling_wheels.rs` in the blade's
+    /// body-axis speeds.
+    pub BodyRateSleigh {
+        parameters m, I, a, k;
+        coordinates x, y, theta;
+        speeds u1, u2, u3 {
+            x: cos(theta) * u1 - sin(theta) * u2,
+            y: sin(theta) * u1 + cos(theta) * u2,
+            theta: u3
+        };
+        inputs F, T;
+        frame B = N.rotate_z(theta);
+        point P = O + x * N.x + y * N.y;
+        body sleigh { mass: m, center: P + a * B.x, frame: B, inertia: [0, 0, I] };
+        potential k / 2 * dot(P + a * B.x - O, P + a * B.x - O);
+        force F * B.x at P;
+        torque T * N.z on B;
+        constraint dot(velocity(P), B.y) == 0;
+    }
+}
+
+const SLEIGH: BodyRateSleigh = BodyRateSleigh {
+    m: 2.5,
+    I: 0.3,
+    a: 0.4,
+    k: 1.7,
+};
 
 const DISC: FreeDisc = FreeDisc {
     m: 0.8,
@@ -123,5 +161,37 @@ fn a_disc_on_a_free_joint_rolls_as_sympys_in_euler_angles() {
             &[[ax, ay, az], expected_angular].concat(),
             1e-11,
         );
+    }
+}
+
+#[test]
+fn a_sleigh_in_body_axis_speeds_slides_as_sympys() {
+    let entry = &reference("rolling_wheels.json")["systems"]["sleigh"];
+    let parameters = [
+        ("m", SLEIGH.m),
+        ("I", SLEIGH.I),
+        ("a", SLEIGH.a),
+        ("k", SLEIGH.k),
+    ];
+    for (name, value) in parameters {
+        assert_eq!(entry["parameters"][name].as_f64(), Some(value), "{name}");
+    }
+    let states = entry["constrained"].as_array().expect("states");
+    assert!(!states.is_empty(), "no states on the manifold");
+    for state in states {
+        let q = array::<3>(&state["q"]);
+        let [vx, vy, rate] = array::<3>(&state["v"]);
+        let [ax, ay, angular] = array::<3>(&state["vdot"]);
+        let (s, c) = q[2].sin_cos();
+        let (u1, u2) = (vx * c + vy * s, -vx * s + vy * c);
+        let v = [u1, u2, rate];
+        let (vdot, _) = constrained_accelerations(&SLEIGH, 0.0, &q, &v, &array::<2>(&state["u"]))
+            .expect("solvable");
+        let expected = [
+            ax * c + ay * s + rate * u2,
+            -ax * s + ay * c - rate * u1,
+            angular,
+        ];
+        assert_close("u̇", &vdot, &expected, 1e-11);
     }
 }

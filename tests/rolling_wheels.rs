@@ -20,6 +20,13 @@ use dalembert_fixtures::reference::{array, assert_close, flat, matrix, reference
 use nalgebra::SMatrix;
 use serde_json::Value;
 
+/// `[("m", SYSTEM.m), ...]`: the named parameters' values.
+macro_rules! values {
+    ($system:expr; $($parameter:ident),+) => {
+        [$((stringify!($parameter), $system.$parameter)),+]
+    };
+}
+
 dalembert::dalembert! {
     /// A thin disc rolling on `z = 0`, its centre `G` at `(x, y, z)`,
     /// driven by a torque `T` about its axle.
@@ -208,39 +215,19 @@ fn agrees_with_sympy<S, const NQ: usize, const NU: usize, const NC: usize>(
 #[test]
 fn a_disc_rolls_as_sympys() {
     assert_eq!(Disc::NC, 3);
-    let entry = system("disc", &[("m", DISC.m), ("r", DISC.r), ("g", DISC.g)]);
+    let entry = system("disc", &values!(DISC; m, r, g));
     agrees_with_sympy(&DISC, &entry);
 }
 
 #[test]
 fn a_torus_rolls_as_sympys() {
-    let entry = system(
-        "torus",
-        &[
-            ("m", TORUS.m),
-            ("r", TORUS.r),
-            ("g", TORUS.g),
-            ("rt", TORUS.rt),
-            ("h", TORUS.h),
-            ("c", TORUS.c),
-            ("Ia", TORUS.Ia),
-            ("Id", TORUS.Id),
-        ],
-    );
+    let entry = system("torus", &values!(TORUS; m, r, g, rt, h, c, Ia, Id));
     agrees_with_sympy(&TORUS, &entry);
 }
 
 #[test]
 fn a_chaplygin_sleigh_slides_as_sympys() {
-    let entry = system(
-        "sleigh",
-        &[
-            ("m", SLEIGH.m),
-            ("I", SLEIGH.I),
-            ("a", SLEIGH.a),
-            ("k", SLEIGH.k),
-        ],
-    );
+    let entry = system("sleigh", &values!(SLEIGH; m, I, a, k));
     agrees_with_sympy(&SLEIGH, &entry);
 }
 
@@ -251,17 +238,7 @@ fn a_differential_drive_robot_rolls_as_sympys() {
     let robot = DIFFERENTIAL_DRIVE;
     let entry = system(
         "differential_drive",
-        &[
-            ("mb", robot.mb),
-            ("mw", robot.mw),
-            ("Iwa", robot.Iwa),
-            ("Iwd", robot.Iwd),
-            ("r", robot.r),
-            ("d", robot.d),
-            ("g", robot.g),
-            ("b", robot.b),
-            ("Ib", robot.Ib),
-        ],
+        &values!(robot; mb, mw, Iwa, Iwd, r, d, g, b, Ib),
     );
     agrees_with_sympy(&robot, &entry);
 }
@@ -271,19 +248,7 @@ fn balancing_entry() -> Value {
     let robot = BALANCING_ROBOT;
     system(
         "balancing_robot",
-        &[
-            ("mb", robot.mb),
-            ("mw", robot.mw),
-            ("Iwa", robot.Iwa),
-            ("Iwd", robot.Iwd),
-            ("r", robot.r),
-            ("d", robot.d),
-            ("g", robot.g),
-            ("l", robot.l),
-            ("Ibx", robot.Ibx),
-            ("Iby", robot.Iby),
-            ("Ibz", robot.Ibz),
-        ],
+        &values!(robot; mb, mw, Iwa, Iwd, r, d, g, l, Ibx, Iby, Ibz),
     )
 }
 
