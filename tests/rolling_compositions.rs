@@ -20,7 +20,8 @@
 //! **A `speeds` statement.** The Chaplygin sleigh with the blade's velocity
 //! in its own axes as speeds, `u1 = v_P · B.x`, `u2 = v_P · B.y`,
 //! `u3 = θ̇`, held by `dot(velocity(P), B.y) == 0` (that is `u2 = 0`): at
-//! SymPy's states (speeds the rates), `u̇1 = ẍ cos θ + ÿ sin θ + θ̇ u2`,
+//! SymPy's states (speeds the rates; its spring's potential written with
+//! `norm`), `u̇1 = ẍ cos θ + ÿ sin θ + θ̇ u2`,
 //! `u̇2 = −ẍ sin θ + ÿ cos θ − θ̇ u1`, `u̇3 = θ̈`.
 
 use dalembert::constrained::constrained_accelerations;
@@ -56,7 +57,7 @@ dalembert::dalembert! {
         frame B = N.rotate_z(theta);
         point P = O + x * N.x + y * N.y;
         body sleigh { mass: m, center: P + a * B.x, frame: B, inertia: [0, 0, I] };
-        potential k / 2 * dot(P + a * B.x - O, P + a * B.x - O);
+        potential k / 2 * norm(P + a * B.x - O)^2;
         force F * B.x at P;
         torque T * N.z on B;
         constraint dot(velocity(P), B.y) == 0;
