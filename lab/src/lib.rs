@@ -9,6 +9,7 @@
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
 mod chart;
+pub mod ddp;
 mod lqr;
 mod scene;
 mod work_precision;
