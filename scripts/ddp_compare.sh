@@ -20,8 +20,9 @@ OMP_NUM_THREADS=1 "$python" scripts/ddp_crocoddyl.py 2>/dev/null > "$out/crocodd
 cat "$out/dalembert.jsonl" "$out/crocoddyl.jsonl"
 python3 - "$out/dalembert.jsonl" "$out/crocoddyl.jsonl" <<'PY'
 import json, sys
-ours = {r["problem"]: r for r in map(json.loads, open(sys.argv[1]))}
-theirs = {r["problem"]: r for r in map(json.loads, open(sys.argv[2]))}
+def solves(path):
+    return {r["problem"]: r for r in map(json.loads, open(path)) if "problem" in r}
+ours, theirs = solves(sys.argv[1]), solves(sys.argv[2])
 for name in ours:
     a, b = ours[name], theirs[name]
     print(f"{name}: cost {a['cost']:.10g} (dalembert) vs {b['cost']:.10g} (Crocoddyl), "

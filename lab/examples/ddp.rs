@@ -14,7 +14,9 @@
 //! iteration) and writes the charts to `DIR` (default `target/charts`).
 
 use dalembert::State;
-use dalembert::control::{euler_step, euler_step_jacobian};
+use dalembert::control::{
+    accelerations_adjoint, euler_step, euler_step_adjoint, euler_step_jacobian, rk4_step_jacobian,
+};
 use dalembert_lab::ddp::{Problem, Settings, Solve, solve};
 use dalembert_lab::{Series, line_chart, line_chart_log_y};
 use std::path::{Path, PathBuf};
@@ -55,7 +57,8 @@ dalembert::dalembert! {
 dalembert::dalembert! {
     /// The UR5 of `tests/reference/urdf/ur5_robot.urdf` as `dalembert urdf
     /// tests/reference/urdf/ur5_robot.urdf --name Ur5` prints it (its comment
-    /// lines left out), asking for the derivatives of its accelerations.
+    /// lines left out), asking for the derivatives of its accelerations and
+    /// of its inverse dynamics.
     pub Ur5 {
         coordinates shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint;
         inputs tau_shoulder_pan_joint, tau_shoulder_lift_joint, tau_elbow_joint, tau_wrist_1_joint, tau_wrist_2_joint, tau_wrist_3_joint;
@@ -80,11 +83,12 @@ dalembert::dalembert! {
         body wrist_3_link_body { mass: 0.1879, center: wrist_3_link_origin, frame: wrist_3_link, inertia: [0.0171364731454, 0.0171364731454, 0.033822] };
         torque tau_wrist_3_joint * wrist_2_link.y on wrist_3_link reacting wrist_2_link;
         gravity -9.81 * N.z;
-        outputs accelerations_jacobian;
+        outputs accelerations_jacobian, inverse_dynamics_jacobian;
     }
 }
 
-dalembert::differentiable!(Ur5, CartPole);
+dalembert::differentiable!(Ur5; inverse);
+dalembert::differentiable!(CartPole);
 
 /// A 1 kg cart and a 0.3 kg pole 1 m long (`dalembert_fixtures::cart_pole`).
 const CART_POLE: CartPole = CartPole {
@@ -144,6 +148,68 @@ fn timed<const NQ: usize, const NV: usize, const NU: usize>(
         last = Some(solved);
     }
     (last.expect("one solve at least"), best)
+}
+
+/// Nanoseconds per call of `call` (the best of 5 runs of 20 000 calls),
+/// printed as one JSON line.
+fn per_call(name: &str, call: impl Fn() -> f64) {
+    let mut best = f64::INFINITY;
+    let mut sink = 0.0;
+    for _ in 0..5 {
+        let start = Instant::now();
+        for _ in 0..20_000 {
+            sink += std::hint::black_box(call());
+        }
+        best = best.min(start.elapsed().as_secs_f64() / 20_000.0);
+    }
+    assert!(sink.is_finite());
+    println!(
+        "{{\"call\": \"{name}\", \"nanoseconds\": {:.1}}}",
+        best * 1e9
+    );
+}
+
+/// The UR5's step derivatives and adjoints per call, beside its
+/// `accelerations_jacobian`.
+fn step_timings() {
+    let ur5 = Ur5 {};
+    let state = ur5_problem().start;
+    let u = [1.0, -2.0, 3.0, 0.5, -0.5, 0.1];
+    let (q, v) = (state.q, state.v);
+    per_call("ur5 accelerations_jacobian", || {
+        let (by_q, _, _) = ur5
+            .accelerations_jacobian(0.0, std::hint::black_box(&q), &v, &u)
+            .expect("solvable");
+        by_q[0][0]
+    });
+    let lambda = [0.3, -0.1, 0.7, 0.2, -0.5, 0.9];
+    per_call("ur5 accelerations_adjoint", || {
+        let (_, a) = accelerations_adjoint(&ur5, 0.0, std::hint::black_box(&q), &v, &u, &lambda)
+            .expect("solvable");
+        a.by_q[0]
+    });
+    per_call("ur5 euler_step_adjoint", || {
+        let (_, a) = euler_step_adjoint(
+            &ur5,
+            std::hint::black_box(&state),
+            &u,
+            0.01,
+            &lambda,
+            &lambda,
+        )
+        .expect("a step");
+        a.by_q[0]
+    });
+    per_call("ur5 euler_step_jacobian", || {
+        let (_, j) =
+            euler_step_jacobian(&ur5, std::hint::black_box(&state), &u, 0.01).expect("a step");
+        j.q_by_q[0][0]
+    });
+    per_call("ur5 rk4_step_jacobian", || {
+        let (_, j) =
+            rk4_step_jacobian(&ur5, std::hint::black_box(&state), &u, 0.01).expect("a step");
+        j.q_by_q[0][0]
+    });
 }
 
 /// One JSON line of a solve.
@@ -310,6 +376,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     });
     report("cart_pole", &cart_pole_solve, cart_pole_seconds);
 
+    step_timings();
     write_inputs(&out.join("ddp_ur5_inputs.json"), &ur5_solve)?;
     write_inputs(&out.join("ddp_cart_pole_inputs.json"), &cart_pole_solve)?;
     charts(&out, &ur5_solve, &cart_pole_solve)?;
