@@ -16,14 +16,19 @@ mkdir -p "$out"
 cargo build --release -q -p dalembert-lab --example ddp
 date -u +"run at %Y-%m-%d %H:%M:%S UTC"
 target/release/examples/ddp --out target/charts > "$out/dalembert.jsonl"
-OMP_NUM_THREADS=1 "$python" scripts/ddp_crocoddyl.py 2>/dev/null > "$out/crocoddyl.jsonl"
+OMP_NUM_THREADS=1 "$python" scripts/ddp_crocoddyl.py --inputs target/charts 2>/dev/null > "$out/crocoddyl.jsonl"
 cat "$out/dalembert.jsonl" "$out/crocoddyl.jsonl"
 python3 - "$out/dalembert.jsonl" "$out/crocoddyl.jsonl" <<'PY'
 import json, sys
 def solves(path):
     return {r["problem"]: r for r in map(json.loads, open(path)) if "problem" in r}
 ours, theirs = solves(sys.argv[1]), solves(sys.argv[2])
+costed = {r["costed"]: r["cost"] for r in map(json.loads, open(sys.argv[2])) if "costed" in r}
 for name in ours:
+    if name in costed:
+        c = costed[name]
+        print(f"{name}: dalembert's optimal inputs cost {c:.15g} in Crocoddyl's problem, "
+              f"{ours[name]['cost']:.15g} in ours: relative difference {abs(c - ours[name]['cost']) / abs(c):.2e}")
     a, b = ours[name], theirs[name]
     print(f"{name}: cost {a['cost']:.10g} (dalembert) vs {b['cost']:.10g} (Crocoddyl), "
           f"relative difference {abs(a['cost'] - b['cost']) / abs(b['cost']):.2e}; "

@@ -23,7 +23,9 @@ Run in a virtual environment of its own, with libpinocchio 4.0.0: crocoddyl
     OMP_NUM_THREADS=1 ~/.cache/crocoddyl-venv/bin/python scripts/ddp_crocoddyl.py
 
 Prints one JSON line per problem: final cost, iterations, stopping value,
-seconds per iteration (best of 5 solves).
+seconds per iteration (best of 5 solves); with `--inputs DIR`, first the cost
+in Crocoddyl's problem of the inputs `DIR/ddp_NAME_inputs.json` that
+`lab/examples/ddp.rs` writes (the same problem gives the same cost).
 """
 
 import json
@@ -37,6 +39,8 @@ import pinocchio as pin
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 REPEATS = 5
+# `--inputs DIR`: also cost the inputs `DIR/ddp_NAME_inputs.json`.
+INPUTS = sys.argv[sys.argv.index("--inputs") + 1] if "--inputs" in sys.argv else None
 
 
 def quadratic(state, nu, xref, state_weights, input_weights):
@@ -87,6 +91,14 @@ def problem(state, actuation, start, target, horizon, dt, weights):
     return shooting
 
 
+def cost_of(name, shooting, path):
+    """The cost in this problem of the inputs in `path` (dalembert's
+    optimum, written by the example), rolled out by Crocoddyl."""
+    us = [np.array(u, dtype=float) for u in json.load(open(path))]
+    xs = shooting.rollout(us)
+    print(json.dumps({"costed": name, "inputs": path, "cost": shooting.calc(xs, us)}))
+
+
 def solve(name, shooting, nu):
     best, solver = float("inf"), None
     for _ in range(REPEATS):
@@ -98,6 +110,8 @@ def solve(name, shooting, nu):
         solver.solve(xs, us, 500, True, 1e-9)
         seconds = (time.perf_counter() - began) / max(solver.iter, 1)
         best = min(best, seconds)
+    if INPUTS:
+        cost_of(name, shooting, os.path.join(INPUTS, f"ddp_{name}_inputs.json"))
     print(
         json.dumps(
             {
