@@ -11,7 +11,11 @@
 //! ```
 //!
 //! Prints one JSON line per problem (final cost, iterations, seconds per
-//! iteration) and writes the charts to `DIR` (default `target/charts`).
+//! iteration) and per timed call (the UR5's step jacobians and adjoints),
+//! and writes to `DIR` (default `target/charts`) the charts, both solves
+//! animated (`ddp_ur5.html`, `ddp_cart_pole.html`) and the optimal inputs
+//! (`ddp_*_inputs.json`, which `scripts/ddp_crocoddyl.py --inputs` costs in
+//! Crocoddyl's problems).
 
 use dalembert::State;
 use dalembert::control::{
@@ -22,20 +26,14 @@ use dalembert_lab::{Series, line_chart, line_chart_log_y};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The cart-pole of `generated/models/cart_pole.dal`, asking for the
-/// derivatives of its accelerations.
-const CART_POLE_MODEL: &str = "
-    pub CartPole {
-        parameters m_c, m_p, l, g;
-        coordinates x, theta;
-        inputs F;
-        joint prismatic Slide { parent: N, child: C, axis: x, coordinate: x, at: O };
-        body cart { mass: m_c, center: Slide, frame: C, inertia: [0, 0, 0] };
-        joint revolute Hinge { parent: C, child: P, axis: z, coordinate: theta, at: Slide };
-        body pole { mass: m_p, center: Hinge + l * P.y, frame: P, inertia: [m_p*l^2/3, 0, m_p*l^2/3] };
-        gravity -g * N.y;
-        force F * N.x at Slide;
-    }";
+/// The cart-pole's model text, for its animation.
+const CART_POLE_MODEL: &str = include_str!("../../generated/models/cart_pole.dal");
+
+/// The UR5's URDF file, whose import the UR5's animation draws.
+const UR5_URDF: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../tests/reference/urdf/ur5_robot.urdf"
+);
 
 dalembert::dalembert! {
     /// A cart-pole: a cart pushed along `N.x` by `F`, a pole (a uniform rod
@@ -328,16 +326,54 @@ fn charts(
     Ok(())
 }
 
-/// The cart-pole's swing-up as an animated scene.
-fn scene(out: &Path, cart_pole: &Solve<2, 2, 1>) -> Result<(), Box<dyn std::error::Error>> {
+/// The recording of a solve's states, with their energies.
+fn recording<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    solved: &Solve<NQ, NV, NU>,
+) -> dalembert_lab::Recording
+where
+    S: dalembert::MultibodySystem<NQ, NV, NU>,
+{
     let mut recording = dalembert_lab::Recording::new();
-    for s in &cart_pole.states {
-        recording.push(s.t, &s.q, dalembert::energy(&CART_POLE, &s.q, &s.v));
+    for s in &solved.states {
+        recording.push(s.t, &s.q, dalembert::energy(system, &s.q, &s.v));
     }
+    recording
+}
+
+/// Both solves as animated scenes: the cart-pole, and the UR5 as the
+/// segments between its joints.
+fn scenes(
+    out: &Path,
+    ur5: &Solve<6, 6, 6>,
+    cart_pole: &Solve<2, 2, 1>,
+) -> Result<(), Box<dyn std::error::Error>> {
     let p = CART_POLE;
     dalembert_lab::Scene::new(CART_POLE_MODEL, &[p.m_c, p.m_p, p.l, p.g])?
-        .title("Cart-pole swing-up by DDP")
-        .write(out.join("ddp_cart_pole.html"), &recording)?;
+        .title("Cart-pole swing-up by DDP (semi-implicit Euler, h = 20 ms)")
+        .write(
+            out.join("ddp_cart_pole.html"),
+            &recording(&CART_POLE, cart_pole),
+        )?;
+    let model = dalembert_codegen::Urdf::read(UR5_URDF)?.model()?;
+    let mut scene = dalembert_lab::Scene::new(&model, &[])?
+        .title("UR5 reaching a pose by DDP (semi-implicit Euler, h = 10 ms)");
+    let mut previous = "O".to_string();
+    for link in [
+        "shoulder",
+        "upper_arm",
+        "forearm",
+        "wrist_1",
+        "wrist_2",
+        "wrist_3",
+    ] {
+        let origin = format!("{link}_link_origin");
+        scene = scene
+            .segment(&previous, &origin)?
+            .body_size(&format!("{link}_link_body"), [0.08; 3])?;
+        previous = origin;
+    }
+    scene.write(out.join("ddp_ur5.html"), &recording(&Ur5 {}, ur5))?;
     Ok(())
 }
 
@@ -380,6 +416,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     write_inputs(&out.join("ddp_ur5_inputs.json"), &ur5_solve)?;
     write_inputs(&out.join("ddp_cart_pole_inputs.json"), &cart_pole_solve)?;
     charts(&out, &ur5_solve, &cart_pole_solve)?;
-    scene(&out, &cart_pole_solve)?;
+    scenes(&out, &ur5_solve, &cart_pole_solve)?;
     Ok(())
 }
