@@ -19,14 +19,17 @@
 
 use dalembert::State;
 use dalembert::control::{
-    accelerations_adjoint, euler_step, euler_step_adjoint, euler_step_jacobian, rk4_step_jacobian,
+    Differentiated, accelerations_adjoint, euler_step, euler_step_adjoint, euler_step_jacobian,
+    rk4_step_jacobian,
 };
+use dalembert_fixtures::cart_pole::{CART_POLE, CartPole};
 use dalembert_lab::ddp::{Problem, Settings, Solve, solve};
 use dalembert_lab::{Series, line_chart, line_chart_log_y};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The cart-pole's model text, for its animation.
+/// The cart-pole's model text (that of `dalembert_fixtures::cart_pole`),
+/// for its animation.
 const CART_POLE_MODEL: &str = include_str!("../../generated/models/cart_pole.dal");
 
 /// The UR5's URDF file, whose import the UR5's animation draws.
@@ -34,23 +37,6 @@ const UR5_URDF: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../tests/reference/urdf/ur5_robot.urdf"
 );
-
-dalembert::dalembert! {
-    /// A cart-pole: a cart pushed along `N.x` by `F`, a pole (a uniform rod
-    /// of length `2 l`) hinged on it, `theta` from the upward vertical.
-    pub CartPole {
-        parameters m_c, m_p, l, g;
-        coordinates x, theta;
-        inputs F;
-        joint prismatic Slide { parent: N, child: C, axis: x, coordinate: x, at: O };
-        body cart { mass: m_c, center: Slide, frame: C, inertia: [0, 0, 0] };
-        joint revolute Hinge { parent: C, child: P, axis: z, coordinate: theta, at: Slide };
-        body pole { mass: m_p, center: Hinge + l * P.y, frame: P, inertia: [m_p*l^2/3, 0, m_p*l^2/3] };
-        gravity -g * N.y;
-        force F * N.x at Slide;
-        outputs accelerations_jacobian;
-    }
-}
 
 dalembert::dalembert! {
     /// The UR5 of `tests/reference/urdf/ur5_robot.urdf` as `dalembert urdf
@@ -86,15 +72,6 @@ dalembert::dalembert! {
 }
 
 dalembert::differentiable!(Ur5; inverse);
-dalembert::differentiable!(CartPole);
-
-/// A 1 kg cart and a 0.3 kg pole 1 m long (`dalembert_fixtures::cart_pole`).
-const CART_POLE: CartPole = CartPole {
-    m_c: 1.0,
-    m_p: 0.3,
-    l: 0.5,
-    g: 9.81,
-};
 
 /// The UR5 problem; `scripts/ddp_crocoddyl.py` writes the same numbers.
 fn ur5_problem() -> Problem<6, 6, 6> {
@@ -399,10 +376,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     });
     report("ur5", &ur5_solve, ur5_seconds);
 
+    // The fixtures' cart-pole asks for `linearize`, which brings its
+    // `accelerations_jacobian`.
+    let cart_pole = Differentiated::new(&CART_POLE, CartPole::accelerations_jacobian);
     let problem = cart_pole_problem();
     let (cart_pole_solve, cart_pole_seconds) = timed(5, || {
         solve::<_, 2, 2, 1, 4>(
-            &CART_POLE,
+            &cart_pole,
             &problem,
             (euler_step, euler_step_jacobian),
             vec![[0.0]; problem.horizon],
