@@ -23,7 +23,7 @@ use dalembert::control::{
     rk4_step_jacobian,
 };
 use dalembert_fixtures::cart_pole::{CART_POLE, CartPole};
-use dalembert_lab::ddp::{Problem, Settings, Solve, solve};
+use dalembert_lab::ddp::{Settings, Solve, cart_pole_swing_up, solve, ur5_reach};
 use dalembert_lab::{Series, line_chart, line_chart_log_y};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -73,40 +73,6 @@ dalembert::dalembert! {
 
 dalembert::differentiable!(Ur5; inverse);
 
-/// The UR5 problem; `scripts/ddp_crocoddyl.py` writes the same numbers.
-fn ur5_problem() -> Problem<6, 6, 6> {
-    Problem {
-        start: State {
-            t: 0.0,
-            q: [0.0, -1.5, 1.0, -1.0, 0.0, 0.0],
-            v: [0.0; 6],
-        },
-        target: ([1.0, -1.0, 1.5, -1.5, 0.8, 0.5], [0.0; 6]),
-        horizon: 100,
-        step: 0.01,
-        state_weights: ([1.0; 6], [0.1; 6]),
-        input_weights: [1e-3; 6],
-        terminal_weights: ([1e3; 6], [10.0; 6]),
-    }
-}
-
-/// The cart-pole swing-up: from hanging at rest to upright at rest.
-fn cart_pole_problem() -> Problem<2, 2, 1> {
-    Problem {
-        start: State {
-            t: 0.0,
-            q: [0.0, std::f64::consts::PI],
-            v: [0.0; 2],
-        },
-        target: ([0.0; 2], [0.0; 2]),
-        horizon: 150,
-        step: 0.02,
-        state_weights: ([0.1, 0.1], [0.01, 0.01]),
-        input_weights: [0.01],
-        terminal_weights: ([100.0, 100.0], [10.0, 10.0]),
-    }
-}
-
 /// Solves `run` `repeats` times, returning the last solve and the best
 /// time per iteration.
 fn timed<const NQ: usize, const NV: usize, const NU: usize>(
@@ -148,7 +114,7 @@ fn per_call(name: &str, call: impl Fn() -> f64) {
 /// `accelerations_jacobian`.
 fn step_timings() {
     let ur5 = Ur5 {};
-    let state = ur5_problem().start;
+    let state = ur5_reach().start;
     let u = [1.0, -2.0, 3.0, 0.5, -0.5, 0.1];
     let (q, v) = (state.q, state.v);
     per_call("ur5 accelerations_jacobian", || {
@@ -363,7 +329,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let settings = Settings::default();
 
     let ur5 = Ur5 {};
-    let problem = ur5_problem();
+    let problem = ur5_reach();
     let (ur5_solve, ur5_seconds) = timed(5, || {
         solve::<_, 6, 6, 6, 12>(
             &ur5,
@@ -379,7 +345,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The fixtures' cart-pole asks for `linearize`, which brings its
     // `accelerations_jacobian`.
     let cart_pole = Differentiated::new(&CART_POLE, CartPole::accelerations_jacobian);
-    let problem = cart_pole_problem();
+    let problem = cart_pole_swing_up();
     let (cart_pole_solve, cart_pole_seconds) = timed(5, || {
         solve::<_, 2, 2, 1, 4>(
             &cart_pole,

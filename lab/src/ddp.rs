@@ -55,6 +55,44 @@ pub struct Problem<const NQ: usize, const NV: usize, const NU: usize> {
     pub terminal_weights: ([f64; NV], [f64; NV]),
 }
 
+/// The UR5 reaching a joint-space pose: from `(0, −1.5, 1, −1, 0, 0)` at
+/// rest to `(1, −1, 1.5, −1.5, 0.8, 0.5)` at rest in 100 steps of 10 ms
+/// (`scripts/ddp_crocoddyl.py` writes the same numbers).
+pub fn ur5_reach() -> Problem<6, 6, 6> {
+    Problem {
+        start: State {
+            t: 0.0,
+            q: [0.0, -1.5, 1.0, -1.0, 0.0, 0.0],
+            v: [0.0; 6],
+        },
+        target: ([1.0, -1.0, 1.5, -1.5, 0.8, 0.5], [0.0; 6]),
+        horizon: 100,
+        step: 0.01,
+        state_weights: ([1.0; 6], [0.1; 6]),
+        input_weights: [1e-3; 6],
+        terminal_weights: ([1e3; 6], [10.0; 6]),
+    }
+}
+
+/// The cart-pole swing-up (`dalembert_fixtures::cart_pole`'s): from hanging
+/// at rest to upright at rest in 150 steps of 20 ms (`scripts/ddp_crocoddyl.py`
+/// writes the same numbers).
+pub fn cart_pole_swing_up() -> Problem<2, 2, 1> {
+    Problem {
+        start: State {
+            t: 0.0,
+            q: [0.0, std::f64::consts::PI],
+            v: [0.0; 2],
+        },
+        target: ([0.0; 2], [0.0; 2]),
+        horizon: 150,
+        step: 0.02,
+        state_weights: ([0.1, 0.1], [0.01, 0.01]),
+        input_weights: [0.01],
+        terminal_weights: ([100.0, 100.0], [10.0, 10.0]),
+    }
+}
+
 /// What a solve did.
 #[derive(Clone, Debug)]
 pub struct Solve<const NQ: usize, const NV: usize, const NU: usize> {
