@@ -384,3 +384,47 @@ fn adjoints_are_the_jacobians_transposed_products() {
         dzhanibekov::Dzhanibekov { m: 12.0, a: 3.0, b: 2.0, c: 1.0 },
     );
 }
+
+#[test]
+fn difference_inverts_the_configuration_update_on_se3_and_so3() {
+    /// `a ⊕ (b ⊖ a) = b` at random `a`, `b`, the quaternion at
+    /// `quaternion` up to its sign (the same rotation).
+    fn check<S: MultibodySystem<NQ, NV, NU>, const NQ: usize, const NV: usize, const NU: usize>(
+        system: &S,
+        quaternion: std::ops::Range<usize>,
+        seed: u64,
+    ) {
+        let space = ConfigurationSpace::of(system).expect("a known group");
+        assert!(!space.is_vector_space());
+        let mut random = Random::new(seed);
+        for _ in 0..10 {
+            let (a, _) = random_state::<S, NQ, NV, NU>(system, &mut random);
+            let (b, _) = random_state::<S, NQ, NV, NU>(system, &mut random);
+            let back = system.integrate_configuration(&a.q, &space.difference(&a.q, &b.q), 1.0);
+            let gap = |sign: f64| {
+                (0..NQ)
+                    .map(|i| match quaternion.contains(&i) {
+                        true => (back[i] - sign * b.q[i]).abs(),
+                        false => (back[i] - b.q[i]).abs(),
+                    })
+                    .fold(0.0, f64::max)
+            };
+            assert!(
+                gap(1.0).min(gap(-1.0)) < 1e-12,
+                "a ⊕ (b ⊖ a) = {back:?}, b = {:?}",
+                b.q
+            );
+        }
+    }
+    check(&floating_solo12::FloatingSolo {}, 3..7, 18);
+    check(
+        &dzhanibekov::Dzhanibekov {
+            m: 12.0,
+            a: 3.0,
+            b: 2.0,
+            c: 1.0,
+        },
+        0..4,
+        19,
+    );
+}
