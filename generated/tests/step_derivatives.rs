@@ -10,8 +10,8 @@
 use dalembert::State;
 use dalembert::control::{
     ConfigurationSpace, ControlError, Differentiable, Differentiated, InverseDifferentiable,
-    StepJacobian, accelerations_adjoint, euler_step, euler_step_adjoint, euler_step_jacobian,
-    rk4_step, rk4_step_jacobian,
+    StepAdjoint, StepJacobian, accelerations_adjoint, euler_step, euler_step_adjoint,
+    euler_step_jacobian, rk4_step, rk4_step_adjoint, rk4_step_jacobian,
 };
 use dalembert::{MultibodySystem, Unconstrained, integrate};
 use dalembert_codegen::testing::Random;
@@ -333,34 +333,55 @@ fn check_adjoints<S, const NQ: usize, const NV: usize, const NU: usize>(
             weighted(&lambda, &by_u),
         );
         let mu: [f64; NV] = std::array::from_fn(|_| random.uniform(-1.0, 1.0));
-        let (end, jacobian) = euler_step_jacobian(system, &start, &u, H).expect("a step");
-        let (adjoint_end, step) =
-            euler_step_adjoint(system, &start, &u, H, &lambda, &mu).expect("a step");
-        assert_eq!(adjoint_end, end);
-        let both = |a: &[[f64; NV]; NV], b: &[[f64; NV]; NV]| -> [f64; NV] {
-            let (x, y) = (weighted(&lambda, a), weighted(&mu, b));
-            std::array::from_fn(|i| x[i] + y[i])
-        };
-        let by_u: [f64; NU] = {
-            let (x, y) = (
-                weighted(&lambda, &jacobian.q_by_u),
-                weighted(&mu, &jacobian.v_by_u),
+        let steps: [(
+            &str,
+            StepWithJacobian<S, NQ, NV, NU>,
+            StepAdjointFn<S, NQ, NV, NU>,
+        ); 2] = [
+            ("Euler", euler_step_jacobian, euler_step_adjoint),
+            ("RK4", rk4_step_jacobian, rk4_step_adjoint),
+        ];
+        for (method, with_jacobian, adjoint) in steps {
+            let (end, jacobian) = with_jacobian(system, &start, &u, H).expect("a step");
+            let (adjoint_end, step) = adjoint(system, &start, &u, H, &lambda, &mu).expect("a step");
+            assert_eq!(adjoint_end, end);
+            let both = |a: &[[f64; NV]; NV], b: &[[f64; NV]; NV]| -> [f64; NV] {
+                let (x, y) = (weighted(&lambda, a), weighted(&mu, b));
+                std::array::from_fn(|i| x[i] + y[i])
+            };
+            let by_u: [f64; NU] = {
+                let (x, y) = (
+                    weighted(&lambda, &jacobian.q_by_u),
+                    weighted(&mu, &jacobian.v_by_u),
+                );
+                std::array::from_fn(|i| x[i] + y[i])
+            };
+            let what = |of: &str| format!("{name} {method} step λᵀ∂x⁺/∂{of}");
+            assert_column(
+                &what("q"),
+                step.by_q,
+                both(&jacobian.q_by_q, &jacobian.v_by_q),
             );
-            std::array::from_fn(|i| x[i] + y[i])
-        };
-        assert_column(
-            &format!("{name} step λᵀ∂x⁺/∂q"),
-            step.by_q,
-            both(&jacobian.q_by_q, &jacobian.v_by_q),
-        );
-        assert_column(
-            &format!("{name} step λᵀ∂x⁺/∂v"),
-            step.by_v,
-            both(&jacobian.q_by_v, &jacobian.v_by_v),
-        );
-        assert_column(&format!("{name} step λᵀ∂x⁺/∂u"), step.by_u, by_u);
+            assert_column(
+                &what("v"),
+                step.by_v,
+                both(&jacobian.q_by_v, &jacobian.v_by_v),
+            );
+            assert_column(&what("u"), step.by_u, by_u);
+        }
     }
 }
+
+/// A step's adjoint.
+type StepAdjointFn<S, const NQ: usize, const NV: usize, const NU: usize> =
+    fn(
+        &S,
+        &State<NQ, NV>,
+        &[f64; NU],
+        f64,
+        &[f64; NV],
+        &[f64; NV],
+    ) -> Result<(State<NQ, NV>, StepAdjoint<NV, NU>), ControlError>;
 
 /// Each listed system, with its generated jacobians.
 macro_rules! check_adjoints {

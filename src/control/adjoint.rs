@@ -17,6 +17,7 @@
 //! `inverse_dynamics_jacobian` is that of the unconstrained equations: these
 //! products are for systems without constraints.
 
+use super::step::{NODES, WEIGHTS};
 use super::{ConfigurationSpace, ControlError, Differentiable};
 use crate::dynamics::pivot_tolerance;
 use crate::{DynamicsError, State};
@@ -198,4 +199,88 @@ where
             by_u: a.by_u,
         },
     ))
+}
+
+/// `x + s y`.
+fn plus<const N: usize>(x: &[f64; N], s: f64, y: &[f64; N]) -> [f64; N] {
+    std::array::from_fn(|i| x[i] + s * y[i])
+}
+
+/// The step of [`rk4_step`](super::rk4_step) (the same operations) and
+/// `λ_qᵀ ∂q⁺/∂(x, u) + λ_vᵀ ∂v⁺/∂(x, u)`, by the reverse of the chain rule
+/// through its four stages: the stages forward, then from the last to the
+/// first one [`accelerations_adjoint`] each, the cotangents of each stage's
+/// `qᵢ = q ⊕ cᵢ h vᵢ₋₁` and `vᵢ = v + cᵢ h v̇ᵢ₋₁` sent back through the
+/// transposed derivatives of the update. Errors: those of
+/// [`accelerations_adjoint`] and [`ControlError::UnsupportedSpeed`].
+pub fn rk4_step_adjoint<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    state: &State<NQ, NV>,
+    u: &[f64; NU],
+    h: f64,
+    lambda_q: &[f64; NV],
+    lambda_v: &[f64; NV],
+) -> Result<(State<NQ, NV>, StepAdjoint<NV, NU>), ControlError>
+where
+    S: InverseDifferentiable<NQ, NV, NU>,
+{
+    let space = ConfigurationSpace::of(system)?;
+    let State { t, q, v } = state;
+    // Forward: the stages' times, configurations, speeds and accelerations.
+    let mut stages = [(0.0, *q, *v, [0.0; NV]); 4];
+    let (mut sum_v, mut sum_a) = ([0.0; NV], [0.0; NV]);
+    for i in 0..4 {
+        let c = if i == 0 { 0.0 } else { NODES[i - 1] };
+        let (_, qi, vi, _) = stages[i];
+        let a = system.accelerations(t + c * h, &qi, &vi, u)?;
+        stages[i] = (t + c * h, qi, vi, a);
+        sum_v = plus(&sum_v, WEIGHTS[i], &vi);
+        sum_a = plus(&sum_a, WEIGHTS[i], &a);
+        if let Some(&next) = NODES.get(i) {
+            stages[i + 1] = (
+                0.0,
+                system.integrate_configuration(q, &vi, next * h),
+                plus(v, next * h, &a),
+                [0.0; NV],
+            );
+        }
+    }
+    let next = State {
+        t: t + h,
+        q: system.integrate_configuration(q, &sum_v, h),
+        v: plus(v, h, &sum_a),
+    };
+    // Reverse: `by_q`, `by_v`, `by_u` of the start; the cotangents of each
+    // stage's speeds and accelerations as they are completed.
+    let final_update = space.update_derivatives(&sum_v.map(|x| h * x));
+    let (mut by_q, mut through_w) = (*lambda_q, *lambda_q);
+    final_update.by_configuration_transposed(&mut by_q);
+    final_update.by_step_transposed(&mut through_w);
+    let mut by_v = *lambda_v;
+    let mut by_u = [0.0; NU];
+    let mut speeds: [[f64; NV]; 4] = std::array::from_fn(|i| through_w.map(|x| h * WEIGHTS[i] * x));
+    let mut accelerations: [[f64; NV]; 4] =
+        std::array::from_fn(|i| lambda_v.map(|x| h * WEIGHTS[i] * x));
+    for i in (0..4).rev() {
+        let (ti, qi, vi, a) = &stages[i];
+        let adjoint = adjoint_at(system, (*ti, qi, vi, u), a, &accelerations[i])?;
+        by_u = plus(&by_u, 1.0, &adjoint.by_u);
+        let stage_q = adjoint.by_q;
+        let stage_v = plus(&speeds[i], 1.0, &adjoint.by_v);
+        by_v = plus(&by_v, 1.0, &stage_v);
+        if i == 0 {
+            by_q = plus(&by_q, 1.0, &stage_q);
+        } else {
+            // `vᵢ = v + cᵢ h v̇ᵢ₋₁` and `qᵢ = q ⊕ cᵢ h vᵢ₋₁`.
+            let step = NODES[i - 1] * h;
+            accelerations[i - 1] = plus(&accelerations[i - 1], step, &stage_v);
+            let update = space.update_derivatives(&stages[i - 1].2.map(|x| step * x));
+            let (mut to_q, mut to_w) = (stage_q, stage_q);
+            update.by_configuration_transposed(&mut to_q);
+            update.by_step_transposed(&mut to_w);
+            by_q = plus(&by_q, 1.0, &to_q);
+            speeds[i - 1] = plus(&speeds[i - 1], step, &to_w);
+        }
+    }
+    Ok((next, StepAdjoint { by_q, by_v, by_u }))
 }

@@ -14,8 +14,9 @@
 //!   jacobian `∂x⁺/∂x`, `∂x⁺/∂u` for `x = (q, v)` in the tangent space, by
 //!   the chain rule through the stages ([`euler_step_jacobian`],
 //!   [`rk4_step_jacobian`]);
-//! * [`adjoint`]: `λᵀ ∂v̇/∂(q, v, u)` and its step counterpart without
-//!   forming a jacobian;
+//! * [`adjoint`]: `λᵀ ∂v̇/∂(q, v, u)` and its step counterparts
+//!   ([`euler_step_adjoint`], [`rk4_step_adjoint`]) without forming a
+//!   jacobian;
 //! * [`ConfigurationSpace`]: the product of vector spaces, SO(3) and SE(3)
 //!   that the coordinates live in, read from the system's names, with the
 //!   derivatives of `q ⊕ w` and the inverse of the update
@@ -39,7 +40,7 @@ use crate::{DynamicsError, MultibodySystem};
 
 pub use adjoint::{
     AccelerationsAdjoint, InverseDifferentiable, StepAdjoint, accelerations_adjoint,
-    euler_step_adjoint,
+    euler_step_adjoint, rk4_step_adjoint,
 };
 pub use differentiated::Differentiated;
 pub use step::{StepJacobian, euler_step, euler_step_jacobian, rk4_step, rk4_step_jacobian};

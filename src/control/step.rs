@@ -235,8 +235,8 @@ fn joined<const NV: usize, const NU: usize>(
 
 /// The fraction of the step at which each of the first three slopes places
 /// the next stage, and the weights of the four.
-const NODES: [f64; 3] = [0.5, 0.5, 1.0];
-const WEIGHTS: [f64; 4] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0];
+pub(super) const NODES: [f64; 3] = [0.5, 0.5, 1.0];
+pub(super) const WEIGHTS: [f64; 4] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0];
 
 /// One RK4 step from `state` with the inputs `u` held (the stages moved by
 /// the group update, see the module's docs), at `t + h`. Where every speed
