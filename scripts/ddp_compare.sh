@@ -2,7 +2,7 @@
 # The DDP problems of lab/examples/ddp.rs solved by dalembert and by
 # Crocoddyl (scripts/ddp_crocoddyl.py) back to back, one thread each, and
 # compared: relative difference of the final costs and the ratio of the
-# times per iteration (best of 5 solves each).
+# times per iteration (best of 5 solves each, CPU time of the thread).
 #
 #   scripts/ddp_compare.sh [CROCODDYL_PYTHON]
 #

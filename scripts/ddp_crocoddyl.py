@@ -23,7 +23,8 @@ Run in a virtual environment of its own, with libpinocchio 4.0.0: crocoddyl
     OMP_NUM_THREADS=1 ~/.cache/crocoddyl-venv/bin/python scripts/ddp_crocoddyl.py
 
 Prints one JSON line per problem: final cost, iterations, stopping value,
-seconds per iteration (best of 5 solves); with `--inputs DIR`, first the cost
+seconds per iteration (best of 5 solves, CPU time of the thread: the
+machine is shared); with `--inputs DIR`, first the cost
 in Crocoddyl's problem of the inputs `DIR/ddp_NAME_inputs.json` that
 `lab/examples/ddp.rs` writes (the same problem gives the same cost).
 """
@@ -106,9 +107,9 @@ def solve(name, shooting, nu):
         solver.th_stop = 1e-12
         us = [np.zeros(nu)] * shooting.T
         xs = shooting.rollout(us)
-        began = time.perf_counter()
+        began = time.thread_time()
         solver.solve(xs, us, 500, True, 1e-9)
-        seconds = (time.perf_counter() - began) / max(solver.iter, 1)
+        seconds = (time.thread_time() - began) / max(solver.iter, 1)
         best = min(best, seconds)
     if INPUTS:
         cost_of(name, shooting, os.path.join(INPUTS, f"ddp_{name}_inputs.json"))

@@ -20,13 +20,13 @@
 use dalembert::State;
 use dalembert::control::{
     Differentiated, accelerations_adjoint, euler_step, euler_step_adjoint, euler_step_jacobian,
-    rk4_step_jacobian,
+    rk4_step_adjoint, rk4_step_jacobian,
 };
 use dalembert_fixtures::cart_pole::{CART_POLE, CartPole};
+use dalembert_fixtures::cpu_time::thread_time_of;
 use dalembert_lab::ddp::{Settings, Solve, cart_pole_swing_up, solve, ur5_reach};
 use dalembert_lab::{Series, line_chart, line_chart_log_y};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// The cart-pole's model text (that of `dalembert_fixtures::cart_pole`),
 /// for its animation.
@@ -74,7 +74,8 @@ dalembert::dalembert! {
 dalembert::differentiable!(Ur5; inverse);
 
 /// Solves `run` `repeats` times, returning the last solve and the best
-/// time per iteration.
+/// time per iteration, in CPU time of the thread (the machine is shared:
+/// the wall clock counts the time other processes hold the core).
 fn timed<const NQ: usize, const NV: usize, const NU: usize>(
     repeats: usize,
     run: impl Fn() -> Solve<NQ, NV, NU>,
@@ -82,26 +83,26 @@ fn timed<const NQ: usize, const NV: usize, const NU: usize>(
     let mut best = f64::INFINITY;
     let mut last = None;
     for _ in 0..repeats {
-        let start = Instant::now();
-        let solved = run();
-        let seconds = start.elapsed().as_secs_f64() / solved.iterations.max(1) as f64;
+        let (time, solved) = thread_time_of(&run);
+        let seconds = time.as_secs_f64() / solved.iterations.max(1) as f64;
         best = best.min(seconds);
         last = Some(solved);
     }
     (last.expect("one solve at least"), best)
 }
 
-/// Nanoseconds per call of `call` (the best of 5 runs of 20 000 calls),
-/// printed as one JSON line.
+/// Nanoseconds per call of `call` (the best of 5 runs of 20 000 calls, in
+/// CPU time of the thread), printed as one JSON line.
 fn per_call(name: &str, call: impl Fn() -> f64) {
     let mut best = f64::INFINITY;
     let mut sink = 0.0;
     for _ in 0..5 {
-        let start = Instant::now();
-        for _ in 0..20_000 {
-            sink += std::hint::black_box(call());
-        }
-        best = best.min(start.elapsed().as_secs_f64() / 20_000.0);
+        let (time, ()) = thread_time_of(|| {
+            for _ in 0..20_000 {
+                sink += std::hint::black_box(call());
+            }
+        });
+        best = best.min(time.as_secs_f64() / 20_000.0);
     }
     assert!(sink.is_finite());
     println!(
@@ -131,6 +132,18 @@ fn step_timings() {
     });
     per_call("ur5 euler_step_adjoint", || {
         let (_, a) = euler_step_adjoint(
+            &ur5,
+            std::hint::black_box(&state),
+            &u,
+            0.01,
+            &lambda,
+            &lambda,
+        )
+        .expect("a step");
+        a.by_q[0]
+    });
+    per_call("ur5 rk4_step_adjoint", || {
+        let (_, a) = rk4_step_adjoint(
             &ur5,
             std::hint::black_box(&state),
             &u,
