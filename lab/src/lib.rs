@@ -1,8 +1,9 @@
 //! The laboratory around `dalembert`: SVG charts of trajectories and error
 //! histories, animated scenes of any model in the browser, and the
 //! work-precision harness that measures what accuracy
-//! each integrator buys per unit of time, and linear-quadratic regulators
-//! from a system's linearisation. The examples of the repository use
+//! each integrator buys per unit of time, linear-quadratic regulators
+//! from a system's linearisation, and differential dynamic programming over
+//! the exact step jacobians ([`ddp`]). The examples of the repository use
 //! it, together with its re-exports of the command-line and progress-bar
 //! crates they need; the `dalembert` crate itself pulls no plotting library.
 
