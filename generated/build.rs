@@ -96,7 +96,12 @@ fn main() {
     let written = builder
         .model_dir("models")
         .urdf("../tests/reference/urdf/panda.urdf")
-        .urdf("../tests/reference/urdf/ur5_robot.urdf")
+        // The tool flange's outputs, for the example `ur5_reach`.
+        .urdf_with(
+            "../tests/reference/urdf/ur5_robot.urdf",
+            dalembert_codegen::ImportOptions::new()
+                .outputs("position(tool0_origin), jacobian(tool0_origin), rotation(tool0)"),
+        )
         .urdf("../tests/reference/urdf/solo12.urdf")
         .urdf("../tests/reference/urdf/features.urdf")
         .urdf("../tests/reference/urdf/anymal_c.urdf")

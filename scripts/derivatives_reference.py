@@ -21,7 +21,7 @@ import numpy as np
 import pinocchio as pin
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from urdf_reference import ROBOTS, file_order_coordinates, write_document  # noqa: E402
+from urdf_reference import ROBOTS, coordinate_order, write_document  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STATES = 5
@@ -94,7 +94,7 @@ def chain_entry(family, n, rng):
 def robot_entry(file, rng):
     path = os.path.join(ROBOTS, file)
     model = pin.buildModelFromUrdf(path)
-    order = file_order_coordinates(path)
+    order = coordinate_order(path)
     joints = [model.joints[model.getJointId(name)] for name in order]
     assert all(j.nq == 1 for j in joints), "one angle or slide per joint"
     perm = np.array([j.idx_v for j in joints])
@@ -112,12 +112,12 @@ def robot_entry(file, rng):
 
 def floating_entry(file, rng):
     """The robot on Pinocchio's free flyer, as dalembert's `--floating` writes it: q is the
-    base's position and unit quaternion (x, y, z, w) then the joints in file order; v the
+    base's position and unit quaternion (x, y, z, w) then the joints in Pinocchio's order; v the
     base's linear and angular velocity in its own axes then the joints'. The derivatives by
     q are Pinocchio's, in the tangent space (q ⊕ δ = q exp(δ))."""
     path = os.path.join(ROBOTS, file)
     model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
-    order = file_order_coordinates(path)
+    order = coordinate_order(path)
     joints = [model.joints[model.getJointId(name)] for name in order]
     assert all(j.nq == 1 for j in joints), "one angle or slide per joint"
     perm = np.array(list(range(6)) + [j.idx_v for j in joints])

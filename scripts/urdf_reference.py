@@ -7,9 +7,11 @@ records crba (the full symmetric M), nle, the generalized gravity, f = tau - nle
 aba with random torques, and the kinetic and potential energies, in the schema
 of tests/reference/README_chains.md (see tests/reference/urdf/README.md).
 
-Coordinates are written in dalembert's order (depth-first from the root link,
-children in the order their joints appear in the file), computed here from the
-XML independently of Pinocchio, and matched to Pinocchio's joints by name.
+Coordinates are written in dalembert's order, which is Pinocchio's
+(depth-first from the root link, the child joints of a link in ascending byte
+order of their names, as urdfdom's std::map keeps them), computed here from
+the XML, checked against Pinocchio's `model.names`, and matched to
+Pinocchio's joints by name.
 Continuous joints, which Pinocchio stores as (cos, sin) in q, are written as
 one angle.
 
@@ -47,9 +49,10 @@ STATES = 10
 SEED = 20261123
 
 
-def file_order_coordinates(path):
-    """Names of the non-fixed joints, depth-first from the root link, children
-    in the order their joints appear in the file."""
+def coordinate_order(path):
+    """Names of the non-fixed joints, depth-first from the root link, the
+    children of a link sorted by joint name (byte order, as urdfdom's
+    std::map<std::string, ...>), whatever their order in the file."""
     robot = ET.parse(path).getroot()
     joints = [
         (j.get("name"), j.get("type"), j.find("parent").get("link"), j.find("child").get("link"))
@@ -60,8 +63,10 @@ def file_order_coordinates(path):
     assert len(roots) == 1, roots
     order = []
 
+    by_name = sorted(joints, key=lambda joint: joint[0].encode())
+
     def visit(link):
-        for name, kind, parent, child in joints:
+        for name, kind, parent, child in by_name:
             if parent == link:
                 if kind != "fixed":
                     order.append(name)
@@ -136,8 +141,8 @@ def robot_entry(file, rng):
     path = os.path.join(ROBOTS, file)
     model = pin.buildModelFromUrdf(path)
     data = model.createData()
-    order = file_order_coordinates(path)
-    assert len(order) == model.nv, (order, model.nv)
+    order = coordinate_order(path)
+    assert order == list(model.names)[1:], (order, list(model.names))
     kinds, lower, upper = [], [], []
     for name in order:
         joint = model.joints[model.getJointId(name)]
@@ -215,8 +220,8 @@ def floating_entry(file, rng):
     path = os.path.join(ROBOTS, file)
     model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
     data = model.createData()
-    order = file_order_coordinates(path)
-    assert len(order) + 6 == model.nv, (order, model.nv)
+    order = coordinate_order(path)
+    assert ["root_joint"] + order == list(model.names)[1:], (order, list(model.names))
     return {
         "robot": os.path.splitext(file)[0] + "_floating", "urdf": file, "name": model.name,
         # dalembert's nq: the base's 7, then one angle per joint (continuous too).

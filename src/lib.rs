@@ -40,6 +40,8 @@
 //! * [`constrained`]: accelerations and multipliers of constrained systems,
 //!   projection onto the constraints, drift stabilisation;
 //! * [`integrate`]: the integrators, and which one to use for which job;
+//! * [`control`]: the exact jacobian of one integration step and its
+//!   adjoint, for trajectory optimisation;
 //! * [`math`]: the elementary functions the generated code calls;
 //! * [`series`]: the Taylor-coefficient recurrences that the code of
 //!   `outputs taylor;` calls ([`TaylorSystem`], [`integrate::taylor`]).
@@ -53,6 +55,7 @@
 pub use dalembert_macros::dalembert;
 
 pub mod constrained;
+pub mod control;
 pub mod dynamics;
 pub mod integrate;
 pub mod math;

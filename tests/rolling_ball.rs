@@ -43,22 +43,11 @@ dalembert::dalembert! {
         body ball { mass: m, center: base, frame: B, inertia: [2/5*m*r^2, 2/5*m*r^2, 2/5*m*r^2] };
         gravity g * sin(alpha) * N.x - g * cos(alpha) * N.z;
         // The centre at height r.
-        constraint base_z == r;
-        // The contact point at rest: (R v)_x − r (R ω)_y = 0 and
-        // (R v)_y + r (R ω)_x = 0, with R the rows of the attitude matrix
-        // of the quaternion (base_qx, base_qy, base_qz, base_qw).
-        constraint (base_qw^2 + base_qx^2 - base_qy^2 - base_qz^2) * base_vx
-            + 2 * (base_qx * base_qy - base_qw * base_qz) * base_vy
-            + 2 * (base_qx * base_qz + base_qw * base_qy) * base_vz
-            - r * (2 * (base_qx * base_qy + base_qw * base_qz) * base_wx
-                + (base_qw^2 - base_qx^2 + base_qy^2 - base_qz^2) * base_wy
-                + 2 * (base_qy * base_qz - base_qw * base_qx) * base_wz) == 0;
-        constraint 2 * (base_qx * base_qy + base_qw * base_qz) * base_vx
-            + (base_qw^2 - base_qx^2 + base_qy^2 - base_qz^2) * base_vy
-            + 2 * (base_qy * base_qz - base_qw * base_qx) * base_vz
-            + r * ((base_qw^2 + base_qx^2 - base_qy^2 - base_qz^2) * base_wx
-                + 2 * (base_qx * base_qy - base_qw * base_qz) * base_wy
-                + 2 * (base_qx * base_qz + base_qw * base_qy) * base_wz) == 0;
+        constraint dot(base - O, N.z) == r;
+        // The contact point at rest: the ball's point at −r n moves at
+        // v + ω × (−r n), zero along N.x and N.y.
+        constraint dot(velocity(base) + cross(angular_velocity(B), -r * N.z), N.x) == 0;
+        constraint dot(velocity(base) + cross(angular_velocity(B), -r * N.z), N.y) == 0;
         outputs taylor, accelerations_jacobian, linearize(base_vx, base_vy, base_wx, base_wy, base_wz; base_wx, base_wy, base_wz);
     }
 }

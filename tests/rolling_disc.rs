@@ -6,14 +6,17 @@
 //! derived here, and at a leaning, turning state against SymPy's own
 //! `KanesMethod.linearize` (`scripts/rolling_disc_linearize_reference.py`).
 //!
-//! Coordinates: the contact point `(x, y)`, the heading `ψ` (frame
+//! Coordinates: the contact point `(x, y, z)` (`z` its height, which the
+//! `rolling` statement's contact row holds at zero), the heading `ψ` (frame
 //! `A = N.rotate_z(ψ)`), the lean `θ` (`C = A.rotate_x(θ)`, the disc's
 //! plane `C.x`, `C.z`, its axle `C.y`) and the spin `φ` about the axle. The
-//! centre is `G = (x, y, 0) + r C.z`; the disc's point at the contact,
+//! centre is `G = (x, y, z) + r C.z`; the disc's point at the contact,
 //! `G − r C.z`, moves at `ẋ N.x + ẏ N.y + r ω_C × C.z − r ω × C.z =
 //! ẋ N.x + ẏ N.y − r φ̇ C.x` (`ω = ω_C + φ̇ C.y`), so rolling is
-//! `ẋ = r φ̇ cos ψ`, `ẏ = r φ̇ sin ψ`: two nonholonomic rows, the speeds
-//! `ψ̇`, `θ̇`, `φ̇` independent.
+//! `ẋ = r φ̇ cos ψ`, `ẏ = r φ̇ sin ψ`: the statement's two nonholonomic
+//! rows, the speeds `ψ̇`, `θ̇`, `φ̇` independent (the contact row's
+//! velocity form is `ż = 0`, so the numbers are those of the disc written
+//! with the two rows by hand on `(x, y, ψ, θ, φ)`).
 //!
 //! About upright rolling (`θ = θ̇ = ψ̇ = 0`, `φ̇ = Ω`), to first order in
 //! `C`'s axes: `ω_C = (θ̇, 0, ψ̇)`, the axial spin `s = φ̇ + ψ̇ sin θ`,
@@ -43,15 +46,14 @@ dalembert::dalembert! {
     /// A thin uniform disc rolling without slipping on a horizontal plane.
     pub RollingDisc {
         parameters m, r, g;
-        coordinates x, y, psi, theta, phi;
+        coordinates x, y, z, psi, theta, phi;
         frame A = N.rotate_z(psi);
         frame C = A.rotate_x(theta);
         frame B = C.rotate_y(phi);
-        point G = O + x * N.x + y * N.y + r * C.z;
+        point G = O + x * N.x + y * N.y + z * N.z + r * C.z;
         body disc { mass: m, center: G, frame: B, inertia: [m*r^2/4, m*r^2/2, m*r^2/4] };
         gravity -g * N.z;
-        constraint dt(x) - r * cos(psi) * dt(phi) == 0;
-        constraint dt(y) - r * sin(psi) * dt(phi) == 0;
+        rolling contact { wheel: B, axle: B.y, center: G, radius: r, plane: N.z };
         outputs taylor, linearize(x, y, psi, theta, phi; dt(psi), dt(theta), dt(phi));
     }
 }
@@ -63,15 +65,22 @@ const DISC: RollingDisc = RollingDisc {
 };
 
 /// The independent entries of `linearize`'s state `(q, v)`: every
-/// coordinate, and the speeds `ψ̇`, `θ̇`, `φ̇`.
-const INDEPENDENT: [usize; 8] = [0, 1, 2, 3, 4, 7, 8, 9];
+/// coordinate but the contact's height `z`, and the speeds `ψ̇`, `θ̇`, `φ̇`.
+const INDEPENDENT: [usize; 8] = [0, 1, 3, 4, 5, 9, 10, 11];
 
 /// `A` of upright rolling at the spin rate `omega`, heading `psi`, reduced
 /// to the independent rows and columns.
 fn reduced_linearization(psi: f64, omega: f64) -> [[f64; 8]; 8] {
     let rolling = DISC.r * omega;
-    let q = [0.4, -1.2, psi, 0.0, 2.0];
-    let v = [rolling * psi.cos(), rolling * psi.sin(), 0.0, 0.0, omega];
+    let q = [0.4, -1.2, 0.0, psi, 0.0, 2.0];
+    let v = [
+        rolling * psi.cos(),
+        rolling * psi.sin(),
+        0.0,
+        0.0,
+        0.0,
+        omega,
+    ];
     let (a, _) = DISC.linearize(0.0, &q, &v, &[]).expect("linearisable");
     INDEPENDENT.map(|i| INDEPENDENT.map(|j| a[i][j]))
 }
@@ -156,7 +165,7 @@ fn a_leaning_disc_rolls_alike_by_taylor_and_dop853() {
     let by_dop853 = adaptive(&dynamics, start, 3.0, ExplicitPair::Dop853, options, |_| {})
         .expect("integrates")
         .end;
-    let state = |s: &State<5, 5>| [s.q, s.v].concat();
+    let state = |s: &State<6, 6>| [s.q, s.v].concat();
     assert_close(
         "Taylor against DOP853",
         &state(&by_taylor),
@@ -165,7 +174,7 @@ fn a_leaning_disc_rolls_alike_by_taylor_and_dop853() {
     );
     for end in [by_taylor, by_dop853] {
         let slip = DISC.constraint_velocity(end.t, &end.q, &end.v);
-        assert_near_all("slip", &slip, &[0.0; 2], 1e-12);
+        assert_near_all("slip", &slip, &[0.0; 3], 1e-12);
         let change = energy(&DISC, &end.q, &end.v) / initial - 1.0;
         assert!(change.abs() < 1e-12, "energy {change:e}");
     }
@@ -233,12 +242,19 @@ const SYMPYS_REDUCED_A: [[f64; 8]; 8] = [
 
 /// Leaning by 0.3 rad, heading 0.4 rad, turning at 1 rad/s, the lean
 /// changing at 0.2 rad/s and spinning at 6 rad/s, rolling.
-fn leaning() -> ([f64; 5], [f64; 5]) {
+fn leaning() -> ([f64; 6], [f64; 6]) {
     let (psi, omega) = (0.4f64, 6.0);
     let rolling = DISC.r * omega;
     (
-        [0.1, 0.2, psi, 0.3, 0.5],
-        [rolling * psi.cos(), rolling * psi.sin(), 1.0, 0.2, omega],
+        [0.1, 0.2, 0.0, psi, 0.3, 0.5],
+        [
+            rolling * psi.cos(),
+            rolling * psi.sin(),
+            0.0,
+            1.0,
+            0.2,
+            omega,
+        ],
     )
 }
 

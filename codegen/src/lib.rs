@@ -38,7 +38,9 @@ mod seeds;
 mod trees;
 mod urdf;
 
-pub use build::{BuildError, Builder, Diagnostic, ModelFile, Severity, generate_file};
+pub use build::{
+    BuildError, Builder, Diagnostic, ImportOptions, ModelFile, Severity, generate_file,
+};
 pub use emit::Target;
 pub use render::Style;
 pub use urdf::{Imported, Urdf};

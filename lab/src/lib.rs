@@ -1,14 +1,16 @@
 //! The laboratory around `dalembert`: SVG charts of trajectories and error
 //! histories, animated scenes of any model in the browser, and the
 //! work-precision harness that measures what accuracy
-//! each integrator buys per unit of time, and linear-quadratic regulators
-//! from a system's linearisation. The examples of the repository use
+//! each integrator buys per unit of time, linear-quadratic regulators
+//! from a system's linearisation, and differential dynamic programming over
+//! the exact step jacobians ([`ddp`]). The examples of the repository use
 //! it, together with its re-exports of the command-line and progress-bar
 //! crates they need; the `dalembert` crate itself pulls no plotting library.
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
 mod chart;
+pub mod ddp;
 mod lqr;
 mod scene;
 mod work_precision;

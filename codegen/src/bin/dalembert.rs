@@ -7,12 +7,13 @@
 //! dalembert check MODEL.dal           the errors the dalembert! macro would report
 //! dalembert chain FAMILY N [SPELLING] the .dal text of a benchmark chain (planar or spatial;
 //!                                     spelled joints, symbolic or seed)
-//! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
+//! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs "LIST"]
 //!                                     the .dal model of a URDF robot
 //! ```
 //!
+//! `dalembert COMMAND --help` prints the command's own help.
 //! Exit status: 0 on success, 1 if the model has errors or cannot be read,
-//! 2 on a usage error. Arguments are parsed by hand: the codegen crate is
+//! 2 on a usage error (one line on stderr). Arguments are parsed by hand: the codegen crate is
 //! compiled by every user of the macro, and a CLI framework would slow that
 //! build for a three-command tool.
 
@@ -24,7 +25,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use dalembert_codegen::testing::{Family, Spelling};
-use dalembert_codegen::{BuildError, ModelFile, Severity, Style, Urdf};
+use dalembert_codegen::{BuildError, ImportOptions, ModelFile, Severity, Style, Urdf};
 
 const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
@@ -35,14 +36,83 @@ Commands:
   check MODEL.dal           report the errors the dalembert! macro would report
   chain FAMILY N [SPELLING] print the .dal text of the planar or spatial chain of N links,
                             spelled `joints` (default), `symbolic` or `seed`
-  urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
-                            print the .dal model of a URDF robot (--damping: joint
-                            damping as a dissipation function)
+  urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs \"LIST\"]
+                            print the .dal model of a URDF robot
   help                      print this help
 
 Options:
-  -h, --help                print this help
+  -h, --help                print this help (after a command: the command's help)
   -V, --version             print the version";
+
+/// A command's usage line and help, printed by `dalembert COMMAND --help`.
+#[derive(Debug, PartialEq)]
+struct Help {
+    name: &'static str,
+    usage: &'static str,
+    text: &'static str,
+}
+
+impl Help {
+    /// The full help: the usage line, then the text.
+    fn full(&self) -> String {
+        format!("Usage: {}\n\n{}", self.usage, self.text)
+    }
+}
+
+/// The help of every command.
+const COMMANDS: [Help; 5] = [
+    Help {
+        name: "eom",
+        usage: "dalembert eom MODEL.dal [--latex]",
+        text: "Prints the equations of motion of the model, M(q) and f, as in the seed document.
+
+Options:
+  --latex      LaTeX instead of Unicode text
+  -h, --help   print this help",
+    },
+    Help {
+        name: "generate",
+        usage: "dalembert generate MODEL.dal",
+        text: "Prints the Rust source the build step generates for the model.
+
+Options:
+  -h, --help   print this help",
+    },
+    Help {
+        name: "check",
+        usage: "dalembert check MODEL.dal",
+        text: "Reports the errors the dalembert! macro would report for the model (exit status 1),
+or prints `MODEL.dal: ok`.
+
+Options:
+  -h, --help   print this help",
+    },
+    Help {
+        name: "chain",
+        usage: "dalembert chain FAMILY N [SPELLING]",
+        text:
+            "Prints the .dal text of the benchmark chain of N links: FAMILY `planar` or `spatial`,
+SPELLING `joints` (default), `symbolic` (symbolic parameters) or `seed` (frames and points).
+
+Options:
+  -h, --help   print this help",
+    },
+    Help {
+        name: "urdf",
+        usage: "dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs \"LIST\"]",
+        text: "Prints the .dal model of a URDF robot on stdout (nothing on stdout on an error).
+Coordinates in Pinocchio's order: depth first from the root link, a link's child joints
+sorted by name. Every link L has a frame `L` and a point `L_origin`.
+
+Options:
+  --name NAME        the struct's name (default: the robot's name in UpperCamelCase)
+  --floating         a free joint `root_joint` between the ground and the root link
+  --damping          each joint's <dynamics damping> as a dissipation function
+  --outputs \"LIST\"   append `outputs LIST;` to the model, e.g.
+                     --outputs \"jacobian(tool0_origin), rotation(tool0), linearize\"
+  -h, --help         print this help",
+    },
+];
 
 /// A parsed command line.
 #[derive(Debug, PartialEq)]
@@ -64,9 +134,10 @@ enum Command {
     },
     Urdf {
         robot: PathBuf,
-        options: UrdfOptions,
+        options: ImportOptions,
     },
-    Help,
+    /// The general help, or a command's.
+    Help(Option<&'static Help>),
     Version,
 }
 
@@ -74,73 +145,84 @@ fn main() -> ExitCode {
     match parse(std::env::args_os().skip(1)) {
         Ok(command) => run(command),
         Err(message) => {
-            eprintln!("error: {message}\n\n{USAGE}");
+            eprintln!("error: {message}");
             ExitCode::from(2)
         }
     }
 }
 
-/// The options of `urdf`.
-#[derive(Debug, Default, PartialEq)]
-struct UrdfOptions {
-    floating: bool,
-    name: Option<String>,
-    damping: bool,
+/// The command in `args` (without the program name), or what is wrong,
+/// on one line.
+fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
+    let mut args = args.into_iter();
+    let Some(first) = args.next() else {
+        return Err(general_usage("missing command"));
+    };
+    let name = first.to_string_lossy().into_owned();
+    match name.as_str() {
+        "-h" | "--help" | "help" => return Ok(Command::Help(None)),
+        "-V" | "--version" => return Ok(Command::Version),
+        _ => {}
+    }
+    let Some(help) = COMMANDS.iter().find(|help| help.name == name) else {
+        let what = if name.starts_with('-') {
+            format!("unknown option `{name}`: expected a command first")
+        } else {
+            format!(
+                "unknown command `{name}`: expected `eom`, `generate`, `check`, `chain` or `urdf`"
+            )
+        };
+        return Err(general_usage(&what));
+    };
+    let rest: Vec<OsString> = args.collect();
+    if rest.iter().any(|a| a == "-h" || a == "--help") {
+        return Ok(Command::Help(Some(help)));
+    }
+    let parsed = match help.name {
+        "chain" => parse_chain(rest.into_iter()),
+        "urdf" => parse_import(help.name, rest, &IMPORT_OPTIONS)
+            .map(|(robot, options)| Command::Urdf { robot, options }),
+        _ => parse_model(help.name, rest),
+    };
+    parsed.map_err(|message| {
+        format!(
+            "{message}. Usage: {} (more: `dalembert {} --help`)",
+            help.usage, help.name
+        )
+    })
 }
 
-/// The command in `args` (without the program name), or what is wrong.
-fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
-    let mut args = args.into_iter().peekable();
-    if args.peek().is_some_and(|a| a == "urdf") {
-        return parse_urdf(args.skip(1));
-    }
-    let mut positional = Vec::new();
+/// `message` with the general usage, on one line.
+fn general_usage(message: &str) -> String {
+    format!("{message}. Usage: dalembert <COMMAND> [ARGS] (more: `dalembert --help`)")
+}
+
+/// The arguments of `eom`, `generate` and `check`: one model file, and
+/// `--latex` for `eom`.
+fn parse_model(name: &str, args: Vec<OsString>) -> Result<Command, String> {
     let mut latex = false;
+    let mut model = None;
     for arg in args {
         match arg.to_str() {
-            Some("-h" | "--help") => return Ok(Command::Help),
-            Some("-V" | "--version") => return Ok(Command::Version),
-            Some("--latex") => latex = true,
+            Some("--latex") if name == "eom" => latex = true,
             Some(flag) if flag.starts_with('-') => {
-                return Err(format!("unknown option `{flag}`"));
+                return Err(format!("`{name}` takes no option `{flag}`"));
             }
-            _ => positional.push(arg),
+            _ if model.is_some() => {
+                return Err(format!("unexpected argument `{}`", arg.to_string_lossy()));
+            }
+            _ => model = Some(PathBuf::from(arg)),
         }
     }
-    let mut positional = positional.into_iter();
-    let Some(name) = positional.next() else {
-        return Err("missing command".into());
-    };
-    let name = name.to_string_lossy().into_owned();
-    // The command is known before its model file is asked for, so that a
-    // misspelt command is reported as one.
-    let command: fn(PathBuf, Style) -> Command = match name.as_str() {
-        "chain" => return parse_chain(positional),
-        "help" => return Ok(Command::Help),
-        "eom" => |model, style| Command::Eom { model, style },
-        "generate" => |model, _| Command::Generate { model },
-        "check" => |model, _| Command::Check { model },
-        _ => {
-            return Err(format!(
-                "unknown command `{name}`: expected `eom`, `generate`, `check`, `chain` or `urdf`"
-            ));
-        }
-    };
-    let model = PathBuf::from(
-        positional
-            .next()
-            .ok_or_else(|| format!("`{name}` needs a model file"))?,
-    );
-    if let Some(extra) = positional.next() {
-        return Err(format!("unexpected argument `{}`", extra.to_string_lossy()));
-    }
-    if latex && name != "eom" {
-        return Err(format!("`--latex` applies to `eom`, not `{name}`"));
-    }
-    Ok(command(
-        model,
-        if latex { Style::Latex } else { Style::Unicode },
-    ))
+    let model = model.ok_or_else(|| format!("`{name}` needs a model file"))?;
+    Ok(match name {
+        "eom" => Command::Eom {
+            model,
+            style: if latex { Style::Latex } else { Style::Unicode },
+        },
+        "generate" => Command::Generate { model },
+        _ => Command::Check { model },
+    })
 }
 
 /// The arguments of `chain FAMILY N [SPELLING]`.
@@ -176,43 +258,58 @@ fn parse_chain(mut args: impl Iterator<Item = OsString>) -> Result<Command, Stri
     }
 }
 
-/// The arguments of `urdf ROBOT.urdf [--floating] [--name NAME] [--damping]`.
-fn parse_urdf(args: impl Iterator<Item = OsString>) -> Result<Command, String> {
-    let mut options = UrdfOptions::default();
-    let mut robot = None;
-    let mut args = args.peekable();
+/// Every option an import command may take: `--name NAME`, `--floating`,
+/// `--damping`, `--outputs "LIST"` (each importer takes those of them that
+/// it lists in `takes`).
+const IMPORT_OPTIONS: [&str; 4] = ["--name", "--floating", "--damping", "--outputs"];
+
+/// The arguments of an import command `command FILE [OPTIONS]` taking the
+/// options `takes` (of [`IMPORT_OPTIONS`]): the file and the options.
+fn parse_import(
+    command: &str,
+    args: Vec<OsString>,
+    takes: &[&str],
+) -> Result<(PathBuf, ImportOptions), String> {
+    let mut options = ImportOptions::new();
+    let mut file = None;
+    let mut args = args.into_iter();
     while let Some(arg) = args.next() {
-        match arg.to_str() {
-            Some("-h" | "--help") => return Ok(Command::Help),
-            Some("--floating") => options.floating = true,
-            Some("--damping") => options.damping = true,
-            Some("--name") => {
-                let name = args.next().ok_or("`--name` needs a struct name")?;
-                options.name = Some(name.to_string_lossy().into_owned());
-            }
-            Some(flag) if flag.starts_with('-') => {
-                return Err(format!("unknown option `{flag}` of `urdf`"));
-            }
-            _ if robot.is_some() => {
+        let Some(flag) = arg.to_str().filter(|a| a.starts_with('-')) else {
+            if file.is_some() {
                 return Err(format!("unexpected argument `{}`", arg.to_string_lossy()));
             }
-            _ => robot = Some(PathBuf::from(arg)),
+            file = Some(PathBuf::from(arg));
+            continue;
+        };
+        if !takes.contains(&flag) {
+            return Err(if IMPORT_OPTIONS.contains(&flag) {
+                format!("`{command}` does not take the option `{flag}`")
+            } else {
+                format!("unknown option `{flag}` of `{command}`")
+            });
         }
+        let mut value = |what: &str| {
+            args.next()
+                .map(|v| v.to_string_lossy().into_owned())
+                .ok_or_else(|| format!("`{flag}` needs {what}"))
+        };
+        options = match flag {
+            "--name" => options.name(value("a struct name")?),
+            "--outputs" => options.outputs(value(
+                "a list of outputs, such as \"jacobian(tool0_origin)\"",
+            )?),
+            "--floating" => options.floating(true),
+            _ => options.damping(true),
+        };
     }
-    let robot = robot.ok_or("`urdf` needs a URDF file")?;
-    Ok(Command::Urdf { robot, options })
+    let file = file.ok_or_else(|| format!("`{command}` needs a file"))?;
+    Ok((file, options))
 }
 
 /// The `.dal` model of the URDF robot at `robot`; its warnings go to
 /// stderr.
-fn urdf(robot: &PathBuf, options: UrdfOptions) -> Result<String, BuildError> {
-    let mut urdf = Urdf::read(robot)?
-        .floating(options.floating)
-        .damping(options.damping);
-    if let Some(name) = options.name {
-        urdf = urdf.name(name);
-    }
-    let imported = urdf.import()?;
+fn urdf(robot: &PathBuf, options: ImportOptions) -> Result<String, BuildError> {
+    let imported = Urdf::read(robot)?.options(options).import()?;
     for warning in &imported.warnings {
         eprintln!("{warning}\n");
     }
@@ -222,7 +319,8 @@ fn urdf(robot: &PathBuf, options: UrdfOptions) -> Result<String, BuildError> {
 /// Runs `command`, printing its result to stdout and errors to stderr.
 fn run(command: Command) -> ExitCode {
     let output = match command {
-        Command::Help => Ok(USAGE.to_owned()),
+        Command::Help(None) => Ok(USAGE.to_owned()),
+        Command::Help(Some(help)) => Ok(help.full()),
         Command::Version => Ok(format!("dalembert {}", env!("CARGO_PKG_VERSION"))),
         Command::Eom { model, style } => ModelFile::read(model).and_then(|m| m.equations(style)),
         Command::Generate { model } => ModelFile::read(model).and_then(|m| m.generate()),
@@ -304,17 +402,23 @@ mod tests {
             })
         );
         assert_eq!(parse_str(&["check", "m.dal"]), Ok(Command::Check { model }));
-        assert_eq!(parse_str(&["check", "--help"]), Ok(Command::Help));
-        assert_eq!(parse_str(&["help"]), Ok(Command::Help));
+        assert_eq!(parse_str(&["help"]), Ok(Command::Help(None)));
         assert_eq!(
-            parse_str(&["urdf", "r.urdf", "--name", "Arm", "--damping"]),
+            parse_str(&[
+                "urdf",
+                "r.urdf",
+                "--name",
+                "Arm",
+                "--damping",
+                "--outputs",
+                "linearize"
+            ]),
             Ok(Command::Urdf {
                 robot: PathBuf::from("r.urdf"),
-                options: UrdfOptions {
-                    floating: false,
-                    name: Some("Arm".into()),
-                    damping: true
-                }
+                options: ImportOptions::new()
+                    .name("Arm")
+                    .damping(true)
+                    .outputs("linearize")
             })
         );
         assert_eq!(
@@ -333,6 +437,26 @@ mod tests {
                 spelling: Spelling::FramesAndPoints,
             })
         );
+    }
+
+    #[test]
+    fn every_command_has_its_own_help() {
+        for help in &COMMANDS {
+            for args in [[help.name, "--help"], [help.name, "-h"]] {
+                assert_eq!(parse_str(&args), Ok(Command::Help(Some(help))));
+            }
+            assert!(
+                help.full()
+                    .starts_with(&format!("Usage: dalembert {}", help.name))
+            );
+        }
+    }
+
+    #[test]
+    fn an_import_refuses_an_option_it_does_not_take() {
+        let args = ["m.xml", "--floating"].map(OsString::from).to_vec();
+        let error = parse_import("mjcf", args, &["--name", "--outputs"]).unwrap_err();
+        assert_eq!(error, "`mjcf` does not take the option `--floating`");
     }
 
     #[test]
@@ -359,6 +483,7 @@ mod tests {
             &["chain", "planar", "3", "seed", "5"],
             &["urdf"],
             &["urdf", "r.urdf", "--name"],
+            &["urdf", "r.urdf", "--outputs"],
             &["urdf", "r.urdf", "--latex"],
             &["urdf", "r.urdf", "s.urdf"],
         ] {

@@ -34,6 +34,14 @@ pub enum BuildError {
         /// The output file both models map to.
         output: PathBuf,
     },
+    /// An import's option does not fit the file: its outputs name a point
+    /// or frame the imported model does not have, or are not a list.
+    ImportOption {
+        /// The imported file.
+        path: PathBuf,
+        /// What is wrong, on one line.
+        message: String,
+    },
     /// The model path has no file name to name the output after.
     NoFileName {
         /// The model path.
@@ -81,6 +89,9 @@ impl fmt::Display for BuildError {
                 "error: two models would both be written to {}: rename one of them",
                 output.display()
             ),
+            BuildError::ImportOption { path, message } => {
+                write!(f, "error: {}: {message}", path.display())
+            }
             BuildError::NoFileName { path } => write!(
                 f,
                 "error: model path {} has no file name to name the output after",

@@ -15,10 +15,13 @@
 
 mod diagnostic;
 mod error;
+mod import;
 mod model_file;
 
 pub use diagnostic::{Diagnostic, Severity};
 pub use error::BuildError;
+pub use import::ImportOptions;
+pub(crate) use import::check_outputs;
 pub use model_file::ModelFile;
 
 use crate::Target;
@@ -36,7 +39,7 @@ const MODEL_EXTENSION: &str = "dal";
 #[derive(Clone, Debug)]
 pub struct Builder {
     models: Vec<PathBuf>,
-    urdfs: Vec<PathBuf>,
+    urdfs: Vec<(PathBuf, ImportOptions)>,
     model_dirs: Vec<PathBuf>,
     out_dir: Option<PathBuf>,
     emit_rerun_if_changed: bool,
@@ -81,7 +84,22 @@ impl Builder {
     /// struct named after the robot. Its errors are reported like a
     /// model's, located in the URDF file.
     pub fn urdf(&mut self, path: impl AsRef<Path>) -> &mut Self {
-        self.urdfs.push(path.as_ref().to_owned());
+        self.urdf_with(path, ImportOptions::new())
+    }
+
+    /// Adds the URDF robot at `path` imported with `options`, as
+    /// `dalembert urdf` does with the same options on its command line
+    /// (`--name`, `--floating`, `--damping`, `--outputs`):
+    ///
+    /// ```no_run
+    /// # use dalembert_codegen::{Builder, ImportOptions};
+    /// Builder::new()
+    ///     .urdf_with("ur5_robot.urdf", ImportOptions::new().outputs("jacobian(tool0_origin)"))
+    ///     .compile()
+    ///     .unwrap_or_else(|e| panic!("{e}"));
+    /// ```
+    pub fn urdf_with(&mut self, path: impl AsRef<Path>, options: ImportOptions) -> &mut Self {
+        self.urdfs.push((path.as_ref().to_owned(), options));
         self
     }
 
@@ -127,7 +145,7 @@ impl Builder {
                 .ok_or(BuildError::NoOutDir)?,
         };
         let mut jobs: Vec<(PathBuf, PathBuf)> = Vec::new();
-        let urdfs = self.urdfs.iter().cloned();
+        let urdfs = self.urdfs.iter().map(|(path, _)| path.clone());
         for model in self.model_paths()?.into_iter().chain(urdfs) {
             let stem = model.file_stem().ok_or_else(|| BuildError::NoFileName {
                 path: model.clone(),
@@ -169,10 +187,9 @@ impl Builder {
         let mut diagnostics = Vec::new();
         for (model, output) in jobs {
             self.rerun_if_changed(model);
-            let file = if self.urdfs.contains(model) {
-                self.urdf_model(model)
-            } else {
-                ModelFile::read(model)
+            let file = match self.urdfs.iter().find(|(path, _)| path == model) {
+                Some((path, options)) => self.urdf_model(path, options),
+                None => ModelFile::read(model),
             };
             match file.and_then(|file| file.generate_for(self.target)) {
                 Ok(code) => write_if_changed(output, &code)?,
@@ -191,8 +208,8 @@ impl Builder {
     /// `path (imported)` if the engine finds errors in it. Its warnings go
     /// to Cargo (`cargo:warning=`) when the builder prints Cargo's
     /// directives.
-    fn urdf_model(&self, path: &Path) -> Result<ModelFile, BuildError> {
-        let imported = crate::Urdf::read(path)?.import()?;
+    fn urdf_model(&self, path: &Path, options: &ImportOptions) -> Result<ModelFile, BuildError> {
+        let imported = crate::Urdf::read(path)?.options(options.clone()).import()?;
         if self.emit_rerun_if_changed {
             for warning in &imported.warnings {
                 println!("cargo:warning={}", warning.to_string().replace('\n', " "));

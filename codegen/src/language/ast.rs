@@ -118,6 +118,15 @@ pub enum Statement {
         /// The fields in braces, in source order (unchecked).
         fields: Vec<Field>,
     },
+    /// `rolling NAME { wheel: F, axle: F.y, center: P, radius: r, plane: N.z };`:
+    /// a wheel rolling without slipping on a fixed plane (optional fields
+    /// `tire` and `through`).
+    Rolling {
+        /// The contact's name.
+        name: Ident,
+        /// The fields in braces, in source order (unchecked).
+        fields: Vec<Field>,
+    },
     /// `outputs inverse_dynamics, position(P), rotation(B in F), ...;`
     Outputs(Vec<OutputRequest>),
     /// `speeds w1, w2 { q1: rate1, q2: rate2 };`: speeds of the user's own

@@ -34,6 +34,8 @@ pub const DISSIPATION: &str = "dissipation";
 pub const CONSTRAINT: &str = "constraint";
 /// `closure NAME { at: P, to: Q, ... };`
 pub const CLOSURE: &str = "closure";
+/// `rolling NAME { wheel: F, axle: F.y, center: P, radius: r, plane: N.z };`
+pub const ROLLING: &str = "rolling";
 /// `outputs inverse_dynamics, position(P), ...;`
 pub const OUTPUTS: &str = "outputs";
 /// `speeds w1, w2 { q1: rate, q2: rate };`
@@ -41,7 +43,7 @@ pub const SPEEDS: &str = "speeds";
 
 /// The statement keywords, in the order the "expected one of" message
 /// lists them.
-pub const STATEMENTS: [&str; 17] = [
+pub const STATEMENTS: [&str; 18] = [
     PARAMETERS,
     COORDINATES,
     INPUTS,
@@ -57,6 +59,7 @@ pub const STATEMENTS: [&str; 17] = [
     DISSIPATION,
     CONSTRAINT,
     CLOSURE,
+    ROLLING,
     OUTPUTS,
     SPEEDS,
 ];

@@ -237,6 +237,10 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
             let (name, fields) = named_fields(cursor, &keyword)?;
             Statement::Closure { name, fields }
         }
+        keyword::ROLLING => {
+            let (name, fields) = named_fields(cursor, &keyword)?;
+            Statement::Rolling { name, fields }
+        }
         keyword::OUTPUTS => Statement::Outputs(outputs(cursor)?),
         keyword::SPEEDS => {
             let names = names(cursor, &keyword)?;
@@ -654,7 +658,7 @@ mod tests {
                 "unknown statement `bodyy`; expected one of `parameters`, `coordinates`, \
                  `inputs`, `frame`, `point`, `body`, `particle`, `joint`, `gravity`, \
                  `force`, `torque`, `potential`, `dissipation`, `constraint`, `closure`, \
-                 `outputs`, `speeds`"
+                 `rolling`, `outputs`, `speeds`"
                     .to_owned(),
                 2,
                 2

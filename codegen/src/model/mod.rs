@@ -8,11 +8,13 @@
 //! here, once, and all violations are reported together, each at the user's
 //! token. Later layers trust the model and report nothing.
 
+mod algebra;
 mod closure;
 mod errors;
 mod output;
 pub mod quaternion;
 mod resolve;
+mod rolling;
 mod singular;
 mod tree;
 mod vector;

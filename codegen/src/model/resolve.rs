@@ -11,12 +11,16 @@
 
 mod evaluate;
 mod fields;
+mod rolling;
 mod rules;
 mod scope;
 mod statements;
+mod vectors;
 
+use super::algebra::Geometry;
 use super::{Errors, Frame, Model, NEWTONIAN, ORIGIN, Point, Tree};
 use crate::expr::{Pool, Sym};
+use crate::kinematics::Kinematics;
 use crate::language::ast::System;
 use proc_macro2::{Ident, Span};
 use scope::{Binding, defined_names};
@@ -51,6 +55,9 @@ struct Resolver {
     /// Whether a joint statement was rejected: it may have been meant to
     /// make the system's coordinates (a free or spherical joint).
     rejected_joint: bool,
+    /// The kinematics of the frames and points so far, with the numbers of
+    /// frames and points it was computed for (see [`Resolver::with_geometry`]).
+    kinematics: Option<(usize, usize, Kinematics)>,
     model: Model,
 }
 
@@ -71,6 +78,7 @@ impl Resolver {
             used_dt: false,
             joint_of_coordinate: HashMap::new(),
             rejected_joint: false,
+            kinematics: None,
             model: Model {
                 docs: system.docs.clone(),
                 public: system.public,
@@ -96,6 +104,25 @@ impl Resolver {
                 outputs: Vec::new(),
             },
         }
+    }
+
+    /// Runs `f` on the model's geometry so far: its kinematics are computed
+    /// again only when a frame or point was added since the last call (the
+    /// pool's rates are fixed by then: a `speeds` statement comes before
+    /// every `dt(..)`, and so before every velocity).
+    fn with_geometry<R>(&mut self, f: impl FnOnce(&Geometry<'_>, &mut Pool) -> R) -> R {
+        let size = (self.model.frames.len(), self.model.points.len());
+        let kinematics = match self.kinematics.take() {
+            Some((frames, points, kinematics)) if (frames, points) == size => kinematics,
+            _ => Kinematics::new(&self.model, &mut self.pool),
+        };
+        let geometry = Geometry {
+            model: &self.model,
+            kinematics: &kinematics,
+        };
+        let result = f(&geometry, &mut self.pool);
+        self.kinematics = Some((size.0, size.1, kinematics));
+        result
     }
 
     fn finish(mut self) -> syn::Result<(Model, Pool)> {

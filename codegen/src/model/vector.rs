@@ -29,6 +29,15 @@ impl Vector {
         }
     }
 
+    /// The vector of components `components` in `frame`'s axes.
+    pub fn along(pool: &Pool, frame: FrameId, components: [ExprId; 3]) -> Vector {
+        let mut vector = Vector {
+            parts: vec![(frame, components)],
+        };
+        vector.drop_zero_parts(pool);
+        vector
+    }
+
     /// `self + other`.
     pub fn add(&self, other: &Vector, pool: &mut Pool) -> Vector {
         let mut sum = self.clone();

@@ -8,12 +8,14 @@
 //! links welded by fixed joints, and [`write`] writes the model text.
 //!
 //! The model: one coordinate per revolute, continuous or prismatic joint,
-//! named after it, depth-first from the root link with children in file
-//! order; one input `tau_<coordinate>` each, acting along the joint axis
+//! named after it, in Pinocchio's order (depth-first from the root link, a
+//! link's child joints sorted by name); every link's frame `L` and point
+//! `L_origin`; one input `tau_<coordinate>` each, acting along the joint axis
 //! between the two bodies, so `forcing = tau − (velocity and gravity
 //! terms)`; gravity `(0, 0, −9.81)` in the root link's axes. Mimic joints
 //! are independent coordinates, as in Pinocchio by default. Geometry,
-//! limits and meshes are ignored.
+//! limits and meshes are ignored. The [`ImportOptions`] add a name, a
+//! floating base, damping and `outputs`.
 
 mod inertia;
 mod tree;
@@ -23,7 +25,7 @@ mod xml;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use crate::build::{BuildError, Diagnostic, Severity};
+use crate::build::{BuildError, Diagnostic, ImportOptions, Severity, check_outputs};
 
 /// A URDF robot read from disk, and the options of its import.
 ///
@@ -39,15 +41,12 @@ pub struct Urdf {
     options: Options,
 }
 
-/// What the user chose besides the file.
+/// What the user chose besides the file, and the file's name for the
+/// model's documentation.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Options {
-    /// The struct's name instead of the robot's in UpperCamelCase.
-    pub name: Option<String>,
-    /// A free joint between the ground and the root link.
-    pub floating: bool,
-    /// `<dynamics damping>` as a dissipation function.
-    pub damping: bool,
+    /// The options of the command line and the build script.
+    pub chosen: ImportOptions,
     /// The file's name, for the model's documentation.
     pub file_name: String,
 }
@@ -124,7 +123,7 @@ impl Urdf {
     /// Names the generated struct `name` instead of the robot's name in
     /// UpperCamelCase.
     pub fn name(mut self, name: impl Into<String>) -> Self {
-        self.options.name = Some(name.into());
+        self.options.chosen = self.options.chosen.name(name);
         self
     }
 
@@ -134,14 +133,31 @@ impl Urdf {
     /// and angular velocity in the root link's axes), as Pinocchio's
     /// free flyer; the root link's masses become its body.
     pub fn floating(mut self, on: bool) -> Self {
-        self.options.floating = on;
+        self.options.chosen = self.options.chosen.floating(on);
         self
     }
 
     /// Turns each joint's `<dynamics damping="d">` into the dissipation
     /// function `½ d q̇²` (off by default, as in Pinocchio's dynamics).
     pub fn damping(mut self, on: bool) -> Self {
-        self.options.damping = on;
+        self.options.chosen = self.options.chosen.damping(on);
+        self
+    }
+
+    /// Appends `outputs LIST;` to the model: `list` as the language's
+    /// `outputs` statement takes it, naming the links' frames `L` and
+    /// points `L_origin` (`"jacobian(tool0_origin), rotation(tool0)"`).
+    /// An output naming what the model does not have, or a list that is
+    /// not one, is an error of one line.
+    pub fn outputs(mut self, list: impl Into<String>) -> Self {
+        self.options.chosen = self.options.chosen.outputs(list);
+        self
+    }
+
+    /// Takes every option of `options` (the struct's name, the floating
+    /// base, the damping, the outputs), replacing those set before.
+    pub fn options(mut self, options: ImportOptions) -> Self {
+        self.options.chosen = options;
         self
     }
 
@@ -168,13 +184,24 @@ impl Urdf {
             .into_iter()
             .map(|p| Diagnostic::in_text(&self.path, &self.source, p.severity, p.range, p.message))
             .collect();
-        match model {
-            Some(model) => Ok(Imported {
-                model,
-                warnings: diagnostics,
-            }),
-            None => Err(BuildError::Model(diagnostics)),
-        }
+        let Some(model) = model else {
+            return Err(BuildError::Model(diagnostics));
+        };
+        let chosen = &self.options.chosen;
+        let with_outputs = chosen.with_outputs(&model);
+        check_outputs(chosen, &model, &with_outputs).map_err(|message| {
+            BuildError::ImportOption {
+                path: self.path.clone(),
+                message: format!(
+                    "{message} (each link `L` of the robot has a frame `L` and a point `L_origin`, \
+                 unless the model's comment at the link names others)"
+                ),
+            }
+        })?;
+        Ok(Imported {
+            model: with_outputs,
+            warnings: diagnostics,
+        })
     }
 
     /// The model text and its warnings, or the problems (at least one an

@@ -3,8 +3,10 @@
 //! parent per link, one root, no cycle), with the joint rules the import
 //! needs (a supported type, a non-zero axis) and masses that are not
 //! negative (the inertias are checked body by body, once welded links are
-//! merged, where the model is written). The joints come out in Pinocchio's order: depth-first
-//! from the root, children in the order their joints appear in the file.
+//! merged, where the model is written). The joints come out in Pinocchio's
+//! order: depth-first from the root, the children of a link in ascending
+//! byte order of their joint names (urdfdom keeps a link's child joints in
+//! a `std::map` keyed by name, whatever their order in the file).
 
 use std::collections::HashMap;
 
@@ -16,15 +18,18 @@ use super::xml::{JointType, Robot};
 pub(super) struct Tree {
     /// The root link.
     pub root: usize,
-    /// Per link, the joints whose parent it is, in file order.
+    /// Per link, the joints whose parent it is, in ascending byte order of
+    /// their names.
     pub children: Vec<Vec<usize>>,
     /// Per joint, its child link.
     pub child: Vec<usize>,
+    /// Per joint, its parent link.
+    pub parent: Vec<usize>,
 }
 
 impl Tree {
-    /// The joints in depth-first order from the root, children in file
-    /// order.
+    /// The joints in depth-first order from the root, children by name:
+    /// `pinocchio::buildModelFromUrdf`'s order.
     pub fn depth_first(&self) -> Vec<usize> {
         let mut order = Vec::new();
         let mut stack: Vec<usize> = self.children[self.root].iter().rev().copied().collect();
@@ -67,6 +72,7 @@ pub(super) fn tree(robot: &Robot) -> Result<Tree, Vec<Problem>> {
     let mut parent_joint: Vec<Option<usize>> = vec![None; robot.links.len()];
     let mut children = vec![Vec::new(); robot.links.len()];
     let mut child = vec![0; robot.joints.len()];
+    let mut parent = vec![0; robot.joints.len()];
     for (j, joint) in robot.joints.iter().enumerate() {
         if joint_names.insert(&joint.name, j).is_some() {
             problems.push(Problem::new(
@@ -110,6 +116,7 @@ pub(super) fn tree(robot: &Robot) -> Result<Tree, Vec<Problem>> {
         parent_joint[c] = Some(j);
         children[p].push(j);
         child[j] = c;
+        parent[j] = p;
     }
     if !problems.is_empty() {
         return Err(problems);
@@ -136,10 +143,14 @@ pub(super) fn tree(robot: &Robot) -> Result<Tree, Vec<Problem>> {
             ),
         )]);
     }
+    for joints in &mut children {
+        joints.sort_by(|&a, &b| robot.joints[a].name.cmp(&robot.joints[b].name));
+    }
     let tree = Tree {
         root,
         children,
         child,
+        parent,
     };
     let mut reached = vec![false; robot.links.len()];
     reached[root] = true;

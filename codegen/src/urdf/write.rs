@@ -2,7 +2,9 @@
 //! macro: one coordinate per moving joint in depth-first order, named after
 //! the joint, one input `tau_<coordinate>` per coordinate acting along the
 //! joint axis between the two bodies, one body per link welded by fixed
-//! joints to the link a moving joint carries, and gravity along `−N.z`.
+//! joints to the link a moving joint carries, every link's frame `L` and
+//! origin point `L_origin` (welded links too, for outputs), and gravity
+//! along `−N.z`.
 //! Constant placements are written as URDF gives them (`rotate_z(yaw)`,
 //! then `rotate_y(pitch)`, then `rotate_x(roll)`; offsets in the parent's
 //! axes) so that the model reads like the file; only merged mass
@@ -51,7 +53,7 @@ pub(super) fn model_text(
         .copied()
         .filter(|&j| robot.joints[j].kind != JointType::Fixed)
         .collect();
-    if moving.is_empty() && !options.floating {
+    if moving.is_empty() && !options.chosen.floating {
         problems.push(Problem::new(
             Some(robot.range.start..robot.range.start + 1),
             format!(
@@ -64,7 +66,7 @@ pub(super) fn model_text(
     for &j in &moving {
         check_moves_mass(robot, tree, j, &mut problems);
     }
-    if options.floating {
+    if options.chosen.floating {
         for suffix in FREE_NAMES {
             let name = match suffix {
                 "" => FREE_JOINT.to_owned(),
@@ -99,6 +101,7 @@ pub(super) fn model_text(
         }
         coordinates[j] = name;
     }
+    let places = link_places(robot, tree, &mut names);
     if problems.iter().any(Problem::is_error) {
         return Err(problems);
     }
@@ -107,6 +110,7 @@ pub(super) fn model_text(
         tree,
         options,
         names,
+        places,
         coordinates,
         lines: Vec::new(),
         problems,
@@ -148,7 +152,7 @@ fn check_moves_mass(robot: &Robot, tree: &Tree, j: usize, problems: &mut Vec<Pro
 /// prefixed with `Robot` (and a warning) where that is not an identifier.
 pub(super) fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<Problem>) -> String {
     let at = Some(robot.range.start..robot.range.start + 1);
-    if let Some(name) = &options.name {
+    if let Some(name) = &options.chosen.name {
         if !is_identifier(name) {
             problems.push(Problem::new(
                 at,
@@ -250,14 +254,56 @@ impl Names {
     }
 }
 
+/// The names of every link's frame and origin point, root first, then in
+/// the order of the joints (depth first): the link's name sanitized, and
+/// that name with `_origin`. A name that is taken (a joint's coordinate, a
+/// built-in, a keyword, another link's sanitized name) or not an
+/// identifier gets a fresh one instead (`LF_HAA_2` for ANYmal's link named
+/// as its joint), which a comment at the link states.
+fn link_places(robot: &Robot, tree: &Tree, names: &mut Names) -> Vec<Place> {
+    let mut places = vec![Place::default(); robot.links.len()];
+    let links =
+        std::iter::once(tree.root).chain(tree.depth_first().into_iter().map(|j| tree.child[j]));
+    for link in links {
+        let name = sanitize(&robot.links[link].name);
+        let wanted = [name.clone(), format!("{name}_origin")];
+        let [frame, origin] = wanted
+            .clone()
+            .map(|n| if names.claim(&n) { n } else { names.fresh(&n) });
+        let renamed = [&frame, &origin] != [&wanted[0], &wanted[1]];
+        places[link] = Place {
+            frame,
+            origin,
+            renamed,
+        };
+    }
+    places
+}
+
 /// Where a link is in the model: the frame with its axes and the point at
-/// its origin. Links that only add mass to a body have neither (empty).
-#[derive(Clone, Debug)]
+/// its origin.
+#[derive(Clone, Debug, Default)]
 struct Place {
     /// The frame whose axes are the link's.
     frame: String,
     /// The point at the link's origin.
     origin: String,
+    /// Whether they are not named after the link, whose name is taken.
+    renamed: bool,
+}
+
+impl Place {
+    /// The sentence that says how the link's frame and origin are named,
+    /// if not after the link: empty otherwise.
+    fn naming(&self) -> String {
+        match self.renamed {
+            true => format!(
+                " Its frame is `{}` and its origin `{}`, as the link's name is taken.",
+                self.frame, self.origin
+            ),
+            false => String::new(),
+        }
+    }
 }
 
 struct Writer<'a> {
@@ -265,6 +311,8 @@ struct Writer<'a> {
     tree: &'a Tree,
     options: &'a Options,
     names: Names,
+    /// Per link, its frame and origin point.
+    places: Vec<Place>,
     /// Per joint, its coordinate (empty for fixed joints).
     coordinates: Vec<String>,
     lines: Vec<String>,
@@ -288,22 +336,22 @@ impl Writer<'_> {
         ));
         self.lines.push(format!("pub {struct_name} {{"));
         let root = self.tree.root;
-        let floating = self.options.floating.then(|| {
-            let frame = self.names.fresh(&self.robot.links[root].name);
+        let floating = self.options.chosen.floating;
+        if floating {
+            let place = self.places[root].clone();
+            let Place { frame, origin, .. } = &place;
             self.comment(format!(
                 "Root link `{}`, floating: a free joint from the ground, first in q and v \
                  (position in N and unit quaternion; velocity and angular velocity in the \
-                 link's axes).",
-                self.robot.links[root].name
+                 link's axes).{}",
+                self.robot.links[root].name,
+                place.naming()
             ));
             self.statement(format!(
                 "joint free {FREE_JOINT} {{ parent: N, child: {frame}, at: O }};"
             ));
-            Place {
-                frame,
-                origin: FREE_JOINT.to_owned(),
-            }
-        });
+            self.statement(format!("point {origin} = {FREE_JOINT};"));
+        }
         let coordinates: Vec<String> = moving
             .iter()
             .map(|&j| self.coordinates[j].clone())
@@ -313,15 +361,14 @@ impl Writer<'_> {
             let inputs: Vec<String> = coordinates.iter().map(|c| format!("tau_{c}")).collect();
             self.statement(format!("inputs {};", inputs.join(", ")));
         }
-        match floating {
-            Some(place) => {
-                self.body(root, &place.frame, &place.origin);
-                self.below(root, &place);
-            }
-            None => self.base(),
+        if floating {
+            self.body(root);
+        } else {
+            self.base();
         }
+        self.below(root);
         self.statement(format!("gravity -{GRAVITY} * N.z;"));
-        if self.options.damping {
+        if self.options.chosen.damping {
             self.dissipation(moving);
         }
         self.lines.push("}".to_owned());
@@ -336,76 +383,70 @@ impl Writer<'_> {
         self.lines.push(format!("    // {text}"));
     }
 
-    /// The root link, fixed to the ground (frame `N`, origin `O`), then
-    /// the tree below it. A floating base changes only this: a free joint
-    /// from `N` makes the root's frame and origin, and the masses welded to
-    /// the root become its body (see [`Writer::model`]).
+    /// The root link fixed to the ground: its frame has `N`'s axes, its
+    /// origin is `O`. The masses welded to it do not move and are left
+    /// out; a floating base instead makes the root's frame with a free
+    /// joint and its masses a body (see [`Writer::model`]).
     fn base(&mut self) {
         let root = self.tree.root;
-        let name = &self.robot.links[root].name;
+        let place = self.places[root].clone();
+        let Place { frame, origin, .. } = &place;
         self.comment(format!(
-            "Root link `{name}`, fixed to the ground: its frame is N, its origin O. \
-             Masses welded to it do not move and are left out."
+            "Root link `{}`, fixed to the ground: its frame has N's axes, its origin is O. \
+             Masses welded to it do not move and are left out.{}",
+            self.robot.links[root].name,
+            place.naming()
         ));
-        let ground = Place {
-            frame: "N".to_owned(),
-            origin: "O".to_owned(),
-        };
-        self.below(root, &ground);
+        self.statement(format!("frame {frame} = N.rotate_z(0);"));
+        self.statement(format!("point {origin} = O;"));
     }
 
-    /// The joints below `link`, placed at `place`, depth first, in file
-    /// order.
-    fn below(&mut self, link: usize, place: &Place) {
+    /// The joints below `link`, depth first, children by joint name.
+    fn below(&mut self, link: usize) {
         for j in self.tree.children[link].clone() {
             if self.robot.joints[j].kind == JointType::Fixed {
-                self.fixed(j, place);
+                self.fixed(j);
             } else {
-                self.moving(j, place);
+                self.moving(j);
             }
+            self.below(self.tree.child[j]);
         }
     }
 
-    /// A fixed joint: the child's mass joins the parent's body; the child
-    /// gets a frame and an origin only if joints below it need them.
-    fn fixed(&mut self, j: usize, parent: &Place) {
+    /// A fixed joint: the child's mass joins the parent's body, and the
+    /// child gets its frame and origin (for outputs, and for the joints
+    /// below it).
+    fn fixed(&mut self, j: usize) {
         let joint = &self.robot.joints[j];
-        let child = self.tree.child[j];
-        let child_name = &joint.child.0;
-        let (frame, origin) = if self.carries_moving_joints(child) {
-            self.comment(format!(
-                "Fixed joint `{}`: link `{child_name}` is welded to link `{}`.",
-                joint.name, joint.parent.0
-            ));
-            let frame = self.rotated_frames(&parent.frame, joint.origin.rpy, child_name);
-            let origin = if joint.origin.xyz == [0.0; 3] {
-                parent.origin.clone()
-            } else {
-                let point = self.names.fresh(&format!("{child_name}_origin"));
-                let at = offset(&parent.origin, joint.origin.xyz, &parent.frame);
-                self.statement(format!("point {point} = {at};"));
-                point
-            };
-            (frame, origin)
-        } else {
-            (String::new(), String::new())
-        };
-        let place = Place { frame, origin };
-        self.below(child, &place);
+        let parent = self.places[self.tree.parent[j]].clone();
+        let place = self.places[self.tree.child[j]].clone();
+        let Place { frame, origin, .. } = &place;
+        self.comment(format!(
+            "Fixed joint `{}`: link `{}` is welded to link `{}`.{}",
+            joint.name,
+            joint.child.0,
+            joint.parent.0,
+            place.naming()
+        ));
+        self.rotated_frames(&parent.frame, joint.origin.rpy, frame, Some(frame));
+        let at = offset(&parent.origin, joint.origin.xyz, &parent.frame);
+        self.statement(format!("point {origin} = {at};"));
     }
 
     /// A revolute, continuous or prismatic joint: its placement frames,
     /// the joint, the child's body (with the links welded to it), and the
     /// input acting along the axis.
-    fn moving(&mut self, j: usize, parent: &Place) {
+    fn moving(&mut self, j: usize) {
         let joint = &self.robot.joints[j];
         let child = self.tree.child[j];
         let child_name = &joint.child.0;
+        let parent = self.places[self.tree.parent[j]].clone();
         self.comment(format!(
-            "Joint `{}` ({}): link `{}` carries link `{child_name}`.",
+            "Joint `{}` ({}): link `{}` carries link `{child_name}`.{}",
             joint.name,
             joint.kind.name(),
-            joint.parent.0
+            joint.parent.0,
+            self.places[child].naming()
         ));
         if let Some(mimicked) = &joint.mimic {
             self.statement(format!(
@@ -417,10 +458,14 @@ impl Writer<'_> {
             &parent.frame,
             joint.origin.rpy,
             &format!("{}_frame", joint.name),
+            None,
         );
         let at = offset(&parent.origin, joint.origin.xyz, &parent.frame);
-        let frame = self.names.fresh(child_name);
-        let point = self.names.fresh(&format!("{child_name}_origin"));
+        let Place {
+            frame,
+            origin: point,
+            ..
+        } = self.places[child].clone();
         let coordinate = self.coordinates[j].clone();
         let length = norm(joint.axis);
         let axis = joint.axis.map(|a| a / length);
@@ -434,7 +479,7 @@ impl Writer<'_> {
             "joint {kind} {point} {{ parent: {joint_frame}, child: {frame}, {axis_field}, \
              coordinate: {coordinate}, at: {at} }};"
         ));
-        self.body(child, &frame, &point);
+        self.body(child);
         let input = format!("tau_{coordinate}");
         let push = scaled(&input, axis, &joint_frame);
         if joint.kind == JointType::Prismatic {
@@ -444,25 +489,21 @@ impl Writer<'_> {
         } else {
             self.statement(format!("torque {push} on {frame} reacting {joint_frame};"));
         }
-        let place = Place {
-            frame,
-            origin: point,
-        };
-        self.below(child, &place);
-    }
-
-    /// Whether a moving joint hangs below `link`.
-    fn carries_moving_joints(&self, link: usize) -> bool {
-        self.tree.children[link].iter().any(|&j| {
-            self.robot.joints[j].kind != JointType::Fixed
-                || self.carries_moving_joints(self.tree.child[j])
-        })
     }
 
     /// Frames turning `parent` by URDF's `rpy` (`rotate_z(yaw)`, then
-    /// `rotate_y(pitch)`, then `rotate_x(roll)`, the non-zero ones), the
-    /// last named after `name`; `parent` itself when `rpy` is zero.
-    fn rotated_frames(&mut self, parent: &str, [roll, pitch, yaw]: Vec3, name: &str) -> String {
+    /// `rotate_y(pitch)`, then `rotate_x(roll)`, the non-zero ones), those
+    /// before the last named after `name` and the turn: the last is
+    /// `last` if given (and is then written even for a zero `rpy`, as
+    /// `parent.rotate_z(0)`), else a fresh name from `name`; without
+    /// `last`, a zero `rpy` gives `parent` itself.
+    fn rotated_frames(
+        &mut self,
+        parent: &str,
+        [roll, pitch, yaw]: Vec3,
+        name: &str,
+        last: Option<&str>,
+    ) -> String {
         let turns: Vec<(&str, f64, &str)> = [
             ("z", yaw, "yaw"),
             ("y", pitch, "pitch"),
@@ -471,12 +512,18 @@ impl Writer<'_> {
         .into_iter()
         .filter(|&(_, angle, _)| angle != 0.0)
         .collect();
+        if turns.is_empty()
+            && let Some(last) = last
+        {
+            self.statement(format!("frame {last} = {parent}.rotate_z(0);"));
+            return last.to_owned();
+        }
         let mut frame = parent.to_owned();
         for (i, (axis, angle, turn)) in turns.iter().enumerate() {
-            let new = if i + 1 == turns.len() {
-                self.names.fresh(name)
-            } else {
-                self.names.fresh(&format!("{name}_{turn}"))
+            let new = match last {
+                Some(last) if i + 1 == turns.len() => last.to_owned(),
+                _ if i + 1 == turns.len() => self.names.fresh(name),
+                _ => self.names.fresh(&format!("{name}_{turn}")),
             };
             self.statement(format!(
                 "frame {new} = {frame}.rotate_{axis}({});",
@@ -488,8 +535,9 @@ impl Writer<'_> {
     }
 
     /// The body of the link `link` and the links welded to it, in its
-    /// frame `frame` with origin `origin`; nothing if it is massless.
-    fn body(&mut self, link: usize, frame: &str, origin: &str) {
+    /// frame with its origin; nothing if it is massless.
+    fn body(&mut self, link: usize) {
+        let Place { frame, origin, .. } = self.places[link].clone();
         let mut total = MassProperties::NONE;
         let mut welded = Vec::new();
         for (l, place) in self.links_of_body(link) {
@@ -520,7 +568,7 @@ impl Writer<'_> {
         let name = self
             .names
             .fresh(&format!("{}_body", self.robot.links[link].name));
-        let center = offset(origin, total.center, frame);
+        let center = offset(&origin, total.center, &frame);
         let i = total.inertia;
         let mut entries = vec![i[0][0], i[1][1], i[2][2]];
         if [i[0][1], i[1][2], i[2][0]] != [0.0; 3] {

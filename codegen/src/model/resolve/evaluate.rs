@@ -5,6 +5,7 @@
 use super::Resolver;
 use super::list;
 use super::scope::Binding;
+use super::vectors::VECTOR_FUNCTIONS;
 use crate::expr::{ExprId, Func, SymKinds};
 use crate::language::ast::{BinOp, Expr, SpanRange};
 use crate::model::{FrameId, Point, PointId, Vector};
@@ -269,7 +270,7 @@ impl Resolver {
             Binding::Frame(f) => Some(Value::Frame(f)),
             Binding::Point(p) => Some(Value::Point(p, Vector::default())),
             Binding::Invalid => None,
-            other @ (Binding::Body | Binding::Particle | Binding::Closure) => {
+            other @ (Binding::Body | Binding::Particle | Binding::Closure | Binding::Rolling) => {
                 self.errors.push(
                     ident.span(),
                     format!(
@@ -289,12 +290,20 @@ impl Resolver {
         span: SpanRange,
         usage: Use,
     ) -> Option<Value> {
+        if let Some((_, arity)) = VECTOR_FUNCTIONS.iter().find(|(name, _)| func == name) {
+            return self.vector_call(func, *arity, args, span, usage);
+        }
         let Some((_, f)) = FUNCTIONS.iter().find(|(name, _)| func == name) else {
+            let known: Vec<&str> = FUNCTIONS
+                .map(|(name, _)| name)
+                .into_iter()
+                .chain(VECTOR_FUNCTIONS.map(|(name, _)| name))
+                .collect();
             self.errors.push(
                 func.span(),
                 format!(
                     "unknown function `{func}`; expected one of {}",
-                    list(&FUNCTIONS.map(|(name, _)| name))
+                    list(&known)
                 ),
             );
             return None;
@@ -354,6 +363,9 @@ impl Resolver {
         let a = self.value(lhs, usage);
         let b = self.value(rhs, usage);
         let (a, b) = (a?, b?);
+        if let (BinOp::Sub, Value::Point(..), Value::Point(..)) = (op, &a, &b) {
+            return Some(self.point_difference(a, b));
+        }
         let pool = &mut self.pool;
         let result = match (op, a, b) {
             (BinOp::Add, Value::Scalar(x), Value::Scalar(y)) => Value::Scalar(pool.add(x, y)),
@@ -449,7 +461,7 @@ pub(super) fn operator_mismatch(op: BinOp, a: &Value, b: &Value) -> String {
         BinOp::Add | BinOp::Sub => {
             let verb = if op == BinOp::Add { "add" } else { "subtract" };
             let expected = if a == "a point" || b == "a point" {
-                "a point is written `P + vector` or `P - vector`"
+                "a point is written `P + vector` or `P - vector`, and `P - Q` of two points is the vector from `Q` to `P`"
             } else if a == "a frame" {
                 "a frame has no position of its own; a point is written `P + vector` from a \
                  point (`O` or one defined above)"

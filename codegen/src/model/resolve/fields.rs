@@ -21,6 +21,19 @@ impl Resolver {
         fields: &'a [Field],
         expected: [&str; K],
     ) -> [Option<&'a Expr>; K] {
+        self.fields_optional(owner, what, fields, expected, 0)
+    }
+
+    /// [`fields`](Resolver::fields) whose last `optional` names may be
+    /// left out.
+    pub(super) fn fields_optional<'a, const K: usize>(
+        &mut self,
+        owner: &Ident,
+        what: &str,
+        fields: &'a [Field],
+        expected: [&str; K],
+        optional: usize,
+    ) -> [Option<&'a Expr>; K] {
         let mut found: [Option<&'a Expr>; K] = [None; K];
         for field in fields {
             match expected.iter().position(|name| field.name == name) {
@@ -42,6 +55,7 @@ impl Resolver {
         let missing: Vec<&str> = expected
             .iter()
             .zip(&found)
+            .take(K - optional)
             .filter(|(_, value)| value.is_none())
             .map(|(name, _)| *name)
             .collect();
@@ -56,7 +70,7 @@ impl Resolver {
                         "the fields"
                     },
                     list(&missing),
-                    list(&expected)
+                    list(&expected[..K - optional])
                 ),
             );
         }

@@ -25,6 +25,7 @@ pub(super) enum Binding {
     Body,
     Particle,
     Closure,
+    Rolling,
     /// A name whose definition had an error (already reported): later uses
     /// stay silent instead of repeating it.
     Invalid,
@@ -44,6 +45,7 @@ impl Binding {
             Binding::Body => "a body",
             Binding::Particle => "a particle",
             Binding::Closure => "a loop closure",
+            Binding::Rolling => "a rolling contact",
             Binding::Invalid => "a name with an error",
         }
     }
@@ -224,7 +226,8 @@ pub(super) fn defined_names(system: &System) -> HashMap<String, Span> {
             | Statement::Point { name, .. }
             | Statement::Body { name, .. }
             | Statement::Particle { name, .. }
-            | Statement::Closure { name, .. } => add(name),
+            | Statement::Closure { name, .. }
+            | Statement::Rolling { name, .. } => add(name),
             Statement::Joint { name, fields, .. } => {
                 add(name);
                 for field in fields {

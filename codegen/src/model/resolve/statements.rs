@@ -129,6 +129,7 @@ impl Resolver {
                 keyword, lhs, rhs, ..
             } => self.constraint(keyword, lhs, rhs),
             Statement::Closure { name, fields } => self.closure(name, fields),
+            Statement::Rolling { name, fields } => self.rolling(name, fields),
             Statement::Outputs(requests) => requests.iter().for_each(|r| self.output(r)),
             Statement::Speeds {
                 keyword,
@@ -579,6 +580,8 @@ impl Resolver {
                 continue;
             }
             self.pool.set_rate(i, rate);
+            // Angular velocities computed before read the old rate.
+            self.kinematics = None;
             let divisors = &mut self.model.rate_divisors;
             crate::model::singular::collect_rate_divisors(
                 &mut self.pool,

@@ -1,0 +1,147 @@
+//! The `rolling` statement: a wheel rolling without slipping on a fixed
+//! plane, checked field by field and added as three constraint rows (see
+//! [`crate::model::rolling`]).
+
+use super::Resolver;
+use super::evaluate::{GEOMETRY, Use};
+use super::scope::Binding;
+use crate::expr::{ExprId, SymKinds};
+use crate::language::ast::{Expr, Field, SpanRange};
+use crate::model::rolling::{Wheel, at_reference, rolling_rows};
+use crate::model::{Constraint, ORIGIN, Vector};
+use proc_macro2::Ident;
+
+/// A wheel's radii: constants of the model.
+const SHAPE: Use = Use {
+    allowed: SymKinds::PARAM,
+    role: "a wheel's radius, which may depend on parameters only",
+};
+
+impl Resolver {
+    /// `rolling NAME { wheel: F, axle: F.y, center: P, radius: r, plane: N.z };`
+    /// with the optional `tire: rt` and `through: Q`.
+    pub(super) fn rolling(&mut self, name: &Ident, fields: &[Field]) {
+        self.define(name, Binding::Rolling);
+        let [wheel, axle, center, radius, plane, tire, through] = self.fields_optional(
+            name,
+            "rolling contact",
+            fields,
+            [
+                "wheel", "axle", "center", "radius", "plane", "tire", "through",
+            ],
+            2,
+        );
+        let frame = wheel.and_then(|e| self.frame(e));
+        let axle_axis = axle.and_then(|e| self.frame_axis(e));
+        let center = center.and_then(|e| self.point_value(e, GEOMETRY));
+        let radius = radius.and_then(|e| self.scalar(e, SHAPE));
+        let plane_axis = plane.and_then(|e| self.fixed_normal(e));
+        let tire = match tire {
+            Some(e) => self.scalar(e, SHAPE),
+            None => Some(self.pool.zero()),
+        };
+        let through = match through {
+            Some(e) => self.fixed_point(e),
+            None => Some((ORIGIN, Vector::default())),
+        };
+        let (Some(frame), Some(axle_axis), Some(center), Some(radius)) =
+            (frame, axle_axis, center, radius)
+        else {
+            return;
+        };
+        let (Some(plane_axis), Some(tire), Some(through), Some(axle)) =
+            (plane_axis, tire, through, axle)
+        else {
+            return;
+        };
+        let wheel = Wheel {
+            frame,
+            axle: axle_axis,
+            radius,
+            tire,
+            plane: plane_axis,
+        };
+        let height = self.between(center.clone(), through);
+        let velocity = self.velocity(center.0, &center.1);
+        let rows = self.with_geometry(|geometry, pool| {
+            rolling_rows(geometry, pool, &wheel, &height, &velocity)
+        });
+        if !self.check_axle_leaves_the_normal(axle, rows.tilt) {
+            return;
+        }
+        let span = SpanRange::from(name.span());
+        self.push_rolling_row(span, rows.contact, false);
+        for row in rows.slip {
+            self.push_rolling_row(span, row, true);
+        }
+    }
+
+    /// A row of a rolling contact, unless it vanishes identically (a
+    /// planar model's slip across its plane).
+    fn push_rolling_row(&mut self, span: SpanRange, residual: ExprId, nonholonomic: bool) {
+        if self.pool.is_zero(residual)
+            || !self.check_constrains_something(span, residual)
+            || !self.check_timeless_jacobian(span, residual, nonholonomic)
+        {
+            return;
+        }
+        self.model.constraints.push(Constraint {
+            residual,
+            nonholonomic,
+        });
+    }
+
+    /// The contact point is undefined where the axle is along the normal
+    /// (`1 − (n·a)² = 0`): an error if it is so in every configuration, or
+    /// at the start, the reference configuration (every coordinate zero,
+    /// each quaternion the identity, `t = 0`) where that can be decided
+    /// without the parameters' values. Whether the check passes.
+    fn check_axle_leaves_the_normal(&mut self, axle: &Expr, tilt: ExprId) -> bool {
+        let scalar_parts: Vec<usize> = self.model.balls.iter().map(|b| b.quaternion[3]).collect();
+        let at_start = at_reference(&mut self.pool, tilt, &scalar_parts);
+        let when = if self.pool.is_zero(tilt) {
+            "in every configuration"
+        } else if self.pool.is_zero(at_start) {
+            "at the start (every coordinate zero, each quaternion the identity)"
+        } else {
+            return true;
+        };
+        self.errors.push(
+            axle.range(),
+            format!(
+                "the wheel's axle is parallel to the plane's normal {when}, where the contact \
+                 point is undefined; expected an axle that lies in, or leans from, the plane \
+                 (such as `F.y` of a wheel standing on `N.z`)"
+            ),
+        );
+        false
+    }
+
+    /// The plane's normal: a unit vector of a frame that does not turn.
+    fn fixed_normal(&mut self, e: &Expr) -> Option<crate::model::closure::FrameAxis> {
+        let (frame, axis) = self.frame_axis(e)?;
+        if self.frame_turns(frame) {
+            self.errors.push(
+                e.range(),
+                "a wheel rolls on a fixed plane: expected a unit vector of `N` or of a frame \
+                 that does not turn, such as `N.z`",
+            );
+            return None;
+        }
+        Some((frame, axis))
+    }
+
+    /// A point of the plane: one that does not move.
+    fn fixed_point(&mut self, e: &Expr) -> Option<(crate::model::PointId, Vector)> {
+        let (base, offset) = self.point_value(e, GEOMETRY)?;
+        if self.point_moves(base, &offset) {
+            self.errors.push(
+                e.range(),
+                "a wheel rolls on a fixed plane: expected a point fixed in `N` (`O`, or one \
+                 placed by constants) for `through`",
+            );
+            return None;
+        }
+        Some((base, offset))
+    }
+}

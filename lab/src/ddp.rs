@@ -1,0 +1,374 @@
+//! Differential dynamic programming over the exact step derivatives of
+//! `dalembert::control`: the quadratic problems of the DDP example,
+//! written to match Crocoddyl's `SolverFDDP` on a feasible start.
+//!
+//! The problem: a start `x₀`, a horizon of `T` steps of length `h`
+//! (semi-implicit Euler, or any step with its jacobian), the running cost
+//! `h (½ ‖x ⊖ x*‖²_Q + ½ ‖u‖²_R)` (Crocoddyl's `IntegratedActionModelEuler`
+//! scales the running cost by the step) and the terminal cost
+//! `½ ‖x_T ⊖ x*‖²_{Q_T}`, with diagonal weights. The configuration space must
+//! be a vector space (the cost's derivatives by `q` are then plain).
+//!
+//! The solver is DDP with the Gauss–Newton model of the dynamics (iLQR,
+//! exact for these costs): a backward pass of the Riccati recursion with
+//! `μ I` added to `Q_uu`, a forward pass of the feedback policy from
+//! `x₀` with a backtracking line search (`α = 1, ½, ¼, …`, accepted when
+//! the cost falls by at least a tenth of the expected improvement), `μ`
+//! divided by 10 after a full step and multiplied by 10 after a
+//! failure, as Crocoddyl's defaults do. It stops when
+//! `Σₖ ‖Q_uₖ‖² < threshold` (Crocoddyl's `stoppingCriteria` and `th_stop`).
+
+use dalembert::State;
+use dalembert::control::{ControlError, Differentiable, StepJacobian};
+use nalgebra::{SMatrix, SVector};
+
+/// A step with its jacobian: `euler_step_jacobian` or `rk4_step_jacobian`.
+pub type StepWithJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
+    fn(
+        &S,
+        &State<NQ, NV>,
+        &[f64; NU],
+        f64,
+    ) -> Result<(State<NQ, NV>, StepJacobian<NV, NU>), ControlError>;
+
+/// A step: `euler_step` or `rk4_step`.
+pub type Step<S, const NQ: usize, const NV: usize, const NU: usize> =
+    fn(&S, &State<NQ, NV>, &[f64; NU], f64) -> Result<State<NQ, NV>, ControlError>;
+
+/// A reaching problem with quadratic costs (see the module's docs).
+#[derive(Clone, Debug)]
+pub struct Problem<const NQ: usize, const NV: usize, const NU: usize> {
+    /// The start `x₀`.
+    pub start: State<NQ, NV>,
+    /// The target configuration and speeds `x*`.
+    pub target: ([f64; NQ], [f64; NV]),
+    /// Steps `T`.
+    pub horizon: usize,
+    /// Step length `h`.
+    pub step: f64,
+    /// Diagonal of `Q` on `(q, v)`: `NV` weights of the coordinates, then
+    /// `NV` of the speeds.
+    pub state_weights: ([f64; NV], [f64; NV]),
+    /// Diagonal of `R`.
+    pub input_weights: [f64; NU],
+    /// Diagonal of `Q_T`.
+    pub terminal_weights: ([f64; NV], [f64; NV]),
+}
+
+/// The UR5 reaching a joint-space pose: from `(0, −1.5, 1, −1, 0, 0)` at
+/// rest to `(1, −1, 1.5, −1.5, 0.8, 0.5)` at rest in 100 steps of 10 ms
+/// (`scripts/ddp_crocoddyl.py` writes the same numbers).
+pub fn ur5_reach() -> Problem<6, 6, 6> {
+    Problem {
+        start: State {
+            t: 0.0,
+            q: [0.0, -1.5, 1.0, -1.0, 0.0, 0.0],
+            v: [0.0; 6],
+        },
+        target: ([1.0, -1.0, 1.5, -1.5, 0.8, 0.5], [0.0; 6]),
+        horizon: 100,
+        step: 0.01,
+        state_weights: ([1.0; 6], [0.1; 6]),
+        input_weights: [1e-3; 6],
+        terminal_weights: ([1e3; 6], [10.0; 6]),
+    }
+}
+
+/// The cart-pole swing-up (`dalembert_fixtures::cart_pole`'s): from hanging
+/// at rest to upright at rest in 150 steps of 20 ms (`scripts/ddp_crocoddyl.py`
+/// writes the same numbers).
+pub fn cart_pole_swing_up() -> Problem<2, 2, 1> {
+    Problem {
+        start: State {
+            t: 0.0,
+            q: [0.0, std::f64::consts::PI],
+            v: [0.0; 2],
+        },
+        target: ([0.0; 2], [0.0; 2]),
+        horizon: 150,
+        step: 0.02,
+        state_weights: ([0.1, 0.1], [0.01, 0.01]),
+        input_weights: [0.01],
+        terminal_weights: ([100.0, 100.0], [10.0, 10.0]),
+    }
+}
+
+/// What a solve did.
+#[derive(Clone, Debug)]
+pub struct Solve<const NQ: usize, const NV: usize, const NU: usize> {
+    /// The states `x₀ … x_T`.
+    pub states: Vec<State<NQ, NV>>,
+    /// The inputs `u₀ … u_{T−1}`.
+    pub inputs: Vec<[f64; NU]>,
+    /// The cost of each iterate, the initial guess first.
+    pub costs: Vec<f64>,
+    /// `Σ ‖Q_u‖²` at the last backward pass.
+    pub stop: f64,
+    /// Iterations taken (backward passes with a forward pass after them).
+    pub iterations: usize,
+}
+
+/// The DDP solver's settings.
+#[derive(Clone, Copy, Debug)]
+pub struct Settings {
+    /// Stop when `Σ ‖Q_u‖²` is below this.
+    pub threshold: f64,
+    /// Most iterations.
+    pub max_iterations: usize,
+    /// The first regularisation `μ`, and its floor and ceiling.
+    pub regularisation: (f64, f64, f64),
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            threshold: 1e-12,
+            max_iterations: 500,
+            regularisation: (1e-9, 1e-9, 1e9),
+        }
+    }
+}
+
+impl<const NQ: usize, const NV: usize, const NU: usize> Problem<NQ, NV, NU> {
+    /// `x ⊖ x*` on a vector space.
+    fn error(&self, x: &State<NQ, NV>) -> ([f64; NV], [f64; NV]) {
+        (
+            std::array::from_fn(|i| x.q[i] - self.target.0[i]),
+            std::array::from_fn(|i| x.v[i] - self.target.1[i]),
+        )
+    }
+
+    /// `½ ‖x ⊖ x*‖²_W`.
+    fn state_cost(&self, x: &State<NQ, NV>, (wq, wv): &([f64; NV], [f64; NV])) -> f64 {
+        let (dq, dv) = self.error(x);
+        0.5 * (0..NV)
+            .map(|i| wq[i] * dq[i] * dq[i] + wv[i] * dv[i] * dv[i])
+            .sum::<f64>()
+    }
+
+    /// The running cost of one step.
+    fn running_cost(&self, x: &State<NQ, NV>, u: &[f64; NU]) -> f64 {
+        let inputs = 0.5
+            * (0..NU)
+                .map(|i| self.input_weights[i] * u[i] * u[i])
+                .sum::<f64>();
+        self.step * (self.state_cost(x, &self.state_weights) + inputs)
+    }
+
+    /// The total cost of a trajectory.
+    pub fn cost(&self, states: &[State<NQ, NV>], inputs: &[[f64; NU]]) -> f64 {
+        let running: f64 = states
+            .iter()
+            .zip(inputs)
+            .map(|(x, u)| self.running_cost(x, u))
+            .sum();
+        running + self.state_cost(&states[self.horizon], &self.terminal_weights)
+    }
+
+    /// The gradient of `½ ‖x ⊖ x*‖²_W` scaled by `s`, and its diagonal
+    /// Hessian, on `(q, v)` stacked in `NX = 2 NV` entries.
+    fn state_derivatives<const NX: usize>(
+        &self,
+        x: &State<NQ, NV>,
+        (wq, wv): &([f64; NV], [f64; NV]),
+        s: f64,
+    ) -> (SVector<f64, NX>, SVector<f64, NX>) {
+        let (dq, dv) = self.error(x);
+        let gradient = SVector::from_fn(|i, _| match i < NV {
+            true => s * wq[i] * dq[i],
+            false => s * wv[i - NV] * dv[i - NV],
+        });
+        let hessian = SVector::from_fn(|i, _| match i < NV {
+            true => s * wq[i],
+            false => s * wv[i - NV],
+        });
+        (gradient, hessian)
+    }
+}
+
+/// The state-space matrices of a step's jacobian: `(F_x, F_u)`.
+fn matrices<const NV: usize, const NU: usize, const NX: usize>(
+    j: &StepJacobian<NV, NU>,
+) -> (SMatrix<f64, NX, NX>, SMatrix<f64, NX, NU>) {
+    let fx = SMatrix::from_fn(|i, k| match (i < NV, k < NV) {
+        (true, true) => j.q_by_q[i][k],
+        (true, false) => j.q_by_v[i][k - NV],
+        (false, true) => j.v_by_q[i - NV][k],
+        (false, false) => j.v_by_v[i - NV][k - NV],
+    });
+    let fu = SMatrix::from_fn(|i, k| match i < NV {
+        true => j.q_by_u[i][k],
+        false => j.v_by_u[i - NV][k],
+    });
+    (fx, fu)
+}
+
+/// The policy of one backward pass: feedforward `k` and gains `K` per
+/// step, the expected improvement `(Σ kᵀ Q_u, ½ Σ kᵀ Q_uu k)` and
+/// `Σ ‖Q_u‖²`.
+struct Policy<const NX: usize, const NU: usize> {
+    feedforward: Vec<SVector<f64, NU>>,
+    gains: Vec<SMatrix<f64, NU, NX>>,
+    expected: (f64, f64),
+    stop: f64,
+}
+
+/// The backward pass at the trajectory `states`, `inputs` with the step
+/// jacobians `derivatives`, or `None` when some `Q_uu + μ I` is not
+/// positive definite.
+fn backward<const NQ: usize, const NV: usize, const NU: usize, const NX: usize>(
+    problem: &Problem<NQ, NV, NU>,
+    states: &[State<NQ, NV>],
+    inputs: &[[f64; NU]],
+    derivatives: &[(SMatrix<f64, NX, NX>, SMatrix<f64, NX, NU>)],
+    mu: f64,
+) -> Option<Policy<NX, NU>> {
+    let t = problem.horizon;
+    let (mut vx, hessian) =
+        problem.state_derivatives::<NX>(&states[t], &problem.terminal_weights, 1.0);
+    let mut vxx = SMatrix::<f64, NX, NX>::from_diagonal(&hessian);
+    let mut policy = Policy {
+        feedforward: vec![SVector::zeros(); t],
+        gains: vec![SMatrix::zeros(); t],
+        expected: (0.0, 0.0),
+        stop: 0.0,
+    };
+    for k in (0..t).rev() {
+        let (fx, fu) = &derivatives[k];
+        let (lx, lxx) =
+            problem.state_derivatives::<NX>(&states[k], &problem.state_weights, problem.step);
+        let u = SVector::<f64, NU>::from(inputs[k]);
+        let r = SVector::<f64, NU>::from(problem.input_weights) * problem.step;
+        let lu = r.component_mul(&u);
+        let vxx_fx = vxx * fx;
+        let vxx_fu = vxx * fu;
+        let qx = lx + fx.transpose() * vx;
+        let qu = lu + fu.transpose() * vx;
+        let mut qxx = fx.transpose() * vxx_fx;
+        for i in 0..NX {
+            qxx[(i, i)] += lxx[i];
+        }
+        let mut quu = fu.transpose() * vxx_fu;
+        for i in 0..NU {
+            quu[(i, i)] += r[i];
+        }
+        let qux = fu.transpose() * vxx_fx;
+        let mut regularised = quu;
+        for i in 0..NU {
+            regularised[(i, i)] += mu;
+        }
+        let factor = regularised.cholesky()?;
+        let feedforward = -factor.solve(&qu);
+        let gain = -factor.solve(&qux);
+        policy.stop += qu.norm_squared();
+        policy.expected.0 += feedforward.dot(&qu);
+        policy.expected.1 += 0.5 * feedforward.dot(&(quu * feedforward));
+        vx = qx
+            + gain.transpose() * (quu * feedforward)
+            + gain.transpose() * qu
+            + qux.transpose() * feedforward;
+        vxx = qxx + gain.transpose() * quu * gain + gain.transpose() * qux + qux.transpose() * gain;
+        vxx = 0.5 * (vxx + vxx.transpose());
+        policy.feedforward[k] = feedforward;
+        policy.gains[k] = gain;
+    }
+    Some(policy)
+}
+
+/// Solves `problem` for `system` with the step `step` and its jacobian
+/// `with_jacobian`, from the inputs `guess` (rolled out from the start).
+/// `NX` must be `2 NV`.
+pub fn solve<S, const NQ: usize, const NV: usize, const NU: usize, const NX: usize>(
+    system: &S,
+    problem: &Problem<NQ, NV, NU>,
+    (step, with_jacobian): (Step<S, NQ, NV, NU>, StepWithJacobian<S, NQ, NV, NU>),
+    guess: Vec<[f64; NU]>,
+    settings: &Settings,
+) -> Result<Solve<NQ, NV, NU>, ControlError>
+where
+    S: Differentiable<NQ, NV, NU>,
+{
+    assert_eq!(NX, 2 * NV, "the state has 2 NV entries");
+    assert_eq!(guess.len(), problem.horizon, "one input per step");
+    let rollout = |inputs: &[[f64; NU]]| -> Result<Vec<State<NQ, NV>>, ControlError> {
+        let mut states = Vec::with_capacity(inputs.len() + 1);
+        states.push(problem.start);
+        for u in inputs {
+            let next = step(system, states.last().expect("the start"), u, problem.step)?;
+            states.push(next);
+        }
+        Ok(states)
+    };
+    let mut inputs = guess;
+    let mut states = rollout(&inputs)?;
+    let mut costs = vec![problem.cost(&states, &inputs)];
+    let (mut mu, floor, ceiling) = settings.regularisation;
+    let mut stop = f64::INFINITY;
+    let mut iterations = 0;
+    let mut derivatives = Vec::with_capacity(problem.horizon);
+    while iterations < settings.max_iterations {
+        derivatives.clear();
+        for (x, u) in states.iter().zip(&inputs) {
+            let (_, jacobian) = with_jacobian(system, x, u, problem.step)?;
+            derivatives.push(matrices::<NV, NU, NX>(&jacobian));
+        }
+        let policy = loop {
+            match backward::<NQ, NV, NU, NX>(problem, &states, &inputs, &derivatives, mu) {
+                Some(policy) => break Some(policy),
+                None if mu < ceiling => mu *= 10.0,
+                None => break None,
+            }
+        };
+        let Some(policy) = policy else { break };
+        stop = policy.stop;
+        if stop < settings.threshold {
+            break;
+        }
+        iterations += 1;
+        let current = *costs.last().expect("the first cost");
+        let mut alpha = 1.0;
+        let accepted = loop {
+            let mut trial_states = Vec::with_capacity(states.len());
+            let mut trial_inputs = Vec::with_capacity(inputs.len());
+            trial_states.push(problem.start);
+            for k in 0..problem.horizon {
+                let x = trial_states[k];
+                let dx = SVector::<f64, NX>::from_fn(|i, _| match i < NV {
+                    true => x.q[i] - states[k].q[i],
+                    false => x.v[i - NV] - states[k].v[i - NV],
+                });
+                let du = policy.feedforward[k] * alpha + policy.gains[k] * dx;
+                let u: [f64; NU] = std::array::from_fn(|i| inputs[k][i] + du[i]);
+                trial_states.push(step(system, &x, &u, problem.step)?);
+                trial_inputs.push(u);
+            }
+            let cost = problem.cost(&trial_states, &trial_inputs);
+            let expected = -(alpha * policy.expected.0 + alpha * alpha * policy.expected.1);
+            if current - cost >= 0.1 * expected || alpha < 1e-3 && cost < current {
+                break Some((trial_states, trial_inputs, cost));
+            }
+            alpha *= 0.5;
+            if alpha < 1e-4 {
+                break None;
+            }
+        };
+        match accepted {
+            Some((s, u, cost)) => {
+                states = s;
+                inputs = u;
+                costs.push(cost);
+                if alpha == 1.0 {
+                    mu = (mu / 10.0).max(floor);
+                }
+            }
+            None => mu = (mu * 10.0).min(ceiling),
+        }
+    }
+    Ok(Solve {
+        states,
+        inputs,
+        costs,
+        stop,
+        iterations,
+    })
+}

@@ -1,0 +1,286 @@
+//! Vector–jacobian products: `λᵀ ∂v̇/∂(q, v, u)` without forming the
+//! jacobian, and the step counterpart `λ⁺ᵀ ∂x⁺/∂(x, u)` of semi-implicit
+//! Euler, for gradient methods and long horizons.
+//!
+//! Differentiating `τ(q, v, v̇(q, v, u)) = 0`, with `τ = M v̇ − f` the
+//! inverse dynamics, gives `∂v̇/∂x = −M⁻¹ ∂τ/∂x`, so
+//! `λᵀ ∂v̇/∂x = −μᵀ ∂τ/∂x` with `μ = M⁻¹ λ`: one solve with `M` where the
+//! jacobian takes one per column. This first route reads `∂τ/∂q`, `∂τ/∂v`
+//! from the generated `inverse_dynamics_jacobian` (the model asks for it)
+//! and forms `μᵀ ∂τ/∂x` as a product, `O(n²)` where a reverse sweep of
+//! the Newton–Euler recursion would be `O(n)` (that sweep is not generated
+//! today). By the inputs, `λᵀ ∂v̇/∂u = μᵀ ∂f/∂u` with the columns of `∂f/∂u`
+//! taken as `f(u + eⱼ) − f(u)`: exact where the inputs enter the forcing
+//! affinely (forces and torques proportional to them, every imported
+//! robot's `tau`), not otherwise.
+//!
+//! `inverse_dynamics_jacobian` is that of the unconstrained equations: these
+//! products are for systems without constraints.
+
+use super::step::{NODES, WEIGHTS};
+use super::{ConfigurationSpace, ControlError, Differentiable};
+use crate::dynamics::pivot_tolerance;
+use crate::{DynamicsError, State};
+
+/// A system whose model also asks for `inverse_dynamics_jacobian`
+/// (DESIGN §7), through [`differentiable!`](crate::differentiable) with
+/// `; inverse`.
+pub trait InverseDifferentiable<const NQ: usize, const NV: usize, const NU: usize>:
+    Differentiable<NQ, NV, NU>
+{
+    /// `(∂τ/∂q, ∂τ/∂v, ∂τ/∂v̇ = M)` of `τ = M v̇ − f` at `(t, q, v, v̇, u)`,
+    /// `∂τ/∂q` in the tangent space.
+    #[allow(clippy::type_complexity)]
+    fn inverse_dynamics_jacobian(
+        &self,
+        t: f64,
+        q: &[f64; NQ],
+        v: &[f64; NV],
+        vdot: &[f64; NV],
+        u: &[f64; NU],
+    ) -> ([[f64; NV]; NV], [[f64; NV]; NV], [[f64; NV]; NV]);
+}
+
+/// `λᵀ ∂v̇/∂q` (in the tangent space), `λᵀ ∂v̇/∂v`, `λᵀ ∂v̇/∂u`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AccelerationsAdjoint<const NV: usize, const NU: usize> {
+    /// `λᵀ ∂v̇/∂q`.
+    pub by_q: [f64; NV],
+    /// `λᵀ ∂v̇/∂v`.
+    pub by_v: [f64; NV],
+    /// `λᵀ ∂v̇/∂u`.
+    pub by_u: [f64; NU],
+}
+
+/// `M⁻¹ λ` by a Cholesky factorisation of `M`, or the error naming the
+/// speed whose pivot is not above [`pivot_tolerance`].
+fn solve<const NV: usize>(
+    mass: &[[f64; NV]; NV],
+    lambda: &[f64; NV],
+    speeds: &[&'static str; NV],
+) -> Result<[f64; NV], DynamicsError> {
+    let tolerance = pivot_tolerance::<NV>(std::array::from_fn(|i| mass[i][i]));
+    let mut l = *mass;
+    for j in 0..NV {
+        let pivot = l[j][j] - (0..j).map(|k| l[j][k] * l[j][k]).sum::<f64>();
+        // NaN fails too.
+        if pivot.partial_cmp(&tolerance) != Some(std::cmp::Ordering::Greater) {
+            return Err(DynamicsError::SingularMassMatrix {
+                index: j,
+                coordinate: speeds[j],
+                pivot,
+            });
+        }
+        let d = pivot.sqrt();
+        l[j][j] = d;
+        for i in j + 1..NV {
+            l[i][j] = (l[i][j] - (0..j).map(|k| l[i][k] * l[j][k]).sum::<f64>()) / d;
+        }
+    }
+    let mut x = *lambda;
+    for i in 0..NV {
+        x[i] = (x[i] - (0..i).map(|k| l[i][k] * x[k]).sum::<f64>()) / l[i][i];
+    }
+    for i in (0..NV).rev() {
+        x[i] = (x[i] - (i + 1..NV).map(|k| l[k][i] * x[k]).sum::<f64>()) / l[i][i];
+    }
+    Ok(x)
+}
+
+/// `λᵀ ∂v̇/∂(q, v, u)` at `(t, q, v, u)` whose accelerations are `vdot`.
+fn adjoint_at<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    (t, q, v, u): (f64, &[f64; NQ], &[f64; NV], &[f64; NU]),
+    vdot: &[f64; NV],
+    lambda: &[f64; NV],
+) -> Result<AccelerationsAdjoint<NV, NU>, ControlError>
+where
+    S: InverseDifferentiable<NQ, NV, NU>,
+{
+    let (tau_q, tau_v, mass) = system.inverse_dynamics_jacobian(t, q, v, vdot, u);
+    let mu = solve(&mass, lambda, &S::SPEEDS)?;
+    let weighted = |rows: &[[f64; NV]; NV]| -> [f64; NV] {
+        let mut g = [0.0; NV];
+        for (m, row) in mu.iter().zip(rows) {
+            for (x, y) in g.iter_mut().zip(row) {
+                *x -= m * y;
+            }
+        }
+        g
+    };
+    let by_u = match NU {
+        0 => [0.0; NU],
+        _ => {
+            let f = system.forcing(t, q, v, u);
+            std::array::from_fn(|j| {
+                let mut moved = *u;
+                moved[j] += 1.0;
+                let g = system.forcing(t, q, v, &moved);
+                (0..NV).map(|i| mu[i] * (g[i] - f[i])).sum()
+            })
+        }
+    };
+    Ok(AccelerationsAdjoint {
+        by_q: weighted(&tau_q),
+        by_v: weighted(&tau_v),
+        by_u,
+    })
+}
+
+/// The accelerations `v̇` at `(t, q, v, u)` and `λᵀ ∂v̇/∂(q, v, u)`, by one
+/// solve with `M` (see the module's docs for the route and its limits).
+/// Errors: those of the system's `accelerations`, and a mass matrix that is
+/// not safely positive definite.
+pub fn accelerations_adjoint<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    u: &[f64; NU],
+    lambda: &[f64; NV],
+) -> Result<([f64; NV], AccelerationsAdjoint<NV, NU>), ControlError>
+where
+    S: InverseDifferentiable<NQ, NV, NU>,
+{
+    let vdot = system.accelerations(t, q, v, u)?;
+    Ok((vdot, adjoint_at(system, (t, q, v, u), &vdot, lambda)?))
+}
+
+/// The cotangent of a step: `λᵀ ∂x⁺/∂q`, `λᵀ ∂x⁺/∂v`, `λᵀ ∂x⁺/∂u` for
+/// `λ = (λ_q, λ_v)` at `x⁺`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepAdjoint<const NV: usize, const NU: usize> {
+    /// `λᵀ ∂x⁺/∂q`, in the tangent space.
+    pub by_q: [f64; NV],
+    /// `λᵀ ∂x⁺/∂v`.
+    pub by_v: [f64; NV],
+    /// `λᵀ ∂x⁺/∂u`.
+    pub by_u: [f64; NU],
+}
+
+/// The step of [`euler_step`](super::euler_step) (the same operations) and
+/// `λ_qᵀ ∂q⁺/∂(x, u) + λ_vᵀ ∂v⁺/∂(x, u)`, by the reverse of its chain
+/// rule: `ξ = λ_v + h (∂(q ⊕ w)/∂w)ᵀ λ_q` at `w = h v⁺`, then
+/// `(∂(q ⊕ w)/∂q)ᵀ λ_q + h ξᵀ ∂v̇/∂q`, `ξ + h ξᵀ ∂v̇/∂v`, `h ξᵀ ∂v̇/∂u`
+/// with one [`accelerations_adjoint`]. Errors: those of
+/// [`accelerations_adjoint`] and [`ControlError::UnsupportedSpeed`].
+pub fn euler_step_adjoint<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    state: &State<NQ, NV>,
+    u: &[f64; NU],
+    h: f64,
+    lambda_q: &[f64; NV],
+    lambda_v: &[f64; NV],
+) -> Result<(State<NQ, NV>, StepAdjoint<NV, NU>), ControlError>
+where
+    S: InverseDifferentiable<NQ, NV, NU>,
+{
+    let space = ConfigurationSpace::of(system)?;
+    let State { t, q, v } = state;
+    let vdot = system.accelerations(*t, q, v, u)?;
+    let next_v: [f64; NV] = std::array::from_fn(|i| v[i] + h * vdot[i]);
+    let next = State {
+        t: t + h,
+        q: system.integrate_configuration(q, &next_v, h),
+        v: next_v,
+    };
+    let derivatives = space.update_derivatives(&next.v.map(|x| h * x));
+    let (mut by_q, mut through_w) = (*lambda_q, *lambda_q);
+    derivatives.by_configuration_transposed(&mut by_q);
+    derivatives.by_step_transposed(&mut through_w);
+    let xi: [f64; NV] = std::array::from_fn(|i| lambda_v[i] + h * through_w[i]);
+    let weight = xi.map(|x| h * x);
+    let a = adjoint_at(system, (*t, q, v, u), &vdot, &weight)?;
+    Ok((
+        next,
+        StepAdjoint {
+            by_q: std::array::from_fn(|i| by_q[i] + a.by_q[i]),
+            by_v: std::array::from_fn(|i| xi[i] + a.by_v[i]),
+            by_u: a.by_u,
+        },
+    ))
+}
+
+/// `x + s y`.
+fn plus<const N: usize>(x: &[f64; N], s: f64, y: &[f64; N]) -> [f64; N] {
+    std::array::from_fn(|i| x[i] + s * y[i])
+}
+
+/// The step of [`rk4_step`](super::rk4_step) (the same operations) and
+/// `λ_qᵀ ∂q⁺/∂(x, u) + λ_vᵀ ∂v⁺/∂(x, u)`, by the reverse of the chain rule
+/// through its four stages: the stages forward, then from the last to the
+/// first one [`accelerations_adjoint`] each, the cotangents of each stage's
+/// `qᵢ = q ⊕ cᵢ h vᵢ₋₁` and `vᵢ = v + cᵢ h v̇ᵢ₋₁` sent back through the
+/// transposed derivatives of the update. Errors: those of
+/// [`accelerations_adjoint`] and [`ControlError::UnsupportedSpeed`].
+pub fn rk4_step_adjoint<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    state: &State<NQ, NV>,
+    u: &[f64; NU],
+    h: f64,
+    lambda_q: &[f64; NV],
+    lambda_v: &[f64; NV],
+) -> Result<(State<NQ, NV>, StepAdjoint<NV, NU>), ControlError>
+where
+    S: InverseDifferentiable<NQ, NV, NU>,
+{
+    let space = ConfigurationSpace::of(system)?;
+    let State { t, q, v } = state;
+    // Forward: the stages' times, configurations, speeds and accelerations.
+    let mut stages = [(0.0, *q, *v, [0.0; NV]); 4];
+    let (mut sum_v, mut sum_a) = ([0.0; NV], [0.0; NV]);
+    for i in 0..4 {
+        let c = if i == 0 { 0.0 } else { NODES[i - 1] };
+        let (_, qi, vi, _) = stages[i];
+        let a = system.accelerations(t + c * h, &qi, &vi, u)?;
+        stages[i] = (t + c * h, qi, vi, a);
+        sum_v = plus(&sum_v, WEIGHTS[i], &vi);
+        sum_a = plus(&sum_a, WEIGHTS[i], &a);
+        if let Some(&next) = NODES.get(i) {
+            stages[i + 1] = (
+                0.0,
+                system.integrate_configuration(q, &vi, next * h),
+                plus(v, next * h, &a),
+                [0.0; NV],
+            );
+        }
+    }
+    let next = State {
+        t: t + h,
+        q: system.integrate_configuration(q, &sum_v, h),
+        v: plus(v, h, &sum_a),
+    };
+    // Reverse: `by_q`, `by_v`, `by_u` of the start; the cotangents of each
+    // stage's speeds and accelerations as they are completed.
+    let final_update = space.update_derivatives(&sum_v.map(|x| h * x));
+    let (mut by_q, mut through_w) = (*lambda_q, *lambda_q);
+    final_update.by_configuration_transposed(&mut by_q);
+    final_update.by_step_transposed(&mut through_w);
+    let mut by_v = *lambda_v;
+    let mut by_u = [0.0; NU];
+    let mut speeds: [[f64; NV]; 4] = std::array::from_fn(|i| through_w.map(|x| h * WEIGHTS[i] * x));
+    let mut accelerations: [[f64; NV]; 4] =
+        std::array::from_fn(|i| lambda_v.map(|x| h * WEIGHTS[i] * x));
+    for i in (0..4).rev() {
+        let (ti, qi, vi, a) = &stages[i];
+        let adjoint = adjoint_at(system, (*ti, qi, vi, u), a, &accelerations[i])?;
+        by_u = plus(&by_u, 1.0, &adjoint.by_u);
+        let stage_q = adjoint.by_q;
+        let stage_v = plus(&speeds[i], 1.0, &adjoint.by_v);
+        by_v = plus(&by_v, 1.0, &stage_v);
+        if i == 0 {
+            by_q = plus(&by_q, 1.0, &stage_q);
+        } else {
+            // `vᵢ = v + cᵢ h v̇ᵢ₋₁` and `qᵢ = q ⊕ cᵢ h vᵢ₋₁`.
+            let step = NODES[i - 1] * h;
+            accelerations[i - 1] = plus(&accelerations[i - 1], step, &stage_v);
+            let update = space.update_derivatives(&stages[i - 1].2.map(|x| step * x));
+            let (mut to_q, mut to_w) = (stage_q, stage_q);
+            update.by_configuration_transposed(&mut to_q);
+            update.by_step_transposed(&mut to_w);
+            by_q = plus(&by_q, 1.0, &to_q);
+            speeds[i - 1] = plus(&speeds[i - 1], step, &to_w);
+        }
+    }
+    Ok((next, StepAdjoint { by_q, by_v, by_u }))
+}
