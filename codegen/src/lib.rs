@@ -26,6 +26,7 @@ mod expr;
 mod interpret;
 mod kinematics;
 mod language;
+mod mjcf;
 mod model;
 mod optimize;
 mod outputs;
@@ -40,6 +41,7 @@ mod urdf;
 
 pub use build::{BuildError, Builder, Diagnostic, ModelFile, Severity, generate_file};
 pub use emit::Target;
+pub use mjcf::Mjcf;
 pub use render::Style;
 pub use urdf::{Imported, Urdf};
 

@@ -9,6 +9,8 @@
 //!                                     spelled joints, symbolic or seed)
 //! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
 //!                                     the .dal model of a URDF robot
+//! dalembert mjcf MODEL.xml [--name NAME] [--outputs LIST]
+//!                                     the .dal model of a MuJoCo model
 //! ```
 //!
 //! Exit status: 0 on success, 1 if the model has errors or cannot be read,
@@ -24,7 +26,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use dalembert_codegen::testing::{Family, Spelling};
-use dalembert_codegen::{BuildError, ModelFile, Severity, Style, Urdf};
+use dalembert_codegen::{BuildError, Mjcf, ModelFile, Severity, Style, Urdf};
 
 const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
@@ -38,6 +40,8 @@ Commands:
   urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
                             print the .dal model of a URDF robot (--damping: joint
                             damping as a dissipation function)
+  mjcf MODEL.xml [--name NAME] [--outputs LIST]
+                            print the .dal model of a MuJoCo model (see `mjcf --help`)
   help                      print this help
 
 Options:
@@ -66,6 +70,12 @@ enum Command {
         robot: PathBuf,
         options: UrdfOptions,
     },
+    Mjcf {
+        model: PathBuf,
+        name: Option<String>,
+        outputs: Option<String>,
+    },
+    MjcfHelp,
     Help,
     Version,
 }
@@ -93,6 +103,9 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
     let mut args = args.into_iter().peekable();
     if args.peek().is_some_and(|a| a == "urdf") {
         return parse_urdf(args.skip(1));
+    }
+    if args.peek().is_some_and(|a| a == "mjcf") {
+        return parse_mjcf(args.skip(1));
     }
     let mut positional = Vec::new();
     let mut latex = false;
@@ -122,7 +135,7 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
         "check" => |model, _| Command::Check { model },
         _ => {
             return Err(format!(
-                "unknown command `{name}`: expected `eom`, `generate`, `check`, `chain` or `urdf`"
+                "unknown command `{name}`: expected `eom`, `generate`, `check`, `chain`, `urdf` or `mjcf`"
             ));
         }
     };
@@ -203,6 +216,74 @@ fn parse_urdf(args: impl Iterator<Item = OsString>) -> Result<Command, String> {
     Ok(Command::Urdf { robot, options })
 }
 
+/// The help of `mjcf`.
+const MJCF_USAGE: &str = "\
+Usage: dalembert mjcf MODEL.xml [--name NAME] [--outputs LIST]
+
+Prints the MuJoCo model (MJCF) MODEL.xml, with the files it includes, as a model
+in dalembert's language: coordinates and speeds in MuJoCo's order (qpos, qvel),
+free joints as (x, y, z, qx, qy, qz, qw) with speeds in the body's axes, one
+input tau_<coordinate> per speed that is not a free joint's, gravity from
+<option gravity>, joint springs, dampers and armature as MuJoCo applies them.
+Contacts, limits and actuators are left out (see docs/mjcf.md).
+
+Options:
+  --name NAME       the struct's name (default: the model's name in UpperCamelCase)
+  --outputs LIST    append `outputs LIST;` to the model
+  -h, --help        print this help";
+
+/// The arguments of `mjcf MODEL.xml [--name NAME] [--outputs LIST]`.
+fn parse_mjcf(args: impl Iterator<Item = OsString>) -> Result<Command, String> {
+    let (mut model, mut name, mut outputs) = (None, None, None);
+    let mut args = args.peekable();
+    while let Some(arg) = args.next() {
+        match arg.to_str() {
+            Some("-h" | "--help") => return Ok(Command::MjcfHelp),
+            Some(option @ ("--name" | "--outputs")) => {
+                let value = args
+                    .next()
+                    .ok_or_else(|| format!("`{option}` needs a value"))?
+                    .to_string_lossy()
+                    .into_owned();
+                if option == "--name" {
+                    name = Some(value);
+                } else {
+                    outputs = Some(value);
+                }
+            }
+            Some(flag) if flag.starts_with('-') => {
+                return Err(format!("unknown option `{flag}` of `mjcf`"));
+            }
+            _ if model.is_some() => {
+                return Err(format!("unexpected argument `{}`", arg.to_string_lossy()));
+            }
+            _ => model = Some(PathBuf::from(arg)),
+        }
+    }
+    let model = model.ok_or("`mjcf` needs an MJCF file")?;
+    Ok(Command::Mjcf {
+        model,
+        name,
+        outputs,
+    })
+}
+
+/// The `.dal` model of the MJCF file at `model`.
+fn mjcf(
+    model: &PathBuf,
+    name: Option<String>,
+    outputs: Option<String>,
+) -> Result<String, BuildError> {
+    let mut mjcf = Mjcf::read(model)?;
+    if let Some(name) = name {
+        mjcf = mjcf.name(name);
+    }
+    if let Some(outputs) = outputs {
+        mjcf = mjcf.outputs(outputs);
+    }
+    mjcf.model()
+}
+
 /// The `.dal` model of the URDF robot at `robot`; its warnings go to
 /// stderr.
 fn urdf(robot: &PathBuf, options: UrdfOptions) -> Result<String, BuildError> {
@@ -237,6 +318,12 @@ fn run(command: Command) -> ExitCode {
             family, links, spelling,
         )),
         Command::Urdf { robot, options } => urdf(&robot, options),
+        Command::Mjcf {
+            model,
+            name,
+            outputs,
+        } => mjcf(&model, name, outputs),
+        Command::MjcfHelp => Ok(MJCF_USAGE.to_owned()),
     };
     match output {
         Ok(text) => print(&text),
@@ -318,6 +405,22 @@ mod tests {
             })
         );
         assert_eq!(
+            parse_str(&[
+                "mjcf",
+                "m.xml",
+                "--outputs",
+                "inverse_dynamics",
+                "--name",
+                "M"
+            ]),
+            Ok(Command::Mjcf {
+                model: PathBuf::from("m.xml"),
+                name: Some("M".into()),
+                outputs: Some("inverse_dynamics".into()),
+            })
+        );
+        assert_eq!(parse_str(&["mjcf", "--help"]), Ok(Command::MjcfHelp));
+        assert_eq!(
             parse_str(&["chain", "spatial", "12"]),
             Ok(Command::Chain {
                 family: Family::Spatial,
@@ -361,6 +464,10 @@ mod tests {
             &["urdf", "r.urdf", "--name"],
             &["urdf", "r.urdf", "--latex"],
             &["urdf", "r.urdf", "s.urdf"],
+            &["mjcf"],
+            &["mjcf", "m.xml", "--name"],
+            &["mjcf", "m.xml", "--floating"],
+            &["mjcf", "m.xml", "n.xml"],
         ] {
             assert!(parse_str(args).is_err(), "{args:?}");
         }

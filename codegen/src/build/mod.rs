@@ -37,6 +37,8 @@ const MODEL_EXTENSION: &str = "dal";
 pub struct Builder {
     models: Vec<PathBuf>,
     urdfs: Vec<PathBuf>,
+    /// MJCF files with their struct names and outputs.
+    mjcfs: Vec<(PathBuf, Option<String>, Option<String>)>,
     model_dirs: Vec<PathBuf>,
     out_dir: Option<PathBuf>,
     emit_rerun_if_changed: bool,
@@ -56,6 +58,7 @@ impl Builder {
         Builder {
             models: Vec::new(),
             urdfs: Vec::new(),
+            mjcfs: Vec::new(),
             model_dirs: Vec::new(),
             out_dir: None,
             emit_rerun_if_changed: true,
@@ -82,6 +85,25 @@ impl Builder {
     /// model's, located in the URDF file.
     pub fn urdf(&mut self, path: impl AsRef<Path>) -> &mut Self {
         self.urdfs.push(path.as_ref().to_owned());
+        self
+    }
+
+    /// Adds the MuJoCo model at `path`, imported as `dalembert mjcf` does,
+    /// with the struct named `name` (else after the model) and
+    /// `outputs LIST;` appended when `outputs` is given: `NAME.xml`
+    /// becomes `NAME.rs`. Its errors are reported like a model's, located
+    /// in the MJCF files.
+    pub fn mjcf(
+        &mut self,
+        path: impl AsRef<Path>,
+        name: Option<&str>,
+        outputs: Option<&str>,
+    ) -> &mut Self {
+        self.mjcfs.push((
+            path.as_ref().to_owned(),
+            name.map(str::to_owned),
+            outputs.map(str::to_owned),
+        ));
         self
     }
 
@@ -128,7 +150,8 @@ impl Builder {
         };
         let mut jobs: Vec<(PathBuf, PathBuf)> = Vec::new();
         let urdfs = self.urdfs.iter().cloned();
-        for model in self.model_paths()?.into_iter().chain(urdfs) {
+        let mjcfs = self.mjcfs.iter().map(|(path, ..)| path.clone());
+        for model in self.model_paths()?.into_iter().chain(urdfs).chain(mjcfs) {
             let stem = model.file_stem().ok_or_else(|| BuildError::NoFileName {
                 path: model.clone(),
             })?;
@@ -169,7 +192,10 @@ impl Builder {
         let mut diagnostics = Vec::new();
         for (model, output) in jobs {
             self.rerun_if_changed(model);
-            let file = if self.urdfs.contains(model) {
+            let mjcf = self.mjcfs.iter().find(|(path, ..)| path == model);
+            let file = if let Some((path, name, outputs)) = mjcf {
+                mjcf_model(path, name.as_deref(), outputs.as_deref())
+            } else if self.urdfs.contains(model) {
                 self.urdf_model(model)
             } else {
                 ModelFile::read(model)
@@ -210,6 +236,26 @@ impl Builder {
             println!("cargo:rerun-if-changed={}", path.display());
         }
     }
+}
+
+/// The model imported from the MJCF file `path`, reported as
+/// `path (imported)` if the engine finds errors in it.
+fn mjcf_model(
+    path: &Path,
+    name: Option<&str>,
+    outputs: Option<&str>,
+) -> Result<ModelFile, BuildError> {
+    let mut mjcf = crate::Mjcf::read(path)?;
+    if let Some(name) = name {
+        mjcf = mjcf.name(name);
+    }
+    if let Some(outputs) = outputs {
+        mjcf = mjcf.outputs(outputs);
+    }
+    let text = mjcf.model()?;
+    let mut imported = path.as_os_str().to_owned();
+    imported.push(" (imported)");
+    Ok(ModelFile::new(imported, text))
 }
 
 /// Generates Rust from the model at `input` and writes it to `output`

@@ -30,6 +30,8 @@ pub const TORQUE: &str = "torque";
 pub const POTENTIAL: &str = "potential";
 /// `dissipation <scalar>;`
 pub const DISSIPATION: &str = "dissipation";
+/// `armature <scalar> on <speed>;`
+pub const ARMATURE: &str = "armature";
 /// `constraint lhs == rhs;`
 pub const CONSTRAINT: &str = "constraint";
 /// `closure NAME { at: P, to: Q, ... };`
@@ -41,7 +43,7 @@ pub const SPEEDS: &str = "speeds";
 
 /// The statement keywords, in the order the "expected one of" message
 /// lists them.
-pub const STATEMENTS: [&str; 17] = [
+pub const STATEMENTS: [&str; 18] = [
     PARAMETERS,
     COORDINATES,
     INPUTS,
@@ -59,6 +61,7 @@ pub const STATEMENTS: [&str; 17] = [
     CLOSURE,
     OUTPUTS,
     SPEEDS,
+    ARMATURE,
 ];
 
 /// `force <vec> at P;`: the point of application.

@@ -15,10 +15,10 @@
 //! are independent coordinates, as in Pinocchio by default. Geometry,
 //! limits and meshes are ignored.
 
-mod inertia;
+pub(crate) mod inertia;
 mod tree;
-mod write;
-mod xml;
+pub(crate) mod write;
+pub(crate) mod xml;
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
