@@ -46,6 +46,7 @@ FILES = [
     "dm_control/hopper.xml",
     "dm_control/walker.xml",
     "dm_control/humanoid.xml",
+    "dm_control/finger.xml",
 ]
 STATES = 4
 SEED = 35

@@ -133,3 +133,8 @@ fn walker_matches_mujoco() {
 fn humanoid_matches_mujoco() {
     matches_mujoco("humanoid", DALEMBERT);
 }
+
+#[test]
+fn finger_matches_mujoco() {
+    matches_mujoco("finger", BOTH);
+}

@@ -75,6 +75,9 @@ pub(super) struct Joint {
     pub pos: Vec3,
     /// The unit axis in the body frame (hinge and slide).
     pub axis: Vec3,
+    /// `ref` (hinge and slide) in radians or metres: the value of the
+    /// coordinate at which the body is where the file places it.
+    pub reference: f64,
     /// `springref` in radians or metres.
     pub springref: f64,
     pub stiffness: f64,
@@ -752,15 +755,9 @@ impl<'a> Reader<'a> {
         if kind == JointKind::Hinge {
             springref = self.radians(springref);
         }
-        let reference = scalar(self, "ref");
-        if reference != 0.0 && matches!(kind, JointKind::Hinge | JointKind::Slide) {
-            let loc = self.attribute(element, childclass, "ref").map(|a| a.loc);
-            self.problem(
-                loc.unwrap_or(element.loc()),
-                "a joint `ref` other than 0 is not supported (the coordinate would be \
-                 offset from MuJoCo's `qpos`)"
-                    .to_owned(),
-            );
+        let mut reference = scalar(self, "ref");
+        if kind == JointKind::Hinge {
+            reference = self.radians(reference);
         }
         let (unit, norm) = pose::normalized(axis);
         if matches!(kind, JointKind::Hinge | JointKind::Slide) && norm < EPS {
@@ -780,6 +777,7 @@ impl<'a> Reader<'a> {
             kind,
             pos,
             axis: unit,
+            reference,
             springref,
             stiffness: scalar(self, "stiffness"),
             damping: scalar(self, "damping"),
@@ -816,6 +814,7 @@ impl<'a> Reader<'a> {
             kind: JointKind::Free,
             pos: [0.0; 3],
             axis: [0.0, 0.0, 1.0],
+            reference: 0.0,
             springref: 0.0,
             stiffness: 0.0,
             damping: 0.0,

@@ -293,23 +293,36 @@ impl Writer<'_> {
                 let input = format!("tau_{name}");
                 self.statement(format!("coordinates {name};"));
                 self.statement(format!("inputs {input};"));
+                // MuJoCo turns or slides by `q − ref` from the placement
+                // written: back by `ref` (a turn about the axis, which
+                // keeps the axis and the anchor), then by `q`.
+                let back = -joint.reference;
+                let parent = if joint.kind == JointKind::Hinge && back != 0.0 {
+                    let turned = self.names.fresh(&format!("{name}_ref"));
+                    let turn = pose::from_axis_angle(joint.axis, back).unwrap_or(IDENTITY);
+                    self.rotated(&turned, frame, turn);
+                    turned
+                } else {
+                    frame.to_owned()
+                };
                 let point = self.names.fresh(&format!("{name}_anchor"));
-                let push = scaled(&input, joint.axis, frame);
+                let push = scaled(&input, joint.axis, &parent);
                 if joint.kind == JointKind::Hinge {
                     self.statement(format!(
-                        "joint revolute {point} {{ parent: {frame}, child: {child}, {axis}, \
+                        "joint revolute {point} {{ parent: {parent}, child: {child}, {axis}, \
                          coordinate: {name}, at: {anchor} }};"
                     ));
-                    self.statement(format!("torque {push} on {child} reacting {frame};"));
+                    self.statement(format!("torque {push} on {child} reacting {parent};"));
                     from_anchor(&point)
                 } else {
+                    let at = offset(origin, joint.axis.map(|a| a * back), frame);
                     self.statement(format!(
                         "joint prismatic {point} {{ parent: {frame}, child: {child}, {axis}, \
-                         coordinate: {name}, at: {origin} }};"
+                         coordinate: {name}, at: {at} }};"
                     ));
                     let pull = scaled(&input, joint.axis.map(|a| -a), frame);
                     self.statement(format!("force {push} at {point};"));
-                    self.statement(format!("force {pull} at {origin};"));
+                    self.statement(format!("force {pull} at {at};"));
                     point
                 }
             }
