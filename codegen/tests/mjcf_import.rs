@@ -10,8 +10,8 @@
 mod pinocchio;
 
 use dalembert_codegen::Mjcf;
-use dalembert_codegen::testing::Route;
-use pinocchio::{QUANTITIES, worst_errors};
+use dalembert_codegen::testing::{Interpreter, Route};
+use pinocchio::{QUANTITIES, for_each_state, relative_error, vector, worst_errors};
 use serde_json::Value;
 
 /// Relative agreement required: against the largest entry of the quantity.
@@ -57,9 +57,33 @@ fn check_joint_order(entry: &Value, text: &str) {
     }
 }
 
+/// The accelerations of the articulated-body recursion (with the
+/// armature on its pivots), which the generated `accelerations` use on a
+/// tree, against MuJoCo's `qacc`.
+fn check_articulated(model: &str, entry: &Value, text: &str) {
+    let interpreter = Interpreter::new(text, Route::Dalembert).unwrap();
+    let mut worst = 0.0_f64;
+    for_each_state(
+        entry,
+        |state| vector(&state["tau"]),
+        |state, at| {
+            let qdd = interpreter
+                .articulated_accelerations(at)
+                .unwrap_or_else(|| panic!("{model} is a tree"));
+            worst = worst.max(relative_error(&qdd, &vector(&state["qdd"])));
+        },
+    );
+    eprintln!("{model}: articulated qdd off by {worst:.1e} relative");
+    assert!(
+        worst <= TOLERANCE,
+        "{model}: articulated qdd off by {worst:e}"
+    );
+}
+
 fn matches_mujoco(model: &str, routes: &[Route]) {
     let (entry, text) = imported(model);
     check_joint_order(&entry, &text);
+    check_articulated(model, &entry, &text);
     for &route in routes {
         let worst = worst_errors(&text, &entry, route).unwrap();
         eprintln!(
@@ -137,4 +161,36 @@ fn humanoid_matches_mujoco() {
 #[test]
 fn finger_matches_mujoco() {
     matches_mujoco("finger", BOTH);
+}
+
+#[test]
+fn the_command_prints_the_model_with_its_options() {
+    let file = reference_dir().join("dm_control/pendulum.xml");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_dalembert"))
+        .args(["mjcf", "--name", "Swing", "--outputs"])
+        .arg("position(pole_origin), rotation(pole)")
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{output:?}");
+    let text = String::from_utf8(output.stdout).unwrap();
+    let library = Mjcf::read(&file)
+        .unwrap()
+        .name("Swing")
+        .outputs("position(pole_origin), rotation(pole)")
+        .model()
+        .unwrap();
+    assert_eq!(text, library);
+    assert!(text.contains("pub Swing {"), "{text}");
+    assert!(text.contains("    outputs position(pole_origin), rotation(pole);\n}"));
+    dalembert_codegen::check(&text).unwrap();
+    let help = std::process::Command::new(env!("CARGO_BIN_EXE_dalembert"))
+        .args(["mjcf", "--help"])
+        .output()
+        .unwrap();
+    assert!(
+        String::from_utf8(help.stdout)
+            .unwrap()
+            .contains("--outputs LIST")
+    );
 }
