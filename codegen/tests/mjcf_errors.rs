@@ -199,3 +199,12 @@ fn the_command_prints_nothing_and_fails() {
     assert_eq!(stderr.matches("error:").count(), 1, "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn an_unknown_default_class_is_reported_once() {
+    assert_error(
+        &model("<body><geom size=\".1\"/>\n      <joint class=\"stiff\" axis=\"0 1 0\"/></body>"),
+        4,
+        &["unknown default class `stiff`"],
+    );
+}

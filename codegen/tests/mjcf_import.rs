@@ -1,4 +1,4 @@
-//! MJCF import against MuJoCo: the models `dalembert mjcf` writes for ten
+//! MJCF import against MuJoCo: the models `dalembert mjcf` writes for eleven
 //! models of dm_control's suite and a model of every feature the import
 //! reads, evaluated by the interpreter (d'Alembert's route, and
 //! Lagrange's where every speed is its coordinate's rate), match MuJoCo's

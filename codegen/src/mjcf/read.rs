@@ -193,8 +193,16 @@ struct Reader<'a> {
 }
 
 impl<'a> Reader<'a> {
+    /// Records a problem once (an unknown class is met at every attribute
+    /// looked up through it).
     fn problem(&mut self, loc: Loc, message: String) {
-        self.problems.push(Problem::new(loc, message));
+        let seen = self
+            .problems
+            .iter()
+            .any(|p| p.loc.range == loc.range && p.loc.file == loc.file && p.message == message);
+        if !seen {
+            self.problems.push(Problem::new(loc, message));
+        }
     }
 
     fn note(&mut self, note: &str) {
