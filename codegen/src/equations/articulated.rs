@@ -186,7 +186,10 @@ fn pivot_step(
     let u = motion_subspace_image(pool, column.turns, &column.axis, &i_a);
     let u = group_pair(pool, &u);
     let pivot = project(pool, column.turns, &column.axis, &u);
-    let pivot = pool.add(pivot, armature);
+    let pivot = match pool.is_zero(armature) {
+        true => pivot,
+        false => pool.add(pivot, armature),
+    };
     let pivot = pool.group(pivot);
     let share = project(pool, column.turns, &column.axis, &delta);
     let force = pool.sub(force, share);

@@ -182,9 +182,14 @@ pub fn inverse_dynamics(
             let forces = (0..nv)
                 .map(|k| {
                     let active = potential_and_dissipation_force(model, &kinematics, pool, k);
-                    let qdd = pool.sym(Sym::Accel(k as u32));
-                    let rotor = pool.mul(armature[k], qdd);
-                    let inertial = pool.add(inertial[k], rotor);
+                    let inertial = match pool.is_zero(armature[k]) {
+                        true => inertial[k],
+                        false => {
+                            let qdd = pool.sym(Sym::Accel(k as u32));
+                            let rotor = pool.mul(armature[k], qdd);
+                            pool.add(inertial[k], rotor)
+                        }
+                    };
                     pool.sub(inertial, active)
                 })
                 .collect();
@@ -482,7 +487,9 @@ fn with_armature(
     pool: &mut Pool,
 ) -> Vec<Vec<ExprId>> {
     for (k, &a) in armature.iter().enumerate() {
-        mass_matrix[k][k] = pool.add(mass_matrix[k][k], a);
+        if !pool.is_zero(a) {
+            mass_matrix[k][k] = pool.add(mass_matrix[k][k], a);
+        }
     }
     mass_matrix
 }
@@ -497,6 +504,9 @@ fn kinetic_energy(
     let half = pool.rational(1, 2);
     let mut terms = Vec::new();
     for (k, &a) in armature.iter().enumerate() {
+        if pool.is_zero(a) {
+            continue;
+        }
         let v = pool.sym(Sym::Speed(k as u32));
         let vv = pool.mul(v, v);
         terms.push(pool.product([half, a, vv]));

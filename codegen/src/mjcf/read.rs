@@ -215,17 +215,13 @@ impl<'a> Reader<'a> {
     /// refused, or noted as left out.
     fn top_level(&mut self, element: Element<'a>, tag: &str) {
         match tag {
-            "equality" => {
-                if !self.files.children(element).is_empty() {
-                    self.problem(
-                        element.loc(),
-                        "equality constraints are not imported: they close loops or weld \
-                         bodies, which changes the motion; write them as `constraint` or \
-                         `closure` statements in the model instead"
-                            .to_owned(),
-                    );
-                }
-            }
+            "equality" if !self.files.children(element).is_empty() => self.problem(
+                element.loc(),
+                "equality constraints are not imported: they close loops or weld bodies, \
+                 which changes the motion; write them as `constraint` or `closure` \
+                 statements in the model instead"
+                    .to_owned(),
+            ),
             "tendon" => self.tendons(element),
             "actuator" => {
                 self.note("Actuators are left out (their gears and activation dynamics).")
