@@ -651,7 +651,7 @@ impl<'a> Reader<'a> {
                     }
                 }
                 "freejoint" => {
-                    let joint = self.free_joint(*child, index);
+                    let joint = self.free_joint(*child);
                     self.bodies[index].joints.extend(joint);
                 }
                 "inertial" => inertial = Some(*child),
@@ -804,7 +804,7 @@ impl<'a> Reader<'a> {
     }
 
     /// `<freejoint>`: a free joint that takes no defaults.
-    fn free_joint(&mut self, element: Element<'a>, _body: usize) -> Option<Joint> {
+    fn free_joint(&mut self, element: Element<'a>) -> Option<Joint> {
         if self
             .own(element, "align")
             .is_some_and(|a| a.value == "true")
