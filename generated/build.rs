@@ -1,5 +1,6 @@
 //! Generates one Rust file per `models/*.dal`, per URDF robot of
-//! `tests/reference/urdf/` and per benchmark tree of `trees/`, into `OUT_DIR`; `src/lib.rs` includes each into
+//! `tests/reference/urdf/`, per benchmark tree of `trees/` and for two MuJoCo
+//! models of `tests/reference/mjcf/`, into `OUT_DIR`; `src/lib.rs` includes each into
 //! its own module; with the `large` feature, also the 60-link chains
 //! (`dalembert_codegen::testing::chain`). For the chains spelled with symbolic
 //! parameters it also writes `chain_references.rs`: a `reference()`
@@ -110,6 +111,8 @@ fn main() {
         .urdf("trees/cart_pole_6.urdf")
         .urdf("trees/limbs.urdf")
         .urdf("trees/binary_tree.urdf")
+        .mjcf("../tests/reference/mjcf/dm_control/cheetah.xml")
+        .mjcf("../tests/reference/mjcf/dm_control/humanoid.xml")
         .compile()
         .unwrap_or_else(|e| panic!("\n{e}\n"));
     remove_stale(&out, &written);

@@ -26,6 +26,7 @@ mod expr;
 mod interpret;
 mod kinematics;
 mod language;
+mod mjcf;
 mod model;
 mod optimize;
 mod outputs;
@@ -42,6 +43,7 @@ pub use build::{
     BuildError, Builder, Diagnostic, ImportOptions, ModelFile, Severity, generate_file,
 };
 pub use emit::Target;
+pub use mjcf::Mjcf;
 pub use render::Style;
 pub use urdf::{Imported, Urdf};
 

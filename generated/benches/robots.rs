@@ -1,7 +1,8 @@
 //! Per-call cost of the generated equations of the URDF robots imported by
 //! `Builder::urdf` (Franka panda, UR5, Solo-12 on a fixed base and on a
 //! floating one, and the benchmark trees of `trees/`: cart-poles, limbs,
-//! binary tree):
+//! binary tree; and dm_control's cheetah and humanoid, imported by
+//! `Builder::mjcf`):
 //! `mass_matrix` + `forcing` (the counterpart of Pinocchio's `crba` +
 //! `nonLinearEffects`), each of the two alone (their sum against the pair
 //! shows what calling one after the other costs: BENCHMARKS.md) and
@@ -14,7 +15,9 @@
 //! Run with `cargo bench -p dalembert-generated --bench robots`; time
 //! Pinocchio in the same window with
 //! `bash ../shared/peers/pinocchio/run.sh --urdf tests/reference/urdf/panda.urdf`
-//! (`--floating` for its free flyer; BENCHMARKS.md).
+//! (`--floating` for its free flyer; BENCHMARKS.md), and MuJoCo's
+//! `mj_forward` on the cheetah and the humanoid with
+//! `python scripts/mjcf_timing.py`.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -23,7 +26,8 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::MultibodySystem;
 use dalembert_fixtures::states::{per_call, states};
 use dalembert_generated::{
-    BinaryTree, CartPole1, CartPole3, CartPole6, FloatingSolo, Limbs, Panda, Solo, Ur5,
+    BinaryTree, CartPole1, CartPole3, CartPole6, Cheetah, FloatingSolo, Humanoid, Limbs, Panda,
+    Solo, Ur5,
 };
 
 /// One call's arguments.
@@ -46,17 +50,18 @@ fn fixed_base<const N: usize>() -> Vec<Call<N, N, N>> {
     states.iter().map(call).collect()
 }
 
-/// States of the floating Solo-12: the fixtures' 18 coordinates with the
-/// three after the position read as a rotation vector and turned into its
-/// unit quaternion `(x, y, z, w)`.
-fn floating_solo() -> Vec<Call<19, 18, 12>> {
-    let states = states::<18, 12>(18);
-    let call = |s: &dalembert_fixtures::states::Sample<18, 12>| {
+/// States of a robot on a free joint (the floating Solo-12, the humanoid):
+/// the fixtures' `NV` coordinates with the three after the position read as
+/// a rotation vector and turned into its unit quaternion `(x, y, z, w)`.
+fn floating<const NQ: usize, const NV: usize, const NU: usize>() -> Vec<Call<NQ, NV, NU>> {
+    assert_eq!(NQ, NV + 1, "a free joint adds one coordinate");
+    let states = states::<NV, NU>(NV as u64);
+    let call = |s: &dalembert_fixtures::states::Sample<NV, NU>| {
         let [rx, ry, rz] = [s.q[3], s.q[4], s.q[5]];
         let angle = (rx * rx + ry * ry + rz * rz).sqrt();
         let (sine, cosine) = (angle / 2.0).sin_cos();
         let scale = if angle > 0.0 { sine / angle } else { 0.5 };
-        let mut q = [0.0; 19];
+        let mut q = [0.0; NQ];
         q[..3].copy_from_slice(&s.q[..3]);
         q[3..7].copy_from_slice(&[scale * rx, scale * ry, scale * rz, cosine]);
         q[7..].copy_from_slice(&s.q[6..]);
@@ -119,12 +124,14 @@ fn robots(c: &mut Criterion) {
     bench_robot(c, "panda", Panda {}, &fixed_base());
     bench_robot(c, "ur5", Ur5 {}, &fixed_base());
     bench_robot(c, "solo12", Solo {}, &fixed_base());
-    bench_robot(c, "floating_solo12", FloatingSolo {}, &floating_solo());
+    bench_robot(c, "floating_solo12", FloatingSolo {}, &floating());
     bench_robot(c, "cart_pole_1", CartPole1 {}, &fixed_base());
     bench_robot(c, "cart_pole_3", CartPole3 {}, &fixed_base());
     bench_robot(c, "cart_pole_6", CartPole6 {}, &fixed_base());
     bench_robot(c, "limbs", Limbs {}, &fixed_base());
     bench_robot(c, "binary_tree", BinaryTree {}, &fixed_base());
+    bench_robot(c, "cheetah", Cheetah {}, &fixed_base());
+    bench_robot(c, "humanoid", Humanoid {}, &floating());
 }
 
 criterion_group! {

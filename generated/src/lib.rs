@@ -191,6 +191,18 @@ model!(
     floating_solo12
 );
 
+// MuJoCo models (`tests/reference/mjcf/dm_control/*.xml`), imported by
+// `Builder::mjcf`; tests/mjcf.rs checks them against MuJoCo.
+model!(
+    /// dm_control's half cheetah: 9 planar coordinates, springs and armature.
+    cheetah
+);
+model!(
+    /// dm_control's humanoid: a free joint and 21 hinges (28 coordinates,
+    /// 27 speeds).
+    humanoid
+);
+
 // The benchmark trees (`trees/*.urdf`, written by
 // `dalembert_codegen::testing::Shape`), imported by `Builder::urdf`;
 // tests/trees.rs checks the files against the generator.
@@ -288,11 +300,13 @@ pub use binary_tree::BinaryTree;
 pub use cart_pole_1::CartPole1;
 pub use cart_pole_3::CartPole3;
 pub use cart_pole_6::CartPole6;
+pub use cheetah::Cheetah;
 pub use constrained_pendulum::ConstrainedPendulum;
 pub use double_pendulum::DoublePendulum;
 pub use dzhanibekov::Dzhanibekov;
 pub use features::FeatureTree;
 pub use floating_solo12::FloatingSolo;
+pub use humanoid::Humanoid;
 pub use limbs::Limbs;
 pub use panda::Panda;
 pub use planar_chain_01::PlanarChain1;

@@ -9,6 +9,8 @@
 //!                                     spelled joints, symbolic or seed)
 //! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs "LIST"]
 //!                                     the .dal model of a URDF robot
+//! dalembert mjcf MODEL.xml [--name NAME] [--outputs "LIST"]
+//!                                     the .dal model of a MuJoCo model
 //! ```
 //!
 //! `dalembert COMMAND --help` prints the command's own help.
@@ -25,7 +27,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use dalembert_codegen::testing::{Family, Spelling};
-use dalembert_codegen::{BuildError, ImportOptions, ModelFile, Severity, Style, Urdf};
+use dalembert_codegen::{BuildError, ImportOptions, Mjcf, ModelFile, Severity, Style, Urdf};
 
 const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
@@ -38,6 +40,8 @@ Commands:
                             spelled `joints` (default), `symbolic` or `seed`
   urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs \"LIST\"]
                             print the .dal model of a URDF robot
+  mjcf MODEL.xml [--name NAME] [--outputs \"LIST\"]
+                            print the .dal model of a MuJoCo model (MJCF)
   help                      print this help
 
 Options:
@@ -60,7 +64,7 @@ impl Help {
 }
 
 /// The help of every command.
-const COMMANDS: [Help; 5] = [
+const COMMANDS: [Help; 6] = [
     Help {
         name: "eom",
         usage: "dalembert eom MODEL.dal [--latex]",
@@ -112,6 +116,22 @@ Options:
                      --outputs \"jacobian(tool0_origin), rotation(tool0), linearize\"
   -h, --help         print this help",
     },
+    Help {
+        name: "mjcf",
+        usage: "dalembert mjcf MODEL.xml [--name NAME] [--outputs \"LIST\"]",
+        text: "Prints the MuJoCo model (MJCF) MODEL.xml, with the files it includes, as a model
+in dalembert's language on stdout (nothing on stdout on an error): coordinates and speeds
+in MuJoCo's order (qpos, qvel), free joints as (x, y, z, qx, qy, qz, qw) with speeds in
+the body's axes, one input tau_<coordinate> per speed that is not a free joint's, gravity
+from <option gravity>, joint springs, dampers and armature as MuJoCo applies them. Every
+body B has a frame `B` and a point `B_origin`. Contacts, limits and actuators are left
+out (see docs/mjcf.md).
+
+Options:
+  --name NAME        the struct's name (default: the model's name in UpperCamelCase)
+  --outputs \"LIST\"   append `outputs LIST;` to the model
+  -h, --help         print this help",
+    },
 ];
 
 /// A parsed command line.
@@ -134,6 +154,10 @@ enum Command {
     },
     Urdf {
         robot: PathBuf,
+        options: ImportOptions,
+    },
+    Mjcf {
+        model: PathBuf,
         options: ImportOptions,
     },
     /// The general help, or a command's.
@@ -169,7 +193,7 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
             format!("unknown option `{name}`: expected a command first")
         } else {
             format!(
-                "unknown command `{name}`: expected `eom`, `generate`, `check`, `chain` or `urdf`"
+                "unknown command `{name}`: expected `eom`, `generate`, `check`, `chain`, `urdf` or `mjcf`"
             )
         };
         return Err(general_usage(&what));
@@ -182,6 +206,8 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
         "chain" => parse_chain(rest.into_iter()),
         "urdf" => parse_import(help.name, rest, &IMPORT_OPTIONS)
             .map(|(robot, options)| Command::Urdf { robot, options }),
+        "mjcf" => parse_import(help.name, rest, &["--name", "--outputs"])
+            .map(|(model, options)| Command::Mjcf { model, options }),
         _ => parse_model(help.name, rest),
     };
     parsed.map_err(|message| {
@@ -316,6 +342,11 @@ fn urdf(robot: &PathBuf, options: ImportOptions) -> Result<String, BuildError> {
     Ok(imported.model)
 }
 
+/// The `.dal` model of the MuJoCo model at `model`.
+fn mjcf(model: &PathBuf, options: ImportOptions) -> Result<String, BuildError> {
+    Mjcf::read(model)?.options(options).model()
+}
+
 /// Runs `command`, printing its result to stdout and errors to stderr.
 fn run(command: Command) -> ExitCode {
     let output = match command {
@@ -335,6 +366,7 @@ fn run(command: Command) -> ExitCode {
             family, links, spelling,
         )),
         Command::Urdf { robot, options } => urdf(&robot, options),
+        Command::Mjcf { model, options } => mjcf(&model, options),
     };
     match output {
         Ok(text) => print(&text),
@@ -422,6 +454,20 @@ mod tests {
             })
         );
         assert_eq!(
+            parse_str(&[
+                "mjcf",
+                "m.xml",
+                "--outputs",
+                "inverse_dynamics",
+                "--name",
+                "M"
+            ]),
+            Ok(Command::Mjcf {
+                model: PathBuf::from("m.xml"),
+                options: ImportOptions::new().outputs("inverse_dynamics").name("M"),
+            })
+        );
+        assert_eq!(
             parse_str(&["chain", "spatial", "12"]),
             Ok(Command::Chain {
                 family: Family::Spatial,
@@ -486,6 +532,10 @@ mod tests {
             &["urdf", "r.urdf", "--outputs"],
             &["urdf", "r.urdf", "--latex"],
             &["urdf", "r.urdf", "s.urdf"],
+            &["mjcf"],
+            &["mjcf", "m.xml", "--name"],
+            &["mjcf", "m.xml", "--floating"],
+            &["mjcf", "m.xml", "n.xml"],
         ] {
             assert!(parse_str(args).is_err(), "{args:?}");
         }

@@ -39,7 +39,7 @@ const MODEL_EXTENSION: &str = "dal";
 #[derive(Clone, Debug)]
 pub struct Builder {
     models: Vec<PathBuf>,
-    urdfs: Vec<(PathBuf, ImportOptions)>,
+    imports: Vec<Import>,
     model_dirs: Vec<PathBuf>,
     out_dir: Option<PathBuf>,
     emit_rerun_if_changed: bool,
@@ -58,7 +58,7 @@ impl Builder {
     pub fn new() -> Self {
         Builder {
             models: Vec::new(),
-            urdfs: Vec::new(),
+            imports: Vec::new(),
             model_dirs: Vec::new(),
             out_dir: None,
             emit_rerun_if_changed: true,
@@ -99,7 +99,45 @@ impl Builder {
     ///     .unwrap_or_else(|e| panic!("{e}"));
     /// ```
     pub fn urdf_with(&mut self, path: impl AsRef<Path>, options: ImportOptions) -> &mut Self {
-        self.urdfs.push((path.as_ref().to_owned(), options));
+        self.import(path, Format::Urdf, options)
+    }
+
+    /// Adds the MuJoCo model (MJCF) at `path`, imported as `dalembert mjcf`
+    /// does, with the files it includes: `NAME.xml` becomes `NAME.rs`. Its
+    /// errors are reported like a model's, located in the MJCF files.
+    pub fn mjcf(&mut self, path: impl AsRef<Path>) -> &mut Self {
+        self.mjcf_with(path, ImportOptions::new())
+    }
+
+    /// Adds the MuJoCo model at `path` imported with `options`, as
+    /// `dalembert mjcf` does with the same options on its command line
+    /// (`--name`, `--outputs`; an MJCF file says itself which bodies float
+    /// and how joints are damped, so the options `floating` and `damping`
+    /// are refused there):
+    ///
+    /// ```no_run
+    /// # use dalembert_codegen::{Builder, ImportOptions};
+    /// Builder::new()
+    ///     .mjcf_with("humanoid.xml", ImportOptions::new().outputs("position(head_origin)"))
+    ///     .compile()
+    ///     .unwrap_or_else(|e| panic!("{e}"));
+    /// ```
+    pub fn mjcf_with(&mut self, path: impl AsRef<Path>, options: ImportOptions) -> &mut Self {
+        self.import(path, Format::Mjcf, options)
+    }
+
+    /// Adds the robot file at `path`, in `format`, imported with `options`.
+    fn import(
+        &mut self,
+        path: impl AsRef<Path>,
+        format: Format,
+        options: ImportOptions,
+    ) -> &mut Self {
+        self.imports.push(Import {
+            path: path.as_ref().to_owned(),
+            format,
+            options,
+        });
         self
     }
 
@@ -145,8 +183,8 @@ impl Builder {
                 .ok_or(BuildError::NoOutDir)?,
         };
         let mut jobs: Vec<(PathBuf, PathBuf)> = Vec::new();
-        let urdfs = self.urdfs.iter().map(|(path, _)| path.clone());
-        for model in self.model_paths()?.into_iter().chain(urdfs) {
+        let imports = self.imports.iter().map(|import| import.path.clone());
+        for model in self.model_paths()?.into_iter().chain(imports) {
             let stem = model.file_stem().ok_or_else(|| BuildError::NoFileName {
                 path: model.clone(),
             })?;
@@ -187,8 +225,8 @@ impl Builder {
         let mut diagnostics = Vec::new();
         for (model, output) in jobs {
             self.rerun_if_changed(model);
-            let file = match self.urdfs.iter().find(|(path, _)| path == model) {
-                Some((path, options)) => self.urdf_model(path, options),
+            let file = match self.imports.iter().find(|import| import.path == *model) {
+                Some(import) => self.imported_model(import),
                 None => ModelFile::read(model),
             };
             match file.and_then(|file| file.generate_for(self.target)) {
@@ -204,12 +242,20 @@ impl Builder {
         }
     }
 
-    /// The model imported from the URDF file `path`, reported as
+    /// The model imported from the robot file of `import`, reported as
     /// `path (imported)` if the engine finds errors in it. Its warnings go
     /// to Cargo (`cargo:warning=`) when the builder prints Cargo's
     /// directives.
-    fn urdf_model(&self, path: &Path, options: &ImportOptions) -> Result<ModelFile, BuildError> {
-        let imported = crate::Urdf::read(path)?.options(options.clone()).import()?;
+    fn imported_model(&self, import: &Import) -> Result<ModelFile, BuildError> {
+        let Import {
+            path,
+            format,
+            options,
+        } = import;
+        let imported = match format {
+            Format::Urdf => crate::Urdf::read(path)?.options(options.clone()).import()?,
+            Format::Mjcf => crate::Mjcf::read(path)?.options(options.clone()).import()?,
+        };
         if self.emit_rerun_if_changed {
             for warning in &imported.warnings {
                 println!("cargo:warning={}", warning.to_string().replace('\n', " "));
@@ -227,6 +273,21 @@ impl Builder {
             println!("cargo:rerun-if-changed={}", path.display());
         }
     }
+}
+
+/// A robot file a [`Builder`] imports, and how.
+#[derive(Clone, Debug)]
+struct Import {
+    path: PathBuf,
+    format: Format,
+    options: ImportOptions,
+}
+
+/// The formats of robot files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Urdf,
+    Mjcf,
 }
 
 /// Generates Rust from the model at `input` and writes it to `output`

@@ -70,8 +70,9 @@ struct Pivot {
     force: ExprId,
 }
 
-/// `q̈` of `tree` with forcing `forcing` (indexed by speed); `None` if the
-/// tree's joints do not hold every speed.
+/// `q̈` of `tree` with forcing `forcing` and the armature `armature` added
+/// to each pivot (both indexed by speed); `None` if the tree's joints do
+/// not hold every speed.
 ///
 /// A joint of several speeds (spherical, free) is taken as that many
 /// one-speed joints in series, fixed to each other with no offset and no
@@ -79,7 +80,12 @@ struct Pivot {
 /// same and the recursion above applies speed by speed, with the identity
 /// transform between the speeds of one joint (a block `L D Lᵀ` of the
 /// joint's `Sᵀ Iᴬ S`, done column by column).
-pub fn articulated(tree: &JointTree, forcing: &[ExprId], pool: &mut Pool) -> Option<Articulated> {
+pub fn articulated(
+    tree: &JointTree,
+    forcing: &[ExprId],
+    armature: &[ExprId],
+    pool: &mut Pool,
+) -> Option<Articulated> {
     let n = forcing.len();
     let speeds: usize = tree.links.iter().map(|l| l.columns.len()).sum();
     if speeds != n || n == 0 {
@@ -100,7 +106,13 @@ pub fn articulated(tree: &JointTree, forcing: &[ExprId], pool: &mut Pool) -> Opt
         let mut delta = bias[l];
         let mut link_steps = Vec::with_capacity(link.columns.len());
         for (k, column) in link.columns.iter().enumerate().rev() {
-            let step = pivot_step(pool, column, forcing[column.speed], &i_a, &delta);
+            let step = pivot_step(
+                pool,
+                column,
+                (forcing[column.speed], armature[column.speed]),
+                &i_a,
+                &delta,
+            );
             pivots[column.speed] = step.pivot;
             let inner = k > 0 || link.parent.is_some();
             if inner {
@@ -165,7 +177,7 @@ struct Step {
 fn pivot_step(
     pool: &mut Pool,
     column: &Column,
-    force: ExprId,
+    (force, armature): (ExprId, ExprId),
     i_a: &Spatial,
     delta: &Pair,
 ) -> Step {
@@ -174,6 +186,10 @@ fn pivot_step(
     let u = motion_subspace_image(pool, column.turns, &column.axis, &i_a);
     let u = group_pair(pool, &u);
     let pivot = project(pool, column.turns, &column.axis, &u);
+    let pivot = match pool.is_zero(armature) {
+        true => pivot,
+        false => pool.add(pivot, armature),
+    };
     let pivot = pool.group(pivot);
     let share = project(pool, column.turns, &column.axis, &delta);
     let force = pool.sub(force, share);

@@ -135,6 +135,8 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
             (mass_matrix, bias, false)
         }
     };
+    let armature = armature(model, pool);
+    let mass_matrix = with_armature(mass_matrix, &armature, pool);
     let forcing: Vec<ExprId> = (0..nv)
         .map(|k| {
             let mut active = potential_and_dissipation_force(model, &kinematics, pool, k);
@@ -147,13 +149,13 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
         .collect();
     let rows = constraints(model, pool);
     let articulated = match (&tree, model.constraints.is_empty()) {
-        (Some(tree), true) => articulated::articulated(tree, &forcing, pool),
+        (Some(tree), true) => articulated::articulated(tree, &forcing, &armature, pool),
         _ => None,
     };
     Equations {
         mass_matrix,
         forcing,
-        kinetic_energy: kinetic_energy(&kinematics, pool, &inertias),
+        kinetic_energy: kinetic_energy(&kinematics, pool, &inertias, &armature),
         potential_energy: potential_energy(model, &kinematics, pool, &inertias),
         constraint_jacobian: rows.jacobian,
         constraint_bias: rows.bias,
@@ -176,10 +178,19 @@ pub fn inverse_dynamics(
     match joint_tree(model, &kinematics, pool) {
         Some(tree) => {
             let inertial = recursive::inverse_dynamics(&tree, pool);
+            let armature = armature(model, pool);
             let forces = (0..nv)
                 .map(|k| {
                     let active = potential_and_dissipation_force(model, &kinematics, pool, k);
-                    pool.sub(inertial[k], active)
+                    let inertial = match pool.is_zero(armature[k]) {
+                        true => inertial[k],
+                        false => {
+                            let qdd = pool.sym(Sym::Accel(k as u32));
+                            let rotor = pool.mul(armature[k], qdd);
+                            pool.add(inertial[k], rotor)
+                        }
+                    };
+                    pool.sub(inertial, active)
                 })
                 .collect();
             (forces, true)
@@ -460,10 +471,46 @@ fn torque_power(
     dot(pool, &tau, &w)
 }
 
-/// `T = Σ ½ m v·v + ½ ω·(I ω)`.
-fn kinetic_energy(kinematics: &Kinematics, pool: &mut Pool, inertias: &[Inertia<'_>]) -> ExprId {
+/// Per speed, the sum of its `armature` statements (zero if none).
+fn armature(model: &Model, pool: &mut Pool) -> Vec<ExprId> {
+    let mut added = vec![pool.zero(); model.nv()];
+    for &(k, a) in &model.armature {
+        added[k] = pool.add(added[k], a);
+    }
+    added
+}
+
+/// `M` with each speed's armature added to its diagonal entry.
+fn with_armature(
+    mut mass_matrix: Vec<Vec<ExprId>>,
+    armature: &[ExprId],
+    pool: &mut Pool,
+) -> Vec<Vec<ExprId>> {
+    for (k, &a) in armature.iter().enumerate() {
+        if !pool.is_zero(a) {
+            mass_matrix[k][k] = pool.add(mass_matrix[k][k], a);
+        }
+    }
+    mass_matrix
+}
+
+/// `T = Σ ½ m v·v + ½ ω·(I ω) + Σ ½ a v²` (the last over the armatures).
+fn kinetic_energy(
+    kinematics: &Kinematics,
+    pool: &mut Pool,
+    inertias: &[Inertia<'_>],
+    armature: &[ExprId],
+) -> ExprId {
     let half = pool.rational(1, 2);
     let mut terms = Vec::new();
+    for (k, &a) in armature.iter().enumerate() {
+        if pool.is_zero(a) {
+            continue;
+        }
+        let v = pool.sym(Sym::Speed(k as u32));
+        let vv = pool.mul(v, v);
+        terms.push(pool.product([half, a, vv]));
+    }
     for inertia in inertias {
         let v = kinematics.velocity(pool, inertia.center);
         let vv = dot(pool, &v, &v);

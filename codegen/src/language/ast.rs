@@ -101,6 +101,13 @@ pub enum Statement {
         /// The Rayleigh dissipation function `D(q, q̇)`.
         value: Expr,
     },
+    /// `armature <scalar> on <speed>;`
+    Armature {
+        /// The inertia added to `M`'s diagonal entry of the speed.
+        value: Expr,
+        /// The speed, after `on`: `dt(q)` or a joint's speed.
+        speed: Expr,
+    },
     /// `constraint lhs == rhs;`
     Constraint {
         /// The `constraint` token.

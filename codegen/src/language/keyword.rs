@@ -30,6 +30,8 @@ pub const TORQUE: &str = "torque";
 pub const POTENTIAL: &str = "potential";
 /// `dissipation <scalar>;`
 pub const DISSIPATION: &str = "dissipation";
+/// `armature <scalar> on <speed>;`
+pub const ARMATURE: &str = "armature";
 /// `constraint lhs == rhs;`
 pub const CONSTRAINT: &str = "constraint";
 /// `closure NAME { at: P, to: Q, ... };`
@@ -43,7 +45,7 @@ pub const SPEEDS: &str = "speeds";
 
 /// The statement keywords, in the order the "expected one of" message
 /// lists them.
-pub const STATEMENTS: [&str; 18] = [
+pub const STATEMENTS: [&str; 19] = [
     PARAMETERS,
     COORDINATES,
     INPUTS,
@@ -62,6 +64,7 @@ pub const STATEMENTS: [&str; 18] = [
     ROLLING,
     OUTPUTS,
     SPEEDS,
+    ARMATURE,
 ];
 
 /// `force <vec> at P;`: the point of application.

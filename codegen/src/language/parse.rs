@@ -232,6 +232,12 @@ fn statement(cursor: &mut Cursor) -> syn::Result<Statement> {
         keyword::DISSIPATION => Statement::Dissipation {
             value: expression(cursor)?,
         },
+        keyword::ARMATURE => {
+            let value = expression(cursor)?;
+            cursor.expect_keyword(keyword::ON, "`on` and a speed after the armature")?;
+            let speed = expression(cursor)?;
+            Statement::Armature { value, speed }
+        }
         keyword::CONSTRAINT => constraint(cursor, keyword)?,
         keyword::CLOSURE => {
             let (name, fields) = named_fields(cursor, &keyword)?;
@@ -658,7 +664,7 @@ mod tests {
                 "unknown statement `bodyy`; expected one of `parameters`, `coordinates`, \
                  `inputs`, `frame`, `point`, `body`, `particle`, `joint`, `gravity`, \
                  `force`, `torque`, `potential`, `dissipation`, `constraint`, `closure`, \
-                 `rolling`, `outputs`, `speeds`"
+                 `rolling`, `outputs`, `speeds`, `armature`"
                     .to_owned(),
                 2,
                 2

@@ -78,6 +78,10 @@ pub struct Model {
     pub potential: ExprId,
     /// Sum of the `dissipation` statements (zero if none).
     pub dissipation: ExprId,
+    /// Inertias added to `M`'s diagonal (`armature a on v;`): the speed's
+    /// index and `a` (parameters only), in declaration order; a speed may
+    /// appear more than once (the entries add up).
+    pub armature: Vec<(usize, ExprId)>,
     /// Constraints, in declaration order.
     pub constraints: Vec<Constraint>,
     /// Masses that move with time `t` (prescribed motion), with the error to

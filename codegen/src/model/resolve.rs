@@ -98,6 +98,7 @@ impl Resolver {
                 torques: Vec::new(),
                 potential: zero,
                 dissipation: zero,
+                armature: Vec::new(),
                 constraints: Vec::new(),
                 moving_masses: Vec::new(),
                 tree: None,

@@ -40,7 +40,11 @@ pub fn mass_matrix(
         )
     };
     let entries: Vec<_> = equations.mass_matrix.iter().flatten().copied().collect();
-    if !looped || operations(pool, &entries) <= MASS_PAIRS_LOOPED_ABOVE {
+    // The runtime's loop over the tree's pairs knows no armature.
+    if !looped
+        || !model.armature.is_empty()
+        || operations(pool, &entries) <= MASS_PAIRS_LOOPED_ABOVE
+    {
         return unrolled();
     }
     let Some(speeds) = tree_mass(model, pool) else {

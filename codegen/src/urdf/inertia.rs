@@ -5,8 +5,8 @@
 //! inertia: a tensor that is positive semi-definite and whose principal
 //! moments satisfy the triangle inequality, up to rounding.
 
-pub(super) type Vec3 = [f64; 3];
-pub(super) type Mat3 = [[f64; 3]; 3];
+pub(crate) type Vec3 = [f64; 3];
+pub(crate) type Mat3 = [[f64; 3]; 3];
 
 const IDENTITY: Mat3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
@@ -56,7 +56,7 @@ fn rotate_tensor(r: &Mat3, tensor: &Mat3) -> Mat3 {
 /// A frame's placement in another: its origin and its axes (columns of
 /// `rotation`) in the other frame's axes.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Placement {
+pub(crate) struct Placement {
     pub rotation: Mat3,
     pub translation: Vec3,
 }
@@ -87,7 +87,7 @@ impl Placement {
 
 /// Mass, centre of mass and central inertia tensor, in some frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct MassProperties {
+pub(crate) struct MassProperties {
     pub mass: f64,
     pub center: Vec3,
     pub inertia: Mat3,
@@ -181,7 +181,7 @@ fn steiner(m: f64, d: &Vec3) -> Mat3 {
 
 /// What is physically wrong with an inertia tensor, if anything.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) enum InertiaFault {
+pub(crate) enum InertiaFault {
     /// A principal moment is negative.
     NotPositiveSemiDefinite { moments: Vec3 },
     /// A principal moment exceeds the sum of the other two.
@@ -211,7 +211,7 @@ fn slack(moments: &Vec3) -> f64 {
 /// iCub's hips). A product of inertia far below the moments but above
 /// [`NEGLIGIBLE`] is kept: `-3.854e-13` beside `1.2e-3` (the double
 /// pendulum of example-robot-data) moves `M` by 1e-12 of its largest entry.
-pub(super) fn without_rounding(tensor: &Mat3) -> Mat3 {
+pub(crate) fn without_rounding(tensor: &Mat3) -> Mat3 {
     let slack = slack(&principal_moments(tensor));
     let mut cleaned = tensor.map(|row| row.map(|x| if x.abs() <= NEGLIGIBLE { 0.0 } else { x }));
     for (k, row) in cleaned.iter_mut().enumerate() {
@@ -225,7 +225,7 @@ pub(super) fn without_rounding(tensor: &Mat3) -> Mat3 {
 /// Checks that `tensor` is the inertia of some mass distribution: its
 /// principal moments are non-negative and each is at most the sum of the
 /// other two.
-pub(super) fn check_inertia(tensor: &Mat3) -> Result<(), InertiaFault> {
+pub(crate) fn check_inertia(tensor: &Mat3) -> Result<(), InertiaFault> {
     let moments = principal_moments(tensor);
     let slack = slack(&moments);
     if moments.iter().any(|&m| m < -slack) {

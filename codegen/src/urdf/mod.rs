@@ -17,10 +17,10 @@
 //! limits and meshes are ignored. The [`ImportOptions`] add a name, a
 //! floating base, damping and `outputs`.
 
-mod inertia;
+pub(crate) mod inertia;
 mod tree;
-mod write;
-mod xml;
+pub(crate) mod write;
+pub(crate) mod xml;
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};

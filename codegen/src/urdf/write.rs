@@ -193,7 +193,7 @@ pub(super) fn struct_name(robot: &Robot, options: &Options, problems: &mut Vec<P
 }
 
 /// `ur5_robot` → `Ur5Robot`, `panda` → `Panda`.
-fn upper_camel_case(name: &str) -> String {
+pub(crate) fn upper_camel_case(name: &str) -> String {
     name.split(|c: char| !c.is_ascii_alphanumeric())
         .filter(|part| !part.is_empty())
         .map(|part| {
@@ -207,7 +207,7 @@ fn upper_camel_case(name: &str) -> String {
 }
 
 /// The name with every character outside `[A-Za-z0-9_]` replaced by `_`.
-fn sanitize(name: &str) -> String {
+pub(crate) fn sanitize(name: &str) -> String {
     name.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '_' {
@@ -222,24 +222,24 @@ fn sanitize(name: &str) -> String {
 /// Whether `name` can name an item of the model: a plain Rust identifier
 /// (not a keyword, raw, nor `Some`-like) that is not one of the language's built-in names,
 /// as the model layer checks every name.
-fn is_identifier(name: &str) -> bool {
+pub(crate) fn is_identifier(name: &str) -> bool {
     is_plain(name) && !is_builtin(name)
 }
 
 /// The names used so far in the model.
 #[derive(Default)]
-struct Names {
+pub(crate) struct Names {
     taken: HashSet<String>,
 }
 
 impl Names {
     /// Takes `name` if it is a free identifier.
-    fn claim(&mut self, name: &str) -> bool {
+    pub(crate) fn claim(&mut self, name: &str) -> bool {
         is_identifier(name) && self.taken.insert(name.to_owned())
     }
 
     /// `base` sanitised, or with a suffix `_2`, `_3`, ... if it is taken.
-    fn fresh(&mut self, base: &str) -> String {
+    pub(crate) fn fresh(&mut self, base: &str) -> String {
         let mut base = sanitize(base);
         if base.starts_with(|c: char| c.is_ascii_digit()) {
             base.insert(0, '_');
@@ -664,7 +664,7 @@ impl Writer<'_> {
 
 /// The joint's `axis:` field for the unit axis `axis`: a positive axis of
 /// the frame by name, any other direction by its components.
-fn axis_field(axis: Vec3) -> String {
+pub(crate) fn axis_field(axis: Vec3) -> String {
     let named = ["x", "y", "z"].into_iter().enumerate().find(|&(k, _)| {
         let mut unit = [0.0; 3];
         unit[k] = 1.0;
@@ -679,7 +679,7 @@ fn axis_field(axis: Vec3) -> String {
     }
 }
 
-fn norm(v: Vec3) -> f64 {
+pub(crate) fn norm(v: Vec3) -> f64 {
     (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
@@ -702,7 +702,7 @@ fn terms(v: Vec3, frame: &str) -> Vec<(bool, String)> {
 }
 
 /// The point `base` moved by `v` in `frame`'s axes: `P + 0.1 * F.x - F.z`.
-fn offset(base: &str, v: Vec3, frame: &str) -> String {
+pub(crate) fn offset(base: &str, v: Vec3, frame: &str) -> String {
     let mut text = base.to_owned();
     for (negative, term) in terms(v, frame) {
         text += if negative { " - " } else { " + " };
@@ -713,7 +713,7 @@ fn offset(base: &str, v: Vec3, frame: &str) -> String {
 
 /// The vector `v` in `frame`'s axes scaled by `scalar`: `u * F.z`,
 /// `-u * F.y`, `u * (0.6 * F.y - 0.8 * F.z)`.
-fn scaled(scalar: &str, v: Vec3, frame: &str) -> String {
+pub(crate) fn scaled(scalar: &str, v: Vec3, frame: &str) -> String {
     let terms = terms(v, frame);
     if let [(negative, term)] = &terms[..] {
         let sign = if *negative { "-" } else { "" };
@@ -734,7 +734,7 @@ fn scaled(scalar: &str, v: Vec3, frame: &str) -> String {
 
 /// A literal that reads back as exactly `x`: the shortest decimal that
 /// round-trips, as an integer when it is one.
-fn number(x: f64) -> String {
+pub(crate) fn number(x: f64) -> String {
     if x == x.trunc() && x.abs() < 1e15 {
         format!("{}", x as i64)
     } else {

@@ -171,7 +171,7 @@ pub(super) fn read(source: &str) -> Result<Robot, Vec<Problem>> {
 }
 
 /// The byte offset of 1-based `row` and `col` (in characters) in `source`.
-fn offset_of(source: &str, row: u32, col: u32) -> usize {
+pub(crate) fn offset_of(source: &str, row: u32, col: u32) -> usize {
     let line_start: usize = source
         .split_inclusive('\n')
         .take(row.saturating_sub(1) as usize)
@@ -415,7 +415,7 @@ impl Reader {
 
 /// The byte range of `node`'s start tag (`<joint name="..." type="...">`),
 /// or the whole element when it has no children.
-fn tag_range(node: Node<'_, '_>) -> Range<usize> {
+pub(crate) fn tag_range(node: Node<'_, '_>) -> Range<usize> {
     let range = node.range();
     let end = node
         .first_child()

@@ -3,10 +3,12 @@
 //! outputs), checking on the way what only that statement can get wrong.
 
 use super::Resolver;
-use super::evaluate::{CONSTRAINT, DISSIPATION, GEOMETRY, GRAVITY, KINEMATICS, LOAD, POTENTIAL};
+use super::evaluate::{
+    CONSTRAINT, DISSIPATION, GEOMETRY, GRAVITY, KINEMATICS, LOAD, MASS, POTENTIAL,
+};
 use super::list;
 use super::scope::{Binding, is_plain};
-use crate::expr::{ExprId, Sym, SymKinds};
+use crate::expr::{ExprId, Node, Sym, SymKinds};
 use crate::language::ast::{Expr, Field, OutputRequest, SpanRange, Statement};
 use crate::model::closure::{ClosureKind, closure_rows};
 use crate::model::{
@@ -125,6 +127,7 @@ impl Resolver {
                     self.model.dissipation = self.pool.add(self.model.dissipation, d);
                 }
             }
+            Statement::Armature { value, speed } => self.armature(value, speed),
             Statement::Constraint {
                 keyword, lhs, rhs, ..
             } => self.constraint(keyword, lhs, rhs),
@@ -619,6 +622,28 @@ impl Resolver {
                 on,
                 reacting,
             });
+        }
+    }
+
+    /// `armature a on v;`: `a` (parameters only) added to `M`'s diagonal
+    /// entry of the speed `v`, which is `dt(q)` of a coordinate or a
+    /// joint's speed, as a rotor's inertia reflected through its gearbox.
+    fn armature(&mut self, value: &Expr, speed: &Expr) {
+        let value = self.scalar(value, MASS);
+        let target = self.scalar(speed, DISSIPATION);
+        let speed_index = target.and_then(|s| match self.pool.node(s) {
+            Node::Sym(Sym::Speed(k)) => Some(*k as usize),
+            _ => None,
+        });
+        if target.is_some() && speed_index.is_none() {
+            self.errors.push(
+                speed.range(),
+                "expected a speed after `on`: `dt(q)` of a coordinate whose rate is its speed, \
+                 or a joint's speed such as `ball_wx`",
+            );
+        }
+        if let (Some(value), Some(k)) = (value, speed_index) {
+            self.model.armature.push((k, value));
         }
     }
 
