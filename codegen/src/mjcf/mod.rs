@@ -132,7 +132,7 @@ impl Mjcf {
     /// every error found, located in the MJCF files.
     pub fn import(&self) -> Result<Imported, BuildError> {
         let chosen = &self.options.chosen;
-        if chosen.is_floating() || chosen.has_damping() {
+        if chosen.floating || chosen.damping {
             return Err(BuildError::ImportOption {
                 path: self.path.clone(),
                 message: "an MJCF import takes no `floating` or `damping` option: the file \

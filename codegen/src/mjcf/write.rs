@@ -66,7 +66,7 @@ pub(super) fn model_text(model: &Model, options: &Options) -> Result<String, Vec
 
 /// The struct's name: `--name`, else the model's name in UpperCamelCase.
 fn struct_name(model: &Model, options: &Options, problems: &mut Vec<Problem>) -> String {
-    let (name, whence) = match options.chosen.struct_name() {
+    let (name, whence) = match options.chosen.name.as_deref() {
         Some(name) => (name.to_owned(), "the name given"),
         None => (
             upper_camel_case(model.name.as_deref().unwrap_or("MuJoCo Model")),
