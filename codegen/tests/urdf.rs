@@ -86,8 +86,7 @@ fn solo12_matches_pinocchio() {
 /// A small robot with what the real ones leave out: a continuous joint,
 /// unaligned and negative axes, rotated inertial frames, a rotated fixed
 /// joint carrying a moving one, a massless link, siblings out of
-/// alphabetical order (Pinocchio's own order differs there: the reference
-/// matches joints by name).
+/// alphabetical order (imported, as Pinocchio orders them, by name).
 #[test]
 fn feature_robot_matches_pinocchio() {
     matches_pinocchio("features");
