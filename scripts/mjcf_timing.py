@@ -40,25 +40,22 @@ def main():
                 qpos[:, a:a + 4] /= np.linalg.norm(qpos[:, a:a + 4], axis=1)[:, None]
         qvel = rng.normal(size=(STATES, m.nv))
         qfrc = rng.uniform(-1, 1, size=(STATES, m.nv))
-        best = float("inf")
-        for _ in range(ROUNDS):
-            # Called from Python: the copies' time, measured alone below, is
-            # subtracted.
-            start = time.perf_counter_ns()
-            for i in range(STATES):
-                d.qpos[:] = qpos[i]
-                d.qvel[:] = qvel[i]
-                d.qfrc_applied[:] = qfrc[i]
-                mujoco.mj_forward(m, d)
-            best = min(best, (time.perf_counter_ns() - start) / STATES)
-        overhead = float("inf")
-        for _ in range(ROUNDS):
-            start = time.perf_counter_ns()
-            for i in range(STATES):
-                d.qpos[:] = qpos[i]
-                d.qvel[:] = qvel[i]
-                d.qfrc_applied[:] = qfrc[i]
-            overhead = min(overhead, (time.perf_counter_ns() - start) / STATES)
+        def per_call(forward):
+            """The best time per state over the rounds, in nanoseconds."""
+            best = float("inf")
+            for _ in range(ROUNDS):
+                start = time.perf_counter_ns()
+                for i in range(STATES):
+                    d.qpos[:] = qpos[i]
+                    d.qvel[:] = qvel[i]
+                    d.qfrc_applied[:] = qfrc[i]
+                    forward()
+                best = min(best, (time.perf_counter_ns() - start) / STATES)
+            return best
+
+        # Called from Python: the copies' time, measured alone, is subtracted.
+        best = per_call(lambda: mujoco.mj_forward(m, d))
+        overhead = per_call(lambda: None)
         print(f"{name}: nq {m.nq}, nv {m.nv}: mj_forward {best - overhead:.0f} ns per call "
               f"(the Python loop's {overhead:.0f} ns of copies subtracted; {best:.0f} ns in all)")
 

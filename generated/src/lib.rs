@@ -194,11 +194,12 @@ model!(
 // MuJoCo models (`tests/reference/mjcf/dm_control/*.xml`), imported by
 // `Builder::mjcf`; tests/mjcf.rs checks them against MuJoCo.
 model!(
-    /// dm_control's half cheetah: 9 planar coordinates, springs and armature.
+    /// The half cheetah of the `dm_control` suite: 9 planar coordinates,
+    /// springs and armature.
     cheetah
 );
 model!(
-    /// dm_control's humanoid: a free joint and 21 hinges (28 coordinates,
+    /// The humanoid of the `dm_control` suite: a free joint and 21 hinges (28 coordinates,
     /// 27 speeds).
     humanoid
 );

@@ -6,6 +6,7 @@
 
 use std::f64::consts::PI;
 
+use crate::rigid::{cross, quaternion_rotation};
 use crate::urdf::inertia::{Mat3, Vec3};
 
 /// A quaternion `(w, x, y, z)`, MuJoCo's order.
@@ -38,25 +39,8 @@ pub(super) fn mul(a: Quat, b: Quat) -> Quat {
 
 /// The rotation matrix of the unit quaternion `q` (columns: the rotated
 /// frame's axes in the original's).
-pub(super) fn matrix(q: Quat) -> Mat3 {
-    let [w, x, y, z] = q;
-    [
-        [
-            w * w + x * x - y * y - z * z,
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            w * w - x * x + y * y - z * z,
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            w * w - x * x - y * y + z * z,
-        ],
-    ]
+pub(super) fn matrix([w, x, y, z]: Quat) -> Mat3 {
+    quaternion_rotation([x, y, z, w])
 }
 
 /// The axis and angle of the unit quaternion `q` (angle in `[0, 2π)`,
@@ -188,14 +172,6 @@ pub(super) fn from_to(ends: [f64; 6]) -> Option<(Vec3, Quat, f64)> {
     }
     let center = [0, 1, 2].map(|i| (ends[i] + ends[i + 3]) / 2.0);
     Some((center, z_to(unit), half))
-}
-
-pub(super) fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// The primitive shapes whose mass properties MuJoCo computes.
