@@ -4,7 +4,8 @@
 //! ```text
 //! dalembert eom MODEL.dal [--latex]   the equations of motion, as in the seed document
 //! dalembert generate MODEL.dal        the generated Rust source
-//! dalembert check MODEL.dal           the errors the dalembert! macro would report
+//! dalembert check MODEL.dal [--stats] the errors the dalembert! macro would report
+//!                                     (--stats: each generated function's estimated size)
 //! dalembert chain FAMILY N [SPELLING] the .dal text of a benchmark chain (planar or spatial;
 //!                                     spelled joints, symbolic or seed)
 //! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
@@ -32,7 +33,8 @@ Usage: dalembert <COMMAND> MODEL.dal
 Commands:
   eom MODEL.dal [--latex]   print the equations of motion (Unicode, or LaTeX)
   generate MODEL.dal        print the generated Rust source
-  check MODEL.dal           report the errors the dalembert! macro would report
+  check MODEL.dal [--stats] report the errors the dalembert! macro would report
+                            (--stats: and each generated function's estimated operations)
   chain FAMILY N [SPELLING] print the .dal text of the planar or spatial chain of N links,
                             spelled `joints` (default), `symbolic` or `seed`
   urdf ROBOT.urdf [--floating] [--name NAME] [--damping]
@@ -56,6 +58,7 @@ enum Command {
     },
     Check {
         model: PathBuf,
+        stats: bool,
     },
     Chain {
         family: Family,
@@ -96,11 +99,13 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
     }
     let mut positional = Vec::new();
     let mut latex = false;
+    let mut stats = false;
     for arg in args {
         match arg.to_str() {
             Some("-h" | "--help") => return Ok(Command::Help),
             Some("-V" | "--version") => return Ok(Command::Version),
             Some("--latex") => latex = true,
+            Some("--stats") => stats = true,
             Some(flag) if flag.starts_with('-') => {
                 return Err(format!("unknown option `{flag}`"));
             }
@@ -119,7 +124,10 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
         "help" => return Ok(Command::Help),
         "eom" => |model, style| Command::Eom { model, style },
         "generate" => |model, _| Command::Generate { model },
-        "check" => |model, _| Command::Check { model },
+        "check" => |model, _| Command::Check {
+            model,
+            stats: false,
+        },
         _ => {
             return Err(format!(
                 "unknown command `{name}`: expected `eom`, `generate`, `check`, `chain` or `urdf`"
@@ -137,10 +145,11 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
     if latex && name != "eom" {
         return Err(format!("`--latex` applies to `eom`, not `{name}`"));
     }
-    Ok(command(
-        model,
-        if latex { Style::Latex } else { Style::Unicode },
-    ))
+    match command(model, if latex { Style::Latex } else { Style::Unicode }) {
+        Command::Check { model, .. } => Ok(Command::Check { model, stats }),
+        _ if stats => Err(format!("`--stats` applies to `check`, not `{name}`")),
+        command => Ok(command),
+    }
 }
 
 /// The arguments of `chain FAMILY N [SPELLING]`.
@@ -226,9 +235,23 @@ fn run(command: Command) -> ExitCode {
         Command::Version => Ok(format!("dalembert {}", env!("CARGO_PKG_VERSION"))),
         Command::Eom { model, style } => ModelFile::read(model).and_then(|m| m.equations(style)),
         Command::Generate { model } => ModelFile::read(model).and_then(|m| m.generate()),
-        Command::Check { model } => ModelFile::read(&model)
-            .and_then(|m| m.check())
-            .map(|()| format!("{}: ok", model.display())),
+        Command::Check { model, stats } => ModelFile::read(&model).and_then(|m| {
+            m.check()?;
+            let ok = format!("{}: ok", model.display());
+            if !stats {
+                return Ok(ok);
+            }
+            let sizes = m.function_sizes()?;
+            let lines = sizes
+                .iter()
+                .map(|s| format!("{:>12}  {}", s.operations, s.name));
+            let limit = dalembert_codegen::OPERATION_LIMIT;
+            let header = format!("{ok}\nestimated operations per function (limit {limit}):");
+            Ok(std::iter::once(header)
+                .chain(lines)
+                .collect::<Vec<_>>()
+                .join("\n"))
+        }),
         Command::Chain {
             family,
             links,
@@ -303,7 +326,20 @@ mod tests {
                 model: model.clone()
             })
         );
-        assert_eq!(parse_str(&["check", "m.dal"]), Ok(Command::Check { model }));
+        assert_eq!(
+            parse_str(&["check", "m.dal", "--stats"]),
+            Ok(Command::Check {
+                model: model.clone(),
+                stats: true
+            })
+        );
+        assert_eq!(
+            parse_str(&["check", "m.dal"]),
+            Ok(Command::Check {
+                model,
+                stats: false
+            })
+        );
         assert_eq!(parse_str(&["check", "--help"]), Ok(Command::Help));
         assert_eq!(parse_str(&["help"]), Ok(Command::Help));
         assert_eq!(
