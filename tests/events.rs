@@ -310,36 +310,25 @@ fn two_zeros_closer_than_an_eighth_of_a_step_are_both_found() {
         for h in &holding {
             assert!(h / 8.0 > 10.0 * (far - near), "{pair:?}: step {h}");
         }
-        let mut found = Vec::new();
-        let event = Event::record(g, Crossing::Either);
-        adaptive_with_events(
-            &dynamics,
-            at_rest(1.0),
-            2.0 * PI,
-            pair,
-            options,
-            event,
-            |s| found.push(s.t),
-        )
-        .unwrap();
+        // The times of the zeros crossing as `crossing` says, recorded.
+        let zeros = |crossing| {
+            let mut found = Vec::new();
+            let event = Event::record(g, crossing);
+            let start = at_rest(1.0);
+            adaptive_with_events(&dynamics, start, 2.0 * PI, pair, options, event, |s| {
+                found.push(s.t)
+            })
+            .unwrap();
+            found
+        };
+        let found = zeros(Crossing::Either);
         println!("{pair:?}: steps {holding:?}, zeros {found:?}");
         assert_eq!(found.len(), 4, "{pair:?}: {found:?}");
         for (t, want) in found.iter().zip(expected) {
             assert!((t - want).abs() < 1e-7, "{pair:?}: {t} vs {want}");
         }
         // Only the rising ones, and stopping at the first falling one.
-        let mut rising = Vec::new();
-        let event = Event::record(g, Crossing::Rising);
-        adaptive_with_events(
-            &dynamics,
-            at_rest(1.0),
-            2.0 * PI,
-            pair,
-            options,
-            event,
-            |s| rising.push(s.t),
-        )
-        .unwrap();
+        let rising = zeros(Crossing::Rising);
         assert_eq!(rising.len(), 2, "{rising:?}");
         assert!((rising[0] - far).abs() < 1e-7 && (rising[1] - expected[3]).abs() < 1e-7);
         let event = Event::stop_at(g, Crossing::Falling);
