@@ -28,7 +28,7 @@ pub enum Stabilisation {
     /// `1e-5` in 5.5 s. The integration stops with
     /// [`Failure::ConstraintDrift`](crate::integrate::Failure::ConstraintDrift)
     /// when the drift passes its [`DriftLimits`](super::DriftLimits) (at
-    /// 4.9 s there, by RK4 at `h = 1e-3 s`); unwatched
+    /// 5.2 s there, by RK4 at `h = 1e-3 s`); unwatched
     /// ([`DriftLimits::UNWATCHED`](super::DriftLimits::UNWATCHED)) it would
     /// go on until the rows contradict each other
     /// ([`InconsistentConstraints`](crate::DynamicsError::InconsistentConstraints)),
