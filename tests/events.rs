@@ -8,7 +8,7 @@ use std::ops::ControlFlow;
 
 use dalembert::MultibodySystem;
 use dalembert::integrate::{
-    AdaptiveOptions, Crossing, Event, ExplicitPair, State, Unconstrained, adaptive_dense,
+    AdaptiveOptions, Crossing, Event, ExplicitPair, Failure, State, Unconstrained, adaptive_dense,
     adaptive_with_events,
 };
 
@@ -230,4 +230,119 @@ fn a_step_observer_may_end_the_integration() {
     .unwrap();
     assert_eq!(solution.end.t, 1.0);
     assert!((solution.end.q[0] - 1f64.cos()).abs() < 1e-9);
+}
+
+#[test]
+fn a_non_finite_event_value_is_an_error_naming_its_time() {
+    let dynamics = Unconstrained::without_inputs(&OSCILLATOR);
+    let options = AdaptiveOptions::with_tolerance(1e-8);
+    for bad in [f64::NAN, f64::INFINITY] {
+        // Undefined from 1.3 s on: taken as "no event" before, an error now.
+        let undefined_late = |t: f64, q: &[f64; 1], _: &[f64; 1]| {
+            if t > 1.3 { bad } else { q[0] - 2.0 }
+        };
+        for pair in PAIRS {
+            let mut events = 0;
+            let event = Event::record(undefined_late, Crossing::Either);
+            let error =
+                adaptive_with_events(&dynamics, at_rest(1.0), 5.0, pair, options, event, |_| {
+                    events += 1
+                })
+                .unwrap_err();
+            println!("{pair:?}: {error}");
+            assert!(
+                matches!(error.cause, Failure::NonFiniteEvent { value } if value.is_nan() == bad.is_nan()),
+                "{error}"
+            );
+            // At the first sample past 1.3 s (an eighth of a step or less).
+            assert!(error.t > 1.3 && error.t < 1.5, "{error}");
+            assert!((error.q[0] - error.t.cos()).abs() < 1e-6, "{error}");
+            assert!(
+                error.to_string().contains("event function returned"),
+                "{error}"
+            );
+            assert_eq!(events, 0);
+        }
+        // Undefined at the start: refused before any step.
+        let event = Event::stop_at(|_: f64, _: &[f64; 1], _: &[f64; 1]| bad, Crossing::Either);
+        let error = adaptive_with_events(
+            &dynamics,
+            at_rest(1.0),
+            5.0,
+            ExplicitPair::Dop853,
+            options,
+            event,
+            |_| {},
+        )
+        .unwrap_err();
+        assert_eq!(error.t, 0.0);
+        assert!(
+            matches!(error.cause, Failure::NonFiniteEvent { .. }),
+            "{error}"
+        );
+    }
+}
+
+#[test]
+fn two_zeros_closer_than_an_eighth_of_a_step_are_both_found() {
+    // The oscillator x = cos t passes x = 1/2 + δ and x = 1/2 a time
+    // δ / sin(π/3) ≈ 1.2e-4 s apart, going down and again coming up: four
+    // zeros of g = (x − 1/2)(x − 1/2 − δ) in one period, in two close pairs.
+    let delta = 1e-4;
+    let g = move |_: f64, q: &[f64; 1], _: &[f64; 1]| (q[0] - 0.5) * (q[0] - 0.5 - delta);
+    let (near, far) = ((0.5 + delta).acos(), 0.5f64.acos());
+    let expected = [near, far, 2.0 * PI - far, 2.0 * PI - near];
+    let dynamics = Unconstrained::without_inputs(&OSCILLATOR);
+    for pair in PAIRS {
+        let options = AdaptiveOptions::with_tolerance(1e-9);
+        // The steps that hold the pairs are far longer than eight times
+        // their separation: the signs at the eight samples agree.
+        let mut holding = Vec::new();
+        adaptive_dense(&dynamics, at_rest(1.0), 2.0 * PI, pair, options, |step| {
+            let (a, b) = (step.start().t, step.end().t);
+            if expected.iter().any(|&t| a < t && t < b) {
+                holding.push(b - a);
+            }
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+        assert!(!holding.is_empty());
+        for h in &holding {
+            assert!(h / 8.0 > 10.0 * (far - near), "{pair:?}: step {h}");
+        }
+        // The times of the zeros crossing as `crossing` says, recorded.
+        let zeros = |crossing| {
+            let mut found = Vec::new();
+            let event = Event::record(g, crossing);
+            let start = at_rest(1.0);
+            adaptive_with_events(&dynamics, start, 2.0 * PI, pair, options, event, |s| {
+                found.push(s.t)
+            })
+            .unwrap();
+            found
+        };
+        let found = zeros(Crossing::Either);
+        println!("{pair:?}: steps {holding:?}, zeros {found:?}");
+        assert_eq!(found.len(), 4, "{pair:?}: {found:?}");
+        for (t, want) in found.iter().zip(expected) {
+            assert!((t - want).abs() < 1e-7, "{pair:?}: {t} vs {want}");
+        }
+        // Only the rising ones, and stopping at the first falling one.
+        let rising = zeros(Crossing::Rising);
+        assert_eq!(rising.len(), 2, "{rising:?}");
+        assert!((rising[0] - far).abs() < 1e-7 && (rising[1] - expected[3]).abs() < 1e-7);
+        let event = Event::stop_at(g, Crossing::Falling);
+        let end = adaptive_with_events(
+            &dynamics,
+            at_rest(1.0),
+            2.0 * PI,
+            pair,
+            options,
+            event,
+            |_| {},
+        )
+        .unwrap()
+        .end;
+        assert!((end.t - near).abs() < 1e-7, "{end:?}");
+    }
 }

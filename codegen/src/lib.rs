@@ -36,6 +36,7 @@ mod render;
 mod rigid;
 #[cfg(test)]
 mod seeds;
+mod size;
 mod trees;
 mod urdf;
 
@@ -45,6 +46,7 @@ pub use build::{
 pub use emit::Target;
 pub use mjcf::Mjcf;
 pub use render::Style;
+pub use size::{FunctionSize, OPERATION_LIMIT};
 pub use urdf::{Imported, Urdf};
 
 /// Tools for testing and benchmarking generated systems, not needed to
@@ -163,7 +165,48 @@ fn lex(source: &str) -> syn::Result<TokenStream> {
     })
 }
 
-/// The whole pipeline, from tokens to items.
+/// The estimated size of each function generated for the system in
+/// `source` (the text of a `.dal` file), in the order emitted, as
+/// `dalembert check MODEL.dal --stats` prints them; a model whose largest
+/// function exceeds [`OPERATION_LIMIT`] is refused by every other front
+/// door.
+pub fn function_sizes(source: &str) -> syn::Result<Vec<FunctionSize>> {
+    let Derivation {
+        model,
+        mut pool,
+        equations,
+        mut forms,
+    } = derive(lex(source)?)?;
+    let (functions, _) = functions(&model, &equations, &mut pool, &mut forms, Target::Std)?;
+    Ok(size::sizes(&pool, &functions))
+}
+
+/// The functions to emit for `target` (the standard ones, then those the
+/// model's `outputs` ask for), optimised, with the constants asked for.
+fn functions(
+    model: &model::Model,
+    equations: &equations::Equations,
+    pool: &mut expr::Pool,
+    forms: &mut readable::ReadableForms,
+    target: Target,
+) -> syn::Result<(Vec<outputs::Function>, Vec<outputs::NameList>)> {
+    let looped = target == Target::Std;
+    let mut functions = outputs::standard(model, equations, pool, looped);
+    // A looped `M`'s vectors are new expressions, optimised as the outputs are.
+    if let Some(mass) = functions
+        .first_mut()
+        .filter(|f| matches!(f.body, outputs::Body::MassPairs(_)))
+    {
+        optimize::optimize_functions(std::slice::from_mut(mass), pool, forms);
+    }
+    let mut requested = outputs::requested(model, equations, pool)?;
+    optimize::optimize_functions(&mut requested.functions, pool, forms);
+    functions.extend(requested.functions);
+    Ok((functions, requested.constants))
+}
+
+/// The whole pipeline, from tokens to items; a model too large to compile
+/// is refused before emission.
 fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> {
     let Derivation {
         model,
@@ -171,30 +214,20 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
         equations,
         mut forms,
     } = derive(input)?;
+    let (functions, constants) = functions(&model, &equations, &mut pool, &mut forms, target)?;
+    size::check_size(&model, &size::sizes(&pool, &functions))?;
     let mut docs = model.docs.clone();
     if !docs.is_empty() {
         docs.push(String::new());
     }
     let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool, &mut forms);
     docs.extend(equation_lines);
-    let looped = target == Target::Std;
-    let mut functions = outputs::standard(&model, &equations, &mut pool, looped);
-    // A looped `M`'s vectors are new expressions, optimised as the outputs are.
-    if let Some(mass) = functions
-        .first_mut()
-        .filter(|f| matches!(f.body, outputs::Body::MassPairs(_)))
-    {
-        optimize::optimize_functions(std::slice::from_mut(mass), &mut pool, &mut forms);
-    }
-    let mut requested = outputs::requested(&model, &equations, &mut pool)?;
-    optimize::optimize_functions(&mut requested.functions, &mut pool, &mut forms);
-    functions.extend(requested.functions);
     Ok(emit::emit(
         &model,
         &pool,
         &equations,
         &functions,
-        &requested.constants,
+        &constants,
         &emit::Documentation { docs, text },
         target,
     ))

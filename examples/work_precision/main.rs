@@ -23,7 +23,7 @@
 use std::error::Error;
 use std::path::{Path, PathBuf};
 
-use dalembert::constrained::constraint_drift;
+use dalembert::constrained::{DriftLimits, constraint_drift};
 use dalembert::integrate::{self, AdaptiveOptions, Dynamics, ExplicitPair, GaussLegendre};
 use dalembert::{
     Constrained, ConstrainedSystem, IntegrationError, Solution, Stabilisation, State, TaylorSystem,
@@ -507,7 +507,10 @@ where
         ),
         (", projection", PROJECTION),
     ];
-    let dynamics = modes.map(|(_, mode)| Constrained::new(system, inputs, mode));
+    // Unwatched: the drift of the unstabilised runs is part of what is charted.
+    let dynamics = modes.map(|(_, mode)| {
+        Constrained::new(system, inputs, mode).with_drift_limits(DriftLimits::UNWATCHED)
+    });
     let projected = &dynamics[2];
     let tight = AdaptiveOptions::with_tolerance(1e-14);
     let reference =
@@ -540,7 +543,10 @@ where
         ));
     }
     let taylor_modes = taylor.map(|taylor| {
-        [modes[0], modes[2]].map(|(label, mode)| (label, Constrained::new(taylor, inputs, mode)))
+        [modes[0], modes[2]].map(|(label, mode)| {
+            let dynamics = Constrained::new(taylor, inputs, mode);
+            (label, dynamics.with_drift_limits(DriftLimits::UNWATCHED))
+        })
     });
     for (label, dynamics) in taylor_modes.iter().flatten() {
         all.extend(taylor_runs(

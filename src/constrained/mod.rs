@@ -21,7 +21,11 @@
 //!   `taylor_coefficients` calls);
 //! * a [`Stabilisation`] chooses how [`Constrained`](crate::Constrained)
 //!   dynamics keep an integration on the manifold, and
-//!   [`constraint_drift`] measures how far it is off.
+//!   [`constraint_drift`] measures how far it is off;
+//! * [`DriftLimits`] say how far off (and, through
+//!   [`constraint_conditioning`], how near a singular position) an
+//!   integration may go before it stops with an error naming the row and
+//!   the time.
 
 mod linearize;
 mod multipliers;
@@ -32,6 +36,7 @@ mod sparse;
 mod stabilisation;
 #[cfg(test)]
 pub(crate) mod test_systems;
+mod watch;
 
 pub use linearize::{
     AccelerationPartials, AccelerationsJacobian, ConstrainedLinearization, ConstrainedPartials,
@@ -47,3 +52,6 @@ pub use projection::{project_onto_constraints, project_onto_energy_level};
 pub use series::{SeriesSolver, constrained_series};
 pub use sparse::STIFFNESS;
 pub use stabilisation::{Stabilisation, constraint_drift};
+pub use watch::{
+    BARELY_INDEPENDENT, Conditioning, DRIFT_LIMIT, DriftLimits, WeakestRow, constraint_conditioning,
+};

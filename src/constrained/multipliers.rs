@@ -232,7 +232,7 @@ pub(crate) struct DenseMetric<const NV: usize, const NC: usize> {
 impl<const NV: usize, const NC: usize> DenseMetric<NV, NC> {
     /// Factorises the metric of the finite `mass` and `jacobian` for
     /// `solver` (see [`ConstraintMetric::with`]).
-    fn new(
+    pub(crate) fn new(
         solver: ConstraintSolver,
         rank_tolerance: f64,
         mass: &[[f64; NV]; NV],
@@ -292,6 +292,11 @@ impl<const NV: usize, const NC: usize> DenseMetric<NV, NC> {
         }
         let lambda: [f64; NC] = (mu - self.penalty * c).into();
         Ok((x, SVector::from(self.schur.least_norm(&lambda))))
+    }
+
+    /// The factorised Schur complement `S̄ = A M̄⁻¹ Aᵀ`.
+    pub(crate) fn schur(&self) -> &SchurFactor<NC> {
+        &self.schur
     }
 
     /// The smallest correction in the M-norm, `x = M̄⁻¹ Aᵀ S̄⁺ c`, with

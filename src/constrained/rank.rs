@@ -20,6 +20,7 @@ pub(crate) struct DependentRow {
 }
 
 /// `P S Pᵀ = L Lᵀ` for the first `rank` pivots.
+#[derive(Clone, Copy)]
 pub(crate) struct SchurFactor<const NC: usize> {
     /// Row `k` is constraint row `order[k]`. Columns `0..rank` hold `L`
     /// (`L₁₁` over `L₂₁`) on and below the diagonal.
@@ -124,6 +125,24 @@ impl<const NC: usize> SchurFactor<NC> {
         }
         z[self.order[k]] = 1.0;
         z
+    }
+
+    /// The last independent row, how independent it is and of what: its
+    /// row (declaration order), its pivot's relative size `Lᵣᵣ / L₁₁` (an
+    /// estimate of the ratio of the smallest to the largest singular value
+    /// of the independent rows, within a small factor: `√2` for two rows
+    /// at a small angle), and its
+    /// dependency on the rows before it (as [`dependency`](Self::dependency),
+    /// were it taken as dependent). `None` with no independent row.
+    pub(crate) fn weakest(&self) -> Option<(usize, f64, [f64; NC])> {
+        let last = self.rank.checked_sub(1)?;
+        let l = &self.factors;
+        let ratio = l[last][last] / l[0][0];
+        let without = Self {
+            rank: last,
+            ..*self
+        };
+        Some((self.order[last], ratio, without.dependency(last)))
     }
 
     /// The constraint row at dependent pivot position `k`.

@@ -5,8 +5,8 @@
 
 use std::marker::PhantomData;
 
-use super::State;
-use crate::constrained::{ConstraintSolver, Stabilisation, project_onto_energy_level};
+use super::{Failure, State};
+use crate::constrained::{ConstraintSolver, DriftLimits, Stabilisation, project_onto_energy_level};
 use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
 
 /// Equations of motion `v̇ = a(t, q, v)`, `q̇ = N(q) v` as the integrators
@@ -46,6 +46,24 @@ pub trait Dynamics<const NQ: usize, const NV: usize> {
     /// itself unless the dynamics correct it (coordinate projection).
     fn settle(&self, state: &State<NQ, NV>) -> Result<State<NQ, NV>, DynamicsError> {
         Ok(*state)
+    }
+
+    /// Whether a settled state may be trusted, checked after every step:
+    /// always, unless the dynamics watch something (a constrained system's
+    /// drift and singular positions: [`DriftLimits`]). The integrations
+    /// stop at the first failure, reported at the step's start.
+    #[inline]
+    fn watch(&self, _state: &State<NQ, NV>) -> Result<(), Failure> {
+        Ok(())
+    }
+
+    /// Whether an integration may start from `state`: always, unless the
+    /// dynamics watch it and do not correct it after the first step (an
+    /// unstabilised or Baumgarte constrained system must start on its
+    /// constraints; a projected one is moved onto them).
+    #[inline]
+    fn check_start(&self, _state: &State<NQ, NV>) -> Result<(), Failure> {
+        Ok(())
     }
 }
 
@@ -151,6 +169,7 @@ pub struct Constrained<'a, S, F, const NU: usize, const NC: usize> {
     inputs: F,
     stabilisation: Stabilisation,
     solver: ConstraintSolver,
+    limits: DriftLimits,
     constraints: PhantomData<[(); NC]>,
 }
 
@@ -168,6 +187,7 @@ impl<'a, S, const NU: usize, const NC: usize> Constrained<'a, S, NoInputs, NU, N
             inputs: NoInputs,
             stabilisation,
             solver: ConstraintSolver::default(),
+            limits: DriftLimits::default(),
             constraints: PhantomData,
         }
     }
@@ -190,6 +210,7 @@ impl<'a, S, F, const NU: usize, const NC: usize> Constrained<'a, S, F, NU, NC> {
             inputs,
             stabilisation,
             solver: ConstraintSolver::default(),
+            limits: DriftLimits::default(),
             constraints: PhantomData,
         }
     }
@@ -198,6 +219,28 @@ impl<'a, S, F, const NU: usize, const NC: usize> Constrained<'a, S, F, NU, NC> {
     /// [`ConstraintSolver::RankRevealing`] (its docs say which solver when).
     pub fn with_solver(self, solver: ConstraintSolver) -> Self {
         Self { solver, ..self }
+    }
+
+    /// The same dynamics watched against `limits` instead of the default
+    /// [`DriftLimits`] (`DriftLimits::UNWATCHED` to watch nothing).
+    pub fn with_drift_limits(self, limits: DriftLimits) -> Self {
+        Self { limits, ..self }
+    }
+
+    /// The limits of the drift watched after every step.
+    pub fn drift_limits(&self) -> DriftLimits {
+        self.limits
+    }
+
+    /// Whether the stabilisation projects the state after every step (and
+    /// so crosses singular positions on its branch), and the projection's
+    /// own tolerance of `|φᵢ|` (`0` without projection).
+    fn projection(&self) -> Option<f64> {
+        match self.stabilisation {
+            Stabilisation::Projection { tolerance, .. }
+            | Stabilisation::EnergyProjection { tolerance, .. } => Some(tolerance),
+            Stabilisation::None | Stabilisation::Baumgarte { .. } => None,
+        }
     }
 
     /// The system.
@@ -285,6 +328,24 @@ where
                 Ok(project_onto_energy_level(self.system, &projected, energy))
             }
             Stabilisation::None | Stabilisation::Baumgarte { .. } => Ok(*state),
+        }
+    }
+
+    /// The drift of every row against the [`DriftLimits`], and, without
+    /// projection, the conditioning of the rows.
+    fn watch(&self, state: &State<NQ, NV>) -> Result<(), Failure> {
+        let projection = self.projection();
+        let floor = [projection.unwrap_or(0.0), 0.0];
+        self.limits
+            .check(self.system, state, floor, projection.is_some())
+    }
+
+    /// [`watch`](Self::watch), unless the stabilisation projects (the
+    /// first step's end is then projected onto the constraints).
+    fn check_start(&self, state: &State<NQ, NV>) -> Result<(), Failure> {
+        match self.projection() {
+            Some(_) => Ok(()),
+            None => self.watch(state),
         }
     }
 }

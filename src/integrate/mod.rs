@@ -42,6 +42,21 @@
 //! returned, no step taken. The adaptive methods and Taylor may run to
 //! `t_end = f64::INFINITY`, until a stopping event or their step budget.
 //!
+//! # What an integration watches
+//!
+//! After every step, every integrator checks that the step's end is finite
+//! (an overflow in the last step of a fixed-step run is an error, not an
+//! `Ok` holding infinities) and lets the dynamics [`watch`](Dynamics::watch)
+//! it: a [`Constrained`] system's drift at position and velocity level
+//! against its [`DriftLimits`](crate::constrained::DriftLimits)
+//! ([`Failure::ConstraintDrift`]), and, for the stabilisations that cannot
+//! cross singular positions, how independent its rows still are
+//! ([`Failure::SingularPosition`]). A start that the stabilisation would
+//! not correct is checked the same way before the first step. The error's
+//! time and configuration are then those of the last good state. An event
+//! function's NaN or infinite value is [`Failure::NonFiniteEvent`].
+//! `docs/reliability.md` lists every such failure mode and its test.
+//!
 //! # Between steps
 //!
 //! The adaptive pairs give the state at any time inside a step
@@ -82,7 +97,7 @@ pub use dynamics::{Constrained, Dynamics, InputLaw, NoInputs, Unconstrained};
 pub use gauss::{GaussLegendre, gauss_legendre};
 pub use runge_kutta::{State, rk4, rk4_step};
 pub use sdirk::sdirk;
-pub use solution::{Failure, IntegrationError, Solution, Statistics};
+pub use solution::{DriftLevel, Failure, IntegrationError, Solution, Statistics};
 pub use taylor::{
     MAX_ORDER, TaylorDynamics, TaylorOptions, taylor, taylor_dense, taylor_with_events,
 };

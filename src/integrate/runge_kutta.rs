@@ -9,6 +9,7 @@ use std::cell::Cell;
 
 use super::arguments::{BAD_STEP, check_positive, fixed_steps_to_take};
 use super::{Dynamics, IntegrationError, Solution, Statistics};
+use crate::DynamicsError;
 
 /// A point of a trajectory: time, coordinates and speeds.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -226,18 +227,46 @@ impl<'a, D> Kernel<'a, D> {
         }
     }
 
-    /// The dynamics' correction after a step that ended at `state`; a
-    /// failure is reported at `state`.
+    /// The dynamics' correction after a step from `start` that ended at
+    /// `state`, then their [`watch`](Dynamics::watch) of the result; a
+    /// failing correction is reported at `state`, a failing watch or a
+    /// step that overflowed (a NaN or infinite end, which no later
+    /// evaluation would catch after the last step) at `start` (the last
+    /// good state).
     pub(crate) fn settle<const NQ: usize, const NV: usize>(
         &self,
+        start: &State<NQ, NV>,
         state: &State<NQ, NV>,
     ) -> Result<State<NQ, NV>, IntegrationError<NQ>>
     where
         D: Dynamics<NQ, NV>,
     {
-        self.dynamics
+        if !state.q.iter().chain(&state.v).all(|x| x.is_finite()) {
+            let cause = DynamicsError::NonFiniteAccelerations;
+            return Err(IntegrationError::dynamics(start.t, start.q, cause));
+        }
+        let settled = self
+            .dynamics
             .settle(state)
-            .map_err(|cause| IntegrationError::dynamics(state.t, state.q, cause))
+            .map_err(|cause| IntegrationError::dynamics(state.t, state.q, cause))?;
+        self.dynamics
+            .watch(&settled)
+            .map_err(|cause| IntegrationError::at(start, cause))?;
+        Ok(settled)
+    }
+
+    /// Whether the dynamics may start from `initial`
+    /// ([`check_start`](Dynamics::check_start)).
+    pub(crate) fn check_start<const NQ: usize, const NV: usize>(
+        &self,
+        initial: &State<NQ, NV>,
+    ) -> Result<(), IntegrationError<NQ>>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        self.dynamics
+            .check_start(initial)
+            .map_err(|cause| IntegrationError::at(initial, cause))
     }
 
     /// `steps` fixed steps from `initial` to `t_end`: `step(state, h)` takes a
@@ -259,6 +288,7 @@ impl<'a, D> Kernel<'a, D> {
         D: Dynamics<NQ, NV>,
     {
         let steps = fixed_steps_to_take(&initial, t_end, steps)?;
+        self.check_start(&initial)?;
         observer(&initial);
         let span = t_end - initial.t;
         let mut state = initial;
@@ -270,7 +300,7 @@ impl<'a, D> Kernel<'a, D> {
             };
             let mut next = step(&state, t - state.t)?;
             next.t = t;
-            state = self.settle(&next)?;
+            state = self.settle(&state, &next)?;
             observer(&state);
         }
         Ok(Solution {
@@ -319,7 +349,7 @@ where
 {
     check_positive(state, h, BAD_STEP)?;
     let kernel = Kernel::new(dynamics);
-    kernel.settle(&rk4_stages(&kernel, state, h)?)
+    kernel.settle(state, &rk4_stages(&kernel, state, h)?)
 }
 
 /// The fraction of the step at which each of the first three slopes of RK4

@@ -72,6 +72,61 @@ pub enum Failure {
         /// What is wrong.
         reason: &'static str,
     },
+    /// A constrained integration left its constraints: at time `t` the
+    /// holonomic residual `φ` (or the velocity form `ψ`) of constraint `row`
+    /// exceeded the [`DriftLimits`](crate::constrained::DriftLimits) of its
+    /// dynamics. The error's own time and configuration are those of the
+    /// last good state, the start of the step that drifted (the initial
+    /// state when the start itself is off the constraints); the observer
+    /// saw that state, speeds included, last.
+    ConstraintDrift {
+        /// The constraint row (declaration order).
+        row: usize,
+        /// Position (`φ`) or velocity (`ψ`) level.
+        level: DriftLevel,
+        /// Its value `φᵢ` or `ψᵢ`.
+        residual: f64,
+        /// The largest magnitude allowed.
+        limit: f64,
+        /// When the limit was passed.
+        t: f64,
+    },
+    /// A constrained integration that does not cross singular positions
+    /// (unstabilised or Baumgarte's: see
+    /// [`Stabilisation`](crate::Stabilisation)) reached one: at time `t`
+    /// constraint `row` became barely independent of the others (among them
+    /// `with`, the one weighing most), its relative singular value below
+    /// the [`DriftLimits`](crate::constrained::DriftLimits)'
+    /// `conditioning`. The error's own time and configuration are those of
+    /// the last good state, as for
+    /// [`ConstraintDrift`](Self::ConstraintDrift).
+    SingularPosition {
+        /// The constraint row that lost its independence.
+        row: usize,
+        /// The independent row weighing most in its near-dependency.
+        with: usize,
+        /// Its relative singular value (estimate, see
+        /// [`constraint_conditioning`](crate::constrained::constraint_conditioning)).
+        singular_value: f64,
+        /// When.
+        t: f64,
+    },
+    /// An event function returned NaN or an infinity at the error's time
+    /// and configuration: whether it crossed zero cannot be known.
+    NonFiniteEvent {
+        /// The value returned.
+        value: f64,
+    },
+}
+
+/// The level of a constraint's drift: its holonomic residual `φ` or its
+/// velocity form `ψ`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DriftLevel {
+    /// `φ(t, q)`: the positions.
+    Position,
+    /// `ψ(t, q, v)`: the speeds.
+    Velocity,
 }
 
 impl fmt::Display for Failure {
@@ -85,6 +140,38 @@ impl fmt::Display for Failure {
                 "implicit stage equations did not converge in {iterations} iterations"
             ),
             Self::InvalidArgument { reason } => write!(f, "cannot integrate: {reason}"),
+            Self::ConstraintDrift {
+                row,
+                level,
+                residual,
+                limit,
+                t,
+            } => {
+                let (name, symbol) = match level {
+                    DriftLevel::Position => ("residual", "φ"),
+                    DriftLevel::Velocity => ("velocity form", "ψ"),
+                };
+                write!(
+                    f,
+                    "constraint drift: the {name} of constraint row {row} reached \
+                     {symbol} = {residual:.3e} at t = {t} s, beyond the limit {limit:.1e} \
+                     (stabilise the run, or start on the constraints); last good state"
+                )
+            }
+            Self::SingularPosition {
+                row,
+                with,
+                singular_value,
+                t,
+            } => write!(
+                f,
+                "singular position: constraint row {row} became nearly dependent on row \
+                 {with} at t = {t} s (relative singular value {singular_value:.1e}), which this \
+                 stabilisation cannot cross (use projection); last good state"
+            ),
+            Self::NonFiniteEvent { value } => {
+                write!(f, "the event function returned {value}")
+            }
         }
     }
 }

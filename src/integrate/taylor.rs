@@ -34,7 +34,7 @@
 
 use std::ops::ControlFlow;
 
-use super::adaptive::{Continuous, DenseStep, Event, observe, watch};
+use super::adaptive::{Continuous, DenseStep, Event, EventFailure, observe, watch};
 use super::arguments::{check_positive, check_span};
 use super::dynamics::InputLaw;
 use super::{
@@ -197,8 +197,9 @@ where
     D: TaylorDynamics<NQ, NV>,
     G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64,
 {
-    let on_step = watch(event, &initial, on_event);
-    taylor_dense(dynamics, initial, t_end, options, on_step)
+    let failure = EventFailure::default();
+    let on_step = watch(event, &initial, on_event, &failure)?;
+    failure.or(taylor_dense(dynamics, initial, t_end, options, on_step))
 }
 
 /// What a Taylor integration is asked to do.
@@ -228,6 +229,9 @@ where
             options.tolerance,
             "the tolerance is not a positive finite number",
         )?;
+        dynamics
+            .check_start(&initial)
+            .map_err(|cause| IntegrationError::at(&initial, cause))?;
         Ok(Run {
             dynamics,
             initial,
@@ -303,6 +307,9 @@ where
             let settled = dynamics
                 .settle(&next)
                 .map_err(|cause| IntegrationError::dynamics(t, next.q, cause))?;
+            dynamics
+                .watch(&settled)
+                .map_err(|cause| IntegrationError::at(&state, cause))?;
             statistics.accepted_steps += 1;
             let step = DenseStep::new(dynamics, &state, &settled, Some(&polynomial));
             if let ControlFlow::Break(end) = on_step(&step) {

@@ -4,7 +4,8 @@
 //! ```text
 //! dalembert eom MODEL.dal [--latex]   the equations of motion, as in the seed document
 //! dalembert generate MODEL.dal        the generated Rust source
-//! dalembert check MODEL.dal           the errors the dalembert! macro would report
+//! dalembert check MODEL.dal [--stats] the errors the dalembert! macro would report
+//!                                     (--stats: each generated function's estimated size)
 //! dalembert chain FAMILY N [SPELLING] the .dal text of a benchmark chain (planar or spatial;
 //!                                     spelled joints, symbolic or seed)
 //! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs "LIST"]
@@ -35,7 +36,8 @@ Usage: dalembert <COMMAND> MODEL.dal
 Commands:
   eom MODEL.dal [--latex]   print the equations of motion (Unicode, or LaTeX)
   generate MODEL.dal        print the generated Rust source
-  check MODEL.dal           report the errors the dalembert! macro would report
+  check MODEL.dal [--stats] report the errors the dalembert! macro would report
+                            (--stats: and each generated function's estimated operations)
   chain FAMILY N [SPELLING] print the .dal text of the planar or spatial chain of N links,
                             spelled `joints` (default), `symbolic` or `seed`
   urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs \"LIST\"]
@@ -84,11 +86,13 @@ Options:
     },
     Help {
         name: "check",
-        usage: "dalembert check MODEL.dal",
+        usage: "dalembert check MODEL.dal [--stats]",
         text: "Reports the errors the dalembert! macro would report for the model (exit status 1),
 or prints `MODEL.dal: ok`.
 
 Options:
+  --stats      also print each generated function's estimated operation count (a model
+               whose largest function exceeds the limit is refused: see docs/reliability.md)
   -h, --help   print this help",
     },
     Help {
@@ -146,6 +150,7 @@ enum Command {
     },
     Check {
         model: PathBuf,
+        stats: bool,
     },
     Chain {
         family: Family,
@@ -224,13 +229,15 @@ fn general_usage(message: &str) -> String {
 }
 
 /// The arguments of `eom`, `generate` and `check`: one model file, and
-/// `--latex` for `eom`.
+/// `--latex` for `eom`, `--stats` for `check`.
 fn parse_model(name: &str, args: Vec<OsString>) -> Result<Command, String> {
     let mut latex = false;
+    let mut stats = false;
     let mut model = None;
     for arg in args {
         match arg.to_str() {
             Some("--latex") if name == "eom" => latex = true,
+            Some("--stats") if name == "check" => stats = true,
             Some(flag) if flag.starts_with('-') => {
                 return Err(format!("`{name}` takes no option `{flag}`"));
             }
@@ -247,7 +254,7 @@ fn parse_model(name: &str, args: Vec<OsString>) -> Result<Command, String> {
             style: if latex { Style::Latex } else { Style::Unicode },
         },
         "generate" => Command::Generate { model },
-        _ => Command::Check { model },
+        _ => Command::Check { model, stats },
     })
 }
 
@@ -355,9 +362,23 @@ fn run(command: Command) -> ExitCode {
         Command::Version => Ok(format!("dalembert {}", env!("CARGO_PKG_VERSION"))),
         Command::Eom { model, style } => ModelFile::read(model).and_then(|m| m.equations(style)),
         Command::Generate { model } => ModelFile::read(model).and_then(|m| m.generate()),
-        Command::Check { model } => ModelFile::read(&model)
-            .and_then(|m| m.check())
-            .map(|()| format!("{}: ok", model.display())),
+        Command::Check { model, stats } => ModelFile::read(&model).and_then(|m| {
+            m.check()?;
+            let ok = format!("{}: ok", model.display());
+            if !stats {
+                return Ok(ok);
+            }
+            let sizes = m.function_sizes()?;
+            let lines = sizes
+                .iter()
+                .map(|s| format!("{:>12}  {}", s.operations, s.name));
+            let limit = dalembert_codegen::OPERATION_LIMIT;
+            let header = format!("{ok}\nestimated operations per function (limit {limit}):");
+            Ok(std::iter::once(header)
+                .chain(lines)
+                .collect::<Vec<_>>()
+                .join("\n"))
+        }),
         Command::Chain {
             family,
             links,
@@ -433,7 +454,20 @@ mod tests {
                 model: model.clone()
             })
         );
-        assert_eq!(parse_str(&["check", "m.dal"]), Ok(Command::Check { model }));
+        assert_eq!(
+            parse_str(&["check", "m.dal", "--stats"]),
+            Ok(Command::Check {
+                model: model.clone(),
+                stats: true
+            })
+        );
+        assert_eq!(
+            parse_str(&["check", "m.dal"]),
+            Ok(Command::Check {
+                model,
+                stats: false
+            })
+        );
         assert_eq!(parse_str(&["help"]), Ok(Command::Help(None)));
         assert_eq!(
             parse_str(&[

@@ -54,6 +54,12 @@ impl ModelFile {
         self.located(crate::check(&self.source))
     }
 
+    /// The estimated size of each generated function (see
+    /// [`crate::function_sizes`]).
+    pub fn function_sizes(&self) -> Result<Vec<crate::FunctionSize>, BuildError> {
+        self.located(crate::function_sizes(&self.source))
+    }
+
     /// The generated Rust source (see [`crate::generate`]).
     pub fn generate(&self) -> Result<String, BuildError> {
         self.generate_for(crate::Target::Std)

@@ -6,15 +6,18 @@
 //! The extensions are Hairer's: Shampine's fourth-order interpolant of
 //! DOPRI5 (free: it reuses the step's slopes) and DOP853's seventh-order one
 //! (three more evaluations a step). A zero is bracketed by the signs of `g`
-//! at the ends of a step and located on the interpolant by the Illinois
-//! variant of regula falsi, to a few units in the last place of the time.
+//! at eight points of a step, or by the turning point of `g` between two of
+//! them, and located on the interpolant by the Illinois variant of regula
+//! falsi, to a few units in the last place of the time
+//! ([`adaptive_with_events`] says what is guaranteed).
 
+use std::cell::Cell;
 use std::ops::ControlFlow;
 
 use super::rows::{Slopes, Tableau};
 use super::{AdaptiveOptions, ExplicitPair, adaptive_dense};
 use crate::integrate::runge_kutta::Rate;
-use crate::integrate::{Dynamics, IntegrationError, Solution, State};
+use crate::integrate::{Dynamics, Failure, IntegrationError, Solution, State};
 
 /// The coefficients `r₂…r₈` of the nested interpolant of one step (see
 /// `tableaux::DenseOutput`).
@@ -234,8 +237,13 @@ impl<G> Event<G> {
 }
 
 /// The equal parts of each step whose ends' signs of the event function
-/// are compared: zeros further apart than a part are each found, in order.
+/// are compared: zeros further apart than a part are each found, in order;
+/// closer ones by the turning point between them.
 const SAMPLES_PER_STEP: usize = 8;
+
+/// The step of the central differences that give the event function's
+/// rate at a sample, as a fraction of a part.
+const RATE_STEP: f64 = 1e-4;
 
 /// Iterations of the root finder; Illinois converges superlinearly, so a
 /// zero is located to the last bits of the time long before.
@@ -248,11 +256,26 @@ const MAX_ROOT_ITERATIONS: usize = 200;
 /// ends the integration at its first zero, and the [`Solution`] ends there.
 /// A zero at the initial state itself is not an event (the function must
 /// leave zero and come back), nor is a zero the function touches without
-/// changing sign. The signs are compared at the ends of eight equal parts
-/// of each step, so several zeros inside one step are each found when they
-/// are further apart than an eighth of the step; two closer ones may pair
-/// off unseen (the signs at a part's ends agree): keep the tolerance small
-/// against the time between zeros. Allocates nothing.
+/// changing sign.
+///
+/// How the zeros are found, and what is guaranteed: each step is cut into
+/// eight equal parts, and `g` is evaluated at their ends on the continuous
+/// extension. A part whose ends differ in sign holds a zero, located by
+/// the Illinois regula falsi. A part whose ends agree in sign may still
+/// hold two zeros (closer together than an eighth of the step); then `g`
+/// turns back towards zero inside it, so its rate (central differences on
+/// the extension) points towards zero at the part's start and away from it
+/// at its end: the turning point between is located (a zero of the rate),
+/// and if `g` has changed sign there both zeros are located, one on either
+/// side. So every zero where `g` changes sign is found, in order, as long
+/// as `g` turns at most once in each eighth of a step (three zeros or two
+/// turning points inside one eighth of a step can still pair off unseen:
+/// keep the tolerance small against the time between them).
+///
+/// A NaN or infinite value of `g` (at the start, at a sample or during a
+/// search) is an error, [`Failure::NonFiniteEvent`](crate::integrate::Failure::NonFiniteEvent),
+/// at the time and interpolated configuration where it was met. Allocates
+/// nothing.
 pub fn adaptive_with_events<D, G, const NQ: usize, const NV: usize>(
     dynamics: &D,
     initial: State<NQ, NV>,
@@ -266,8 +289,11 @@ where
     D: Dynamics<NQ, NV>,
     G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64,
 {
-    let on_step = watch(event, &initial, on_event);
-    adaptive_dense(dynamics, initial, t_end, pair, options, on_step)
+    let failure = EventFailure::default();
+    let on_step = watch(event, &initial, on_event, &failure)?;
+    failure.or(adaptive_dense(
+        dynamics, initial, t_end, pair, options, on_step,
+    ))
 }
 
 /// What an integration reporting to `observer` does at each step: shows it
@@ -286,18 +312,59 @@ where
     }
 }
 
+/// Where an event function returned a NaN or an infinity, once it has:
+/// the integration that [`watch`] broke off is then that error.
+#[derive(Default)]
+pub(crate) struct EventFailure<const NQ: usize>(Cell<Option<IntegrationError<NQ>>>);
+
+impl<const NQ: usize> EventFailure<NQ> {
+    /// The event function's failure if there was one, else `result`.
+    pub(crate) fn or<T>(
+        &self,
+        result: Result<T, IntegrationError<NQ>>,
+    ) -> Result<T, IntegrationError<NQ>> {
+        match self.0.take() {
+            Some(error) => Err(error),
+            None => result,
+        }
+    }
+}
+
+/// A value of the event function that is NaN or infinite, at `state`.
+struct NonFinite<const NQ: usize>(IntegrationError<NQ>);
+
+/// `g` at `state`, or the error it is not finite.
+fn finite_at<const NQ: usize, const NV: usize>(
+    g: impl Fn(&State<NQ, NV>) -> f64,
+    state: &State<NQ, NV>,
+) -> Result<f64, NonFinite<NQ>> {
+    let value = g(state);
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        let cause = Failure::NonFiniteEvent { value };
+        Err(NonFinite(IntegrationError::at(state, cause)))
+    }
+}
+
 /// What an integration watching `event` from `initial` does at each step
-/// (its continuous extension, [`DenseStep`]): locates a zero crossed in the
-/// step, gives the state there to `on_event`, and breaks there if the event
-/// stops the integration.
-pub(crate) fn watch<D, G, const NQ: usize, const NV: usize>(
+/// (its continuous extension, [`DenseStep`]): locates the zeros crossed in
+/// the step (see [`adaptive_with_events`]), gives the state at each to
+/// `on_event`, and breaks at the first if the event stops the integration;
+/// breaks at a non-finite value of the event function, recorded in
+/// `failure`. Fails at once if the value at `initial` is not finite.
+pub(crate) fn watch<'f, D, G, const NQ: usize, const NV: usize>(
     event: Event<G>,
     initial: &State<NQ, NV>,
-    mut on_event: impl FnMut(&State<NQ, NV>),
-) -> impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>
+    mut on_event: impl FnMut(&State<NQ, NV>) + 'f,
+    failure: &'f EventFailure<NQ>,
+) -> Result<
+    impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>> + 'f,
+    IntegrationError<NQ>,
+>
 where
     D: Dynamics<NQ, NV>,
-    G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64,
+    G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64 + 'f,
 {
     let Event {
         function,
@@ -305,40 +372,119 @@ where
         stop,
     } = event;
     let g = move |s: &State<NQ, NV>| function(s.t, &s.q, &s.v);
-    let mut before = g(initial);
-    move |step: &DenseStep<'_, NQ, NV, D>| {
-        let at = |t| g(&step.state_at(t));
-        let (start, end) = (step.start().t, step.end().t);
-        let mut from = (start, before);
-        for k in 1..=SAMPLES_PER_STEP {
-            let to = if k == SAMPLES_PER_STEP {
-                (end, g(step.end()))
+    let mut before = finite_at(&g, initial).map_err(|NonFinite(error)| error)?;
+    Ok(move |step: &DenseStep<'_, NQ, NV, D>| {
+        let on_zero = |t: f64| {
+            let state = step.state_at(t);
+            on_event(&state);
+            if stop {
+                ControlFlow::Break(state)
             } else {
-                let t = start + (end - start) * (k as f64 / SAMPLES_PER_STEP as f64);
-                (t, at(t))
-            };
-            if crossing.between(from.1, to.1) {
-                let t = zero(at, (from.0, to.0), (from.1, to.1));
-                let state = step.state_at(t);
-                on_event(&state);
-                if stop {
-                    return ControlFlow::Break(state);
-                }
+                ControlFlow::Continue(())
             }
-            from = to;
+        };
+        match zeros_in_step(&g, step, before, crossing, on_zero) {
+            Ok((ControlFlow::Continue(()), last)) => {
+                before = last;
+                ControlFlow::Continue(())
+            }
+            Ok((ControlFlow::Break(state), _)) => ControlFlow::Break(state),
+            Err(NonFinite(error)) => {
+                let state = State {
+                    t: error.t,
+                    q: error.q,
+                    v: step.state_at(error.t).v,
+                };
+                failure.0.set(Some(error));
+                ControlFlow::Break(state)
+            }
         }
-        before = from.1;
-        ControlFlow::Continue(())
+    })
+}
+
+/// The zeros of `g` crossing as `crossing` says in `step` (its value at
+/// the start `before`), each given to `on_zero` in the order of time until
+/// it breaks; with the value at the step's end.
+fn zeros_in_step<D, const NQ: usize, const NV: usize>(
+    g: impl Fn(&State<NQ, NV>) -> f64,
+    step: &DenseStep<'_, NQ, NV, D>,
+    before: f64,
+    crossing: Crossing,
+    mut on_zero: impl FnMut(f64) -> ControlFlow<State<NQ, NV>>,
+) -> Result<(ControlFlow<State<NQ, NV>>, f64), NonFinite<NQ>>
+where
+    D: Dynamics<NQ, NV>,
+{
+    let (start, end) = (step.start().t, step.end().t);
+    let part = (end - start) / SAMPLES_PER_STEP as f64;
+    let at = |t: f64| finite_at(&g, &step.state_at(t));
+    let rate = |t: f64| -> Result<f64, NonFinite<NQ>> {
+        let dt = RATE_STEP * part;
+        Ok((at(t + dt)? - at(t - dt)?) / (2.0 * dt))
+    };
+    let mut from = (start, before);
+    for k in 1..=SAMPLES_PER_STEP {
+        let to = if k == SAMPLES_PER_STEP {
+            (end, finite_at(&g, step.end())?)
+        } else {
+            (start + part * k as f64, at(start + part * k as f64)?)
+        };
+        let mut zeros = [None; 2];
+        if crossing.between(from.1, to.1) {
+            zeros[0] = Some(zero(at, (from.0, to.0), (from.1, to.1))?);
+        } else if let Some(turn) = turning_towards_zero(at, rate, from, to)? {
+            zeros[0] = crossing
+                .between(from.1, turn.1)
+                .then(|| zero(at, (from.0, turn.0), (from.1, turn.1)))
+                .transpose()?;
+            zeros[1] = crossing
+                .between(turn.1, to.1)
+                .then(|| zero(at, (turn.0, to.0), (turn.1, to.1)))
+                .transpose()?;
+        }
+        for t in zeros.into_iter().flatten() {
+            if let ControlFlow::Break(state) = on_zero(t) {
+                return Ok((ControlFlow::Break(state), to.1));
+            }
+        }
+        from = to;
     }
+    Ok((ControlFlow::Continue(()), from.1))
+}
+
+/// Where `g`, of one sign at both ends of the part `from`..`to` (time and
+/// value), turns back from zero inside it, and its value there: when its
+/// `rate` points towards zero at the start and away from it at the end.
+/// `None` when it does not (or when an end is zero).
+fn turning_towards_zero<const NQ: usize>(
+    at: impl Fn(f64) -> Result<f64, NonFinite<NQ>>,
+    rate: impl Fn(f64) -> Result<f64, NonFinite<NQ>>,
+    from: (f64, f64),
+    to: (f64, f64),
+) -> Result<Option<(f64, f64)>, NonFinite<NQ>> {
+    let sign = from.1.signum();
+    if from.1 == 0.0 || to.1 == 0.0 || sign != to.1.signum() {
+        return Ok(None);
+    }
+    let (rate_from, rate_to) = (rate(from.0)?, rate(to.0)?);
+    if sign * rate_from >= 0.0 || sign * rate_to <= 0.0 {
+        return Ok(None);
+    }
+    let t = zero(&rate, (from.0, to.0), (rate_from, rate_to))?;
+    Ok(Some((t, at(t)?)))
 }
 
 /// The zero of `f` in `[a, b]`, where `f(a) = fa` and `f(b) = fb` differ in
 /// sign (or `fb = 0`): Illinois' regula falsi, which halves the value kept
 /// at an end that stays twice, until the bracket is a few units in the last
-/// place wide.
-fn zero(f: impl Fn(f64) -> f64, (mut a, mut b): (f64, f64), (mut fa, mut fb): (f64, f64)) -> f64 {
+/// place wide; the first error of `f` stops it.
+fn zero<E>(
+    f: impl Fn(f64) -> Result<f64, E>,
+    (mut a, mut b): (f64, f64),
+    (mut fa, mut fb): (f64, f64),
+) -> Result<f64, E> {
     if fb == 0.0 {
-        return b;
+        return Ok(b);
     }
     let mut kept = 0i8;
     for _ in 0..MAX_ROOT_ITERATIONS {
@@ -351,9 +497,9 @@ fn zero(f: impl Fn(f64) -> f64, (mut a, mut b): (f64, f64), (mut fa, mut fb): (f
         } else {
             0.5 * (a + b)
         };
-        let ft = f(t);
+        let ft = f(t)?;
         if ft == 0.0 {
-            return t;
+            return Ok(t);
         }
         if (ft < 0.0) == (fa < 0.0) {
             (a, fa) = (t, ft);
@@ -369,7 +515,7 @@ fn zero(f: impl Fn(f64) -> f64, (mut a, mut b): (f64, f64), (mut fa, mut fb): (f
             kept = -1;
         }
     }
-    0.5 * (a + b)
+    Ok(0.5 * (a + b))
 }
 
 #[cfg(test)]
@@ -378,9 +524,10 @@ mod tests {
 
     #[test]
     fn illinois_finds_a_zero_to_the_last_bits() {
-        let root = zero(|x| x * x * x - 2.0, (1.0, 2.0), (-1.0, 6.0));
+        let exact = |f: fn(f64) -> f64| move |x| Ok::<_, ()>(f(x));
+        let root = zero(exact(|x| x * x * x - 2.0), (1.0, 2.0), (-1.0, 6.0)).unwrap();
         assert!((root - 2f64.cbrt()).abs() <= 4.0 * f64::EPSILON, "{root}");
-        let root = zero(f64::cos, (0.0, 3.0), (1.0, 3f64.cos()));
+        let root = zero(exact(f64::cos), (0.0, 3.0), (1.0, 3f64.cos())).unwrap();
         assert!((root - std::f64::consts::FRAC_PI_2).abs() <= 8.0 * f64::EPSILON);
     }
 }

@@ -24,7 +24,7 @@ mod tableaux;
 use std::ops::ControlFlow;
 
 use dense::Interpolant;
-pub(crate) use dense::{Continuous, observe, watch};
+pub(crate) use dense::{Continuous, EventFailure, observe, watch};
 pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
 use rows::{Estimate, MAX_SLOPES, Slopes, Tableau};
 use tableaux::{DOP853, DOPRI5};
@@ -183,9 +183,13 @@ struct Run<'a, D, const NQ: usize, const NV: usize> {
     dense: bool,
 }
 
-impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV> {
+impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV>
+where
+    D: Dynamics<NQ, NV>,
+{
     /// Whether the integration can start: its span, tolerances and first
-    /// step (see `arguments.rs`). Called before [`integrate_with`], whose
+    /// step (see `arguments.rs`), and the dynamics' own check of the start
+    /// ([`Dynamics::check_start`]). Called before [`integrate_with`], whose
     /// loop it leaves as it was.
     #[inline(never)]
     fn check(&self) -> Result<(), IntegrationError<NQ>> {
@@ -193,10 +197,10 @@ impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV> {
         check_span(initial, self.t_end, true)?;
         let (relative, absolute) = (options.relative_tolerance, options.absolute_tolerance);
         check_tolerances(initial, relative, absolute)?;
-        match options.initial_step {
-            Some(h) => check_positive(initial, h, BAD_STEP),
-            None => Ok(()),
+        if let Some(h) = options.initial_step {
+            check_positive(initial, h, BAD_STEP)?;
         }
+        Kernel::new(self.dynamics).check_start(initial)
     }
 }
 
@@ -421,7 +425,7 @@ where
         self.factor = step_factor(self.tableau, error, self.after_rejection);
         if error <= 1.0 {
             self.statistics.accepted_steps += 1;
-            self.settled = self.kernel.settle(&self.end)?;
+            self.settled = self.kernel.settle(&self.state, &self.end)?;
             let end_slope_wanted = self.dense || self.settled == self.end;
             match self.tableau.estimate {
                 Estimate::FifthAndThird if end_slope_wanted => Ok(Some(Evaluation {
