@@ -4,7 +4,7 @@
 //! a [`Failure::InvalidArgument`] at the initial state, never a panic, an
 //! endless loop or the initial state returned as if `t_end` were reached.
 
-use super::{Failure, IntegrationError, State};
+use super::{Dynamics, Failure, IntegrationError, State};
 
 /// Why the arguments are refused, at `initial`, if `refused`.
 fn refuse<const NQ: usize, const NV: usize>(
@@ -58,6 +58,21 @@ pub(crate) fn fixed_steps_to_take<const NQ: usize, const NV: usize>(
     check_span(initial, t_end, false)?;
     refuse(initial, steps == 0, "no steps to take to the final time")?;
     Ok(if t_end == initial.t { 0 } else { steps })
+}
+
+/// Whether `dynamics` may start from `initial`
+/// ([`Dynamics::check_start`]: a constrained start off the velocity form
+/// without stabilisation is refused).
+pub(crate) fn check_start<D, const NQ: usize, const NV: usize>(
+    dynamics: &D,
+    initial: &State<NQ, NV>,
+) -> Result<(), IntegrationError<NQ>>
+where
+    D: Dynamics<NQ, NV> + ?Sized,
+{
+    dynamics
+        .check_start(initial)
+        .map_err(|cause| IntegrationError::dynamics(initial.t, initial.q, cause))
 }
 
 /// A step or a tolerance `value` at `state`: a positive finite number,

@@ -7,7 +7,7 @@
 
 use std::cell::Cell;
 
-use super::arguments::{BAD_STEP, check_positive, fixed_steps_to_take};
+use super::arguments::{BAD_STEP, check_positive, check_start, fixed_steps_to_take};
 use super::{Dynamics, IntegrationError, Solution, Statistics};
 
 /// A point of a trajectory: time, coordinates and speeds.
@@ -259,6 +259,7 @@ impl<'a, D> Kernel<'a, D> {
         D: Dynamics<NQ, NV>,
     {
         let steps = fixed_steps_to_take(&initial, t_end, steps)?;
+        check_start(self.dynamics(), &initial)?;
         observer(&initial);
         let span = t_end - initial.t;
         let mut state = initial;

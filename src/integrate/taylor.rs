@@ -35,7 +35,7 @@
 use std::ops::ControlFlow;
 
 use super::adaptive::{Continuous, DenseStep, Event, observe, watch};
-use super::arguments::{check_positive, check_span};
+use super::arguments::{check_positive, check_span, check_start};
 use super::dynamics::InputLaw;
 use super::{
     Constrained, Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained,
@@ -228,6 +228,7 @@ where
             options.tolerance,
             "the tolerance is not a positive finite number",
         )?;
+        check_start(dynamics, &initial)?;
         Ok(Run {
             dynamics,
             initial,

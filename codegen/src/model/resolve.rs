@@ -91,7 +91,6 @@ impl Resolver {
                 potential: zero,
                 dissipation: zero,
                 constraints: Vec::new(),
-                moving_masses: Vec::new(),
                 tree: None,
                 outputs: Vec::new(),
             },

@@ -11,6 +11,7 @@
 //! The readable forms come from the derivation's [`ReadableForms`], which
 //! the optimiser filled first; `text` holds the Unicode and LaTeX printers.
 
+mod collect;
 pub mod text;
 
 use std::collections::{HashMap, HashSet};
@@ -284,17 +285,21 @@ struct Renderer<'a> {
 }
 
 impl Renderer<'_> {
-    /// The readable form of `e`, or the budget it exceeded.
+    /// The readable form of `e` with its parameter products collected
+    /// ([`collect::collect_parameters`]), or the budget it exceeded.
     fn form(&mut self, e: ExprId) -> Result<ExprId, usize> {
-        if let Some(&form) = self.forms.get(&e) {
-            return form;
-        }
-        let form = self
-            .readable
-            .get(self.pool, e, MIN_ENTRY_BUDGET)
-            .ok_or(MIN_ENTRY_BUDGET);
-        self.forms.insert(e, form);
-        form
+        let form = match self.forms.get(&e) {
+            Some(&form) => form,
+            None => {
+                let form = self
+                    .readable
+                    .get(self.pool, e, MIN_ENTRY_BUDGET)
+                    .ok_or(MIN_ENTRY_BUDGET);
+                self.forms.insert(e, form);
+                form
+            }
+        };
+        form.map(|form| collect::collect_parameters(self.pool, form))
     }
 
     /// `e` as a coefficient: its readable form, or the entry's label.

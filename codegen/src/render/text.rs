@@ -26,7 +26,7 @@
 use std::cmp::Reverse;
 use std::fmt::Display;
 
-use crate::expr::{ExprId, Func, Node, Number, Pool, Rational, Sym};
+use crate::expr::{ExprId, Func, Node, Number, Pool, Rational, Sym, SymKinds};
 use crate::readable::factors;
 
 /// Numerators and denominators below this are written as fractions
@@ -304,7 +304,9 @@ impl Name {
     }
 
     /// Reads an identifier: trailing digits (after an optional `_`) are
-    /// the index, a `_` inside splits stem and label.
+    /// the index, a `_` inside splits stem and label, and a short name
+    /// that spells no letter is a letter with a subscript (`I1c` → `I_{1c}`,
+    /// `xp` → `x_p`, as `m_B` → `m_B`: see [`Name::short`]).
     fn parse(ident: &str) -> Name {
         let ident = ident.strip_prefix("r#").unwrap_or(ident);
         let body = ident.trim_end_matches(|c: char| c.is_ascii_digit());
@@ -320,14 +322,43 @@ impl Name {
                 label: Some(Word::of(label)),
                 digits,
             },
-            _ => Name {
+            _ => Name::short(body, &digits).unwrap_or(Name {
                 stem: Word::of(body),
                 label: None,
                 digits,
-            },
+            }),
         }
     }
+
+    /// `body` (with the index `digits`) read as a letter and a subscript of
+    /// at most [`SHORT_SUBSCRIPT`] characters, when it spells no letter of
+    /// its own: the usual reading of `I1c`, `Ixx`, `mp` or `xp` in
+    /// mechanics, and the one whose rate takes dots (`ẋ_p`). Longer
+    /// words (`mass`, `arm`) stay words.
+    fn short(body: &str, digits: &str) -> Option<Name> {
+        let mut chars = body.chars();
+        let first = chars.next().filter(char::is_ascii_alphabetic)?;
+        let rest = chars.as_str();
+        let spells_a_letter = LETTERS.iter().any(|l| l.spelled == body);
+        if rest.is_empty() || rest.chars().count() > SHORT_SUBSCRIPT || spells_a_letter {
+            return None;
+        }
+        Some(Name {
+            stem: Word::of(&first.to_string()),
+            label: Some(Word::text(rest)),
+            digits: digits.to_string(),
+        })
+    }
+
+    /// Whether its rate is written in Leibniz's notation (a stem of
+    /// several letters, see [`unicode_name`]).
+    fn is_leibniz(&self, dots: usize) -> bool {
+        dots > 0 && self.stem.is_several_letters()
+    }
 }
+
+/// The longest subscript a short name is read with ([`Name::short`]).
+const SHORT_SUBSCRIPT: usize = 2;
 
 /// How a function call is written.
 enum Call {
@@ -351,6 +382,9 @@ struct Notation {
     /// Between two factors when one is a name of several letters, which a
     /// plain space would read as a product of letters (`m ma`).
     word_times: &'static str,
+    /// Whether the rates of stems of several letters take Leibniz's
+    /// notation (see [`unicode_name`]).
+    leibniz: bool,
 }
 
 impl Style {
@@ -373,6 +407,7 @@ const UNICODE: Notation = Notation {
     name: unicode_name,
     call: unicode_call,
     word_times: "·",
+    leibniz: true,
 };
 
 /// LaTeX math.
@@ -385,6 +420,7 @@ const LATEX: Notation = Notation {
     name: latex_name,
     call: latex_call,
     word_times: " ",
+    leibniz: false,
 };
 
 /// `²`, `⁻¹`.
@@ -427,7 +463,7 @@ fn unicode_word(out: &mut String, word: &Word) {
 /// (`FL_HFE` read as `FL̈_HFE`), takes the rate in Leibniz's notation:
 /// `d(FL_HFE)/dt`, `d²(FL_HFE)/dt²`.
 fn unicode_name(out: &mut String, name: &Name, dots: usize) {
-    if dots > 0 && name.stem.is_several_letters() {
+    if name.is_leibniz(dots) {
         let order = if dots == 1 { "" } else { "²" };
         out.push_str(&format!("d{order}("));
         unicode_name(out, name, 0);
@@ -484,6 +520,15 @@ fn latex_word(out: &mut String, word: &Word) {
     }
 }
 
+/// A subscript word: [`latex_word`], but a short one (as [`Name::short`]
+/// reads) in math italic like its stem, `I_{1c}`, `x_{p}`.
+fn latex_label(out: &mut String, word: &Word) {
+    match word {
+        Word::Text(t) if t.chars().count() <= SHORT_SUBSCRIPT => out.push_str(t),
+        _ => latex_word(out, word),
+    }
+}
+
 /// `\theta_{1}`, `\dot{\theta}_{1}`, `\ddot{\theta}_{1}` (an accent is
 /// centred over a stem of several letters, `\dot{\mathrm{FL}}`).
 fn latex_name(out: &mut String, name: &Name, dots: usize) {
@@ -500,7 +545,7 @@ fn latex_name(out: &mut String, name: &Name, dots: usize) {
 fn latex_labelled(out: &mut String, label: Option<&Word>, digits: &str) {
     let mut inner = String::new();
     if let Some(label) = label {
-        latex_word(&mut inner, label);
+        latex_label(&mut inner, label);
         if !digits.is_empty() {
             inner.push(',');
         }
@@ -664,7 +709,14 @@ enum FactorClass {
 /// whatever the declaration order), then symbol, then id.
 fn factor_order(pool: &Pool, base: ExprId, exp: i32) -> (FactorClass, bool, Option<Sym>, ExprId) {
     let Node::Sym(s) = *pool.node(base) else {
-        return (FactorClass::Composite, false, None, base);
+        // A collected sum of parameters leads the parameters.
+        let parameters = matches!(pool.node(base), Node::Func(Func::Group, _))
+            && SymKinds::PARAM.contains(pool.kinds(base));
+        let class = match parameters {
+            true => FactorClass::Param,
+            false => FactorClass::Composite,
+        };
+        return (class, false, None, base);
     };
     let class = match s {
         Sym::Param(_) => FactorClass::Param,
@@ -798,11 +850,20 @@ impl<'a> Walker<'a> {
         }
     }
 
-    /// Writes one factor `base^exp`.
+    /// Writes one factor `base^exp`; a rate in Leibniz's notation raised
+    /// to a power is parenthesised (`(d(FL)/dt)²`, not `d(FL)/dt²`).
     fn factor(&mut self, Factor { base, exp, flipped }: Factor) {
         match *self.pool.node(base) {
             Node::Sym(s) => {
+                let (name, dots) = self.names.of(s);
+                let enclosed = exp != 1 && self.notation.leibniz && name.is_leibniz(dots);
+                if enclosed {
+                    self.out.push('(');
+                }
                 self.symbol(s);
+                if enclosed {
+                    self.out.push(')');
+                }
                 self.power(exp);
             }
             Node::Func(f, arg) => self.call(f, arg, exp, flipped),

@@ -29,7 +29,7 @@ pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
 use rows::{Estimate, MAX_SLOPES, Slopes, Tableau};
 use tableaux::{DOP853, DOPRI5};
 
-use super::arguments::{BAD_STEP, check_positive, check_span, check_tolerances};
+use super::arguments::{BAD_STEP, check_positive, check_span, check_start, check_tolerances};
 use super::runge_kutta::{Kernel, Rate};
 use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics};
 
@@ -183,9 +183,9 @@ struct Run<'a, D, const NQ: usize, const NV: usize> {
     dense: bool,
 }
 
-impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV> {
-    /// Whether the integration can start: its span, tolerances and first
-    /// step (see `arguments.rs`). Called before [`integrate_with`], whose
+impl<D: Dynamics<NQ, NV>, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV> {
+    /// Whether the integration can start: its span, tolerances, first
+    /// step and start (see `arguments.rs`). Called before [`integrate_with`], whose
     /// loop it leaves as it was.
     #[inline(never)]
     fn check(&self) -> Result<(), IntegrationError<NQ>> {
@@ -193,10 +193,10 @@ impl<D, const NQ: usize, const NV: usize> Run<'_, D, NQ, NV> {
         check_span(initial, self.t_end, true)?;
         let (relative, absolute) = (options.relative_tolerance, options.absolute_tolerance);
         check_tolerances(initial, relative, absolute)?;
-        match options.initial_step {
-            Some(h) => check_positive(initial, h, BAD_STEP),
-            None => Ok(()),
+        if let Some(h) = options.initial_step {
+            check_positive(initial, h, BAD_STEP)?;
         }
+        check_start(self.dynamics, initial)
     }
 }
 
