@@ -2,7 +2,8 @@
 //! model from the command line.
 //!
 //! ```text
-//! dalembert eom MODEL.dal [--latex]   the equations of motion, as in the seed document
+//! dalembert eom MODEL.dal [--latex | --latex-inline | --markdown]
+//!                                     the equations of motion, as in the seed document
 //! dalembert generate MODEL.dal        the generated Rust source
 //! dalembert check MODEL.dal           the errors the dalembert! macro would report
 //! dalembert chain FAMILY N [SPELLING] the .dal text of a benchmark chain (planar or spatial;
@@ -30,7 +31,9 @@ const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
 
 Commands:
-  eom MODEL.dal [--latex]   print the equations of motion (Unicode, or LaTeX)
+  eom MODEL.dal [--latex | --latex-inline | --markdown]
+                            print the equations of motion: Unicode text, a LaTeX
+                            align* environment, its bare rows, or Markdown
   generate MODEL.dal        print the generated Rust source
   check MODEL.dal           report the errors the dalembert! macro would report
   chain FAMILY N [SPELLING] print the .dal text of the planar or spatial chain of N links,
@@ -95,12 +98,23 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
         return parse_urdf(args.skip(1));
     }
     let mut positional = Vec::new();
-    let mut latex = false;
+    let mut style: Option<(&'static str, Style)> = None;
     for arg in args {
         match arg.to_str() {
             Some("-h" | "--help") => return Ok(Command::Help),
             Some("-V" | "--version") => return Ok(Command::Version),
-            Some("--latex") => latex = true,
+            Some(flag @ ("--latex" | "--latex-inline" | "--markdown")) => {
+                let chosen = match flag {
+                    "--latex" => ("--latex", Style::Latex),
+                    "--latex-inline" => ("--latex-inline", Style::LatexInline),
+                    _ => ("--markdown", Style::Markdown),
+                };
+                if let Some((other, _)) = style.replace(chosen) {
+                    return Err(format!(
+                        "`{flag}` and `{other}` choose two formats: give one"
+                    ));
+                }
+            }
             Some(flag) if flag.starts_with('-') => {
                 return Err(format!("unknown option `{flag}`"));
             }
@@ -134,13 +148,10 @@ fn parse(args: impl IntoIterator<Item = OsString>) -> Result<Command, String> {
     if let Some(extra) = positional.next() {
         return Err(format!("unexpected argument `{}`", extra.to_string_lossy()));
     }
-    if latex && name != "eom" {
-        return Err(format!("`--latex` applies to `eom`, not `{name}`"));
+    match style {
+        Some((flag, _)) if name != "eom" => Err(format!("`{flag}` applies to `eom`, not `{name}`")),
+        _ => Ok(command(model, style.map_or(Style::Unicode, |(_, s)| s))),
     }
-    Ok(command(
-        model,
-        if latex { Style::Latex } else { Style::Unicode },
-    ))
 }
 
 /// The arguments of `chain FAMILY N [SPELLING]`.
@@ -297,6 +308,18 @@ mod tests {
                 style: Style::Unicode
             })
         );
+        for (flag, style) in [
+            ("--latex-inline", Style::LatexInline),
+            ("--markdown", Style::Markdown),
+        ] {
+            let model = model.clone();
+            assert_eq!(
+                parse_str(&["eom", flag, "m.dal"]),
+                Ok(Command::Eom { model, style })
+            );
+        }
+        let both = parse_str(&["eom", "m.dal", "--latex", "--markdown"]);
+        assert!(both.is_err_and(|e| e.contains("two formats")));
         assert_eq!(
             parse_str(&["generate", "m.dal"]),
             Ok(Command::Generate {

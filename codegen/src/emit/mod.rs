@@ -576,7 +576,7 @@ impl TraitFunction {
         quote! {
             #[inline]
             fn #function(&self, #arguments) -> #ty {
-                let _ = (#passed);
+                let _ = (#passed,);
                 #undefined
             }
             #[inline]

@@ -143,7 +143,7 @@ mod tests {
         let [m, l, i1, i3] = [0, 1, 2, 3].map(|i| p.sym(Sym::Param(i)));
         let theta = p.sym(Sym::Coord(1));
         let [psi_dot, theta_dot] = [0, 1].map(|i| p.sym(Sym::Speed(i)));
-        let (s, c) = (p.sin(theta), p.cos(theta));
+        let (c, s) = (p.cos(theta), p.sin(theta));
         let rest = p.product([s, c, psi_dot, theta_dot]);
         let l2 = p.powi(l, 2);
         let two = p.int(2);

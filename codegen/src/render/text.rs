@@ -39,13 +39,33 @@ const MAX_DEPTH: usize = 64;
 /// Longest output, in bytes, printed in full.
 const MAX_LEN: usize = 1 << 20;
 
-/// The notation to print in.
+/// The notation to print in, and for a whole rendering its layout.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Style {
     /// Unicode text: `½ m L² cos(θ₂ − θ₁)`.
     Unicode,
-    /// LaTeX math: `\frac{1}{2} m L^{2} \cos(\theta_{2} - \theta_{1})`.
+    /// LaTeX math: `\frac{1}{2} m L^{2} \cos(\theta_{2} - \theta_{1})`; a
+    /// rendering is one complete `align*` environment (amsmath), its
+    /// sections' titles as `\intertext`.
     Latex,
+    /// LaTeX math; a rendering is the bare rows `lhs &= rhs \\` to paste
+    /// into an environment of one's own, its titles as `%` comments.
+    LatexInline,
+    /// LaTeX math; a rendering is Markdown for a README: a heading, the
+    /// form in `$…$`, and each section in a fenced `math` block
+    /// (`aligned`), as GitHub and most Markdown renderers show it.
+    Markdown,
+}
+
+impl Style {
+    /// The notation of the expressions: Unicode, or LaTeX for every
+    /// LaTeX layout.
+    pub fn math(self) -> Style {
+        match self {
+            Style::Unicode => Style::Unicode,
+            Style::Latex | Style::LatexInline | Style::Markdown => Style::Latex,
+        }
+    }
 }
 
 /// `e` in Unicode text (see the module docs).
@@ -330,17 +350,26 @@ impl Name {
         }
     }
 
-    /// `body` (with the index `digits`) read as a letter and a subscript of
-    /// at most [`SHORT_SUBSCRIPT`] characters, when it spells no letter of
-    /// its own: the usual reading of `I1c`, `Ixx`, `mp` or `xp` in
-    /// mechanics, and the one whose rate takes dots (`ẋ_p`). Longer
-    /// words (`mass`, `arm`) stay words.
+    /// `body` (with the index `digits`) read as a letter and a subscript,
+    /// when it spells no letter of its own and the subscript is one
+    /// character, or two with a digit, a capital or axes (`xyz`): the usual
+    /// reading of `xp`, `mp`, `I1c`, `IA` or `Ixy` in mechanics, and the
+    /// one whose rate takes dots (`ẋ_p`). Words (`mass`, `arm`) stay words.
     fn short(body: &str, digits: &str) -> Option<Name> {
         let mut chars = body.chars();
         let first = chars.next().filter(char::is_ascii_alphabetic)?;
         let rest = chars.as_str();
         let spells_a_letter = LETTERS.iter().any(|l| l.spelled == body);
-        if rest.is_empty() || rest.chars().count() > SHORT_SUBSCRIPT || spells_a_letter {
+        let subscript = match rest.chars().count() {
+            1 => true,
+            2 => {
+                rest.chars()
+                    .any(|c| c.is_ascii_digit() || c.is_ascii_uppercase())
+                    || rest.chars().all(|c| "xyz".contains(c))
+            }
+            _ => false,
+        };
+        if !subscript || spells_a_letter {
             return None;
         }
         Some(Name {
@@ -390,9 +419,9 @@ struct Notation {
 impl Style {
     /// The notation table of this style.
     fn notation(self) -> &'static Notation {
-        match self {
+        match self.math() {
             Style::Unicode => &UNICODE,
-            Style::Latex => &LATEX,
+            _ => &LATEX,
         }
     }
 }
@@ -1096,16 +1125,41 @@ mod tests {
     }
 
     #[test]
+    fn short_names_are_a_letter_and_a_subscript_and_their_rates_are_dotted() {
+        let names = SymbolNames::new(&["I1c", "m_B", "Ixx", "arm"], &["xp", "FL"], &[] as &[&str]);
+        let expected = [
+            (Sym::Param(0), "I_1c", "I_{1c}"),
+            (Sym::Param(1), "m_B", "m_{B}"),
+            (Sym::Param(2), "I_xx", "I_{xx}"),
+            (Sym::Param(3), "arm", "\\mathrm{arm}"),
+            (Sym::Speed(0), "x\u{307}_p", "\\dot{x}_{p}"),
+            (Sym::Accel(0), "x\u{308}_p", "\\ddot{x}_{p}"),
+        ];
+        for (sym, text, tex) in expected {
+            assert_eq!(
+                both(&names, sym),
+                (text.to_string(), tex.to_string()),
+                "{sym:?}"
+            );
+        }
+        // A rate in Leibniz's notation is parenthesised under a power.
+        let mut p = Pool::new();
+        let rate = p.sym(Sym::Speed(1));
+        let e = p.powi(rate, 2);
+        assert_eq!(unicode(&p, e, &names), "(d(FL)/dt)²");
+    }
+
+    #[test]
     fn powers_of_parameters_follow_and_words_are_multiplied_visibly() {
         let mut p = Pool::new();
-        let names = SymbolNames::new(&["r", "m", "ma"], &["q"], &[] as &[&str]);
+        let names = SymbolNames::new(&["r", "m", "mass"], &["q"], &[] as &[&str]);
         let [r, m, ma] = [0, 1, 2].map(|i| p.sym(Sym::Param(i)));
         let r2 = p.powi(r, 2);
         let e = p.product([m, r2]);
         assert_eq!(unicode(&p, e, &names), "m r²", "declared r before m");
         let e = p.product([m, ma]);
-        assert_eq!(unicode(&p, e, &names), "m·ma");
-        assert_eq!(latex(&p, e, &names), "m \\mathrm{ma}");
+        assert_eq!(unicode(&p, e, &names), "m·mass");
+        assert_eq!(latex(&p, e, &names), "m \\mathrm{mass}");
     }
 
     #[test]
