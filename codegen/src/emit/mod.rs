@@ -471,6 +471,7 @@ fn emit_trait_impls(
         },
     ]
     .map(|function| function.forward(name, timed));
+    let [mass, kinetic, potential] = &energies;
     let time_dependent = timed.then(|| {
         quote!(
             const TIME_DEPENDENT: bool = true;
@@ -484,11 +485,13 @@ fn emit_trait_impls(
             const SPEEDS: [&'static str; #nv] = #name::SPEEDS;
             const INPUTS: [&'static str; #nu] = #name::INPUTS;
             #time_dependent
-            #(#energies)*
+            #mass
             #[inline]
             fn forcing(&self, t: f64, q: &#coordinates, v: &#vector, u: &#inputs) -> #vector {
                 #name::forcing(self, t, q, v, u)
             }
+            #kinetic
+            #potential
             #[inline]
             fn coordinate_rates(&self, q: &#coordinates, v: &#vector) -> #coordinates {
                 #name::coordinate_rates(self, q, v)

@@ -62,11 +62,12 @@ fn collected(pool: &mut Pool, e: ExprId) -> ExprId {
 }
 
 /// `Σ members · varying` as `n · common parameters · (Σ the rest) · varying`,
-/// with `n` the magnitude most of the members have (negative when they are
-/// all negative), else `1`.
+/// with `n` as [`common_number`] finds it; the members as they were where
+/// nothing would stand outside the parentheses.
 fn collected_term(pool: &mut Pool, varying: ExprId, members: &[Split]) -> ExprId {
     let number = common_number(members);
     let common = common_parameters(members);
+    let bare = number == Number::ONE && common.is_empty() && varying == pool.one();
     let inner: Vec<ExprId> = members
         .iter()
         .map(|member| {
@@ -86,19 +87,25 @@ fn collected_term(pool: &mut Pool, varying: ExprId, members: &[Split]) -> ExprId
         })
         .collect();
     let inner = pool.sum(inner);
+    if bare {
+        return inner;
+    }
     let group = pool.group(inner);
     let common = power_product(pool, &common);
     let number = pool.number(number);
     pool.product([number, common, group, varying])
 }
 
-/// The magnitude that more than half of the members have (`½` of
-/// `½ m_A + ½ m_B + ¼ m_p`), negative when all of them are, else `1`.
+/// The magnitude that more than half of the members have and none
+/// exceeds (`½` of `½ m_A + ½ m_B + ¼ m_p`; none of
+/// `⅓ m₁ L₁² + ⅓ m₂ L₂² + m₂ L₁²`, which would leave a `3` inside),
+/// negative when all of them are, else `1`.
 fn common_number(members: &[Split]) -> Number {
-    let majority = members
-        .iter()
-        .map(|m| m.number.abs())
-        .find(|&n| 2 * members.iter().filter(|m| m.number.abs() == n).count() > members.len());
+    let magnitudes = || members.iter().map(|m| m.number.abs());
+    let majority = magnitudes().find(|&n| {
+        let exceeded = magnitudes().any(|other| other.to_f64() > n.to_f64());
+        2 * magnitudes().filter(|&other| other == n).count() > members.len() && !exceeded
+    });
     let number = majority.unwrap_or(Number::ONE);
     match members.iter().all(|m| m.number.is_negative()) {
         true => -number,

@@ -1126,7 +1126,11 @@ mod tests {
 
     #[test]
     fn short_names_are_a_letter_and_a_subscript_and_their_rates_are_dotted() {
-        let names = SymbolNames::new(&["I1c", "m_B", "Ixx", "arm"], &["xp", "FL"], &[] as &[&str]);
+        let names = SymbolNames::new(
+            &["I1c", "m_B", "Ixx", "arm"],
+            &["xp", "arm"],
+            &[] as &[&str],
+        );
         let expected = [
             (Sym::Param(0), "I_1c", "I_{1c}"),
             (Sym::Param(1), "m_B", "m_{B}"),
@@ -1146,7 +1150,7 @@ mod tests {
         let mut p = Pool::new();
         let rate = p.sym(Sym::Speed(1));
         let e = p.powi(rate, 2);
-        assert_eq!(unicode(&p, e, &names), "(d(FL)/dt)²");
+        assert_eq!(unicode(&p, e, &names), "(d(arm)/dt)²");
     }
 
     #[test]
