@@ -11,8 +11,10 @@
 
 use super::{DynamicsError, RELATIVE_PIVOT_TOLERANCE};
 
-/// The most speeds a [`NullMotion`] names.
-pub const NULL_MOTION_NAMES: usize = 6;
+/// The most speeds a [`NullMotion`] names (three: two Euler angles that
+/// line up, and room for one more, while the error stays small enough to
+/// return by value cheaply).
+pub const NULL_MOTION_NAMES: usize = 3;
 
 /// A combination of the speeds that moves no mass at a configuration where
 /// `M` is singular: the null vector of `M`, scaled so that its largest
@@ -22,8 +24,8 @@ pub const NULL_MOTION_NAMES: usize = 6;
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NullMotion {
     names: [&'static str; NULL_MOTION_NAMES],
-    weights: [f64; NULL_MOTION_NAMES],
-    len: usize,
+    weights: [f32; NULL_MOTION_NAMES],
+    len: u8,
 }
 
 /// A weight smaller than this (relative to the largest) takes no part.
@@ -38,12 +40,12 @@ const RANK_TOLERANCE: f64 = 1e4 * RELATIVE_PIVOT_TOLERANCE;
 impl NullMotion {
     /// The names taking part, in index order.
     pub fn names(&self) -> &[&'static str] {
-        &self.names[..self.len]
+        &self.names[..usize::from(self.len)]
     }
 
     /// Their weights, in the order of [`names`](NullMotion::names).
-    pub fn weights(&self) -> &[f64] {
-        &self.weights[..self.len]
+    pub fn weights(&self) -> &[f32] {
+        &self.weights[..usize::from(self.len)]
     }
 
     /// The motion that moves no mass for `mass`, whose rows and columns are
@@ -70,8 +72,9 @@ impl NullMotion {
         let mut motion = NullMotion::default();
         let taking_part = (0..N).filter(|&i| weights[i].abs() >= NEGLIGIBLE_WEIGHT);
         for index in taking_part.take(NULL_MOTION_NAMES) {
-            motion.names[motion.len] = names[index];
-            motion.weights[motion.len] = weights[index];
+            let slot = usize::from(motion.len);
+            motion.names[slot] = names[index];
+            motion.weights[slot] = weights[index] as f32;
             motion.len += 1;
         }
         // The first named speed turns forwards.
@@ -97,13 +100,15 @@ fn pivoted_factor<const N: usize>(mass: &[[f64; N]; N]) -> ([[f64; N]; N], [usiz
         a.iter_mut().for_each(|row| row.swap(k, p));
         order.swap(k, p);
         let pivot = a[k][k];
-        if !(pivot > tolerance) {
+        // A NaN pivot counts as zero.
+        if pivot.is_nan() || pivot <= tolerance {
             return (a, order, k);
         }
-        for i in k + 1..N {
-            let l = a[i][k] / pivot;
-            for j in k + 1..N {
-                a[i][j] -= l * a[k][j];
+        let row = a[k];
+        for other in a.iter_mut().skip(k + 1) {
+            let l = other[k] / pivot;
+            for (entry, above) in other.iter_mut().zip(&row).skip(k + 1) {
+                *entry -= l * above;
             }
         }
     }
@@ -125,7 +130,7 @@ pub fn with_null_motion<const N: usize>(
             coordinate,
             pivot,
             null_motion,
-        } if null_motion.len == 0 => DynamicsError::SingularMassMatrix {
+        } if null_motion.names().is_empty() => DynamicsError::SingularMassMatrix {
             index,
             coordinate,
             pivot,
@@ -156,13 +161,17 @@ mod tests {
         let motion = NullMotion::of(&mass, &["psi", "theta", "phi"]);
         assert_eq!(motion.names().len(), 2, "{motion:?}");
         assert!(motion.names().contains(&"psi") && motion.names().contains(&"phi"));
-        assert!((motion.weights()[0] + motion.weights()[1]).abs() < 1e-15);
-        let x = [motion.weights()[0], 0.0, motion.weights()[1]];
+        assert!((motion.weights()[0] + motion.weights()[1]).abs() < 1e-6);
+        let x = [
+            f64::from(motion.weights()[0]),
+            0.0,
+            f64::from(motion.weights()[1]),
+        ];
         let residual: f64 = mass
             .iter()
             .map(|row| (0..3).map(|j| row[j] * x[j]).sum::<f64>().abs())
             .sum();
-        assert!(residual < 1e-15);
+        assert!(residual < 1e-6);
     }
 
     #[test]

@@ -300,7 +300,7 @@ where
             .iter()
             .enumerate()
             .filter(|&(row, _)| S::RHEONOMIC[row])
-            .find(|(_, psi)| !(psi.abs() <= START_VELOCITY_TOLERANCE * scale));
+            .find(|(_, psi)| psi.is_nan() || psi.abs() > START_VELOCITY_TOLERANCE * scale);
         match off {
             Some((row, &velocity)) => Err(DynamicsError::StartOffConstraints { row, velocity }),
             None => Ok(()),
