@@ -11,10 +11,10 @@
 
 use super::{DynamicsError, RELATIVE_PIVOT_TOLERANCE};
 
-/// The most speeds a [`NullMotion`] names (three: two Euler angles that
-/// line up, and room for one more, while the error stays small enough to
-/// return by value cheaply).
-pub const NULL_MOTION_NAMES: usize = 3;
+/// The most speeds a [`NullMotion`] names: two, the Euler angles that line
+/// up (a dependency among more names its first two), so that the error
+/// stays small enough to return by value cheaply.
+pub const NULL_MOTION_NAMES: usize = 2;
 
 /// A combination of the speeds that moves no mass at a configuration where
 /// `M` is singular: the null vector of `M`, scaled so that its largest
