@@ -65,7 +65,7 @@ mod system;
 mod test_systems;
 
 pub use constrained::Stabilisation;
-pub use dynamics::{DynamicsError, accelerations, energy};
+pub use dynamics::{DynamicsError, accelerations, energy, energy_at, jacobi_integral};
 pub use integrate::{Constrained, IntegrationError, Solution, State, Unconstrained};
 pub use system::{ConstrainedSystem, MultibodySystem, TaylorSystem};
 

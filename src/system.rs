@@ -7,6 +7,12 @@
 //! `NV = NQ` and `v = q̇`; joints whose configuration lives on a group
 //! (a quaternion's four numbers for three rotational speeds) make them
 //! differ.
+//!
+//! A system whose mass matrix, energies or constraint Jacobian depend on
+//! time `t` (a mass moved by a prescribed motion: a shaken pivot, a
+//! platform turned at a set rate) is [`TIME_DEPENDENT`](MultibodySystem::TIME_DEPENDENT):
+//! the runtime calls the `_at` forms (`mass_matrix_at(t, q)`, ...), which
+//! the time-free ones answer for every other system.
 
 use crate::dynamics::{DynamicsError, cholesky_accelerations};
 
@@ -25,8 +31,26 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
     /// Names of the inputs, in index order.
     const INPUTS: [&'static str; NU];
 
+    /// Whether time `t` enters `M`, `T`, `V` (or `A`): then the `_at`
+    /// functions give them, and the time-free ones of a generated system
+    /// return NaN (they depend on a time the call does not give).
+    ///
+    /// Provided: `false`.
+    const TIME_DEPENDENT: bool = false;
+
     /// The symmetric mass matrix `M(q)`.
     fn mass_matrix(&self, q: &[f64; NQ]) -> [[f64; NV]; NV];
+
+    /// The mass matrix `M(t, q)` at time `t`; what the solvers and
+    /// integrators call.
+    ///
+    /// Provided: [`mass_matrix`](MultibodySystem::mass_matrix), for a
+    /// time-free system. A time-dependent generated system overrides it.
+    #[inline]
+    fn mass_matrix_at(&self, t: f64, q: &[f64; NQ]) -> [[f64; NV]; NV] {
+        let _ = t;
+        self.mass_matrix(q)
+    }
 
     /// The forcing `f(t, q, v, u)`: every generalized force other than the
     /// inertial term `M(q) v̇`, so that `M(q) v̇ = f`.
@@ -35,9 +59,27 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
     /// The kinetic energy `T(q, v)`.
     fn kinetic_energy(&self, q: &[f64; NQ], v: &[f64; NV]) -> f64;
 
+    /// The kinetic energy `T(t, q, v)` at time `t`.
+    ///
+    /// Provided: [`kinetic_energy`](MultibodySystem::kinetic_energy).
+    #[inline]
+    fn kinetic_energy_at(&self, t: f64, q: &[f64; NQ], v: &[f64; NV]) -> f64 {
+        let _ = t;
+        self.kinetic_energy(q, v)
+    }
+
     /// The potential energy `V(q)`: gravity relative to the origin `O` plus
     /// every `potential` statement.
     fn potential_energy(&self, q: &[f64; NQ]) -> f64;
+
+    /// The potential energy `V(t, q)` at time `t`.
+    ///
+    /// Provided: [`potential_energy`](MultibodySystem::potential_energy).
+    #[inline]
+    fn potential_energy_at(&self, t: f64, q: &[f64; NQ]) -> f64 {
+        let _ = t;
+        self.potential_energy(q)
+    }
 
     /// The coordinate rates `q̇ = N(q) v`.
     fn coordinate_rates(&self, q: &[f64; NQ], v: &[f64; NV]) -> [f64; NQ];
@@ -89,9 +131,28 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
 pub trait ConstrainedSystem<const NQ: usize, const NV: usize, const NU: usize, const NC: usize>:
     MultibodySystem<NQ, NV, NU>
 {
+    /// Whether each row depends on time explicitly (rheonomic: a driven
+    /// coordinate `x == A sin(ω t)`, a platform held at `φ == Ω t`). A start
+    /// at rest is off such a row's velocity form, so integrations without
+    /// stabilisation check it there
+    /// ([`Dynamics::check_start`](crate::integrate::Dynamics::check_start)).
+    ///
+    /// Provided: no row (every constraint scleronomic).
+    const RHEONOMIC: [bool; NC] = [false; NC];
+
     /// The constraint Jacobian `A(q)`, one row per constraint in declaration
     /// order.
     fn constraint_jacobian(&self, q: &[f64; NQ]) -> [[f64; NV]; NC];
+
+    /// The constraint Jacobian `A(t, q)` at time `t`; what the solvers and
+    /// integrators call.
+    ///
+    /// Provided: [`constraint_jacobian`](ConstrainedSystem::constraint_jacobian).
+    #[inline]
+    fn constraint_jacobian_at(&self, t: f64, q: &[f64; NQ]) -> [[f64; NV]; NC] {
+        let _ = t;
+        self.constraint_jacobian(q)
+    }
 
     /// The constraint bias `b(t, q, v)` of the acceleration-level
     /// constraints `A v̇ = b`.

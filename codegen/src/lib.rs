@@ -279,7 +279,6 @@ fn check_equations(
     pool: &expr::Pool,
     equations: &equations::Equations,
 ) -> syn::Result<()> {
-    check_timeless(model, pool, equations)?;
     check_inertia(model, pool, equations)
 }
 
@@ -321,34 +320,4 @@ fn check_inertia(
             Err(first)
         }
     }
-}
-
-/// The outputs whose generated functions take no `t` (`M(q)`, `T(q, q̇)`,
-/// `V(q)`) must not depend on time: reports the masses that move with time
-/// when `t` did not cancel from them. (A row of `A(q)` with `t` is rejected
-/// earlier, at its constraint.)
-fn check_timeless(
-    model: &model::Model,
-    pool: &expr::Pool,
-    equations: &equations::Equations,
-) -> syn::Result<()> {
-    let timeless = equations
-        .mass_matrix
-        .iter()
-        .flatten()
-        .chain([&equations.kinetic_energy, &equations.potential_energy]);
-    let mut timeless = timeless.map(|&e| pool.kinds(e));
-    if !timeless.any(|kinds| kinds.intersects(expr::SymKinds::TIME)) {
-        return Ok(());
-    }
-    let mut errors = model.moving_masses.iter().cloned();
-    let mut first = errors.next().unwrap_or_else(|| {
-        syn::Error::new(
-            model.name.span(),
-            "the mass matrix or the energies depend on time `t`, but the generated \
-             `mass_matrix(q)`, `kinetic_energy(q, q̇)` and `potential_energy(q)` have no `t`",
-        )
-    });
-    errors.for_each(|e| first.combine(e));
-    Err(first)
 }

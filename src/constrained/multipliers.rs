@@ -503,9 +503,9 @@ impl ConstraintSolver {
         S: ConstrainedSystem<NQ, NV, NU, NC>,
     {
         let equations = SaddlePoint {
-            mass: &system.mass_matrix(q),
+            mass: &system.mass_matrix_at(t, q),
             forcing: system.forcing(t, q, v, u),
-            jacobian: &system.constraint_jacobian(q),
+            jacobian: &system.constraint_jacobian_at(t, q),
             bias,
         };
         self.solve_saddle_point(system, t, q, equations, |solution, _| Ok(solution))

@@ -79,10 +79,10 @@ impl ConstraintSolver {
         if !(t.is_finite() && all_finite(&q) && all_finite(&v)) {
             return Err(DynamicsError::NonFiniteState);
         }
-        let mass = system.mass_matrix(&q);
+        let mass = system.mass_matrix_at(t, &q);
         let names = pivot_names::<S, NQ, NV, NU>();
         let least_norm = |solver, q: &[f64; NQ], c: [f64; NC]| {
-            let jacobian = system.constraint_jacobian(q);
+            let jacobian = system.constraint_jacobian_at(t, q);
             ConstraintMetric::with(solver, RANK_TOLERANCE, &mass, &names, &jacobian, |metric| {
                 Ok(metric.least_norm(&SVector::from(c)).into())
             })
@@ -178,8 +178,8 @@ pub fn project_onto_energy_level<S, const NQ: usize, const NV: usize, const NU: 
 where
     S: MultibodySystem<NQ, NV, NU>,
 {
-    let kinetic = system.kinetic_energy(&state.q, &state.v);
-    let available = energy - system.potential_energy(&state.q);
+    let kinetic = system.kinetic_energy_at(state.t, &state.q, &state.v);
+    let available = energy - system.potential_energy_at(state.t, &state.q);
     let scale = (available / kinetic).sqrt();
     if kinetic > 0.0 && scale.is_finite() {
         State {

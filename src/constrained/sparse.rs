@@ -334,6 +334,7 @@ impl SparseFactor {
                     index: p,
                     coordinate: names[p],
                     pivot,
+                    null_motion: crate::dynamics::NullMotion::default(),
                 });
             }
             let column = analysis.column(k);

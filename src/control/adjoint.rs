@@ -19,7 +19,7 @@
 
 use super::step::{NODES, WEIGHTS};
 use super::{ConfigurationSpace, ControlError, Differentiable};
-use crate::dynamics::pivot_tolerance;
+use crate::dynamics::factor_mass_matrix;
 use crate::{DynamicsError, State};
 
 /// A system whose model also asks for `inverse_dynamics_jacobian`
@@ -52,39 +52,16 @@ pub struct AccelerationsAdjoint<const NV: usize, const NU: usize> {
     pub by_u: [f64; NU],
 }
 
-/// `M⁻¹ λ` by a Cholesky factorisation of `M`, or the error naming the
-/// speed whose pivot is not above [`pivot_tolerance`].
+/// `M⁻¹ λ` by the runtime's Cholesky factorisation of `M`, or the error
+/// naming the speed whose pivot is not safely positive.
 fn solve<const NV: usize>(
     mass: &[[f64; NV]; NV],
     lambda: &[f64; NV],
     speeds: &[&'static str; NV],
 ) -> Result<[f64; NV], DynamicsError> {
-    let tolerance = pivot_tolerance::<NV>(std::array::from_fn(|i| mass[i][i]));
-    let mut l = *mass;
-    for j in 0..NV {
-        let pivot = l[j][j] - (0..j).map(|k| l[j][k] * l[j][k]).sum::<f64>();
-        // NaN fails too.
-        if pivot.partial_cmp(&tolerance) != Some(std::cmp::Ordering::Greater) {
-            return Err(DynamicsError::SingularMassMatrix {
-                index: j,
-                coordinate: speeds[j],
-                pivot,
-            });
-        }
-        let d = pivot.sqrt();
-        l[j][j] = d;
-        for i in j + 1..NV {
-            l[i][j] = (l[i][j] - (0..j).map(|k| l[i][k] * l[j][k]).sum::<f64>()) / d;
-        }
-    }
-    let mut x = *lambda;
-    for i in 0..NV {
-        x[i] = (x[i] - (0..i).map(|k| l[i][k] * x[k]).sum::<f64>()) / l[i][i];
-    }
-    for i in (0..NV).rev() {
-        x[i] = (x[i] - (i + 1..NV).map(|k| l[k][i] * x[k]).sum::<f64>()) / l[i][i];
-    }
-    Ok(x)
+    let factor = factor_mass_matrix(mass, speeds)?;
+    let x = factor.solve(&nalgebra::SVector::<f64, NV>::from_column_slice(lambda));
+    Ok(std::array::from_fn(|i| x[i]))
 }
 
 /// `λᵀ ∂v̇/∂(q, v, u)` at `(t, q, v, u)` whose accelerations are `vdot`.

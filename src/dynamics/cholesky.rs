@@ -3,7 +3,7 @@
 
 use nalgebra::{Cholesky, Const, SMatrix};
 
-use super::DynamicsError;
+use super::{DynamicsError, NullMotion};
 
 /// A Cholesky pivot at most this fraction of the largest diagonal entry of the
 /// matrix counts as zero: the matrix is singular to working precision. The
@@ -17,11 +17,12 @@ pub(crate) fn factor_mass_matrix<const NV: usize>(
     mass: &[[f64; NV]; NV],
     coordinates: &[&'static str; NV],
 ) -> Result<Cholesky<f64, Const<NV>>, DynamicsError> {
-    let mass = SMatrix::<f64, NV, NV>::from_fn(|i, j| mass[i][j]);
-    cholesky(mass).map_err(|pivot| DynamicsError::SingularMassMatrix {
+    let matrix = SMatrix::<f64, NV, NV>::from_fn(|i, j| mass[i][j]);
+    cholesky(matrix).map_err(|pivot| DynamicsError::SingularMassMatrix {
         index: pivot.index,
         coordinate: coordinates[pivot.index],
         pivot: pivot.value,
+        null_motion: NullMotion::of(mass, coordinates),
     })
 }
 
@@ -56,6 +57,7 @@ pub fn check_pivots<const N: usize>(
             index,
             coordinate,
             pivot,
+            null_motion: NullMotion::default(),
         }),
         None => Ok(()),
     }
@@ -111,6 +113,7 @@ mod tests {
                 index: 1,
                 coordinate: "b",
                 pivot: tiny,
+                null_motion: NullMotion::default(),
             })
         );
     }

@@ -3,6 +3,8 @@
 
 use std::fmt;
 
+use super::NullMotion;
+
 /// Why the accelerations could not be computed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -13,9 +15,12 @@ pub enum DynamicsError {
     NonFiniteEquations,
     /// The mass matrix is not safely positive definite: the Cholesky
     /// factorisation `M = L Lᵀ` met a pivot `Lⱼⱼ²` that is not larger than
-    /// `1e-14` times the largest diagonal entry of `M`. Coordinate `index`
-    /// then has no inertia of its own beyond that of the coordinates before
-    /// it (a body without inertia about some axis, a gimbal lock, …).
+    /// `1e-14` times the largest diagonal entry of `M`. `null_motion` says
+    /// why: the combination of speeds that moves no mass there. One speed
+    /// alone moves no mass of its own (a body without inertia about some
+    /// axis); several have dependent columns, a coordinate singularity
+    /// (Euler angles whose axes line up: a top released upright, a gimbal
+    /// lock), which a quaternion joint or another start avoids.
     SingularMassMatrix {
         /// Index of the first failing pivot, which is the index of its
         /// coordinate.
@@ -24,6 +29,10 @@ pub enum DynamicsError {
         coordinate: &'static str,
         /// The pivot: zero, negative or tiny.
         pivot: f64,
+        /// The speeds whose columns of `M` are dependent, with the weights
+        /// of the motion that moves no mass (empty where the solver had no
+        /// `M` at hand to analyse).
+        null_motion: NullMotion,
     },
     /// The accelerations overflowed although the equations were finite and
     /// the mass matrix passed the pivot test.
@@ -77,6 +86,18 @@ pub enum DynamicsError {
         /// `|Aᵢ x − cᵢ|`, the part of the demand that no motion can meet.
         mismatch: f64,
     },
+    /// An integration without stabilisation would start off the
+    /// constraints' velocity form: constraint `row`'s `ψ = A v + ψ₀(t, q)` is
+    /// `velocity`, not zero (see
+    /// [`Dynamics::check_start`](crate::integrate::Dynamics::check_start)).
+    /// Nothing would hold that error: the motion would drift off the
+    /// constraint at that rate, silently.
+    StartOffConstraints {
+        /// The constraint row (declaration order).
+        row: usize,
+        /// Its velocity form at the start.
+        velocity: f64,
+    },
     /// Coordinate projection did not bring the largest constraint residual
     /// `|φᵢ|` below its tolerance within its iteration budget.
     ProjectionNotConverged {
@@ -122,11 +143,32 @@ impl fmt::Display for DynamicsError {
                 index,
                 coordinate,
                 pivot,
-            } => write!(
-                f,
-                "singular mass matrix: coordinate `{coordinate}` (index {index}) has no \
-                 inertia of its own (Cholesky pivot {pivot:.3e})"
-            ),
+                null_motion,
+            } => match null_motion.names() {
+                [_, _, ..] => {
+                    let (names, weights) = (null_motion.names(), null_motion.weights());
+                    let listed = names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>();
+                    let combination: String = names
+                        .iter()
+                        .zip(weights)
+                        .map(|(n, w)| format!(" {w:+.3} {n}"))
+                        .collect();
+                    write!(
+                        f,
+                        "singular mass matrix: the columns of {} are dependent at this \
+                         configuration (the speeds{combination} move no mass): a coordinate \
+                         singularity, where angles such as Euler angles turn about the same axis; \
+                         use a quaternion joint (`joint spherical` or `joint free`) or start \
+                         elsewhere (pivot of `{coordinate}`, index {index}: {pivot:.3e})",
+                        listed.join(" and ")
+                    )
+                }
+                _ => write!(
+                    f,
+                    "singular mass matrix: coordinate `{coordinate}` (index {index}) has no \
+                     inertia of its own (Cholesky pivot {pivot:.3e})"
+                ),
+            },
             Self::NonFiniteAccelerations => f.write_str("the accelerations overflowed"),
             Self::SingularCoordinateRates {
                 coordinate,
@@ -153,6 +195,12 @@ impl fmt::Display for DynamicsError {
                 f,
                 "constraint rows {row} and {with} contradict each other: row {row} depends on \
                  rows including {with} but demands a value off by {mismatch:.3e}"
+            ),
+            Self::StartOffConstraints { row, velocity } => write!(
+                f,
+                "the start breaks the velocity form of constraint row {row} (ψ = {velocity:.3e}, \
+                 not 0): without stabilisation the motion would drift off it; start on the \
+                 constraints (project_onto_constraints) or integrate with Baumgarte or Projection"
             ),
             Self::ProjectionNotConverged {
                 iterations,

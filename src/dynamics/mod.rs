@@ -3,6 +3,7 @@
 
 mod cholesky;
 mod error;
+mod null_motion;
 mod pairs;
 mod rows;
 mod tree_vectors;
@@ -12,6 +13,7 @@ use nalgebra::SVector;
 pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots, pivot_tolerance};
 pub(crate) use cholesky::{cholesky, factor_mass_matrix};
 pub use error::DynamicsError;
+pub use null_motion::{NULL_MOTION_NAMES, NullMotion, with_null_motion};
 pub use pairs::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
 pub use rows::scale_and_subtract;
 pub use tree_vectors::{LinkState, TreeRecursion};
@@ -71,7 +73,7 @@ where
     if !(t.is_finite() && all_finite(q) && all_finite(v) && all_finite(u)) {
         return Err(DynamicsError::NonFiniteState);
     }
-    let mass = system.mass_matrix(q);
+    let mass = system.mass_matrix_at(t, q);
     let forcing = system.forcing(t, q, v, u);
     if !(mass.iter().all(all_finite) && all_finite(&forcing)) {
         return Err(DynamicsError::NonFiniteEquations);
@@ -105,7 +107,9 @@ where
 /// A diagnostic, not a solver: it returns a plain `f64` and, given a NaN or
 /// infinite state or parameter, a non-finite value (never a finite wrong
 /// one). Check [`f64::is_finite`] where that matters; the solvers report
-/// such input as [`DynamicsError`]s.
+/// such input as [`DynamicsError`]s. Of a
+/// [time-dependent](MultibodySystem::TIME_DEPENDENT) system it is NaN: see
+/// [`energy_at`].
 pub fn energy<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     q: &[f64; NQ],
@@ -115,6 +119,51 @@ where
     S: MultibodySystem<NQ, NV, NU>,
 {
     system.kinetic_energy(q, v) + system.potential_energy(q)
+}
+
+/// The total energy `T(t, q, v) + V(t, q)` at time `t`, for every system.
+///
+/// Where a motion is prescribed in time (a shaken pivot, a platform turned
+/// at a set rate, a constraint with `t`), the driver does work and
+/// `T + V` is not conserved; the [`jacobi_integral`] is, when the
+/// Lagrangian has no `t` of its own.
+pub fn energy_at<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+) -> f64
+where
+    S: MultibodySystem<NQ, NV, NU>,
+{
+    system.kinetic_energy_at(t, q, v) + system.potential_energy_at(t, q)
+}
+
+/// The Jacobi integral `h = T₂ − T₀ + V` at `(t, q, v)`, with `T₂ = ½ vᵀ M v`
+/// the part of the kinetic energy quadratic in the speeds and
+/// `T₀ = T(t, q, 0)` the part without them (the energy of the prescribed
+/// motion alone); `h = T + V` for a system whose motion nothing prescribes.
+///
+/// It is conserved, with conservative loads only, when neither the
+/// Lagrangian nor the speeds' definition has a `t` of its own: a bead on a
+/// hoop spun at a constant rate, a body on a platform turning at `Ω t`, a
+/// rheonomic constraint that steady rotation makes time-free in the
+/// turning axes — not a pivot shaken as `A sin(ω t)`, whose `T` depends on
+/// `t`. (`T₁`, linear in the speeds, drops out of `h`.)
+pub fn jacobi_integral<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+) -> f64
+where
+    S: MultibodySystem<NQ, NV, NU>,
+{
+    let mass = system.mass_matrix_at(t, q);
+    let quadratic: f64 = (0..NV)
+        .map(|i| v[i] * (0..NV).map(|j| mass[i][j] * v[j]).sum::<f64>())
+        .sum();
+    quadratic / 2.0 - system.kinetic_energy_at(t, q, &[0.0; NV]) + system.potential_energy_at(t, q)
 }
 
 /// Whether every entry is finite.
@@ -200,7 +249,11 @@ mod tests {
                 index: 0,
                 coordinate: "phi",
                 pivot,
-            }) => assert!(pivot.abs() < 1e-20),
+                null_motion,
+            }) => {
+                assert!(pivot.abs() < 1e-20);
+                assert_eq!(null_motion.names(), ["phi"]);
+            }
             other => panic!("expected a singular pivot for phi, got {other:?}"),
         }
     }
@@ -209,13 +262,17 @@ mod tests {
     fn nearly_singular_mass_matrix_is_an_error_and_mildly_ill_conditioned_is_not() {
         let nearly_singular = fixed([[1.0, 0.0], [0.0, 1e-16]]);
         let error = accelerations(&nearly_singular, 0.0, &[0.0; 2], &[0.0; 2], &[]).unwrap_err();
-        assert_eq!(
-            error,
-            DynamicsError::SingularMassMatrix {
-                index: 1,
-                coordinate: "b",
-                pivot: 1e-16
-            }
+        assert!(
+            matches!(
+                error,
+                DynamicsError::SingularMassMatrix {
+                    index: 1,
+                    coordinate: "b",
+                    pivot: 1e-16,
+                    ..
+                }
+            ),
+            "{error:?}"
         );
         let ill_conditioned = fixed([[1.0, 0.0], [0.0, 1e-12]]);
         let qdd = accelerations(&ill_conditioned, 0.0, &[0.0; 2], &[0.0; 2], &[]).unwrap();
@@ -314,6 +371,7 @@ mod tests {
             index: 1,
             coordinate: "theta",
             pivot: -3.0,
+            null_motion: NullMotion::default(),
         };
         let message = error.to_string();
         assert!(message.starts_with("singular mass matrix"), "{message}");

@@ -226,7 +226,7 @@ impl<S, F, const NU: usize, const NC: usize> Stepper<'_, '_, S, F, NU, NC> {
             let fail = |cause| IntegrationError::dynamics(t, q, cause);
             let residual = SVector::from(finite(system.constraint_residual(t, &q)).map_err(fail)?);
             let forcing = self.forcing(t, &q, &v).map_err(fail)?;
-            let local = self.linearise(&q, weight).map_err(fail)?;
+            let local = self.linearise(t, &q, weight).map_err(fail)?;
             let equations = local.mass * a - forcing
                 + local.jacobian.transpose() * (multipliers + residual * self.settings.penalty);
             let correction = local.newton.solve(&(equations * (-h * h / 4.0)));
@@ -267,7 +267,7 @@ impl<S, F, const NU: usize, const NC: usize> Stepper<'_, '_, S, F, NU, NC> {
     {
         let system = self.dynamics.system();
         let fail = |cause| IntegrationError::dynamics(t, q, cause);
-        let local = self.linearise(&q, weight).map_err(fail)?;
+        let local = self.linearise(t, &q, weight).map_err(fail)?;
         let at_rest =
             SVector::from(finite(system.constraint_velocity(t, &q, &[0.0; NV])).map_err(fail)?);
         let v = local
@@ -309,9 +309,10 @@ impl<S, F, const NU: usize, const NC: usize> Stepper<'_, '_, S, F, NU, NC> {
         }
     }
 
-    /// `M`, `A` and the Newton matrix at `q`, counted as one evaluation.
+    /// `M`, `A` and the Newton matrix at `(t, q)`, counted as one evaluation.
     fn linearise<const NQ: usize, const NV: usize>(
         &mut self,
+        t: f64,
         q: &[f64; NQ],
         weight: f64,
     ) -> Result<Linearisation<NV, NC>, DynamicsError>
@@ -320,8 +321,8 @@ impl<S, F, const NU: usize, const NC: usize> Stepper<'_, '_, S, F, NU, NC> {
     {
         self.evaluations += 1;
         let system = self.dynamics.system();
-        let mass = system.mass_matrix(q);
-        let jacobian = system.constraint_jacobian(q);
+        let mass = system.mass_matrix_at(t, q);
+        let jacobian = system.constraint_jacobian_at(t, q);
         if !mass.iter().flatten().all(|x| x.is_finite()) {
             return Err(DynamicsError::NonFiniteEquations);
         }

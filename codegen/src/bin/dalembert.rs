@@ -2,7 +2,8 @@
 //! model from the command line.
 //!
 //! ```text
-//! dalembert eom MODEL.dal [--latex]   the equations of motion, as in the seed document
+//! dalembert eom MODEL.dal [--latex | --latex-inline | --markdown]
+//!                                     the equations of motion, as in the seed document
 //! dalembert generate MODEL.dal        the generated Rust source
 //! dalembert check MODEL.dal [--stats] the errors the dalembert! macro would report
 //!                                     (--stats: each generated function's estimated size)
@@ -34,7 +35,9 @@ const USAGE: &str = "\
 Usage: dalembert <COMMAND> MODEL.dal
 
 Commands:
-  eom MODEL.dal [--latex]   print the equations of motion (Unicode, or LaTeX)
+  eom MODEL.dal [--latex | --latex-inline | --markdown]
+                            print the equations of motion: Unicode text, a LaTeX
+                            align* environment, its bare rows, or Markdown
   generate MODEL.dal        print the generated Rust source
   check MODEL.dal [--stats] report the errors the dalembert! macro would report
                             (--stats: and each generated function's estimated operations)
@@ -69,12 +72,14 @@ impl Help {
 const COMMANDS: [Help; 6] = [
     Help {
         name: "eom",
-        usage: "dalembert eom MODEL.dal [--latex]",
+        usage: "dalembert eom MODEL.dal [--latex | --latex-inline | --markdown]",
         text: "Prints the equations of motion of the model, M(q) and f, as in the seed document.
 
 Options:
-  --latex      LaTeX instead of Unicode text
-  -h, --help   print this help",
+  --latex          a complete LaTeX align* environment instead of Unicode text
+  --latex-inline   the LaTeX rows alone, to paste into an environment of your own
+  --markdown       Markdown with math blocks, for a README
+  -h, --help       print this help",
     },
     Help {
         name: "generate",
@@ -229,14 +234,26 @@ fn general_usage(message: &str) -> String {
 }
 
 /// The arguments of `eom`, `generate` and `check`: one model file, and
-/// `--latex` for `eom`, `--stats` for `check`.
+/// the format of `eom` (`--latex`, `--latex-inline`, `--markdown`) or
+/// `--stats` for `check`.
 fn parse_model(name: &str, args: Vec<OsString>) -> Result<Command, String> {
-    let mut latex = false;
+    let mut style: Option<(&'static str, Style)> = None;
     let mut stats = false;
     let mut model = None;
     for arg in args {
         match arg.to_str() {
-            Some("--latex") if name == "eom" => latex = true,
+            Some(flag @ ("--latex" | "--latex-inline" | "--markdown")) if name == "eom" => {
+                let chosen = match flag {
+                    "--latex" => ("--latex", Style::Latex),
+                    "--latex-inline" => ("--latex-inline", Style::LatexInline),
+                    _ => ("--markdown", Style::Markdown),
+                };
+                if let Some((other, _)) = style.replace(chosen) {
+                    return Err(format!(
+                        "`{flag}` and `{other}` choose two formats: give one"
+                    ));
+                }
+            }
             Some("--stats") if name == "check" => stats = true,
             Some(flag) if flag.starts_with('-') => {
                 return Err(format!("`{name}` takes no option `{flag}`"));
@@ -251,7 +268,7 @@ fn parse_model(name: &str, args: Vec<OsString>) -> Result<Command, String> {
     Ok(match name {
         "eom" => Command::Eom {
             model,
-            style: if latex { Style::Latex } else { Style::Unicode },
+            style: style.map_or(Style::Unicode, |(_, style)| style),
         },
         "generate" => Command::Generate { model },
         _ => Command::Check { model, stats },
@@ -448,6 +465,18 @@ mod tests {
                 style: Style::Unicode
             })
         );
+        for (flag, style) in [
+            ("--latex-inline", Style::LatexInline),
+            ("--markdown", Style::Markdown),
+        ] {
+            let model = model.clone();
+            assert_eq!(
+                parse_str(&["eom", flag, "m.dal"]),
+                Ok(Command::Eom { model, style })
+            );
+        }
+        let both = parse_str(&["eom", "m.dal", "--latex", "--markdown"]);
+        assert!(both.is_err_and(|e| e.contains("two formats")));
         assert_eq!(
             parse_str(&["generate", "m.dal"]),
             Ok(Command::Generate {

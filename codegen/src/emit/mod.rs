@@ -90,6 +90,15 @@ pub fn emit(
     let strukt = emit_struct(model, &documentation.docs);
     let mut constants = emit_constants(model, pool, &documentation.text);
     constants.extend(constants_of_outputs.iter().map(emit_name_list));
+    if equations.time_dependent(pool) {
+        constants.extend(quote! {
+            /// Time `t` enters the mass matrix, the energies or the
+            /// constraint Jacobian: they are `mass_matrix_at(t, q)`,
+            /// `kinetic_energy_at(t, q, qd)`, `potential_energy_at(t, q)`
+            /// (and `constraint_jacobian_at(t, q)`).
+            pub const TIME_DEPENDENT: bool = true;
+        });
+    }
     let traits = match target {
         Target::Std => {
             let solver = solve::emit_accelerations(model, pool, equations, &names);
@@ -98,7 +107,13 @@ pub fn emit(
             let check = configuration::emit_rate_check(model, pool, &names);
             let has_check = !check.is_empty();
             items.push(check);
-            let mut traits = emit_trait_impls(name, [nq, nv, nu, nc], [has_solver, has_check]);
+            let emitted = [has_solver, has_check, equations.time_dependent(pool)];
+            let rheonomic = model.constraints.iter().map(|c| {
+                pool.kinds(c.residual)
+                    .intersects(crate::expr::SymKinds::TIME)
+            });
+            let rheonomic: Vec<bool> = rheonomic.collect();
+            let mut traits = emit_trait_impls(name, [nq, nv, nu, nc], emitted, &rheonomic);
             if functions.iter().any(|f| f.body == Body::Taylor) {
                 traits.extend(taylor::emit_trait_impl(name, [nq, nv, nu]));
             }
@@ -382,9 +397,18 @@ fn tree_mass_matrix(
 /// them). A system with constraints answers `accelerations` with the
 /// constrained `v̇` of `M v̇ = f + Aᵀ λ`, `A v̇ = b` (the runtime's
 /// `constrained_accelerations`, multipliers dropped), so that
-/// `dalembert::accelerations` gives the motion the constraints allow.
-fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> TokenStream {
-    let [has_solver, has_check] = emitted;
+/// `dalembert::accelerations` gives the motion the constraints allow. A
+/// time-dependent system (the third of `emitted`) forwards the traits'
+/// `_at` functions and has no value for the time-free ones (see
+/// [`TraitFunction::undefined`]); `rheonomic` says which constraint rows
+/// depend on time explicitly (`RHEONOMIC`, given when any does).
+fn emit_trait_impls(
+    name: &Ident,
+    sizes: [usize; 4],
+    emitted: [bool; 3],
+    rheonomic: &[bool],
+) -> TokenStream {
+    let [has_solver, has_check, timed] = emitted;
     let [nq, nv, nu, nc] = sizes;
     let (coordinates, vector) = (array(nq), array(nv));
     let (inputs, rows_out) = (array(nu), array(nc));
@@ -422,6 +446,37 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> Toke
             }
         }
     });
+    let nan = quote!(::core::primitive::f64::NAN);
+    let energies = [
+        TraitFunction {
+            function: quote!(mass_matrix),
+            arguments: quote!(q: &#coordinates),
+            passed: quote!(q),
+            ty: quote!([#vector; #nv]),
+            undefined: quote!([[#nan; #nv]; #nv]),
+        },
+        TraitFunction {
+            function: quote!(kinetic_energy),
+            arguments: quote!(q: &#coordinates, v: &#vector),
+            passed: quote!(q, v),
+            ty: quote!(f64),
+            undefined: nan.clone(),
+        },
+        TraitFunction {
+            function: quote!(potential_energy),
+            arguments: quote!(q: &#coordinates),
+            passed: quote!(q),
+            ty: quote!(f64),
+            undefined: nan.clone(),
+        },
+    ]
+    .map(|function| function.forward(name, timed));
+    let [mass, kinetic, potential] = &energies;
+    let time_dependent = timed.then(|| {
+        quote!(
+            const TIME_DEPENDENT: bool = true;
+        )
+    });
     let allowed = allowed_lints();
     let system = quote! {
         #allowed
@@ -429,22 +484,14 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> Toke
             const COORDINATES: [&'static str; #nq] = #name::COORDINATES;
             const SPEEDS: [&'static str; #nv] = #name::SPEEDS;
             const INPUTS: [&'static str; #nu] = #name::INPUTS;
-            #[inline]
-            fn mass_matrix(&self, q: &#coordinates) -> [#vector; #nv] {
-                #name::mass_matrix(self, q)
-            }
+            #time_dependent
+            #mass
             #[inline]
             fn forcing(&self, t: f64, q: &#coordinates, v: &#vector, u: &#inputs) -> #vector {
                 #name::forcing(self, t, q, v, u)
             }
-            #[inline]
-            fn kinetic_energy(&self, q: &#coordinates, v: &#vector) -> f64 {
-                #name::kinetic_energy(self, q, v)
-            }
-            #[inline]
-            fn potential_energy(&self, q: &#coordinates) -> f64 {
-                #name::potential_energy(self, q)
-            }
+            #kinetic
+            #potential
             #[inline]
             fn coordinate_rates(&self, q: &#coordinates, v: &#vector) -> #coordinates {
                 #name::coordinate_rates(self, q, v)
@@ -460,14 +507,23 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> Toke
     if nc == 0 {
         return system;
     }
+    let rheonomic = rheonomic
+        .contains(&true)
+        .then(|| quote!(const RHEONOMIC: [bool; #nc_lit] = [#(#rheonomic),*];));
+    let jacobian = TraitFunction {
+        function: quote!(constraint_jacobian),
+        arguments: quote!(q: &#coordinates),
+        passed: quote!(q),
+        ty: quote!([#vector; #nc_lit]),
+        undefined: quote!([[#nan; #nv]; #nc_lit]),
+    }
+    .forward(name, timed);
     quote! {
         #system
         #allowed
         impl ::dalembert::ConstrainedSystem<#nq, #nv, #nu, #nc_lit> for #name {
-            #[inline]
-            fn constraint_jacobian(&self, q: &#coordinates) -> [#vector; #nc_lit] {
-                #name::constraint_jacobian(self, q)
-            }
+            #rheonomic
+            #jacobian
             #[inline]
             fn constraint_bias(&self, t: f64, q: &#coordinates, v: &#vector) -> #rows_out {
                 #name::constraint_bias(self, t, q, v)
@@ -479,6 +535,56 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> Toke
             #[inline]
             fn constraint_velocity(&self, t: f64, q: &#coordinates, v: &#vector) -> #rows_out {
                 #name::constraint_velocity(self, t, q, v)
+            }
+        }
+    }
+}
+
+/// A function of the traits that a time-dependent system has only at a
+/// time: `M`, `T`, `V` or `A`.
+struct TraitFunction {
+    function: TokenStream,
+    arguments: TokenStream,
+    passed: TokenStream,
+    ty: TokenStream,
+    /// Its time-free value for a time-dependent system: NaN in every
+    /// entry, since it depends on a `t` the call does not give. The
+    /// runtime calls the `_at` forms; a caller of the time-free one meets
+    /// a non-finite value, never a value at some time.
+    undefined: TokenStream,
+}
+
+impl TraitFunction {
+    /// The function forwarded to the inherent one: for a time-free system,
+    /// the time-free function (the trait's `_at` form calls it); for a
+    /// `timed` one, the `_at` form, and the time-free one
+    /// [undefined](TraitFunction::undefined).
+    fn forward(self, name: &Ident, timed: bool) -> TokenStream {
+        let TraitFunction {
+            function,
+            arguments,
+            passed,
+            ty,
+            undefined,
+        } = self;
+        if !timed {
+            return quote! {
+                #[inline]
+                fn #function(&self, #arguments) -> #ty {
+                    #name::#function(self, #passed)
+                }
+            };
+        }
+        let at = format_ident!("{}_at", function.to_string());
+        quote! {
+            #[inline]
+            fn #function(&self, #arguments) -> #ty {
+                let _ = (#passed,);
+                #undefined
+            }
+            #[inline]
+            fn #at(&self, t: f64, #arguments) -> #ty {
+                #name::#at(self, t, #passed)
             }
         }
     }

@@ -59,7 +59,7 @@ pub fn emit_accelerations(
                     " above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times the",
                     " largest pivot, is an error.",
                 ],
-                articulated_body(model, pool, articulated, names),
+                articulated_body(model, pool, equations, articulated, names),
                 quote!(::dalembert::DynamicsError::NonFiniteAccelerations),
             )
         }
@@ -222,7 +222,8 @@ pub fn elimination(
         })
         .into_iter()
         .min_by_key(|(_, pattern)| factorisation_operations(pattern))?;
-    let factor = factorisation(model, &pattern, &order, checked);
+    let mass_at_state = mass_at_state(model, pool, equations);
+    let factor = factorisation(model, &pattern, &order, checked, &mass_at_state);
     let forward = forward_substitution(&pattern, &order);
     let backward = backward_substitution(&pattern);
     let mut solution: Vec<Ident> = vec![format_ident!("x0"); nq];
@@ -357,9 +358,11 @@ pub fn deferred_check(equations_or: &Ident, bound: &[Ident]) -> TokenStream {
 fn articulated_body(
     model: &Model,
     pool: &Pool,
+    equations: &Equations,
     articulated: &Articulated,
     names: &Names,
 ) -> TokenStream {
+    let mass_at_state = mass_at_state(model, pool, equations);
     let body = straight_line_taking(pool, names, &articulated.roots(), Angles::WhereNeeded);
     let nq = model.nv();
     let statements = &body.statements;
@@ -367,20 +370,40 @@ fn articulated_body(
     let pivots = &body.outputs[nq..2 * nq];
     let accelerations = &body.outputs[2 * nq..];
     let check = state_check();
-    // The pivots are named as the factorisation names them: by coordinate
-    // when every speed is its coordinate's rate, else by speed.
-    let names = match model.nq() == nq {
-        true => quote!(Self::COORDINATES),
-        false => quote!(Self::SPEEDS),
-    };
+    // The pivots are named as the factorisation names them.
+    let names = pivot_names(model);
     quote! {
         #check
         #statements
         if !finite(&[#(#forcing),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
         }
-        ::dalembert::dynamics::check_pivots([#(#pivots),*], #names)?;
+        ::dalembert::dynamics::check_pivots([#(#pivots),*], #names)
+            .map_err(|e| ::dalembert::dynamics::with_null_motion(e, #mass_at_state))?;
         let qdd = [#(#accelerations),*];
+    }
+}
+
+/// The arguments of `dalembert::dynamics::with_null_motion` after the
+/// error, in an emitted function of `(t, q, ..)`: the mass matrix at the
+/// state (computed on the error path only, to name the speeds whose
+/// columns became dependent) and the names of its rows, by coordinate
+/// when every speed is its coordinate's rate, else by speed.
+fn mass_at_state(model: &Model, pool: &Pool, equations: &Equations) -> TokenStream {
+    let mass = match equations.time_dependent(pool) {
+        true => quote!(Self::mass_matrix_at(self, t, q)),
+        false => quote!(Self::mass_matrix(self, q)),
+    };
+    let names = pivot_names(model);
+    quote!(&#mass, &#names)
+}
+
+/// The names of `M`'s rows as the runtime's errors give them: by
+/// coordinate when every speed is its coordinate's rate, else by speed.
+fn pivot_names(model: &Model) -> TokenStream {
+    match model.nq() == model.nv() {
+        true => quote!(Self::COORDINATES),
+        false => quote!(Self::SPEEDS),
     }
 }
 
@@ -489,12 +512,14 @@ fn unscaled(i: usize, j: usize) -> Ident {
 
 /// The columns of `M = L D Lᵀ` (no square roots): the entries `Lᵢⱼ Dⱼ`,
 /// the pivot `Dⱼ` and its test, its reciprocal, then `Lᵢⱼ`. A failed
-/// pivot's error goes through the closure `checked`, if any.
+/// pivot's error goes through the closure `checked`, if any, with the
+/// speeds that move no mass there (see [`mass_at_state`]).
 fn factorisation(
     model: &Model,
     pattern: &[Vec<bool>],
     order: &Order,
     checked: Option<&Ident>,
+    mass_at_state: &TokenStream,
 ) -> TokenStream {
     let nq = pattern.len();
     let mut out = TokenStream::new();
@@ -518,11 +543,15 @@ fn factorisation(
         );
         let (p, r) = (format_ident!("p{}", j), format_ident!("r{}", j));
         let singular = quote! {
-            ::dalembert::DynamicsError::SingularMassMatrix {
-                index: #jj,
-                coordinate: #coordinate,
-                pivot: #p,
-            }
+            ::dalembert::dynamics::with_null_motion(
+                ::dalembert::DynamicsError::SingularMassMatrix {
+                    index: #jj,
+                    coordinate: #coordinate,
+                    pivot: #p,
+                    null_motion: ::dalembert::dynamics::NullMotion::default(),
+                },
+                #mass_at_state,
+            )
         };
         let error = match checked {
             Some(checked) => quote!(#checked(#singular)),

@@ -216,8 +216,8 @@ fn the_mass_matrix_is_symmetric_and_its_quadratic_form_is_twice_t() {
                 quadratic += state.qd[k] * mkj * state.qd[j];
             }
         }
-        // No mass moves with time (the checker rejects it), so every
-        // system is scleronomic: T = ½ q̇ᵀ M q̇ exactly.
+        // No mass of these systems moves with time, so every one is
+        // scleronomic: T = ½ q̇ᵀ M q̇ exactly.
         let t = ours.kinetic_energy(&at);
         assert_close(&format!("{}: 2T", ours.name()), quadratic, 2.0 * t, t.abs());
     }

@@ -82,6 +82,19 @@ impl Equations {
         self.functions_mut().into_iter().flatten()
     }
 
+    /// Whether time `t` stays in `M`, `T`, `V` or `A` (prescribed motion
+    /// of a mass, a constraint whose Jacobian turns with time): then the
+    /// generated functions of these take `t` first and end in `_at`
+    /// (`mass_matrix_at(t, q)`), and the struct is `TIME_DEPENDENT`.
+    pub fn time_dependent(&self, pool: &Pool) -> bool {
+        self.mass_matrix
+            .iter()
+            .chain(&self.constraint_jacobian)
+            .flatten()
+            .chain([&self.kinetic_energy, &self.potential_energy])
+            .any(|&e| pool.kinds(e).intersects(crate::expr::SymKinds::TIME))
+    }
+
     /// The same equations without [`Func::Group`](crate::expr::Func::Group)
     /// nodes, as plain canonical expressions (for rendering).
     pub fn ungrouped(&self, pool: &mut Pool) -> Equations {

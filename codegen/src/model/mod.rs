@@ -84,11 +84,6 @@ pub struct Model {
     pub armature: Vec<(usize, ExprId)>,
     /// Constraints, in declaration order.
     pub constraints: Vec<Constraint>,
-    /// Masses that move with time `t` (prescribed motion), with the error to
-    /// report at each if `t` stays in an output that has no `t` argument
-    /// (`M(q)`, `T(q, q̇)`, `V(q)`): a rotating platform whose `t` cancels
-    /// from them is fine.
-    pub moving_masses: Vec<syn::Error>,
     /// The kinematic tree, if the model is one (see [`Tree`]): decided
     /// once, here, for every spelling.
     pub tree: Option<Tree>,

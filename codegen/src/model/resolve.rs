@@ -100,7 +100,6 @@ impl Resolver {
                 dissipation: zero,
                 armature: Vec::new(),
                 constraints: Vec::new(),
-                moving_masses: Vec::new(),
                 tree: None,
                 outputs: Vec::new(),
             },

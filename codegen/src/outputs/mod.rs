@@ -167,6 +167,19 @@ impl Function {
         }
     }
 
+    /// The same function at time `t`: named `NAME_at`, with `t` its first
+    /// argument (the form of a [time-dependent](Equations::time_dependent)
+    /// system's `M`, `T`, `V` and `A`).
+    fn at_time(mut self) -> Function {
+        self.name = quote::format_ident!("{}_at", self.name);
+        self.arguments.insert(0, Time);
+        self.docs.extend(doc_lines(
+            "\nAt time `t`: the model moves a mass, or turns a constraint, with\n\
+             `t` (the struct is `TIME_DEPENDENT`).",
+        ));
+        self
+    }
+
     /// Every expression it returns, in order, for passes that rewrite them.
     pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut ExprId> {
         self.results
@@ -185,7 +198,9 @@ use Argument::{Coordinates, Inputs, Speeds, Time};
 /// The functions every system has: `M`, `f`, `T`, `V`, and with
 /// constraints `A`, `b`, the residuals and the velocity forms; with
 /// `looped` (a crate with the runtime), a large tree's `M` by a loop of
-/// the runtime (see [`mass::mass_matrix`]).
+/// the runtime (see [`mass::mass_matrix`]). A
+/// [time-dependent](Equations::time_dependent) system's `M`, `T`, `V` and
+/// `A` take `t` first and end in `_at`.
 pub fn standard(
     model: &Model,
     equations: &Equations,
@@ -193,8 +208,10 @@ pub fn standard(
     looped: bool,
 ) -> Vec<Function> {
     let nv = model.nv();
+    let timed = equations.time_dependent(pool);
+    let at_time = |function: Function| if timed { function.at_time() } else { function };
     let mut functions = vec![
-        mass::mass_matrix(model, equations, pool, looped),
+        at_time(mass::mass_matrix(model, equations, pool, looped)),
         Function::new(
             "forcing",
             "The forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`: applied and\n\
@@ -202,31 +219,31 @@ pub fn standard(
             &[Time, Coordinates, Speeds, Inputs],
             Value::vector(equations.forcing.clone()),
         ),
-        Function::new(
+        at_time(Function::new(
             "kinetic_energy",
             "The kinetic energy `T(q, q̇)`.",
             &[Coordinates, Speeds],
             Value::scalar(equations.kinetic_energy),
-        ),
-        Function::new(
+        )),
+        at_time(Function::new(
             "potential_energy",
             "The potential energy `V(q)`: gravity (from `O`) and the\n\
              `potential` statements.",
             &[Coordinates],
             Value::scalar(equations.potential_energy),
-        ),
+        )),
     ];
     if model.constraints.is_empty() {
         return functions;
     }
     functions.extend([
-        Function::new(
+        at_time(Function::new(
             "constraint_jacobian",
             "The constraint Jacobian `A(q)` of `M q̈ = f + Aᵀλ`, `A q̈ = b`;\n\
              rows in declaration order.",
             &[Coordinates],
             Value::matrix(&equations.constraint_jacobian, nv),
-        ),
+        )),
         Function::new(
             "constraint_bias",
             "The constraint bias `b(t, q, q̇)` of `A q̈ = b`.",

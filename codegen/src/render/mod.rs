@@ -11,6 +11,7 @@
 //! The readable forms come from the derivation's [`ReadableForms`], which
 //! the optimiser filled first; `text` holds the Unicode and LaTeX printers.
 
+mod collect;
 pub mod text;
 
 use std::collections::{HashMap, HashSet};
@@ -70,7 +71,8 @@ pub fn equations_doc(
 }
 
 /// The content of [`equations_doc`] as text in `style`, for a command-line
-/// tool: plain lines for Unicode, `aligned` environments for LaTeX.
+/// tool: plain lines for Unicode, one `align*` environment for LaTeX, bare
+/// rows for inline LaTeX, `math` blocks for Markdown (see [`Style`]).
 pub fn equations_text(
     model: &Model,
     equations: &Equations,
@@ -83,7 +85,8 @@ pub fn equations_text(
 
 /// A rendering independent of its output format.
 struct Document {
-    /// The notation of every string below.
+    /// The layout of the rendering; the strings below are in its
+    /// [notation](Style::math).
     style: Style,
     /// The form of the equations (`M(q) q̈ = f(t, q, q̇, u)`).
     form: String,
@@ -122,7 +125,7 @@ impl Document {
             pool,
             readable,
             names,
-            style,
+            style: style.math(),
             forms,
         };
         let constrained = !equations.constraint_jacobian.is_empty();
@@ -141,7 +144,7 @@ impl Document {
         ];
         Document {
             style,
-            form: form(style, constrained, speeds_are_rates),
+            form: form(style.math(), constrained, speeds_are_rates),
             constrained,
             sections: sections
                 .into_iter()
@@ -176,54 +179,127 @@ fn entries(equations: &Equations) -> Vec<ExprId> {
 }
 
 impl Document {
-    /// The whole rendering as text: plain lines for Unicode, `aligned`
-    /// environments for LaTeX.
+    /// The whole rendering as text in its layout (see [`Style`]).
     fn text(&self, model: &Model) -> String {
-        let comment = match self.style {
-            Style::Unicode => "",
-            Style::Latex => "% ",
-        };
-        let mut out = format!(
-            "{comment}Equations of motion of {}\n{comment}{}\n",
-            model.name,
-            self.introduction("")
-        );
+        let heading = format!("Equations of motion of {}", model.name);
+        match self.style {
+            Style::Unicode => self.plain(&heading),
+            Style::Latex => self.align(&heading),
+            Style::LatexInline => self.rows(&heading),
+            Style::Markdown => self.markdown(&heading),
+        }
+    }
+
+    /// Plain lines, `  lhs = rhs`, under each section's title.
+    fn plain(&self, heading: &str) -> String {
+        let mut out = format!("{heading}\n{}\n", self.introduction(""));
         for section in &self.sections {
             out.push('\n');
             if let Some(title) = &section.title {
-                out.push_str(&format!("{comment}{title}:\n"));
+                out.push_str(&format!("{title}:\n"));
             }
-            let lines = section.equations.iter();
-            match self.style {
-                Style::Unicode => {
-                    lines.for_each(|(lhs, rhs)| out.push_str(&format!("  {lhs} = {rhs}\n")))
-                }
-                Style::Latex => {
-                    out.push_str("\\begin{aligned}\n");
-                    lines.for_each(|(lhs, rhs)| out.push_str(&format!("{lhs} &= {rhs} \\\\\n")));
-                    out.push_str("\\end{aligned}\n");
-                }
+            for (lhs, rhs) in &section.equations {
+                out.push_str(&format!("  {lhs} = {rhs}\n"));
             }
+        }
+        out
+    }
+
+    /// One `align*` environment, the titles as `\intertext` (between
+    /// rows, so without a `\\` of their own), after the heading and form
+    /// as `%` comments.
+    fn align(&self, heading: &str) -> String {
+        let mut lines: Vec<(bool, String)> = Vec::new();
+        for section in &self.sections {
+            if let Some(title) = &section.title {
+                lines.push((true, format!("\\intertext{{{}:}}", latex_text(title))));
+            }
+            let rows = section
+                .equations
+                .iter()
+                .map(|(l, r)| (false, format!("{l} &= {r}")));
+            lines.extend(rows);
+        }
+        let mut body = String::new();
+        for (i, (title, line)) in lines.iter().enumerate() {
+            body.push_str(line);
+            if i + 1 < lines.len() {
+                body.push_str(if *title { "\n" } else { " \\\\\n" });
+            }
+        }
+        format!(
+            "% {heading}\n% {}\n\\begin{{align*}}\n{body}\n\\end{{align*}}\n",
+            self.introduction("")
+        )
+    }
+
+    /// The rows `lhs &= rhs \\` alone, the titles as `%` comments.
+    fn rows(&self, heading: &str) -> String {
+        let mut out = format!("% {heading}\n% {}\n", self.introduction(""));
+        for section in &self.sections {
+            if let Some(title) = &section.title {
+                out.push_str(&format!("% {title}:\n"));
+            }
+            for (lhs, rhs) in &section.equations {
+                out.push_str(&format!("{lhs} &= {rhs} \\\\\n"));
+            }
+        }
+        out
+    }
+
+    /// Markdown: a heading, the introduction with the form in `$…$`, and
+    /// each section's rows in a fenced `math` block.
+    fn markdown(&self, heading: &str) -> String {
+        let mut out = format!("### {heading}\n\n{}\n", self.introduction("$"));
+        for section in &self.sections {
+            out.push('\n');
+            if let Some(title) = &section.title {
+                out.push_str(&format!("{title}:\n\n"));
+            }
+            let rows: Vec<String> = section
+                .equations
+                .iter()
+                .map(|(l, r)| format!("{l} &= {r}"))
+                .collect();
+            let body = rows.join(" \\\\\n");
+            out.push_str(&format!(
+                "```math\n\\begin{{aligned}}\n{body}\n\\end{{aligned}}\n```\n"
+            ));
         }
         out
     }
 }
 
-/// The form of the equations in `style`: in `q̈` when every speed is its
+/// `text` safe in LaTeX's text mode (`'` and letters pass; the characters
+/// TeX reserves are escaped).
+fn latex_text(text: &str) -> String {
+    text.chars().fold(String::new(), |mut out, c| {
+        match c {
+            '&' | '%' | '$' | '#' | '_' | '{' | '}' => {
+                out.push('\\');
+                out.push(c);
+            }
+            _ => out.push(c),
+        }
+        out
+    })
+}
+
+/// The form of the equations in the notation `style`: in `q̈` when every speed is its
 /// coordinate's rate, else in the speeds `v` (`q̇ = N(q) v`).
 fn form(style: Style, constrained: bool, speeds_are_rates: bool) -> String {
     let form = match (style, constrained) {
         (Style::Unicode, false) => "M(q) q̈ = f(t, q, q̇, u)",
         (Style::Unicode, true) => "M(q) q̈ = f(t, q, q̇, u) + A(q)ᵀ λ, A(q) q̈ = b(t, q, q̇)",
-        (Style::Latex, false) => "M(q) \\ddot{q} = f(t, q, \\dot{q}, u)",
-        (Style::Latex, true) => {
+        (_, false) => "M(q) \\ddot{q} = f(t, q, \\dot{q}, u)",
+        (_, true) => {
             "M(q) \\ddot{q} = f(t, q, \\dot{q}, u) + A(q)^{T} \\lambda, A(q) \\ddot{q} = b(t, q, \\dot{q})"
         }
     };
     match (speeds_are_rates, style) {
         (true, _) => form.to_string(),
         (false, Style::Unicode) => form.replace("q̈", "v̇").replace("q̇", "v") + " with q̇ = N(q) v",
-        (false, Style::Latex) => {
+        (false, _) => {
             form.replace("\\ddot{q}", "\\dot{v}")
                 .replace("\\dot{q}", "v")
                 + " \\text{ with } \\dot{q} = N(q) v"
@@ -284,17 +360,21 @@ struct Renderer<'a> {
 }
 
 impl Renderer<'_> {
-    /// The readable form of `e`, or the budget it exceeded.
+    /// The readable form of `e` with its parameter products collected
+    /// ([`collect::collect_parameters`]), or the budget it exceeded.
     fn form(&mut self, e: ExprId) -> Result<ExprId, usize> {
-        if let Some(&form) = self.forms.get(&e) {
-            return form;
-        }
-        let form = self
-            .readable
-            .get(self.pool, e, MIN_ENTRY_BUDGET)
-            .ok_or(MIN_ENTRY_BUDGET);
-        self.forms.insert(e, form);
-        form
+        let form = match self.forms.get(&e) {
+            Some(&form) => form,
+            None => {
+                let form = self
+                    .readable
+                    .get(self.pool, e, MIN_ENTRY_BUDGET)
+                    .ok_or(MIN_ENTRY_BUDGET);
+                self.forms.insert(e, form);
+                form
+            }
+        };
+        form.map(|form| collect::collect_parameters(self.pool, form))
     }
 
     /// `e` as a coefficient: its readable form, or the entry's label.
@@ -310,7 +390,7 @@ impl Renderer<'_> {
         match self.form(e) {
             Ok(form) => match self.style {
                 Style::Unicode => unicode(self.pool, form, &self.names),
-                Style::Latex => latex(self.pool, form, &self.names),
+                _ => latex(self.pool, form, &self.names),
             },
             Err(budget) => self.too_large(budget),
         }
@@ -321,7 +401,7 @@ impl Renderer<'_> {
         let note = format!("(large: more than {budget} terms, see the generated code)");
         match self.style {
             Style::Unicode => note,
-            Style::Latex => format!("\\text{{{note}}}"),
+            _ => format!("\\text{{{note}}}"),
         }
     }
 

@@ -26,7 +26,7 @@
 use std::cmp::Reverse;
 use std::fmt::Display;
 
-use crate::expr::{ExprId, Func, Node, Number, Pool, Rational, Sym};
+use crate::expr::{ExprId, Func, Node, Number, Pool, Rational, Sym, SymKinds};
 use crate::readable::factors;
 
 /// Numerators and denominators below this are written as fractions
@@ -39,13 +39,33 @@ const MAX_DEPTH: usize = 64;
 /// Longest output, in bytes, printed in full.
 const MAX_LEN: usize = 1 << 20;
 
-/// The notation to print in.
+/// The notation to print in, and for a whole rendering its layout.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Style {
     /// Unicode text: `½ m L² cos(θ₂ − θ₁)`.
     Unicode,
-    /// LaTeX math: `\frac{1}{2} m L^{2} \cos(\theta_{2} - \theta_{1})`.
+    /// LaTeX math: `\frac{1}{2} m L^{2} \cos(\theta_{2} - \theta_{1})`; a
+    /// rendering is one complete `align*` environment (amsmath), its
+    /// sections' titles as `\intertext`.
     Latex,
+    /// LaTeX math; a rendering is the bare rows `lhs &= rhs \\` to paste
+    /// into an environment of one's own, its titles as `%` comments.
+    LatexInline,
+    /// LaTeX math; a rendering is Markdown for a README: a heading, the
+    /// form in `$…$`, and each section in a fenced `math` block
+    /// (`aligned`), as GitHub and most Markdown renderers show it.
+    Markdown,
+}
+
+impl Style {
+    /// The notation of the expressions: Unicode, or LaTeX for every
+    /// LaTeX layout.
+    pub fn math(self) -> Style {
+        match self {
+            Style::Unicode => Style::Unicode,
+            Style::Latex | Style::LatexInline | Style::Markdown => Style::Latex,
+        }
+    }
 }
 
 /// `e` in Unicode text (see the module docs).
@@ -304,7 +324,9 @@ impl Name {
     }
 
     /// Reads an identifier: trailing digits (after an optional `_`) are
-    /// the index, a `_` inside splits stem and label.
+    /// the index, a `_` inside splits stem and label, and a short name
+    /// that spells no letter is a letter with a subscript (`I1c` → `I_{1c}`,
+    /// `xp` → `x_p`, as `m_B` → `m_B`: see [`Name::short`]).
     fn parse(ident: &str) -> Name {
         let ident = ident.strip_prefix("r#").unwrap_or(ident);
         let body = ident.trim_end_matches(|c: char| c.is_ascii_digit());
@@ -320,14 +342,52 @@ impl Name {
                 label: Some(Word::of(label)),
                 digits,
             },
-            _ => Name {
+            _ => Name::short(body, &digits).unwrap_or(Name {
                 stem: Word::of(body),
                 label: None,
                 digits,
-            },
+            }),
         }
     }
+
+    /// `body` (with the index `digits`) read as a letter and a subscript,
+    /// when it spells no letter of its own and the subscript is one
+    /// character, or two with a digit, a capital or axes (`xyz`): the usual
+    /// reading of `xp`, `mp`, `I1c`, `IA` or `Ixy` in mechanics, and the
+    /// one whose rate takes dots (`ẋ_p`). Words (`mass`, `arm`) stay words.
+    fn short(body: &str, digits: &str) -> Option<Name> {
+        let mut chars = body.chars();
+        let first = chars.next().filter(char::is_ascii_alphabetic)?;
+        let rest = chars.as_str();
+        let spells_a_letter = LETTERS.iter().any(|l| l.spelled == body);
+        let subscript = match rest.chars().count() {
+            1 => true,
+            2 => {
+                rest.chars()
+                    .any(|c| c.is_ascii_digit() || c.is_ascii_uppercase())
+                    || rest.chars().all(|c| "xyz".contains(c))
+            }
+            _ => false,
+        };
+        if !subscript || spells_a_letter {
+            return None;
+        }
+        Some(Name {
+            stem: Word::of(&first.to_string()),
+            label: Some(Word::text(rest)),
+            digits: digits.to_string(),
+        })
+    }
+
+    /// Whether its rate is written in Leibniz's notation (a stem of
+    /// several letters, see [`unicode_name`]).
+    fn is_leibniz(&self, dots: usize) -> bool {
+        dots > 0 && self.stem.is_several_letters()
+    }
 }
+
+/// The longest subscript a short name is read with ([`Name::short`]).
+const SHORT_SUBSCRIPT: usize = 2;
 
 /// How a function call is written.
 enum Call {
@@ -351,14 +411,17 @@ struct Notation {
     /// Between two factors when one is a name of several letters, which a
     /// plain space would read as a product of letters (`m ma`).
     word_times: &'static str,
+    /// Whether the rates of stems of several letters take Leibniz's
+    /// notation (see [`unicode_name`]).
+    leibniz: bool,
 }
 
 impl Style {
     /// The notation table of this style.
     fn notation(self) -> &'static Notation {
-        match self {
+        match self.math() {
             Style::Unicode => &UNICODE,
-            Style::Latex => &LATEX,
+            _ => &LATEX,
         }
     }
 }
@@ -373,6 +436,7 @@ const UNICODE: Notation = Notation {
     name: unicode_name,
     call: unicode_call,
     word_times: "·",
+    leibniz: true,
 };
 
 /// LaTeX math.
@@ -385,6 +449,7 @@ const LATEX: Notation = Notation {
     name: latex_name,
     call: latex_call,
     word_times: " ",
+    leibniz: false,
 };
 
 /// `²`, `⁻¹`.
@@ -427,7 +492,7 @@ fn unicode_word(out: &mut String, word: &Word) {
 /// (`FL_HFE` read as `FL̈_HFE`), takes the rate in Leibniz's notation:
 /// `d(FL_HFE)/dt`, `d²(FL_HFE)/dt²`.
 fn unicode_name(out: &mut String, name: &Name, dots: usize) {
-    if dots > 0 && name.stem.is_several_letters() {
+    if name.is_leibniz(dots) {
         let order = if dots == 1 { "" } else { "²" };
         out.push_str(&format!("d{order}("));
         unicode_name(out, name, 0);
@@ -484,6 +549,15 @@ fn latex_word(out: &mut String, word: &Word) {
     }
 }
 
+/// A subscript word: [`latex_word`], but a short one (as [`Name::short`]
+/// reads) in math italic like its stem, `I_{1c}`, `x_{p}`.
+fn latex_label(out: &mut String, word: &Word) {
+    match word {
+        Word::Text(t) if t.chars().count() <= SHORT_SUBSCRIPT => out.push_str(t),
+        _ => latex_word(out, word),
+    }
+}
+
 /// `\theta_{1}`, `\dot{\theta}_{1}`, `\ddot{\theta}_{1}` (an accent is
 /// centred over a stem of several letters, `\dot{\mathrm{FL}}`).
 fn latex_name(out: &mut String, name: &Name, dots: usize) {
@@ -500,7 +574,7 @@ fn latex_name(out: &mut String, name: &Name, dots: usize) {
 fn latex_labelled(out: &mut String, label: Option<&Word>, digits: &str) {
     let mut inner = String::new();
     if let Some(label) = label {
-        latex_word(&mut inner, label);
+        latex_label(&mut inner, label);
         if !digits.is_empty() {
             inner.push(',');
         }
@@ -664,7 +738,14 @@ enum FactorClass {
 /// whatever the declaration order), then symbol, then id.
 fn factor_order(pool: &Pool, base: ExprId, exp: i32) -> (FactorClass, bool, Option<Sym>, ExprId) {
     let Node::Sym(s) = *pool.node(base) else {
-        return (FactorClass::Composite, false, None, base);
+        // A collected sum of parameters leads the parameters.
+        let parameters = matches!(pool.node(base), Node::Func(Func::Group, _))
+            && SymKinds::PARAM.contains(pool.kinds(base));
+        let class = match parameters {
+            true => FactorClass::Param,
+            false => FactorClass::Composite,
+        };
+        return (class, false, None, base);
     };
     let class = match s {
         Sym::Param(_) => FactorClass::Param,
@@ -798,11 +879,20 @@ impl<'a> Walker<'a> {
         }
     }
 
-    /// Writes one factor `base^exp`.
+    /// Writes one factor `base^exp`; a rate in Leibniz's notation raised
+    /// to a power is parenthesised (`(d(FL)/dt)²`, not `d(FL)/dt²`).
     fn factor(&mut self, Factor { base, exp, flipped }: Factor) {
         match *self.pool.node(base) {
             Node::Sym(s) => {
+                let (name, dots) = self.names.of(s);
+                let enclosed = exp != 1 && self.notation.leibniz && name.is_leibniz(dots);
+                if enclosed {
+                    self.out.push('(');
+                }
                 self.symbol(s);
+                if enclosed {
+                    self.out.push(')');
+                }
                 self.power(exp);
             }
             Node::Func(f, arg) => self.call(f, arg, exp, flipped),
@@ -1035,16 +1125,45 @@ mod tests {
     }
 
     #[test]
+    fn short_names_are_a_letter_and_a_subscript_and_their_rates_are_dotted() {
+        let names = SymbolNames::new(
+            &["I1c", "m_B", "Ixx", "arm"],
+            &["xp", "arm"],
+            &[] as &[&str],
+        );
+        let expected = [
+            (Sym::Param(0), "I_1c", "I_{1c}"),
+            (Sym::Param(1), "m_B", "m_{B}"),
+            (Sym::Param(2), "I_xx", "I_{xx}"),
+            (Sym::Param(3), "arm", "\\mathrm{arm}"),
+            (Sym::Speed(0), "x\u{307}_p", "\\dot{x}_{p}"),
+            (Sym::Accel(0), "x\u{308}_p", "\\ddot{x}_{p}"),
+        ];
+        for (sym, text, tex) in expected {
+            assert_eq!(
+                both(&names, sym),
+                (text.to_string(), tex.to_string()),
+                "{sym:?}"
+            );
+        }
+        // A rate in Leibniz's notation is parenthesised under a power.
+        let mut p = Pool::new();
+        let rate = p.sym(Sym::Speed(1));
+        let e = p.powi(rate, 2);
+        assert_eq!(unicode(&p, e, &names), "(d(arm)/dt)²");
+    }
+
+    #[test]
     fn powers_of_parameters_follow_and_words_are_multiplied_visibly() {
         let mut p = Pool::new();
-        let names = SymbolNames::new(&["r", "m", "ma"], &["q"], &[] as &[&str]);
+        let names = SymbolNames::new(&["r", "m", "mass"], &["q"], &[] as &[&str]);
         let [r, m, ma] = [0, 1, 2].map(|i| p.sym(Sym::Param(i)));
         let r2 = p.powi(r, 2);
         let e = p.product([m, r2]);
         assert_eq!(unicode(&p, e, &names), "m r²", "declared r before m");
         let e = p.product([m, ma]);
-        assert_eq!(unicode(&p, e, &names), "m·ma");
-        assert_eq!(latex(&p, e, &names), "m \\mathrm{ma}");
+        assert_eq!(unicode(&p, e, &names), "m·mass");
+        assert_eq!(latex(&p, e, &names), "m \\mathrm{mass}");
     }
 
     #[test]

@@ -79,10 +79,7 @@ impl Resolver {
     /// A row of a rolling contact, unless it vanishes identically (a
     /// planar model's slip across its plane).
     fn push_rolling_row(&mut self, span: SpanRange, residual: ExprId, nonholonomic: bool) {
-        if self.pool.is_zero(residual)
-            || !self.check_constrains_something(span, residual)
-            || !self.check_timeless_jacobian(span, residual, nonholonomic)
-        {
+        if self.pool.is_zero(residual) || !self.check_constrains_something(span, residual) {
             return;
         }
         self.model.constraints.push(Constraint {

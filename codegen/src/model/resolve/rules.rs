@@ -7,7 +7,6 @@ use super::Resolver;
 use crate::expr::{ExprId, Sym, SymKinds};
 use crate::language::ast::{Expr, SpanRange};
 use crate::model::{FrameId, NEWTONIAN, PointId, Vector};
-use proc_macro2::Ident;
 
 impl Resolver {
     /// Everything generated is indexed by the coordinates: a system without
@@ -56,27 +55,6 @@ impl Resolver {
         passes
     }
 
-    /// The generated `constraint_jacobian(q)` takes no `t`, so a row of `A`
-    /// may not depend on time (a term of time alone goes into `b`).
-    /// Whether the row passes.
-    pub(super) fn check_timeless_jacobian(
-        &mut self,
-        span: SpanRange,
-        residual: ExprId,
-        nonholonomic: bool,
-    ) -> bool {
-        let passes = !self.jacobian_depends_on_time(residual, nonholonomic);
-        if !passes {
-            self.errors.push(
-                span,
-                "the Jacobian of this constraint depends on time `t`, but the generated \
-                 `constraint_jacobian(q)` has no `t`: time may enter a constraint only as \
-                 a term of its own, such as `x == sin(t)`",
-            );
-        }
-        passes
-    }
-
     /// A free joint's coordinates place its child in the ground's axes
     /// (Pinocchio's free flyer): its parent, written at `field`, must be `N`.
     pub(super) fn check_free_joint_parent(&mut self, field: &Expr, parent: FrameId) {
@@ -119,56 +97,6 @@ impl Resolver {
         }
     }
 
-    /// The generated `mass_matrix(q)`, `kinetic_energy(q, q̇)` and
-    /// `potential_energy(q)` take no `t`: a mass that moves with time
-    /// (prescribed motion of a frame or point that carries it) is recorded,
-    /// and reported if `t` does not cancel from them (see
-    /// [`Model::moving_masses`]).
-    pub(super) fn check_fixed_in_time(
-        &mut self,
-        name: &Ident,
-        what: &str,
-        at: PointId,
-        frame: Option<FrameId>,
-    ) {
-        if self.point_moves_with_time(at) || frame.is_some_and(|f| self.frame_turns_with_time(f)) {
-            self.model.moving_masses.push(syn::Error::new(
-                name.span(),
-                format!(
-                    "{what} `{name}` moves with time `t` (its position or frame depends on \
-                     `t`), and `t` stays in the mass matrix or the energies, but the generated \
-                     `mass_matrix(q)`, `kinetic_energy(q, q̇)` and `potential_energy(q)` have \
-                     no `t`: make the motion a coordinate and drive it with a load or a \
-                     constraint"
-                ),
-            ));
-        }
-    }
-
-    /// Whether a row of `A` (the derivatives of a holonomic residual by
-    /// the coordinates, or the coefficients of the speeds of a
-    /// nonholonomic one) depends on time.
-    pub(super) fn jacobian_depends_on_time(
-        &mut self,
-        residual: ExprId,
-        nonholonomic: bool,
-    ) -> bool {
-        let count = if nonholonomic {
-            self.model.speeds.len()
-        } else {
-            self.model.coordinates.len()
-        };
-        (0..count as u32).any(|i| {
-            let by = if nonholonomic {
-                Sym::Speed(i)
-            } else {
-                Sym::Coord(i)
-            };
-            let entry = self.pool.diff(residual, by);
-            self.pool.kinds(entry).intersects(SymKinds::TIME)
-        })
-    }
-
     pub(super) fn linear_in_speeds(&mut self, residual: ExprId) -> bool {
         (0..self.model.speeds.len() as u32).all(|i| {
             let coefficient = self.pool.diff(residual, Sym::Speed(i));
@@ -202,36 +130,6 @@ impl Resolver {
                 return true;
             }
             frame = placement.parent;
-        }
-        false
-    }
-
-    /// Whether a rotation angle on the way from `N` to `frame` depends on
-    /// time.
-    pub(super) fn frame_turns_with_time(&self, mut frame: FrameId) -> bool {
-        while let Some(placement) = &self.model.frames[frame.0].placement {
-            if self.pool.kinds(placement.angle).intersects(SymKinds::TIME) {
-                return true;
-            }
-            frame = placement.parent;
-        }
-        false
-    }
-
-    /// Whether an offset on the way from `O` to `point` depends on time,
-    /// or lies along a frame that turns with time.
-    pub(super) fn point_moves_with_time(&self, mut point: PointId) -> bool {
-        while let Some((base, offset)) = &self.model.points[point.0].placement {
-            let moves = offset.parts.iter().any(|(frame, components)| {
-                components
-                    .iter()
-                    .any(|&c| self.pool.kinds(c).intersects(SymKinds::TIME))
-                    || self.frame_turns_with_time(*frame)
-            });
-            if moves {
-                return true;
-            }
-            point = *base;
         }
         false
     }

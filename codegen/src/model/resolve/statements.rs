@@ -257,9 +257,6 @@ impl Resolver {
         let center = center.and_then(|e| self.point(e, GEOMETRY));
         let frame = frame.and_then(|e| self.frame(e));
         let inertia = inertia.and_then(|e| self.inertia(e));
-        if let (Some(center), Some(frame)) = (center, frame) {
-            self.check_fixed_in_time(name, "body", center, Some(frame));
-        }
         self.define(name, Binding::Body);
         if let (Some(mass), Some(center), Some(frame), Some(inertia)) =
             (mass, center, frame, inertia)
@@ -277,9 +274,6 @@ impl Resolver {
         let [mass, at] = self.fields(name, "particle", fields, ["mass", "at"]);
         let mass = mass.and_then(|e| self.mass(e, "a point without mass needs no particle"));
         let at = at.and_then(|e| self.point(e, GEOMETRY));
-        if let Some(at) = at {
-            self.check_fixed_in_time(name, "particle", at, None);
-        }
         self.define(name, Binding::Particle);
         if let (Some(mass), Some(at)) = (mass, at) {
             self.model.particles.push(Particle { mass, at });
@@ -676,9 +670,6 @@ impl Resolver {
         if nonholonomic && !self.check_linear_in_speeds(span, residual) {
             return;
         }
-        if !self.check_timeless_jacobian(span, residual, nonholonomic) {
-            return;
-        }
         self.model.constraints.push(Constraint {
             residual,
             nonholonomic,
@@ -750,19 +741,6 @@ impl Resolver {
                     format!(
                         "closure `{name}` can never hold: {} involves no coordinate and is \
                          not identically zero; join points (and frames) that the coordinates move",
-                        row.what
-                    ),
-                );
-                rejected += 1;
-                continue;
-            }
-            if self.jacobian_depends_on_time(row.residual, false) {
-                self.errors.push(
-                    name.span(),
-                    format!(
-                        "the Jacobian of closure `{name}` depends on time `t` ({}), but the \
-                         generated `constraint_jacobian(q)` has no `t`: close the loop between \
-                         points and frames that move with the coordinates only",
                         row.what
                     ),
                 );
