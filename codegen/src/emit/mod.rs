@@ -98,7 +98,13 @@ pub fn emit(
             let check = configuration::emit_rate_check(model, pool, &names);
             let has_check = !check.is_empty();
             items.push(check);
-            let mut traits = emit_trait_impls(name, [nq, nv, nu, nc], [has_solver, has_check]);
+            let vanishing = model.vanishing_rows();
+            let mut traits = emit_trait_impls(
+                name,
+                [nq, nv, nu, nc],
+                [has_solver, has_check],
+                vanishing.as_deref(),
+            );
             if functions.iter().any(|f| f.body == Body::Taylor) {
                 traits.extend(taylor::emit_trait_impl(name, [nq, nv, nu]));
             }
@@ -382,13 +388,20 @@ fn tree_mass_matrix(
 /// them). A system with constraints answers `accelerations` with the
 /// constrained `v̇` of `M v̇ = f + Aᵀ λ`, `A v̇ = b` (the runtime's
 /// `constrained_accelerations`, multipliers dropped), so that
-/// `dalembert::accelerations` gives the motion the constraints allow.
-fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> TokenStream {
+/// `dalembert::accelerations` gives the motion the constraints allow. The
+/// rows that vanish identically, if any, are its `VANISHING_ROWS`.
+fn emit_trait_impls(
+    name: &Ident,
+    sizes: [usize; 4],
+    emitted: [bool; 2],
+    vanishing: Option<&[bool]>,
+) -> TokenStream {
     let [has_solver, has_check] = emitted;
     let [nq, nv, nu, nc] = sizes;
     let (coordinates, vector) = (array(nq), array(nv));
     let (inputs, rows_out) = (array(nu), array(nc));
     let [nq, nv, nu, nc_lit] = [nq, nv, nu, nc].map(Literal::usize_unsuffixed);
+    let bools = quote!([bool; #nc_lit]);
     let solve = if nc > 0 {
         Some(quote! {
             ::dalembert::constrained::constrained_accelerations(self, t, q, v, u)
@@ -460,10 +473,16 @@ fn emit_trait_impls(name: &Ident, sizes: [usize; 4], emitted: [bool; 2]) -> Toke
     if nc == 0 {
         return system;
     }
+    let vanishing = vanishing.map(|rows| {
+        quote! {
+            const VANISHING_ROWS: #bools = [#(#rows),*];
+        }
+    });
     quote! {
         #system
         #allowed
         impl ::dalembert::ConstrainedSystem<#nq, #nv, #nu, #nc_lit> for #name {
+            #vanishing
             #[inline]
             fn constraint_jacobian(&self, q: &#coordinates) -> [#vector; #nc_lit] {
                 #name::constraint_jacobian(self, q)

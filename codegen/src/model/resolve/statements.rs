@@ -657,6 +657,7 @@ impl Resolver {
         self.model.constraints.push(Constraint {
             residual,
             nonholonomic,
+            vanishes: false,
         });
     }
 
@@ -747,6 +748,7 @@ impl Resolver {
             self.model.constraints.push(Constraint {
                 residual: row.residual,
                 nonholonomic: false,
+                vanishes: false,
             });
             added += 1;
         }
