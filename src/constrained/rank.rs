@@ -294,7 +294,7 @@ mod tests {
     #[test]
     fn basic_solution_solves_the_independent_rows() {
         let schur = [[4.0, 2.0], [2.0, 3.0]];
-        let factor = SchurFactor::pivoted(schur, 1e-12, &[false; NC]);
+        let factor = SchurFactor::pivoted(schur, 1e-12, &[false; 2]);
         let mu = factor.solve(&[1.0, 2.0]);
         // det = 8: μ = (3·1 − 2·2, −2·1 + 4·2)/8.
         assert!((mu[0] + 1.0 / 8.0).abs() < 1e-15 && (mu[1] - 6.0 / 8.0).abs() < 1e-15);
