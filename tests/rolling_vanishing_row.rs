@@ -11,8 +11,9 @@
 //! Its equations are checked against the same disc written with the
 //! contact's height `z` as a coordinate (`HeightDisc`, whose contact row
 //! `z = 0` is live): the no-slip rows, the constrained accelerations (by
-//! the default rank-revealing solver and by the Schur complement, which
-//! stops at a dependent row) and `linearize` on the manifold agree, and
+//! the default rank-revealing solver, by the Schur complement, which
+//! stops at a dependent row, and by the sparse solver) and `linearize` on
+//! the manifold agree, and
 //! the linearisation about upright rolling has the closed-form rows of
 //! `tests/rolling_disc.rs` (`θ̈ = 4/5 (g/r) θ + 6/5 Ω ψ̇`, `ψ̈ = −2 Ω θ̇`).
 
@@ -157,6 +158,11 @@ fn accelerations_are_the_height_discs() {
             .accelerations(&PLACED, 0.0, &q, &v, &[])
             .expect("the zero row is not a dependent row");
         assert_near_all("v̇ by the Schur complement", &by_schur, &vdot, 1e-12);
+        let (by_sparse, _) = ConstraintSolver::Sparse
+            .accelerations(&PLACED, 0.0, &q, &v, &[])
+            .expect("solvable");
+        // The sparse solver's stiff factorisation: about 1e-9 relative.
+        assert_near_all("v̇ by the sparse solver", &by_sparse, &vdot, 1e-7);
     }
 }
 
