@@ -1,6 +1,7 @@
 //! LQR balancing of a two-wheeled self-balancing robot that rolls
-//! (`dalembert_fixtures::balancing_robot`: one `rolling` wheel and the
-//! other's forward row, three nonholonomic rows), from the exact
+//! (`dalembert_fixtures::balancing_robot`: one `rolling` wheel, whose three
+//! rows start with its contact row, zero as the axle stays level, and the
+//! other's forward row: three nonholonomic rows that act), from the exact
 //! linearisation about upright motion at 1 m/s: the generated `linearize`
 //! gives `A`, `B` on the constraint manifold; the pitch, the heading and
 //! the three independent speeds (pitch rate, wheel rates) close a

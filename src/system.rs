@@ -140,6 +140,16 @@ pub trait ConstrainedSystem<const NQ: usize, const NV: usize, const NU: usize, c
     /// Provided: no row (every constraint scleronomic).
     const RHEONOMIC: [bool; NC] = [false; NC];
 
+    /// Whether each row vanishes identically: its Jacobian, bias, residual
+    /// and velocity form are zero in every state (a `rolling` row of a
+    /// wheel that cannot leave its plane, kept so that every `rolling`
+    /// statement has its three rows). The solvers treat such rows as
+    /// absent, with a zero multiplier.
+    ///
+    /// Provided: none. Generated systems with such a row override it, as
+    /// the engine knows it at compile time.
+    const VANISHING_ROWS: [bool; NC] = [false; NC];
+
     /// The constraint Jacobian `A(q)`, one row per constraint in declaration
     /// order.
     fn constraint_jacobian(&self, q: &[f64; NQ]) -> [[f64; NV]; NC];

@@ -172,6 +172,11 @@ fn parts(z: &[Complex<f64>]) -> Vec<f64> {
 #[test]
 fn the_rows_are_two_contacts_and_four_no_slip_rows() {
     assert_eq!((Bicycle::NQ, Bicycle::NC), (9, 6));
+    // Three rows per wheel, none vanishing: each wheel leans and steers.
+    assert_eq!(
+        <Bicycle as dalembert::ConstrainedSystem<9, 9, 0, 6>>::VANISHING_ROWS,
+        [false; 6]
+    );
     let (q, v) = upright(4.0);
     let residual = BENCHMARK.constraint_residual(0.0, &q);
     let slip = BENCHMARK.constraint_velocity(0.0, &q, &v);

@@ -142,7 +142,7 @@ fn barely_independent_rows_are_reported_not_solved_as_independent() {
     let e = 1e-4;
     let plane = NearlyParallel { m: 1.0, e, g: 9.81 };
     let q = [0.0, 0.0, 0.0];
-    let conditioning = constraint_conditioning(&plane, &q).unwrap();
+    let conditioning = constraint_conditioning(&plane, 0.0, &q).unwrap();
     assert_eq!(conditioning.rank, 2);
     let weakest = conditioning.weakest.unwrap();
     // A = [[1, 0, 0], [1, e, 0]]: σ₂/σ₁ = e/2 to first order; the
@@ -156,7 +156,7 @@ fn barely_independent_rows_are_reported_not_solved_as_independent() {
     assert_eq!(weakest.row + weakest.with, 1, "rows 0 and 1: {weakest:?}");
     // Well apart, the rows are no concern.
     let apart = NearlyParallel { e: 1.0, ..plane };
-    let singular_value = constraint_conditioning(&apart, &q)
+    let singular_value = constraint_conditioning(&apart, 0.0, &q)
         .unwrap()
         .weakest
         .unwrap()

@@ -15,7 +15,7 @@
 
 use dalembert::ConstrainedSystem;
 use dalembert::constrained::constrained_accelerations;
-use dalembert_fixtures::balancing_robot::{BALANCING_ROBOT, INDEPENDENT, upright};
+use dalembert_fixtures::balancing_robot::{BALANCING_ROBOT, BalancingRobot, INDEPENDENT, upright};
 use dalembert_fixtures::reference::{array, assert_close, flat, matrix, reference};
 use nalgebra::SMatrix;
 use serde_json::Value;
@@ -84,7 +84,8 @@ dalembert::dalembert! {
 dalembert::dalembert! {
     /// A differential-drive robot: a level chassis (centre `b` ahead of
     /// the axle) on two driven wheels, each a `rolling` contact (their
-    /// sideways rows coincide: four rows of rank three).
+    /// contact rows vanish and their sideways rows coincide: six rows of
+    /// rank three).
     pub DifferentialDrive {
         parameters mb, mw, Iwa, Iwd, r, d, g, b, Ib;
         coordinates x, y, psi, phiL, phiR;
@@ -155,14 +156,35 @@ fn system(name: &str, parameters: &[(&str, f64)]) -> Value {
     entry
 }
 
-/// `M`, `f`, `A`, `b` and the residual at every stored state, to 1e-12;
-/// then the constrained accelerations at the manifold's states.
+/// The reference's `rows` (of `A`, `b` or the residual) with a `zero` row
+/// inserted at each of our rows that vanishes identically (a wheel's
+/// contact on a level axle at height `r`): SymPy's models leave out the
+/// rows that say `0 = 0`, each `rolling` statement keeps its three.
+fn with_vanishing_rows(rows: &Value, zero: &Value, vanishing: &[bool]) -> Value {
+    let mut given = rows.as_array().expect("rows").iter();
+    let rows: Vec<Value> = vanishing
+        .iter()
+        .map(|&vanishes| match vanishes {
+            true => zero.clone(),
+            false => given.next().expect("a reference row").clone(),
+        })
+        .collect();
+    assert!(given.next().is_none(), "reference rows left over");
+    Value::from(rows)
+}
+
+/// `M`, `f`, `A`, `b` and the residual at every stored state, to 1e-12
+/// (zero in the rows of `S::VANISHING_ROWS`); then the constrained
+/// accelerations at the manifold's states.
 fn agrees_with_sympy<S, const NQ: usize, const NU: usize, const NC: usize>(
     system: &S,
     entry: &Value,
 ) where
     S: ConstrainedSystem<NQ, NQ, NU, NC>,
 {
+    let zero_row = Value::from(vec![0.0; NQ]);
+    let vanishing =
+        |rows: &Value, zero: &Value| with_vanishing_rows(rows, zero, &S::VANISHING_ROWS);
     let states = entry["states"].as_array().expect("states");
     assert!(!states.is_empty(), "no reference states");
     for state in states {
@@ -175,16 +197,16 @@ fn agrees_with_sympy<S, const NQ: usize, const NU: usize, const NC: usize>(
         assert_close("M", &flat(&system.mass_matrix(&q)), &flat(&mass), 1e-12);
         let forcing: [f64; NQ] = array(&state["f"]);
         assert_close("f", &system.forcing(0.0, &q, &v, &u), &forcing, 1e-12);
-        let jacobian: [[f64; NQ]; NC] = matrix(&state["A"]);
+        let jacobian: [[f64; NQ]; NC] = matrix(&vanishing(&state["A"], &zero_row));
         assert_close(
             "A",
             &flat(&system.constraint_jacobian(&q)),
             &flat(&jacobian),
             1e-12,
         );
-        let bias: [f64; NC] = array(&state["b"]);
+        let bias: [f64; NC] = array(&vanishing(&state["b"], &Value::from(0.0)));
         assert_close("b", &system.constraint_bias(0.0, &q, &v), &bias, 1e-12);
-        let residual: [f64; NC] = array(&state["residual"]);
+        let residual: [f64; NC] = array(&vanishing(&state["residual"], &Value::from(0.0)));
         let scale = q.iter().fold(1.0f64, |m, x| m.max(x.abs()));
         for (ours, theirs) in system.constraint_residual(0.0, &q).iter().zip(residual) {
             assert!(
@@ -215,6 +237,10 @@ fn agrees_with_sympy<S, const NQ: usize, const NU: usize, const NC: usize>(
 #[test]
 fn a_disc_rolls_as_sympys() {
     assert_eq!(Disc::NC, 3);
+    assert_eq!(
+        <Disc as ConstrainedSystem<6, 6, 1, 3>>::VANISHING_ROWS,
+        [false; 3]
+    );
     let entry = system("disc", &values!(DISC; m, r, g));
     agrees_with_sympy(&DISC, &entry);
 }
@@ -233,8 +259,14 @@ fn a_chaplygin_sleigh_slides_as_sympys() {
 
 #[test]
 fn a_differential_drive_robot_rolls_as_sympys() {
-    // Each wheel's contact row vanishes (the axle is level at height r).
-    assert_eq!(DifferentialDrive::NC, 4);
+    // Three rows per wheel; each wheel's contact row vanishes (the axle is
+    // level at height r), and its two sideways rows coincide: six rows of
+    // rank three.
+    assert_eq!(DifferentialDrive::NC, 6);
+    assert_eq!(
+        <DifferentialDrive as ConstrainedSystem<5, 5, 2, 6>>::VANISHING_ROWS,
+        [true, false, false, true, false, false]
+    );
     let robot = DIFFERENTIAL_DRIVE;
     let entry = system(
         "differential_drive",
@@ -254,6 +286,12 @@ fn balancing_entry() -> Value {
 
 #[test]
 fn a_self_balancing_robot_rolls_as_sympys() {
+    // The left wheel's three rows (its contact vanishing), then the right
+    // wheel's forward row.
+    assert_eq!(
+        <BalancingRobot as ConstrainedSystem<6, 6, 2, 4>>::VANISHING_ROWS,
+        [true, false, false, false]
+    );
     agrees_with_sympy(&BALANCING_ROBOT, &balancing_entry());
 }
 

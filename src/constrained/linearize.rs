@@ -158,7 +158,10 @@ pub struct ConstrainedLinearization<const NV: usize, const NU: usize> {
 /// [`DynamicsError::SingularDependentCoordinates`] where the independent
 /// coordinates do not determine the others, and
 /// [`DynamicsError::SingularDependentSpeeds`] where the independent speeds
-/// do not determine the others.
+/// do not determine the others. The rows are those that constrain: a
+/// generated system passes its own without those that vanish identically
+/// ([`VANISHING_ROWS`](crate::ConstrainedSystem::VANISHING_ROWS)), which
+/// would leave a dependent entry without a row.
 pub fn linearize_on_constraints<const NV: usize, const NU: usize, const NC: usize>(
     mass: &[[f64; NV]; NV],
     jacobian: &[[f64; NV]; NC],
@@ -246,7 +249,7 @@ fn solved_partials<const NV: usize, const NU: usize, const NC: usize>(
             ACCELERATION_RANK_TOLERANCE,
             mass,
             coordinates,
-            jacobian,
+            (jacobian, &[false; NC]),
             |metric| partials_through(&metric, partials),
         ),
         saddle => partials_through(&saddle?, partials),

@@ -171,13 +171,16 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<'_, NV, NC> {
     /// it to `use_metric`; fails if an entry is not finite, if the
     /// (augmented) mass matrix is not positive definite (a coordinate named
     /// from `names` moves freely without inertia), or, for the Schur
-    /// complement, if a row depends on the rows before it.
+    /// complement, if a row depends on the rows before it. The dense
+    /// solvers leave out the rows `absent` (those that vanish identically,
+    /// [`ConstrainedSystem::VANISHING_ROWS`]), whose multipliers are zero;
+    /// the sparse one needs no telling (a zero row adds nothing to `M̄`).
     pub(crate) fn with<R>(
         solver: ConstraintSolver,
         rank_tolerance: f64,
         mass: &[[f64; NV]; NV],
         names: &[&'static str; NV],
-        jacobian: &[[f64; NV]; NC],
+        (jacobian, absent): (&[[f64; NV]; NC], &[bool; NC]),
         use_metric: impl FnOnce(ConstraintMetric<'_, NV, NC>) -> Result<R, DynamicsError>,
     ) -> Result<R, DynamicsError> {
         match solver {
@@ -189,7 +192,7 @@ impl<const NV: usize, const NC: usize> ConstraintMetric<'_, NV, NC> {
                 rank_tolerance,
                 mass,
                 names,
-                jacobian,
+                (jacobian, absent),
             )?)),
         }
     }
@@ -237,7 +240,7 @@ impl<const NV: usize, const NC: usize> DenseMetric<NV, NC> {
         rank_tolerance: f64,
         mass: &[[f64; NV]; NV],
         names: &[&'static str; NV],
-        jacobian: &[[f64; NV]; NC],
+        (jacobian, absent): (&[[f64; NV]; NC], &[bool; NC]),
     ) -> Result<Self, DynamicsError> {
         if !mass.iter().all(all_finite) {
             return Err(DynamicsError::NonFiniteEquations);
@@ -258,12 +261,15 @@ impl<const NV: usize, const NC: usize> DenseMetric<NV, NC> {
         let s = a * mass_inverse_jacobian_t;
         let s = std::array::from_fn(|i| std::array::from_fn(|j| s[(i, j)]));
         let schur = match solver {
-            ConstraintSolver::SchurComplement => SchurFactor::in_order(s, RELATIVE_PIVOT_TOLERANCE)
-                .map_err(|dependent| DynamicsError::DependentConstraints {
-                    row: dependent.row,
-                    pivot: dependent.pivot,
-                })?,
-            _ => SchurFactor::pivoted(s, rank_tolerance),
+            ConstraintSolver::SchurComplement => {
+                SchurFactor::in_order(s, RELATIVE_PIVOT_TOLERANCE, absent).map_err(|dependent| {
+                    DynamicsError::DependentConstraints {
+                        row: dependent.row,
+                        pivot: dependent.pivot,
+                    }
+                })?
+            }
+            _ => SchurFactor::pivoted(s, rank_tolerance, absent),
         };
         Ok(Self {
             mass,
@@ -552,7 +558,7 @@ impl ConstraintSolver {
             ACCELERATION_RANK_TOLERANCE,
             mass,
             &pivot_names::<S, NQ, NV, NU>(),
-            jacobian,
+            (jacobian, &S::VANISHING_ROWS),
             |metric| {
                 let (f, b) = (SVector::from(forcing), SVector::from(bias));
                 let (vdot, lambda) = match metric.solve(&f, &b, Dependents::MustAgree) {
@@ -813,7 +819,7 @@ mod tests {
             ACCELERATION_RANK_TOLERANCE,
             &[[1.0, 0.0], [0.0, 1.0]],
             &["x", "y"],
-            &a,
+            (&a, &[false; 2]),
             |metric| {
                 metric.solve(
                     &SVector::from([0.0, -9.81]),

@@ -83,7 +83,8 @@ impl ConstraintSolver {
         let names = pivot_names::<S, NQ, NV, NU>();
         let least_norm = |solver, q: &[f64; NQ], c: [f64; NC]| {
             let jacobian = system.constraint_jacobian_at(t, q);
-            ConstraintMetric::with(solver, RANK_TOLERANCE, &mass, &names, &jacobian, |metric| {
+            let rows = (&jacobian, &S::VANISHING_ROWS);
+            ConstraintMetric::with(solver, RANK_TOLERANCE, &mass, &names, rows, |metric| {
                 Ok(metric.least_norm(&SVector::from(c)).into())
             })
         };

@@ -34,35 +34,54 @@ pub(crate) struct SchurFactor<const NC: usize> {
 impl<const NC: usize> SchurFactor<NC> {
     /// Factorises the symmetric positive semi-definite `schur` taking the
     /// largest remaining pivot first, until every remaining pivot is at
-    /// most `tolerance` times the largest diagonal entry: the rank.
-    pub(crate) fn pivoted(schur: [[f64; NC]; NC], tolerance: f64) -> Self {
-        Self::factorise(schur, true, tolerance).0
+    /// most `tolerance` times the largest diagonal entry: the rank. The
+    /// rows `absent` (rows known to vanish identically) are left out, as
+    /// dependent rows.
+    pub(crate) fn pivoted(schur: [[f64; NC]; NC], tolerance: f64, absent: &[bool; NC]) -> Self {
+        Self::factorise(schur, true, tolerance, absent).0
     }
 
-    /// Factorises `schur` in declaration order, or names the first row
-    /// whose pivot is at most `tolerance` times the largest diagonal entry.
-    pub(crate) fn in_order(schur: [[f64; NC]; NC], tolerance: f64) -> Result<Self, DependentRow> {
-        match Self::factorise(schur, false, tolerance) {
+    /// Factorises `schur` in declaration order, the rows `absent` left
+    /// out (as dependent rows), or names the first other row whose pivot
+    /// is at most `tolerance` times the largest diagonal entry.
+    pub(crate) fn in_order(
+        schur: [[f64; NC]; NC],
+        tolerance: f64,
+        absent: &[bool; NC],
+    ) -> Result<Self, DependentRow> {
+        match Self::factorise(schur, false, tolerance, absent) {
             (_, Some(dependent)) => Err(dependent),
             (factor, None) => Ok(factor),
         }
     }
 
-    /// The factorisation, stopped at the first pivot not above the
+    /// The factorisation of the rows not `absent` (moved first, in
+    /// declaration order), stopped at the first pivot not above the
     /// threshold; without pivoting that pivot's row is returned too.
     fn factorise(
-        mut schur: [[f64; NC]; NC],
+        schur: [[f64; NC]; NC],
         pivoting: bool,
         tolerance: f64,
+        absent: &[bool; NC],
     ) -> (Self, Option<DependentRow>) {
         let largest = (0..NC).fold(0.0f64, |m, i| m.max(schur[i][i]));
         let threshold = tolerance * largest;
-        let mut order: [usize; NC] = std::array::from_fn(|i| i);
-        let mut rank = NC;
+        let mut order = [0; NC];
+        let rows = (0..NC).filter(|&i| !absent[i]);
+        let present = rows.clone().count();
+        for (slot, i) in order
+            .iter_mut()
+            .zip(rows.chain((0..NC).filter(|&i| absent[i])))
+        {
+            *slot = i;
+        }
+        let mut schur: [[f64; NC]; NC] =
+            std::array::from_fn(|i| std::array::from_fn(|j| schur[order[i]][order[j]]));
+        let mut rank = present;
         let mut dependent = None;
-        for k in 0..NC {
+        for k in 0..present {
             if pivoting {
-                let best = (k..NC)
+                let best = (k..present)
                     .max_by(|&a, &b| schur[a][a].total_cmp(&schur[b][b]))
                     .unwrap_or(k);
                 swap_symmetric(&mut schur, k, best);
@@ -182,7 +201,7 @@ impl<const NC: usize> SchurFactor<NC> {
                 0.0
             }
         });
-        let w = Self::pivoted(gram, 0.0).solve(&projection);
+        let w = Self::pivoted(gram, 0.0, &[false; NC]).solve(&projection);
         std::array::from_fn(|r| lambda[r] - (0..nullity).map(|c| basis[c][r] * w[c]).sum::<f64>())
     }
 
@@ -243,7 +262,7 @@ mod tests {
 
     #[test]
     fn pivoting_finds_the_rank_and_the_dependency() {
-        let factor = SchurFactor::pivoted(redundant_schur(), 1e-12);
+        let factor = SchurFactor::pivoted(redundant_schur(), 1e-12, &[false; 3]);
         assert_eq!(factor.rank(), 2);
         // Row 2 (largest diagonal) is taken first; the one left over is a
         // combination: z = ±(1, 1, −1) up to the unit entry.
@@ -257,7 +276,7 @@ mod tests {
 
     #[test]
     fn least_norm_removes_the_null_space_component() {
-        let factor = SchurFactor::pivoted(redundant_schur(), 1e-12);
+        let factor = SchurFactor::pivoted(redundant_schur(), 1e-12, &[false; 3]);
         // λ = (3, 5, 0) and (3 − s, 5 − s, s) give the same Aᵀλ; the least
         // norm has s = (3 + 5)/3.
         let s = 8.0 / 3.0;
@@ -268,8 +287,23 @@ mod tests {
     }
 
     #[test]
+    fn absent_rows_are_left_out_in_order() {
+        // A = [[0, 0], [1, 0], [0, 2]]: the first row vanishes.
+        let schur = [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 4.0]];
+        let absent = [true, false, false];
+        let error = SchurFactor::in_order(schur, 1e-14, &[false; 3])
+            .err()
+            .unwrap();
+        assert_eq!(error.row, 0);
+        let factor = SchurFactor::in_order(schur, 1e-14, &absent).unwrap();
+        assert_eq!(factor.rank(), 2);
+        assert_eq!(factor.solve(&[7.0, 3.0, 8.0]), [0.0, 3.0, 2.0]);
+        assert_eq!(factor.least_norm(&[5.0, 3.0, 2.0]), [0.0, 3.0, 2.0]);
+    }
+
+    #[test]
     fn without_pivoting_the_first_dependent_row_is_an_error() {
-        let error = SchurFactor::in_order(redundant_schur(), 1e-14)
+        let error = SchurFactor::in_order(redundant_schur(), 1e-14, &[false; 3])
             .err()
             .unwrap();
         assert_eq!(error.row, 2);
@@ -279,7 +313,7 @@ mod tests {
     #[test]
     fn basic_solution_solves_the_independent_rows() {
         let schur = [[4.0, 2.0], [2.0, 3.0]];
-        let factor = SchurFactor::pivoted(schur, 1e-12);
+        let factor = SchurFactor::pivoted(schur, 1e-12, &[false; 2]);
         let mu = factor.solve(&[1.0, 2.0]);
         // det = 8: μ = (3·1 − 2·2, −2·1 + 4·2)/8.
         assert!((mu[0] + 1.0 / 8.0).abs() < 1e-15 && (mu[1] - 6.0 / 8.0).abs() < 1e-15);

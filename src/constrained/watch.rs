@@ -104,7 +104,7 @@ impl DriftLimits {
         beyond(&residual, position, DriftLevel::Position, *t)?;
         let velocity = checked(system.constraint_velocity(*t, q, v)).map_err(dynamics)?;
         // Each row's scale: the speed of its terms, at least one.
-        let jacobian = system.constraint_jacobian(q);
+        let jacobian = system.constraint_jacobian_at(*t, q);
         let scales: [f64; NC] = std::array::from_fn(|i| {
             let speed: f64 = jacobian[i].iter().zip(v).map(|(a, v)| (a * v).abs()).sum();
             speed.max(1.0)
@@ -126,7 +126,7 @@ impl DriftLimits {
         if crosses || self.conditioning <= 0.0 {
             return Ok(());
         }
-        let conditioning = constraint_conditioning(system, q).map_err(dynamics)?;
+        let conditioning = constraint_conditioning(system, *t, q).map_err(dynamics)?;
         match conditioning.weakest {
             Some(weakest) if weakest.singular_value < self.conditioning => {
                 Err(Failure::SingularPosition {
@@ -185,7 +185,7 @@ pub struct WeakestRow {
     pub singular_value: f64,
 }
 
-/// The rank of the constraint rows at `q` and their least independent row,
+/// The rank of the constraint rows at `(t, q)` and their least independent row,
 /// in the metric of the mass matrix (the rank-revealing solver's, so that
 /// coordinates without inertia of their own are no error): below
 /// [`BARELY_INDEPENDENT`] a configuration is near a singular position (a
@@ -200,16 +200,23 @@ pub fn constraint_conditioning<
     const NC: usize,
 >(
     system: &S,
+    t: f64,
     q: &[f64; NQ],
 ) -> Result<Conditioning, DynamicsError>
 where
     S: ConstrainedSystem<NQ, NV, NU, NC>,
 {
-    let mass = system.mass_matrix(q);
-    let jacobian = system.constraint_jacobian(q);
+    let mass = system.mass_matrix_at(t, q);
+    let jacobian = system.constraint_jacobian_at(t, q);
     let names = pivot_names::<S, NQ, NV, NU>();
     let solver = ConstraintSolver::RankRevealing;
-    let metric = DenseMetric::new(solver, RANK_TOLERANCE, &mass, &names, &jacobian)?;
+    let metric = DenseMetric::new(
+        solver,
+        RANK_TOLERANCE,
+        &mass,
+        &names,
+        (&jacobian, &S::VANISHING_ROWS),
+    )?;
     let schur = metric.schur();
     let weakest = schur.weakest().map(|(row, singular_value, dependency)| {
         let with = (0..NC)

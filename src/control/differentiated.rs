@@ -55,10 +55,16 @@ where
     const COORDINATES: [&'static str; NQ] = S::COORDINATES;
     const SPEEDS: [&'static str; NV] = S::SPEEDS;
     const INPUTS: [&'static str; NU] = S::INPUTS;
+    const TIME_DEPENDENT: bool = S::TIME_DEPENDENT;
 
     #[inline]
     fn mass_matrix(&self, q: &[f64; NQ]) -> [[f64; NV]; NV] {
         self.system.mass_matrix(q)
+    }
+
+    #[inline]
+    fn mass_matrix_at(&self, t: f64, q: &[f64; NQ]) -> [[f64; NV]; NV] {
+        self.system.mass_matrix_at(t, q)
     }
 
     #[inline]
@@ -72,8 +78,18 @@ where
     }
 
     #[inline]
+    fn kinetic_energy_at(&self, t: f64, q: &[f64; NQ], v: &[f64; NV]) -> f64 {
+        self.system.kinetic_energy_at(t, q, v)
+    }
+
+    #[inline]
     fn potential_energy(&self, q: &[f64; NQ]) -> f64 {
         self.system.potential_energy(q)
+    }
+
+    #[inline]
+    fn potential_energy_at(&self, t: f64, q: &[f64; NQ]) -> f64 {
+        self.system.potential_energy_at(t, q)
     }
 
     #[inline]

@@ -539,21 +539,20 @@ fn constrained_partials(
         used,
     } = straight_line(pool, names, &roots(function));
     let mut outputs = outputs.into_iter();
-    let mut block = |rows: usize, columns: usize| -> TokenStream {
+    let mut block = |rows: usize, columns: usize| -> Vec<TokenStream> {
         let entries: Vec<TokenStream> = outputs.by_ref().take(rows * columns).collect();
         match columns {
-            0 => {
-                let rows = (0..rows).map(|_| quote!([]));
-                quote!([#(#rows),*])
-            }
-            _ => {
-                let rows = entries.chunks(columns).map(|row| quote!([#(#row),*]));
-                quote!([#(#rows),*])
-            }
+            0 => (0..rows).map(|_| quote!([])).collect(),
+            _ => entries
+                .chunks(columns)
+                .map(|row| quote!([#(#row),*]))
+                .collect(),
         }
     };
-    let (r_q, r_v, r_u) = (block(nv, nv), block(nv, nv), block(nv, nu));
-    let (c_q, c_v) = (block(nc, nv), block(nc, nv));
+    let all = |rows: Vec<TokenStream>| quote!([#(#rows),*]);
+    let (r_q, r_v, r_u) = (all(block(nv, nv)), all(block(nv, nv)), all(block(nv, nu)));
+    let mut rows = |columns: usize| acting_rows(model, block(nc, columns));
+    let (c_q, c_v) = (rows(nv), rows(nv));
     let accelerations = quote! {
         ::dalembert::constrained::AccelerationPartials {
             residual_by_q: #r_q,
@@ -565,8 +564,8 @@ fn constrained_partials(
     };
     let partials = match velocity {
         true => {
-            let (psi_q, phi_q) = (block(nc, nv), block(nc, nv));
-            let (k_q, k_v) = (block(nv, nv), block(nv, nv));
+            let (psi_q, phi_q) = (rows(nv), rows(nv));
+            let (k_q, k_v) = (all(block(nv, nv)), all(block(nv, nv)));
             quote! {
                 ::dalembert::constrained::ConstrainedPartials {
                     accelerations: #accelerations,
@@ -597,6 +596,41 @@ fn constrained_partials(
     }
 }
 
+/// `rows` (one per constraint row) as an array of the rows that do not
+/// vanish identically: the runtime's linearisation sees only the rows that
+/// constrain.
+fn acting_rows(model: &Model, rows: Vec<TokenStream>) -> TokenStream {
+    let acting = rows
+        .into_iter()
+        .zip(&model.constraints)
+        .filter(|(_, c)| !c.vanishes)
+        .map(|(row, _)| row);
+    quote!([#(#acting),*])
+}
+
+/// `self.constraint_jacobian(q)`, without the rows that vanish
+/// identically (see [`acting_rows`]).
+fn acting_jacobian(model: &Model) -> TokenStream {
+    if model.vanishing_rows().is_none() {
+        return quote!(self.constraint_jacobian(q));
+    }
+    let names: Vec<Ident> = (0..model.constraints.len())
+        .map(|i| format_ident!("row{}", i))
+        .collect();
+    let patterns = names
+        .iter()
+        .zip(&model.constraints)
+        .map(|(name, c)| match c.vanishes {
+            true => quote!(_),
+            false => quote!(#name),
+        });
+    let acting = acting_rows(model, names.iter().map(|n| quote!(#n)).collect());
+    quote!({
+        let [#(#patterns),*] = self.constraint_jacobian(q);
+        #acting
+    })
+}
+
 /// `pub fn linearize(..)` of a system with constraints, from `function`,
 /// whose results are the partials of `linearize_on_constraints`
 /// (`∂r/∂q`, `∂r/∂v`, `∂r/∂u`, `∂c/∂q`, `∂c/∂v`, `∂ψ/∂δ`, `∂φ/∂δ`, `K_δ`,
@@ -614,7 +648,8 @@ pub fn emit_constrained_linearize(
     let (coordinates, speeds) = chart.map_or((vec![true; nv], vec![true; nv]), |c| {
         (c.coordinates.clone(), c.speeds.clone())
     });
-    let holonomic = model.constraints.iter().map(|c| !c.nonholonomic);
+    let holonomic = model.acting_constraints().map(|c| !c.nonholonomic);
+    let jacobian = acting_jacobian(model);
     let direction_names = direction_names(model);
     let partials = constrained_partials(model, pool, names, function, true);
     let [kq, kv, dq, dv] = ["kq", "kv", "dq", "dv"].map(|prefix| entry_names(prefix, nv, nv));
@@ -633,7 +668,7 @@ pub fn emit_constrained_linearize(
             dynamic_by_u: [#(#du),*],
         } = ::dalembert::constrained::linearize_on_constraints(
             &self.mass_matrix(q),
-            &self.constraint_jacobian(q),
+            &#jacobian,
             &partials,
             &::dalembert::constrained::ManifoldChart {
                 holonomic: [#(#holonomic),*],
@@ -666,6 +701,7 @@ pub fn emit_constrained_accelerations_jacobian(
     let docs = function.docs.iter().map(|line| raw_string(line));
     let partials = constrained_partials(model, pool, names, function, false);
     let direction_names = direction_names(model);
+    let jacobian = acting_jacobian(model);
     quote! {
         #(#[doc = #docs])*
         #[inline]
@@ -679,7 +715,7 @@ pub fn emit_constrained_accelerations_jacobian(
             #partials
             ::dalembert::constrained::constrained_accelerations_jacobian(
                 &self.mass_matrix(q),
-                &self.constraint_jacobian(q),
+                &#jacobian,
                 &partials,
                 &[#(#direction_names),*],
             )

@@ -113,7 +113,14 @@ pub fn emit(
                     .intersects(crate::expr::SymKinds::TIME)
             });
             let rheonomic: Vec<bool> = rheonomic.collect();
-            let mut traits = emit_trait_impls(name, [nq, nv, nu, nc], emitted, &rheonomic);
+            let vanishing = model.vanishing_rows();
+            let mut traits = emit_trait_impls(
+                name,
+                [nq, nv, nu, nc],
+                emitted,
+                &rheonomic,
+                vanishing.as_deref(),
+            );
             if functions.iter().any(|f| f.body == Body::Taylor) {
                 traits.extend(taylor::emit_trait_impl(name, [nq, nv, nu]));
             }
@@ -401,18 +408,21 @@ fn tree_mass_matrix(
 /// time-dependent system (the third of `emitted`) forwards the traits'
 /// `_at` functions and has no value for the time-free ones (see
 /// [`TraitFunction::undefined`]); `rheonomic` says which constraint rows
-/// depend on time explicitly (`RHEONOMIC`, given when any does).
+/// depend on time explicitly (`RHEONOMIC`, given when any does). The rows
+/// that vanish identically, if any, are its `VANISHING_ROWS`.
 fn emit_trait_impls(
     name: &Ident,
     sizes: [usize; 4],
     emitted: [bool; 3],
     rheonomic: &[bool],
+    vanishing: Option<&[bool]>,
 ) -> TokenStream {
     let [has_solver, has_check, timed] = emitted;
     let [nq, nv, nu, nc] = sizes;
     let (coordinates, vector) = (array(nq), array(nv));
     let (inputs, rows_out) = (array(nu), array(nc));
     let [nq, nv, nu, nc_lit] = [nq, nv, nu, nc].map(Literal::usize_unsuffixed);
+    let bools = quote!([bool; #nc_lit]);
     let solve = if nc > 0 {
         Some(quote! {
             ::dalembert::constrained::constrained_accelerations(self, t, q, v, u)
@@ -510,6 +520,11 @@ fn emit_trait_impls(
     let rheonomic = rheonomic
         .contains(&true)
         .then(|| quote!(const RHEONOMIC: [bool; #nc_lit] = [#(#rheonomic),*];));
+    let vanishing = vanishing.map(|rows| {
+        quote! {
+            const VANISHING_ROWS: #bools = [#(#rows),*];
+        }
+    });
     let jacobian = TraitFunction {
         function: quote!(constraint_jacobian),
         arguments: quote!(q: &#coordinates),
@@ -523,6 +538,7 @@ fn emit_trait_impls(
         #allowed
         impl ::dalembert::ConstrainedSystem<#nq, #nv, #nu, #nc_lit> for #name {
             #rheonomic
+            #vanishing
             #jacobian
             #[inline]
             fn constraint_bias(&self, t: f64, q: &#coordinates, v: &#vector) -> #rows_out {

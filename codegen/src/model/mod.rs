@@ -218,9 +218,25 @@ pub struct Constraint {
     pub residual: ExprId,
     /// Whether it involves speeds (then linear in them).
     pub nonholonomic: bool,
+    /// Whether the row vanishes identically (a `rolling` row of a wheel
+    /// that cannot leave its plane): kept so that the rows stay where the
+    /// contract puts them, with its Jacobian, bias and residual zero, and
+    /// treated as absent wherever rows are counted or solved.
+    pub vanishes: bool,
 }
 
 impl Model {
+    /// The rows that do not vanish identically: those that constrain.
+    pub fn acting_constraints(&self) -> impl Iterator<Item = &Constraint> {
+        self.constraints.iter().filter(|c| !c.vanishes)
+    }
+
+    /// Whether each row vanishes identically, if one does.
+    pub fn vanishing_rows(&self) -> Option<Vec<bool>> {
+        let rows: Vec<bool> = self.constraints.iter().map(|c| c.vanishes).collect();
+        rows.contains(&true).then_some(rows)
+    }
+
     /// Number of generalized coordinates.
     pub fn nq(&self) -> usize {
         self.coordinates.len()

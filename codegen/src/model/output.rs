@@ -188,8 +188,11 @@ pub fn function_name(name: &Ident, subject: Option<&Ident>, axes: Option<&Ident>
 /// coordinates); a system without constraints names none.
 pub fn chart(model: &Model, pool: &mut Pool, output: &Output) -> Result<Chart, (Span, String)> {
     let name = &output.function;
-    let (nv, nc) = (model.nv(), model.constraints.len());
-    let holonomic = model.constraints.iter().filter(|c| !c.nonholonomic).count();
+    let (nv, nc) = (model.nv(), model.acting_constraints().count());
+    let holonomic = model
+        .acting_constraints()
+        .filter(|c| !c.nonholonomic)
+        .count();
     if nc == 0 {
         return match output.independent.first() {
             Some((_, first)) => Err((
@@ -325,7 +328,11 @@ fn independent_speeds(
     pool: &mut Pool,
     output: &Output,
 ) -> Result<Vec<bool>, (Span, String)> {
-    let (name, nv, nc) = (&output.function, model.nv(), model.constraints.len());
+    let (name, nv, nc) = (
+        &output.function,
+        model.nv(),
+        model.acting_constraints().count(),
+    );
     let plain = plain_speeds(model);
     let mut speeds = vec![false; nv];
     for (sym, ident) in &output.independent_speeds {

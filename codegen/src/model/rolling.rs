@@ -14,6 +14,7 @@ use super::algebra::Geometry;
 use super::closure::FrameAxis;
 use super::{FrameId, Vector};
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
+use crate::readable::ReadableForms;
 
 /// A wheel and the plane it rolls on, resolved.
 pub struct Wheel {
@@ -42,13 +43,14 @@ pub struct RollingRows {
 }
 
 /// The rows of `wheel` whose centre is at `center` from a point of the
-/// plane, moving at `velocity` in `N`.
+/// plane, moving at `velocity` in `N`; `scalar_parts` lists the
+/// quaternions' `w` coordinates (see [`at_reference`]).
 pub fn rolling_rows(
     geometry: &Geometry<'_>,
     pool: &mut Pool,
     wheel: &Wheel,
-    center: &Vector,
-    velocity: &Vector,
+    (center, velocity): (&Vector, &Vector),
+    scalar_parts: &[usize],
 ) -> RollingRows {
     let n = Vector::unit(pool, wheel.plane.0, wheel.plane.1);
     let a = Vector::unit(pool, wheel.axle.0, wheel.axle.1);
@@ -56,7 +58,7 @@ pub fn rolling_rows(
     let along_squared = pool.powi(along, 2);
     let one = pool.one();
     let tilt = pool.sub(one, along_squared);
-    let length = pool.func(Func::Sqrt, tilt);
+    let length = tilt_length(pool, tilt, scalar_parts);
     // The height of C: (P − Q)·n − r |n − (n·a) a| − rₜ (u·n = |n − (n·a) a|).
     let height = geometry.dot(pool, center, &n);
     let reach = pool.mul(wheel.radius, length);
@@ -85,6 +87,38 @@ pub fn rolling_rows(
         slip,
         tilt,
     }
+}
+
+/// The most terms the readable form of `1 − (n·a)²` may have when it is
+/// looked at for a square.
+const TILT_TERMS: usize = 64;
+
+/// `|n − (n·a)a| = √tilt`, `tilt = 1 − (n·a)²`. Where the readable form of
+/// `tilt` is the square `e²` of an expression (`1 − sin²θ = cos²θ` for a
+/// disc leaning by `θ`), it is `e`, signed to be positive at the reference
+/// configuration: the contact point is undefined where `e` vanishes, so a
+/// rolling motion from the start keeps its sign, and the contact row of a
+/// wheel whose centre is placed from its contact point (`r cos θ − r cos θ`)
+/// vanishes identically. Otherwise, or where the sign there depends on the
+/// parameters, the square root.
+fn tilt_length(pool: &mut Pool, tilt: ExprId, scalar_parts: &[usize]) -> ExprId {
+    let root = ReadableForms::default()
+        .get(pool, tilt, TILT_TERMS)
+        .and_then(|form| match *pool.node(form) {
+            Node::Pow(base, exponent) if exponent > 0 && exponent % 2 == 0 => {
+                Some(pool.powi(base, exponent / 2))
+            }
+            _ => None,
+        });
+    let signed = root.and_then(|root| {
+        let start = at_reference(pool, root, scalar_parts);
+        match pool.as_number(start)?.to_f64() {
+            x if x > 0.0 => Some(root),
+            x if x < 0.0 => Some(pool.neg(root)),
+            _ => None,
+        }
+    });
+    signed.unwrap_or_else(|| pool.func(Func::Sqrt, tilt))
 }
 
 /// `e` at the reference configuration: every coordinate zero but each

@@ -63,10 +63,11 @@ impl Resolver {
         };
         let height = self.between(center.clone(), through);
         let velocity = self.velocity(center.0, &center.1);
+        let scalar_parts = self.scalar_parts();
         let rows = self.with_geometry(|geometry, pool| {
-            rolling_rows(geometry, pool, &wheel, &height, &velocity)
+            rolling_rows(geometry, pool, &wheel, (&height, &velocity), &scalar_parts)
         });
-        if !self.check_axle_leaves_the_normal(axle, rows.tilt) {
+        if !self.check_axle_leaves_the_normal(axle, rows.tilt, &scalar_parts) {
             return;
         }
         let span = SpanRange::from(name.span());
@@ -76,15 +77,19 @@ impl Resolver {
         }
     }
 
-    /// A row of a rolling contact, unless it vanishes identically (a
-    /// planar model's slip across its plane).
+    /// A row of a rolling contact. One that vanishes identically (the
+    /// contact of a wheel whose centre is placed from its contact point, a
+    /// planar model's slip across its plane) is kept as a zero row, marked
+    /// so, for the rows to stay three.
     fn push_rolling_row(&mut self, span: SpanRange, residual: ExprId, nonholonomic: bool) {
-        if self.pool.is_zero(residual) || !self.check_constrains_something(span, residual) {
+        let vanishes = self.pool.is_zero(residual);
+        if !vanishes && !self.check_constrains_something(span, residual) {
             return;
         }
         self.model.constraints.push(Constraint {
             residual,
             nonholonomic,
+            vanishes,
         });
     }
 
@@ -93,9 +98,13 @@ impl Resolver {
     /// at the start, the reference configuration (every coordinate zero,
     /// each quaternion the identity, `t = 0`) where that can be decided
     /// without the parameters' values. Whether the check passes.
-    fn check_axle_leaves_the_normal(&mut self, axle: &Expr, tilt: ExprId) -> bool {
-        let scalar_parts: Vec<usize> = self.model.balls.iter().map(|b| b.quaternion[3]).collect();
-        let at_start = at_reference(&mut self.pool, tilt, &scalar_parts);
+    fn check_axle_leaves_the_normal(
+        &mut self,
+        axle: &Expr,
+        tilt: ExprId,
+        scalar_parts: &[usize],
+    ) -> bool {
+        let at_start = at_reference(&mut self.pool, tilt, scalar_parts);
         let when = if self.pool.is_zero(tilt) {
             "in every configuration"
         } else if self.pool.is_zero(at_start) {
@@ -112,6 +121,12 @@ impl Resolver {
             ),
         );
         false
+    }
+
+    /// The coordinates of the quaternions' `w` parts (one at the
+    /// reference configuration).
+    fn scalar_parts(&self) -> Vec<usize> {
+        self.model.balls.iter().map(|b| b.quaternion[3]).collect()
     }
 
     /// The plane's normal: a unit vector of a frame that does not turn.

@@ -673,6 +673,7 @@ impl Resolver {
         self.model.constraints.push(Constraint {
             residual,
             nonholonomic,
+            vanishes: false,
         });
     }
 
@@ -750,6 +751,7 @@ impl Resolver {
             self.model.constraints.push(Constraint {
                 residual: row.residual,
                 nonholonomic: false,
+                vanishes: false,
             });
             added += 1;
         }
