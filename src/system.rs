@@ -131,15 +131,6 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
 pub trait ConstrainedSystem<const NQ: usize, const NV: usize, const NU: usize, const NC: usize>:
     MultibodySystem<NQ, NV, NU>
 {
-    /// Whether each row depends on time explicitly (rheonomic: a driven
-    /// coordinate `x == A sin(ω t)`, a platform held at `φ == Ω t`). A start
-    /// at rest is off such a row's velocity form, so integrations without
-    /// stabilisation check it there
-    /// ([`Dynamics::check_start`](crate::integrate::Dynamics::check_start)).
-    ///
-    /// Provided: no row (every constraint scleronomic).
-    const RHEONOMIC: [bool; NC] = [false; NC];
-
     /// Whether each row vanishes identically: its Jacobian, bias, residual
     /// and velocity form are zero in every state (a `rolling` row of a
     /// wheel that cannot leave its plane, kept so that every `rolling`

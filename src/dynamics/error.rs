@@ -86,18 +86,6 @@ pub enum DynamicsError {
         /// `|Aᵢ x − cᵢ|`, the part of the demand that no motion can meet.
         mismatch: f64,
     },
-    /// An integration without stabilisation would start off the
-    /// constraints' velocity form: constraint `row`'s `ψ = A v + ψ₀(t, q)` is
-    /// `velocity`, not zero (see
-    /// [`Dynamics::check_start`](crate::integrate::Dynamics::check_start)).
-    /// Nothing would hold that error: the motion would drift off the
-    /// constraint at that rate, silently.
-    StartOffConstraints {
-        /// The constraint row (declaration order).
-        row: usize,
-        /// Its velocity form at the start.
-        velocity: f64,
-    },
     /// Coordinate projection did not bring the largest constraint residual
     /// `|φᵢ|` below its tolerance within its iteration budget.
     ProjectionNotConverged {
@@ -195,12 +183,6 @@ impl fmt::Display for DynamicsError {
                 f,
                 "constraint rows {row} and {with} contradict each other: row {row} depends on \
                  rows including {with} but demands a value off by {mismatch:.3e}"
-            ),
-            Self::StartOffConstraints { row, velocity } => write!(
-                f,
-                "the start breaks the velocity form of constraint row {row} (ψ = {velocity:.3e}, \
-                 not 0): without stabilisation the motion would drift off it; start on the \
-                 constraints (project_onto_constraints) or integrate with Baumgarte or Projection"
             ),
             Self::ProjectionNotConverged {
                 iterations,

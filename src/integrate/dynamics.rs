@@ -9,12 +9,6 @@ use super::{Failure, State};
 use crate::constrained::{ConstraintSolver, DriftLimits, Stabilisation, project_onto_energy_level};
 use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
 
-/// The largest velocity form `|ψᵢ|` of a start accepted by [`Constrained`]
-/// dynamics without a [`Stabilisation`], relative to `1 + max |vᵢ|`: well
-/// above the rounding of a projected start, well below any speed given by
-/// hand.
-pub const START_VELOCITY_TOLERANCE: f64 = 1e-8;
-
 /// Equations of motion `v̇ = a(t, q, v)`, `q̇ = N(q) v` as the integrators
 /// see them.
 pub trait Dynamics<const NQ: usize, const NV: usize> {
@@ -273,43 +267,6 @@ impl<'a, S, F, const NU: usize, const NC: usize> Constrained<'a, S, F, NU, NC> {
     }
 }
 
-impl<S, F, const NU: usize, const NC: usize> Constrained<'_, S, F, NU, NC> {
-    /// Without a stabilisation, nothing would hold a velocity error of the
-    /// start: `A v̇ = b` keeps `ψ` as it starts, and the coordinates drift
-    /// off `φ = 0` in proportion to time. A start at rest is on the velocity
-    /// form of every scleronomic row but off that of a
-    /// [rheonomic](ConstrainedSystem::RHEONOMIC) one (a pivot driven by
-    /// `x == A sin(ω t)` started at rest runs away at `A ω`): a start whose
-    /// velocity form `ψ` exceeds [`START_VELOCITY_TOLERANCE`] times
-    /// `1 + max |vᵢ|` in a rheonomic row is refused, naming the row. Project
-    /// it first ([`project_onto_constraints`](crate::constrained::ConstraintSolver::project_onto_constraints)),
-    /// or integrate with Baumgarte's terms or projection, which pull it in.
-    /// (A deliberate velocity error in a scleronomic row is kept, as
-    /// [`Stabilisation::None`] documents.)
-    fn check_rheonomic_start<const NQ: usize, const NV: usize>(
-        &self,
-        state: &State<NQ, NV>,
-    ) -> Result<(), DynamicsError>
-    where
-        S: ConstrainedSystem<NQ, NV, NU, NC>,
-    {
-        if self.stabilisation != Stabilisation::None {
-            return Ok(());
-        }
-        let velocity = self.system.constraint_velocity(state.t, &state.q, &state.v);
-        let scale = 1.0 + state.v.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let off = velocity
-            .iter()
-            .enumerate()
-            .filter(|&(row, _)| S::RHEONOMIC[row])
-            .find(|(_, psi)| psi.is_nan() || psi.abs() > START_VELOCITY_TOLERANCE * scale);
-        match off {
-            Some((row, &velocity)) => Err(DynamicsError::StartOffConstraints { row, velocity }),
-            None => Ok(()),
-        }
-    }
-}
-
 impl<S, F, const NQ: usize, const NV: usize, const NU: usize, const NC: usize> Dynamics<NQ, NV>
     for Constrained<'_, S, F, NU, NC>
 where
@@ -386,8 +343,6 @@ where
     /// [`watch`](Self::watch), unless the stabilisation projects (the
     /// first step's end is then projected onto the constraints).
     fn check_start(&self, state: &State<NQ, NV>) -> Result<(), Failure> {
-        self.check_rheonomic_start(state)
-            .map_err(Failure::Dynamics)?;
         match self.projection() {
             Some(_) => Ok(()),
             None => self.watch(state),

@@ -93,9 +93,7 @@ pub use adaptive::{
     adaptive_with_events,
 };
 pub use augmented_lagrangian::{AugmentedLagrangian, augmented_lagrangian};
-pub use dynamics::{
-    Constrained, Dynamics, InputLaw, NoInputs, START_VELOCITY_TOLERANCE, Unconstrained,
-};
+pub use dynamics::{Constrained, Dynamics, InputLaw, NoInputs, Unconstrained};
 pub use gauss::{GaussLegendre, gauss_legendre};
 pub use runge_kutta::{State, rk4, rk4_step};
 pub use sdirk::sdirk;

@@ -108,19 +108,9 @@ pub fn emit(
             let has_check = !check.is_empty();
             items.push(check);
             let emitted = [has_solver, has_check, equations.time_dependent(pool)];
-            let rheonomic = model.constraints.iter().map(|c| {
-                pool.kinds(c.residual)
-                    .intersects(crate::expr::SymKinds::TIME)
-            });
-            let rheonomic: Vec<bool> = rheonomic.collect();
             let vanishing = model.vanishing_rows();
-            let mut traits = emit_trait_impls(
-                name,
-                [nq, nv, nu, nc],
-                emitted,
-                &rheonomic,
-                vanishing.as_deref(),
-            );
+            let mut traits =
+                emit_trait_impls(name, [nq, nv, nu, nc], emitted, vanishing.as_deref());
             if functions.iter().any(|f| f.body == Body::Taylor) {
                 traits.extend(taylor::emit_trait_impl(name, [nq, nv, nu]));
             }
@@ -407,14 +397,12 @@ fn tree_mass_matrix(
 /// `dalembert::accelerations` gives the motion the constraints allow. A
 /// time-dependent system (the third of `emitted`) forwards the traits'
 /// `_at` functions and has no value for the time-free ones (see
-/// [`TraitFunction::undefined`]); `rheonomic` says which constraint rows
-/// depend on time explicitly (`RHEONOMIC`, given when any does). The rows
-/// that vanish identically, if any, are its `VANISHING_ROWS`.
+/// [`TraitFunction::undefined`]). The rows that vanish identically, if
+/// any, are its `VANISHING_ROWS`.
 fn emit_trait_impls(
     name: &Ident,
     sizes: [usize; 4],
     emitted: [bool; 3],
-    rheonomic: &[bool],
     vanishing: Option<&[bool]>,
 ) -> TokenStream {
     let [has_solver, has_check, timed] = emitted;
@@ -517,9 +505,6 @@ fn emit_trait_impls(
     if nc == 0 {
         return system;
     }
-    let rheonomic = rheonomic
-        .contains(&true)
-        .then(|| quote!(const RHEONOMIC: [bool; #nc_lit] = [#(#rheonomic),*];));
     let vanishing = vanishing.map(|rows| {
         quote! {
             const VANISHING_ROWS: #bools = [#(#rows),*];
@@ -537,7 +522,6 @@ fn emit_trait_impls(
         #system
         #allowed
         impl ::dalembert::ConstrainedSystem<#nq, #nv, #nu, #nc_lit> for #name {
-            #rheonomic
             #vanishing
             #jacobian
             #[inline]

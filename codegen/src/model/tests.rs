@@ -388,10 +388,6 @@ fn a_constraint_jacobian_may_depend_on_time() {
         assert!(errors(&source).is_empty(), "{row}");
         let code = crate::generate(&source).expect("derives");
         assert!(code.contains("pub fn constraint_jacobian_at("), "{row}");
-        assert!(
-            code.contains("const RHEONOMIC: [bool; 1] = [true];"),
-            "{row}"
-        );
     }
     assert!(errors(&pendulum("constraint l * sin(theta) == sin(t);")).is_empty());
 }
