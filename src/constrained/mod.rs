@@ -49,6 +49,7 @@ pub use multipliers::{
 };
 pub(crate) use projection::checked;
 pub use projection::{project_onto_constraints, project_onto_energy_level};
+pub(crate) use rank::SchurFactor;
 pub use series::{SeriesSolver, constrained_series};
 pub use sparse::STIFFNESS;
 pub use stabilisation::{Stabilisation, constraint_drift};

@@ -6,10 +6,12 @@
 //! singularity — Euler angles whose first and third axes line up (a top
 //! released upright, a gimbal lock) turn about the same axis there. The
 //! [`NullMotion`] found by a Cholesky factorisation with diagonal pivoting
-//! (rank-revealing, on the stack) names them for
+//! (rank-revealing, on the stack: the one the constraint solvers use for
+//! their Schur complement) names them for
 //! [`DynamicsError::SingularMassMatrix`].
 
 use super::{DynamicsError, RELATIVE_PIVOT_TOLERANCE};
+use crate::constrained::SchurFactor;
 
 /// The most speeds a [`NullMotion`] names: two, the Euler angles that line
 /// up (a dependency among more names its first two), so that the error
@@ -54,21 +56,18 @@ impl NullMotion {
         if N == 0 || !mass.iter().flatten().all(|x| x.is_finite()) {
             return NullMotion::default();
         }
-        let (factor, order, rank) = pivoted_factor(mass);
-        // The first dependent column, and the columns before it solved for:
-        // the rows of `D Lᵀ` above it vanish on `x`.
-        let dependent = rank.min(N - 1);
-        let mut x = [0.0; N];
-        x[dependent] = 1.0;
-        for k in (0..dependent).rev() {
-            let sum: f64 = (k + 1..=dependent).map(|j| factor[k][j] * x[j]).sum();
-            x[k] = -sum / factor[k][k];
-        }
+        let factor = SchurFactor::pivoted(*mass, RANK_TOLERANCE, &[false; N]);
+        // The first dependent column expressed through the columns before
+        // it; with none found (the solvers' stricter test failed, this one
+        // did not), the last pivot's column through the others.
+        let x = match factor.rank() {
+            rank if rank < N => factor.dependency(rank),
+            _ => factor
+                .weakest()
+                .map_or([0.0; N], |(.., dependency)| dependency),
+        };
         let largest = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let mut weights = [0.0; N];
-        for k in 0..N {
-            weights[order[k]] = x[k] / largest;
-        }
+        let weights = x.map(|w| w / largest);
         let mut motion = NullMotion::default();
         let taking_part = (0..N).filter(|&i| weights[i].abs() >= NEGLIGIBLE_WEIGHT);
         for index in taking_part.take(NULL_MOTION_NAMES) {
@@ -83,36 +82,6 @@ impl NullMotion {
         }
         motion
     }
-}
-
-/// `M`'s `L D Lᵀ` with diagonal pivoting, stopped at the first pivot at or
-/// below [`RANK_TOLERANCE`] times the largest diagonal entry: the permuted
-/// matrix whose upper rows `k < rank` hold row `k` of `D Lᵀ`, the order of
-/// the original rows, and the rank.
-fn pivoted_factor<const N: usize>(mass: &[[f64; N]; N]) -> ([[f64; N]; N], [usize; N], usize) {
-    let mut a = *mass;
-    let mut order: [usize; N] = std::array::from_fn(|i| i);
-    let largest = (0..N).fold(0.0_f64, |m, i| m.max(a[i][i]));
-    let tolerance = RANK_TOLERANCE * largest;
-    for k in 0..N {
-        let p = (k..N).fold(k, |best, i| if a[i][i] > a[best][best] { i } else { best });
-        a.swap(k, p);
-        a.iter_mut().for_each(|row| row.swap(k, p));
-        order.swap(k, p);
-        let pivot = a[k][k];
-        // A NaN pivot counts as zero.
-        if pivot.is_nan() || pivot <= tolerance {
-            return (a, order, k);
-        }
-        let row = a[k];
-        for other in a.iter_mut().skip(k + 1) {
-            let l = other[k] / pivot;
-            for (entry, above) in other.iter_mut().zip(&row).skip(k + 1) {
-                *entry -= l * above;
-            }
-        }
-    }
-    (a, order, N)
 }
 
 /// `error` with the [`NullMotion`] of `mass` (rows named by `names`) when
