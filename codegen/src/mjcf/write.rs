@@ -11,8 +11,10 @@ use super::pose::{self, IDENTITY, Quat};
 use super::read::{Body, Joint, JointKind, Model};
 use super::{Options, Problem};
 use crate::model::{is_builtin, is_plain};
-use crate::urdf::inertia::{MassProperties, without_rounding};
-use crate::urdf::write::{Names, axis_field, number, offset, sanitize, scaled, upper_camel_case};
+use crate::urdf::inertia::without_rounding;
+use crate::urdf::write::{
+    Names, axis_field, body_statement, number, offset, sanitize, scaled, upper_camel_case,
+};
 
 /// The suffixes of the names a free joint makes (its point is the bare
 /// name).
@@ -347,27 +349,14 @@ impl Writer<'_> {
 
     /// The body of `b`, if it has mass, fixed in `frame` about `origin`.
     fn mass(&mut self, b: usize, frame: &str, origin: &str) {
-        let MassProperties {
-            mass,
-            center,
-            inertia,
-        } = self.model.bodies[b].mass;
-        let i = without_rounding(&inertia);
-        if mass == 0.0 && i.iter().flatten().all(|&x| x == 0.0) {
+        let mut body = self.model.bodies[b].mass;
+        body.inertia = without_rounding(&body.inertia);
+        if body.mass == 0.0 && body.inertia.iter().flatten().all(|&x| x == 0.0) {
             return;
         }
-        let mut entries = vec![i[0][0], i[1][1], i[2][2]];
-        if [i[0][1], i[1][2], i[2][0]] != [0.0; 3] {
-            entries.extend([i[0][1], i[1][2], i[2][0]]);
-        }
-        let entries: Vec<String> = entries.into_iter().map(number).collect();
         let name = self.names.fresh(&format!("{}_mass", self.body_names[b]));
-        let center = offset(origin, center, frame);
-        self.statement(format!(
-            "body {name} {{ mass: {}, center: {center}, frame: {frame}, inertia: [{}] }};",
-            number(mass),
-            entries.join(", ")
-        ));
+        let center = offset(origin, body.center, frame);
+        self.statement(body_statement(&name, &body, &center, frame));
     }
 
     /// The joints' springs (`½ k (q − springref)²`), dampers (`½ d v²`

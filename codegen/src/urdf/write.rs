@@ -569,17 +569,7 @@ impl Writer<'_> {
             .names
             .fresh(&format!("{}_body", self.robot.links[link].name));
         let center = offset(&origin, total.center, &frame);
-        let i = total.inertia;
-        let mut entries = vec![i[0][0], i[1][1], i[2][2]];
-        if [i[0][1], i[1][2], i[2][0]] != [0.0; 3] {
-            entries.extend([i[0][1], i[1][2], i[2][0]]);
-        }
-        let entries: Vec<String> = entries.into_iter().map(number).collect();
-        self.statement(format!(
-            "body {name} {{ mass: {}, center: {center}, frame: {frame}, inertia: [{}] }};",
-            number(total.mass),
-            entries.join(", ")
-        ));
+        self.statement(body_statement(&name, &total, &center, &frame));
     }
 
     /// The inertia of the body of `link` (with the links `welded` to it),
@@ -702,6 +692,28 @@ fn terms(v: Vec3, frame: &str) -> Vec<(bool, String)> {
 }
 
 /// The point `base` moved by `v` in `frame`'s axes: `P + 0.1 * F.x - F.z`.
+/// The `body` statement of `name` with the mass and central inertia of
+/// `body` (in `frame`'s axes), its center written `center`: the three
+/// principal entries, and the products of inertia where one is not zero.
+pub(crate) fn body_statement(
+    name: &str,
+    body: &MassProperties,
+    center: &str,
+    frame: &str,
+) -> String {
+    let i = body.inertia;
+    let mut entries = vec![i[0][0], i[1][1], i[2][2]];
+    if [i[0][1], i[1][2], i[2][0]] != [0.0; 3] {
+        entries.extend([i[0][1], i[1][2], i[2][0]]);
+    }
+    let entries: Vec<String> = entries.into_iter().map(number).collect();
+    format!(
+        "body {name} {{ mass: {}, center: {center}, frame: {frame}, inertia: [{}] }};",
+        number(body.mass),
+        entries.join(", ")
+    )
+}
+
 pub(crate) fn offset(base: &str, v: Vec3, frame: &str) -> String {
     let mut text = base.to_owned();
     for (negative, term) in terms(v, frame) {
