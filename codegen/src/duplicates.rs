@@ -13,8 +13,8 @@
 
 use std::collections::{HashMap, HashSet};
 
-use crate::cost::{node_operations, operations};
 use crate::expr::{Env, ExprId, Func, Node, Pool, Sym, SymKinds};
+use crate::plan::cost::{node_operations, operations};
 
 /// Nodes of one DAG whose values agree, up to sign, at every state.
 #[derive(Debug)]
@@ -279,7 +279,7 @@ mod tests {
                 let mut requested = crate::outputs::requested(&model, &equations, &mut pool)
                     .unwrap()
                     .functions;
-                crate::optimize::optimize_functions(&mut requested, &mut pool, &mut forms);
+                crate::plan::optimize::optimize_functions(&mut requested, &mut pool, &mut forms);
                 let function: &Function = requested.iter().find(|f| f.name == name).unwrap();
                 function
                     .results

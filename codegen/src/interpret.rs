@@ -150,7 +150,7 @@ impl Interpreter {
         // The same checks as the generator, on the optimised equations; the
         // interpreter evaluates the unoptimised ones.
         let mut optimised = equations.clone();
-        crate::optimize::optimize(&mut optimised, &mut pool, &mut forms);
+        crate::plan::optimize::optimize(&mut optimised, &mut pool, &mut forms);
         crate::check_equations(&model, &pool, &optimised)?;
         if route == Route::Lagrange && !pool.rates_are_speeds() {
             return Err(syn::Error::new(

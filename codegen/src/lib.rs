@@ -17,7 +17,6 @@
 
 mod build;
 mod chain;
-mod cost;
 #[cfg(test)]
 mod duplicates;
 mod emit;
@@ -28,14 +27,15 @@ mod kinematics;
 mod language;
 mod mjcf;
 mod model;
-mod optimize;
 mod outputs;
+mod plan;
 mod random;
 mod readable;
 mod render;
 mod rigid;
 #[cfg(test)]
 mod seeds;
+mod series;
 mod size;
 mod trees;
 mod urdf;
@@ -177,32 +177,8 @@ pub fn function_sizes(source: &str) -> syn::Result<Vec<FunctionSize>> {
         equations,
         mut forms,
     } = derive(lex(source)?)?;
-    let (functions, _) = functions(&model, &equations, &mut pool, &mut forms, Target::Std)?;
-    Ok(size::sizes(&pool, &functions))
-}
-
-/// The functions to emit for `target` (the standard ones, then those the
-/// model's `outputs` ask for), optimised, with the constants asked for.
-fn functions(
-    model: &model::Model,
-    equations: &equations::Equations,
-    pool: &mut expr::Pool,
-    forms: &mut readable::ReadableForms,
-    target: Target,
-) -> syn::Result<(Vec<outputs::Function>, Vec<outputs::NameList>)> {
-    let looped = target == Target::Std;
-    let mut functions = outputs::standard(model, equations, pool, looped);
-    // A looped `M`'s vectors are new expressions, optimised as the outputs are.
-    if let Some(mass) = functions
-        .first_mut()
-        .filter(|f| matches!(f.body, outputs::Body::MassPairs(_)))
-    {
-        optimize::optimize_functions(std::slice::from_mut(mass), pool, forms);
-    }
-    let mut requested = outputs::requested(model, equations, pool)?;
-    optimize::optimize_functions(&mut requested.functions, pool, forms);
-    functions.extend(requested.functions);
-    Ok((functions, requested.constants))
+    let plan = plan::plan(&model, &equations, &mut pool, &mut forms, Target::Std)?;
+    Ok(size::sizes(&pool, &plan.functions))
 }
 
 /// The whole pipeline, from tokens to items; a model too large to compile
@@ -214,20 +190,20 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
         equations,
         mut forms,
     } = derive(input)?;
-    let (functions, constants) = functions(&model, &equations, &mut pool, &mut forms, target)?;
-    size::check_size(&model, &size::sizes(&pool, &functions))?;
+    let mut plan = plan::plan(&model, &equations, &mut pool, &mut forms, target)?;
+    size::check_size(&model, &size::sizes(&pool, &plan.functions))?;
     let mut docs = model.docs.clone();
     if !docs.is_empty() {
         docs.push(String::new());
     }
     let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool, &mut forms);
     docs.extend(equation_lines);
+    plan.plan_taylor(&model, &pool, &equations, target);
     Ok(emit::emit(
         &model,
         &pool,
         &equations,
-        &functions,
-        &constants,
+        &plan,
         &emit::Documentation { docs, text },
         target,
     ))
@@ -253,7 +229,7 @@ fn derive(input: TokenStream) -> syn::Result<Derivation> {
         equations,
         forms,
     } = &mut derivation;
-    optimize::optimize(equations, pool, forms);
+    plan::optimize::optimize(equations, pool, forms);
     check_equations(model, pool, equations)?;
     Ok(derivation)
 }

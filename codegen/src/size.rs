@@ -3,10 +3,10 @@
 //! and memory (or at all: its stack overflows on very long straight-line
 //! bodies), before anything is emitted.
 
-use crate::cost::operations;
 use crate::expr::Pool;
 use crate::model::Model;
 use crate::outputs::Function;
+use crate::plan::cost::operations;
 
 /// The largest estimated operation count of one generated function that a
 /// model may have: `250 000`. Measured with rustc 1.95 in a debug build on

@@ -3,6 +3,7 @@
 //! to a `let` once, in dependency order, and the rest is written inline.
 
 use crate::expr::{ExprId, Func, Node, Number, Pool, Sym};
+use crate::plan::{DECLARED_AHEAD_ABOVE, DECLARED_TOGETHER};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::{BTreeSet, HashMap};
@@ -226,19 +227,6 @@ fn write(
         used,
     }
 }
-
-/// The most temporaries a body binds each with its own `let`. Each `let`
-/// opens a lexical scope nested in the one before, and with full debug
-/// information rustc recurses once per scope: a body of a few thousand
-/// (the `inverse_dynamics_jacobian` of a 7-joint arm on a free flyer)
-/// overflowed its stack in a default `dev` build. Above it, the
-/// temporaries are declared ahead, [`DECLARED_TOGETHER`] to a `let`, and
-/// each is assigned where it would have been bound (the same code once
-/// optimised).
-const DECLARED_AHEAD_ABOVE: usize = 1000;
-
-/// How many temporaries one `let` declares ahead.
-const DECLARED_TOGETHER: usize = 64;
 
 /// `let (x1, x2, …): (f64, f64, …);` declaring `names` ahead of their
 /// assignments, [`DECLARED_TOGETHER`] to a statement.

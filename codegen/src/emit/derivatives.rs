@@ -21,6 +21,7 @@ use crate::equations::{Equations, LinkState, subtree_ends};
 use crate::expr::{ExprId, Func, Node, Pool, Sym};
 use crate::model::Model;
 use crate::outputs::{Function, PairedTree};
+use crate::plan::solve::Factorisation;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -163,15 +164,15 @@ fn row_values(outputs: &[TokenStream], rows: usize, count: usize) -> TokenStream
 /// `L D Lᵀ` factorisation (with `accelerations`' checks and errors), then
 /// the mutable rows `rows` of `∂τ/∂x` (`[f64; columns.len()]` each) by a
 /// straight-line body that takes the sines and cosines computed with `M`
-/// and `f`. Also the fill pattern and the order of elimination.
+/// and `f`.
 fn unrolled_rows(
     model: &Model,
     pool: &Pool,
-    equations: &Equations,
+    (equations, factorisation): (&Equations, &Factorisation),
     names: &Names,
     partials: &Partials<'_>,
     rows: &[Ident],
-) -> Option<(TokenStream, Vec<Vec<bool>>, Vec<usize>)> {
+) -> TokenStream {
     let columns = partials.columns;
     let angles = angle_functions(pool, &partials.blocks.concat());
     let given = Given {
@@ -184,10 +185,8 @@ fn unrolled_rows(
         substitutions,
         solution,
         unsolved,
-        pattern,
-        order,
-    } = factorised(model, pool, equations, names, given)?;
-    let roots = partials.rows(&order);
+    } = factorised(model, pool, equations, factorisation, names, given);
+    let roots = partials.rows(&factorisation.order);
     let body = match given {
         Some(given) => straight_line_given(pool, names, &roots, given),
         None => straight_line(pool, names, &roots),
@@ -197,7 +196,7 @@ fn unrolled_rows(
         Literal::usize_unsuffixed(rows.len()),
         row_values(&body.outputs, rows.len(), columns.len()),
     );
-    let code = quote! {
+    quote! {
         #prelude
         let qdd = &{
             #substitutions
@@ -210,8 +209,7 @@ fn unrolled_rows(
             #statements
             #values
         };
-    };
-    Some((code, pattern, order))
+    }
 }
 
 /// The solve of a large tree: one straight-line body computing the rest of
@@ -220,35 +218,33 @@ fn unrolled_rows(
 /// [`PairedTree`]); the runtime's recursion at `q̈ = 0` for `M` and the
 /// inertia and gravity terms of `f`; `q̈` through the `L D Lᵀ` factorisation
 /// (with `accelerations`' checks and errors); then the recursion's second
-/// pass at `q̈` and the pairs added to the rows. Also the fill pattern and
-/// the order of elimination.
+/// pass at `q̈` and the pairs added to the rows.
 fn looped_rows(
     model: &Model,
     pool: &Pool,
-    equations: &Equations,
+    (equations, factorisation): (&Equations, &Factorisation),
     names: &Names,
     partials: &Partials<'_>,
     (function, paired): (&Function, &PairedTree),
     rows: &[Ident],
-) -> Option<(TokenStream, Vec<Vec<bool>>, Vec<usize>)> {
+) -> TokenStream {
     let equations_or = format_ident!("equations_or");
-    let elimination = elimination(model, pool, equations, Some(&equations_or))?;
+    let elimination = elimination(model, pool, equations, factorisation, Some(&equations_or));
     let deferred = deferred_check(&equations_or, &elimination.bound());
     let Elimination {
         entries,
         factor,
         substitutions,
         right_hand_side,
-        pattern,
-        order,
         ..
     } = elimination;
+    let order = &factorisation.order;
     let rest: Vec<ExprId> = function.results[3..]
         .iter()
         .flat_map(|v| v.expressions.iter().copied())
         .collect();
     let columns = partials.columns;
-    let roots = [partials.rows(&order), rest].concat();
+    let roots = [partials.rows(order), rest].concat();
     let body = straight_line(pool, names, &roots);
     let (nv, entry_count) = (model.nv(), rows.len() * columns.len());
     let values = row_values(&body.outputs, rows.len(), columns.len());
@@ -281,8 +277,8 @@ fn looped_rows(
         quote!(let #name = -(bias[#r] + residual[#k]);)
     });
     let solved = (0..nv).map(|i| format_ident!("x{}", i));
-    let (check, table) = (state_check(), tree_table(paired, &order, columns));
-    let code = quote! {
+    let (check, table) = (state_check(), tree_table(paired, order, columns));
+    quote! {
         #check
         let ([#(mut #rows),*], states, gravity, residual): (
             [[f64; #count]; #n],
@@ -311,13 +307,13 @@ fn looped_rows(
         let mut vectors = [[[0.0; 6]; 7]; #l];
         tree.link_vectors(&TREE, &accelerations, &mut vectors);
         ::dalembert::dynamics::add_tree_pairs([#(&mut #rows),*], &vectors, &TREE);
-    };
-    Some((code, pattern, order))
+    }
 }
 
 /// `pub fn accelerations_jacobian(..)` from `function`, whose results are
-/// `∂τ/∂q`, `∂τ/∂v`, `∂τ/∂u`; nothing for a system with constraints
-/// (which the model rejects). The columns that are not structural zeros
+/// `∂τ/∂q`, `∂τ/∂v`, `∂τ/∂u`, through the plan's `factorisation` of `M`;
+/// nothing without one (a system with constraints, which the model
+/// rejects, or without coordinates). The columns that are not structural zeros
 /// are solved together: the rows of `∂τ/∂x` are arrays, substituted in
 /// place through `L D Lᵀ` one row operation at a time. With `paired`, the
 /// results are the rest of `∂τ/∂q` and `∂τ/∂v`, `∂τ/∂u`, the links' states,
@@ -330,7 +326,11 @@ pub fn emit_accelerations_jacobian(
     names: &Names,
     function: &Function,
     paired: Option<&PairedTree>,
+    factorisation: Option<&Factorisation>,
 ) -> TokenStream {
+    let Some(factorisation) = factorisation else {
+        return TokenStream::new();
+    };
     let (nv, nu) = (model.nv(), model.inputs.len());
     let widths = [nv, nv, nu];
     let blocks: [&[ExprId]; 3] = [0, 1, 2].map(|k| function.results[k].expressions.as_slice());
@@ -341,22 +341,21 @@ pub fn emit_accelerations_jacobian(
         widths,
         columns: &columns,
     };
-    let solved = match paired {
-        None => unrolled_rows(model, pool, equations, names, &partials, &rows),
+    let planned = (equations, factorisation);
+    let rows_of_partials = match paired {
+        None => unrolled_rows(model, pool, planned, names, &partials, &rows),
         Some(paired) => looped_rows(
             model,
             pool,
-            equations,
+            planned,
             names,
             &partials,
             (function, paired),
             &rows,
         ),
     };
-    let Some((rows_of_partials, pattern, order)) = solved else {
-        return TokenStream::new();
-    };
-    let solve = negated_row_substitutions(&pattern, &rows);
+    let Factorisation { order, pattern } = factorisation;
+    let solve = negated_row_substitutions(pattern, &rows);
     // `∂v̇ᵢ/∂x_j`, by the speed `i`: `dq{i}_{j}`, `dv{i}_{j}`, `du{i}_{j}`.
     let entry = |block: usize, i: usize, j: usize| {
         format_ident!("{}{}_{}", ["dq", "dv", "du"][block], i, j)

@@ -1,5 +1,7 @@
-//! Emission: the derived equations as Rust items — one public struct of
-//! parameters, its inherent functions (docs/architecture.md §4) and the runtime traits.
+//! Emission: the planned functions as Rust items — one public struct of
+//! parameters, its inherent functions (docs/architecture.md §4) and the
+//! runtime traits. Every choice of route is the plan's (`crate::plan`);
+//! emission only writes code from it.
 //! Emitted code names everything by absolute path, so user items called
 //! `Result` or `f64` cannot change its meaning. For `#![no_std]` crates
 //! ([`Target::NoStd`]) the elementary functions go through `libm` and the
@@ -15,6 +17,7 @@ use crate::equations::Equations;
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
 use crate::outputs::{Argument, Body, Function, NameList, Shape, SpeedTree};
+use crate::plan::Plan;
 use body::{Names, straight_line};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -44,17 +47,18 @@ pub fn emit(
     model: &Model,
     pool: &Pool,
     equations: &Equations,
-    functions: &[Function],
-    constants_of_outputs: &[NameList],
+    plan: &Plan,
     documentation: &Documentation,
     target: Target,
 ) -> TokenStream {
     let names = names(model, target);
+    let factorisation = plan.factorisation.as_ref();
     let name = &model.name;
     let (nq, nv) = (model.nq(), model.nv());
     let nu = model.inputs.len();
     let nc = model.constraints.len();
-    let mut items: Vec<TokenStream> = functions
+    let mut items: Vec<TokenStream> = plan
+        .functions
         .iter()
         .map(|function| match (&function.body, target) {
             (Body::Explicit | Body::MassPairs(_), _) => {
@@ -70,6 +74,7 @@ pub fn emit(
                     &names,
                     function,
                     paired.as_ref(),
+                    factorisation,
                 )
             }
             (Body::Linearize, Target::Std) => {
@@ -81,15 +86,22 @@ pub fn emit(
             (Body::ConstrainedAccelerationsJacobian, Target::Std) => {
                 derivatives::emit_constrained_accelerations_jacobian(model, pool, &names, function)
             }
-            (Body::Taylor, Target::Std) => {
-                taylor::emit_taylor(model, pool, equations, &names, function)
-            }
+            (Body::Taylor, Target::Std) => match &plan.taylor {
+                Some(program) => taylor::emit_taylor(
+                    (model, pool, equations),
+                    &names,
+                    function,
+                    program,
+                    factorisation,
+                ),
+                None => TokenStream::new(),
+            },
         })
         .collect();
     items.push(configuration::emit_configuration(model, pool, &names));
     let strukt = emit_struct(model, &documentation.docs);
     let mut constants = emit_constants(model, pool, &documentation.text);
-    constants.extend(constants_of_outputs.iter().map(emit_name_list));
+    constants.extend(plan.constants.iter().map(emit_name_list));
     if equations.time_dependent(pool) {
         constants.extend(quote! {
             /// Time `t` enters the mass matrix, the energies or the
@@ -101,7 +113,7 @@ pub fn emit(
     }
     let traits = match target {
         Target::Std => {
-            let solver = solve::emit_accelerations(model, pool, equations, &names);
+            let solver = solve::emit_accelerations(model, pool, equations, &names, plan);
             let has_solver = !solver.is_empty();
             items.push(solver);
             let check = configuration::emit_rate_check(model, pool, &names);
@@ -111,7 +123,7 @@ pub fn emit(
             let vanishing = model.vanishing_rows();
             let mut traits =
                 emit_trait_impls(name, [nq, nv, nu, nc], emitted, vanishing.as_deref());
-            if functions.iter().any(|f| f.body == Body::Taylor) {
+            if plan.functions.iter().any(|f| f.body == Body::Taylor) {
                 traits.extend(taylor::emit_trait_impl(name, [nq, nv, nu]));
             }
             traits

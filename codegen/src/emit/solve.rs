@@ -1,76 +1,57 @@
 //! The specialised forward dynamics of an unconstrained system: an
-//! `accelerations` method solving `M q̈ = f`, by whichever of two routes
-//! costs fewer operations for the system:
-//!
-//! * a square-root-free Cholesky factorisation `M = L D Lᵀ` unrolled for
-//!   the system's size, which skips every entry of `L` that the structural
-//!   zeros of `M` make zero: `O(n³)` for a chain, and cheapest for few
-//!   coordinates. The speeds are eliminated in their order or in the
-//!   reverse, whichever fills in less: for a tree (parents before
-//!   children) the reverse eliminates every child before its parent, which
-//!   fills in nothing (Featherstone's `Lᵀ D L` of branch-induced sparsity),
-//!   where a floating base eliminated first would fill in every block;
-//! * for kinematic trees, the articulated-body recursion derived with the
-//!   equations (`O(n)`, see `equations::articulated`), which never forms
-//!   `M` and wins for long chains.
+//! `accelerations` method solving `M q̈ = f` by the route the plan chose
+//! (`plan::solve`): the square-root-free Cholesky factorisation
+//! `M = L D Lᵀ` unrolled for the system's size in the planned order of
+//! elimination, skipping every entry of `L` that the structural zeros of
+//! `M` make zero, or the articulated-body recursion derived with the
+//! equations (see `equations::articulated`), which never forms `M`.
 //!
 //! Both have the same checks and errors as the runtime's
 //! `dalembert::accelerations` (the pivots `Dⱼ` are the `Lⱼⱼ²` of `L Lᵀ`).
 
 use super::body::{Angles, Given, Names, straight_line, straight_line_taking};
-use crate::cost::operations;
 use crate::equations::{Articulated, Equations};
 use crate::expr::{ExprId, Pool};
 use crate::model::Model;
+use crate::plan::Plan;
+use crate::plan::solve::{Accelerations, Factorisation};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
-/// The fewest coordinates for which the recursion may be chosen.
-const MIN_ARTICULATED: usize = 3;
-
-/// The recursion's operations, charged in percent of the factorisation's:
-/// its sweeps run one link after another, where `M`'s entries are
-/// independent of each other, and at 0.96 of the factorisation's count the
-/// spatial chains of 12 ran 1.13–1.17 times as long (BENCHMARKS.md,
-/// "The recursion's operations cost more").
-const ARTICULATED_PERCENT: usize = 120;
-
-/// `pub fn accelerations(..)`, for systems without constraints.
+/// `pub fn accelerations(..)`, for systems without constraints, by the
+/// plan's route; nothing where the plan has no `accelerations`.
 pub fn emit_accelerations(
     model: &Model,
     pool: &Pool,
     equations: &Equations,
     names: &Names,
+    plan: &Plan,
 ) -> TokenStream {
-    let Some(factorised) = factorised(model, pool, equations, names, None) else {
-        return TokenStream::new();
-    };
     let nv = model.nv();
-    let (doc, body, unsolved) = match &equations.articulated {
-        Some(articulated)
-            if articulated_is_cheaper(model, pool, equations, articulated, &factorised.pattern) =>
-        {
-            (
-                [
-                    " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by the",
-                    " articulated-body recursion over the kinematic tree (`M` is never",
-                    " formed). Same checks and errors as `dalembert::accelerations`: a",
-                    " non-finite state, equation or result, or a pivot `Sᵀ Iᴬ S` not",
-                    " above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times the",
-                    " largest pivot, is an error.",
-                ],
-                articulated_body(model, pool, equations, articulated, names),
-                quote!(::dalembert::DynamicsError::NonFiniteAccelerations),
-            )
-        }
-        _ => {
+    let (doc, body, unsolved) = match (
+        plan.accelerations,
+        &equations.articulated,
+        &plan.factorisation,
+    ) {
+        (Some(Accelerations::Articulated), Some(articulated), _) => (
+            [
+                " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by the",
+                " articulated-body recursion over the kinematic tree (`M` is never",
+                " formed). Same checks and errors as `dalembert::accelerations`: a",
+                " non-finite state, equation or result, or a pivot `Sᵀ Iᴬ S` not",
+                " above `dalembert::dynamics::RELATIVE_PIVOT_TOLERANCE` times the",
+                " largest pivot, is an error.",
+            ],
+            articulated_body(model, pool, equations, articulated, names),
+            quote!(::dalembert::DynamicsError::NonFiniteAccelerations),
+        ),
+        (Some(_), _, Some(factorisation)) => {
             let Factorised {
                 prelude,
                 substitutions,
                 solution,
                 unsolved,
-                ..
-            } = &factorised;
+            } = factorised(model, pool, equations, factorisation, names, None);
             (
                 [
                     " The accelerations `q̈` solving `M(q) q̈ = f(t, q, q̇, u)`, by a",
@@ -81,9 +62,10 @@ pub fn emit_accelerations(
                     " times the largest diagonal entry of `M`, is an error.",
                 ],
                 quote!(#prelude #substitutions let qdd = [#(#solution),*];),
-                unsolved.clone(),
+                unsolved,
             )
         }
+        _ => return TokenStream::new(),
     };
     let (n_lit, nu) = (index(nv), index(model.inputs.len()));
     let coordinates = index(model.nq());
@@ -134,11 +116,6 @@ pub struct Factorised {
     /// The error for a solution that is not finite: `NonFiniteEquations`
     /// if `M` or `f` is not finite, else `NonFiniteAccelerations`.
     pub unsolved: TokenStream,
-    /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero, in the
-    /// order of elimination.
-    pub pattern: Vec<Vec<bool>>,
-    /// The speeds in the order of elimination.
-    pub order: Vec<usize>,
 }
 
 /// The order in which the factorisation eliminates the speeds:
@@ -148,15 +125,6 @@ struct Order {
 }
 
 impl Order {
-    /// The speeds in their order, or reversed when `reversed`.
-    fn new(n: usize, reversed: bool) -> Order {
-        let speeds = match reversed {
-            true => (0..n).rev().collect(),
-            false => (0..n).collect(),
-        };
-        Order { speeds }
-    }
-
     /// The name of `M`'s entry at rows `i` and `j` of the elimination
     /// order: `m{a}_{b}` with `a ≥ b` the speeds' indices.
     fn mass(&self, i: usize, j: usize) -> Ident {
@@ -181,11 +149,6 @@ pub struct Elimination {
     pub right_hand_side: Vec<Ident>,
     /// The names `x{i}` of the solution.
     pub solution: Vec<Ident>,
-    /// `pattern[i][j]` (`j ≤ i`): whether `Lᵢⱼ` can be nonzero, in the
-    /// order of elimination.
-    pub pattern: Vec<Vec<bool>>,
-    /// The speeds in the order of elimination.
-    pub order: Vec<usize>,
 }
 
 impl Elimination {
@@ -200,32 +163,25 @@ impl Elimination {
     }
 }
 
-/// The elimination of `M x = f` that fills in less, in the speeds' order
-/// or the reverse; `None` for a system with constraints or no coordinates.
-/// A pivot that fails returns `SingularMassMatrix`, passed through the
-/// closure `checked` if any (`Err(checked(error))`).
+/// The planned elimination of `M x = f` written out. A pivot that fails
+/// returns `SingularMassMatrix`, passed through the closure `checked` if
+/// any (`Err(checked(error))`).
 pub fn elimination(
     model: &Model,
     pool: &Pool,
     equations: &Equations,
+    factorisation: &Factorisation,
     checked: Option<&Ident>,
-) -> Option<Elimination> {
+) -> Elimination {
     let nq = model.nv();
-    if !model.constraints.is_empty() || nq == 0 {
-        return None;
-    }
-    let (order, pattern) = [false, true]
-        .map(|reversed| {
-            let order = Order::new(nq, reversed);
-            let pattern = fill_pattern(model, pool, equations, &order);
-            (order, pattern)
-        })
-        .into_iter()
-        .min_by_key(|(_, pattern)| factorisation_operations(pattern))?;
+    let Factorisation { order, pattern } = factorisation;
+    let order = Order {
+        speeds: order.clone(),
+    };
     let mass_at_state = mass_at_state(model, pool, equations);
-    let factor = factorisation(model, &pattern, &order, checked, &mass_at_state);
-    let forward = forward_substitution(&pattern, &order);
-    let backward = backward_substitution(&pattern);
+    let factor = factorisation_code(model, pattern, &order, checked, &mass_at_state);
+    let forward = forward_substitution(pattern, &order);
+    let backward = backward_substitution(pattern);
     let mut solution: Vec<Ident> = vec![format_ident!("x0"); nq];
     for (i, &speed) in order.speeds.iter().enumerate() {
         solution[speed] = format_ident!("x{}", i);
@@ -247,7 +203,7 @@ pub fn elimination(
         .flat_map(|i| (0..=i).map(move |j| (i, j)))
         .filter(|&(i, j)| read[i][j])
         .collect();
-    Some(Elimination {
+    Elimination {
         entries,
         factor: quote! {
             let tolerance = ::dalembert::dynamics::pivot_tolerance([#(#diagonal),*]);
@@ -256,33 +212,29 @@ pub fn elimination(
         substitutions: quote!(#forward #backward),
         right_hand_side: (0..nq).map(|i| format_ident!("f{}", i)).collect(),
         solution,
-        pattern,
-        order: order.speeds,
-    })
+    }
 }
 
-/// The factorisation and substitutions of `M x = f`; `None` for a system
-/// with constraints or no coordinates. The body computing `M` and `f` also
-/// computes the values of `also`, if any, into its array, for a later body
-/// to take.
+/// The planned factorisation and substitutions of `M x = f`. The body
+/// computing `M` and `f` also computes the values of `also`, if any, into
+/// its array, for a later body to take.
 pub fn factorised(
     model: &Model,
     pool: &Pool,
     equations: &Equations,
+    factorisation: &Factorisation,
     names: &Names,
     also: Option<&Given<'_>>,
-) -> Option<Factorised> {
+) -> Factorised {
     // The closure that the error paths call (see [`deferred_check`]).
     let equations_or = format_ident!("equations_or");
-    let elimination = elimination(model, pool, equations, Some(&equations_or))?;
+    let elimination = elimination(model, pool, equations, factorisation, Some(&equations_or));
     let bound = elimination.bound();
     let Elimination {
         entries,
         factor,
         substitutions,
         solution,
-        pattern,
-        order,
         ..
     } = elimination;
     // `M`'s entries the factorisation reads and `f`, computed together so
@@ -320,16 +272,14 @@ pub fn factorised(
         #deferred
         #factor
     };
-    Some(Factorised {
+    Factorised {
         prelude,
         substitutions,
         solution,
         unsolved: quote!(#equations_or(
             ::dalembert::DynamicsError::NonFiniteAccelerations
         )),
-        pattern,
-        order,
-    })
+    }
 }
 
 /// Binds the closure `equations_or(error)`: `NonFiniteEquations` if one of
@@ -407,77 +357,6 @@ fn pivot_names(model: &Model) -> TokenStream {
     }
 }
 
-/// Whether the recursion costs fewer operations, charged at
-/// [`ARTICULATED_PERCENT`], than forming `M` and `f` (together, sharing
-/// their subexpressions) and factorising. Tiny systems
-/// keep the factorisation: with one or two coordinates it measured faster
-/// at any operation count.
-fn articulated_is_cheaper(
-    model: &Model,
-    pool: &Pool,
-    equations: &Equations,
-    articulated: &Articulated,
-    pattern: &[Vec<bool>],
-) -> bool {
-    let mass_and_forcing: Vec<ExprId> = equations
-        .mass_matrix
-        .iter()
-        .flatten()
-        .chain(&equations.forcing)
-        .copied()
-        .collect();
-    let factorised = operations(pool, &mass_and_forcing) + factorisation_operations(pattern);
-    let charged = operations(pool, &articulated.roots()) * ARTICULATED_PERCENT;
-    model.nq() >= MIN_ARTICULATED && charged < factorised * 100
-}
-
-/// Multiplications, subtractions and divisions of the unrolled `L D Lᵀ`
-/// solve with fill pattern `pattern`.
-fn factorisation_operations(pattern: &[Vec<bool>]) -> usize {
-    let nq = pattern.len();
-    let shared = |i: usize, j: usize| (0..j).filter(|&k| pattern[i][k] && pattern[j][k]).count();
-    (0..nq)
-        .map(|j| {
-            // Lᵢⱼ Dⱼ, then Lᵢⱼ, and its share of both substitutions.
-            let column: usize = (j + 1..nq)
-                .filter(|&i| pattern[i][j])
-                .map(|i| 2 * shared(i, j) + 5)
-                .sum();
-            // The pivot, its reciprocal, and the column.
-            2 * shared(j, j) + 2 + column
-        })
-        .sum()
-}
-
-/// `pattern[i][j]` (`j ≤ i`, rows of the elimination `order`): whether
-/// `Lᵢⱼ` can be nonzero — `M`'s entry is not structurally zero, or fill-in
-/// through an earlier column.
-fn fill_pattern(
-    model: &Model,
-    pool: &Pool,
-    equations: &Equations,
-    order: &Order,
-) -> Vec<Vec<bool>> {
-    let nq = model.nv();
-    let mut pattern: Vec<Vec<bool>> = (0..nq)
-        .map(|i| {
-            (0..=i)
-                .map(|j| {
-                    let entry = equations.mass_matrix[order.speeds[i]][order.speeds[j]];
-                    !pool.is_zero(entry)
-                })
-                .collect()
-        })
-        .collect();
-    for j in 0..nq {
-        for i in j + 1..nq {
-            let fill = (0..j).any(|k| pattern[i][k] && pattern[j][k]);
-            pattern[i][j] |= fill;
-        }
-    }
-    pattern
-}
-
 /// `start − Σ a·b` over `pairs`.
 fn minus_products(
     start: TokenStream,
@@ -514,7 +393,7 @@ fn unscaled(i: usize, j: usize) -> Ident {
 /// the pivot `Dⱼ` and its test, its reciprocal, then `Lᵢⱼ`. A failed
 /// pivot's error goes through the closure `checked`, if any, with the
 /// speeds that move no mass there (see [`mass_at_state`]).
-fn factorisation(
+fn factorisation_code(
     model: &Model,
     pattern: &[Vec<bool>],
     order: &Order,

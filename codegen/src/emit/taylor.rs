@@ -1,24 +1,20 @@
 //! `taylor_coefficients` (`outputs taylor;`): the Taylor coefficients of
-//! the motion through a state, to any order.
+//! the motion through a state, to any order, written from the plan's
+//! program on series (`crate::series`, `plan::Taylor`).
 //!
-//! The expression DAG of `M` and `f` is lowered to a program on series
-//! (`[f64; K]`, one per node that moves: constants stay scalars): a sum is a
-//! linear combination, a product a Cauchy product, a division a quotient,
-//! `x^n` products of squares (a reciprocal for `n < 0`), and each elementary
-//! function its recurrence (`sin` and `cos` of one argument as one pair).
-//! Every operation calls the runtime's recurrence (`dalembert::series`),
-//! which reads and writes the series without indexing. Order `k` of every
-//! node is computed from the lower orders, then order `k` of the
-//! accelerations from `M₀ q̈ₖ = fₖ − Σⱼ₌₁ᵏ Mⱼ q̈ₖ₋ⱼ` with the one `L D Lᵀ`
-//! factorisation of `M₀` (only the entries of `M` that move contribute to
-//! the sum), and order `k + 1` of the speeds and coordinates by
-//! integration. The work of one order is `advance`, a method of a local
-//! struct (`Series`) that borrows the series, always inlined and called once
-//! per order up to [`UNROLLED_ORDERS`] with the order a literal, so that
-//! every recurrence's sum has a compile-time length and unrolls; higher
-//! orders run in a loop. The series stay local arrays, one each, which the
-//! struct only borrows: owned by one struct, they measured twice as slow
-//! (the sums of the inlined copies no longer vectorised), and so did one
+//! Order `k` of every series is computed from the lower orders by the
+//! runtime's recurrences (`dalembert::series`), which read and write the
+//! series without indexing; then order `k` of the accelerations from
+//! `M₀ q̈ₖ = fₖ − Σⱼ₌₁ᵏ Mⱼ q̈ₖ₋ⱼ` with the one `L D Lᵀ` factorisation of
+//! `M₀` (only the entries of `M` that move contribute to the sum), and
+//! order `k + 1` of the speeds and coordinates by integration. The work of
+//! one order is `advance`, a method of a local struct (`Series`) that
+//! borrows the series, always inlined and called once per order up to the
+//! plan's unrolled orders with the order a literal, so that every
+//! recurrence's sum has a compile-time length and unrolls; higher orders
+//! run in a loop. The series stay local arrays, one each, which the struct
+//! only borrows: owned by one struct, they measured twice as slow (the
+//! sums of the inlined copies no longer vectorised), and so did one
 //! out-of-line function per order.
 
 use std::collections::HashMap;
@@ -27,415 +23,14 @@ use super::body::{Names, number, straight_line};
 use super::solve::{Elimination, elimination, mass, state_check};
 use super::{allowed_lints, array};
 use crate::equations::Equations;
-use crate::expr::{ExprId, Func, Node, Pool, Sym, SymKinds};
+use crate::expr::{ExprId, Node, Pool};
 use crate::model::Model;
 use crate::outputs::Function;
-use crate::readable::ReadableForms;
+use crate::plan::Taylor;
+use crate::plan::solve::Factorisation;
+use crate::series::{Lowered, Operand, Operation, Slot};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
-
-/// Most monomials an entry of `M` or `f` may expand to for its angle sums
-/// to be recombined (`sin a cos b − cos a sin b = sin(a − b)`: one
-/// `sin_cos` recurrence of the difference instead of four Cauchy products
-/// and two sums); a larger entry is lowered as derived ([`lowered`]).
-const RECOMBINATION_BUDGET: usize = 200;
-
-/// The orders emitted one by one, each with its own copy of the
-/// recurrences (a constant order, so sums of compile-time length); higher
-/// orders run in a loop. The runtime's Taylor integrator uses up to 31
-/// (`dalembert::integrate::taylor::MAX_ORDER`).
-const UNROLLED_ORDERS: usize = 31;
-
-/// The index of one series of the program.
-type Slot = usize;
-
-/// How the coefficient of order `k` of a series is computed.
-enum Operation {
-    /// Set by the recursion itself: a coordinate, a speed, an acceleration
-    /// (`start` and `integral`), the time.
-    State,
-    /// Computed with another series' operation: the cosine of a sine, the
-    /// `1 + tan²` of a tangent.
-    Partner,
-    /// `constant + Σ wᵢ xᵢ` (constant weights).
-    Linear {
-        constant: ExprId,
-        terms: Vec<(ExprId, Slot)>,
-    },
-    /// A function of one or two series: the runtime's recurrence of that
-    /// name, called as `name(&mut out, [&mut partner,] &operands.., k)`.
-    Call {
-        name: &'static str,
-        partner: Option<Slot>,
-        operands: Vec<Slot>,
-    },
-}
-
-/// What an expression is in the program: a constant of the step, or a
-/// series.
-#[derive(Clone, Copy)]
-enum Operand {
-    Constant(ExprId),
-    Series(Slot),
-}
-
-/// The program of one system: its series and how each is computed.
-struct Program {
-    pool: Pool,
-    operations: Vec<Operation>,
-    nodes: HashMap<ExprId, Slot>,
-    calls: HashMap<(&'static str, Vec<Slot>), Slot>,
-    coordinates: Vec<Slot>,
-    speeds: Vec<Slot>,
-    accelerations: Vec<Slot>,
-    multipliers: Vec<Slot>,
-    time: Option<Slot>,
-}
-
-/// The symbols whose series move within a step (inputs are held).
-const MOVING: SymKinds = SymKinds::COORD.union(SymKinds::SPEED).union(SymKinds::TIME);
-
-impl Program {
-    /// The series of the state: `q`, `v` and `v̇`, then the multipliers
-    /// `λ` of `sizes[2]` constraints.
-    fn new(pool: Pool, sizes: [usize; 3]) -> Self {
-        let [nq, nv, nc] = sizes;
-        let mut program = Program {
-            pool,
-            operations: Vec::new(),
-            nodes: HashMap::new(),
-            calls: HashMap::new(),
-            coordinates: Vec::new(),
-            speeds: Vec::new(),
-            accelerations: Vec::new(),
-            multipliers: Vec::new(),
-            time: None,
-        };
-        program.coordinates = program.states(nq);
-        program.speeds = program.states(nv);
-        program.accelerations = program.states(nv);
-        program.multipliers = program.states(nc);
-        program
-    }
-
-    /// `n` series set by the recursion itself.
-    fn states(&mut self, n: usize) -> Vec<Slot> {
-        (0..n).map(|_| self.push(Operation::State)).collect()
-    }
-
-    fn push(&mut self, operation: Operation) -> Slot {
-        self.operations.push(operation);
-        self.operations.len() - 1
-    }
-
-    /// The operand computing `e`, its series lowered (once) if it moves.
-    fn lower(&mut self, e: ExprId) -> Operand {
-        if !self.pool.kinds(e).intersects(MOVING) {
-            return Operand::Constant(e);
-        }
-        if let Some(&slot) = self.nodes.get(&e) {
-            return Operand::Series(slot);
-        }
-        let slot = match self.pool.node(e).clone() {
-            Node::Sym(Sym::Coord(i)) => self.coordinates[i as usize],
-            Node::Sym(Sym::Speed(i)) => self.speeds[i as usize],
-            Node::Sym(_) => self.time_slot(),
-            Node::Add(terms) => self.sum(&terms),
-            Node::Mul(factors) => self.scaled_product(&factors),
-            Node::Pow(..) => self.product(&[e]),
-            Node::Func(function, argument) => self.function(function, argument),
-            Node::Number(_) => return Operand::Constant(e),
-        };
-        self.nodes.insert(e, slot);
-        Operand::Series(slot)
-    }
-
-    /// The operands of `entries`, in order.
-    fn lower_all(&mut self, entries: &[ExprId]) -> Vec<Operand> {
-        entries.iter().map(|&e| self.lower(e)).collect()
-    }
-
-    /// The operands of a matrix's rows.
-    fn lower_rows(&mut self, rows: &[Vec<ExprId>]) -> Vec<Vec<Operand>> {
-        rows.iter().map(|row| self.lower_all(row)).collect()
-    }
-
-    /// The series of `e` (constant if `e` does not move).
-    fn series(&mut self, e: ExprId) -> Slot {
-        match self.lower(e) {
-            Operand::Series(slot) => slot,
-            Operand::Constant(c) => self.constant_series(c),
-        }
-    }
-
-    /// The series of a constant, `[c, 0, 0, …]`.
-    fn constant_series(&mut self, constant: ExprId) -> Slot {
-        self.push(Operation::Linear {
-            constant,
-            terms: Vec::new(),
-        })
-    }
-
-    fn time_slot(&mut self) -> Slot {
-        match self.time {
-            Some(slot) => slot,
-            None => {
-                let slot = self.push(Operation::State);
-                self.time = Some(slot);
-                slot
-            }
-        }
-    }
-
-    /// A canonical sum: its constant terms added into one constant, each
-    /// moving term `w · x` a weight and a series.
-    fn sum(&mut self, terms: &[ExprId]) -> Slot {
-        let (mut constants, mut moving) = (Vec::new(), Vec::new());
-        for &term in terms {
-            if !self.pool.kinds(term).intersects(MOVING) {
-                constants.push(term);
-                continue;
-            }
-            let weighted = match self.pool.node(term).clone() {
-                Node::Mul(factors) => self.weighted(&factors),
-                _ => (self.pool.int(1), self.series(term)),
-            };
-            moving.push(weighted);
-        }
-        let constant = self.pool.sum(constants);
-        self.push(Operation::Linear {
-            constant,
-            terms: moving,
-        })
-    }
-
-    /// A product's constant factors multiplied into a weight, and the series
-    /// of its moving factors.
-    fn weighted(&mut self, factors: &[ExprId]) -> (ExprId, Slot) {
-        let (constant, moving): (Vec<ExprId>, Vec<ExprId>) = factors
-            .iter()
-            .partition(|&&f| !self.pool.kinds(f).intersects(MOVING));
-        let weight = self.pool.product(constant);
-        (weight, self.product(&moving))
-    }
-
-    /// A product with a constant weight: the weighted series (no operation
-    /// for a unit weight).
-    fn scaled_product(&mut self, factors: &[ExprId]) -> Slot {
-        let (weight, slot) = self.weighted(factors);
-        if self.pool.as_number(weight).is_some_and(|w| w.is_one()) {
-            return slot;
-        }
-        let zero = self.pool.int(0);
-        self.push(Operation::Linear {
-            constant: zero,
-            terms: vec![(weight, slot)],
-        })
-    }
-
-    /// The product of moving factors (`x^n` with `n < 0` among them
-    /// dividing): the numerator's Cauchy products over the denominator's.
-    fn product(&mut self, factors: &[ExprId]) -> Slot {
-        let (mut numerator, mut denominator) = (None, None);
-        for &factor in factors {
-            let (base, exponent) = match *self.pool.node(factor) {
-                Node::Pow(base, n) => (base, n),
-                _ => (factor, 1),
-            };
-            let base = self.series(base);
-            let power = self.power(base, exponent.unsigned_abs());
-            let side = if exponent < 0 {
-                &mut denominator
-            } else {
-                &mut numerator
-            };
-            *side = Some(match *side {
-                Some(so_far) => self.call("product", None, vec![so_far, power]),
-                None => power,
-            });
-        }
-        match (numerator, denominator) {
-            (Some(n), Some(d)) => self.call("quotient", None, vec![n, d]),
-            (None, Some(d)) => self.call("reciprocal", None, vec![d]),
-            (Some(n), None) => n,
-            (None, None) => {
-                let one = self.pool.int(1);
-                self.constant_series(one)
-            }
-        }
-    }
-
-    /// `x^n` (`n ≥ 1`) by squares.
-    fn power(&mut self, x: Slot, n: u32) -> Slot {
-        match n {
-            0 | 1 => x,
-            _ if n % 2 == 0 => {
-                let half = self.power(x, n / 2);
-                self.call("product", None, vec![half, half])
-            }
-            _ => {
-                let below = self.power(x, n - 1);
-                self.call("product", None, vec![below, x])
-            }
-        }
-    }
-
-    /// An elementary function of a moving argument.
-    fn function(&mut self, function: Func, argument: ExprId) -> Slot {
-        let x = self.series(argument);
-        let (name, paired) = match function {
-            Func::Group => return x,
-            Func::Sin | Func::Cos => ("sin_cos", true),
-            Func::Tan => ("tan", true),
-            Func::Sqrt => ("sqrt", false),
-            Func::Exp => ("exp", false),
-            Func::Ln => ("ln", false),
-            Func::Abs => ("abs", false),
-        };
-        let first = match paired {
-            true => self.paired_call(name, x),
-            false => self.call(name, None, vec![x]),
-        };
-        // The cosine is the sine's partner, the slot after it.
-        match function {
-            Func::Cos => first + 1,
-            _ => first,
-        }
-    }
-
-    /// A call writing two series (`sin_cos`, `tan`): the first slot's, its
-    /// partner next.
-    fn paired_call(&mut self, name: &'static str, x: Slot) -> Slot {
-        if let Some(&slot) = self.calls.get(&(name, vec![x])) {
-            return slot;
-        }
-        let slot = self.operations.len();
-        self.push(Operation::Call {
-            name,
-            partner: Some(slot + 1),
-            operands: vec![x],
-        });
-        self.push(Operation::Partner);
-        self.calls.insert((name, vec![x]), slot);
-        slot
-    }
-
-    /// `name(operands)`, once per distinct call (products in either order).
-    fn call(&mut self, name: &'static str, partner: Option<Slot>, mut operands: Vec<Slot>) -> Slot {
-        if name == "product" {
-            operands.sort_unstable();
-        }
-        let key = (name, operands.clone());
-        if let Some(&slot) = self.calls.get(&key) {
-            return slot;
-        }
-        let slot = self.push(Operation::Call {
-            name,
-            partner,
-            operands,
-        });
-        self.calls.insert(key, slot);
-        slot
-    }
-}
-
-/// The expressions of the equations that the program lowers: `M` and `f`,
-/// and the constraints' `A` and `b` (none without constraints).
-struct Expressions {
-    matrix: Vec<Vec<ExprId>>,
-    forcing: Vec<ExprId>,
-    jacobian: Vec<Vec<ExprId>>,
-    bias: Vec<ExprId>,
-}
-
-impl Expressions {
-    /// Every expression replaced by `form(expression)`.
-    fn map(&self, mut form: impl FnMut(ExprId) -> ExprId) -> Self {
-        let mut rows = |rows: &[Vec<ExprId>]| -> Vec<Vec<ExprId>> {
-            rows.iter()
-                .map(|row| row.iter().map(|&e| form(e)).collect())
-                .collect()
-        };
-        let (matrix, jacobian) = (rows(&self.matrix), rows(&self.jacobian));
-        Expressions {
-            matrix,
-            forcing: self.forcing.iter().map(|&e| form(e)).collect(),
-            jacobian,
-            bias: self.bias.iter().map(|&e| form(e)).collect(),
-        }
-    }
-}
-
-/// The program of the equations, the operands of their entries, and the
-/// series of the coordinates' rates `N(q) v`.
-struct Lowered {
-    program: Program,
-    matrix: Vec<Vec<Operand>>,
-    forcing: Vec<Operand>,
-    jacobian: Vec<Vec<Operand>>,
-    bias: Vec<Operand>,
-    rates: Vec<Slot>,
-}
-
-impl Lowered {
-    /// The entries of `expressions` lowered in `pool`, then the rates of
-    /// `nq` coordinates (a speed where it is its coordinate's rate).
-    fn new(pool: Pool, nq: usize, expressions: &Expressions) -> Self {
-        let sizes = [nq, expressions.forcing.len(), expressions.bias.len()];
-        let mut program = Program::new(pool, sizes);
-        let matrix = program.lower_rows(&expressions.matrix);
-        let forcing = program.lower_all(&expressions.forcing);
-        let jacobian = program.lower_rows(&expressions.jacobian);
-        let bias = program.lower_all(&expressions.bias);
-        let rates = (0..nq as u32)
-            .map(|i| {
-                let rate = program.pool.rate(i);
-                program.series(rate)
-            })
-            .collect();
-        Lowered {
-            program,
-            matrix,
-            forcing,
-            jacobian,
-            bias,
-            rates,
-        }
-    }
-
-    /// The recurrences of each order that are sums over the lower orders
-    /// (Cauchy products, quotients, elementary functions): what an order
-    /// costs, linear combinations being cheap beside them.
-    fn recurrences(&self) -> usize {
-        self.program
-            .operations
-            .iter()
-            .filter(|operation| matches!(operation, Operation::Call { .. }))
-            .count()
-    }
-}
-
-/// The equations lowered as derived, or with their angle sums recombined
-/// (within [`RECOMBINATION_BUDGET`]) when that takes fewer recurrences.
-fn lowered(pool: &Pool, nq: usize, equations: &Equations) -> Lowered {
-    let expressions = Expressions {
-        matrix: equations.mass_matrix.clone(),
-        forcing: equations.forcing.clone(),
-        jacobian: equations.constraint_jacobian.clone(),
-        bias: equations.constraint_bias.clone(),
-    };
-    let derived = Lowered::new(pool.clone(), nq, &expressions);
-    let mut pool = pool.clone();
-    let mut forms = ReadableForms::default();
-    let recombined =
-        expressions.map(|e| forms.get(&mut pool, e, RECOMBINATION_BUDGET).unwrap_or(e));
-    let recombined = Lowered::new(pool, nq, &recombined);
-    if recombined.recurrences() < derived.recurrences() {
-        recombined
-    } else {
-        derived
-    }
-}
 
 /// Names of the program's series and constants in the emitted code.
 struct Written<'a> {
@@ -535,26 +130,24 @@ impl Written<'_> {
     }
 }
 
-/// `pub fn taylor_coefficients<const K: usize>(..)`: order by order with
-/// the factorisation of `M₀` that `accelerations` uses, or, for a system
-/// with constraints, with the runtime's factorisation of the saddle point
-/// ([`emit_constrained`]); nothing for a system without coordinates.
+/// `pub fn taylor_coefficients<const K: usize>(..)` from the plan's
+/// `taylor` program: order by order with the `factorisation` of `M₀` that
+/// `accelerations` uses, or, for a system with constraints, with the
+/// runtime's factorisation of the saddle point ([`emit_constrained`]).
 pub fn emit_taylor(
-    model: &Model,
-    pool: &Pool,
-    equations: &Equations,
+    (model, pool, equations): (&Model, &Pool, &Equations),
     names: &Names,
     function: &Function,
+    taylor: &Taylor,
+    factorisation: Option<&Factorisation>,
 ) -> TokenStream {
     let constrained = !equations.constraint_jacobian.is_empty();
-    let solver = elimination(model, pool, equations, None);
-    if solver.is_none() && !constrained {
-        return TokenStream::new();
-    }
-    let lowered = lowered(pool, model.nq(), equations);
-    let prelude = Prelude::new(names, lowered);
-    match solver {
-        Some(solver) if !constrained => emit_unconstrained(model, &prelude, solver, function),
+    let prelude = Prelude::new(names, &taylor.lowered);
+    match factorisation {
+        Some(factorisation) if !constrained => {
+            let solver = elimination(model, pool, equations, factorisation, None);
+            emit_unconstrained(model, &prelude, solver, function, taylor.unrolled_orders)
+        }
         _ => emit_constrained(model, &prelude, function),
     }
 }
@@ -562,8 +155,8 @@ pub fn emit_taylor(
 /// What both forms of `taylor_coefficients` share: the program written
 /// out, the declarations of its series and constants, and the work of an
 /// order before its solve.
-struct Prelude {
-    lowered: Lowered,
+struct Prelude<'a> {
+    lowered: &'a Lowered,
     /// The name of each slot, then of each bound constant.
     slots: Vec<Ident>,
     constants: Vec<ExprId>,
@@ -581,9 +174,9 @@ struct Prelude {
     rates: Vec<Ident>,
 }
 
-impl Prelude {
+impl<'a> Prelude<'a> {
     /// The program of `lowered` named after `names`, declared.
-    fn new(names: &Names, lowered: Lowered) -> Self {
+    fn new(names: &Names, lowered: &'a Lowered) -> Self {
         let program = &lowered.program;
         let (pool, operations) = (&program.pool, &program.operations);
         // Every constant the program reads, bound once.
@@ -771,9 +364,10 @@ fn signature(model: &Model) -> TokenStream {
 /// Σⱼ₌₁ᵏ Mⱼ v̇ₖ₋ⱼ` with the unrolled `L D Lᵀ` solve of `accelerations`.
 fn emit_unconstrained(
     model: &Model,
-    prelude: &Prelude,
+    prelude: &Prelude<'_>,
     solver: Elimination,
     function: &Function,
+    unrolled_orders: usize,
 ) -> TokenStream {
     let nv = model.nv();
     let written = prelude.written();
@@ -798,8 +392,8 @@ fn emit_unconstrained(
         Literal::usize_unsuffixed(nv),
         Literal::usize_unsuffixed(entries.len()),
     );
-    let unrolled = (1..=UNROLLED_ORDERS).map(Literal::usize_unsuffixed);
-    let beyond = Literal::usize_unsuffixed(UNROLLED_ORDERS + 1);
+    let unrolled = (1..=unrolled_orders).map(Literal::usize_unsuffixed);
+    let beyond = Literal::usize_unsuffixed(unrolled_orders + 1);
     let series_docs = "The series of the expansion, borrowed (coordinates, speeds,
 accelerations, then every node of `M` and `f` that moves),
 the constants they read, and the highest order asked for.";
@@ -862,7 +456,7 @@ the constants they read, and the highest order asked for.";
 /// saddle point at the expansion point that `constrained_accelerations`
 /// makes (`dalembert::constrained::constrained_series`), in a loop over the
 /// orders.
-fn emit_constrained(model: &Model, prelude: &Prelude, function: &Function) -> TokenStream {
+fn emit_constrained(model: &Model, prelude: &Prelude<'_>, function: &Function) -> TokenStream {
     let (nv, nc) = (model.nv(), prelude.state[3].len());
     let written = prelude.written();
     let [q, v, a, lambda] = &prelude.state;
@@ -944,7 +538,7 @@ constants they read, and the highest order asked for.";
 /// setup, then `orders`, which expands order by order and returns.
 fn wrapped(
     model: &Model,
-    prelude: &Prelude,
+    prelude: &Prelude<'_>,
     function: &Function,
     (series_docs, methods): (&str, TokenStream),
     orders: TokenStream,

@@ -4,7 +4,6 @@
 //! [`crate::equations::derivatives`]).
 
 use super::{Argument, Body, Function, PairedTree, Value, doc_lines};
-use crate::cost::operations;
 use crate::equations::derivatives::{
     ResidualJacobian, TangentDirections, along, direction_names, plain_speeds, residual_jacobian,
     tangent_directions, tangent_kinematics,
@@ -15,42 +14,34 @@ use crate::equations::{
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Chart;
 use crate::model::Model;
+use crate::plan::{self, Partials};
 use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
 
-/// The fewest operations of a tree's partials (unrolled) above which
-/// `accelerations_jacobian` computes them in loops at run time, link by
-/// link and pair of joints by pair: the unrolled code of larger ones
-/// streams from L2 at about twice the time per byte (BENCHMARKS.md,
-/// "where the jacobian's time goes").
-const TREE_LOOPED_ABOVE: usize = 6000;
-
 /// The partials of `τ` and how they were found, for the docs: of a tree
-/// of revolute and prismatic joints, those of the world-frame recursion
-/// where they cost fewer operations than the symbolic partials of `τ` or
-/// where both cost more than [`TREE_LOOPED_ABOVE`], and then, in the
-/// latter case, that recursion in its parts too (whose loops cost no
-/// code).
+/// of revolute and prismatic joints, by the route the plan chooses
+/// between the world-frame recursion and the symbolic partials of `τ`
+/// ([`plan::partials`]), and with [`Partials::Looped`] that recursion in
+/// its parts too (whose loops cost no code).
 fn partials(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
 ) -> (ResidualJacobian, String, Option<TreeJacobian>) {
     let (tau, recursive) = inverse_dynamics(model, equations, pool);
-    let route = match recursive {
+    let derived_by = match recursive {
         true => "the Newton–Euler recursion over the kinematic tree",
         false => "the mass matrix and the forcing",
     };
-    let symbolic = format!("`τ`, derived by {route},\ndifferentiated symbolically");
+    let symbolic = format!("`τ`, derived by {derived_by},\ndifferentiated symbolically");
     let directions = tangent_directions(model, pool);
     let jacobian = residual_jacobian(pool, &tau, &directions, model.inputs.len());
     if let Some(tree) = tree_jacobian(model, pool) {
         let combined = tree.combined(pool);
-        let cost = operations(pool, &entries(&combined));
-        let symbolic_cost = operations(pool, &entries(&jacobian));
-        let looped = cost.min(symbolic_cost) > TREE_LOOPED_ABOVE;
-        if cost < symbolic_cost || looped {
+        let route = plan::partials(pool, &entries(&combined), &entries(&jacobian));
+        if route != Partials::Symbolic {
+            let looped = route == Partials::Looped;
             let recursion = "the inertia and gravity terms of `τ` differentiated by the\n\
                              recursion of Carpentier and Mansard over the kinematic tree in\n\
                              the axes of `N`, its loads, springs and dampers symbolically";

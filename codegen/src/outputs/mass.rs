@@ -3,32 +3,23 @@
 //! a loop of the runtime takes (see `equations::tree_mass`).
 
 use super::{Argument, Body, Function, SpeedTree, Value};
-use crate::cost::operations;
 use crate::equations::{Equations, tree_mass};
 use crate::expr::Pool;
 use crate::model::Model;
-
-/// The fewest operations of an unrolled `M` (as [`operations`] counts
-/// them in the pool) above which a tree's `mass_matrix` takes its pairs of
-/// speeds in a loop at run time: the spatial chain of 30 (9703–10707 in
-/// the three spellings), whose unrolled code streams from L2, gains; the
-/// planar one of 30 (5181–6437, its planar zeros folded) and the spatial
-/// one of 12 (1781–2040) lose (BENCHMARKS.md, "Large models: unrolled
-/// against looped code", the subsection of 25 Nov 2026 on `mass_matrix`).
-const MASS_PAIRS_LOOPED_ABOVE: usize = 8000;
+use crate::plan::MassMatrix;
 
 /// The docs of `mass_matrix`.
 const DOCS: &str = "The mass matrix `M(q)` (symmetric, positive definite where the\n\
                     coordinates are independent).";
 
-/// `mass_matrix(q)`: with `looped` (a crate with the runtime), a tree's
-/// whose unrolled entries cost more than [`MASS_PAIRS_LOOPED_ABOVE`]
-/// operations returns each speed's vectors for the runtime's loop.
+/// `mass_matrix(q)`: by the route the plan chose, a tree's
+/// [`MassMatrix::Looped`] returning each speed's vectors for the runtime's
+/// loop.
 pub fn mass_matrix(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
-    looped: bool,
+    route: MassMatrix,
 ) -> Function {
     let nv = model.nv();
     let unrolled = || {
@@ -39,12 +30,7 @@ pub fn mass_matrix(
             Value::matrix(&equations.mass_matrix, nv),
         )
     };
-    let entries: Vec<_> = equations.mass_matrix.iter().flatten().copied().collect();
-    // The runtime's loop over the tree's pairs knows no armature.
-    if !looped
-        || !model.armature.is_empty()
-        || operations(pool, &entries) <= MASS_PAIRS_LOOPED_ABOVE
-    {
+    if route == MassMatrix::Unrolled {
         return unrolled();
     }
     let Some(speeds) = tree_mass(model, pool) else {

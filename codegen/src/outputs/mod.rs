@@ -14,6 +14,7 @@ mod mass;
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool};
 use crate::model::{Model, OutputKind};
+use crate::plan::MassMatrix;
 use proc_macro2::Ident;
 
 /// One generated inherent function.
@@ -196,22 +197,21 @@ pub fn doc_lines(text: &str) -> Vec<String> {
 use Argument::{Coordinates, Inputs, Speeds, Time};
 
 /// The functions every system has: `M`, `f`, `T`, `V`, and with
-/// constraints `A`, `b`, the residuals and the velocity forms; with
-/// `looped` (a crate with the runtime), a large tree's `M` by a loop of
-/// the runtime (see [`mass::mass_matrix`]). A
+/// constraints `A`, `b`, the residuals and the velocity forms; `M` by
+/// the plan's route (see [`mass::mass_matrix`]). A
 /// [time-dependent](Equations::time_dependent) system's `M`, `T`, `V` and
 /// `A` take `t` first and end in `_at`.
 pub fn standard(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
-    looped: bool,
+    mass: MassMatrix,
 ) -> Vec<Function> {
     let nv = model.nv();
     let timed = equations.time_dependent(pool);
     let at_time = |function: Function| if timed { function.at_time() } else { function };
     let mut functions = vec![
-        at_time(mass::mass_matrix(model, equations, pool, looped)),
+        at_time(mass::mass_matrix(model, equations, pool, mass)),
         Function::new(
             "forcing",
             "The forcing `f(t, q, q̇, u)` of `M(q) q̈ = f`: applied and\n\

@@ -1,4 +1,5 @@
-//! Optimisation of the derived equations before emission.
+//! The form of each result: optimisation of the derived equations and of
+//! the outputs before emission.
 //!
 //! d'Alembert's principle assembles each entry as dot products of vectors
 //! in `N`'s axes, so an entry such as `M₁₁` of the double pendulum arrives as
@@ -20,15 +21,13 @@
 //! [`ReadableForms`](crate::readable::ReadableForms), which the renderer
 //! reads again for the docs.
 
-use crate::cost::FUNCTION_COST;
+use super::COMPACT_FORM_BUDGET;
+use super::cost::{cost_past, function_cost};
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool};
 use crate::outputs::Function;
 use crate::readable::ReadableForms;
 use std::collections::{HashMap, HashSet};
-
-/// Most monomials an entry may expand to before it keeps its DAG form.
-const BUDGET: usize = 200;
 
 /// Replaces each output of `equations` by its compact form where cheaper,
 /// from the derivation's readable `forms`; each of `M`, `f`, `T`, `V`, `A`,
@@ -90,18 +89,6 @@ fn keep_derived(
     }
 }
 
-/// Arithmetic operations of a function computing `results`, each shared
-/// node counted once (as [`cost_past`] counts them).
-fn function_cost(pool: &Pool, results: &[ExprId]) -> usize {
-    let mut computed = HashSet::new();
-    let mut total = 0;
-    for &r in results {
-        total += cost_past(pool, r, &computed, usize::MAX);
-        pool.post_order(&[r], |n| computed.insert(n));
-    }
-    total
-}
-
 /// `e`, or its compact form if that costs fewer operations besides the
 /// nodes already `computed`; `split` holds the nodes whose angle sums are
 /// already split.
@@ -112,7 +99,7 @@ fn cheaper_form(
     e: ExprId,
     computed: &HashSet<ExprId>,
 ) -> ExprId {
-    let Some(compact) = forms.get(pool, e, BUDGET) else {
+    let Some(compact) = forms.get(pool, e, COMPACT_FORM_BUDGET) else {
         return e;
     };
     let compact = expand_angle_sums(pool, split, compact);
@@ -156,36 +143,6 @@ fn sin_cos_of_sum(pool: &mut Pool, x: ExprId) -> (ExprId, ExprId) {
     let cos_first = pool.mul(cos_a, cos_r);
     let sin_product = pool.mul(sin_a, sin_r);
     (pool.sum(sin_terms), pool.sub(cos_first, sin_product))
-}
-
-/// Arithmetic operations to evaluate `e` once, shared nodes counted once
-/// and the nodes already `computed` not at all; sines and cosines of
-/// single symbols are free (the code shares them). The count stops as soon
-/// as it passes `limit` (a large DAG need not be walked to lose to a small
-/// form): the result is exact up to `limit`, and above `limit` whenever the
-/// exact cost is.
-fn cost_past(pool: &Pool, e: ExprId, computed: &HashSet<ExprId>, limit: usize) -> usize {
-    let mut total = 0usize;
-    pool.post_order(&[e], |n| {
-        if total > limit || computed.contains(&n) {
-            return false;
-        }
-        total = total.saturating_add(node_cost(pool, n));
-        true
-    });
-    total
-}
-
-/// The operations of one node, its children computed.
-fn node_cost(pool: &Pool, n: ExprId) -> usize {
-    match pool.node(n) {
-        Node::Number(_) | Node::Sym(_) => 0,
-        Node::Add(items) | Node::Mul(items) => items.len() - 1,
-        Node::Pow(_, exp) => exp.unsigned_abs() as usize,
-        Node::Func(Func::Group, _) => 0,
-        Node::Func(_, arg) if matches!(pool.node(*arg), Node::Sym(_)) => 0,
-        Node::Func(..) => FUNCTION_COST,
-    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,246 @@
+//! Planning: every choice of route between the derived equations and the
+//! emitted code, made in one place by one cost model ([`cost`]: operation
+//! counts, and the code's size where it streams from memory).
+//!
+//! For each generated function the plan says how it computes what it
+//! returns: `M` unrolled or by the runtime's loop over a tree's pairs
+//! ([`MassMatrix`]); the partials of the inverse dynamics symbolic, by the
+//! world-frame recursion, or by that recursion's loops at run time
+//! ([`Partials`]); `accelerations` by the unrolled `L D Lᵀ` factorisation
+//! (in which order of elimination) or the articulated-body recursion
+//! ([`solve`]); the Taylor series' program on the equations as derived or
+//! with their angle sums recombined, and how many orders are unrolled
+//! ([`Taylor`]); and which form (DAG or compact) each result takes
+//! ([`optimize`]). Emission then only writes code from the plan. Every
+//! threshold is a constant below, with what was measured to set it.
+
+pub mod cost;
+pub mod optimize;
+pub mod solve;
+
+use crate::emit::Target;
+use crate::equations::Equations;
+use crate::expr::{ExprId, Pool};
+use crate::model::Model;
+use crate::outputs::{self, Body, Function, NameList};
+use crate::readable::ReadableForms;
+use crate::series::Lowered;
+use cost::operations;
+use solve::{Accelerations, Factorisation};
+
+/// The fewest operations of an unrolled `M` (as [`operations`] counts
+/// them in the pool) above which a tree's `mass_matrix` takes its pairs of
+/// speeds in a loop at run time: the spatial chain of 30 (9703–10707 in
+/// the three spellings), whose unrolled code streams from L2, gains; the
+/// planar one of 30 (5181–6437, its planar zeros folded) and the spatial
+/// one of 12 (1781–2040) lose (BENCHMARKS.md, "Large models: unrolled
+/// against looped code", the subsection of 25 Nov 2026 on `mass_matrix`).
+pub const MASS_PAIRS_LOOPED_ABOVE: usize = 8000;
+
+/// The fewest operations of a tree's partials (unrolled) above which
+/// `accelerations_jacobian` computes them in loops at run time, link by
+/// link and pair of joints by pair: the unrolled code of larger ones
+/// streams from L2 at about twice the time per byte (BENCHMARKS.md,
+/// "where the jacobian's time goes").
+pub const TREE_LOOPED_ABOVE: usize = 6000;
+
+/// The fewest coordinates for which `accelerations` may take the
+/// articulated-body recursion: with one or two coordinates the
+/// factorisation measured faster at any operation count.
+pub const MIN_ARTICULATED: usize = 3;
+
+/// The articulated-body recursion's operations, charged in percent of the
+/// factorisation's: its sweeps run one link after another, where `M`'s
+/// entries are independent of each other, and at 0.96 of the
+/// factorisation's count the spatial chains of 12 ran 1.13–1.17 times as
+/// long (BENCHMARKS.md, "The recursion's operations cost more").
+pub const ARTICULATED_PERCENT: usize = 120;
+
+/// Most monomials a result may expand to for its compact form to be
+/// offered ([`optimize`]); a larger one keeps its DAG form. Set with the
+/// first optimisation pass so that the seed examples' and the chains'
+/// entries expand and the expansion of a large tree's (whose monomials
+/// grow combinatorially) is never attempted; no timing was recorded.
+pub const COMPACT_FORM_BUDGET: usize = 200;
+
+/// Most monomials an entry of `M` or `f` may expand to for its angle sums
+/// to be recombined in the Taylor series' program (`sin a cos b − cos a
+/// sin b = sin(a − b)`: one `sin_cos` recurrence of the difference instead
+/// of four Cauchy products and two sums, ≈ 5 % a step on seed example 1);
+/// a larger entry is lowered as derived. The same bound as
+/// [`COMPACT_FORM_BUDGET`], for the same reason.
+pub const RECOMBINATION_BUDGET: usize = 200;
+
+/// The orders of `taylor_coefficients` emitted one by one, each with its
+/// own copy of the recurrences (a constant order, so sums of compile-time
+/// length); higher orders run in a loop. The runtime's Taylor integrator
+/// uses up to 31 (`dalembert::integrate::taylor::MAX_ORDER`).
+pub const UNROLLED_ORDERS: usize = 31;
+
+/// The most temporaries a body binds each with its own `let`. Each `let`
+/// opens a lexical scope nested in the one before, and with full debug
+/// information rustc recurses once per scope: a body of a few thousand
+/// (the `inverse_dynamics_jacobian` of a 7-joint arm on a free flyer)
+/// overflowed its stack in a default `dev` build. Above it, the
+/// temporaries are declared ahead, [`DECLARED_TOGETHER`] to a `let`, and
+/// each is assigned where it would have been bound (the same code once
+/// optimised).
+pub const DECLARED_AHEAD_ABOVE: usize = 1000;
+
+/// How many temporaries one `let` declares ahead.
+pub const DECLARED_TOGETHER: usize = 64;
+
+/// How `mass_matrix` computes `M`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MassMatrix {
+    /// Every entry in straight-line code.
+    Unrolled,
+    /// Each speed's vectors in straight-line code and their dot products
+    /// by the runtime's loop over the tree (an unrolled `M` where the
+    /// model is no tree).
+    Looped,
+}
+
+/// How the partials of the inverse dynamics are computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Partials {
+    /// `τ` differentiated symbolically.
+    Symbolic,
+    /// The world-frame recursion's partials, unrolled.
+    Recursive,
+    /// The world-frame recursion, its inertia and gravity terms in loops
+    /// at run time.
+    Looped,
+}
+
+/// The Taylor series' program of `taylor_coefficients`.
+pub struct Taylor {
+    /// `M`, `f` (and `A`, `b`) lowered to series.
+    pub lowered: Lowered,
+    /// The orders emitted one by one before the loop.
+    pub unrolled_orders: usize,
+}
+
+/// What to emit for one system and how.
+pub struct Plan {
+    /// The functions, each with its route ([`Body`]), their results in the
+    /// forms chosen.
+    pub functions: Vec<Function>,
+    /// The constants naming their entries.
+    pub constants: Vec<NameList>,
+    /// `M`'s unrolled factorisation; `None` for a system with constraints
+    /// or no coordinates, or a crate without the runtime.
+    pub factorisation: Option<Factorisation>,
+    /// The route of `accelerations`; `None` where there is no such
+    /// method.
+    pub accelerations: Option<Accelerations>,
+    /// The program of `taylor_coefficients`, if it is emitted.
+    pub taylor: Option<Taylor>,
+}
+
+/// The plan of every function to emit for `target` (the standard ones,
+/// then those the model's `outputs` ask for), their results optimised.
+pub fn plan(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+    forms: &mut ReadableForms,
+    target: Target,
+) -> syn::Result<Plan> {
+    let mass = mass_matrix(model, equations, pool, target);
+    let mut functions = outputs::standard(model, equations, pool, mass);
+    // A looped `M`'s vectors are new expressions, optimised as the outputs are.
+    if let Some(mass) = functions
+        .first_mut()
+        .filter(|f| matches!(f.body, Body::MassPairs(_)))
+    {
+        optimize::optimize_functions(std::slice::from_mut(mass), pool, forms);
+    }
+    let mut requested = outputs::requested(model, equations, pool)?;
+    optimize::optimize_functions(&mut requested.functions, pool, forms);
+    functions.extend(requested.functions);
+    let runtime = target == Target::Std;
+    let factorisation = runtime
+        .then(|| solve::factorisation(model, pool, equations))
+        .flatten();
+    let accelerations = factorisation
+        .as_ref()
+        .map(|f| solve::accelerations(model, pool, equations, f));
+    Ok(Plan {
+        functions,
+        constants: requested.constants,
+        factorisation,
+        accelerations,
+        taylor: None,
+    })
+}
+
+impl Plan {
+    /// Plans the program of `taylor_coefficients`, if it is emitted (for a
+    /// crate with the runtime, a system with a factorisation or
+    /// constraints). It runs last, after the docs are rendered: the
+    /// program is lowered in a copy of the pool as it is then, so that its
+    /// new nodes are numbered, and its code ordered, as before.
+    pub fn plan_taylor(
+        &mut self,
+        model: &Model,
+        pool: &Pool,
+        equations: &Equations,
+        target: Target,
+    ) {
+        let constrained = !equations.constraint_jacobian.is_empty();
+        let solvable = self.factorisation.is_some() || constrained;
+        if target == Target::Std
+            && solvable
+            && self.functions.iter().any(|f| f.body == Body::Taylor)
+        {
+            self.taylor = Some(Taylor {
+                lowered: taylor_program(pool, model.nq(), equations),
+                unrolled_orders: UNROLLED_ORDERS,
+            });
+        }
+    }
+}
+
+/// [`MassMatrix::Looped`] for a crate with the runtime, a model without
+/// armature (the runtime's loop knows none) and an unrolled `M` costing
+/// more than [`MASS_PAIRS_LOOPED_ABOVE`] operations.
+fn mass_matrix(model: &Model, equations: &Equations, pool: &Pool, target: Target) -> MassMatrix {
+    let entries: Vec<ExprId> = equations.mass_matrix.iter().flatten().copied().collect();
+    let looped = target == Target::Std
+        && model.armature.is_empty()
+        && operations(pool, &entries) > MASS_PAIRS_LOOPED_ABOVE;
+    match looped {
+        true => MassMatrix::Looped,
+        false => MassMatrix::Unrolled,
+    }
+}
+
+/// The route of the partials of `τ` of a tree whose recursion's partials
+/// are `recursive` and whose symbolic ones are `symbolic` (every entry):
+/// the recursion where it costs fewer operations or where both cost more
+/// than [`TREE_LOOPED_ABOVE`], and then in loops (which cost no code).
+pub fn partials(pool: &Pool, recursive: &[ExprId], symbolic: &[ExprId]) -> Partials {
+    let cost = operations(pool, recursive);
+    let symbolic_cost = operations(pool, symbolic);
+    if cost.min(symbolic_cost) > TREE_LOOPED_ABOVE {
+        Partials::Looped
+    } else if cost < symbolic_cost {
+        Partials::Recursive
+    } else {
+        Partials::Symbolic
+    }
+}
+
+/// The equations lowered to series as derived, or with their angle sums
+/// recombined (within [`RECOMBINATION_BUDGET`]) when that takes fewer
+/// recurrences (the work of each order).
+fn taylor_program(pool: &Pool, nq: usize, equations: &Equations) -> Lowered {
+    let derived = Lowered::derived(pool, nq, equations);
+    let recombined = Lowered::recombined(pool, nq, equations, RECOMBINATION_BUDGET);
+    if recombined.recurrences() < derived.recurrences() {
+        recombined
+    } else {
+        derived
+    }
+}
