@@ -4,7 +4,7 @@
 //!
 //! Data flows one way: language (tokens → syntax tree) → model (names
 //! resolved, rules checked) → expressions → kinematics → equations →
-//! emission. Two front doors share it: [`expand`] for the `dalembert!`
+//! outputs → plan (every route choice, by one cost model) → emission. Two front doors share it: [`expand`] for the `dalembert!`
 //! macro and [`generate`] for build scripts, wrapped by [`Builder`] and
 //! [`generate_file`], which read `.dal` files and report errors with file,
 //! line and column. [`Urdf`] imports a robot description (URDF) as a

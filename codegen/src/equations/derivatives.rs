@@ -255,8 +255,8 @@ mod tests {
         let (nq, nu, np) = (model.nq(), model.inputs.len(), model.parameters.len());
         let directions = tangent_directions(&model, &mut pool);
         let general = residual_jacobian(&mut pool, &tau, &directions, nu);
-        let tree =
-            super::super::tree_jacobian(&model, &mut pool).map(|tree| tree.combined(&mut pool));
+        let tree = super::super::tree_jacobian(&model, &equations, &mut pool)
+            .map(|tree| tree.combined(&mut pool));
         let residual = |pool: &Pool, point: &Point, i: usize| -> f64 {
             let inertial: f64 = (0..nq)
                 .map(|j| pool.eval(equations.mass_matrix[i][j], point) * point.a[j])

@@ -20,6 +20,7 @@ use crate::expr::{ExprId, Pool, Sym};
 use crate::kinematics::{Kinematics, Vec3, cross, dot, mat_vec, rate_at_constant_speeds};
 use crate::model::{FrameId, Model, NEWTONIAN, PointId};
 pub use articulated::Articulated;
+use std::rc::Rc;
 pub use tree_mass::{SpeedVectors, depth_first, subtree_ends};
 pub use tree_partials::{LinkState, LinkVectors};
 
@@ -47,6 +48,28 @@ pub struct Equations {
     /// (not among [`Equations::expressions_mut`]: it is code, not a formula
     /// for the docs).
     pub articulated: Option<Articulated>,
+    /// What they were derived from, shared by every output.
+    pub mechanics: Rc<Mechanics>,
+}
+
+/// The kinematics of a model and, for a kinematic tree, its joint tree
+/// with its masses and loads: derived once per model, with the equations,
+/// and shared by every output that derives more from them (the inverse
+/// dynamics, the tree's partials and `M`'s vectors, kinematic outputs).
+pub struct Mechanics {
+    /// Rotations, positions and velocities of every frame and point.
+    pub kinematics: Kinematics,
+    /// The joint tree; `None` for a model that is no tree.
+    tree: Option<recursive::JointTree>,
+}
+
+impl Mechanics {
+    /// The kinematics and joint tree of `model`.
+    fn new(model: &Model, pool: &mut Pool) -> Mechanics {
+        let kinematics = Kinematics::new(model, pool);
+        let tree = joint_tree(model, &kinematics, pool);
+        Mechanics { kinematics, tree }
+    }
 }
 
 impl Equations {
@@ -126,22 +149,22 @@ struct Inertia<'a> {
 
 /// Derives every equation of `model`.
 pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
-    let kinematics = Kinematics::new(model, pool);
+    let mechanics = Mechanics::new(model, pool);
+    let Mechanics { kinematics, tree } = &mechanics;
     let nv = model.nv();
     let inertias = inertias(model);
-    let tree = joint_tree(model, &kinematics, pool);
     // The recursion carries the applied forces and torques; the general
     // route takes them through their partial velocities.
-    let (mass_matrix, bias, loads_done) = match &tree {
+    let (mass_matrix, bias, loads_done) = match tree {
         Some(tree) => {
             let (mass_matrix, bias) = recursive::inertia_terms(tree, pool);
             (mass_matrix, bias, true)
         }
         None => {
-            let (mass_matrix, bias) = inertia_terms(&kinematics, pool, &inertias, nv);
+            let (mass_matrix, bias) = inertia_terms(kinematics, pool, &inertias, nv);
             let bias = (0..nv)
                 .map(|k| {
-                    let gravity = gravity_force(model, &kinematics, pool, &inertias, k);
+                    let gravity = gravity_force(model, kinematics, pool, &inertias, k);
                     pool.sub(bias[k], gravity)
                 })
                 .collect::<Vec<_>>();
@@ -152,29 +175,30 @@ pub fn derive(model: &Model, pool: &mut Pool) -> Equations {
     let mass_matrix = with_armature(mass_matrix, &armature, pool);
     let forcing: Vec<ExprId> = (0..nv)
         .map(|k| {
-            let mut active = potential_and_dissipation_force(model, &kinematics, pool, k);
+            let mut active = potential_and_dissipation_force(model, kinematics, pool, k);
             if !loads_done {
-                let loads = load_force(model, &kinematics, pool, k);
+                let loads = load_force(model, kinematics, pool, k);
                 active = pool.add(loads, active);
             }
             pool.sub(active, bias[k])
         })
         .collect();
     let rows = constraints(model, pool);
-    let articulated = match (&tree, model.constraints.is_empty()) {
+    let articulated = match (tree, model.constraints.is_empty()) {
         (Some(tree), true) => articulated::articulated(tree, &forcing, &armature, pool),
         _ => None,
     };
     Equations {
         mass_matrix,
         forcing,
-        kinetic_energy: kinetic_energy(&kinematics, pool, &inertias, &armature),
-        potential_energy: potential_energy(model, &kinematics, pool, &inertias),
+        kinetic_energy: kinetic_energy(kinematics, pool, &inertias, &armature),
+        potential_energy: potential_energy(model, kinematics, pool, &inertias),
         constraint_jacobian: rows.jacobian,
         constraint_bias: rows.bias,
         constraint_residual: rows.residual,
         constraint_velocity: rows.velocity,
         articulated,
+        mechanics: Rc::new(mechanics),
     }
 }
 
@@ -187,14 +211,14 @@ pub fn inverse_dynamics(
     pool: &mut Pool,
 ) -> (Vec<ExprId>, bool) {
     let nv = model.nv();
-    let kinematics = Kinematics::new(model, pool);
-    match joint_tree(model, &kinematics, pool) {
+    let Mechanics { kinematics, tree } = &*equations.mechanics;
+    match tree {
         Some(tree) => {
-            let inertial = recursive::inverse_dynamics(&tree, pool);
+            let inertial = recursive::inverse_dynamics(tree, pool);
             let armature = armature(model, pool);
             let forces = (0..nv)
                 .map(|k| {
-                    let active = potential_and_dissipation_force(model, &kinematics, pool, k);
+                    let active = potential_and_dissipation_force(model, kinematics, pool, k);
                     let inertial = match pool.is_zero(armature[k]) {
                         true => inertial[k],
                         false => {
@@ -268,18 +292,22 @@ impl TreeJacobian {
 
 /// The [`TreeJacobian`] of a tree of revolute and prismatic joints;
 /// `None` for any other model.
-pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
+pub fn tree_jacobian(
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+) -> Option<TreeJacobian> {
     if !model.balls.is_empty() {
         return None;
     }
-    let kinematics = Kinematics::new(model, pool);
-    let tree = joint_tree(model, &kinematics, pool)?;
-    let links = tree_partials::link_vectors(&tree, pool)?;
-    let states = tree_partials::link_states(&tree, pool);
+    let Mechanics { kinematics, tree } = &*equations.mechanics;
+    let tree = tree.as_ref()?;
+    let links = tree_partials::link_vectors(tree, pool)?;
+    let states = tree_partials::link_states(tree, pool);
     let loads = tree.applied_loads(pool);
     let residual: Vec<ExprId> = (0..model.nv())
         .map(|k| {
-            let active = potential_and_dissipation_force(model, &kinematics, pool, k);
+            let active = potential_and_dissipation_force(model, kinematics, pool, k);
             pool.sub(loads[k], active)
         })
         .collect();
@@ -296,10 +324,9 @@ pub fn tree_jacobian(model: &Model, pool: &mut Pool) -> Option<TreeJacobian> {
 
 /// The two vectors of each speed whose dot products are the entries of a
 /// tree's `M` (see `tree_mass`); `None` for a model that is no tree.
-pub fn tree_mass(model: &Model, pool: &mut Pool) -> Option<Vec<SpeedVectors>> {
-    let kinematics = Kinematics::new(model, pool);
-    let tree = joint_tree(model, &kinematics, pool)?;
-    Some(tree_mass::speed_vectors(&tree, pool))
+pub fn tree_mass(equations: &Equations, pool: &mut Pool) -> Option<Vec<SpeedVectors>> {
+    let tree = equations.mechanics.tree.as_ref()?;
+    Some(tree_mass::speed_vectors(tree, pool))
 }
 
 /// The tree of joints of `model` with its masses and loads, for the

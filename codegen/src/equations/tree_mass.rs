@@ -188,7 +188,7 @@ mod tests {
             let (model, mut pool) =
                 crate::model::resolve(&system).unwrap_or_else(|e| panic!("{e}"));
             let equations = derive(&model, &mut pool);
-            let speeds = tree_mass(&model, &mut pool).expect("a tree");
+            let speeds = tree_mass(&equations, &mut pool).expect("a tree");
             let paired = paired(&speeds, model.nv(), &mut pool);
             let mut random = Random::new(7);
             for _ in 0..3 {

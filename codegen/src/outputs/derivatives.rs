@@ -37,7 +37,7 @@ fn partials(
     let symbolic = format!("`τ`, derived by {derived_by},\ndifferentiated symbolically");
     let directions = tangent_directions(model, pool);
     let jacobian = residual_jacobian(pool, &tau, &directions, model.inputs.len());
-    if let Some(tree) = tree_jacobian(model, pool) {
+    if let Some(tree) = tree_jacobian(model, equations, pool) {
         let combined = tree.combined(pool);
         let route = plan::partials(pool, &entries(&combined), &entries(&jacobian));
         if route != Partials::Symbolic {

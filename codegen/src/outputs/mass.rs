@@ -33,7 +33,7 @@ pub fn mass_matrix(
     if route == MassMatrix::Unrolled {
         return unrolled();
     }
-    let Some(speeds) = tree_mass(model, pool) else {
+    let Some(speeds) = tree_mass(equations, pool) else {
         return unrolled();
     };
     let tree = SpeedTree {

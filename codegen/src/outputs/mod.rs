@@ -297,7 +297,7 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
     if model.outputs.is_empty() {
         return Ok(requested);
     }
-    let kinematics = crate::kinematics::Kinematics::new(model, pool);
+    let kinematics = &equations.mechanics.kinematics;
     let asked = |kind: OutputKind| model.outputs.iter().any(|o| o.kind == kind);
     for output in &model.outputs {
         match output.kind {
@@ -346,7 +346,7 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 .push(dynamics::taylor(model, equations, pool)),
             _ => requested
                 .functions
-                .extend(kinematic::function(model, &kinematics, pool, output)),
+                .extend(kinematic::function(model, kinematics, pool, output)),
         }
     }
     Ok(requested)

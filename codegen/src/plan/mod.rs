@@ -10,8 +10,11 @@
 //! (in which order of elimination) or the articulated-body recursion
 //! ([`solve`]); the Taylor series' program on the equations as derived or
 //! with their angle sums recombined, and how many orders are unrolled
-//! ([`Taylor`]); and which form (DAG or compact) each result takes
-//! ([`optimize`]). Emission then only writes code from the plan. Every
+//! ([`Taylor`]); which form (DAG or compact) each result takes
+//! ([`optimize`]); and when a long body declares its temporaries ahead.
+//! [`plan`] drives the outputs and hands them their routes; the partials'
+//! route is asked for ([`partials`]) where the outputs have built both
+//! candidates. Emission then only writes code from the plan. Every
 //! threshold is a constant below, with what was measured to set it.
 
 pub mod cost;
@@ -58,9 +61,9 @@ pub const ARTICULATED_PERCENT: usize = 120;
 
 /// Most monomials a result may expand to for its compact form to be
 /// offered ([`optimize`]); a larger one keeps its DAG form. Set with the
-/// first optimisation pass so that the seed examples' and the chains'
-/// entries expand and the expansion of a large tree's (whose monomials
-/// grow combinatorially) is never attempted; no timing was recorded.
+/// first optimisation pass (`ae08658`), with no measurement recorded: it
+/// bounds the work of an expansion, whose monomials grow combinatorially
+/// with a tree's depth.
 pub const COMPACT_FORM_BUDGET: usize = 200;
 
 /// Most monomials an entry of `M` or `f` may expand to for its angle sums
@@ -68,7 +71,7 @@ pub const COMPACT_FORM_BUDGET: usize = 200;
 /// sin b = sin(a − b)`: one `sin_cos` recurrence of the difference instead
 /// of four Cauchy products and two sums, ≈ 5 % a step on seed example 1);
 /// a larger entry is lowered as derived. The same bound as
-/// [`COMPACT_FORM_BUDGET`], for the same reason.
+/// [`COMPACT_FORM_BUDGET`], for the same reason (`727610e`).
 pub const RECOMBINATION_BUDGET: usize = 200;
 
 /// The orders of `taylor_coefficients` emitted one by one, each with its
