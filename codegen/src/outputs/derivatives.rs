@@ -19,16 +19,23 @@ use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
 
+/// The partials of the inverse dynamics `τ`, found once for every output
+/// that returns them.
+pub struct TauPartials {
+    /// `∂τ/∂δ`, `∂τ/∂v`, `∂τ/∂u`.
+    jacobian: ResidualJacobian,
+    /// How they were found, for the docs.
+    how: String,
+    /// With [`Partials::Looped`], the tree's recursion in its parts.
+    tree: Option<TreeJacobian>,
+}
+
 /// The partials of `τ` and how they were found, for the docs: of a tree
 /// of revolute and prismatic joints, by the route the plan chooses
 /// between the world-frame recursion and the symbolic partials of `τ`
 /// ([`plan::partials`]), and with [`Partials::Looped`] that recursion in
 /// its parts too (whose loops cost no code).
-fn partials(
-    model: &Model,
-    equations: &Equations,
-    pool: &mut Pool,
-) -> (ResidualJacobian, String, Option<TreeJacobian>) {
+pub fn partials(model: &Model, equations: &Equations, pool: &mut Pool) -> TauPartials {
     let (tau, recursive) = inverse_dynamics(model, equations, pool);
     let derived_by = match recursive {
         true => "the Newton–Euler recursion over the kinematic tree",
@@ -45,17 +52,25 @@ fn partials(
             let recursion = "the inertia and gravity terms of `τ` differentiated by the\n\
                              recursion of Carpentier and Mansard over the kinematic tree in\n\
                              the axes of `N`, its loads, springs and dampers symbolically";
-            return (combined, recursion.to_string(), looped.then_some(tree));
+            return TauPartials {
+                jacobian: combined,
+                how: recursion.to_string(),
+                tree: looped.then_some(tree),
+            };
         }
     }
-    (jacobian, symbolic, None)
+    TauPartials {
+        jacobian,
+        how: symbolic,
+        tree: None,
+    }
 }
 
 /// The results of an `accelerations_jacobian` that computes the inertia
 /// and gravity terms of `tree`'s partials at run time (see
 /// [`PairedTree`]), of which `combined` are the partials in full.
 fn paired_results(
-    tree: TreeJacobian,
+    tree: &TreeJacobian,
     combined: &ResidualJacobian,
     pool: &Pool,
 ) -> (Vec<Value>, PairedTree) {
@@ -91,7 +106,7 @@ fn paired_results(
         Value::matrix(&tree.rest.inputs, nu),
         Value::matrix(&states, LinkState::ENTRIES),
         Value::vector(tree.gravity.to_vec()),
-        Value::vector(tree.residual),
+        Value::vector(tree.residual.clone()),
     ];
     (results, paired)
 }
@@ -123,10 +138,10 @@ fn function(
 pub fn inverse_dynamics_jacobian(
     model: &Model,
     equations: &Equations,
-    pool: &mut Pool,
+    partials: &TauPartials,
 ) -> Function {
     let nv = model.nv();
-    let (jacobian, how, _) = partials(model, equations, pool);
+    let TauPartials { jacobian, how, .. } = partials;
     let tangent = tangent_note(model);
     function(
         "inverse_dynamics_jacobian",
@@ -147,13 +162,17 @@ pub fn inverse_dynamics_jacobian(
 }
 
 /// `accelerations_jacobian(t, q, v, u) -> Result<(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u), _>`.
-pub fn accelerations_jacobian(model: &Model, equations: &Equations, pool: &mut Pool) -> Function {
+pub fn accelerations_jacobian(model: &Model, partials: &TauPartials, pool: &Pool) -> Function {
     let (nv, nu) = (model.nv(), model.inputs.len());
-    let (jacobian, how, tree) = partials(model, equations, pool);
+    let TauPartials {
+        jacobian,
+        how,
+        tree,
+    } = partials;
     let tangent = tangent_note(model);
     let (results, paired) = match tree {
         Some(tree) => {
-            let (results, paired) = paired_results(tree, &jacobian, pool);
+            let (results, paired) = paired_results(tree, jacobian, pool);
             (results, Some(paired))
         }
         None => (

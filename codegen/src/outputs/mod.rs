@@ -298,6 +298,8 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
         return Ok(requested);
     }
     let kinematics = &equations.mechanics.kinematics;
+    // The partials of `τ`, found at the first output that needs them.
+    let mut partials = None;
     let asked = |kind: OutputKind| model.outputs.iter().any(|o| o.kind == kind);
     for output in &model.outputs {
         match output.kind {
@@ -310,10 +312,11 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 requested.constants.push(names);
             }
             OutputKind::InverseDynamicsJacobian => {
+                let partials = tau_partials(&mut partials, model, equations, pool);
                 requested
                     .functions
                     .push(derivatives::inverse_dynamics_jacobian(
-                        model, equations, pool,
+                        model, equations, partials,
                     ))
             }
             OutputKind::AccelerationsJacobian if !model.constraints.is_empty() => requested
@@ -321,9 +324,12 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 .push(derivatives::constrained_accelerations_jacobian(
                     model, equations, pool,
                 )),
-            OutputKind::AccelerationsJacobian => requested
-                .functions
-                .push(derivatives::accelerations_jacobian(model, equations, pool)),
+            OutputKind::AccelerationsJacobian => {
+                let partials = tau_partials(&mut partials, model, equations, pool);
+                requested
+                    .functions
+                    .push(derivatives::accelerations_jacobian(model, partials, pool))
+            }
             OutputKind::Linearize if !model.constraints.is_empty() => {
                 if let Some(chart) = &output.chart {
                     requested.functions.push(derivatives::constrained_linearize(
@@ -333,9 +339,10 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
             }
             OutputKind::Linearize => {
                 if !asked(OutputKind::AccelerationsJacobian) {
+                    let partials = tau_partials(&mut partials, model, equations, pool);
                     requested
                         .functions
-                        .push(derivatives::accelerations_jacobian(model, equations, pool));
+                        .push(derivatives::accelerations_jacobian(model, partials, pool));
                 }
                 requested
                     .functions
@@ -350,4 +357,14 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
         }
     }
     Ok(requested)
+}
+
+/// The partials of `τ` in `found`, found there first if they are not yet.
+fn tau_partials<'a>(
+    found: &'a mut Option<derivatives::TauPartials>,
+    model: &Model,
+    equations: &Equations,
+    pool: &mut Pool,
+) -> &'a derivatives::TauPartials {
+    found.get_or_insert_with(|| derivatives::partials(model, equations, pool))
 }
