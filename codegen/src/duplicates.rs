@@ -276,9 +276,8 @@ mod tests {
             "accelerations" => equations.articulated.as_ref().unwrap().roots(),
             "mass_forcing" => [equations.mass_matrix.concat(), equations.forcing.clone()].concat(),
             _ => {
-                let mut requested = crate::outputs::requested(&model, &equations, &mut pool)
-                    .unwrap()
-                    .functions;
+                let mut requested =
+                    crate::outputs::requested(&model, &equations, &mut pool).functions;
                 crate::optimize::optimize_functions(&mut requested, &mut pool, &mut forms);
                 let function: &Function = requested.iter().find(|f| f.name == name).unwrap();
                 function

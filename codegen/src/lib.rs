@@ -17,6 +17,7 @@
 
 mod build;
 mod chain;
+mod checks;
 mod cost;
 #[cfg(test)]
 mod duplicates;
@@ -177,7 +178,7 @@ pub fn function_sizes(source: &str) -> syn::Result<Vec<FunctionSize>> {
         equations,
         mut forms,
     } = derive(lex(source)?)?;
-    let (functions, _) = functions(&model, &equations, &mut pool, &mut forms, Target::Std)?;
+    let (functions, _) = functions(&model, &equations, &mut pool, &mut forms, Target::Std);
     Ok(size::sizes(&pool, &functions))
 }
 
@@ -189,7 +190,7 @@ fn functions(
     pool: &mut expr::Pool,
     forms: &mut readable::ReadableForms,
     target: Target,
-) -> syn::Result<(Vec<outputs::Function>, Vec<outputs::NameList>)> {
+) -> (Vec<outputs::Function>, Vec<outputs::NameList>) {
     let looped = target == Target::Std;
     let mut functions = outputs::standard(model, equations, pool, looped);
     // A looped `M`'s vectors are new expressions, optimised as the outputs are.
@@ -199,10 +200,10 @@ fn functions(
     {
         optimize::optimize_functions(std::slice::from_mut(mass), pool, forms);
     }
-    let mut requested = outputs::requested(model, equations, pool)?;
+    let mut requested = outputs::requested(model, equations, pool);
     optimize::optimize_functions(&mut requested.functions, pool, forms);
     functions.extend(requested.functions);
-    Ok((functions, requested.constants))
+    (functions, requested.constants)
 }
 
 /// The whole pipeline, from tokens to items; a model too large to compile
@@ -214,7 +215,7 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
         equations,
         mut forms,
     } = derive(input)?;
-    let (functions, constants) = functions(&model, &equations, &mut pool, &mut forms, target)?;
+    let (functions, constants) = functions(&model, &equations, &mut pool, &mut forms, target);
     size::check_size(&model, &size::sizes(&pool, &functions))?;
     let mut docs = model.docs.clone();
     if !docs.is_empty() {
@@ -254,13 +255,13 @@ fn derive(input: TokenStream) -> syn::Result<Derivation> {
         forms,
     } = &mut derivation;
     optimize::optimize(equations, pool, forms);
-    check_equations(model, pool, equations)?;
+    checks::after_derivation(model, pool, equations)?;
     Ok(derivation)
 }
 
 /// Parses, checks and derives: the equations as derived, before
 /// optimisation (no readable form computed yet). The checks of the derived
-/// equations ([`check_equations`]) need the optimised ones.
+/// equations ([`checks::after_derivation`]) need the optimised ones.
 fn derive_unoptimised(input: TokenStream) -> syn::Result<Derivation> {
     let system = language::parse_system(input)?;
     let (model, mut pool) = model::resolve(&system)?;
@@ -271,53 +272,4 @@ fn derive_unoptimised(input: TokenStream) -> syn::Result<Derivation> {
         equations,
         forms: readable::ReadableForms::default(),
     })
-}
-
-/// The checks that need the derived (and optimised) equations.
-fn check_equations(
-    model: &model::Model,
-    pool: &expr::Pool,
-    equations: &equations::Equations,
-) -> syn::Result<()> {
-    check_inertia(model, pool, equations)
-}
-
-/// Every speed must move some mass: a coordinate (or speed) whose diagonal entry
-/// of `M` is zero (and that no constraint ties) makes `M` singular
-/// everywhere. Reported at the coordinate's declaration.
-fn check_inertia(
-    model: &model::Model,
-    pool: &expr::Pool,
-    equations: &equations::Equations,
-) -> syn::Result<()> {
-    let mut errors = (0..model.nv()).filter_map(|k| {
-        let massless = pool.is_zero(equations.mass_matrix[k][k]);
-        let constrained = equations
-            .constraint_jacobian
-            .iter()
-            .any(|row| !pool.is_zero(row[k]));
-        (massless && !constrained).then(|| {
-            let speed = &model.speeds[k];
-            let name = &speed.name;
-            let what = if speed.rate_of_coordinate {
-                "coordinate"
-            } else {
-                "speed"
-            };
-            syn::Error::new(
-                name.span(),
-                format!(
-                    "the {what} `{name}` moves no mass, so the mass matrix is singular \
-                     everywhere: make a body or particle depend on it, or remove it"
-                ),
-            )
-        })
-    });
-    match errors.next() {
-        None => Ok(()),
-        Some(mut first) => {
-            errors.for_each(|e| first.combine(e));
-            Err(first)
-        }
-    }
 }

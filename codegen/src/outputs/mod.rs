@@ -290,12 +290,13 @@ pub struct Requested {
 }
 
 /// What the model's `outputs` statement asks for, in the order written
-/// (`linearize` brings `accelerations_jacobian`, which it calls); an error
-/// at an output the model cannot give.
-pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::Result<Requested> {
+/// (`linearize` brings `accelerations_jacobian`, which it calls); what the
+/// model cannot give has been refused by the checks after the derivation
+/// (`crate::checks`).
+pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Requested {
     let mut requested = Requested::default();
     if model.outputs.is_empty() {
-        return Ok(requested);
+        return requested;
     }
     let kinematics = crate::kinematics::Kinematics::new(model, pool);
     let asked = |kind: OutputKind| model.outputs.iter().any(|o| o.kind == kind);
@@ -305,9 +306,10 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 .functions
                 .push(dynamics::inverse_dynamics(model, equations, pool)),
             OutputKind::Regressor => {
-                let (functions, names) = dynamics::regressor(model, equations, pool, output)?;
-                requested.functions.extend(functions);
-                requested.constants.push(names);
+                if let Some((functions, names)) = dynamics::regressor(model, equations, pool) {
+                    requested.functions.extend(functions);
+                    requested.constants.push(names);
+                }
             }
             OutputKind::InverseDynamicsJacobian => {
                 requested
@@ -349,5 +351,5 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 .extend(kinematic::function(model, &kinematics, pool, output)),
         }
     }
-    Ok(requested)
+    requested
 }
