@@ -198,11 +198,11 @@ fn symbol(s: Sym) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::chain::{Family, chain};
     use crate::expr::test_util::Scratch;
     use crate::interpret::Values;
     use crate::outputs::Function;
     use crate::random::Random;
-    use crate::testing::{Family, chain};
 
     /// Random states for a system of these sizes.
     struct States {

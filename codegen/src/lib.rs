@@ -11,12 +11,14 @@
 //! model in the same language. Beside the generator, an interpreter evaluates the
 //! derived equations numerically (by d'Alembert's route or, independently,
 //! Lagrange's) for differential tests of the emitted code; it lives in
-//! [`testing`] with the benchmark chain generator.
+//! `testing`, behind the non-default feature `testing`, with the other test
+//! fixtures. [`chain`] writes the benchmark chains as model text (what
+//! `dalembert chain` prints).
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
 mod build;
-mod chain;
+pub mod chain;
 mod checks;
 mod cost;
 #[cfg(test)]
@@ -24,6 +26,7 @@ mod duplicates;
 mod emit;
 mod equations;
 mod expr;
+#[cfg(any(test, feature = "testing"))]
 mod interpret;
 mod kinematics;
 mod language;
@@ -38,6 +41,7 @@ mod rigid;
 #[cfg(test)]
 mod seeds;
 mod size;
+#[cfg(any(test, feature = "testing"))]
 mod trees;
 mod urdf;
 
@@ -51,7 +55,8 @@ pub use size::{FunctionSize, OPERATION_LIMIT};
 pub use urdf::{Imported, Urdf};
 
 /// Tools for testing and benchmarking generated systems, not needed to
-/// generate code.
+/// generate code: compiled with the non-default feature `testing` only
+/// (the workspace's tests, benchmarks and lab turn it on).
 ///
 /// * [`Interpreter`](testing::Interpreter) evaluates a system's derived
 ///   equations numerically, by d'Alembert's route (as the generator derives
@@ -60,11 +65,6 @@ pub use urdf::{Imported, Urdf};
 ///   optimised equations) with the first, which checks the optimiser and
 ///   the emitter, and the two routes with each other, which checks the
 ///   d'Alembert assembly.
-/// * [`chain`](testing::chain) and [`chain_spelled`](testing::chain_spelled)
-///   write the n-link benchmark chains of the reference data
-///   ([`Family`](testing::Family)) as model text, in three
-///   [`Spelling`](testing::Spelling)s; the `dalembert chain` command prints
-///   them.
 /// * [`Geometry`](testing::Geometry) gives the positions of a model's points
 ///   and the rotations of its frames from the engine's kinematics (what the
 ///   animations draw).
@@ -74,8 +74,9 @@ pub use urdf::{Imported, Urdf};
 ///   [`mat_vec`](testing::mat_vec) and [`transpose_vec`](testing::transpose_vec):
 ///   numeric rigid-body closed forms for free and spherical joints, written
 ///   apart from the symbolic engine.
+/// * [`Shape`](testing::Shape): the benchmark trees as URDF text.
+#[cfg(feature = "testing")]
 pub mod testing {
-    pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
     pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
     pub use crate::random::Random;
     pub use crate::rigid::{cross, mat_vec, quaternion_rotation, transpose_vec};
