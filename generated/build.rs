@@ -2,7 +2,7 @@
 //! `tests/reference/urdf/`, per benchmark tree of `trees/` and for two MuJoCo
 //! models of `tests/reference/mjcf/`, into `OUT_DIR`; `src/lib.rs` includes each into
 //! its own module; with the `large` feature, also the 60-link chains
-//! (`dalembert_codegen::testing::chain`). For the chains spelled with symbolic
+//! (`dalembert_codegen::chain::chain`). For the chains spelled with symbolic
 //! parameters it also writes `chain_references.rs`: a `reference()`
 //! constructor per system, holding the reference data's masses, lengths and
 //! gravity. Into `OUT_DIR/derivatives/` it writes a copy of some of those
@@ -13,7 +13,7 @@
 use std::fmt::Write;
 use std::path::PathBuf;
 
-use dalembert_codegen::testing::{Family, Spelling, chain, chain_parameters};
+use dalembert_codegen::chain::{Family, Spelling, chain, chain_parameters};
 
 /// The models whose copy asks for the derivatives: `models/NAME.dal`, or a
 /// URDF robot by its file name.

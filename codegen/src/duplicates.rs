@@ -198,11 +198,11 @@ fn symbol(s: Sym) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::chain::{Family, chain};
     use crate::expr::test_util::Scratch;
     use crate::interpret::Values;
     use crate::outputs::Function;
     use crate::random::Random;
-    use crate::testing::{Family, chain};
 
     /// Random states for a system of these sizes.
     struct States {
@@ -276,9 +276,8 @@ mod tests {
             "accelerations" => equations.articulated.as_ref().unwrap().roots(),
             "mass_forcing" => [equations.mass_matrix.concat(), equations.forcing.clone()].concat(),
             _ => {
-                let mut requested = crate::outputs::requested(&model, &equations, &mut pool)
-                    .unwrap()
-                    .functions;
+                let mut requested =
+                    crate::outputs::requested(&model, &equations, &mut pool).functions;
                 crate::plan::optimize::optimize_functions(&mut requested, &mut pool, &mut forms);
                 let function: &Function = requested.iter().find(|f| f.name == name).unwrap();
                 function

@@ -12,14 +12,13 @@
 //!   checks the d'Alembert assembly. `T`, `V`, `A`, `b` and the outputs
 //!   are the same on both routes.
 //!
-//! The generator's checks of the derived equations (`check_equations`) run
+//! The generator's checks of the derived equations (`checks::after_derivation`) run
 //! on the optimised equations, as when generating, so a model the
 //! interpreter accepts is one the generator accepts.
 
 use crate::equations::{Equations, lagrange};
 use crate::expr::{Env, ExprId, Pool, Sym};
 use crate::kinematics::Kinematics;
-use crate::language::ast::{Expr, Statement, System};
 use crate::model::{FrameId, Model, NEWTONIAN, ORIGIN, PointId, Vector};
 
 /// Which derivation of `M` and `f` an [`Interpreter`] evaluates.
@@ -151,7 +150,7 @@ impl Interpreter {
         // interpreter evaluates the unoptimised ones.
         let mut optimised = equations.clone();
         crate::plan::optimize::optimize(&mut optimised, &mut pool, &mut forms);
-        crate::check_equations(&model, &pool, &optimised)?;
+        crate::checks::after_derivation(&model, &pool, &optimised)?;
         if route == Route::Lagrange && !pool.rates_are_speeds() {
             return Err(syn::Error::new(
                 model.name.span(),
@@ -169,7 +168,7 @@ impl Interpreter {
             equations.mass_matrix = mass_matrix;
             equations.forcing = forcing;
         }
-        let outputs = crate::outputs::requested(&model, &equations, &mut pool)?.functions;
+        let outputs = crate::outputs::requested(&model, &equations, &mut pool).functions;
         Ok(Interpreter {
             model,
             pool,
@@ -327,21 +326,17 @@ pub struct Geometry {
 
 impl Geometry {
     fn new(source: &str) -> syn::Result<Geometry> {
-        let mut system = crate::language::parse_system(crate::lex(source)?)?;
-        let names = GeometryNames::of(&system);
-        system.statements.extend(names.probes()?);
+        let system = crate::language::parse_system(crate::lex(source)?)?;
         let (model, mut pool) = crate::model::resolve(&system)?;
         let kinematics = Kinematics::new(&model, &mut pool);
-        // The probes, appended last, name the points and frames in order.
-        let probed_points = model.forces[model.forces.len() - names.points.len()..].iter();
+        let names = &model.names;
         let point_ids: Vec<PointId> = [ORIGIN]
             .into_iter()
-            .chain(probed_points.map(|f| f.at))
+            .chain(names.points.iter().map(|(_, id)| *id))
             .collect();
-        let probed_frames = model.torques[model.torques.len() - names.frames.len()..].iter();
         let frame_ids: Vec<FrameId> = [NEWTONIAN]
             .into_iter()
-            .chain(probed_frames.map(|t| t.on))
+            .chain(names.frames.iter().map(|(_, id)| *id))
             .collect();
         let segments = point_ids
             .iter()
@@ -388,14 +383,14 @@ impl Geometry {
             pool,
             points: [String::from("O")]
                 .into_iter()
-                .chain(names.points)
+                .chain(names.points.iter().map(|(name, _)| name.to_string()))
                 .collect(),
             frames: [String::from("N")]
                 .into_iter()
-                .chain(names.frames)
+                .chain(names.frames.iter().map(|(name, _)| name.to_string()))
                 .collect(),
-            bodies: names.bodies,
-            particles: names.particles,
+            bodies: names.bodies.iter().map(ToString::to_string).collect(),
+            particles: names.particles.iter().map(ToString::to_string).collect(),
             segments,
             positions,
             rotations,
@@ -488,53 +483,6 @@ impl Geometry {
     pub fn gravity(&self, at: &Values<'_>) -> [f64; 3] {
         let values = self.pool.eval_many(&self.gravity, at);
         [values[0], values[1], values[2]]
-    }
-}
-
-/// The names a system's statements define, in order.
-#[derive(Default)]
-struct GeometryNames {
-    points: Vec<String>,
-    frames: Vec<String>,
-    bodies: Vec<String>,
-    particles: Vec<String>,
-}
-
-impl GeometryNames {
-    fn of(system: &System) -> GeometryNames {
-        let mut names = GeometryNames::default();
-        for statement in &system.statements {
-            match statement {
-                Statement::Frame { name, .. } => names.frames.push(name.to_string()),
-                Statement::Point { name, .. } => names.points.push(name.to_string()),
-                Statement::Body { name, .. } => names.bodies.push(name.to_string()),
-                Statement::Particle { name, .. } => names.particles.push(name.to_string()),
-                Statement::Joint { name, fields, .. } => {
-                    names.points.push(name.to_string());
-                    let child = fields.iter().find(|f| f.name == "child");
-                    if let Some(Expr::Name(child)) = child.map(|f| &f.value) {
-                        names.frames.push(child.to_string());
-                    }
-                }
-                _ => {}
-            }
-        }
-        names
-    }
-
-    /// Statements that add nothing to the equations but make the model
-    /// resolve every named point (a zero force at it) and frame (a zero
-    /// torque on it), in order, so their identities can be read back
-    /// whatever anonymous points the model adds.
-    fn probes(&self) -> syn::Result<Vec<Statement>> {
-        let forces = self.points.iter().map(|p| format!("force 0 * N.x at {p};"));
-        let torques = self
-            .frames
-            .iter()
-            .map(|f| format!("torque 0 * N.x on {f};"));
-        let text: String = forces.chain(torques).collect();
-        let probe = crate::lex(&format!("Probes {{ {text} }}"))?;
-        Ok(crate::language::parse_system(probe)?.statements)
     }
 }
 

@@ -11,17 +11,21 @@
 //! model in the same language. Beside the generator, an interpreter evaluates the
 //! derived equations numerically (by d'Alembert's route or, independently,
 //! Lagrange's) for differential tests of the emitted code; it lives in
-//! [`testing`] with the benchmark chain generator.
+//! `testing`, behind the non-default feature `testing`, with the other test
+//! fixtures. [`chain`] writes the benchmark chains as model text (what
+//! `dalembert chain` prints).
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
 mod build;
-mod chain;
+pub mod chain;
+mod checks;
 #[cfg(test)]
 mod duplicates;
 mod emit;
 mod equations;
 mod expr;
+#[cfg(any(test, feature = "testing"))]
 mod interpret;
 mod kinematics;
 mod language;
@@ -37,6 +41,7 @@ mod rigid;
 mod seeds;
 mod series;
 mod size;
+#[cfg(any(test, feature = "testing"))]
 mod trees;
 mod urdf;
 
@@ -50,7 +55,8 @@ pub use size::{FunctionSize, OPERATION_LIMIT};
 pub use urdf::{Imported, Urdf};
 
 /// Tools for testing and benchmarking generated systems, not needed to
-/// generate code.
+/// generate code: compiled with the non-default feature `testing` only
+/// (the workspace's tests, benchmarks and lab turn it on).
 ///
 /// * [`Interpreter`](testing::Interpreter) evaluates a system's derived
 ///   equations numerically, by d'Alembert's route (as the generator derives
@@ -59,11 +65,6 @@ pub use urdf::{Imported, Urdf};
 ///   optimised equations) with the first, which checks the optimiser and
 ///   the emitter, and the two routes with each other, which checks the
 ///   d'Alembert assembly.
-/// * [`chain`](testing::chain) and [`chain_spelled`](testing::chain_spelled)
-///   write the n-link benchmark chains of the reference data
-///   ([`Family`](testing::Family)) as model text, in three
-///   [`Spelling`](testing::Spelling)s; the `dalembert chain` command prints
-///   them.
 /// * [`Geometry`](testing::Geometry) gives the positions of a model's points
 ///   and the rotations of its frames from the engine's kinematics (what the
 ///   animations draw).
@@ -73,8 +74,9 @@ pub use urdf::{Imported, Urdf};
 ///   [`mat_vec`](testing::mat_vec) and [`transpose_vec`](testing::transpose_vec):
 ///   numeric rigid-body closed forms for free and spherical joints, written
 ///   apart from the symbolic engine.
+/// * [`Shape`](testing::Shape): the benchmark trees as URDF text.
+#[cfg(feature = "testing")]
 pub mod testing {
-    pub use crate::chain::{Family, Spelling, chain, chain_parameters, chain_spelled};
     pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
     pub use crate::random::Random;
     pub use crate::rigid::{cross, mat_vec, quaternion_rotation, transpose_vec};
@@ -177,7 +179,7 @@ pub fn function_sizes(source: &str) -> syn::Result<Vec<FunctionSize>> {
         equations,
         mut forms,
     } = derive(lex(source)?)?;
-    let plan = plan::plan(&model, &equations, &mut pool, &mut forms, Target::Std)?;
+    let plan = plan::plan(&model, &equations, &mut pool, &mut forms, Target::Std);
     Ok(size::sizes(&pool, &plan.functions))
 }
 
@@ -190,7 +192,7 @@ fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> 
         equations,
         mut forms,
     } = derive(input)?;
-    let mut plan = plan::plan(&model, &equations, &mut pool, &mut forms, target)?;
+    let mut plan = plan::plan(&model, &equations, &mut pool, &mut forms, target);
     size::check_size(&model, &size::sizes(&pool, &plan.functions))?;
     let mut docs = model.docs.clone();
     if !docs.is_empty() {
@@ -230,13 +232,13 @@ fn derive(input: TokenStream) -> syn::Result<Derivation> {
         forms,
     } = &mut derivation;
     plan::optimize::optimize(equations, pool, forms);
-    check_equations(model, pool, equations)?;
+    checks::after_derivation(model, pool, equations)?;
     Ok(derivation)
 }
 
 /// Parses, checks and derives: the equations as derived, before
 /// optimisation (no readable form computed yet). The checks of the derived
-/// equations ([`check_equations`]) need the optimised ones.
+/// equations ([`checks::after_derivation`]) need the optimised ones.
 fn derive_unoptimised(input: TokenStream) -> syn::Result<Derivation> {
     let system = language::parse_system(input)?;
     let (model, mut pool) = model::resolve(&system)?;
@@ -247,53 +249,4 @@ fn derive_unoptimised(input: TokenStream) -> syn::Result<Derivation> {
         equations,
         forms: readable::ReadableForms::default(),
     })
-}
-
-/// The checks that need the derived (and optimised) equations.
-fn check_equations(
-    model: &model::Model,
-    pool: &expr::Pool,
-    equations: &equations::Equations,
-) -> syn::Result<()> {
-    check_inertia(model, pool, equations)
-}
-
-/// Every speed must move some mass: a coordinate (or speed) whose diagonal entry
-/// of `M` is zero (and that no constraint ties) makes `M` singular
-/// everywhere. Reported at the coordinate's declaration.
-fn check_inertia(
-    model: &model::Model,
-    pool: &expr::Pool,
-    equations: &equations::Equations,
-) -> syn::Result<()> {
-    let mut errors = (0..model.nv()).filter_map(|k| {
-        let massless = pool.is_zero(equations.mass_matrix[k][k]);
-        let constrained = equations
-            .constraint_jacobian
-            .iter()
-            .any(|row| !pool.is_zero(row[k]));
-        (massless && !constrained).then(|| {
-            let speed = &model.speeds[k];
-            let name = &speed.name;
-            let what = if speed.rate_of_coordinate {
-                "coordinate"
-            } else {
-                "speed"
-            };
-            syn::Error::new(
-                name.span(),
-                format!(
-                    "the {what} `{name}` moves no mass, so the mass matrix is singular \
-                     everywhere: make a body or particle depend on it, or remove it"
-                ),
-            )
-        })
-    });
-    match errors.next() {
-        None => Ok(()),
-        Some(mut first) => {
-            errors.for_each(|e| first.combine(e));
-            Err(first)
-        }
-    }
 }

@@ -35,11 +35,13 @@ pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 /// `m v`.
+#[cfg(any(test, feature = "testing"))]
 pub fn mat_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| (0..3).map(|j| m[i][j] * v[j]).sum())
 }
 
 /// `mᵀ v`.
+#[cfg(any(test, feature = "testing"))]
 pub fn transpose_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| (0..3).map(|j| m[j][i] * v[j]).sum())
 }

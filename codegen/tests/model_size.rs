@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use dalembert_codegen::testing::{Family, Spelling, chain_spelled};
+use dalembert_codegen::chain::{Family, Spelling, chain_spelled};
 use dalembert_codegen::{OPERATION_LIMIT, function_sizes};
 
 /// The seed-spelled spatial chain of `n` links asking for `outputs`.

@@ -12,9 +12,8 @@
 //!   (velocity of position, acceleration of velocity, angular velocity of
 //!   the rotation) and `J v` against the velocities.
 
-use dalembert_codegen::testing::{
-    Family, Interpreter, Random, Route, Sample, Spelling, Values, chain_spelled,
-};
+use dalembert_codegen::chain::{Family, Spelling, chain_spelled};
+use dalembert_codegen::testing::{Interpreter, Random, Route, Sample, Values};
 use dalembert_codegen::{Urdf, check};
 use dalembert_fixtures::reference::{reference, reference_path};
 use serde_json::Value;

@@ -19,7 +19,7 @@ use std::time::Duration;
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, criterion_group, criterion_main};
 use dalembert::{DynamicsError, MultibodySystem};
-use dalembert_codegen::testing::{Family, chain};
+use dalembert_codegen::chain::{Family, chain};
 use dalembert_fixtures::looped::Chain;
 use dalembert_fixtures::states::{mass_matrix_and_forcing, per_call, states};
 use dalembert_generated::*;

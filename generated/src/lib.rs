@@ -78,7 +78,7 @@ model!(
 );
 
 // Benchmark chains: `models/{planar,spatial}_chain_NN.dal`, written by
-// `dalembert chain FAMILY N` (`dalembert_codegen::testing::chain`); tests/chains.rs checks
+// `dalembert chain FAMILY N` (`dalembert_codegen::chain::chain`); tests/chains.rs checks
 // them against that generator and against tests/reference/chains.json.
 model!(
     /// The planar chain of 1 link.
@@ -150,7 +150,7 @@ model!(
 );
 
 // The 60-link chains, with the `large` feature only (generated from
-// `dalembert_codegen::testing::chain` by build.rs, for the benches).
+// `dalembert_codegen::chain::chain` by build.rs, for the benches).
 #[cfg(feature = "large")]
 model!(
     /// The planar chain of 60 links.

@@ -5,10 +5,10 @@
 //! `dalembert::dynamics::cholesky_accelerations` and of the generated, unrolled
 //! `accelerations` method, which also agree with each other, the latter being
 //! what `dalembert::accelerations` calls. And the checked-in
-//! `models/*_chain_NN.dal` are exactly what `dalembert_codegen::testing::chain` writes.
+//! `models/*_chain_NN.dal` are exactly what `dalembert_codegen::chain::chain` writes.
 
 use dalembert::{DynamicsError, MultibodySystem};
-use dalembert_codegen::testing::Family;
+use dalembert_codegen::chain::Family;
 use dalembert_generated::*;
 use serde_json::Value;
 
@@ -172,7 +172,7 @@ fn chain_models_are_what_the_generator_writes() {
         let n: usize = n.parse().expect("a link count");
         assert_eq!(
             model.source,
-            dalembert_codegen::testing::chain(family, n),
+            dalembert_codegen::chain::chain(family, n),
             "models/{}.dal is stale: rewrite it with `dalembert chain {} {n}`",
             model.name,
             family.name()

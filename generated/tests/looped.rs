@@ -7,7 +7,7 @@
 //! (and 60 with the `large` feature).
 
 use dalembert::{DynamicsError, MultibodySystem};
-use dalembert_codegen::testing::{Family, chain};
+use dalembert_codegen::chain::{Family, chain};
 use dalembert_fixtures::looped::Chain;
 use dalembert_fixtures::reference::{assert_close, flat};
 use dalembert_fixtures::states::states;

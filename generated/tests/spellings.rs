@@ -3,9 +3,9 @@
 //! give Pinocchio's `M`, `f = τ − nle`, `T` and `V` of
 //! `tests/reference/chains.json` (τ = 0) and agree with each other at random
 //! states at every size, 30 links included; and the checked-in models are
-//! exactly what `dalembert_codegen::testing::chain_spelled` writes.
+//! exactly what `dalembert_codegen::chain::chain_spelled` writes.
 
-use dalembert_codegen::testing::{Family, Spelling, chain_spelled};
+use dalembert_codegen::chain::{Family, Spelling, chain_spelled};
 use dalembert_generated::*;
 use serde_json::Value;
 

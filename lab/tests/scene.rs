@@ -1,7 +1,7 @@
 //! Animated scenes: the drawn positions against closed forms derived by
 //! hand, the page's structure and embedded data, decimation and file sizes.
 
-use dalembert_codegen::testing::{Family, chain};
+use dalembert_codegen::chain::{Family, chain};
 use dalembert_lab::{Pose, Recording, Scene, decimate};
 
 /// Seed example 1, as the language reference writes it.

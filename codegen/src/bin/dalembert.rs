@@ -28,7 +28,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use dalembert_codegen::testing::{Family, Spelling};
+use dalembert_codegen::chain::{Family, Spelling};
 use dalembert_codegen::{BuildError, ImportOptions, Mjcf, ModelFile, Severity, Style, Urdf};
 
 const USAGE: &str = "\
@@ -400,7 +400,7 @@ fn run(command: Command) -> ExitCode {
             family,
             links,
             spelling,
-        } => Ok(dalembert_codegen::testing::chain_spelled(
+        } => Ok(dalembert_codegen::chain::chain_spelled(
             family, links, spelling,
         )),
         Command::Urdf { robot, options } => urdf(&robot, options),

@@ -618,6 +618,7 @@ fn constraints(model: &Model, pool: &mut Pool) -> ConstraintRows {
 
 mod articulated;
 pub mod derivatives;
+#[cfg(any(test, feature = "testing"))]
 pub mod lagrange;
 #[cfg(test)]
 mod lagrange_check;

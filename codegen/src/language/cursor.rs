@@ -5,6 +5,7 @@
 //! a new cursor on it with [`Cursor::group`], which knows the closing
 //! delimiter so that running out of tokens points at it.
 
+use super::keyword::Symbol;
 use std::fmt::Display;
 
 use proc_macro2::{Delimiter, Group, Ident, Punct, Spacing, Span, TokenStream, TokenTree};
@@ -113,7 +114,7 @@ impl Cursor {
     }
 
     /// Consumes the identifier `keyword` if it is the current token.
-    pub fn eat_keyword(&mut self, keyword: &str) -> Option<Ident> {
+    pub fn eat_keyword(&mut self, keyword: Symbol) -> Option<Ident> {
         if self.peek_ident()? == keyword {
             self.eat_ident()
         } else {
@@ -145,7 +146,7 @@ impl Cursor {
 
     /// Consumes the identifier `keyword`, or reports "expected {what},
     /// found ...".
-    pub fn expect_keyword(&mut self, keyword: &str, what: impl Display) -> syn::Result<Ident> {
+    pub fn expect_keyword(&mut self, keyword: Symbol, what: impl Display) -> syn::Result<Ident> {
         self.eat_keyword(keyword).ok_or_else(|| self.expected(what))
     }
 

@@ -5,7 +5,7 @@
 pub mod ast;
 mod cursor;
 mod expression;
-mod keyword;
+pub mod keyword;
 mod parse;
 #[cfg(test)]
 mod render;

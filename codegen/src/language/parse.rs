@@ -421,7 +421,7 @@ fn output(cursor: &mut Cursor) -> syn::Result<OutputRequest> {
 fn argument(cursor: &mut Cursor, expected: impl Display) -> syn::Result<Ident> {
     let name = cursor.expect_ident(expected)?;
     let is_group = |token: Option<&TokenTree>| matches!(token, Some(TokenTree::Group(group)) if group.delimiter() == Delimiter::Parenthesis);
-    if name == "dt" && is_group(cursor.peek()) {
+    if name == keyword::DT && is_group(cursor.peek()) {
         return Err(syn::Error::new(
             name.span(),
             "`dt(..)` is a speed, where a point, frame or coordinate is expected: \
@@ -435,7 +435,7 @@ fn argument(cursor: &mut Cursor, expected: impl Display) -> syn::Result<Ident> {
 /// Parses one speed of `linearize(..; ..)`: `dt(q)` or a speed's name.
 fn speed_name(cursor: &mut Cursor) -> syn::Result<SpeedName> {
     let name = cursor.expect_ident("a speed, `dt(q)` or its name, after `;` or `,`")?;
-    if name != "dt" {
+    if name != keyword::DT {
         return Ok(SpeedName { name, rate: false });
     }
     let group = cursor

@@ -6,7 +6,11 @@
 //! the pool); every rule of the
 //! language (types, what may depend on what, required fields) is checked
 //! here, once, and all violations are reported together, each at the user's
-//! token. Later layers trust the model and report nothing.
+//! token. What only the derived equations tell (a speed that moves no
+//! mass, a regressor the model does not have) is checked in one later
+//! phase, `crate::checks`, after the derivation; the other later layers
+//! trust the model and report nothing about the text, but for the size
+//! guard (`crate::size`), which refuses a model too large for rustc.
 
 mod algebra;
 mod closure;
@@ -90,6 +94,27 @@ pub struct Model {
     /// The outputs asked for beyond `M`, `f`, the energies and the
     /// constraints, in the order written.
     pub outputs: Vec<Output>,
+    /// The names the statements bound to frames, points, bodies and
+    /// particles: the resolver's name table, kept for the stages that
+    /// speak of the model's parts by name.
+    pub names: Names,
+}
+
+/// The names of a model's parts, each in the order its statements define
+/// them.
+#[derive(Default)]
+pub struct Names {
+    /// The frames of `frame` statements and the children of joints, with
+    /// their ids (`N` not included).
+    pub frames: Vec<(Ident, FrameId)>,
+    /// The points of `point` statements and of joints, with their ids (`O`
+    /// not included; the anonymous points of expressions such as
+    /// `force F at P + r` neither).
+    pub points: Vec<(Ident, PointId)>,
+    /// The bodies, as [`Model::bodies`].
+    pub bodies: Vec<Ident>,
+    /// The particles, as [`Model::particles`].
+    pub particles: Vec<Ident>,
 }
 
 /// A speed: a coordinate's rate `dt(q)`, or a speed of its own (a

@@ -3,22 +3,29 @@
 //! (scalar, vector, point, frame) and checks each rule of the language where
 //! the offending token is at hand.
 //!
-//! Files, by concern: `statements` (one handler per statement), `scope`
+//! Files, by concern: `statements` (the dispatch by statement kind, with
+//! the declarations, masses and loads), one file per larger statement
+//! (`frames`, `joints`, `speeds`, `constraints`, `rolling`, `outputs`), `scope`
 //! (names and definitions), `evaluate` (typed expressions), `fields` (the
 //! `{ field: value }` blocks) and `rules` (one `check_*` function per rule
 //! beyond types and names, with the reason for it). They share one
 //! [`Resolver`], defined here.
 
+mod constraints;
 mod evaluate;
 mod fields;
+mod frames;
+mod joints;
+mod outputs;
 mod rolling;
 mod rules;
 mod scope;
+mod speeds;
 mod statements;
 mod vectors;
 
 use super::algebra::Geometry;
-use super::{Errors, Frame, Model, NEWTONIAN, ORIGIN, Point, Tree};
+use super::{Errors, Frame, Model, NEWTONIAN, Names, ORIGIN, Point, Tree};
 use crate::expr::{Pool, Sym};
 use crate::kinematics::Kinematics;
 use crate::language::ast::System;
@@ -102,6 +109,7 @@ impl Resolver {
                 constraints: Vec::new(),
                 tree: None,
                 outputs: Vec::new(),
+                names: Names::default(),
             },
         }
     }

@@ -2,10 +2,10 @@
 //! Taylor coefficients of the motion.
 
 use super::{Argument, Body, Function, NameList, Value, doc_lines};
-use crate::equations::regressor::{Failure, regressor as derive_regressor};
+use crate::equations::regressor::regressor as derive_regressor;
 use crate::equations::{Equations, inverse_dynamics as derive_inverse_dynamics};
 use crate::expr::Pool;
-use crate::model::{Model, Output};
+use crate::model::Model;
 use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
@@ -32,25 +32,16 @@ pub fn inverse_dynamics(model: &Model, equations: &Equations, pool: &mut Pool) -
     )
 }
 
-/// `regressor(q, v, v̇)`, `base_parameters()` and `BASE_PARAMETERS`; an
-/// error at `regressor` if the model has none.
+/// `regressor(q, v, v̇)`, `base_parameters()` and `BASE_PARAMETERS`;
+/// `None` if the model has none (which the checks after the derivation,
+/// `crate::checks`, have reported).
 pub fn regressor(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
-    output: &Output,
-) -> syn::Result<(Vec<Function>, NameList)> {
+) -> Option<(Vec<Function>, NameList)> {
     let (tau, _) = derive_inverse_dynamics(model, equations, pool);
-    let regressor = derive_regressor(pool, &tau).map_err(|failure| {
-        let why = match failure {
-            Failure::TooLarge => "`M v̇ − f` holds too many products of parameters",
-            Failure::TimeDependent => "`M v̇ − f` depends on time `t` (outside the inputs)",
-        };
-        syn::Error::new(
-            output.function.span(),
-            format!("this model has no regressor: {why}; remove `regressor` from `outputs`"),
-        )
-    })?;
+    let regressor = derive_regressor(pool, &tau).ok()?;
     let names = regressor.names(&model.parameters);
     let nb = names.len();
     let list: String = names
@@ -92,7 +83,7 @@ pub fn regressor(
         ),
         names,
     };
-    Ok((functions, constant))
+    Some((functions, constant))
 }
 
 /// `taylor_coefficients(t, q, v, u, order)`: the series of `M` and `f`

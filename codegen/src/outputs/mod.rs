@@ -290,12 +290,13 @@ pub struct Requested {
 }
 
 /// What the model's `outputs` statement asks for, in the order written
-/// (`linearize` brings `accelerations_jacobian`, which it calls); an error
-/// at an output the model cannot give.
-pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::Result<Requested> {
+/// (`linearize` brings `accelerations_jacobian`, which it calls); what the
+/// model cannot give has been refused by the checks after the derivation
+/// (`crate::checks`).
+pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Requested {
     let mut requested = Requested::default();
     if model.outputs.is_empty() {
-        return Ok(requested);
+        return requested;
     }
     let kinematics = &equations.mechanics.kinematics;
     // The partials of `τ`, found at the first output that needs them.
@@ -307,9 +308,10 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 .functions
                 .push(dynamics::inverse_dynamics(model, equations, pool)),
             OutputKind::Regressor => {
-                let (functions, names) = dynamics::regressor(model, equations, pool, output)?;
-                requested.functions.extend(functions);
-                requested.constants.push(names);
+                if let Some((functions, names)) = dynamics::regressor(model, equations, pool) {
+                    requested.functions.extend(functions);
+                    requested.constants.push(names);
+                }
             }
             OutputKind::InverseDynamicsJacobian => {
                 let partials = tau_partials(&mut partials, model, equations, pool);
@@ -356,7 +358,7 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> syn::
                 .extend(kinematic::function(model, kinematics, pool, output)),
         }
     }
-    Ok(requested)
+    requested
 }
 
 /// The partials of `τ` in `found`, found there first if they are not yet.

@@ -149,7 +149,7 @@ pub fn plan(
     pool: &mut Pool,
     forms: &mut ReadableForms,
     target: Target,
-) -> syn::Result<Plan> {
+) -> Plan {
     let mass = mass_matrix(model, equations, pool, target);
     let mut functions = outputs::standard(model, equations, pool, mass);
     // A looped `M`'s vectors are new expressions, optimised as the outputs are.
@@ -159,7 +159,7 @@ pub fn plan(
     {
         optimize::optimize_functions(std::slice::from_mut(mass), pool, forms);
     }
-    let mut requested = outputs::requested(model, equations, pool)?;
+    let mut requested = outputs::requested(model, equations, pool);
     optimize::optimize_functions(&mut requested.functions, pool, forms);
     functions.extend(requested.functions);
     let runtime = target == Target::Std;
@@ -169,13 +169,13 @@ pub fn plan(
     let accelerations = factorisation
         .as_ref()
         .map(|f| solve::accelerations(model, pool, equations, f));
-    Ok(Plan {
+    Plan {
         functions,
         constants: requested.constants,
         factorisation,
         accelerations,
         taylor: None,
-    })
+    }
 }
 
 impl Plan {

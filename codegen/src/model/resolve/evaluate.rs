@@ -8,6 +8,7 @@ use super::scope::Binding;
 use super::vectors::VECTOR_FUNCTIONS;
 use crate::expr::{ExprId, Func, SymKinds};
 use crate::language::ast::{BinOp, Expr, SpanRange};
+use crate::language::keyword::DT;
 use crate::model::{FrameId, Point, PointId, Vector};
 use proc_macro2::{Ident, Span};
 
@@ -20,7 +21,7 @@ pub(super) const FUNCTIONS: [(&str, Option<Func>); 8] = [
     ("exp", Some(Func::Exp)),
     ("ln", Some(Func::Ln)),
     ("abs", Some(Func::Abs)),
-    ("dt", None),
+    (DT.as_str(), None),
 ];
 
 /// Axis names of unit vectors and joint axes.
@@ -456,13 +457,15 @@ pub(super) fn describe_kind(kind: SymKinds) -> &'static str {
 }
 
 pub(super) fn operator_mismatch(op: BinOp, a: &Value, b: &Value) -> String {
+    let point = matches!(a, Value::Point(..)) || matches!(b, Value::Point(..));
+    let frame_first = matches!(a, Value::Frame(_));
     let (a, b) = (a.describe(), b.describe());
     match op {
         BinOp::Add | BinOp::Sub => {
             let verb = if op == BinOp::Add { "add" } else { "subtract" };
-            let expected = if a == "a point" || b == "a point" {
+            let expected = if point {
                 "a point is written `P + vector` or `P - vector`, and `P - Q` of two points is the vector from `Q` to `P`"
-            } else if a == "a frame" {
+            } else if frame_first {
                 "a frame has no position of its own; a point is written `P + vector` from a \
                  point (`O` or one defined above)"
             } else {

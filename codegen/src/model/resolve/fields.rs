@@ -7,6 +7,7 @@ use super::evaluate::{AXES, AXIS, MASS};
 use super::list;
 use crate::expr::{ExprId, Func, Number, Pool};
 use crate::language::ast::{Expr, Field};
+use crate::language::keyword::Symbol;
 use crate::model::closure::FrameAxis;
 use crate::model::unit_axis;
 use proc_macro2::{Ident, Span};
@@ -19,7 +20,7 @@ impl Resolver {
         owner: &Ident,
         what: &str,
         fields: &'a [Field],
-        expected: [&str; K],
+        expected: [Symbol; K],
     ) -> [Option<&'a Expr>; K] {
         self.fields_optional(owner, what, fields, expected, 0)
     }
@@ -31,12 +32,13 @@ impl Resolver {
         owner: &Ident,
         what: &str,
         fields: &'a [Field],
-        expected: [&str; K],
+        expected: [Symbol; K],
         optional: usize,
     ) -> [Option<&'a Expr>; K] {
+        let words = expected.map(Symbol::as_str);
         let mut found: [Option<&'a Expr>; K] = [None; K];
         for field in fields {
-            match expected.iter().position(|name| field.name == name) {
+            match expected.iter().position(|name| field.name == *name) {
                 Some(i) if found[i].is_some() => self.errors.push(
                     field.name.span(),
                     format!("field `{}` is given twice", field.name),
@@ -47,12 +49,12 @@ impl Resolver {
                     format!(
                         "unknown field `{}` of a {what}; expected {}",
                         field.name,
-                        list(&expected)
+                        list(&words)
                     ),
                 ),
             }
         }
-        let missing: Vec<&str> = expected
+        let missing: Vec<&str> = words
             .iter()
             .zip(&found)
             .take(K - optional)
@@ -70,7 +72,7 @@ impl Resolver {
                         "the fields"
                     },
                     list(&missing),
-                    list(&expected[..K - optional])
+                    list(&words[..K - optional])
                 ),
             );
         }

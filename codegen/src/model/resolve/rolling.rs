@@ -7,6 +7,7 @@ use super::evaluate::{GEOMETRY, Use};
 use super::scope::Binding;
 use crate::expr::{ExprId, SymKinds};
 use crate::language::ast::{Expr, Field, SpanRange};
+use crate::language::keyword::field::{AXLE, CENTER, PLANE, RADIUS, THROUGH, TIRE, WHEEL};
 use crate::model::rolling::{Wheel, at_reference, rolling_rows};
 use crate::model::{Constraint, ORIGIN, Vector};
 use proc_macro2::Ident;
@@ -26,9 +27,7 @@ impl Resolver {
             name,
             "rolling contact",
             fields,
-            [
-                "wheel", "axle", "center", "radius", "plane", "tire", "through",
-            ],
+            [WHEEL, AXLE, CENTER, RADIUS, PLANE, TIRE, THROUGH],
             2,
         );
         let frame = wheel.and_then(|e| self.frame(e));

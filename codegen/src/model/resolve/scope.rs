@@ -5,6 +5,7 @@ use super::Resolver;
 use super::evaluate::FUNCTIONS;
 use crate::expr::{ExprId, Sym};
 use crate::language::ast::{Expr, Statement, System};
+use crate::language::keyword::field::CHILD;
 use crate::model::{Frame, FrameId, FramePlacement, Point, PointId, Vector};
 use proc_macro2::{Ident, Span};
 use std::collections::HashMap;
@@ -149,6 +150,7 @@ impl Resolver {
                     ball,
                 }),
             });
+            self.model.names.frames.push((name.clone(), id));
         }
         new
     }
@@ -163,6 +165,7 @@ impl Resolver {
         let new = self.define(name, Binding::Point(id));
         if new {
             self.model.points.push(Point { placement });
+            self.model.names.points.push((name.clone(), id));
         }
         new
     }
@@ -231,7 +234,7 @@ pub(super) fn defined_names(system: &System) -> HashMap<String, Span> {
             Statement::Joint { name, fields, .. } => {
                 add(name);
                 for field in fields {
-                    if let (true, Expr::Name(child)) = (field.name == "child", &field.value) {
+                    if let (true, Expr::Name(child)) = (field.name == CHILD, &field.value) {
                         add(child);
                     }
                 }
