@@ -17,42 +17,14 @@
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use dalembert_codegen::Urdf;
+use fuzz::{Element, Mutant, Rng, attribute, attributes, splice, unreadable};
+
+mod fuzz;
 
 /// Cases run in CI.
 const FUZZ_CASES: usize = 300;
-
-/// Values an attribute is replaced with: extreme, malformed, or of the
-/// wrong arity.
-const VALUES: [&str; 16] = [
-    "nan",
-    "inf",
-    "-inf",
-    "",
-    "abc",
-    "1e308 1e308 1e308",
-    "0",
-    "-1",
-    "1e-320",
-    "1 2",
-    "1 2 3 4",
-    "0 0 0",
-    "1e400",
-    "0x10",
-    "1,2,3",
-    "NaN 0 0",
-];
-
-/// Values that are not a finite number (or not a list of them).
-fn unreadable(value: &str) -> bool {
-    value
-        .split_whitespace()
-        .map(str::parse::<f64>)
-        .any(|v| !v.is_ok_and(f64::is_finite))
-        || value.trim().is_empty()
-}
 
 /// The real robot files, read once.
 fn robots() -> Vec<(PathBuf, String)> {
@@ -78,218 +50,96 @@ fn robots() -> Vec<(PathBuf, String)> {
     files
 }
 
-/// A deterministic generator (xorshift64*).
-struct Rng(u64);
-
-impl Rng {
-    fn below(&mut self, n: usize) -> usize {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 33) as usize % n.max(1)
+/// A link reference (`<parent>`, `<child>`) redirected to another link, or
+/// to a missing one.
+fn redirect(text: &str, all: &[Element], rng: &mut Rng) -> Mutant {
+    let links: Vec<_> = all
+        .iter()
+        .filter(|e| e.name == "link" && e.path.len() == 1)
+        .collect();
+    let references: Vec<_> = all
+        .iter()
+        .filter(|e| e.name == "parent" || e.name == "child")
+        .collect();
+    if links.is_empty() || references.is_empty() {
+        return Mutant::unchanged(text);
     }
+    let reference = references[rng.below(references.len())];
+    let Some((_, value)) = attributes(text, &reference.start_tag).into_iter().next() else {
+        return Mutant::unchanged(text);
+    };
+    let target = if rng.below(4) == 0 {
+        "no_such_link"
+    } else {
+        let link = links[rng.below(links.len())];
+        attribute(text, link, "name").unwrap_or_default()
+    };
+    Mutant::new(
+        splice(text, value, target),
+        format!("<{}> redirected to {target}", reference.name),
+    )
 }
 
-/// An element of the file: its tag name, its byte range (start tag to end
-/// tag), the names of the elements it is in, and its start tag's range.
-#[derive(Clone, Debug)]
-struct Element {
-    name: String,
-    range: std::ops::Range<usize>,
-    start_tag: std::ops::Range<usize>,
-    path: Vec<String>,
-}
-
-/// The elements of `text`, in document order (comments, declarations and
-/// processing instructions skipped).
-fn elements(text: &str) -> Vec<Element> {
-    let (mut found, mut open): (Vec<Element>, Vec<usize>) = (Vec::new(), Vec::new());
-    let mut at = 0;
-    while let Some(offset) = text[at..].find('<') {
-        let start = at + offset;
-        let Some(length) = text[start..].find('>') else {
-            break;
-        };
-        let end = start + length + 1;
-        let tag = &text[start + 1..end - 1];
-        at = end;
-        if tag.starts_with(['?', '!']) {
-            continue;
-        }
-        if tag.starts_with('/') {
-            // Closes the innermost open element (a mutated file may not
-            // match its tags: the ranges are then only approximate).
-            if let Some(k) = open.pop() {
-                found[k].range.end = end;
-            }
-            continue;
-        }
-        let name: String = tag
-            .chars()
-            .take_while(|c| !c.is_whitespace() && *c != '/')
-            .collect();
-        let path = open.iter().map(|&k| found[k].name.clone()).collect();
-        found.push(Element {
-            name,
-            range: start..end,
-            start_tag: start..end,
-            path,
-        });
-        if !tag.ends_with('/') {
-            open.push(found.len() - 1);
-        }
+/// A joint's type changed (to another, or to nothing).
+fn retype(text: &str, all: &[Element], rng: &mut Rng) -> Mutant {
+    let joints: Vec<_> = all
+        .iter()
+        .filter(|e| e.name == "joint" && e.path.len() == 1)
+        .collect();
+    let Some(joint) = joints.get(rng.below(joints.len())) else {
+        return Mutant::unchanged(text);
+    };
+    let kinds = [
+        "revolute",
+        "continuous",
+        "prismatic",
+        "fixed",
+        "floating",
+        "planar",
+        "spherical",
+        "",
+    ];
+    let kind = kinds[rng.below(kinds.len())];
+    match attributes(text, &joint.start_tag)
+        .into_iter()
+        .find(|(n, _)| n == "type")
+    {
+        Some((_, value)) => Mutant::new(splice(text, value, kind), format!("joint type {kind:?}")),
+        None => Mutant::unchanged(text),
     }
-    found
-}
-
-/// The attributes `name="value"` of a start tag: the name and the range of
-/// the value.
-fn attributes(text: &str, tag: &std::ops::Range<usize>) -> Vec<(String, std::ops::Range<usize>)> {
-    let mut found = Vec::new();
-    let body = &text[tag.clone()];
-    let mut at = 0;
-    while let Some(eq) = body[at..].find("=\"") {
-        let eq = at + eq;
-        let name_start = body[..eq].rfind(char::is_whitespace).map_or(0, |i| i + 1);
-        let value_start = eq + 2;
-        let Some(length) = body[value_start..].find('"') else {
-            break;
-        };
-        found.push((
-            body[name_start..eq].to_owned(),
-            tag.start + value_start..tag.start + value_start + length,
-        ));
-        at = value_start + length + 1;
-    }
-    found
-}
-
-/// One mutation of a file, and whether the import must fail.
-struct Mutant {
-    text: String,
-    what: String,
-    must_fail: bool,
 }
 
 /// A random structure-aware mutation of `text`.
 fn mutate(text: &str, rng: &mut Rng) -> Mutant {
-    let all = elements(text);
+    let all = fuzz::elements(text);
     let Some(element) = all.get(rng.below(all.len())) else {
-        return Mutant {
-            text: text.to_owned(),
-            what: "unchanged (no element)".into(),
-            must_fail: false,
-        };
-    };
-    let splice = |range: std::ops::Range<usize>, by: &str| {
-        format!("{}{by}{}", &text[..range.start], &text[range.end..])
-    };
-    let mutant = |text, what: String| Mutant {
-        text,
-        what,
-        must_fail: false,
+        return Mutant::new(text.to_owned(), "unchanged (no element)".into());
     };
     match rng.below(7) {
-        0 => mutant(
-            splice(element.range.clone(), ""),
-            format!("deleted <{}>", element.name),
-        ),
-        1 => {
-            let copy = &text[element.range.clone()];
-            let at = element.range.end..element.range.end;
-            mutant(splice(at, copy), format!("duplicated <{}>", element.name))
-        }
-        2 => {
-            // Moved to the end of the robot.
-            let cut = splice(element.range.clone(), "");
-            let at = cut.rfind("</robot>").unwrap_or(cut.len());
-            let moved = format!(
-                "{}{}{}",
-                &cut[..at],
-                &text[element.range.clone()],
-                &cut[at..]
-            );
-            mutant(moved, format!("moved <{}>", element.name))
-        }
-        3 => {
-            let cut = rng.below(text.len());
-            let cut = (0..=cut)
-                .rev()
-                .find(|&i| text.is_char_boundary(i))
-                .unwrap_or(0);
-            mutant(text[..cut].to_owned(), format!("truncated at byte {cut}"))
-        }
-        4 => {
-            // A link reference redirected to another link, or to a missing one.
-            let links: Vec<_> = all
-                .iter()
-                .filter(|e| e.name == "link" && e.path.len() == 1)
-                .collect();
-            let references: Vec<_> = all
-                .iter()
-                .filter(|e| e.name == "parent" || e.name == "child")
-                .collect();
-            if links.is_empty() || references.is_empty() {
-                return mutant(text.to_owned(), "unchanged".into());
+        0 => fuzz::delete(text, element),
+        1 => fuzz::duplicate(text, element),
+        2 => fuzz::move_before(text, element, "</robot>"),
+        3 => fuzz::truncate(text, rng),
+        4 => redirect(text, &all, rng),
+        5 => retype(text, &all, rng),
+        _ => match fuzz::bad_value(text, element, rng) {
+            Some((mut mutant, name, new)) => {
+                mutant.must_fail = unreadable(new) && matters(text, &all, element, &name);
+                mutant
             }
-            let reference = references[rng.below(references.len())];
-            let Some((_, value)) = attributes(text, &reference.start_tag).into_iter().next() else {
-                return mutant(text.to_owned(), "unchanged".into());
-            };
-            let target = if rng.below(4) == 0 {
-                "no_such_link".to_owned()
-            } else {
-                let link = links[rng.below(links.len())];
-                attributes(text, &link.start_tag)
-                    .into_iter()
-                    .find(|(n, _)| n == "name")
-                    .map_or_else(String::new, |(_, r)| text[r].to_owned())
-            };
-            mutant(
-                splice(value, &target),
-                format!("<{}> redirected to {target}", reference.name),
-            )
-        }
-        5 => {
-            let joints: Vec<_> = all
-                .iter()
-                .filter(|e| e.name == "joint" && e.path.len() == 1)
-                .collect();
-            let Some(joint) = joints.get(rng.below(joints.len())) else {
-                return mutant(text.to_owned(), "unchanged".into());
-            };
-            let kinds = [
-                "revolute",
-                "continuous",
-                "prismatic",
-                "fixed",
-                "floating",
-                "planar",
-                "spherical",
-                "",
-            ];
-            let kind = kinds[rng.below(kinds.len())];
-            match attributes(text, &joint.start_tag)
-                .into_iter()
-                .find(|(n, _)| n == "type")
-            {
-                Some((_, value)) => mutant(splice(value, kind), format!("joint type {kind:?}")),
-                None => mutant(text.to_owned(), "unchanged".into()),
-            }
-        }
-        _ => {
-            let attrs = attributes(text, &element.start_tag);
-            let Some((name, value)) = attrs.get(rng.below(attrs.len())).cloned() else {
-                return mutant(text.to_owned(), "unchanged".into());
-            };
-            let new = VALUES[rng.below(VALUES.len())];
-            let must_fail = unreadable(new) && matters(text, &all, element, &name);
-            Mutant {
-                text: splice(value, new),
-                what: format!("<{} {name}> = {new:?} in {:?}", element.name, element.path),
-                must_fail,
-            }
-        }
+            None => Mutant::unchanged(text),
+        },
+    }
+}
+
+/// One mutant of `text`, and a second mutation on top one time in three.
+fn mutant_of(text: &str, rng: &mut Rng) -> Mutant {
+    let mutant = mutate(text, rng);
+    if rng.below(3) == 0 {
+        let second = mutate(&mutant.text, rng);
+        mutant.then(second)
+    } else {
+        mutant
     }
 }
 
@@ -332,24 +182,10 @@ fn fuzz(cases: usize, seed: u64, command_every: usize) -> Tally {
     let robots = robots();
     let mut rng = Rng(seed);
     let mut tally = Tally::default();
-    // One directory per run: the two tests may run at once.
-    let run = format!("dalembert-urdf-fuzz-{}-{seed:x}", std::process::id());
-    let dir = std::env::temp_dir().join(run);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fuzz::scratch("urdf", seed);
     for case in 0..cases {
         let (path, text) = &robots[case % robots.len()];
-        let mut mutant = mutate(text, &mut rng);
-        if rng.below(3) == 0 {
-            // A second mutation on top (which may undo the first's bad
-            // value: deleting its element, truncating the file before it,
-            // so only the second's counts for the oracle).
-            let second = mutate(&mutant.text, &mut rng);
-            mutant = Mutant {
-                what: format!("{}; {}", mutant.what, second.what),
-                must_fail: second.must_fail,
-                text: second.text,
-            };
-        }
+        let mutant = mutant_of(text, &mut rng);
         let what = format!("case {case}, {}: {}", path.display(), mutant.what);
         let imported = catch_unwind(AssertUnwindSafe(|| Urdf::new(path, &mutant.text).import()))
             .unwrap_or_else(|_| panic!("{what}: the importer panicked"));
@@ -371,13 +207,7 @@ fn fuzz(cases: usize, seed: u64, command_every: usize) -> Tally {
         if case % command_every == 0 {
             let file = dir.join(format!("case{case}.urdf"));
             std::fs::write(&file, &mutant.text).unwrap();
-            let output = Command::new(env!("CARGO_BIN_EXE_dalembert"))
-                .arg("urdf")
-                .arg(&file)
-                .output()
-                .unwrap();
-            let printed = !output.stdout.is_empty();
-            assert_eq!(printed, output.status.success(), "{what}: {output:?}");
+            fuzz::assert_command_prints_only_on_success("urdf", &file, &what);
         }
     }
     std::fs::remove_dir_all(&dir).ok();
