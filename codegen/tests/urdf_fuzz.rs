@@ -22,9 +22,21 @@ use dalembert_codegen::Urdf;
 use fuzz::{Element, Mutant, Rng, attribute, attributes, splice, unreadable};
 
 mod fuzz;
+mod pinocchio;
 
 /// Cases run in CI.
 const FUZZ_CASES: usize = 300;
+
+/// Imported mutants compared with Pinocchio's reading of the same file.
+const SAMPLE_SIZE: usize = 80;
+
+/// The seed of that sample's mutations.
+const SAMPLE_SEED: u64 = 0x51A7_E5EE_D5A1_7E00;
+
+/// Relative agreement required of `M`, `f`, `T` and `V` against the
+/// largest entry of each, and of `q̈` times `M`'s condition number (the
+/// most any solver can promise).
+const TOLERANCE: f64 = 1e-10;
 
 /// The real robot files, read once.
 fn robots() -> Vec<(PathBuf, String)> {
@@ -228,4 +240,68 @@ fn ten_thousand_mutated_robot_files() {
     let tally = fuzz(10_000, 0xF0CC_AC1A, 100);
     println!("10 000 cases: {tally:?}");
     assert!(tally.imported > 100 && tally.refused > 100, "{tally:?}");
+}
+
+/// The sample checked against Pinocchio: mutants of the robots under
+/// 16 KB (every robot but the largest three) that import.
+fn sample() -> Vec<fuzz::Sampled> {
+    let robots: Vec<_> = robots()
+        .into_iter()
+        .filter(|(_, text)| text.len() < 16_000)
+        .map(|(path, text)| {
+            (
+                path.file_name().unwrap().to_string_lossy().into_owned(),
+                text,
+            )
+        })
+        .collect();
+    fuzz::sample(
+        &robots,
+        SAMPLE_SEED,
+        SAMPLE_SIZE,
+        mutant_of,
+        |file, text| {
+            Urdf::new(file, text)
+                .import()
+                .ok()
+                .map(|imported| imported.model)
+        },
+    )
+}
+
+/// Writes the sample's files into the folder named by `FUZZ_SAMPLE`, for
+/// `scripts/urdf_fuzz_reference.sh` (which then has Pinocchio read them).
+#[test]
+#[ignore = "writes the sample for scripts/urdf_fuzz_reference.sh"]
+fn write_the_sample_for_pinocchio() {
+    fuzz::write_sample(&sample(), "urdf");
+}
+
+/// The mutations after which Pinocchio has no numbers for a file the
+/// import takes, and why that is no difference in the dynamics.
+const PINOCCHIO_ALONE_REFUSES: [(&str, &str); 2] = [
+    (
+        "<limit",
+        "urdfdom requires a `<limit>` of every revolute and prismatic joint and reads its \
+         numbers strictly (`1e400`); limits do not enter the equations of motion, and the \
+         import reads none",
+    ),
+    (
+        "1e308",
+        "a length or axis near `f64::MAX`: Pinocchio's `M` is infinite (`origin`) or fails \
+         `T = ½ vᵀ M v` (an `axis`, whose squares overflow); the import normalises such an \
+         axis without overflow and writes such a length as it is, whose `M` is then not finite, \
+         which the generated code reports as a `DynamicsError`",
+    ),
+];
+
+#[test]
+fn imported_mutants_match_pinocchio() {
+    fuzz::check_sample(
+        "urdf_fuzz/pinocchio.json",
+        &sample(),
+        &PINOCCHIO_ALONE_REFUSES,
+        TOLERANCE,
+        SAMPLE_SIZE * 3 / 4,
+    );
 }

@@ -254,3 +254,142 @@ pub fn scratch(tag: &str, seed: u64) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
+
+/// One imported mutant of a sample checked against a peer's reading of
+/// the same file (Pinocchio's of URDF, MuJoCo's of MJCF).
+pub struct Sampled {
+    /// `case_NNN`, its name in the reference and its file's stem.
+    pub name: String,
+    /// The file mutated and the mutations.
+    pub what: String,
+    pub text: String,
+    /// The model the import wrote.
+    pub model: String,
+}
+
+/// The first `size` mutants of `files` (name, text) that differ from
+/// their file and that `import` takes, from `seed`: deterministic, so a
+/// stored reference is theirs.
+pub fn sample(
+    files: &[(String, String)],
+    seed: u64,
+    size: usize,
+    mutant_of: impl Fn(&str, &mut Rng) -> Mutant,
+    import: impl Fn(&str, &str) -> Option<String>,
+) -> Vec<Sampled> {
+    let mut rng = Rng(seed);
+    let mut found = Vec::new();
+    for case in 0..20 * size {
+        let (file, text) = &files[case % files.len()];
+        let mutant = mutant_of(text, &mut rng);
+        if mutant.text == *text {
+            continue;
+        }
+        if let Some(model) = import(file, &mutant.text) {
+            found.push(Sampled {
+                name: format!("case_{:03}", found.len()),
+                what: format!("{file}: {}", mutant.what),
+                text: mutant.text,
+                model,
+            });
+            if found.len() == size {
+                return found;
+            }
+        }
+    }
+    panic!("only {} of {size} mutants imported", found.len());
+}
+
+/// The 64-bit FNV-1a hash of `text`, which a reference records of each
+/// mutant (the scripts compute it the same way).
+pub fn fnv1a(text: &str) -> String {
+    let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    });
+    format!("{hash:016x}")
+}
+
+/// Writes the sample's files (`case_NNN.EXTENSION`) into the folder named
+/// by `FUZZ_SAMPLE`, for the script that has the peer read them.
+pub fn write_sample(sample: &[Sampled], extension: &str) {
+    let dir = std::env::var("FUZZ_SAMPLE").expect("FUZZ_SAMPLE=FOLDER");
+    std::fs::create_dir_all(&dir).unwrap();
+    for sampled in sample {
+        let file = Path::new(&dir).join(format!("{}.{extension}", sampled.name));
+        std::fs::write(file, &sampled.text).unwrap();
+        println!("{}: {}", sampled.name, sampled.what);
+    }
+}
+
+/// What the peer made of a sample.
+#[derive(Debug, Default)]
+pub struct Agreement {
+    pub matched: usize,
+    /// Files the peer refuses, or whose numbers fail its script's
+    /// self-checks: their names and the peer's words.
+    pub peer_refuses: Vec<String>,
+}
+
+/// Every case of `sample` against the peer's reference at `reference`
+/// (under the repository's `tests/reference/`): the mutant is the one the
+/// reference was written for (its hash), and the model's `M`, `f`, `T`,
+/// `V` agree with the peer's to `tolerance` of their largest entry and
+/// `q̈` to `tolerance` times `M`'s condition number; or the peer has no
+/// numbers and its words, or the mutation, contain one of the patterns
+/// of `peer_alone_refuses` (each with why that is no difference in the
+/// dynamics); at least `matched` cases with numbers.
+pub fn check_sample(
+    reference: &str,
+    sample: &[Sampled],
+    peer_alone_refuses: &[(&str, &str)],
+    tolerance: f64,
+    matched: usize,
+) -> Agreement {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../tests/reference")
+        .join(reference);
+    let reference: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let cases = reference["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), sample.len());
+    let mut agreement = Agreement::default();
+    for (case, sampled) in cases.iter().zip(sample) {
+        let what = format!("{}, {}", sampled.name, sampled.what);
+        assert_eq!(case["name"], sampled.name.as_str());
+        assert_eq!(
+            case["fnv1a"],
+            fnv1a(&sampled.text).as_str(),
+            "{what}: not the mutant the reference was written for; regenerate it"
+        );
+        if let Some(error) = case["error"].as_str() {
+            let explained = peer_alone_refuses
+                .iter()
+                .any(|(pattern, _)| sampled.what.contains(pattern) || error.contains(pattern));
+            assert!(explained, "{what}: imported, but the peer says {error}");
+            agreement.peer_refuses.push(format!("{what}: {error}"));
+            continue;
+        }
+        let worst = super::pinocchio::worst_errors(
+            &sampled.model,
+            &case["entry"],
+            dalembert_codegen::testing::Route::Dalembert,
+        )
+        .unwrap_or_else(|error| panic!("{what}: {error}\n{}", sampled.model));
+        let condition = case["cond"].as_f64().unwrap();
+        for ((error, quantity), scale) in worst
+            .iter()
+            .zip(super::pinocchio::QUANTITIES)
+            .zip([1.0, 1.0, 1.0, 1.0, condition])
+        {
+            assert!(
+                *error <= tolerance * scale,
+                "{what}: {quantity} off by {error:e} relative\n{}",
+                sampled.model
+            );
+        }
+        agreement.matched += 1;
+    }
+    println!("{} mutants: {agreement:#?}", sample.len());
+    assert!(agreement.matched >= matched, "{agreement:#?}");
+    agreement
+}
