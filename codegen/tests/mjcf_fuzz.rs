@@ -20,7 +20,6 @@
 //! `FUZZ_CASES` cases run in CI; the ignored test runs 10 000
 //! (`cargo test -p dalembert-codegen --test mjcf_fuzz -- --ignored`).
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 
 use dalembert_codegen::Mjcf;
@@ -220,55 +219,25 @@ fn matters(text: &str, element: &Element, name: &str) -> bool {
 
 /// One mutant of `text`, and a second mutation on top one time in three.
 fn mutant_of(text: &str, rng: &mut Rng) -> Mutant {
-    let mutant = mutate(text, rng);
-    if rng.below(3) == 0 {
-        let second = mutate(&mutant.text, rng);
-        mutant.then(second)
-    } else {
-        mutant
-    }
-}
-
-/// What the import of one mutant did.
-#[derive(Debug, Default)]
-struct Tally {
-    imported: usize,
-    refused: usize,
-    checked: usize,
+    fuzz::mutant_of(text, rng, mutate)
 }
 
 /// Runs `cases` mutants from `seed`; the command on every `command_every`th.
-fn fuzz(cases: usize, seed: u64, command_every: usize) -> Tally {
-    let models = models();
-    let mut rng = Rng(seed);
-    let mut tally = Tally::default();
+fn fuzz(cases: usize, seed: u64, command_every: usize) -> fuzz::Tally {
     let dir = workspace("mjcf", seed);
     let file = dir.join(MUTANT);
-    for case in 0..cases {
-        let (name, text) = &models[case % models.len()];
-        let mutant = mutant_of(text, &mut rng);
-        let what = format!("case {case}, {name}: {}", mutant.what);
-        let imported = catch_unwind(AssertUnwindSafe(|| Mjcf::new(&file, &mutant.text).import()))
-            .unwrap_or_else(|_| panic!("{what}: the importer panicked"));
-        match imported {
-            Ok(imported) => {
-                tally.imported += 1;
-                assert!(!mutant.must_fail, "{what}: imported\n{}", imported.model);
-                if case % 4 == 0 {
-                    let checked = catch_unwind(AssertUnwindSafe(|| {
-                        dalembert_codegen::check(&imported.model)
-                    }));
-                    assert!(checked.is_ok(), "{what}: check panicked");
-                    tally.checked += 1;
-                }
-            }
-            Err(_) => tally.refused += 1,
-        }
-        if case % command_every == 0 {
-            std::fs::write(&file, &mutant.text).unwrap();
-            fuzz::assert_command_prints_only_on_success("mjcf", &file, &what);
-        }
-    }
+    let format = fuzz::Format {
+        files: models(),
+        mutate,
+        import: |_: &str, text: &str| {
+            Mjcf::new(&file, text)
+                .model()
+                .map_err(|error| error.to_string())
+        },
+        subcommand: "mjcf",
+        command_file: file.clone(),
+    };
+    let tally = fuzz::run(&format, cases, seed, command_every);
     std::fs::remove_dir_all(&dir).ok();
     tally
 }

@@ -15,7 +15,6 @@
 //! `FUZZ_CASES` cases run in CI (300); the ignored test runs 10 000
 //! (`cargo test -p dalembert-codegen --test urdf_fuzz -- --ignored`).
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 
 use dalembert_codegen::Urdf;
@@ -146,82 +145,29 @@ fn mutate(text: &str, rng: &mut Rng) -> Mutant {
 
 /// One mutant of `text`, and a second mutation on top one time in three.
 fn mutant_of(text: &str, rng: &mut Rng) -> Mutant {
-    let mutant = mutate(text, rng);
-    if rng.below(3) == 0 {
-        let second = mutate(&mutant.text, rng);
-        mutant.then(second)
-    } else {
-        mutant
-    }
-}
-
-/// Whether attribute `name` of `element` is a quantity the dynamics depend
-/// on: a mass, an inertia or their origin, a joint's origin, a moving
-/// joint's axis.
-fn matters(text: &str, all: &[Element], element: &Element, name: &str) -> bool {
-    let parent = element.path.last().map(String::as_str);
-    match (parent, element.name.as_str(), name) {
-        (Some("inertial"), "mass", "value") => true,
-        (Some("inertial"), "inertia", _) => true,
-        (Some("inertial"), "origin", "xyz" | "rpy") => true,
-        (Some("joint"), "origin", "xyz" | "rpy") => true,
-        (Some("joint"), "axis", "xyz") => {
-            // The joint holding this axis: the last one starting before it.
-            let joint = all
-                .iter()
-                .rev()
-                .find(|e| e.name == "joint" && e.range.start < element.range.start);
-            joint.is_some_and(|j| {
-                attributes(text, &j.start_tag)
-                    .iter()
-                    .any(|(n, r)| n == "type" && &text[r.clone()] != "fixed")
-            })
-        }
-        _ => false,
-    }
-}
-
-/// What the import of one mutant did.
-#[derive(Debug, Default)]
-struct Tally {
-    imported: usize,
-    refused: usize,
-    checked: usize,
+    fuzz::mutant_of(text, rng, mutate)
 }
 
 /// Runs `cases` mutants from `seed`; the command on every `command_every`th.
-fn fuzz(cases: usize, seed: u64, command_every: usize) -> Tally {
-    let robots = robots();
-    let mut rng = Rng(seed);
-    let mut tally = Tally::default();
+fn fuzz(cases: usize, seed: u64, command_every: usize) -> fuzz::Tally {
     let dir = fuzz::scratch("urdf", seed);
-    for case in 0..cases {
-        let (path, text) = &robots[case % robots.len()];
-        let mutant = mutant_of(text, &mut rng);
-        let what = format!("case {case}, {}: {}", path.display(), mutant.what);
-        let imported = catch_unwind(AssertUnwindSafe(|| Urdf::new(path, &mutant.text).import()))
-            .unwrap_or_else(|_| panic!("{what}: the importer panicked"));
-        match imported {
-            Ok(imported) => {
-                tally.imported += 1;
-                assert!(!mutant.must_fail, "{what}: imported\n{}", imported.model);
-                // The models of the small robots go through the macro's checks.
-                if mutant.text.len() < 20_000 && case % 4 == 0 {
-                    let checked = catch_unwind(AssertUnwindSafe(|| {
-                        dalembert_codegen::check(&imported.model)
-                    }));
-                    assert!(checked.is_ok(), "{what}: check panicked");
-                    tally.checked += 1;
-                }
-            }
-            Err(_) => tally.refused += 1,
-        }
-        if case % command_every == 0 {
-            let file = dir.join(format!("case{case}.urdf"));
-            std::fs::write(&file, &mutant.text).unwrap();
-            fuzz::assert_command_prints_only_on_success("urdf", &file, &what);
-        }
-    }
+    let files = robots()
+        .into_iter()
+        .map(|(path, text)| (path.display().to_string(), text))
+        .collect();
+    let format = fuzz::Format {
+        files,
+        mutate,
+        import: |path: &str, text: &str| {
+            Urdf::new(path, text)
+                .import()
+                .map(|imported| imported.model)
+                .map_err(|error| error.to_string())
+        },
+        subcommand: "urdf",
+        command_file: dir.join("mutant.urdf"),
+    };
+    let tally = fuzz::run(&format, cases, seed, command_every);
     std::fs::remove_dir_all(&dir).ok();
     tally
 }

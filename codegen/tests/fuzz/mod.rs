@@ -393,3 +393,78 @@ pub fn check_sample(
     assert!(agreement.matched >= matched, "{agreement:#?}");
     agreement
 }
+
+/// One mutant of `text` by `mutate`, and a second mutation on top one time
+/// in three.
+pub fn mutant_of(text: &str, rng: &mut Rng, mutate: impl Fn(&str, &mut Rng) -> Mutant) -> Mutant {
+    let mutant = mutate(text, rng);
+    if rng.below(3) == 0 {
+        let second = mutate(&mutant.text, rng);
+        mutant.then(second)
+    } else {
+        mutant
+    }
+}
+
+/// What the imports of a run's mutants did.
+#[derive(Debug, Default)]
+pub struct Tally {
+    pub imported: usize,
+    pub refused: usize,
+    /// Imported models also put through the macro's checks.
+    pub checked: usize,
+}
+
+/// How one format is fuzzed: its files, its mutations, its import and its
+/// command.
+pub struct Format<M, I> {
+    /// The files mutated, (path, text) each.
+    pub files: Vec<(String, String)>,
+    pub mutate: M,
+    /// The import of a mutant's text read as from the given path: the
+    /// model, or the error's text.
+    pub import: I,
+    /// The `dalembert` subcommand that imports a file.
+    pub subcommand: &'static str,
+    /// Where a mutant is written for the command (beside the files the
+    /// formats' files include).
+    pub command_file: std::path::PathBuf,
+}
+
+/// Runs `cases` mutants of `format`'s files from `seed`, the command on
+/// every `command_every`th: no panic, no import of a mutant that must
+/// fail, the macro's checks of every fourth imported model (of files under
+/// 20 KB) without panic, stdout only on success.
+pub fn run<M, I>(format: &Format<M, I>, cases: usize, seed: u64, command_every: usize) -> Tally
+where
+    M: Fn(&str, &mut Rng) -> Mutant,
+    I: Fn(&str, &str) -> Result<String, String>,
+{
+    use std::panic::{AssertUnwindSafe, catch_unwind};
+    let mut rng = Rng(seed);
+    let mut tally = Tally::default();
+    for case in 0..cases {
+        let (path, text) = &format.files[case % format.files.len()];
+        let mutant = mutant_of(text, &mut rng, &format.mutate);
+        let what = format!("case {case}, {path}: {}", mutant.what);
+        let imported = catch_unwind(AssertUnwindSafe(|| (format.import)(path, &mutant.text)))
+            .unwrap_or_else(|_| panic!("{what}: the importer panicked"));
+        match imported {
+            Ok(model) => {
+                tally.imported += 1;
+                assert!(!mutant.must_fail, "{what}: imported\n{model}");
+                if mutant.text.len() < 20_000 && case % 4 == 0 {
+                    let checked = catch_unwind(|| dalembert_codegen::check(&model));
+                    assert!(checked.is_ok(), "{what}: check panicked");
+                    tally.checked += 1;
+                }
+            }
+            Err(_) => tally.refused += 1,
+        }
+        if case % command_every == 0 {
+            std::fs::write(&format.command_file, &mutant.text).unwrap();
+            assert_command_prints_only_on_success(format.subcommand, &format.command_file, &what);
+        }
+    }
+    tally
+}
