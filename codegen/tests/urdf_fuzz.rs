@@ -148,6 +148,32 @@ fn mutant_of(text: &str, rng: &mut Rng) -> Mutant {
     fuzz::mutant_of(text, rng, mutate)
 }
 
+/// Whether attribute `name` of `element` is a quantity the dynamics depend
+/// on: a mass, an inertia or their origin, a joint's origin, a moving
+/// joint's axis.
+fn matters(text: &str, all: &[Element], element: &Element, name: &str) -> bool {
+    let parent = element.path.last().map(String::as_str);
+    match (parent, element.name.as_str(), name) {
+        (Some("inertial"), "mass", "value") => true,
+        (Some("inertial"), "inertia", _) => true,
+        (Some("inertial"), "origin", "xyz" | "rpy") => true,
+        (Some("joint"), "origin", "xyz" | "rpy") => true,
+        (Some("joint"), "axis", "xyz") => {
+            // The joint holding this axis: the last one starting before it.
+            let joint = all
+                .iter()
+                .rev()
+                .find(|e| e.name == "joint" && e.range.start < element.range.start);
+            joint.is_some_and(|j| {
+                attributes(text, &j.start_tag)
+                    .iter()
+                    .any(|(n, r)| n == "type" && &text[r.clone()] != "fixed")
+            })
+        }
+        _ => false,
+    }
+}
+
 /// Runs `cases` mutants from `seed`; the command on every `command_every`th.
 fn fuzz(cases: usize, seed: u64, command_every: usize) -> fuzz::Tally {
     let dir = fuzz::scratch("urdf", seed);
