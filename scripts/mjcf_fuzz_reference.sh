@@ -7,7 +7,7 @@
 #   bash scripts/mjcf_fuzz_reference.sh
 #
 # PYTHON (default: ~/.cache/dalembert-peers-venv/bin/python) must have
-# `mujoco` and `numpy`.
+# `mujoco`, `pin` (the script shares urdf_fuzz_reference.py's command line) and `numpy`.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 python="${PYTHON:-$HOME/.cache/dalembert-peers-venv/bin/python}"

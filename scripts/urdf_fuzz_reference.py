@@ -37,44 +37,62 @@ def fnv1a(data):
     return f"{h:016x}"
 
 
-def case(folder, file, rng):
+def peer_case(folder, file, entry_of):
+    """One file of a sample: its name, its hash, and the peer's entry
+    (`entry_of(path, file)`) with the largest condition number of M, or why
+    there is none."""
     path = os.path.join(folder, file)
     with open(path, "rb") as f:
         data = f.read()
     result = {"name": os.path.splitext(file)[0], "fnv1a": fnv1a(data)}
     try:
-        entry = urdf_reference.robot_entry(path, rng)
+        entry = entry_of(path, file)
         result["cond"] = max(np.linalg.cond(np.array(s["M"])) for s in entry["states"])
-        entry["urdf"] = entry["robot"] = file
         result["entry"] = entry
-    except Exception as error:  # Pinocchio's refusals and the self-checks alike
+    except Exception as error:  # the peer's refusals and the self-checks alike
         # Without this machine's folder, so the reference reads the same anywhere.
         message = str(error).replace(os.path.join(folder, ""), "")
         result["error"] = f"{type(error).__name__}: {message}".strip()
     return result
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("folder", help="the sample's case_NNN.urdf files")
+def write_sample(description, extension, header, entry_of):
+    """The command line of a sample's script: reads FOLDER's case_NNN files
+    ending in `extension`, writes OUT.json with `header` and each case of
+    `entry_of(path, file, rng)`."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("folder", help=f"the sample's case_NNN{extension} files")
     parser.add_argument("out", help="the JSON file to write")
     args = parser.parse_args()
-    urdf_reference.STATES = STATES
-    files = sorted(f for f in os.listdir(args.folder) if f.endswith(".urdf"))
+    files = sorted(f for f in os.listdir(args.folder)
+                   if f.startswith("case_") and f.endswith(extension))
     rng = np.random.default_rng(SEED)
-    document = {
+    cases = [peer_case(args.folder, file, lambda path, file: entry_of(path, file, rng))
+             for file in files]
+    document = dict(header, seed=SEED, states=STATES, cases=cases)
+    with open(args.out, "w") as out:
+        json.dump(document, out)
+        out.write("\n")
+    refused = sum("error" in c for c in cases)
+    print(f"wrote {args.out}: {len(files)} cases, {refused} without the peer's numbers",
+          file=sys.stderr)
+
+
+def pinocchio_entry(path, file, rng):
+    """urdf_reference.py's entry of the file, named after it."""
+    entry = urdf_reference.robot_entry(path, rng)
+    entry["urdf"] = entry["robot"] = file
+    return entry
+
+
+def main():
+    urdf_reference.STATES = STATES
+    header = {
         "generator": "scripts/urdf_fuzz_reference.py",
         "pinocchio_version": pin.__version__,
         "units": "SI: kg, m, s, rad, N m",
-        "seed": SEED,
-        "states": STATES,
-        "cases": [case(args.folder, file, rng) for file in files],
     }
-    with open(args.out, "w") as out:
-        json.dump(document, out, indent=None)
-        out.write("\n")
-    refused = sum("error" in c for c in document["cases"])
-    print(f"wrote {args.out}: {len(files)} cases, {refused} refused by Pinocchio", file=sys.stderr)
+    write_sample(__doc__.splitlines()[0], ".urdf", header, pinocchio_entry)
 
 
 if __name__ == "__main__":
