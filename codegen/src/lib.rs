@@ -51,7 +51,7 @@ pub use build::{
 pub use emit::Target;
 pub use mjcf::Mjcf;
 pub use render::Style;
-pub use size::{FunctionSize, OPERATION_LIMIT};
+pub use size::{DERIVATION_LIMIT, DerivationEstimate, FunctionSize, OPERATION_LIMIT};
 pub use urdf::{Imported, Urdf};
 
 /// Tools for testing and benchmarking generated systems, not needed to
@@ -183,6 +183,16 @@ pub fn function_sizes(source: &str) -> syn::Result<Vec<FunctionSize>> {
     Ok(size::sizes(&pool, &plan.functions))
 }
 
+/// The estimate of the engine's work on the system in `source` (the text
+/// of a `.dal` file), from its speeds and outputs, before anything is
+/// derived; a model over [`DERIVATION_LIMIT`] is refused by every front
+/// door before its derivation starts.
+pub fn derivation_estimate(source: &str) -> syn::Result<DerivationEstimate> {
+    let system = language::parse_system(lex(source)?)?;
+    let (model, _) = model::resolve(&system)?;
+    Ok(DerivationEstimate::of(&model))
+}
+
 /// The whole pipeline, from tokens to items; a model too large to compile
 /// is refused before emission.
 fn derive_items(input: TokenStream, target: Target) -> syn::Result<TokenStream> {
@@ -242,6 +252,7 @@ fn derive(input: TokenStream) -> syn::Result<Derivation> {
 fn derive_unoptimised(input: TokenStream) -> syn::Result<Derivation> {
     let system = language::parse_system(input)?;
     let (model, mut pool) = model::resolve(&system)?;
+    size::check_derivation(&model)?;
     let equations = equations::derive(&model, &mut pool);
     Ok(Derivation {
         model,

@@ -208,3 +208,38 @@ fn an_unknown_default_class_is_reported_once() {
         &["unknown default class `stiff`"],
     );
 }
+
+#[test]
+fn an_unknown_childclass_is_reported() {
+    // Found by the fuzz (codegen/tests/mjcf_fuzz.rs): a lookup through it
+    // missed silently, the `main` class's defaults included.
+    assert_error(
+        &model(
+            "<body\n      childclass=\"limb\"><geom size=\".1\"/><joint axis=\"0 1 0\"/></body>",
+        ),
+        4,
+        &["unknown default class `limb`"],
+    );
+}
+
+#[test]
+fn a_second_inertial_is_reported() {
+    // Found by the fuzz: the second silently replaced the first.
+    assert_error(
+        &model(
+            "<body><joint axis=\"0 1 0\"/><inertial mass=\"1\" diaginertia=\"1 1 1\" pos=\"0 0 0\"/>\n      \
+             <inertial mass=\"2\" diaginertia=\"1 1 1\" pos=\"0 0 0\"/></body>",
+        ),
+        4,
+        &["a second `<inertial>`"],
+    );
+}
+
+#[test]
+fn a_second_element_of_a_default_class_is_reported() {
+    // Found by the fuzz: the second's attributes overrode the first's.
+    let text = "<mujoco>\n  <default>\n    <joint damping=\"1\"/>\n    <joint damping=\"2\"/>\n  \
+                </default>\n  <worldbody>\n    <body><joint axis=\"0 1 0\"/><geom size=\".1\"/></body>\n  \
+                </worldbody>\n</mujoco>\n";
+    assert_error(text, 4, &["a second `<joint>` in this `<default>`"]);
+}

@@ -1,12 +1,17 @@
-//! The size guard: every generated function's operations are estimated
-//! before emission (`function_sizes`, `dalembert check MODEL.dal --stats`),
-//! and grow with the links and the outputs asked for; a model over
-//! `OPERATION_LIMIT` is refused (the message: `size.rs`'s unit test).
+//! The size guards: the engine's work is estimated before derivation
+//! (`derivation_estimate`) and every generated function's operations
+//! before emission (`function_sizes`), both printed by `dalembert check
+//! MODEL.dal --stats`, and grow with the links and the outputs asked for;
+//! a model over `DERIVATION_LIMIT` is refused before its derivation starts,
+//! one over `OPERATION_LIMIT` before emission (the messages: `size.rs`'s
+//! unit tests).
 
 use std::path::Path;
 
 use dalembert_codegen::chain::{Family, Spelling, chain_spelled};
-use dalembert_codegen::{OPERATION_LIMIT, function_sizes};
+use dalembert_codegen::{
+    DERIVATION_LIMIT, OPERATION_LIMIT, check, derivation_estimate, function_sizes,
+};
 
 /// The seed-spelled spatial chain of `n` links asking for `outputs`.
 fn chain_with(n: usize, outputs: &str) -> String {
@@ -64,6 +69,7 @@ fn check_stats_prints_the_estimates() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains(": ok"), "{text}");
     assert!(text.contains(&format!("limit {OPERATION_LIMIT}")), "{text}");
+    assert!(text.contains("estimated derivation: "), "{text}");
     let mass = text
         .lines()
         .find(|l| l.trim_end().ends_with("mass_matrix"))
@@ -77,4 +83,22 @@ fn check_stats_prints_the_estimates() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn a_chain_too_long_to_derive_is_refused_before_its_derivation() {
+    // 200 links with derivatives: over the limit (132 s of the engine's
+    // CPU time and 2.7 GB where it was measured), refused at once.
+    let long = chain_with(200, "accelerations_jacobian, linearize");
+    let estimate = derivation_estimate(&long).unwrap();
+    assert_eq!(estimate.speeds, 200);
+    assert!(estimate.derivatives && estimate.units > DERIVATION_LIMIT);
+    let started = std::time::Instant::now();
+    let message = check(&long).unwrap_err().to_string();
+    assert!(message.contains("too large to derive"), "{message}");
+    assert!(started.elapsed().as_secs() < 30, "{:?}", started.elapsed());
+    // The same chain without derivatives is within it.
+    let plain = chain_spelled(Family::Spatial, 200, Spelling::FramesAndPoints);
+    let estimate = derivation_estimate(&plain).unwrap();
+    assert!(!estimate.derivatives && estimate.units < DERIVATION_LIMIT);
 }

@@ -385,12 +385,19 @@ fn run(command: Command) -> ExitCode {
             if !stats {
                 return Ok(ok);
             }
+            let estimate = m.derivation_estimate()?;
             let sizes = m.function_sizes()?;
             let lines = sizes
                 .iter()
                 .map(|s| format!("{:>12}  {}", s.operations, s.name));
             let limit = dalembert_codegen::OPERATION_LIMIT;
-            let header = format!("{ok}\nestimated operations per function (limit {limit}):");
+            let header = format!(
+                "{ok}\nestimated derivation: {:.1e} units (limit {:.1e}), about {:.1} s\n\
+                 estimated operations per function (limit {limit}):",
+                estimate.units,
+                dalembert_codegen::DERIVATION_LIMIT,
+                estimate.seconds()
+            );
             Ok(std::iter::once(header)
                 .chain(lines)
                 .collect::<Vec<_>>()

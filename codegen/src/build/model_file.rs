@@ -60,6 +60,12 @@ impl ModelFile {
         self.located(crate::function_sizes(&self.source))
     }
 
+    /// The estimate of the engine's work on the model (see
+    /// [`crate::derivation_estimate`]).
+    pub fn derivation_estimate(&self) -> Result<crate::DerivationEstimate, BuildError> {
+        self.located(crate::derivation_estimate(&self.source))
+    }
+
     /// The generated Rust source (see [`crate::generate`]).
     pub fn generate(&self) -> Result<String, BuildError> {
         self.generate_for(crate::Target::Std)

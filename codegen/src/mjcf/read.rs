@@ -350,6 +350,19 @@ impl<'a> Reader<'a> {
                 nested.push(child);
                 continue;
             }
+            if class.attributes.contains_key(child.tag()) {
+                // Else the second's attributes would silently override the
+                // first's, where MuJoCo refuses the file.
+                self.problem(
+                    child.loc(),
+                    format!(
+                        "a second `<{}>` in this `<default>`: a class has at most one of each \
+                         element",
+                        child.tag()
+                    ),
+                );
+                continue;
+            }
             let attributes = class.attributes.entry(child.tag().to_owned()).or_default();
             for attribute in child.node.attributes() {
                 attributes.insert(
@@ -363,6 +376,12 @@ impl<'a> Reader<'a> {
                     },
                 );
             }
+        }
+        if self.classes.contains_key(&name) {
+            self.problem(
+                element.loc(),
+                format!("the default class `{name}` is defined twice"),
+            );
         }
         self.classes.insert(name.clone(), class);
         for child in nested {
@@ -625,10 +644,19 @@ impl<'a> Reader<'a> {
 
     /// A `<body>` below `parent`, then its children.
     fn body(&mut self, element: Element<'a>, parent: usize, inherited: Option<&str>) {
-        let childclass = self
-            .own(element, "childclass")
-            .map(|c| c.value)
-            .or(inherited);
+        let own_childclass = self.own(element, "childclass");
+        if let Some(written) = own_childclass
+            .as_ref()
+            .filter(|c| !self.classes.contains_key(c.value))
+        {
+            // Else every lookup through it would miss, the `main` class's
+            // defaults included, where MuJoCo refuses the file.
+            self.problem(
+                written.loc.clone(),
+                format!("unknown default class `{}`", written.value),
+            );
+        }
+        let childclass = own_childclass.map(|c| c.value).or(inherited);
         let pos = self.numbers::<3>(element, None, "pos").unwrap_or([0.0; 3]);
         let quat = self.orientation(element, None).unwrap_or(IDENTITY);
         let index = self.bodies.len();
@@ -654,6 +682,10 @@ impl<'a> Reader<'a> {
                     let joint = self.free_joint(*child);
                     self.bodies[index].joints.extend(joint);
                 }
+                "inertial" if inertial.is_some() => self.problem(
+                    child.loc(),
+                    "a second `<inertial>`: a body has at most one".to_owned(),
+                ),
                 "inertial" => inertial = Some(*child),
                 "geom" => geoms.push(*child),
                 "frame" => self.frame_element(*child),

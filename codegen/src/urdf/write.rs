@@ -669,8 +669,16 @@ pub(crate) fn axis_field(axis: Vec3) -> String {
     }
 }
 
+/// The length of `v`, without overflow for components near `f64::MAX` (an
+/// axis `1e308 1e308 1e308` has a direction, which squaring first would
+/// lose to an infinite length and a zero axis).
 pub(crate) fn norm(v: Vec3) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+    let scale = v.iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+    if scale == 0.0 {
+        return 0.0;
+    }
+    let [x, y, z] = v.map(|a| a / scale);
+    scale * (x * x + y * y + z * z).sqrt()
 }
 
 /// The signed terms `c * F.x` of the vector `v` in `frame`'s axes.
@@ -771,6 +779,14 @@ mod tests {
         assert_eq!(names.fresh("a-b"), "a_b");
         assert_eq!(names.fresh("a_b"), "a_b_2");
         assert_eq!(names.fresh("2nd"), "_2nd");
+    }
+
+    #[test]
+    fn an_axis_near_the_largest_number_keeps_its_direction() {
+        assert_eq!(norm([0.0, 3.0, 4.0]), 5.0);
+        let length = norm([1e308; 3]);
+        assert!(length.is_finite());
+        assert!((length / 1e308 - 3.0_f64.sqrt()).abs() < 1e-15);
     }
 
     #[test]
