@@ -1,7 +1,8 @@
 //! Animated scenes: a trajectory of any model drawn in the browser, from one
 //! self-contained HTML file (inline script and canvas, no network).
 //!
-//! A [`Scene`] is built from the model's source text alone: its named
+//! A [`Scene`] is built from the model alone ([`Scene::of`] a generated
+//! system, which carries its model, or [`Scene::new`] from its text): its named
 //! points, joined by a segment wherever one is located from another
 //! (`point P = Q ± vec`, joint points), its bodies drawn as boxes at their
 //! centres, turned with their frames and sized from their inertia (or from
@@ -11,7 +12,9 @@
 //! coordinates, energies) as an animation: play and pause, a time slider,
 //! the playback speed, a 2-D view when all motion stays in one plane and an
 //! orthographic 3-D view turned by dragging the mouse otherwise, the energy
-//! error under it and the model's equations in a collapsible panel. Long
+//! error under it (for a driven system, whose recording carries the inputs'
+//! power: the energy change beside the inputs' work) and the model's
+//! equations in a collapsible panel. Long
 //! recordings are decimated uniformly in time for display, never truncated.
 //!
 //! Positions come from one place, [`Kinematics`]: today the engine's own
@@ -62,12 +65,15 @@ fn error<T>(message: impl Into<String>) -> Result<T, SceneError> {
 }
 
 /// A trajectory to animate: times, coordinates and total energies, one
-/// sample per step.
+/// sample per step, and for a driven system the work its inputs did.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Recording {
     t: Vec<f64>,
     q: Vec<Vec<f64>>,
     energy: Vec<f64>,
+    /// The inputs' power and their work since the first sample, when the
+    /// samples were pushed with [`Recording::push_driven`].
+    driven: Vec<(f64, f64)>,
 }
 
 impl Recording {
@@ -82,6 +88,27 @@ impl Recording {
         self.t.push(t);
         self.q.push(q.to_vec());
         self.energy.push(energy);
+    }
+
+    /// Adds a sample of a driven system: as [`push`](Recording::push),
+    /// with the power `power` its inputs deliver at `t` ([`input_power`]).
+    /// The recording integrates the power (trapezoidal rule) into the
+    /// inputs' work, which the page draws beside the energy change: for a
+    /// driven system the energy changes by the inputs' work, and only
+    /// their difference is the integrator's error.
+    pub fn push_driven(&mut self, t: f64, q: &[f64], energy: f64, power: f64) {
+        let work = match (self.t.last(), self.driven.last()) {
+            (Some(&t0), Some(&(p0, w0))) => w0 + (t - t0) * (p0 + power) / 2.0,
+            _ => 0.0,
+        };
+        self.push(t, q, energy);
+        self.driven.push((power, work));
+    }
+
+    /// Whether the samples carry the inputs' power (all were pushed with
+    /// [`push_driven`](Recording::push_driven)).
+    pub fn is_driven(&self) -> bool {
+        !self.t.is_empty() && self.driven.len() == self.t.len()
     }
 
     /// The number of samples.
@@ -227,6 +254,15 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The scene of a generated system, from the model it carries (its
+    /// text and its parameters' values: [`dalembert::Model`]), so that
+    /// nothing is pasted and nothing can drift from the compiled system.
+    /// The equations panel shows the derived equations; the title is the
+    /// system's name.
+    pub fn of<S: dalembert::Model<NP>, const NP: usize>(system: &S) -> Result<Scene, SceneError> {
+        Scene::new(S::SOURCE, &system.parameter_values())
+    }
+
     /// The scene of the system in `source` (the model's text, in the
     /// language of `dalembert!`) with its parameters' values in declaration
     /// order. The equations panel shows the derived equations; the title is
@@ -317,8 +353,11 @@ impl Scene {
         }
         let (kept, poses) = self.kept_poses(recording)?;
         let e0 = recording.energy[0];
-        let energy_error: Vec<f64> = kept.iter().map(|&i| recording.energy[i] - e0).collect();
-        let data = self.data(&poses, &energy_error)?;
+        let energy_change: Vec<f64> = kept.iter().map(|&i| recording.energy[i] - e0).collect();
+        let work: Option<Vec<f64>> = recording
+            .is_driven()
+            .then(|| kept.iter().map(|&i| recording.driven[i].1).collect());
+        let data = self.data(&poses, &energy_change, work.as_deref())?;
         Ok(TEMPLATE.replacen(DATA_SLOT, &data, 1))
     }
 
@@ -355,8 +394,14 @@ impl Scene {
         Ok(path.to_path_buf())
     }
 
-    /// The page's data as compact JSON.
-    fn data(&self, poses: &[(f64, Pose)], energy_error: &[f64]) -> Result<String, SceneError> {
+    /// The page's data as compact JSON: `energy` is `E(t) − E(0)` at the
+    /// kept samples, `work` the inputs' work there for a driven system.
+    fn data(
+        &self,
+        poses: &[(f64, Pose)],
+        energy: &[f64],
+        work: Option<&[f64]>,
+    ) -> Result<String, SceneError> {
         let layout = &self.kinematics.layout;
         let sizes = self.body_sizes(poses, Extent::of(poses, &[]).size);
         let extent = Extent::of(poses, &sizes);
@@ -395,10 +440,9 @@ impl Scene {
             "t",
             list(poses.iter().map(|(t, _)| rounded_significant(*t))),
         );
-        field(
-            "energy",
-            list(energy_error.iter().map(|&e| rounded_significant(e))),
-        );
+        let series = |values: &[f64]| list(values.iter().map(|&e| rounded_significant(e)));
+        field("energy", series(energy));
+        field("work", work.map_or("null".into(), series));
         field(
             "frames",
             list(poses.iter().map(|(_, pose)| {
@@ -435,6 +479,24 @@ impl Scene {
             })
             .collect()
     }
+}
+
+/// The power the inputs `u` deliver to `system` at `(t, q, v)`: the
+/// generalized forces they add, `f(t, q, v, u) − f(t, q, v, 0)`, times the
+/// speeds. What [`Recording::push_driven`] integrates into their work.
+pub fn input_power<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    u: &[f64; NU],
+) -> f64
+where
+    S: dalembert::MultibodySystem<NQ, NV, NU>,
+{
+    let driven = system.forcing(t, q, v, u);
+    let free = system.forcing(t, q, v, &[0.0; NU]);
+    (0..NV).map(|k| (driven[k] - free[k]) * v[k]).sum()
 }
 
 /// The full lengths of the uniform box with the body's mass and principal
