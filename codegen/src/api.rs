@@ -10,7 +10,7 @@ use crate::model::{KINDS, Model, NEWTONIAN, ORIGIN, Subject, output_kind as kind
 use proc_macro2::{Delimiter, TokenStream, TokenTree};
 
 /// One generated function: its name, its arguments' names and the first
-/// line of its docs.
+/// sentence of its docs.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Entry {
     name: String,
@@ -123,18 +123,18 @@ fn outputs_not_asked(model: &Model) -> Vec<(String, String)> {
 }
 
 /// Collects the `pub fn`s of `tokens` (looking into `impl NAME { .. }`
-/// blocks, not trait impls), each with the first line of the doc
+/// blocks, not trait impls), each with the first sentence of the doc
 /// attributes before it. A shallow walk over the token trees: the bodies
 /// are never parsed.
 fn public_functions(tokens: TokenStream, found: &mut Vec<Entry>) {
     let trees: Vec<TokenTree> = tokens.into_iter().collect();
-    let mut summary: Option<String> = None;
+    let mut docs: Vec<String> = Vec::new();
     for (i, tree) in trees.iter().enumerate() {
         let next = |k: usize| trees.get(i + k);
         match tree {
             TokenTree::Punct(p) if p.as_char() == '#' => {
-                if let (None, Some(TokenTree::Group(g))) = (&summary, next(1)) {
-                    summary = doc_text(g.stream());
+                if let Some(TokenTree::Group(g)) = next(1) {
+                    docs.extend(doc_text(g.stream()));
                 }
             }
             TokenTree::Ident(word) if word == "impl" => {
@@ -157,15 +157,30 @@ fn public_functions(tokens: TokenStream, found: &mut Vec<Entry>) {
                         found.push(Entry {
                             name: name.to_string(),
                             arguments: argument_names(arguments.stream()),
-                            summary: summary.take().unwrap_or_default(),
+                            summary: first_sentence(&docs),
                         });
                     }
                 }
-                summary = None;
+                docs.clear();
             }
-            TokenTree::Punct(p) if p.as_char() == ';' => summary = None,
+            TokenTree::Punct(p) if p.as_char() == ';' => docs.clear(),
             _ => {}
         }
+    }
+}
+
+/// The first sentence of the first paragraph of `docs` (lines of a doc
+/// comment), on one line.
+fn first_sentence(docs: &[String]) -> String {
+    let paragraph: Vec<&str> = docs
+        .iter()
+        .map(|line| line.trim())
+        .take_while(|line| !line.is_empty())
+        .collect();
+    let text = paragraph.join(" ");
+    match text.find(". ") {
+        Some(end) => text[..=end].to_string(),
+        None => text,
     }
 }
 
@@ -221,6 +236,8 @@ mod tests {
                 pub const NQ: usize = 1;
                 /// The mass matrix.
                 /// More.
+                ///
+                /// Other paragraph.
                 #[inline]
                 pub fn mass_matrix(&self, q: &[f64; 1]) -> [[f64; 1]; 1] { [[1.0]] }
                 pub fn forcing(&self, t: f64, _q: &[f64; 1], mut qd: &[f64; 1]) -> f64 { 0.0 }
@@ -233,7 +250,7 @@ mod tests {
         public_functions(items, &mut found);
         let calls: Vec<String> = found.iter().map(Entry::call).collect();
         assert_eq!(calls, ["mass_matrix(q)", "forcing(t, q, qd)"]);
-        assert_eq!(found[0].summary, " The mass matrix.");
+        assert_eq!(found[0].summary, "The mass matrix.");
         assert_eq!(found[1].summary, "");
     }
 }

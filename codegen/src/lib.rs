@@ -87,8 +87,46 @@ use proc_macro2::TokenStream;
 /// Expands the body of `dalembert! { ... }` into the generated items, or
 /// into `compile_error!`s pointing at every problem found.
 pub fn expand(input: TokenStream) -> TokenStream {
-    let source = input.to_string();
+    let source = written_text(&input);
     derive_items(input, &source, Target::Std).unwrap_or_else(syn::Error::into_compile_error)
+}
+
+/// The macro's input as the user wrote it (comments and layout kept, the
+/// common indentation removed), from the text of the macro call when the
+/// compiler gives it and it reads as the same tokens (not when another
+/// macro wrote the call); else the tokens printed.
+fn written_text(input: &TokenStream) -> String {
+    let tokens = input.to_string();
+    proc_macro2::Span::call_site()
+        .source_text()
+        .and_then(|call| {
+            let call = call.trim_end();
+            let open = call.find(['{', '(', '['])?;
+            call.get(open + 1..call.len() - 1).map(dedented)
+        })
+        .filter(|text| lex(text).is_ok_and(|t| t.to_string() == tokens))
+        .unwrap_or(tokens)
+}
+
+/// `text` without its leading blank lines, its trailing whitespace and
+/// the indentation common to its lines.
+fn dedented(text: &str) -> String {
+    let lines: Vec<&str> = text
+        .trim_end()
+        .lines()
+        .skip_while(|l| l.trim().is_empty())
+        .collect();
+    let indent = lines
+        .iter()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.len() - l.trim_start().len())
+        .min()
+        .unwrap_or(0);
+    let lines: Vec<&str> = lines
+        .iter()
+        .map(|l| l.get(indent..).unwrap_or(""))
+        .collect();
+    lines.join("\n") + "\n"
 }
 
 /// Generates formatted Rust source for the system in `source` (the text of

@@ -4,9 +4,13 @@
 //! A [`Scene`] is built from the model alone ([`Scene::of`] a generated
 //! system, which carries its model, or [`Scene::new`] from its text): its named
 //! points, joined by a segment wherever one is located from another
-//! (`point P = Q ± vec`, joint points), its bodies drawn as boxes at their
-//! centres, turned with their frames and sized from their inertia (or from
-//! the named points fixed in them), and its particles drawn as dots. Nothing
+//! (`point P = Q ± vec`, joint points), its bodies drawn as links between
+//! the moving named points fixed in them (a robot's joint origins: each link
+//! from its joint to its children's) or, with fewer than two such points or
+//! a size given, as boxes at their centres, turned with their frames and
+//! sized from their inertia, and its particles drawn as dots. The view fits
+//! what is drawn over the whole motion; point names are written beside the
+//! points when there are few, and shown under the mouse otherwise. Nothing
 //! of this enters the equations. The builder's methods add segments and set
 //! body sizes by name. [`Scene::write`] writes a [`Recording`] (times,
 //! coordinates, energies) as an animation: play and pause, a time slider,
@@ -403,8 +407,20 @@ impl Scene {
         work: Option<&[f64]>,
     ) -> Result<String, SceneError> {
         let layout = &self.kinematics.layout;
-        let sizes = self.body_sizes(poses, Extent::of(poses, &[]).size);
-        let extent = Extent::of(poses, &sizes);
+        let scene = Extent::of(poses, &[]).size;
+        let links = self.links(poses, scene);
+        let sizes = self.body_sizes(poses, scene);
+        // A body drawn as links is not drawn as a box: its box does not
+        // count in the view.
+        let boxes: Vec<[f64; 3]> = sizes
+            .iter()
+            .enumerate()
+            .map(|(b, &size)| match links.iter().any(|l| l.0 == b) {
+                true => [0.0; 3],
+                false => size,
+            })
+            .collect();
+        let extent = Extent::of(poses, &boxes);
         let decimals = (DIGITS - 1 - extent.size.log10().floor() as i32).max(0) as usize;
         let number = |x: f64| rounded(x, decimals);
         let mut json = String::from("{");
@@ -429,6 +445,10 @@ impl Scene {
         field(
             "sizes",
             list(sizes.iter().map(|s| list(s.iter().map(|&x| number(x))))),
+        );
+        field(
+            "links",
+            list(links.iter().map(|(b, i, j)| format!("[{b},{i},{j}]"))),
         );
         field(
             "normal",
@@ -463,6 +483,48 @@ impl Scene {
         );
         json.push('}');
         Ok(json)
+    }
+
+    /// The links drawn for the bodies of a robot: `(body, from, to)`, the
+    /// segments between named points (a joint's point and the point it is
+    /// placed from: the parent link's joint origin) that lie in one such
+    /// body, the first declared: a body without a given size whose centre
+    /// is not a named point (an imported link's centre of mass, written as
+    /// an offset), both ends fixed in it and apart. None when nothing moves.
+    fn links(&self, poses: &[(f64, Pose)], scene: f64) -> Vec<(usize, usize, usize)> {
+        let near =
+            |a: &[f64; 3], b: &[f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() <= STILL * scene);
+        // Without motion every point would count as fixed in every body.
+        let still = poses.iter().all(|(_, pose)| {
+            let first = &poses[0].1.points;
+            pose.points.iter().zip(first).all(|(a, b)| near(a, b))
+        });
+        if still {
+            return Vec::new();
+        }
+        let fixed: Vec<Vec<(usize, [f64; 3])>> = (0..self.sizes.len())
+            .map(|b| {
+                let points = fixed_points(poses, b, scene);
+                let named_centre = points.iter().any(|(_, at)| near(at, &[0.0; 3]));
+                match self.sizes[b].is_none() && !named_centre {
+                    true => points,
+                    false => Vec::new(),
+                }
+            })
+            .collect();
+        let at = |b: usize, p: usize| fixed[b].iter().find(|(q, _)| *q == p).map(|(_, at)| at);
+        self.kinematics
+            .layout
+            .segments
+            .iter()
+            .filter_map(|&(i, j)| {
+                let body = (0..fixed.len()).find(|&b| match (at(b, i), at(b, j)) {
+                    (Some(a), Some(c)) => !near(a, c),
+                    _ => false,
+                })?;
+                Some((body, i, j))
+            })
+            .collect()
     }
 
     /// Each body's drawn size: given, else its uniform box of equal
@@ -520,26 +582,34 @@ fn inertia_box((mass, inertia): (f64, [[f64; 3]; 3])) -> Option<[f64; 3]> {
 /// Twice the largest distance, along each of the body's axes, of the named
 /// points that stay fixed in body `b` over the drawn poses.
 fn fixed_point_span(poses: &[(f64, Pose)], b: usize, scene: f64) -> [f64; 3] {
+    fixed_points(poses, b, scene)
+        .into_iter()
+        .fold([0.0_f64; 3], |span, (_, at)| {
+            [0, 1, 2].map(|i| span[i].max(2.0 * at[i].abs()))
+        })
+}
+
+/// The named points that stay fixed in body `b` over the drawn poses, in
+/// declaration order, with where each is in the body's axes from its
+/// centre.
+fn fixed_points(poses: &[(f64, Pose)], b: usize, scene: f64) -> Vec<(usize, [f64; 3])> {
     let in_body = |pose: &Pose, p: usize| {
         let (r, c, x) = (&pose.rotations[b], &pose.centres[b], &pose.points[p]);
         let d = [0, 1, 2].map(|i| x[i] - c[i]);
         [0, 1, 2].map(|j| (0..3).map(|i| r[i][j] * d[i]).sum::<f64>())
     };
     let Some((_, first)) = poses.first() else {
-        return [0.0; 3];
+        return Vec::new();
     };
-    let mut span = [0.0_f64; 3];
-    for p in 0..first.points.len() {
-        let start = in_body(first, p);
-        let fixed = poses.iter().all(|(_, pose)| {
-            let now = in_body(pose, p);
-            (0..3).all(|i| (now[i] - start[i]).abs() <= STILL * scene)
-        });
-        if fixed {
-            span = [0, 1, 2].map(|i| span[i].max(2.0 * start[i].abs()));
-        }
-    }
-    span
+    (0..first.points.len())
+        .map(|p| (p, in_body(first, p)))
+        .filter(|&(p, start)| {
+            poses.iter().all(|(_, pose)| {
+                let now = in_body(pose, p);
+                (0..3).all(|i| (now[i] - start[i]).abs() <= STILL * scene)
+            })
+        })
+        .collect()
 }
 
 /// `size` with every zero dimension given a thickness, and a body with no

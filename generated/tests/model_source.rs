@@ -1,0 +1,101 @@
+//! Generated systems carry their model (`NAME::SOURCE`, `dalembert::Model`)
+//! from the build script's front door, and a robot's scene drawn from it
+//! (`Scene::of`) draws its links between the joint origins and fits the
+//! view to the motion.
+
+use dalembert::Model;
+use dalembert_generated::{DoublePendulum, Ur5};
+use dalembert_lab::{Recording, Scene};
+
+/// The embedded data of a page, parsed.
+fn embedded_data(html: &str) -> serde_json::Value {
+    let start = html.find("const DATA = ").expect("embedded data") + "const DATA = ".len();
+    let end = start + html[start..].find(";\n").expect("data ends with `;`");
+    serde_json::from_str(&html[start..end]).expect("the embedded data is JSON")
+}
+
+#[test]
+fn a_built_system_carries_the_file_it_was_built_from() {
+    assert_eq!(
+        DoublePendulum::SOURCE,
+        include_str!("../models/double_pendulum.dal")
+    );
+    let ur5 = dalembert_codegen::Urdf::read("../tests/reference/urdf/ur5_robot.urdf")
+        .unwrap()
+        .outputs("position(tool0_origin), jacobian(tool0_origin), rotation(tool0)")
+        .model()
+        .unwrap();
+    assert_eq!(Ur5::SOURCE, ur5);
+    assert_eq!(Ur5 {}.parameter_values(), [0.0; 0]);
+}
+
+#[test]
+fn the_generated_docs_list_the_functions_and_the_outputs_that_add_others() {
+    let api = dalembert_codegen::api(DoublePendulum::SOURCE).unwrap();
+    for line in [
+        "mass_matrix(q)",
+        "forcing(t, q, qd, u)",
+        "accelerations(t, q, qd, u)",
+        "outputs linearize;  adds linearize",
+        "outputs position(P);  adds position_P",
+    ] {
+        assert!(api.contains(line), "{line} in\n{api}");
+    }
+    let ur5 = dalembert_codegen::api(Ur5::SOURCE).unwrap();
+    assert!(ur5.contains("jacobian_tool0_origin(t, q)"), "{ur5}");
+    assert!(!ur5.contains("outputs jacobian(P)"), "asked for: {ur5}");
+}
+
+#[test]
+fn a_robot_is_drawn_as_links_between_its_joint_origins_in_a_view_that_fits_it() {
+    let mut recording = Recording::new();
+    for i in 0..=100 {
+        let t = i as f64 / 100.0;
+        let q = [t, -1.2 + 0.5 * t, 1.5 - t, -0.8 + t, 1.0 + t, t];
+        recording.push(t, &q, 0.0);
+    }
+    let data = embedded_data(&Scene::of(&Ur5 {}).unwrap().html(&recording).unwrap());
+    let (points, bodies) = (
+        data["points"].as_array().unwrap(),
+        data["bodies"].as_array().unwrap(),
+    );
+    let name = |list: &[serde_json::Value], i: &serde_json::Value| {
+        list[i.as_u64().unwrap() as usize]
+            .as_str()
+            .unwrap()
+            .to_string()
+    };
+    let links: Vec<(String, String, String)> = data["links"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| {
+            (
+                name(bodies, &l[0]),
+                name(points, &l[1]),
+                name(points, &l[2]),
+            )
+        })
+        .collect();
+    assert!(!links.is_empty());
+    // Each arm link runs from its joint origin to its child's.
+    for (body, from, to) in [
+        (
+            "upper_arm_link_body",
+            "upper_arm_link_origin",
+            "forearm_link_origin",
+        ),
+        (
+            "forearm_link_body",
+            "forearm_link_origin",
+            "wrist_1_link_origin",
+        ),
+        ("wrist_3_link_body", "wrist_3_link_origin", "ee_link_origin"),
+    ] {
+        let found = (body.to_string(), from.to_string(), to.to_string());
+        assert!(links.contains(&found), "{found:?} in {links:?}");
+    }
+    // The view is the arm's reach (about 1 m), not the inertia boxes'.
+    let size = data["size"].as_f64().unwrap();
+    assert!((0.5..1.6).contains(&size), "view size {size}");
+}
