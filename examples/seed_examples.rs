@@ -207,26 +207,10 @@ fn animate_ur5(out: &Path) -> Result<PathBuf, Box<dyn std::error::Error>> {
     let recording = record(&Unconstrained::without_inputs(&robot), start, |s| {
         energy(&robot, &s.q, &s.v)
     })?;
-    let mut scene = Scene::of(&robot)?
+    // The arm is drawn link by link between its joint origins.
+    let scene = Scene::of(&robot)?
         .title("UR5 (URDF) falling under gravity without joint torques (RK4, h = 1 ms)")
         .equations(Ur5::EQUATIONS);
-    // The arm as the segments between its joints, each link a small box.
-    let links = [
-        "shoulder",
-        "upper_arm",
-        "forearm",
-        "wrist_1",
-        "wrist_2",
-        "wrist_3",
-    ];
-    let mut previous = "O".to_string();
-    for link in links {
-        let origin = format!("{link}_link_origin");
-        scene = scene
-            .segment(&previous, &origin)?
-            .body_size(&format!("{link}_link_body"), [0.08; 3])?;
-        previous = origin;
-    }
     Ok(scene.write(out.join("ur5.html"), &recording)?)
 }
 

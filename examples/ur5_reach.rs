@@ -167,26 +167,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     )?;
     println!("wrote {}", chart.display());
 
-    let mut scene = Scene::of(&arm)?
+    // The arm is drawn link by link between its joint origins.
+    let scene = Scene::of(&arm)?
         .title("UR5 (URDF): tool0 tracking a circle, task-space PD through jacobian(tool0_origin)")
         .equations(Ur5::EQUATIONS);
-    let mut previous = "O".to_string();
-    for link in [
-        "shoulder_link",
-        "upper_arm_link",
-        "forearm_link",
-        "wrist_1_link",
-        "wrist_2_link",
-        "wrist_3_link",
-        "tool0",
-    ] {
-        let origin = format!("{link}_origin");
-        scene = scene.segment(&previous, &origin)?;
-        if link != "tool0" {
-            scene = scene.body_size(&format!("{link}_body"), [0.08; 3])?;
-        }
-        previous = origin;
-    }
     let page = scene.write(out.join("ur5_reach.html"), &recording)?;
     println!("wrote {}", page.display());
     Ok(())

@@ -358,10 +358,20 @@ impl Scene {
         let (kept, poses) = self.kept_poses(recording)?;
         let e0 = recording.energy[0];
         let energy_change: Vec<f64> = kept.iter().map(|&i| recording.energy[i] - e0).collect();
-        let work: Option<Vec<f64>> = recording
-            .is_driven()
-            .then(|| kept.iter().map(|&i| recording.driven[i].1).collect());
-        let data = self.data(&poses, &energy_change, work.as_deref())?;
+        // A driven run: the inputs' work at the kept samples, and the
+        // energy error `E − E(0) − W` over all samples, from the full
+        // numbers (the drawn ones keep five digits).
+        let driven = recording.is_driven().then(|| {
+            let work: Vec<f64> = kept.iter().map(|&i| recording.driven[i].1).collect();
+            let error = (0..recording.len())
+                .map(|i| (recording.energy[i] - e0 - recording.driven[i].1).abs())
+                .fold(0.0_f64, f64::max);
+            (work, error)
+        });
+        let driven = driven
+            .as_ref()
+            .map(|(work, error)| (work.as_slice(), *error));
+        let data = self.data(&poses, &energy_change, driven)?;
         Ok(TEMPLATE.replacen(DATA_SLOT, &data, 1))
     }
 
@@ -399,12 +409,13 @@ impl Scene {
     }
 
     /// The page's data as compact JSON: `energy` is `E(t) − E(0)` at the
-    /// kept samples, `work` the inputs' work there for a driven system.
+    /// kept samples; for a driven system, `driven` is the inputs' work
+    /// there and the largest `|E − E(0) − W|`.
     fn data(
         &self,
         poses: &[(f64, Pose)],
         energy: &[f64],
-        work: Option<&[f64]>,
+        driven: Option<(&[f64], f64)>,
     ) -> Result<String, SceneError> {
         let layout = &self.kinematics.layout;
         let scene = Extent::of(poses, &[]).size;
@@ -456,13 +467,21 @@ impl Scene {
         );
         field("center", list(extent.center.iter().map(|&x| number(x))));
         field("size", number(extent.size));
+        field("radius", number(extent.radius));
         field(
             "t",
             list(poses.iter().map(|(t, _)| rounded_significant(*t))),
         );
         let series = |values: &[f64]| list(values.iter().map(|&e| rounded_significant(e)));
         field("energy", series(energy));
-        field("work", work.map_or("null".into(), series));
+        field(
+            "work",
+            driven.map_or("null".into(), |(work, _)| series(work)),
+        );
+        field(
+            "error",
+            driven.map_or("null".into(), |(_, error)| rounded_significant(error)),
+        );
         field(
             "frames",
             list(poses.iter().map(|(_, pose)| {
@@ -488,9 +507,10 @@ impl Scene {
     /// The links drawn for the bodies of a robot: `(body, from, to)`, the
     /// segments between named points (a joint's point and the point it is
     /// placed from: the parent link's joint origin) that lie in one such
-    /// body, the first declared: a body without a given size whose centre
-    /// is not a named point (an imported link's centre of mass, written as
-    /// an offset), both ends fixed in it and apart. None when nothing moves.
+    /// body, the first declared: a robot's link
+    /// ([`is_robot_link`](Scene::is_robot_link)), both ends fixed in it and
+    /// apart. Bodies with an idealised inertia keep their boxes. None when
+    /// nothing moves.
     fn links(&self, poses: &[(f64, Pose)], scene: f64) -> Vec<(usize, usize, usize)> {
         let near =
             |a: &[f64; 3], b: &[f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() <= STILL * scene);
@@ -502,19 +522,15 @@ impl Scene {
         if still {
             return Vec::new();
         }
+        let layout = &self.kinematics.layout;
         let fixed: Vec<Vec<(usize, [f64; 3])>> = (0..self.sizes.len())
-            .map(|b| {
-                let points = fixed_points(poses, b, scene);
-                let named_centre = points.iter().any(|(_, at)| near(at, &[0.0; 3]));
-                match self.sizes[b].is_none() && !named_centre {
-                    true => points,
-                    false => Vec::new(),
-                }
+            .map(|b| match self.is_robot_link(poses, b, scene) {
+                true => fixed_points(poses, b, scene),
+                false => Vec::new(),
             })
             .collect();
         let at = |b: usize, p: usize| fixed[b].iter().find(|(q, _)| *q == p).map(|(_, at)| at);
-        self.kinematics
-            .layout
+        layout
             .segments
             .iter()
             .filter_map(|&(i, j)| {
@@ -527,15 +543,33 @@ impl Scene {
             .collect()
     }
 
+    /// Whether body `b` is a robot's link: no size given, a full inertia
+    /// (an imported link's, whose box of equal inertia says little of its
+    /// shape: a URDF's placeholder inertia makes metre-wide boxes) and named
+    /// points fixed in it apart (its joint origin and its children's).
+    fn is_robot_link(&self, poses: &[(f64, Pose)], b: usize, scene: f64) -> bool {
+        let layout = &self.kinematics.layout;
+        let full_inertia = inertia_box(layout.mass_properties[b])
+            .is_some_and(|size| size.iter().all(|&x| x > 0.0));
+        self.sizes[b].is_none()
+            && full_inertia
+            && fixed_point_span(poses, b, scene)
+                .iter()
+                .any(|&x| x > STILL * scene)
+    }
+
     /// Each body's drawn size: given, else its uniform box of equal
     /// inertia, else the span of the named points fixed in it; open
-    /// dimensions get a thickness.
+    /// dimensions get a thickness. A robot's link is sized from its points.
     fn body_sizes(&self, poses: &[(f64, Pose)], scene: f64) -> Vec<[f64; 3]> {
         let layout = &self.kinematics.layout;
         (0..layout.bodies.len())
             .map(|b| {
                 let size = self.sizes[b]
-                    .or_else(|| inertia_box(layout.mass_properties[b]))
+                    .or_else(|| match self.is_robot_link(poses, b, scene) {
+                        true => None,
+                        false => inertia_box(layout.mass_properties[b]),
+                    })
                     .unwrap_or_else(|| fixed_point_span(poses, b, scene));
                 thicken(size, scene)
             })
@@ -626,6 +660,9 @@ fn thicken(size: [f64; 3], scene: f64) -> [f64; 3] {
 struct Extent {
     center: [f64; 3],
     size: f64,
+    /// The farthest any part comes from the centre: the 3-D view, turned
+    /// any way, fits a circle of this radius.
+    radius: f64,
     /// The `N` axis (0, 1, 2) normal to the plane of all motion.
     normal: Option<usize>,
 }
@@ -634,29 +671,44 @@ impl Extent {
     /// The region covered by the parts of `poses` with bodies of full
     /// lengths `sizes` (none: points only), and the plane of the motion.
     fn of(poses: &[(f64, Pose)], sizes: &[[f64; 3]]) -> Extent {
-        let parts = Bounds::of(poses.iter().flat_map(|(_, pose)| {
-            pose.points
-                .iter()
-                .chain(&pose.centres)
-                .chain(&pose.particles)
-                .copied()
-        }));
-        let corners = poses.iter().flat_map(|(_, pose)| {
-            pose.centres
-                .iter()
-                .zip(&pose.rotations)
-                .zip(sizes)
-                .flat_map(|((c, r), size)| {
-                    (0..8).map(move |corner: usize| {
-                        let sign = |axis: usize| if corner >> axis & 1 == 1 { 0.5 } else { -0.5 };
-                        [0, 1, 2].map(|i| {
-                            c[i] + (0..3).map(|j| r[i][j] * sign(j) * size[j]).sum::<f64>()
+        let parts = || {
+            poses.iter().flat_map(|(_, pose)| {
+                pose.points
+                    .iter()
+                    .chain(&pose.centres)
+                    .chain(&pose.particles)
+                    .copied()
+            })
+        };
+        let corners = || {
+            poses.iter().flat_map(|(_, pose)| {
+                pose.centres
+                    .iter()
+                    .zip(&pose.rotations)
+                    .zip(sizes)
+                    .flat_map(|((c, r), size)| {
+                        (0..8).map(move |corner: usize| {
+                            let sign =
+                                |axis: usize| if corner >> axis & 1 == 1 { 0.5 } else { -0.5 };
+                            [0, 1, 2].map(|i| {
+                                c[i] + (0..3).map(|j| r[i][j] * sign(j) * size[j]).sum::<f64>()
+                            })
                         })
                     })
-                })
-        });
-        let all = parts.union(&Bounds::of(corners));
-        let size = all.size();
+            })
+        };
+        let all = Bounds::of(parts().chain(corners()));
+        let (size, center) = (all.size(), all.center());
+        let radius = parts()
+            .chain(corners())
+            .map(|x| {
+                (0..3)
+                    .map(|i| (x[i] - center[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .fold(0.0_f64, f64::max);
+        let parts = Bounds::of(parts());
         // Planar: no part leaves a plane normal to an axis of N and every
         // body turns about that axis only.
         let normal = (0..3).rev().find(|&k| {
@@ -668,8 +720,9 @@ impl Extent {
                 })
         });
         Extent {
-            center: all.center(),
+            center,
             size,
+            radius: if radius > 0.0 { radius } else { size / 2.0 },
             normal,
         }
     }
@@ -692,13 +745,6 @@ impl Bounds {
             bounds.high = [0, 1, 2].map(|i| bounds.high[i].max(x[i]));
         }
         bounds
-    }
-
-    fn union(&self, other: &Bounds) -> Bounds {
-        Bounds {
-            low: [0, 1, 2].map(|i| self.low[i].min(other.low[i])),
-            high: [0, 1, 2].map(|i| self.high[i].max(other.high[i])),
-        }
     }
 
     /// The largest side, or 1 for an empty or single-point box.

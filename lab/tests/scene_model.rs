@@ -61,6 +61,7 @@ fn an_undriven_page_plots_the_energy_error_alone() {
     };
     let data = embedded_data(&Scene::of(&bar).unwrap().html(&swing(2, 20)).unwrap());
     assert_eq!(data["work"], serde_json::Value::Null);
+    assert_eq!(data["error"], serde_json::Value::Null);
     assert_eq!(data["energy"].as_array().unwrap().len(), 20);
 }
 
@@ -123,6 +124,9 @@ fn a_driven_page_plots_the_energy_change_beside_the_inputs_work() {
         "trapezoidal work"
     );
     assert!((last(energy_change) - gained).abs() < 1e-4 * gained);
+    // RK4 is exact for this motion (φ quadratic in t): no energy error.
+    let error = data["error"].as_f64().unwrap();
+    assert!(error < 1e-9 * work, "energy error {error}");
     assert!(html.contains("energy change E(t) − E(0)"));
     assert!(html.contains("work of the inputs W(t)"));
 }
