@@ -4,15 +4,9 @@
 //! view to the motion.
 
 use dalembert::Model;
+use dalembert_fixtures::scene_page::embedded_data;
 use dalembert_generated::{DoublePendulum, Ur5};
 use dalembert_lab::{Recording, Scene};
-
-/// The embedded data of a page, parsed.
-fn embedded_data(html: &str) -> serde_json::Value {
-    let start = html.find("const DATA = ").expect("embedded data") + "const DATA = ".len();
-    let end = start + html[start..].find(";\n").expect("data ends with `;`");
-    serde_json::from_str(&html[start..end]).expect("the embedded data is JSON")
-}
 
 #[test]
 fn a_built_system_carries_the_file_it_was_built_from() {

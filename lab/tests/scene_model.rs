@@ -3,18 +3,12 @@
 //! driven system: the energy change beside the inputs' work.
 
 use dalembert::{Model, MultibodySystem, State, Unconstrained, energy, integrate};
+use dalembert_fixtures::scene_page::embedded_data;
 use dalembert_fixtures::seeds::{DoublePendulum, RotatingBar};
 use dalembert_lab::{Recording, Scene, input_power};
 
 /// Seed example 1 as the language reference writes it.
 const DOUBLE_PENDULUM: &str = include_str!("../../generated/models/double_pendulum.dal");
-
-/// The page's embedded data, parsed.
-fn embedded_data(html: &str) -> serde_json::Value {
-    let start = html.find("const DATA = ").expect("embedded data") + "const DATA = ".len();
-    let end = start + html[start..].find(";\n").expect("data ends with `;`");
-    serde_json::from_str(&html[start..end]).expect("the embedded data is JSON")
-}
 
 /// A made-up swing of `nq` coordinates, `samples` samples over 2 s.
 fn swing(nq: usize, samples: usize) -> Recording {
