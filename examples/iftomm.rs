@@ -30,6 +30,7 @@ use std::error::Error;
 use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 
+use clap::{Arg, Command, value_parser};
 use dalembert::constrained::{ConstraintSolver, constraint_drift};
 use dalembert::integrate::{
     AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
@@ -42,7 +43,6 @@ use dalembert_fixtures::iftomm::{
     ANDREWS, ANDREWS_EQUATIONS, AnglePendulum, Bricard, CartesianPendulum, FourBars2, FourBars10,
     FourBars40, Parallelogram, andrews_start, four_bar_start,
 };
-use dalembert_lab::clap::{Arg, Command, value_parser};
 use dalembert_lab::{Accuracy, WorkPoint, measure, to_csv, work_precision_chart};
 
 /// Projection after every step of the Runge–Kutta methods.

@@ -18,8 +18,8 @@
 //! The chart and the scene are written to `DIR` (default `target/charts`).
 
 use dalembert::{Constrained, Stabilisation, State, energy, integrate};
-use dalembert_fixtures::balancing_robot::{BALANCING_ROBOT, BalancingRobot, SOURCE, upright};
-use dalembert_lab::{Recording, Scene, Series, line_chart, lqr};
+use dalembert_fixtures::balancing_robot::{BALANCING_ROBOT, BalancingRobot, upright};
+use dalembert_lab::{Recording, Scene, Series, input_power, line_chart, lqr};
 use std::path::PathBuf;
 
 /// Forward speed of the motion balanced about (m/s).
@@ -85,7 +85,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         pitch.push((s.t, s.q[3]));
         heading.push((s.t, s.q[2]));
         torque.push((s.t, feedback(&gain, &s.q, &s.v)[0] / 10.0));
-        recording.push(s.t, &s.q, energy(&BALANCING_ROBOT, &s.q, &s.v));
+        let (u, e) = (
+            feedback(&gain, &s.q, &s.v),
+            energy(&BALANCING_ROBOT, &s.q, &s.v),
+        );
+        let power = input_power(&BALANCING_ROBOT, s.t, &s.q, &s.v, &u);
+        recording.push_driven(s.t, &s.q, e, power);
     })?
     .end;
     println!(
@@ -127,12 +132,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ],
     )?;
     println!("wrote {}", chart.display());
-    let robot = BALANCING_ROBOT;
-    let parameters = [
-        robot.mb, robot.mw, robot.Iwa, robot.Iwd, robot.r, robot.d, robot.g, robot.l, robot.Ibx,
-        robot.Iby, robot.Ibz,
-    ];
-    let scene = Scene::new(SOURCE, &parameters)?
+    let scene = Scene::of(&BALANCING_ROBOT)?
         .title("Self-balancing robot balanced by LQR while it rolls and turns (RK4, h = 1 ms)")
         .equations(BalancingRobot::EQUATIONS);
     let page = scene.write(out.join("lqr_balancing_robot.html"), &recording)?;

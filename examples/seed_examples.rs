@@ -23,15 +23,6 @@ use dalembert_fixtures::seeds::{
 use dalembert_fixtures::slider_crank::SEED_3 as REFERENCE_SEED_3;
 use dalembert_generated::Ur5;
 
-/// The seed examples' model texts, which the animations draw.
-const DOUBLE_PENDULUM: &str = include_str!("../generated/models/double_pendulum.dal");
-const ROTATING_BAR: &str = include_str!("../generated/models/rotating_bar.dal");
-const CONSTRAINED_PENDULUM: &str = include_str!("../generated/models/constrained_pendulum.dal");
-/// The URDF robot `dalembert_generated::Ur5` is imported from.
-const UR5_URDF: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/tests/reference/urdf/ur5_robot.urdf"
-);
 /// The animations' length, in seconds, and step.
 const ANIMATION_END: f64 = 10.0;
 const ANIMATION_STEP: f64 = 1e-3;
@@ -155,7 +146,7 @@ fn simulate_double_pendulum(
         "|E − E₀| [J]",
         &series,
     )?;
-    let animation = Scene::new(DOUBLE_PENDULUM, &[pendulum.m, pendulum.L, pendulum.g])?
+    let animation = Scene::of(&pendulum)?
         .title("Seed example 1: double pendulum released at θ₁ = θ₂ = 2 rad (RK4, h = 1 ms)")
         .equations(DoublePendulum::EQUATIONS)
         .write(out.join("double_pendulum.html"), &recording)?;
@@ -178,7 +169,7 @@ fn animate_rotating_bar(out: &Path) -> Result<PathBuf, Box<dyn std::error::Error
     let recording = record(&Unconstrained::without_inputs(&bar), start, |s| {
         energy(&bar, &s.q, &s.v)
     })?;
-    let scene = Scene::new(ROTATING_BAR, &[bar.m, bar.l, bar.d])?
+    let scene = Scene::of(&bar)?
         .title("Seed example 2: a bar on a rotating massless frame, coasting (RK4, h = 1 ms)")
         .equations(RotatingBar::EQUATIONS);
     Ok(scene.write(out.join("rotating_bar.html"), &recording)?)
@@ -197,7 +188,7 @@ fn animate_constrained_pendulum(out: &Path) -> Result<PathBuf, Box<dyn std::erro
     let recording = record(&dynamics, pendulum.assembled(1.0, 2.0), |s| {
         energy(&pendulum, &s.q, &s.v)
     })?;
-    let scene = Scene::new(CONSTRAINED_PENDULUM, &[pendulum.m, pendulum.l, pendulum.g])?
+    let scene = Scene::of(&pendulum)?
         .title("Seed example 3: pendulum in dependent coordinates (RK4, h = 1 ms, projection)")
         .equations(ConstrainedPendulum::EQUATIONS);
     Ok(scene.write(out.join("constrained_pendulum.html"), &recording)?)
@@ -216,27 +207,10 @@ fn animate_ur5(out: &Path) -> Result<PathBuf, Box<dyn std::error::Error>> {
     let recording = record(&Unconstrained::without_inputs(&robot), start, |s| {
         energy(&robot, &s.q, &s.v)
     })?;
-    let model = dalembert_codegen::Urdf::read(UR5_URDF)?.model()?;
-    let mut scene = Scene::new(&model, &[])?
+    // The arm is drawn link by link between its joint origins.
+    let scene = Scene::of(&robot)?
         .title("UR5 (URDF) falling under gravity without joint torques (RK4, h = 1 ms)")
         .equations(Ur5::EQUATIONS);
-    // The arm as the segments between its joints, each link a small box.
-    let links = [
-        "shoulder",
-        "upper_arm",
-        "forearm",
-        "wrist_1",
-        "wrist_2",
-        "wrist_3",
-    ];
-    let mut previous = "O".to_string();
-    for link in links {
-        let origin = format!("{link}_link_origin");
-        scene = scene
-            .segment(&previous, &origin)?
-            .body_size(&format!("{link}_link_body"), [0.08; 3])?;
-        previous = origin;
-    }
     Ok(scene.write(out.join("ur5.html"), &recording)?)
 }
 

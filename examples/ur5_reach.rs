@@ -37,16 +37,7 @@ use std::path::PathBuf;
 
 use dalembert::{State, Unconstrained, energy, integrate};
 use dalembert_generated::Ur5;
-use dalembert_lab::{Recording, Scene, Series, line_chart};
-
-/// The URDF file `Ur5` is imported from, and the outputs asked for (as in
-/// the generated crate's build script): the scene is drawn from the same
-/// import.
-const UR5_URDF: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/tests/reference/urdf/ur5_robot.urdf"
-);
-const OUTPUTS: &str = "position(tool0_origin), jacobian(tool0_origin), rotation(tool0)";
+use dalembert_lab::{Recording, Scene, Series, input_power, line_chart};
 
 /// The starting pose (rad), at rest.
 const START: [f64; 6] = [0.0, -1.2, 1.5, -0.8, 1.0, 0.0];
@@ -120,7 +111,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         error.push((s.t, 1e3 * distance));
         path.push((x[1], x[2]));
         wanted.push((x_d[1], x_d[2]));
-        recording.push(s.t, &s.q, energy(&arm, &s.q, &s.v));
+        let u = control(&arm, center, s.t, &s.q, &s.v);
+        let power = input_power(&arm, s.t, &s.q, &s.v, &u);
+        recording.push_driven(s.t, &s.q, energy(&arm, &s.q, &s.v), power);
         last_q = s.q;
     })
     .map_err(|e| format!("the simulation stopped at t = {}: {:?}", e.t, e.cause))?;
@@ -174,29 +167,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     )?;
     println!("wrote {}", chart.display());
 
-    let model = dalembert_codegen::Urdf::read(UR5_URDF)?
-        .outputs(OUTPUTS)
-        .model()?;
-    let mut scene = Scene::new(&model, &[])?
+    // The arm is drawn link by link between its joint origins.
+    let scene = Scene::of(&arm)?
         .title("UR5 (URDF): tool0 tracking a circle, task-space PD through jacobian(tool0_origin)")
         .equations(Ur5::EQUATIONS);
-    let mut previous = "O".to_string();
-    for link in [
-        "shoulder_link",
-        "upper_arm_link",
-        "forearm_link",
-        "wrist_1_link",
-        "wrist_2_link",
-        "wrist_3_link",
-        "tool0",
-    ] {
-        let origin = format!("{link}_origin");
-        scene = scene.segment(&previous, &origin)?;
-        if link != "tool0" {
-            scene = scene.body_size(&format!("{link}_body"), [0.08; 3])?;
-        }
-        previous = origin;
-    }
     let page = scene.write(out.join("ur5_reach.html"), &recording)?;
     println!("wrote {}", page.display());
     Ok(())

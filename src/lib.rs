@@ -67,7 +67,7 @@ mod test_systems;
 pub use constrained::Stabilisation;
 pub use dynamics::{DynamicsError, accelerations, energy, energy_at, jacobi_integral};
 pub use integrate::{Constrained, IntegrationError, Solution, State, Unconstrained};
-pub use system::{ConstrainedSystem, MultibodySystem, TaylorSystem};
+pub use system::{ConstrainedSystem, Model, MultibodySystem, TaylorSystem};
 
 /// The README's Rust examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -196,3 +196,21 @@ pub trait TaylorSystem<const NQ: usize, const NV: usize, const NU: usize>:
         order: usize,
     ) -> Result<Expansion<K, NQ, NV>, DynamicsError>;
 }
+
+/// The model a generated system was derived from: its text and its
+/// parameters' values, so that tools reading the model (the animated
+/// scenes of `dalembert-lab`: `Scene::of(&system)`) need nothing pasted.
+///
+/// `NP` is the number of parameters. The `dalembert!` macro and the build
+/// script's generated code implement it for every system with `std`.
+pub trait Model<const NP: usize> {
+    /// The model's text: the `.dal` file (or an imported robot's model) as
+    /// the build script read it, or the macro's input as its tokens read
+    /// (the same tokens; comments other than docs are not kept).
+    const SOURCE: &'static str;
+    /// Names of the parameters, in field order.
+    const PARAMETERS: [&'static str; NP];
+
+    /// The parameters' values, in field order.
+    fn parameter_values(&self) -> [f64; NP];
+}

@@ -22,9 +22,6 @@ use dalembert_lab::{Recording, Scene, Series, line_chart_log_y};
 const STEP: f64 = 1e-3;
 /// Every this many steps a point goes into the charts.
 const CHART_STRIDE: usize = 20;
-/// The slider-crank's model text, as `SLIDER_CRANK`'s type is written,
-/// which the animation draws.
-const SLIDER_CRANK_MODEL: &str = include_str!("slider_crank.dal");
 /// Projection after every step: residual bound and iteration budget.
 const PROJECTION: Stabilisation = Stabilisation::Projection {
     tolerance: 1e-12,
@@ -178,15 +175,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         10.0,
         out.join("constraint_drift_slider_crank.svg"),
     )?;
-    let parameters = [
-        crank.m_crank,
-        crank.r,
-        crank.m_rod,
-        crank.L,
-        crank.m_slider,
-        crank.g,
-    ];
-    let animation = Scene::new(SLIDER_CRANK_MODEL, &parameters)?
+    let animation = Scene::of(&crank)?
         .title("Slider-crank at 4 rev/s, unforced (RK4, h = 1 ms, projection)")
         .equations(SliderCrank::EQUATIONS)
         .write(out.join("slider_crank.html"), &projected.recording)?;

@@ -23,6 +23,7 @@
 use std::error::Error;
 use std::path::{Path, PathBuf};
 
+use clap::{Arg, Command, value_parser};
 use dalembert::constrained::{DriftLimits, constraint_drift};
 use dalembert::integrate::{self, AdaptiveOptions, Dynamics, ExplicitPair, GaussLegendre};
 use dalembert::{
@@ -34,12 +35,11 @@ use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 use dalembert_fixtures::stability::{ON_AXIS, STIFF, STIFF_START, TOWARDS_AXIS, chaotic_reference};
 use dalembert_generated::taylor_constrained_pendulum::TaylorConstrainedPendulum;
 use dalembert_generated::taylor_double_pendulum::TaylorDoublePendulum;
-use dalembert_lab::clap::{Arg, Command, value_parser};
-use dalembert_lab::indicatif::{ProgressBar, ProgressStyle};
 use dalembert_lab::{
     Accuracy, Series, WorkPoint, line_chart_log_y, measure, seconds_at_error, state_error, to_csv,
     work_precision_chart,
 };
+use indicatif::{ProgressBar, ProgressStyle};
 
 /// The error at which our DOP853 and SciPy's are compared.
 const COMPARISON_ERROR: f64 = 1e-6;
@@ -81,7 +81,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         .arg(
             Arg::new("taylor")
                 .long("taylor")
-                .action(dalembert_lab::clap::ArgAction::SetTrue),
+                .action(clap::ArgAction::SetTrue),
         )
         .get_matches();
     let out = options

@@ -1,17 +1,24 @@
 //! Animated scenes: a trajectory of any model drawn in the browser, from one
 //! self-contained HTML file (inline script and canvas, no network).
 //!
-//! A [`Scene`] is built from the model's source text alone: its named
+//! A [`Scene`] is built from the model alone ([`Scene::of`] a generated
+//! system, which carries its model, or [`Scene::new`] from its text): its named
 //! points, joined by a segment wherever one is located from another
-//! (`point P = Q ± vec`, joint points), its bodies drawn as boxes at their
-//! centres, turned with their frames and sized from their inertia (or from
-//! the named points fixed in them), and its particles drawn as dots. Nothing
+//! (`point P = Q ± vec`, joint points), its bodies drawn as links between
+//! the moving named points fixed in them (a robot's joint origins: each link
+//! from its joint to its children's) or, with fewer than two such points or
+//! a size given, as boxes at their centres, turned with their frames and
+//! sized from their inertia, and its particles drawn as dots. The view fits
+//! what is drawn over the whole motion; point names are written beside the
+//! points when there are few, and shown under the mouse otherwise. Nothing
 //! of this enters the equations. The builder's methods add segments and set
 //! body sizes by name. [`Scene::write`] writes a [`Recording`] (times,
 //! coordinates, energies) as an animation: play and pause, a time slider,
 //! the playback speed, a 2-D view when all motion stays in one plane and an
 //! orthographic 3-D view turned by dragging the mouse otherwise, the energy
-//! error under it and the model's equations in a collapsible panel. Long
+//! error under it (for a driven system, whose recording carries the inputs'
+//! power: the energy change beside the inputs' work) and the model's
+//! equations in a collapsible panel. Long
 //! recordings are decimated uniformly in time for display, never truncated.
 //!
 //! Positions come from one place, [`Kinematics`]: today the engine's own
@@ -62,12 +69,15 @@ fn error<T>(message: impl Into<String>) -> Result<T, SceneError> {
 }
 
 /// A trajectory to animate: times, coordinates and total energies, one
-/// sample per step.
+/// sample per step, and for a driven system the work its inputs did.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Recording {
     t: Vec<f64>,
     q: Vec<Vec<f64>>,
     energy: Vec<f64>,
+    /// The inputs' power and their work since the first sample, when the
+    /// samples were pushed with [`Recording::push_driven`].
+    driven: Vec<(f64, f64)>,
 }
 
 impl Recording {
@@ -82,6 +92,27 @@ impl Recording {
         self.t.push(t);
         self.q.push(q.to_vec());
         self.energy.push(energy);
+    }
+
+    /// Adds a sample of a driven system: as [`push`](Recording::push),
+    /// with the power `power` its inputs deliver at `t` ([`input_power`]).
+    /// The recording integrates the power (trapezoidal rule) into the
+    /// inputs' work, which the page draws beside the energy change: for a
+    /// driven system the energy changes by the inputs' work, and only
+    /// their difference is the integrator's error.
+    pub fn push_driven(&mut self, t: f64, q: &[f64], energy: f64, power: f64) {
+        let work = match (self.t.last(), self.driven.last()) {
+            (Some(&t0), Some(&(p0, w0))) => w0 + (t - t0) * (p0 + power) / 2.0,
+            _ => 0.0,
+        };
+        self.push(t, q, energy);
+        self.driven.push((power, work));
+    }
+
+    /// Whether the samples carry the inputs' power (all were pushed with
+    /// [`push_driven`](Recording::push_driven)).
+    pub fn is_driven(&self) -> bool {
+        !self.t.is_empty() && self.driven.len() == self.t.len()
     }
 
     /// The number of samples.
@@ -227,6 +258,15 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The scene of a generated system, from the model it carries (its
+    /// text and its parameters' values: [`dalembert::Model`]), so that
+    /// nothing is pasted and nothing can drift from the compiled system.
+    /// The equations panel shows the derived equations; the title is the
+    /// system's name.
+    pub fn of<S: dalembert::Model<NP>, const NP: usize>(system: &S) -> Result<Scene, SceneError> {
+        Scene::new(S::SOURCE, &system.parameter_values())
+    }
+
     /// The scene of the system in `source` (the model's text, in the
     /// language of `dalembert!`) with its parameters' values in declaration
     /// order. The equations panel shows the derived equations; the title is
@@ -317,8 +357,21 @@ impl Scene {
         }
         let (kept, poses) = self.kept_poses(recording)?;
         let e0 = recording.energy[0];
-        let energy_error: Vec<f64> = kept.iter().map(|&i| recording.energy[i] - e0).collect();
-        let data = self.data(&poses, &energy_error)?;
+        let energy_change: Vec<f64> = kept.iter().map(|&i| recording.energy[i] - e0).collect();
+        // A driven run: the inputs' work at the kept samples, and the
+        // energy error `E − E(0) − W` over all samples, from the full
+        // numbers (the drawn ones keep five digits).
+        let driven = recording.is_driven().then(|| {
+            let work: Vec<f64> = kept.iter().map(|&i| recording.driven[i].1).collect();
+            let error = (0..recording.len())
+                .map(|i| (recording.energy[i] - e0 - recording.driven[i].1).abs())
+                .fold(0.0_f64, f64::max);
+            (work, error)
+        });
+        let driven = driven
+            .as_ref()
+            .map(|(work, error)| (work.as_slice(), *error));
+        let data = self.data(&poses, &energy_change, driven)?;
         Ok(TEMPLATE.replacen(DATA_SLOT, &data, 1))
     }
 
@@ -355,11 +408,30 @@ impl Scene {
         Ok(path.to_path_buf())
     }
 
-    /// The page's data as compact JSON.
-    fn data(&self, poses: &[(f64, Pose)], energy_error: &[f64]) -> Result<String, SceneError> {
+    /// The page's data as compact JSON: `energy` is `E(t) − E(0)` at the
+    /// kept samples; for a driven system, `driven` is the inputs' work
+    /// there and the largest `|E − E(0) − W|`.
+    fn data(
+        &self,
+        poses: &[(f64, Pose)],
+        energy: &[f64],
+        driven: Option<(&[f64], f64)>,
+    ) -> Result<String, SceneError> {
         let layout = &self.kinematics.layout;
-        let sizes = self.body_sizes(poses, Extent::of(poses, &[]).size);
-        let extent = Extent::of(poses, &sizes);
+        let scene = Extent::of(poses, &[]).size;
+        let links = self.links(poses, scene);
+        let sizes = self.body_sizes(poses, scene);
+        // A body drawn as links is not drawn as a box: its box does not
+        // count in the view.
+        let boxes: Vec<[f64; 3]> = sizes
+            .iter()
+            .enumerate()
+            .map(|(b, &size)| match links.iter().any(|l| l.0 == b) {
+                true => [0.0; 3],
+                false => size,
+            })
+            .collect();
+        let extent = Extent::of(poses, &boxes);
         let decimals = (DIGITS - 1 - extent.size.log10().floor() as i32).max(0) as usize;
         let number = |x: f64| rounded(x, decimals);
         let mut json = String::from("{");
@@ -386,18 +458,29 @@ impl Scene {
             list(sizes.iter().map(|s| list(s.iter().map(|&x| number(x))))),
         );
         field(
+            "links",
+            list(links.iter().map(|(b, i, j)| format!("[{b},{i},{j}]"))),
+        );
+        field(
             "normal",
             extent.normal.map_or("null".into(), |k| k.to_string()),
         );
         field("center", list(extent.center.iter().map(|&x| number(x))));
         field("size", number(extent.size));
+        field("radius", number(extent.radius));
         field(
             "t",
             list(poses.iter().map(|(t, _)| rounded_significant(*t))),
         );
+        let series = |values: &[f64]| list(values.iter().map(|&e| rounded_significant(e)));
+        field("energy", series(energy));
         field(
-            "energy",
-            list(energy_error.iter().map(|&e| rounded_significant(e))),
+            "work",
+            driven.map_or("null".into(), |(work, _)| series(work)),
+        );
+        field(
+            "error",
+            driven.map_or("null".into(), |(_, error)| rounded_significant(error)),
         );
         field(
             "frames",
@@ -421,20 +504,95 @@ impl Scene {
         Ok(json)
     }
 
+    /// The links drawn for the bodies of a robot: `(body, from, to)`, the
+    /// segments between named points (a joint's point and the point it is
+    /// placed from: the parent link's joint origin) that lie in one such
+    /// body, the first declared: a robot's link
+    /// ([`is_robot_link`](Scene::is_robot_link)), both ends fixed in it and
+    /// apart. Bodies with an idealised inertia keep their boxes. None when
+    /// nothing moves.
+    fn links(&self, poses: &[(f64, Pose)], scene: f64) -> Vec<(usize, usize, usize)> {
+        let near =
+            |a: &[f64; 3], b: &[f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() <= STILL * scene);
+        // Without motion every point would count as fixed in every body.
+        let still = poses.iter().all(|(_, pose)| {
+            let first = &poses[0].1.points;
+            pose.points.iter().zip(first).all(|(a, b)| near(a, b))
+        });
+        if still {
+            return Vec::new();
+        }
+        let layout = &self.kinematics.layout;
+        let fixed: Vec<Vec<(usize, [f64; 3])>> = (0..self.sizes.len())
+            .map(|b| match self.is_robot_link(poses, b, scene) {
+                true => fixed_points(poses, b, scene),
+                false => Vec::new(),
+            })
+            .collect();
+        let at = |b: usize, p: usize| fixed[b].iter().find(|(q, _)| *q == p).map(|(_, at)| at);
+        layout
+            .segments
+            .iter()
+            .filter_map(|&(i, j)| {
+                let body = (0..fixed.len()).find(|&b| match (at(b, i), at(b, j)) {
+                    (Some(a), Some(c)) => !near(a, c),
+                    _ => false,
+                })?;
+                Some((body, i, j))
+            })
+            .collect()
+    }
+
+    /// Whether body `b` is a robot's link: no size given, a full inertia
+    /// (an imported link's, whose box of equal inertia says little of its
+    /// shape: a URDF's placeholder inertia makes metre-wide boxes) and named
+    /// points fixed in it apart (its joint origin and its children's).
+    fn is_robot_link(&self, poses: &[(f64, Pose)], b: usize, scene: f64) -> bool {
+        let layout = &self.kinematics.layout;
+        let full_inertia = inertia_box(layout.mass_properties[b])
+            .is_some_and(|size| size.iter().all(|&x| x > 0.0));
+        self.sizes[b].is_none()
+            && full_inertia
+            && fixed_point_span(poses, b, scene)
+                .iter()
+                .any(|&x| x > STILL * scene)
+    }
+
     /// Each body's drawn size: given, else its uniform box of equal
     /// inertia, else the span of the named points fixed in it; open
-    /// dimensions get a thickness.
+    /// dimensions get a thickness. A robot's link is sized from its points.
     fn body_sizes(&self, poses: &[(f64, Pose)], scene: f64) -> Vec<[f64; 3]> {
         let layout = &self.kinematics.layout;
         (0..layout.bodies.len())
             .map(|b| {
                 let size = self.sizes[b]
-                    .or_else(|| inertia_box(layout.mass_properties[b]))
+                    .or_else(|| match self.is_robot_link(poses, b, scene) {
+                        true => None,
+                        false => inertia_box(layout.mass_properties[b]),
+                    })
                     .unwrap_or_else(|| fixed_point_span(poses, b, scene));
                 thicken(size, scene)
             })
             .collect()
     }
+}
+
+/// The power the inputs `u` deliver to `system` at `(t, q, v)`: the
+/// generalized forces they add, `f(t, q, v, u) − f(t, q, v, 0)`, times the
+/// speeds. What [`Recording::push_driven`] integrates into their work.
+pub fn input_power<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    u: &[f64; NU],
+) -> f64
+where
+    S: dalembert::MultibodySystem<NQ, NV, NU>,
+{
+    let driven = system.forcing(t, q, v, u);
+    let free = system.forcing(t, q, v, &[0.0; NU]);
+    (0..NV).map(|k| (driven[k] - free[k]) * v[k]).sum()
 }
 
 /// The full lengths of the uniform box with the body's mass and principal
@@ -458,26 +616,34 @@ fn inertia_box((mass, inertia): (f64, [[f64; 3]; 3])) -> Option<[f64; 3]> {
 /// Twice the largest distance, along each of the body's axes, of the named
 /// points that stay fixed in body `b` over the drawn poses.
 fn fixed_point_span(poses: &[(f64, Pose)], b: usize, scene: f64) -> [f64; 3] {
+    fixed_points(poses, b, scene)
+        .into_iter()
+        .fold([0.0_f64; 3], |span, (_, at)| {
+            [0, 1, 2].map(|i| span[i].max(2.0 * at[i].abs()))
+        })
+}
+
+/// The named points that stay fixed in body `b` over the drawn poses, in
+/// declaration order, with where each is in the body's axes from its
+/// centre.
+fn fixed_points(poses: &[(f64, Pose)], b: usize, scene: f64) -> Vec<(usize, [f64; 3])> {
     let in_body = |pose: &Pose, p: usize| {
         let (r, c, x) = (&pose.rotations[b], &pose.centres[b], &pose.points[p]);
         let d = [0, 1, 2].map(|i| x[i] - c[i]);
         [0, 1, 2].map(|j| (0..3).map(|i| r[i][j] * d[i]).sum::<f64>())
     };
     let Some((_, first)) = poses.first() else {
-        return [0.0; 3];
+        return Vec::new();
     };
-    let mut span = [0.0_f64; 3];
-    for p in 0..first.points.len() {
-        let start = in_body(first, p);
-        let fixed = poses.iter().all(|(_, pose)| {
-            let now = in_body(pose, p);
-            (0..3).all(|i| (now[i] - start[i]).abs() <= STILL * scene)
-        });
-        if fixed {
-            span = [0, 1, 2].map(|i| span[i].max(2.0 * start[i].abs()));
-        }
-    }
-    span
+    (0..first.points.len())
+        .map(|p| (p, in_body(first, p)))
+        .filter(|&(p, start)| {
+            poses.iter().all(|(_, pose)| {
+                let now = in_body(pose, p);
+                (0..3).all(|i| (now[i] - start[i]).abs() <= STILL * scene)
+            })
+        })
+        .collect()
 }
 
 /// `size` with every zero dimension given a thickness, and a body with no
@@ -494,6 +660,9 @@ fn thicken(size: [f64; 3], scene: f64) -> [f64; 3] {
 struct Extent {
     center: [f64; 3],
     size: f64,
+    /// The farthest any part comes from the centre: the 3-D view, turned
+    /// any way, fits a circle of this radius.
+    radius: f64,
     /// The `N` axis (0, 1, 2) normal to the plane of all motion.
     normal: Option<usize>,
 }
@@ -502,29 +671,44 @@ impl Extent {
     /// The region covered by the parts of `poses` with bodies of full
     /// lengths `sizes` (none: points only), and the plane of the motion.
     fn of(poses: &[(f64, Pose)], sizes: &[[f64; 3]]) -> Extent {
-        let parts = Bounds::of(poses.iter().flat_map(|(_, pose)| {
-            pose.points
-                .iter()
-                .chain(&pose.centres)
-                .chain(&pose.particles)
-                .copied()
-        }));
-        let corners = poses.iter().flat_map(|(_, pose)| {
-            pose.centres
-                .iter()
-                .zip(&pose.rotations)
-                .zip(sizes)
-                .flat_map(|((c, r), size)| {
-                    (0..8).map(move |corner: usize| {
-                        let sign = |axis: usize| if corner >> axis & 1 == 1 { 0.5 } else { -0.5 };
-                        [0, 1, 2].map(|i| {
-                            c[i] + (0..3).map(|j| r[i][j] * sign(j) * size[j]).sum::<f64>()
+        let parts = || {
+            poses.iter().flat_map(|(_, pose)| {
+                pose.points
+                    .iter()
+                    .chain(&pose.centres)
+                    .chain(&pose.particles)
+                    .copied()
+            })
+        };
+        let corners = || {
+            poses.iter().flat_map(|(_, pose)| {
+                pose.centres
+                    .iter()
+                    .zip(&pose.rotations)
+                    .zip(sizes)
+                    .flat_map(|((c, r), size)| {
+                        (0..8).map(move |corner: usize| {
+                            let sign =
+                                |axis: usize| if corner >> axis & 1 == 1 { 0.5 } else { -0.5 };
+                            [0, 1, 2].map(|i| {
+                                c[i] + (0..3).map(|j| r[i][j] * sign(j) * size[j]).sum::<f64>()
+                            })
                         })
                     })
-                })
-        });
-        let all = parts.union(&Bounds::of(corners));
-        let size = all.size();
+            })
+        };
+        let all = Bounds::of(parts().chain(corners()));
+        let (size, center) = (all.size(), all.center());
+        let radius = parts()
+            .chain(corners())
+            .map(|x| {
+                (0..3)
+                    .map(|i| (x[i] - center[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .fold(0.0_f64, f64::max);
+        let parts = Bounds::of(parts());
         // Planar: no part leaves a plane normal to an axis of N and every
         // body turns about that axis only.
         let normal = (0..3).rev().find(|&k| {
@@ -536,8 +720,9 @@ impl Extent {
                 })
         });
         Extent {
-            center: all.center(),
+            center,
             size,
+            radius: if radius > 0.0 { radius } else { size / 2.0 },
             normal,
         }
     }
@@ -560,13 +745,6 @@ impl Bounds {
             bounds.high = [0, 1, 2].map(|i| bounds.high[i].max(x[i]));
         }
         bounds
-    }
-
-    fn union(&self, other: &Bounds) -> Bounds {
-        Bounds {
-            low: [0, 1, 2].map(|i| self.low[i].min(other.low[i])),
-            high: [0, 1, 2].map(|i| self.high[i].max(other.high[i])),
-        }
     }
 
     /// The largest side, or 1 for an empty or single-point box.

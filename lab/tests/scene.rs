@@ -172,9 +172,7 @@ fn embedded_data(html: &str) -> serde_json::Value {
             "the page loads nothing: {external}"
         );
     }
-    let start = html.find("const DATA = ").expect("embedded data") + "const DATA = ".len();
-    let end = start + html[start..].find(";\n").expect("data ends with `;`");
-    serde_json::from_str(&html[start..end]).expect("the embedded data is JSON")
+    dalembert_fixtures::scene_page::embedded_data(html)
 }
 
 #[test]

@@ -5,8 +5,9 @@
 //! dalembert eom MODEL.dal [--latex | --latex-inline | --markdown]
 //!                                     the equations of motion, as in the seed document
 //! dalembert generate MODEL.dal        the generated Rust source
-//! dalembert check MODEL.dal [--stats] the errors the dalembert! macro would report
-//!                                     (--stats: each generated function's estimated size)
+//! dalembert check MODEL.dal [--stats] [--api] the errors the dalembert! macro would report
+//!                                     (--stats: each generated function's estimated size;
+//!                                     --api: the functions generated for the model)
 //! dalembert chain FAMILY N [SPELLING] the .dal text of a benchmark chain (planar or spatial;
 //!                                     spelled joints, symbolic or seed)
 //! dalembert urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs "LIST"]
@@ -39,8 +40,10 @@ Commands:
                             print the equations of motion: Unicode text, a LaTeX
                             align* environment, its bare rows, or Markdown
   generate MODEL.dal        print the generated Rust source
-  check MODEL.dal [--stats] report the errors the dalembert! macro would report
-                            (--stats: and each generated function's estimated operations)
+  check MODEL.dal [--stats] [--api]
+                            report the errors the dalembert! macro would report
+                            (--stats: and each generated function's estimated operations;
+                            --api: and the functions generated for the model)
   chain FAMILY N [SPELLING] print the .dal text of the planar or spatial chain of N links,
                             spelled `joints` (default), `symbolic` or `seed`
   urdf ROBOT.urdf [--floating] [--name NAME] [--damping] [--outputs \"LIST\"]
@@ -91,13 +94,15 @@ Options:
     },
     Help {
         name: "check",
-        usage: "dalembert check MODEL.dal [--stats]",
+        usage: "dalembert check MODEL.dal [--stats] [--api]",
         text: "Reports the errors the dalembert! macro would report for the model (exit status 1),
 or prints `MODEL.dal: ok`.
 
 Options:
   --stats      also print each generated function's estimated operation count (a model
                whose largest function exceeds the limit is refused: see docs/reliability.md)
+  --api        also print the functions generated for the model, with their arguments,
+               and the `outputs` that would add the others
   -h, --help   print this help",
     },
     Help {
@@ -156,6 +161,7 @@ enum Command {
     Check {
         model: PathBuf,
         stats: bool,
+        api: bool,
     },
     Chain {
         family: Family,
@@ -238,7 +244,7 @@ fn general_usage(message: &str) -> String {
 /// `--stats` for `check`.
 fn parse_model(name: &str, args: Vec<OsString>) -> Result<Command, String> {
     let mut style: Option<(&'static str, Style)> = None;
-    let mut stats = false;
+    let (mut stats, mut api) = (false, false);
     let mut model = None;
     for arg in args {
         match arg.to_str() {
@@ -255,6 +261,7 @@ fn parse_model(name: &str, args: Vec<OsString>) -> Result<Command, String> {
                 }
             }
             Some("--stats") if name == "check" => stats = true,
+            Some("--api") if name == "check" => api = true,
             Some(flag) if flag.starts_with('-') => {
                 return Err(format!("`{name}` takes no option `{flag}`"));
             }
@@ -271,7 +278,7 @@ fn parse_model(name: &str, args: Vec<OsString>) -> Result<Command, String> {
             style: style.map_or(Style::Unicode, |(_, style)| style),
         },
         "generate" => Command::Generate { model },
-        _ => Command::Check { model, stats },
+        _ => Command::Check { model, stats, api },
     })
 }
 
@@ -379,29 +386,30 @@ fn run(command: Command) -> ExitCode {
         Command::Version => Ok(format!("dalembert {}", env!("CARGO_PKG_VERSION"))),
         Command::Eom { model, style } => ModelFile::read(model).and_then(|m| m.equations(style)),
         Command::Generate { model } => ModelFile::read(model).and_then(|m| m.generate()),
-        Command::Check { model, stats } => ModelFile::read(&model).and_then(|m| {
+        Command::Check { model, stats, api } => ModelFile::read(&model).and_then(|m| {
             m.check()?;
-            let ok = format!("{}: ok", model.display());
-            if !stats {
-                return Ok(ok);
+            let mut report = format!("{}: ok", model.display());
+            if stats {
+                let estimate = m.derivation_estimate()?;
+                report.push_str(&format!(
+                    "\nestimated derivation: {:.1e} units (limit {:.1e}), about {:.1} s",
+                    estimate.units,
+                    dalembert_codegen::DERIVATION_LIMIT,
+                    estimate.seconds()
+                ));
+                let limit = dalembert_codegen::OPERATION_LIMIT;
+                report.push_str(&format!(
+                    "\nestimated operations per function (limit {limit}):"
+                ));
+                for s in &m.function_sizes()? {
+                    report.push_str(&format!("\n{:>12}  {}", s.operations, s.name));
+                }
             }
-            let estimate = m.derivation_estimate()?;
-            let sizes = m.function_sizes()?;
-            let lines = sizes
-                .iter()
-                .map(|s| format!("{:>12}  {}", s.operations, s.name));
-            let limit = dalembert_codegen::OPERATION_LIMIT;
-            let header = format!(
-                "{ok}\nestimated derivation: {:.1e} units (limit {:.1e}), about {:.1} s\n\
-                 estimated operations per function (limit {limit}):",
-                estimate.units,
-                dalembert_codegen::DERIVATION_LIMIT,
-                estimate.seconds()
-            );
-            Ok(std::iter::once(header)
-                .chain(lines)
-                .collect::<Vec<_>>()
-                .join("\n"))
+            if api {
+                report.push('\n');
+                report.push_str(m.api()?.trim_end());
+            }
+            Ok(report)
         }),
         Command::Chain {
             family,
@@ -494,14 +502,24 @@ mod tests {
             parse_str(&["check", "m.dal", "--stats"]),
             Ok(Command::Check {
                 model: model.clone(),
-                stats: true
+                stats: true,
+                api: false
             })
         );
         assert_eq!(
             parse_str(&["check", "m.dal"]),
             Ok(Command::Check {
+                model: model.clone(),
+                stats: false,
+                api: false
+            })
+        );
+        assert_eq!(
+            parse_str(&["check", "m.dal", "--api"]),
+            Ok(Command::Check {
                 model,
-                stats: false
+                stats: false,
+                api: true
             })
         );
         assert_eq!(parse_str(&["help"]), Ok(Command::Help(None)));

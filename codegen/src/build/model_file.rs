@@ -66,6 +66,11 @@ impl ModelFile {
         self.located(crate::derivation_estimate(&self.source))
     }
 
+    /// The functions generated for the model, listed (see [`crate::api`]).
+    pub fn api(&self) -> Result<String, BuildError> {
+        self.located(crate::api(&self.source))
+    }
+
     /// The generated Rust source (see [`crate::generate`]).
     pub fn generate(&self) -> Result<String, BuildError> {
         self.generate_for(crate::Target::Std)

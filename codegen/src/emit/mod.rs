@@ -13,6 +13,7 @@ mod derivatives;
 mod solve;
 mod taylor;
 
+use crate::api::Api;
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Model;
@@ -23,12 +24,15 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
 /// The human-readable side of a system: its doc-comment lines (the user's,
-/// then the derived equations) and the equations as plain text.
+/// then the derived equations; the list of generated functions follows
+/// them), the equations as plain text and the model's own text.
 pub struct Documentation {
     /// Lines of the struct's doc comment.
     pub docs: Vec<String>,
     /// The derived equations, for `NAME::EQUATIONS`.
     pub text: String,
+    /// The model's text, for `NAME::SOURCE`.
+    pub source: String,
 }
 
 /// The kind of crate the code is for.
@@ -99,8 +103,7 @@ pub fn emit(
         })
         .collect();
     items.push(configuration::emit_configuration(model, pool, &names));
-    let strukt = emit_struct(model, &documentation.docs);
-    let mut constants = emit_constants(model, pool, &documentation.text);
+    let mut constants = emit_constants(model, pool, documentation);
     constants.extend(plan.constants.iter().map(emit_name_list));
     if equations.time_dependent(pool) {
         constants.extend(quote! {
@@ -123,6 +126,7 @@ pub fn emit(
             let vanishing = model.vanishing_rows();
             let mut traits =
                 emit_trait_impls(name, [nq, nv, nu, nc], emitted, vanishing.as_deref());
+            traits.extend(emit_model_impl(model));
             if plan.functions.iter().any(|f| f.body == Body::Taylor) {
                 traits.extend(taylor::emit_trait_impl(name, [nq, nv, nu]));
             }
@@ -131,14 +135,40 @@ pub fn emit(
         Target::NoStd => TokenStream::new(),
     };
     let allowed = allowed_lints();
-    quote! {
-        #strukt
-        #allowed
+    let inherent = quote! {
         impl #name {
             #constants
             #(#items)*
         }
+    };
+    let mut docs = documentation.docs.clone();
+    docs.extend(Api::of(model, &inherent).doc_lines());
+    let strukt = emit_struct(model, &docs);
+    quote! {
+        #strukt
+        #allowed
+        #inherent
         #traits
+    }
+}
+
+/// `impl dalembert::Model`: the model's text and the parameters' values,
+/// for tools that read the model (the lab's scenes).
+fn emit_model_impl(model: &Model) -> TokenStream {
+    let name = &model.name;
+    let parameters = &model.parameters;
+    let np = Literal::usize_unsuffixed(parameters.len());
+    let allowed = allowed_lints();
+    quote! {
+        #allowed
+        impl ::dalembert::Model<#np> for #name {
+            const SOURCE: &'static str = #name::SOURCE;
+            const PARAMETERS: [&'static str; #np] = #name::PARAMETERS;
+            #[inline]
+            fn parameter_values(&self) -> [f64; #np] {
+                [#(self.#parameters),*]
+            }
+        }
     }
 }
 
@@ -238,7 +268,7 @@ fn raw_string(text: &str) -> Literal {
         .unwrap_or_else(|_| Literal::string(text))
 }
 
-fn emit_constants(model: &Model, pool: &Pool, equations_text: &str) -> TokenStream {
+fn emit_constants(model: &Model, pool: &Pool, documentation: &Documentation) -> TokenStream {
     let [nq, nv, np, nu, nc] = [
         model.nq(),
         model.nv(),
@@ -257,7 +287,8 @@ fn emit_constants(model: &Model, pool: &Pool, equations_text: &str) -> TokenStre
     } else {
         " Number of speeds (`v`, with `q̇ = N(q) v`)."
     };
-    let equations = raw_string(equations_text);
+    let equations = raw_string(&documentation.text);
+    let source = raw_string(&documentation.source);
     quote! {
         /// Number of generalized coordinates.
         pub const NQ: usize = #nq;
@@ -277,6 +308,10 @@ fn emit_constants(model: &Model, pool: &Pool, equations_text: &str) -> TokenStre
         pub const INPUTS: [&'static str; #nu] = [#(#inputs),*];
         /// The derived equations of motion, in the seed document's style.
         pub const EQUATIONS: &'static str = #equations;
+        /// The model's text, as the build script read it (a `.dal` file or
+        /// an imported robot's model) or as the macro read its tokens: what
+        /// tools that read the model take (`dalembert_lab::Scene::of`).
+        pub const SOURCE: &'static str = #source;
     }
 }
 

@@ -24,7 +24,7 @@ mod tree;
 mod vector;
 
 pub use errors::Errors;
-pub use output::{Chart, Output, OutputKind};
+pub use output::{Chart, KINDS, Output, OutputKind, Subject, kind as output_kind};
 pub use resolve::resolve;
 pub(crate) use resolve::{builtin_names, is_builtin, is_plain};
 pub use singular::RateDivisor;
