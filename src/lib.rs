@@ -47,8 +47,9 @@
 //!   `outputs taylor;` calls ([`TaylorSystem`], [`integrate::taylor`]).
 //!
 //! The language, the generated API and the build-script route are described
-//! in the project's README and `docs/language.md`; `Pendulum::EQUATIONS` and
-//! the struct's docs show the derived equations.
+//! in the project's guide (`docs/README.md`, from getting started to the
+//! language reference `docs/language.md`); `Pendulum::EQUATIONS` and the
+//! struct's docs show the derived equations.
 
 #![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
 
@@ -73,3 +74,27 @@ pub use system::{ConstrainedSystem, MultibodySystem, TaylorSystem};
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
+
+/// The guide's chapters (`docs/`), their Rust examples compiled and run as
+/// doctests.
+#[cfg(doctest)]
+mod guide {
+    #[doc = include_str!("../docs/getting-started.md")]
+    struct GettingStarted;
+    #[doc = include_str!("../docs/language.md")]
+    struct Language;
+    #[doc = include_str!("../docs/constraints.md")]
+    struct Constraints;
+    #[doc = include_str!("../docs/outputs.md")]
+    struct Outputs;
+    #[doc = include_str!("../docs/control.md")]
+    struct Control;
+    #[doc = include_str!("../docs/urdf.md")]
+    struct Urdf;
+    #[doc = include_str!("../docs/mjcf.md")]
+    struct Mjcf;
+    #[doc = include_str!("../docs/scene.md")]
+    struct Scene;
+    #[doc = include_str!("../docs/prescribed_motion.md")]
+    struct PrescribedMotion;
+}
