@@ -105,7 +105,7 @@ pub(crate) enum Dependents {
 /// * For long runs through singular positions at a fixed step, or to match
 ///   the reference solutions of the IFToMM benchmarks, integrate with the
 ///   index-3 augmented Lagrangian method
-///   ([`augmented_lagrangian`](crate::integrate::augmented_lagrangian)),
+///   ([`AugmentedLagrangian`](crate::integrate::AugmentedLagrangian)),
 ///   which needs neither `A` of full rank nor `M` invertible.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ConstraintSolver {
