@@ -23,7 +23,7 @@ pub enum Stabilisation {
     /// Integrate `A q̈ = b` as it is: the drift grows with time, slowly
     /// while the rows are independent, but exponentially along redundant
     /// rows, which nothing holds once the state is off the manifold: in a
-    /// parallelogram with a third, redundant crank (`tests/closed_loops.rs`)
+    /// parallelogram with a third, redundant crank (`tests/suite/redundant_parallelogram.rs`)
     /// the middle crank leaves the others by `1e-9` rad in 4 s and by
     /// `1e-5` in 5.5 s. The integration stops with
     /// [`Failure::ConstraintDrift`](crate::integrate::Failure::ConstraintDrift)
@@ -50,7 +50,7 @@ pub enum Stabilisation {
     /// and the gains. See [`baumgarte_accelerations`](super::baumgarte_accelerations) for how to choose them.
     /// Not through singular positions: there the stabilising terms are
     /// divided by the vanishing gradient of a row, and the motion diverges
-    /// (unwatched, the parallelogram four-bar of `tests/closed_loops.rs`
+    /// (unwatched, the parallelogram four-bar of `tests/suite/loop_rows.rs`
     /// stops with
     /// [`NonFiniteEquations`](crate::DynamicsError::NonFiniteEquations)
     /// after its third flat position); watched, it stops with

@@ -16,7 +16,7 @@
 //!   reversibility. Symmetric methods applied to reversible systems keep the
 //!   energy error bounded without drift over long times (Hairer, Lubich and
 //!   Wanner, *Geometric Numerical Integration*, ch. XI), which
-//!   `tests/stability.rs` measures on the chaotic double pendulum over
+//!   `tests/suite/stability.rs` measures on the chaotic double pendulum over
 //!   10⁴ s.
 //!
 //! The canonical alternative — a symplectic method on the Hamiltonian form

@@ -18,7 +18,7 @@
 //! on its manifold after every step through the system's own update with no
 //! motion, `q ⊕ 0` (`integrate_configuration(q, 0, 0)`), which renormalises
 //! a quaternion when the system's exponential map returns a unit quaternion.
-//! Measured on a torque-free rigid body in quaternions (`tests/manifold.rs`):
+//! Measured on a torque-free rigid body in quaternions (`tests/suite/manifold.rs`):
 //! RK4, Gauss 4, Gauss 6 and SDIRK reach their orders 4.00, 4.00, 6.00 and
 //! 3.00; DOPRI5 and DOP853 need 9.4 and 7.1 times the steps for a tolerance
 //! 10⁵ and 10⁸ times smaller (10 expected at their orders). Renormalising
