@@ -9,7 +9,8 @@
 //! solvers and integrators work on it:
 //!
 //! ```
-//! use dalembert::{State, Unconstrained, integrate};
+//! use dalembert::integrate::{Integration, Rk4};
+//! use dalembert::{State, Unconstrained};
 //!
 //! dalembert::dalembert! {
 //!     /// A simple pendulum, angle from the downward vertical.
@@ -27,7 +28,7 @@
 //! assert_eq!(pendulum.mass_matrix(&[0.3]), [[1.0]]); // m l²
 //! let start = State { t: 0.0, q: [1.0], v: [0.0] };
 //! let dynamics = Unconstrained::without_inputs(&pendulum);
-//! let end = integrate::rk4(&dynamics, start, 10.0, 10_000, |_| {})?.end;
+//! let end = Integration::new(&dynamics, start, 10.0, Rk4 { steps: 10_000 }).run()?.end;
 //! assert_eq!(end.t, 10.0);
 //! let energy = |s: &State<1, 1>| dalembert::energy(&pendulum, &s.q, &s.v);
 //! assert!((energy(&end) - energy(&start)).abs() < 1e-9);
@@ -44,7 +45,7 @@
 //!   adjoint, for trajectory optimisation;
 //! * [`math`]: the elementary functions the generated code calls;
 //! * [`series`]: the Taylor-coefficient recurrences that the code of
-//!   `outputs taylor;` calls ([`TaylorSystem`], [`integrate::taylor`]).
+//!   `outputs taylor;` calls ([`TaylorSystem`], [`integrate::Taylor`]).
 //!
 //! The language, the generated API and the build-script route are described
 //! in the project's guide (`docs/README.md`, from getting started to the
@@ -83,6 +84,8 @@ mod guide {
     struct GettingStarted;
     #[doc = include_str!("../docs/language.md")]
     struct Language;
+    #[doc = include_str!("../docs/simulating.md")]
+    struct Simulating;
     #[doc = include_str!("../docs/constraints.md")]
     struct Constraints;
     #[doc = include_str!("../docs/outputs.md")]

@@ -6,7 +6,7 @@
 //!
 //! The code that `outputs taylor;` generates (`taylor_coefficients`) calls
 //! these functions once per node of the model's expression DAG and per
-//! order; [`crate::integrate::taylor`] sums the series. Each function writes
+//! order; [`Taylor`](crate::integrate::Taylor) sums the series. Each function writes
 //! order `k` of its result, reading orders `0..=k` of its operands and
 //! `0..k` of its own result; a `k` at or beyond `K` writes nothing. None
 //! allocates or panics: coefficients are read and written by `get`, and the

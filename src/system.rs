@@ -175,7 +175,7 @@ pub type Expansion<const K: usize, const NQ: usize, const NV: usize> =
     ([[f64; K]; NQ], [[f64; K]; NV]);
 
 /// A system whose model asks for `outputs taylor;`: the Taylor coefficients
-/// of its motion through a state, which [`integrate::taylor`](crate::integrate::taylor)
+/// of its motion through a state, which [`integrate::Taylor`](crate::integrate::Taylor)
 /// sums.
 pub trait TaylorSystem<const NQ: usize, const NV: usize, const NU: usize>:
     MultibodySystem<NQ, NV, NU>

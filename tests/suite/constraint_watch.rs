@@ -4,7 +4,7 @@
 //! the projections; rows that are barely independent are reported, not
 //! solved as independent; the limits are the user's to set. (The drift of
 //! a redundant loop and the crossing of singular positions are in
-//! `tests/closed_loops.rs`.)
+//! `redundant_parallelogram` and `loop_rows`.)
 
 use dalembert::constrained::{
     BARELY_INDEPENDENT, DRIFT_LIMIT, DriftLimits, constraint_conditioning, constraint_drift,

@@ -1,13 +1,12 @@
-//! The control outputs of `docs/language.md` ("Outputs") on systems whose
-//! configuration is not a vector space (docs/architecture.md §4, free and spherical
-//! joints), checked as an outside tester would: the kinematic outputs of a
-//! point and a frame against central finite differences of `position` and
-//! `rotation` along `integrate_configuration` (the tangent space: one
-//! column per speed) and along `coordinate_rates`, their `… in F` versions
-//! against the same vectors turned by `rotation(F)`, `inverse_dynamics`
-//! against `M v̇ − f`, and `linearize` (at rest and moving) against central
-//! differences of `accelerations` in the tangent space and the documented
-//! kinematic rows `δ̇ = δν − ad(ν̄) δ`.
+//! The checks of the control outputs of `docs/language.md` ("Outputs") on
+//! systems whose configuration is not a vector space (docs/architecture.md §4,
+//! free and spherical joints), as an outside tester makes them: the kinematic
+//! outputs of a point and a frame against central finite differences of
+//! `position` and `rotation` along `integrate_configuration` (the tangent
+//! space: one column per speed) and along `coordinate_rates`, their `… in F`
+//! versions against the same vectors turned by `rotation(F)`,
+//! `inverse_dynamics` against `M v̇ − f`, and `linearize` against central
+//! differences of `accelerations` in the tangent space.
 
 use dalembert::MultibodySystem;
 use dalembert_fixtures::reference::assert_near;
@@ -59,64 +58,64 @@ dalembert::dalembert! {
     }
 }
 
-const FLYER: Flyer = Flyer {
+pub(crate) const FLYER: Flyer = Flyer {
     m: 1.7,
     ma: 0.6,
     l: 0.8,
     g: 9.81,
 };
-const SWING: Swing = Swing {
+pub(crate) const SWING: Swing = Swing {
     m: 0.9,
     ma: 1.4,
     l: 0.8,
     d: 0.5,
     g: 9.81,
 };
-const STEP: f64 = 1e-5;
+pub(crate) const STEP: f64 = 1e-5;
 /// Central differences of step 1e-5: truncation ~1e-10, rounding ~1e-11.
-const DIFFERENCES: f64 = 1e-8;
+pub(crate) const DIFFERENCES: f64 = 1e-8;
 
-type Vec3 = [f64; 3];
-type Mat3 = [[f64; 3]; 3];
+pub(crate) type Vec3 = [f64; 3];
+pub(crate) type Mat3 = [[f64; 3]; 3];
 
 /// The unit quaternion `(x, y, z, w)` of `raw`.
-fn unit(raw: [f64; 4]) -> [f64; 4] {
+pub(crate) fn unit(raw: [f64; 4]) -> [f64; 4] {
     let norm = raw.iter().map(|x| x * x).sum::<f64>().sqrt();
     raw.map(|x| x / norm)
 }
 
 /// `(g(+h) − g(−h)) / 2h` of a vector function of the step.
-fn central<const N: usize>(g: impl Fn(f64) -> [f64; N]) -> [f64; N] {
+pub(crate) fn central<const N: usize>(g: impl Fn(f64) -> [f64; N]) -> [f64; N] {
     let (plus, minus) = (g(STEP), g(-STEP));
     std::array::from_fn(|i| (plus[i] - minus[i]) / (2.0 * STEP))
 }
 
-fn unit_vector<const N: usize>(j: usize) -> [f64; N] {
+pub(crate) fn unit_vector<const N: usize>(j: usize) -> [f64; N] {
     std::array::from_fn(|i| if i == j { 1.0 } else { 0.0 })
 }
 
-fn transpose_times(r: &Mat3, x: &Vec3) -> Vec3 {
+pub(crate) fn transpose_times(r: &Mat3, x: &Vec3) -> Vec3 {
     std::array::from_fn(|i| (0..3).map(|k| r[k][i] * x[k]).sum())
 }
 
-fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
+pub(crate) fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
     std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
 }
 
-fn transpose(a: &Mat3) -> Mat3 {
+pub(crate) fn transpose(a: &Mat3) -> Mat3 {
     std::array::from_fn(|i| std::array::from_fn(|j| a[j][i]))
 }
 
 /// The columns of a `3 × NV` matrix.
-fn columns<const NV: usize>(m: &[[f64; NV]; 3]) -> [Vec3; NV] {
+pub(crate) fn columns<const NV: usize>(m: &[[f64; NV]; 3]) -> [Vec3; NV] {
     std::array::from_fn(|j| [m[0][j], m[1][j], m[2][j]])
 }
 
-fn times<const NV: usize>(m: &[[f64; NV]; 3], v: &[f64; NV]) -> Vec3 {
+pub(crate) fn times<const NV: usize>(m: &[[f64; NV]; 3], v: &[f64; NV]) -> Vec3 {
     std::array::from_fn(|i| (0..NV).map(|j| m[i][j] * v[j]).sum())
 }
 
-fn assert_vec(what: &str, actual: &[f64], expected: &[f64], tol: f64) {
+pub(crate) fn assert_vec(what: &str, actual: &[f64], expected: &[f64], tol: f64) {
     assert_eq!(actual.len(), expected.len(), "{what}: length");
     for (i, (a, e)) in actual.iter().zip(expected).enumerate() {
         assert_near(&format!("{what}[{i}]"), *a, *e, tol);
@@ -125,7 +124,7 @@ fn assert_vec(what: &str, actual: &[f64], expected: &[f64], tol: f64) {
 
 /// The angular velocity `ω` in `N`'s axes of a rotation `R(s)` through
 /// `R(0)` with derivative `dR`: `[ω]× = dR R(0)ᵀ`.
-fn angular_velocity(r: &Mat3, dr: &Mat3) -> Vec3 {
+pub(crate) fn angular_velocity(r: &Mat3, dr: &Mat3) -> Vec3 {
     let w = mat_mul(dr, &transpose(r));
     // Antisymmetric up to the differences' error: average the two halves.
     [
@@ -135,43 +134,43 @@ fn angular_velocity(r: &Mat3, dr: &Mat3) -> Vec3 {
     ]
 }
 
-fn flat(m: &Mat3) -> [f64; 9] {
+pub(crate) fn flat(m: &Mat3) -> [f64; 9] {
     std::array::from_fn(|k| m[k / 3][k % 3])
 }
 
 /// The derivative of a rotation function along a path of the step.
-fn rotation_rate(rotation: impl Fn(f64) -> Mat3) -> Mat3 {
+pub(crate) fn rotation_rate(rotation: impl Fn(f64) -> Mat3) -> Mat3 {
     let d = central(|s| flat(&rotation(s)));
     std::array::from_fn(|i| std::array::from_fn(|j| d[3 * i + j]))
 }
 
 /// `(q, v, v̇)`.
-type State<const NQ: usize, const NV: usize> = ([f64; NQ], [f64; NV], [f64; NV]);
-type Acceleration<const NQ: usize, const NV: usize> =
+pub(crate) type State<const NQ: usize, const NV: usize> = ([f64; NQ], [f64; NV], [f64; NV]);
+pub(crate) type Acceleration<const NQ: usize, const NV: usize> =
     fn(&[f64; NQ], &[f64; NV], &[f64; NV]) -> Vec3;
 
 /// A point's outputs (`position`, `velocity`, `acceleration`, `jacobian`),
 /// in `N`'s axes or in a frame's.
-struct Point<const NQ: usize, const NV: usize> {
-    position: fn(&[f64; NQ]) -> Vec3,
-    velocity: fn(&[f64; NQ], &[f64; NV]) -> Vec3,
-    acceleration: Acceleration<NQ, NV>,
-    jacobian: fn(&[f64; NQ]) -> [[f64; NV]; 3],
+pub(crate) struct Point<const NQ: usize, const NV: usize> {
+    pub(crate) position: fn(&[f64; NQ]) -> Vec3,
+    pub(crate) velocity: fn(&[f64; NQ], &[f64; NV]) -> Vec3,
+    pub(crate) acceleration: Acceleration<NQ, NV>,
+    pub(crate) jacobian: fn(&[f64; NQ]) -> [[f64; NV]; 3],
 }
 
 /// A frame's outputs (`rotation`, `angular_velocity`, `angular_jacobian`),
 /// in `N`'s axes or in another frame's.
-struct Frame<const NQ: usize, const NV: usize> {
-    rotation: fn(&[f64; NQ]) -> Mat3,
-    angular_velocity: fn(&[f64; NQ], &[f64; NV]) -> Vec3,
-    angular_jacobian: fn(&[f64; NQ]) -> [[f64; NV]; 3],
+pub(crate) struct Frame<const NQ: usize, const NV: usize> {
+    pub(crate) rotation: fn(&[f64; NQ]) -> Mat3,
+    pub(crate) angular_velocity: fn(&[f64; NQ], &[f64; NV]) -> Vec3,
+    pub(crate) angular_jacobian: fn(&[f64; NQ]) -> [[f64; NV]; 3],
 }
 
 /// `position` differentiated along `q ⊕ s e_j` (the jacobian's columns),
 /// along `q ⊕ s v` and along `q + s q̇` with `q̇ = coordinate_rates(q, v)`
 /// (the velocity), and `velocity` along the motion with `v̇` (the
 /// acceleration); the velocity is also `J v`.
-fn check_point<S, const NQ: usize, const NV: usize, const NU: usize>(
+pub(crate) fn check_point<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     point: &Point<NQ, NV>,
     (q, v, vdot): State<NQ, NV>,
@@ -215,7 +214,7 @@ fn check_point<S, const NQ: usize, const NV: usize, const NU: usize>(
 
 /// `rotation` differentiated along `q ⊕ s e_j` (the angular jacobian's
 /// columns) and along `q ⊕ s v` (the angular velocity, also `J v`).
-fn check_frame<S, const NQ: usize, const NV: usize, const NU: usize>(
+pub(crate) fn check_frame<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     frame: &Frame<NQ, NV>,
     q: [f64; NQ],
@@ -250,18 +249,18 @@ fn check_frame<S, const NQ: usize, const NV: usize, const NU: usize>(
     assert_vec("angular velocity", &omega, &expected, DIFFERENCES);
 }
 
-fn unit_matrix() -> Mat3 {
+pub(crate) fn unit_matrix() -> Mat3 {
     std::array::from_fn(unit_vector)
 }
 
 /// A `3 × NV` matrix's columns in `F`'s axes (`r` = `rotation(F)`), row by row.
-fn jacobian_in<const NV: usize>(r: &Mat3, m: &[[f64; NV]; 3]) -> Vec<f64> {
+pub(crate) fn jacobian_in<const NV: usize>(r: &Mat3, m: &[[f64; NV]; 3]) -> Vec<f64> {
     let turned = columns(m).map(|c| transpose_times(r, &c));
     (0..3 * NV).map(|k| turned[k % NV][k / NV]).collect()
 }
 
 /// `inverse_dynamics = M v̇ − f`.
-fn check_inverse_dynamics<S, const NQ: usize, const NV: usize, const NU: usize>(
+pub(crate) fn check_inverse_dynamics<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     inverse_dynamics: impl Fn(&[f64; NQ], &[f64; NV], &[f64; NV], &[f64; NU]) -> [f64; NV],
     (q, v, vdot): State<NQ, NV>,
@@ -285,7 +284,13 @@ fn check_inverse_dynamics<S, const NQ: usize, const NV: usize, const NU: usize>(
 /// `B = [[0], [∂v̇/∂u]]`, the partials by central differences of
 /// `accelerations` along `q ⊕ s e_j`, `v + s e_j` and `u + s e_k`, and `K`
 /// the kinematic rows `δ̇ = δν − ad(ν̄) δ` given (zero at rest).
-fn check_linearize<S, const NQ: usize, const NV: usize, const NU: usize, const N2: usize>(
+pub(crate) fn check_linearize<
+    S,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+    const N2: usize,
+>(
     system: &S,
     (a, b): ([[f64; N2]; N2], [[f64; NU]; N2]),
     (q, v, u): ([f64; NQ], [f64; NV], [f64; NU]),
@@ -331,7 +336,7 @@ fn check_linearize<S, const NQ: usize, const NV: usize, const NU: usize, const N
 }
 
 /// Writes `−[x]×` into the 3 × 3 block of `k` at `(row, column)`.
-fn minus_cross(k: &mut [[f64; 7]; 7], (row, column): (usize, usize), x: &[f64]) {
+pub(crate) fn minus_cross(k: &mut [[f64; 7]; 7], (row, column): (usize, usize), x: &[f64]) {
     let cross = [[0.0, -x[2], x[1]], [x[2], 0.0, -x[0]], [-x[1], x[0], 0.0]];
     for i in 0..3 {
         for j in 0..3 {
@@ -341,7 +346,7 @@ fn minus_cross(k: &mut [[f64; 7]; 7], (row, column): (usize, usize), x: &[f64]) 
 }
 
 /// A state of the flyer: `(q, v, v̇)`, the coordinates in `COORDINATES`' order.
-fn flyer_state() -> ([f64; 8], [f64; 7], [f64; 7]) {
+pub(crate) fn flyer_state() -> ([f64; 8], [f64; 7], [f64; 7]) {
     let [qx, qy, qz, qw] = unit([0.3, -0.5, 0.2, 0.8]);
     (
         [0.4, -0.7, 1.1, qx, qy, qz, qw, 0.6],
@@ -350,7 +355,7 @@ fn flyer_state() -> ([f64; 8], [f64; 7], [f64; 7]) {
     )
 }
 
-fn swing_state() -> ([f64; 5], [f64; 4], [f64; 4]) {
+pub(crate) fn swing_state() -> ([f64; 5], [f64; 4], [f64; 4]) {
     let [qx, qy, qz, qw] = unit([-0.4, 0.3, 0.6, 0.7]);
     (
         [0.8, qx, qy, qz, qw],
@@ -382,7 +387,7 @@ macro_rules! frame {
     };
 }
 
-fn flyer_tip() -> Point<8, 7> {
+pub(crate) fn flyer_tip() -> Point<8, 7> {
     point!(
         FLYER,
         position_tip,
@@ -392,7 +397,7 @@ fn flyer_tip() -> Point<8, 7> {
     )
 }
 
-fn flyer_tip_in_b() -> Point<8, 7> {
+pub(crate) fn flyer_tip_in_b() -> Point<8, 7> {
     point!(
         FLYER,
         position_tip_in_B,
@@ -402,11 +407,11 @@ fn flyer_tip_in_b() -> Point<8, 7> {
     )
 }
 
-fn flyer_c() -> Frame<8, 7> {
+pub(crate) fn flyer_c() -> Frame<8, 7> {
     frame!(FLYER, rotation_C, angular_velocity_C, angular_jacobian_C)
 }
 
-fn flyer_c_in_b() -> Frame<8, 7> {
+pub(crate) fn flyer_c_in_b() -> Frame<8, 7> {
     frame!(
         FLYER,
         rotation_C_in_B,
@@ -415,7 +420,7 @@ fn flyer_c_in_b() -> Frame<8, 7> {
     )
 }
 
-fn swing_bob() -> Point<5, 4> {
+pub(crate) fn swing_bob() -> Point<5, 4> {
     point!(
         SWING,
         position_bob,
@@ -425,7 +430,7 @@ fn swing_bob() -> Point<5, 4> {
     )
 }
 
-fn swing_bob_in_b() -> Point<5, 4> {
+pub(crate) fn swing_bob_in_b() -> Point<5, 4> {
     point!(
         SWING,
         position_bob_in_B,
@@ -435,15 +440,15 @@ fn swing_bob_in_b() -> Point<5, 4> {
     )
 }
 
-fn swing_b() -> Frame<5, 4> {
+pub(crate) fn swing_b() -> Frame<5, 4> {
     frame!(SWING, rotation_B, angular_velocity_B, angular_jacobian_B)
 }
 
-fn swing_a() -> Frame<5, 4> {
+pub(crate) fn swing_a() -> Frame<5, 4> {
     frame!(SWING, rotation_A, angular_velocity_A, angular_jacobian_A)
 }
 
-fn swing_a_in_b() -> Frame<5, 4> {
+pub(crate) fn swing_a_in_b() -> Frame<5, 4> {
     frame!(
         SWING,
         rotation_A_in_B,
@@ -454,7 +459,7 @@ fn swing_a_in_b() -> Frame<5, 4> {
 
 /// `name(P in F)` is `name(P)` in `F`'s axes: `R_Fᵀ x` for a vector,
 /// each column turned for a jacobian, `R_Fᵀ R_B` for `rotation(B in F)`.
-fn check_in_frame<const NQ: usize, const NV: usize>(
+pub(crate) fn check_in_frame<const NQ: usize, const NV: usize>(
     (q, v, vdot): State<NQ, NV>,
     rotation_f: fn(&[f64; NQ]) -> Mat3,
     (point, point_in): (&Point<NQ, NV>, &Point<NQ, NV>),
@@ -502,148 +507,4 @@ fn check_in_frame<const NQ: usize, const NV: usize>(
     for (what, actual, expected) in checks {
         assert_vec(&format!("{what} in F"), &actual, &expected, 1e-14);
     }
-}
-
-#[test]
-fn the_coordinates_and_speeds_are_in_the_documented_order() {
-    assert_eq!(
-        Flyer::COORDINATES,
-        [
-            "base_x", "base_y", "base_z", "base_qx", "base_qy", "base_qz", "base_qw", "a"
-        ]
-    );
-    assert_eq!(
-        Flyer::SPEEDS,
-        [
-            "base_vx", "base_vy", "base_vz", "base_wx", "base_wy", "base_wz", "dt(a)"
-        ]
-    );
-    assert_eq!(
-        Swing::COORDINATES,
-        ["phi", "ball_qx", "ball_qy", "ball_qz", "ball_qw"]
-    );
-    assert_eq!(Swing::SPEEDS, ["dt(phi)", "ball_wx", "ball_wy", "ball_wz"]);
-}
-
-#[test]
-fn a_point_beyond_a_free_joint_moves_as_its_position_says() {
-    check_point(&FLYER, &flyer_tip(), flyer_state());
-}
-
-#[test]
-fn a_point_beyond_a_spherical_joint_moves_as_its_position_says() {
-    check_point(&SWING, &swing_bob(), swing_state());
-}
-
-#[test]
-fn a_frame_beyond_a_free_joint_turns_as_its_rotation_says() {
-    let (q, v, _) = flyer_state();
-    check_frame(&FLYER, &flyer_c(), q, v);
-}
-
-#[test]
-fn the_frame_of_a_spherical_joint_turns_as_its_rotation_says() {
-    let (q, v, _) = swing_state();
-    check_frame(&SWING, &swing_b(), q, v);
-}
-
-/// The free joint's own frame: its rotation is the quaternion's
-/// (docs/language.md: `R(q) = (w² − x² − y² − z²) 1 + 2 x xᵀ + 2 w [x]×`)
-/// and its angular velocity is `(wx, wy, wz)` in its own axes.
-#[test]
-fn the_free_joints_frame_is_its_quaternion_and_body_rates() {
-    let (q, v, _) = flyer_state();
-    let [x, y, z, w] = [q[3], q[4], q[5], q[6]];
-    let expected = [
-        [
-            w * w + x * x - y * y - z * z,
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            w * w - x * x + y * y - z * z,
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            w * w - x * x - y * y + z * z,
-        ],
-    ];
-    let rotation = FLYER.rotation_B(0.0, &q);
-    assert_vec("rotation(B)", &flat(&rotation), &flat(&expected), 1e-15);
-    // C turns about B's y axis by a: ω_C = R_B (wx, wy + ȧ, wz).
-    let body = [v[3], v[4] + v[6], v[5]];
-    let in_n: Vec3 = std::array::from_fn(|i| (0..3).map(|k| rotation[i][k] * body[k]).sum());
-    assert_vec("ω_C", &FLYER.angular_velocity_C(0.0, &q, &v), &in_n, 1e-14);
-    assert_vec(
-        "ω_C in B",
-        &FLYER.angular_velocity_C_in_B(0.0, &q, &v),
-        &body,
-        1e-14,
-    );
-}
-
-#[test]
-fn outputs_in_a_frame_beyond_a_free_joint_are_the_same_vectors_in_its_axes() {
-    check_in_frame(
-        flyer_state(),
-        |q| FLYER.rotation_B(0.0, q),
-        (&flyer_tip(), &flyer_tip_in_b()),
-        (&flyer_c(), &flyer_c_in_b()),
-    );
-}
-
-#[test]
-fn outputs_in_the_frame_of_a_spherical_joint_are_the_same_vectors_in_its_axes() {
-    check_in_frame(
-        swing_state(),
-        |q| SWING.rotation_B(0.0, q),
-        (&swing_bob(), &swing_bob_in_b()),
-        (&swing_a(), &swing_a_in_b()),
-    );
-}
-
-#[test]
-fn inverse_dynamics_is_m_vdot_minus_f_on_lie_group_joints() {
-    check_inverse_dynamics(
-        &FLYER,
-        |q, v, vdot, u| FLYER.inverse_dynamics(0.0, q, v, vdot, u),
-        flyer_state(),
-        [0.7],
-    );
-    check_inverse_dynamics(
-        &SWING,
-        |q, v, vdot, u| SWING.inverse_dynamics(0.0, q, v, vdot, u),
-        swing_state(),
-        [-0.4],
-    );
-}
-
-#[test]
-fn linearize_at_rest_is_the_tangent_space_state_equation() {
-    let (q, _, _) = flyer_state();
-    let u = [0.7];
-    let linear = FLYER.linearize(0.0, &q, &[0.0; 7], &u).expect("regular");
-    check_linearize(&FLYER, linear, (q, [0.0; 7], u), [[0.0; 7]; 7]);
-    let (q, _, _) = swing_state();
-    let u = [-0.4];
-    let linear = SWING.linearize(0.0, &q, &[0.0; 4], &u).expect("regular");
-    check_linearize(&SWING, linear, (q, [0.0; 4], u), [[0.0; 4]; 4]);
-}
-
-/// Moving, the free joint's kinematic rows are (docs/language.md)
-/// `δ̇_v = δv − ω̄ × δ_v − v̄ × δ_ω` and `δ̇_ω = δω − ω̄ × δ_ω`, in the
-/// child's axes; the hinge's is `δ̇_a = δȧ`.
-#[test]
-fn linearize_while_moving_has_the_documented_kinematic_rows() {
-    let (q, v, _) = flyer_state();
-    let u = [0.7];
-    let mut kinematic = [[0.0; 7]; 7];
-    minus_cross(&mut kinematic, (0, 0), &v[3..6]);
-    minus_cross(&mut kinematic, (0, 3), &v[0..3]);
-    minus_cross(&mut kinematic, (3, 3), &v[3..6]);
-    let linear = FLYER.linearize(0.0, &q, &v, &u).expect("regular");
-    check_linearize(&FLYER, linear, (q, v, u), kinematic);
 }

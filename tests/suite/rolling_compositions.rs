@@ -1,8 +1,8 @@
 //! Rolling composed with joints and speeds of one's own, against the
-//! SymPy references of `tests/rolling_wheels.rs`.
+//! SymPy references of `tests/suite/rolling_wheels.rs`.
 //!
 //! **A free joint.** The `rolling` statement on a free joint: the thin disc of
-//! `tests/rolling_wheels.rs`, its attitude a quaternion and its speeds the
+//! `tests/suite/rolling_wheels.rs`, its attitude a quaternion and its speeds the
 //! joint's (the centre's velocity and the angular velocity, in the disc's
 //! axes), rolls as SymPy's disc in Euler angles. At the states on the
 //! constraint manifold of `tests/reference/rolling_wheels.json` (`disc`:
@@ -43,7 +43,7 @@ dalembert::dalembert! {
 }
 
 dalembert::dalembert! {
-    /// The Chaplygin sleigh of `tests/rolling_wheels.rs` in the blade's
+    /// The Chaplygin sleigh of `tests/suite/rolling_wheels.rs` in the blade's
     /// body-axis speeds.
     pub BodyRateSleigh {
         parameters m, I, a, k;

@@ -239,7 +239,7 @@ fn energy_is_kept_over_a_hundred_seconds() {
     assert!(drift < 1e-13, "relative energy error {drift:e}");
 }
 
-/// `cargo test --release --test taylor -- --ignored`: the energy over
+/// `cargo test --release --test suite taylor:: -- --ignored`: the energy over
 /// 10⁴ s (BENCHMARKS.md quotes it).
 #[test]
 #[ignore = "long: run in release"]

@@ -1,5 +1,5 @@
 //! A `rolling` statement whose contact row vanishes identically: the thin
-//! disc of `tests/rolling_disc.rs` with its centre placed from the contact
+//! disc of `tests/suite/rolling_disc.rs` with its centre placed from the contact
 //! point, `G = (x, y, 0) + r C.z`, so that the contact's height,
 //! `G·N.z − r √(1 − (N.z·C.y)²) = r cos θ − r cos θ` (`1 − sin²θ = cos²θ`,
 //! positive at the start), is zero in every configuration the disc can
@@ -15,7 +15,7 @@
 //! stops at a dependent row, and by the sparse solver) and `linearize` on
 //! the manifold agree, and
 //! the linearisation about upright rolling has the closed-form rows of
-//! `tests/rolling_disc.rs` (`θ̈ = 4/5 (g/r) θ + 6/5 Ω ψ̇`, `ψ̈ = −2 Ω θ̇`).
+//! `tests/suite/rolling_disc.rs` (`θ̈ = 4/5 (g/r) θ + 6/5 Ω ψ̇`, `ψ̈ = −2 Ω θ̇`).
 
 use dalembert::ConstrainedSystem;
 use dalembert::constrained::{ConstraintSolver, constrained_accelerations};
@@ -187,7 +187,7 @@ fn linearize_is_the_height_discs() {
 }
 
 /// About upright rolling at the spin rate `Ω`: `θ̈ = 4/5 (g/r) θ + 6/5 Ω ψ̇`
-/// and `ψ̈ = −2 Ω θ̇` (the closed form of `tests/rolling_disc.rs`), `φ̈ = 0`.
+/// and `ψ̈ = −2 Ω θ̇` (the closed form of `tests/suite/rolling_disc.rs`), `φ̈ = 0`.
 #[test]
 fn upright_rolling_has_the_closed_form_rows() {
     let (theta, psi_rate, theta_rate, phi_rate) = (3, 7, 8, 9);

@@ -8,7 +8,7 @@
 //! `cargo run --release --example work_precision`.
 //!
 //! The energy test runs 10³ s in debug builds (CI) and the full 10⁴ s with
-//! `cargo test --release --test stability`; its bands hold for both.
+//! `cargo test --release --test suite stability::`; its bands hold for both.
 
 use std::f64::consts::FRAC_PI_2;
 
