@@ -10,8 +10,8 @@ use dalembert::constrained::{
     BARELY_INDEPENDENT, DRIFT_LIMIT, DriftLimits, constraint_conditioning, constraint_drift,
 };
 use dalembert::integrate::{
-    AdaptiveOptions, AugmentedLagrangian, DriftLevel, ExplicitPair, Failure, adaptive,
-    augmented_lagrangian, rk4,
+    Adaptive, AdaptiveOptions, AugmentedLagrangian, AugmentedLagrangianSettings, DriftLevel,
+    ExplicitPair, Failure, Integration, Rk4,
 };
 use dalembert::{Constrained, Stabilisation, State};
 use dalembert_fixtures::slider_crank::SEED_3;
@@ -75,28 +75,42 @@ fn a_start_off_the_velocity_form_is_refused_unless_projected() {
     for stabilisation in [Stabilisation::None, BAUMGARTE] {
         let dynamics = Constrained::without_inputs(&SEED_3, stabilisation);
         let mut seen = 0;
-        let error = rk4(&dynamics, start, 3.0, 100, |_| seen += 1).unwrap_err();
+        let error = Integration::new(&dynamics, start, 3.0, Rk4 { steps: 100 })
+            .observe(|_| seen += 1)
+            .run()
+            .unwrap_err();
         let (row, level, residual, t) = drift(error.cause);
         assert_eq!((row, level, t), (0, DriftLevel::Velocity, 2.0), "{error}");
         assert!((residual.abs() - 1e-3).abs() < 1e-12, "{residual}");
         assert_eq!((error.t, error.q, seen), (2.0, start.q, 0));
         println!("{stabilisation:?}: {error}");
         let options = AdaptiveOptions::with_tolerance(1e-9);
-        let error =
-            adaptive(&dynamics, start, 3.0, ExplicitPair::Dop853, options, |_| {}).unwrap_err();
+        let error = Integration::new(
+            &dynamics,
+            start,
+            3.0,
+            Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
+        )
+        .run()
+        .unwrap_err();
         assert_eq!(drift(error.cause).3, 2.0);
     }
     // Projected, the start's error is removed by the first step's
     // projection and the run holds the constraints.
     let dynamics = Constrained::without_inputs(&SEED_3, PROJECTION);
     let mut worst = 0.0f64;
-    rk4(&dynamics, start, 3.0, 1000, |s| {
-        if s.t > 2.0 {
-            let psi = SEED_3.constraint_velocity(s.t, &s.q, &s.v);
-            worst = worst.max(psi[0].abs()).max(psi[1].abs());
-        }
-    })
-    .unwrap();
+    Integration::new(&dynamics, start, 3.0, Rk4 { steps: 1000 })
+        .observe(|s| {
+            if s.t > 2.0 {
+                let psi = SEED_3.constraint_velocity(s.t, &s.q, &s.v);
+                worst = worst.max(psi[0].abs()).max(psi[1].abs());
+            }
+        })
+        .run()
+        .unwrap();
     assert!(worst < 1e-12, "{worst:e}");
 }
 
@@ -115,14 +129,18 @@ fn a_rheonomic_start_off_its_drive_is_refused() {
         v: [0.0, 0.0],
     };
     let dynamics = Constrained::without_inputs(&slider, Stabilisation::None);
-    let error = rk4(&dynamics, at_rest, 1.0, 100, |_| {}).unwrap_err();
+    let error = Integration::new(&dynamics, at_rest, 1.0, Rk4 { steps: 100 })
+        .run()
+        .unwrap_err();
     let (row, level, residual, t) = drift(error.cause);
     assert_eq!((row, level, t), (0, DriftLevel::Velocity, 0.0));
     assert!((residual.abs() - 0.6).abs() < 1e-12, "{residual}");
     // Off at position level: x = 0 at t = 0.5 s, where the drive is at
     // a sin(1.5).
     let late = State { t: 0.5, ..at_rest };
-    let error = rk4(&dynamics, late, 1.0, 100, |_| {}).unwrap_err();
+    let error = Integration::new(&dynamics, late, 1.0, Rk4 { steps: 100 })
+        .run()
+        .unwrap_err();
     let (row, level, residual, _) = drift(error.cause);
     assert_eq!((row, level), (0, DriftLevel::Position));
     assert!((residual.abs() - 0.2 * 1.5f64.sin()).abs() < 1e-12);
@@ -132,7 +150,10 @@ fn a_rheonomic_start_off_its_drive_is_refused() {
         q: [0.0, 0.0],
         v: [0.6, 0.0],
     };
-    let end = rk4(&dynamics, on, 1.0, 1000, |_| {}).unwrap().end;
+    let end = Integration::new(&dynamics, on, 1.0, Rk4 { steps: 1000 })
+        .run()
+        .unwrap()
+        .end;
     assert!((end.q[0] - 0.2 * 3f64.sin()).abs() < 1e-9, "{end:?}");
     assert!((end.q[1] + 9.81 / 2.0).abs() < 1e-9, "{end:?}");
 }
@@ -169,7 +190,9 @@ fn barely_independent_rows_are_reported_not_solved_as_independent() {
         v: [0.0; 3],
     };
     let dynamics = Constrained::without_inputs(&plane, Stabilisation::None);
-    let error = rk4(&dynamics, start, 1.0, 10, |_| {}).unwrap_err();
+    let error = Integration::new(&dynamics, start, 1.0, Rk4 { steps: 10 })
+        .run()
+        .unwrap_err();
     match error.cause {
         Failure::SingularPosition {
             row,
@@ -188,13 +211,13 @@ fn barely_independent_rows_are_reported_not_solved_as_independent() {
         conditioning: e / 10.0,
         ..DriftLimits::default()
     };
-    let end = rk4(
+    let end = Integration::new(
         &dynamics.with_drift_limits(accepting),
         start,
         1.0,
-        10,
-        |_| {},
+        Rk4 { steps: 10 },
     )
+    .run()
     .unwrap()
     .end;
     assert!((end.q[2] + 9.81 / 2.0).abs() < 1e-12, "{end:?}");
@@ -212,19 +235,17 @@ fn the_limits_are_the_users_and_every_integrator_watches_them() {
         ..DriftLimits::default()
     };
     let lax = Constrained::without_inputs(&SEED_3, Stabilisation::None);
-    rk4(&lax, start, 0.1, 10, |_| {}).unwrap();
+    Integration::new(&lax, start, 0.1, Rk4 { steps: 10 })
+        .run()
+        .unwrap();
     let strict = lax.with_drift_limits(tight);
     let failures = [
-        rk4(&strict, start, 0.1, 10, |_| {}).map(|_| ()),
-        adaptive(
-            &strict,
-            start,
-            0.1,
-            ExplicitPair::DormandPrince54,
-            AdaptiveOptions::with_tolerance(1e-8),
-            |_| {},
-        )
-        .map(|_| ()),
+        Integration::new(&strict, start, 0.1, Rk4 { steps: 10 })
+            .run()
+            .map(|_| ()),
+        Integration::new(&strict, start, 0.1, Adaptive::dopri5(1e-8))
+            .run()
+            .map(|_| ()),
     ];
     for failure in failures {
         let error = failure.unwrap_err();
@@ -234,14 +255,17 @@ fn the_limits_are_the_users_and_every_integrator_watches_them() {
     // watched too, against the larger of the limit and its tolerance.
     let assembled = SEED_3.assembled(0.4, 1.0);
     let mut worst = 0.0f64;
-    augmented_lagrangian(
+    Integration::new(
         &lax,
         assembled,
         1.0,
-        1000,
-        AugmentedLagrangian::for_step(1e-3),
-        |s| worst = worst.max(constraint_drift(&SEED_3, s)),
+        AugmentedLagrangian {
+            steps: 1000,
+            settings: AugmentedLagrangianSettings::for_step(1e-3),
+        },
     )
+    .observe(|s| worst = worst.max(constraint_drift(&SEED_3, s)))
+    .run()
     .unwrap();
     assert!(worst < DRIFT_LIMIT, "{worst:e}");
 }

@@ -76,13 +76,14 @@ fn seed_3_drift(stabilisation: Stabilisation) -> (f64, f64) {
         }
     };
     let start = SEED_3.assembled(1.0, 2.0);
-    integrate::rk4(
+    integrate::Integration::new(
         &Constrained::without_inputs(&SEED_3, stabilisation),
         start,
         10.0,
-        10_000,
-        observe,
+        integrate::Rk4 { steps: 10_000 },
     )
+    .observe(observe)
+    .run()
     .map(|solution| solution.end)
     .unwrap();
     (first_second, total)
@@ -178,13 +179,16 @@ fn pendulum_in_one_coordinate_and_in_three_follows_the_same_angle() {
         q: [1.0],
         v: [2.0],
     };
-    integrate::rk4(
+    integrate::Integration::new(
         &Unconstrained::new(&one, |t, _, _| motor_torque(t)),
         start,
         steps as f64 * H,
-        steps as u64,
-        |s| reference_angle.push(s.q[0]),
+        integrate::Rk4 {
+            steps: steps as u64,
+        },
     )
+    .observe(|s| reference_angle.push(s.q[0]))
+    .run()
     .map(|solution| solution.end)
     .unwrap();
     for stabilisation in [
@@ -202,13 +206,16 @@ fn pendulum_in_one_coordinate_and_in_three_follows_the_same_angle() {
         };
         let start = SEED_3.assembled(1.0, 2.0);
         let torque = |t: f64, _: &[f64; 3], _: &[f64; 3]| motor_torque(t);
-        integrate::rk4(
+        integrate::Integration::new(
             &Constrained::new(&SEED_3, torque, stabilisation),
             start,
             steps as f64 * H,
-            steps as u64,
-            observe,
+            integrate::Rk4 {
+                steps: steps as u64,
+            },
         )
+        .observe(observe)
+        .run()
         .map(|solution| solution.end)
         .unwrap();
         println!(
@@ -324,13 +331,14 @@ fn slider_crank_keeps_its_loop_closed_and_its_energy_over_ten_revolutions() {
         tolerance: 1e-12,
         max_iterations: 5,
     };
-    let end = integrate::rk4(
+    let end = integrate::Integration::new(
         &Constrained::without_inputs(&crank, projection),
         start,
         5.0,
-        5_000,
-        observe,
+        integrate::Rk4 { steps: 5_000 },
     )
+    .observe(observe)
+    .run()
     .map(|solution| solution.end)
     .unwrap();
     let revolutions = end.q[0] / std::f64::consts::TAU;
@@ -361,14 +369,15 @@ fn sleigh_slip_after_one_second(stabilisation: Stabilisation) -> (f64, f64) {
             slip = slip.max(psi.abs());
         }
     };
-    integrate::rk4(
+    integrate::Integration::new(
         &Constrained::without_inputs(&sleigh, stabilisation)
             .with_drift_limits(DriftLimits::UNWATCHED),
         start,
         1.0,
-        1_000,
-        observe,
+        integrate::Rk4 { steps: 1_000 },
     )
+    .observe(observe)
+    .run()
     .map(|solution| solution.end)
     .unwrap();
     (slip, drift)

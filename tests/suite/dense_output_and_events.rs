@@ -55,7 +55,16 @@ fn one_step_dense_error(pair: ExplicitPair, h: f64) -> f64 {
         ..AdaptiveOptions::with_tolerance(1e-2)
     };
     let mut worst: f64 = 0.0;
-    let solution = integrate::adaptive_dense(&dynamics, start, 0.3 + h, pair, options, |step| {
+    let solution = integrate::Integration::new(
+        &dynamics,
+        start,
+        0.3 + h,
+        integrate::Adaptive {
+            pair: pair,
+            options: options,
+        },
+    )
+    .dense(|step| {
         assert_eq!(step.state_at(step.start().t), *step.start());
         let end = step.state_at(step.end().t);
         assert!(distance(&end, step.end()) <= 4.0 * f64::EPSILON, "{end:?}");
@@ -67,6 +76,7 @@ fn one_step_dense_error(pair: ExplicitPair, h: f64) -> f64 {
         }
         ControlFlow::Continue(())
     })
+    .run()
     .unwrap();
     assert_eq!(solution.statistics.accepted_steps, 1);
     worst
@@ -109,21 +119,24 @@ fn dense_output_outside_a_step_extrapolates_its_polynomial() {
         v: [v],
     };
     let options = AdaptiveOptions::with_tolerance(1e-12);
-    integrate::adaptive_dense(
+    integrate::Integration::new(
         &dynamics,
         start,
         2.0,
-        ExplicitPair::Dop853,
-        options,
-        |step| {
-            let h = step.end().t - step.start().t;
-            // A tenth of a step past the end: the polynomial, still close.
-            let t = step.end().t + 0.1 * h;
-            let [x, _] = oscillator_at(t);
-            assert!((step.state_at(t).q[0] - x).abs() < 1e-6, "at {t}");
-            ControlFlow::Continue(())
+        integrate::Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
         },
     )
+    .dense(|step| {
+        let h = step.end().t - step.start().t;
+        // A tenth of a step past the end: the polynomial, still close.
+        let t = step.end().t + 0.1 * h;
+        let [x, _] = oscillator_at(t);
+        assert!((step.state_at(t).q[0] - x).abs() < 1e-6, "at {t}");
+        ControlFlow::Continue(())
+    })
+    .run()
     .unwrap();
 }
 
@@ -149,27 +162,38 @@ fn a_falling_mass_stops_at_the_floor_at_the_square_root_of_two_h_over_g_with_or_
     for pair in [ExplicitPair::DormandPrince54, ExplicitPair::Dop853] {
         let options = AdaptiveOptions::with_tolerance(1e-10);
         let mut events = 0;
-        let end =
-            integrate::adaptive_with_events(&dynamics, start, 5.0, pair, options, floor, |_| {
-                events += 1;
-            })
-            .unwrap()
-            .end;
+        let end = integrate::Integration::new(
+            &dynamics,
+            start,
+            5.0,
+            integrate::Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .event(floor, |_| {
+            events += 1;
+        })
+        .run()
+        .unwrap()
+        .end;
         // mpmath: √(2 · 2 / 9.81) (30 digits, rounded to f64).
         let expected = 0.638_550_856_814_101;
         assert!((end.t - expected).abs() < 1e-12, "{pair:?}: {}", end.t);
         assert!(end.q[0].abs() < 1e-12 && events == 1, "{pair:?}: {end:?}");
         // With no final time, the integration runs until the event.
         let options = AdaptiveOptions::with_tolerance(1e-10);
-        let open = integrate::adaptive_with_events(
+        let open = integrate::Integration::new(
             &dynamics,
             start,
             f64::INFINITY,
-            pair,
-            options,
-            floor,
-            |_| {},
-        );
+            integrate::Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .event(floor, |_| {})
+        .run();
         assert_eq!(open.unwrap().end.t, end.t, "{pair:?}");
     }
 }
@@ -196,15 +220,17 @@ fn a_large_swing_passes_the_vertical_once_a_period_of_its_elliptic_integral() {
     let options = AdaptiveOptions::with_tolerance(1e-13);
     let passes = |crossing| {
         let mut times = Vec::new();
-        integrate::adaptive_with_events(
+        integrate::Integration::new(
             &dynamics,
             start,
             2.2 * period,
-            ExplicitPair::Dop853,
-            options,
-            Event::record(vertical, crossing),
-            |s| times.push(s.t),
+            integrate::Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
         )
+        .event(Event::record(vertical, crossing), |s| times.push(s.t))
+        .run()
         .unwrap();
         times
     };
@@ -234,50 +260,33 @@ fn two_zeros_inside_one_step_are_both_recorded_in_order() {
     let band = |_: f64, q: &[f64; 1], _: &[f64; 1]| (q[0] - 1.0) * (q[0] - 0.8);
     let mut times = Vec::new();
     let mut steps = Vec::new();
-    integrate::adaptive_dense(
-        &dynamics,
-        start,
-        1.0,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-8),
-        |step| {
+    integrate::Integration::new(&dynamics, start, 1.0, integrate::Adaptive::dop853(1e-8))
+        .dense(|step| {
             steps.push((step.start().t, step.end().t));
             ControlFlow::Continue(())
-        },
-    )
-    .unwrap();
+        })
+        .run()
+        .unwrap();
     let (t1, t2) = ((2.0 / G).sqrt(), (2.0 * 1.2 / G).sqrt());
     assert!(
         steps.iter().any(|&(a, b)| a < t1 && t2 < b),
         "no step holds both zeros: {steps:?}"
     );
-    integrate::adaptive_with_events(
-        &dynamics,
-        start,
-        1.0,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-8),
-        Event::record(band, Crossing::Either),
-        |s| times.push(s.t),
-    )
-    .unwrap();
+    integrate::Integration::new(&dynamics, start, 1.0, integrate::Adaptive::dop853(1e-8))
+        .event(Event::record(band, Crossing::Either), |s| times.push(s.t))
+        .run()
+        .unwrap();
     assert_eq!(times.len(), 2, "{times:?}");
     assert!(
         (times[0] - t1).abs() < 1e-12 && (times[1] - t2).abs() < 1e-12,
         "{times:?}"
     );
     // A stopping event ends at the first of the two.
-    let end = integrate::adaptive_with_events(
-        &dynamics,
-        start,
-        1.0,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-8),
-        Event::stop_at(band, Crossing::Rising),
-        |_| {},
-    )
-    .unwrap()
-    .end;
+    let end = integrate::Integration::new(&dynamics, start, 1.0, integrate::Adaptive::dop853(1e-8))
+        .event(Event::stop_at(band, Crossing::Rising), |_| {})
+        .run()
+        .unwrap()
+        .end;
     assert!(
         (end.t - t2).abs() < 1e-12,
         "{end:?}: the rising zero is the second"
@@ -292,15 +301,17 @@ fn a_zero_at_the_start_or_a_touch_is_no_event_and_the_landing_is() {
     let start = falling_from(0.0, 4.0);
     let options = AdaptiveOptions::with_tolerance(1e-10);
     let floor = |_: f64, q: &[f64; 1], _: &[f64; 1]| q[0];
-    let end = integrate::adaptive_with_events(
+    let end = integrate::Integration::new(
         &dynamics,
         start,
         5.0,
-        ExplicitPair::Dop853,
-        options,
-        Event::stop_at(floor, Crossing::Either),
-        |_| {},
+        integrate::Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .event(Event::stop_at(floor, Crossing::Either), |_| {})
+    .run()
     .unwrap()
     .end;
     assert!((end.t - 8.0 / G).abs() < 1e-12, "{end:?}");
@@ -308,15 +319,17 @@ fn a_zero_at_the_start_or_a_touch_is_no_event_and_the_landing_is() {
     let top = 16.0 / (2.0 * G);
     let touch = move |_: f64, q: &[f64; 1], _: &[f64; 1]| -(q[0] - top).powi(2);
     let mut touches = 0;
-    integrate::adaptive_with_events(
+    integrate::Integration::new(
         &dynamics,
         start,
         8.0 / G,
-        ExplicitPair::Dop853,
-        options,
-        Event::record(touch, Crossing::Either),
-        |_| touches += 1,
+        integrate::Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .event(Event::record(touch, Crossing::Either), |_| touches += 1)
+    .run()
     .unwrap();
     assert_eq!(touches, 0);
 }

@@ -5,7 +5,7 @@
 use crate::redundant_parallelogram::scalar_motion;
 
 use dalembert::constrained::{constrained_accelerations, constraint_drift};
-use dalembert::integrate::rk4;
+use dalembert::integrate::{Integration, Rk4};
 use dalembert::{Constrained, Stabilisation, State, energy};
 use dalembert_fixtures::reference::assert_near;
 
@@ -111,18 +111,20 @@ fn driven_crank_follows_its_drive_and_the_motor_does_the_work() {
     };
     let dynamics = Constrained::without_inputs(&DRIVEN, projection);
     let (mut worst, mut work, mut last_power) = (0.0f64, 0.0, None::<(f64, f64)>);
-    let end = rk4(&dynamics, start, 2.0, 20_000, |s| {
-        let exact = driven_motion(s.t);
-        worst = (0..3).fold(worst, |m, i| m.max((s.q[i] - exact[i]).abs()));
-        let (_, lambda) = constrained_accelerations(&DRIVEN, s.t, &s.q, &s.v, &[]).unwrap();
-        let power = lambda[2] * s.v[0];
-        if let Some((t, p)) = last_power {
-            work += (s.t - t) * (p + power) / 2.0;
-        }
-        last_power = Some((s.t, power));
-    })
-    .unwrap()
-    .end;
+    let end = Integration::new(&dynamics, start, 2.0, Rk4 { steps: 20_000 })
+        .observe(|s| {
+            let exact = driven_motion(s.t);
+            worst = (0..3).fold(worst, |m, i| m.max((s.q[i] - exact[i]).abs()));
+            let (_, lambda) = constrained_accelerations(&DRIVEN, s.t, &s.q, &s.v, &[]).unwrap();
+            let power = lambda[2] * s.v[0];
+            if let Some((t, p)) = last_power {
+                work += (s.t - t) * (p + power) / 2.0;
+            }
+            last_power = Some((s.t, power));
+        })
+        .run()
+        .unwrap()
+        .end;
     let change = energy(&DRIVEN, &end.q, &end.v) - initial_energy;
     println!(
         "driven crank, 2 s: max |q − q(t)| {worst:.2e}, ΔE {change:.6e}, motor work {work:.6e}"
@@ -182,15 +184,16 @@ fn bead_on_a_driven_hoop_follows_the_closed_form_equation_and_torque() {
         max_iterations: 5,
     };
     let mut drift = 0.0f64;
-    let end = rk4(
+    let end = Integration::new(
         &Constrained::without_inputs(&hoop, projection),
         start,
         10.0,
-        10_000,
-        |s| {
-            drift = drift.max(constraint_drift(&hoop, s));
-        },
+        Rk4 { steps: 10_000 },
     )
+    .observe(|s| {
+        drift = drift.max(constraint_drift(&hoop, s));
+    })
+    .run()
     .unwrap()
     .end;
     println!(

@@ -8,8 +8,8 @@ use std::ops::ControlFlow;
 
 use dalembert::MultibodySystem;
 use dalembert::integrate::{
-    AdaptiveOptions, Crossing, Event, ExplicitPair, Failure, State, Unconstrained, adaptive_dense,
-    adaptive_with_events,
+    Adaptive, AdaptiveOptions, Crossing, Event, ExplicitPair, Failure, Integration, State,
+    Unconstrained,
 };
 
 /// One degree of freedom `x` with `m ẍ = force(x)`.
@@ -105,15 +105,17 @@ fn a_pendulum_stops_as_it_passes_the_vertical() {
             let options = AdaptiveOptions::with_tolerance(1e-14);
             let vertical = Event::stop_at(|_, q: &[f64; 1], _: &[f64; 1]| q[0], Crossing::Falling);
             let mut seen = Vec::new();
-            let solution = adaptive_with_events(
+            let solution = Integration::new(
                 &dynamics,
                 at_rest(amplitude),
                 10.0,
-                pair,
-                options,
-                vertical,
-                |s| seen.push(*s),
+                Adaptive {
+                    pair: pair,
+                    options: options,
+                },
             )
+            .event(vertical, |s| seen.push(*s))
+            .run()
             .unwrap();
             let end = solution.end;
             assert_eq!(seen, [end], "{pair:?}: the event is the end");
@@ -134,15 +136,17 @@ fn every_pass_of_the_vertical_is_recorded() {
     );
     let vertical = Event::record(|_, q: &[f64; 1], _: &[f64; 1]| q[0], Crossing::Either);
     let mut passes = Vec::new();
-    let end = adaptive_with_events(
+    let end = Integration::new(
         &dynamics,
         at_rest(amplitude),
         5.0,
-        ExplicitPair::Dop853,
-        options,
-        vertical,
-        |s| passes.push(s.t),
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .event(vertical, |s| passes.push(s.t))
+    .run()
     .unwrap()
     .end;
     assert_eq!(end.t, 5.0, "recording events does not stop");
@@ -175,9 +179,19 @@ fn a_thrown_body_stops_where_it_falls_through_a_height() {
             move |_, q: &[f64; 1], _: &[f64; 1]| q[0] - height,
             Crossing::Falling,
         );
-        let end = adaptive_with_events(&dynamics, start, 100.0, pair, options, floor, |_| {})
-            .unwrap()
-            .end;
+        let end = Integration::new(
+            &dynamics,
+            start,
+            100.0,
+            Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .event(floor, |_| {})
+        .run()
+        .unwrap()
+        .end;
         assert!((end.t - expected).abs() < 1e-12, "{pair:?}: {}", end.t);
         assert!((end.q[0] - height).abs() < 1e-12, "{end:?}");
     }
@@ -192,7 +206,16 @@ fn dense_output_follows_the_oscillator_between_steps() {
     ] {
         let options = AdaptiveOptions::with_tolerance(tolerance);
         let (mut worst, mut steps) = (0.0f64, 0);
-        adaptive_dense(&dynamics, at_rest(1.0), 20.0, pair, options, |step| {
+        Integration::new(
+            &dynamics,
+            at_rest(1.0),
+            20.0,
+            Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .dense(|step| {
             let (a, b) = (step.start().t, step.end().t);
             for k in 1..8 {
                 let t = a + (b - a) * f64::from(k) / 8.0;
@@ -203,6 +226,7 @@ fn dense_output_follows_the_oscillator_between_steps() {
             steps += 1;
             ControlFlow::Continue(())
         })
+        .run()
         .unwrap();
         assert!(steps > 10, "{pair:?}: {steps} steps");
         assert!(worst < bound, "{pair:?}: {worst:e}");
@@ -213,20 +237,23 @@ fn dense_output_follows_the_oscillator_between_steps() {
 fn a_step_observer_may_end_the_integration() {
     let dynamics = Unconstrained::without_inputs(&OSCILLATOR);
     let options = AdaptiveOptions::with_tolerance(1e-10);
-    let solution = adaptive_dense(
+    let solution = Integration::new(
         &dynamics,
         at_rest(1.0),
         20.0,
-        ExplicitPair::Dop853,
-        options,
-        |step| {
-            if step.end().t > 1.0 {
-                ControlFlow::Break(step.state_at(1.0))
-            } else {
-                ControlFlow::Continue(())
-            }
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
         },
     )
+    .dense(|step| {
+        if step.end().t > 1.0 {
+            ControlFlow::Break(step.state_at(1.0))
+        } else {
+            ControlFlow::Continue(())
+        }
+    })
+    .run()
     .unwrap();
     assert_eq!(solution.end.t, 1.0);
     assert!((solution.end.q[0] - 1f64.cos()).abs() < 1e-9);
@@ -244,11 +271,18 @@ fn a_non_finite_event_value_is_an_error_naming_its_time() {
         for pair in PAIRS {
             let mut events = 0;
             let event = Event::record(undefined_late, Crossing::Either);
-            let error =
-                adaptive_with_events(&dynamics, at_rest(1.0), 5.0, pair, options, event, |_| {
-                    events += 1
-                })
-                .unwrap_err();
+            let error = Integration::new(
+                &dynamics,
+                at_rest(1.0),
+                5.0,
+                Adaptive {
+                    pair: pair,
+                    options: options,
+                },
+            )
+            .event(event, |_| events += 1)
+            .run()
+            .unwrap_err();
             println!("{pair:?}: {error}");
             assert!(
                 matches!(error.cause, Failure::NonFiniteEvent { value } if value.is_nan() == bad.is_nan()),
@@ -265,15 +299,17 @@ fn a_non_finite_event_value_is_an_error_naming_its_time() {
         }
         // Undefined at the start: refused before any step.
         let event = Event::stop_at(|_: f64, _: &[f64; 1], _: &[f64; 1]| bad, Crossing::Either);
-        let error = adaptive_with_events(
+        let error = Integration::new(
             &dynamics,
             at_rest(1.0),
             5.0,
-            ExplicitPair::Dop853,
-            options,
-            event,
-            |_| {},
+            Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
         )
+        .event(event, |_| {})
+        .run()
         .unwrap_err();
         assert_eq!(error.t, 0.0);
         assert!(
@@ -298,13 +334,23 @@ fn two_zeros_closer_than_an_eighth_of_a_step_are_both_found() {
         // The steps that hold the pairs are far longer than eight times
         // their separation: the signs at the eight samples agree.
         let mut holding = Vec::new();
-        adaptive_dense(&dynamics, at_rest(1.0), 2.0 * PI, pair, options, |step| {
+        Integration::new(
+            &dynamics,
+            at_rest(1.0),
+            2.0 * PI,
+            Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .dense(|step| {
             let (a, b) = (step.start().t, step.end().t);
             if expected.iter().any(|&t| a < t && t < b) {
                 holding.push(b - a);
             }
             ControlFlow::Continue(())
         })
+        .run()
         .unwrap();
         assert!(!holding.is_empty());
         for h in &holding {
@@ -315,9 +361,17 @@ fn two_zeros_closer_than_an_eighth_of_a_step_are_both_found() {
             let mut found = Vec::new();
             let event = Event::record(g, crossing);
             let start = at_rest(1.0);
-            adaptive_with_events(&dynamics, start, 2.0 * PI, pair, options, event, |s| {
-                found.push(s.t)
-            })
+            Integration::new(
+                &dynamics,
+                start,
+                2.0 * PI,
+                Adaptive {
+                    pair: pair,
+                    options: options,
+                },
+            )
+            .event(event, |s| found.push(s.t))
+            .run()
             .unwrap();
             found
         };
@@ -332,15 +386,17 @@ fn two_zeros_closer_than_an_eighth_of_a_step_are_both_found() {
         assert_eq!(rising.len(), 2, "{rising:?}");
         assert!((rising[0] - far).abs() < 1e-7 && (rising[1] - expected[3]).abs() < 1e-7);
         let event = Event::stop_at(g, Crossing::Falling);
-        let end = adaptive_with_events(
+        let end = Integration::new(
             &dynamics,
             at_rest(1.0),
             2.0 * PI,
-            pair,
-            options,
-            event,
-            |_| {},
+            Adaptive {
+                pair: pair,
+                options: options,
+            },
         )
+        .event(event, |_| {})
+        .run()
         .unwrap()
         .end;
         assert!((end.t - near).abs() < 1e-7, "{end:?}");

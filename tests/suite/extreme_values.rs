@@ -3,7 +3,7 @@
 //! answer is finite or an error, never `Ok` holding a NaN or an infinity.
 
 use dalembert::constrained::constrained_accelerations;
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive, rk4};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, ExplicitPair, Integration, Rk4};
 use dalembert::{Constrained, Stabilisation, State, Unconstrained, accelerations};
 use dalembert_fixtures::seeds::{ConstrainedPendulum, DoublePendulum};
 
@@ -39,7 +39,7 @@ fn unconstrained_answers_are_finite_or_errors() {
                 let vdot = accelerations(&pendulum, 0.0, &state.q, &state.v, &[]);
                 assert!(finite(&vdot, |a| a.to_vec()), "{what}: {vdot:?}");
                 let dynamics = Unconstrained::without_inputs(&pendulum);
-                let fixed = rk4(&dynamics, state, 0.1, 10, |_| {});
+                let fixed = Integration::new(&dynamics, state, 0.1, Rk4 { steps: 10 }).run();
                 assert!(
                     finite(&fixed, |s| [s.end.q, s.end.v].concat()),
                     "{what}: RK4 {fixed:?}"
@@ -49,7 +49,16 @@ fn unconstrained_answers_are_finite_or_errors() {
                     ..AdaptiveOptions::with_tolerance(1e-8)
                 };
                 let pair = ExplicitPair::DormandPrince54;
-                let adapted = adaptive(&dynamics, state, 0.1, pair, options, |_| {});
+                let adapted = Integration::new(
+                    &dynamics,
+                    state,
+                    0.1,
+                    Adaptive {
+                        pair: pair,
+                        options: options,
+                    },
+                )
+                .run();
                 assert!(
                     finite(&adapted, |s| [s.end.q, s.end.v].concat()),
                     "{what}: DOPRI5 {adapted:?}"
@@ -92,7 +101,7 @@ fn constrained_answers_are_finite_or_errors() {
                     },
                 ] {
                     let dynamics = Constrained::without_inputs(&pendulum, stabilisation);
-                    let run = rk4(&dynamics, state, 0.1, 10, |_| {});
+                    let run = Integration::new(&dynamics, state, 0.1, Rk4 { steps: 10 }).run();
                     assert!(
                         finite(&run, |s| [s.end.q, s.end.v].concat()),
                         "{what}, {stabilisation:?}: {run:?}"

@@ -5,7 +5,7 @@
 //! Dzhanibekov effect in quaternions (energy and angular momentum conserved
 //! while the body flips), and the regressor of a floating arm.
 
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, TaylorOptions, adaptive, taylor};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, ExplicitPair, Integration, Taylor};
 use dalembert::{State, Unconstrained, energy};
 use dalembert_codegen::testing::{mat_vec, quaternion_rotation as rotation};
 
@@ -182,9 +182,18 @@ fn tight() -> AdaptiveOptions {
 fn a_thrown_body_follows_the_parabola_and_precesses_about_its_axis() {
     let start = thrown_start();
     let dynamics = Unconstrained::without_inputs(&THROWN);
-    let end = adaptive(&dynamics, start, 2.0, ExplicitPair::Dop853, tight(), |_| {})
-        .expect("integrates")
-        .end;
+    let end = Integration::new(
+        &dynamics,
+        start,
+        2.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: tight(),
+        },
+    )
+    .run()
+    .expect("integrates")
+    .end;
     assert_thrown_motion(&start, &end, 1e-9);
 }
 
@@ -195,8 +204,9 @@ fn a_thrown_body_follows_the_parabola_and_precesses_about_its_axis() {
 fn the_taylor_series_of_a_thrown_body_follow_the_parabola_and_the_precession() {
     let start = thrown_start();
     let dynamics = Unconstrained::without_inputs(&THROWN);
-    let options = TaylorOptions::with_tolerance(1e-15);
-    let end = taylor(&dynamics, start, 2.0, options, |_| {})
+    let options = Taylor::with_tolerance(1e-15);
+    let end = Integration::new(&dynamics, start, 2.0, options)
+        .run()
         .expect("integrates")
         .end;
     assert_thrown_motion(&start, &end, 1e-11);
@@ -266,24 +276,27 @@ fn dzhanibekov_flips_while_energy_and_momentum_stay() {
     let (mut worst_energy, mut worst_momentum) = (0.0_f64, 0.0_f64);
     let mut flips = 0;
     let mut sign = 1.0;
-    adaptive(
+    Integration::new(
         &dynamics,
         start,
         100.0,
-        ExplicitPair::Dop853,
-        tight(),
-        |s| {
-            let e = energy(&DZHANIBEKOV, &s.q, &s.v);
-            worst_energy = worst_energy.max((e - e0).abs() / e0);
-            let l = momentum(&s.q, &s.v);
-            let drift = [0, 1, 2].map(|i| l[i] - l0[i]);
-            worst_momentum = worst_momentum.max(norm(&drift) / norm(&l0));
-            if s.v[1] * sign < 0.0 {
-                flips += 1;
-                sign = -sign;
-            }
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: tight(),
         },
     )
+    .observe(|s| {
+        let e = energy(&DZHANIBEKOV, &s.q, &s.v);
+        worst_energy = worst_energy.max((e - e0).abs() / e0);
+        let l = momentum(&s.q, &s.v);
+        let drift = [0, 1, 2].map(|i| l[i] - l0[i]);
+        worst_momentum = worst_momentum.max(norm(&drift) / norm(&l0));
+        if s.v[1] * sign < 0.0 {
+            flips += 1;
+            sign = -sign;
+        }
+    })
+    .run()
     .expect("integrates");
     println!("relative drift: energy {worst_energy:e}, momentum {worst_momentum:e}; {flips} flips");
     assert!(flips >= 4, "{flips} flips in 100 s");

@@ -5,8 +5,7 @@
 //! tolerance, never from the code under test.
 
 use dalembert::integrate::{
-    self, AdaptiveOptions, ExplicitPair, Failure, GaussLegendre, State, TaylorOptions,
-    Unconstrained,
+    self, AdaptiveOptions, ExplicitPair, Failure, GaussLegendre, State, Unconstrained,
 };
 
 dalembert::dalembert! {
@@ -60,14 +59,16 @@ where
     D: integrate::Dynamics<NQ, NV>,
 {
     let options = AdaptiveOptions::with_tolerance(tolerance);
-    integrate::adaptive(
+    integrate::Integration::new(
         dynamics,
         start,
         t_end,
-        ExplicitPair::Dop853,
-        options,
-        |_| {},
+        integrate::Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .run()
     .unwrap()
 }
 
@@ -94,43 +95,45 @@ fn every_integrator_keeps_a_free_bodys_quaternion_unit_over_ten_thousand_steps()
     let t_end = 20.0;
     let mut worst: f64 = 0.0;
     let mut unit = |s: &State<7, 6>| worst = worst.max((quaternion_norm(&s.q) - 1.0).abs());
-    let reference = integrate::adaptive(
+    let reference =
+        integrate::Integration::new(&dynamics, start, t_end, integrate::Adaptive::dop853(1e-13))
+            .observe(&mut unit)
+            .run()
+            .unwrap()
+            .end;
+    let rk4 = integrate::Integration::new(&dynamics, start, t_end, integrate::Rk4 { steps })
+        .observe(&mut unit)
+        .run()
+        .unwrap();
+    let gauss = integrate::Integration::new(
         &dynamics,
         start,
         t_end,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-13),
-        &mut unit,
+        integrate::Gauss {
+            rule: GaussLegendre::Order4,
+            steps,
+        },
     )
-    .unwrap()
-    .end;
-    let rk4 = integrate::rk4(&dynamics, start, t_end, steps, &mut unit).unwrap();
-    let gauss = integrate::gauss_legendre(
-        &dynamics,
-        start,
-        t_end,
-        steps,
-        GaussLegendre::Order4,
-        &mut unit,
-    )
+    .observe(&mut unit)
+    .run()
     .unwrap();
-    let sdirk = integrate::sdirk(&dynamics, start, t_end, steps, &mut unit).unwrap();
-    let dopri = integrate::adaptive(
+    let sdirk = integrate::Integration::new(&dynamics, start, t_end, integrate::Sdirk { steps })
+        .observe(&mut unit)
+        .run()
+        .unwrap();
+    let dopri =
+        integrate::Integration::new(&dynamics, start, t_end, integrate::Adaptive::dopri5(1e-10))
+            .observe(&mut unit)
+            .run()
+            .unwrap();
+    let taylor = integrate::Integration::new(
         &dynamics,
         start,
         t_end,
-        ExplicitPair::DormandPrince54,
-        AdaptiveOptions::with_tolerance(1e-10),
-        &mut unit,
+        integrate::Taylor::with_tolerance(1e-15),
     )
-    .unwrap();
-    let taylor = integrate::taylor(
-        &dynamics,
-        start,
-        t_end,
-        TaylorOptions::with_tolerance(1e-15),
-        &mut unit,
-    )
+    .observe(&mut unit)
+    .run()
     .unwrap();
     assert!(worst < 4.0 * f64::EPSILON, "|q| off one by {worst:e}");
     // Each follows the tight DOP853 run: the centre moves on a line, the
@@ -191,15 +194,10 @@ fn a_stiff_spring_chain_collapses_explicit_steps_or_fails_with_an_error_never_a_
     let t_end = 1.0;
     // The fast mode, ω = √(2K/m) ≈ 1414 rad/s, bounds explicit steps.
     let tight = dop853(&dynamics, start, t_end, 1e-12);
-    let loose = integrate::adaptive(
-        &dynamics,
-        start,
-        t_end,
-        ExplicitPair::DormandPrince54,
-        AdaptiveOptions::with_tolerance(1e-3),
-        |_| {},
-    )
-    .unwrap();
+    let loose =
+        integrate::Integration::new(&dynamics, start, t_end, integrate::Adaptive::dopri5(1e-3))
+            .run()
+            .unwrap();
     // Even at 1e-3, stability alone keeps DOPRI5 below h ≈ 3.3 / ω.
     assert!(
         loose.statistics.accepted_steps > 300,
@@ -208,22 +206,36 @@ fn a_stiff_spring_chain_collapses_explicit_steps_or_fails_with_an_error_never_a_
     );
     // RK4 beyond its stability limit 2.8 / ω ≈ 2e-3 s blows up into an
     // error naming where, never a NaN state returned as a success.
-    let unstable = integrate::rk4(&dynamics, start, t_end, 200, |s| {
-        assert!(s.q.iter().chain(&s.v).all(|x| x.is_finite()), "{s:?}");
-    })
-    .unwrap_err();
+    let unstable =
+        integrate::Integration::new(&dynamics, start, t_end, integrate::Rk4 { steps: 200 })
+            .observe(|s| {
+                assert!(s.q.iter().chain(&s.v).all(|x| x.is_finite()), "{s:?}");
+            })
+            .run()
+            .unwrap_err();
     assert!(matches!(unstable.cause, Failure::Dynamics(_)), "{unstable}");
     // Gauss 4 is A-stable, but its fixed-point stage iteration does not
     // converge at a step this long against the fast mode: an error.
-    let gauss =
-        integrate::gauss_legendre(&dynamics, start, t_end, 200, GaussLegendre::Order4, |_| {})
-            .unwrap_err();
+    let gauss = integrate::Integration::new(
+        &dynamics,
+        start,
+        t_end,
+        integrate::Gauss {
+            rule: GaussLegendre::Order4,
+            steps: 200,
+        },
+    )
+    .run()
+    .unwrap_err();
     assert!(
         matches!(gauss.cause, Failure::NotConverged { .. }),
         "{gauss}"
     );
     // SDIRK (L-stable) damps the fast mode and follows the slow masses.
-    let sdirk = integrate::sdirk(&dynamics, start, t_end, 200, |_| {}).unwrap();
+    let sdirk =
+        integrate::Integration::new(&dynamics, start, t_end, integrate::Sdirk { steps: 200 })
+            .run()
+            .unwrap();
     assert!(
         (sdirk.end.q[2] - tight.end.q[2]).abs() < 1e-3,
         "{:?} vs {:?}",

@@ -7,7 +7,7 @@
 
 use crate::free_body::{DZHANIBEKOV, norm};
 
-use dalembert::integrate::{TaylorOptions, taylor};
+use dalembert::integrate::{Integration, Taylor};
 use dalembert::{DynamicsError, State, Unconstrained, accelerations};
 use dalembert_codegen::testing::cross;
 use dalembert_fixtures::precession::{free_precession, times, turn};
@@ -263,7 +263,7 @@ fn body_rates_move_as_the_quaternion_body_and_their_rates_blow_up_at_gimbal_lock
 
 #[test]
 fn body_rates_integrated_into_gimbal_lock_stop_naming_the_coordinate() {
-    use dalembert::integrate::{Failure, rk4};
+    use dalembert::integrate::{Failure, Integration, Rk4};
     use std::f64::consts::{FRAC_PI_2, PI};
     let body = BodyRates {
         I1: 1.0,
@@ -280,7 +280,9 @@ fn body_rates_integrated_into_gimbal_lock_stop_naming_the_coordinate() {
         v: [0.0, 1.0, 0.0],
     };
     let dynamics = Unconstrained::without_inputs(&body);
-    let error = rk4(&dynamics, start, PI, 100, |_| {}).expect_err("stops at gimbal lock");
+    let error = Integration::new(&dynamics, start, PI, Rk4 { steps: 100 })
+        .run()
+        .expect_err("stops at gimbal lock");
     assert!(
         (error.t - FRAC_PI_2).abs() < 1e-12,
         "stopped at t = {}",
@@ -299,7 +301,9 @@ fn body_rates_integrated_into_gimbal_lock_stop_naming_the_coordinate() {
         other => panic!("expected singular coordinate rates, got {other:?}"),
     }
     // The same motion up to just before the lock integrates.
-    let before = rk4(&dynamics, start, 1.5, 100, |_| {}).expect("no gimbal lock yet");
+    let before = Integration::new(&dynamics, start, 1.5, Rk4 { steps: 100 })
+        .run()
+        .expect("no gimbal lock yet");
     assert!((before.end.q[1] - 1.5).abs() < 1e-12);
 }
 
@@ -336,16 +340,11 @@ fn free_precession_in_body_rates_is_the_closed_form() {
         q: angles,
         v: w0,
     };
-    let options = TaylorOptions::with_tolerance(1e-15);
-    let end = taylor(
-        &Unconstrained::without_inputs(&top),
-        start,
-        10.0,
-        options,
-        |_| {},
-    )
-    .expect("integrates")
-    .end;
+    let options = Taylor::with_tolerance(1e-15);
+    let end = Integration::new(&Unconstrained::without_inputs(&top), start, 10.0, options)
+        .run()
+        .expect("integrates")
+        .end;
     let (omega, expected) = free_precession((top.I1, top.I3), &r0, w0, end.t);
     assert_close("ω(10)", &end.v, &omega, 1e-13);
     let reached = euler_attitude(end.q);

@@ -7,7 +7,7 @@
 use crate::iftomm_four_bars::PROJECTION;
 
 use dalembert::constrained::{ConstraintSolver, constrained_accelerations, constraint_drift};
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive, rk4};
+use dalembert::integrate::{Adaptive, Integration, Rk4};
 use dalembert::{Constrained, ConstrainedSystem, State, energy};
 use dalembert_fixtures::iftomm::{
     ANDREWS, ANDREWS_EQUATIONS, Andrews, Bricard, BricardEquations, FourBars2, FourBarsEquations2,
@@ -36,12 +36,14 @@ fn bricard_keeps_its_energy_and_its_closure_for_ten_seconds() {
     let start = bricard_start();
     let initial = energy(&BRICARD, &start.q, &start.v);
     let (mut drift, mut residual, mut travel) = (0.0f64, 0.0f64, 0.0f64);
-    rk4(&dynamics, start, 10.0, 20_000, |s| {
-        drift = drift.max((energy(&BRICARD, &s.q, &s.v) - initial).abs());
-        residual = residual.max(constraint_drift(&BRICARD, s));
-        travel = travel.max(s.q[0].abs());
-    })
-    .unwrap_or_else(|e| panic!("{e}"));
+    Integration::new(&dynamics, start, 10.0, Rk4 { steps: 20_000 })
+        .observe(|s| {
+            drift = drift.max((energy(&BRICARD, &s.q, &s.v) - initial).abs());
+            residual = residual.max(constraint_drift(&BRICARD, s));
+            travel = travel.max(s.q[0].abs());
+        })
+        .run()
+        .unwrap_or_else(|e| panic!("{e}"));
     assert!(travel > 0.1, "the mechanism moves: max |q1| = {travel}");
     assert!(drift < 1e-6, "energy drift {drift:e}");
     assert!(residual < 1e-10, "constraint residual {residual:e}");
@@ -269,25 +271,25 @@ fn andrews_squeezer_has_hairer_and_wanners_equations() {
 #[test]
 fn andrews_squeezer_by_two_formulations_and_integrators_agrees_to_1e_8() {
     // The loops closed by `closure` statements, DOP853 with projection...
-    let closed = adaptive(
+    let closed = Integration::new(
         &Constrained::without_inputs(&ANDREWS, PROJECTION),
         andrews_start(),
         0.03,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-12),
-        |_| {},
+        Adaptive::dop853(1e-12),
     )
+    .run()
     .unwrap_or_else(|e| panic!("DOP853: {e}"))
     .end;
     // ... against the coordinate equations, RK4 at a fixed step.
     let mut written = andrews_start();
-    rk4(
+    Integration::new(
         &Constrained::without_inputs(&ANDREWS_EQUATIONS, PROJECTION),
         andrews_start(),
         0.03,
-        30_000,
-        |s| written = *s,
+        Rk4 { steps: 30_000 },
     )
+    .observe(|s| written = *s)
+    .run()
     .unwrap_or_else(|e| panic!("RK4: {e}"));
     for (a, b) in closed.q.iter().zip(&written.q) {
         assert!((a - b).abs() < 1e-8, "{:?} vs {:?}", closed.q, written.q);

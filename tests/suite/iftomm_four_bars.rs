@@ -7,7 +7,8 @@ use std::f64::consts::FRAC_PI_2;
 
 use dalembert::constrained::{ConstraintSolver, constraint_drift};
 use dalembert::integrate::{
-    AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
+    Adaptive, AdaptiveOptions, AugmentedLagrangian, AugmentedLagrangianSettings, ExplicitPair,
+    Integration, Rk4,
 };
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
 use dalembert_fixtures::iftomm::{
@@ -47,17 +48,11 @@ fn parallelogram_angle(n: f64, t: f64) -> f64 {
         return start.q[0];
     }
     let dynamics = Unconstrained::without_inputs(&reduced);
-    adaptive(
-        &dynamics,
-        start,
-        t,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-13),
-        |_| {},
-    )
-    .unwrap()
-    .end
-    .q[0]
+    Integration::new(&dynamics, start, t, Adaptive::dop853(1e-13))
+        .run()
+        .unwrap()
+        .end
+        .q[0]
 }
 
 /// The distance of the tips of two cranks of unit length at the angles `a`
@@ -97,29 +92,34 @@ where
     let dynamics = Constrained::without_inputs(system, PROJECTION);
     let mut angles = Vec::new();
     let mut k = 0;
-    rk4(&dynamics, four_bar_start(), t_end, steps, |s| {
+    Integration::new(&dynamics, four_bar_start(), t_end, Rk4 { steps })
+        .observe(|s| {
+            if k % every == 0 {
+                angles.push(s.q[0]);
+            }
+            k += 1;
+        })
+        .run()
+        .unwrap_or_else(|e| panic!("RK4: {e}"));
+    let rk = deviation(&angles);
+    angles.clear();
+    k = 0;
+    Integration::new(
+        &dynamics,
+        four_bar_start(),
+        t_end,
+        AugmentedLagrangian {
+            steps,
+            settings: AugmentedLagrangianSettings::default(),
+        },
+    )
+    .observe(|s| {
         if k % every == 0 {
             angles.push(s.q[0]);
         }
         k += 1;
     })
-    .unwrap_or_else(|e| panic!("RK4: {e}"));
-    let rk = deviation(&angles);
-    angles.clear();
-    k = 0;
-    augmented_lagrangian(
-        &dynamics,
-        four_bar_start(),
-        t_end,
-        steps,
-        AugmentedLagrangian::default(),
-        |s| {
-            if k % every == 0 {
-                angles.push(s.q[0]);
-            }
-            k += 1;
-        },
-    )
+    .run()
     .unwrap_or_else(|e| panic!("augmented Lagrangian: {e}"));
     [rk, deviation(&angles)]
 }
@@ -192,16 +192,10 @@ fn forty_four_bars() {
     let mut angles = vec![FRAC_PI_2];
     let mut start = four_bar_start();
     for k in 1..reference.len() {
-        start = adaptive(
-            &dynamics,
-            start,
-            k as f64 * 0.05,
-            ExplicitPair::Dop853,
-            AdaptiveOptions::with_tolerance(1e-6),
-            |_| {},
-        )
-        .unwrap_or_else(|e| panic!("DOP853 before {} s: {e}", k as f64 * 0.05))
-        .end;
+        start = Integration::new(&dynamics, start, k as f64 * 0.05, Adaptive::dop853(1e-6))
+            .run()
+            .unwrap_or_else(|e| panic!("DOP853 before {} s: {e}", k as f64 * 0.05))
+            .end;
         angles.push(start.q[0]);
     }
     let expected = crossings(reference.iter().copied());
@@ -245,16 +239,20 @@ fn forty_four_bars_with_their_energy_held() {
         let dynamics =
             Constrained::without_inputs(&system, held).with_solver(ConstraintSolver::Sparse);
         let options = AdaptiveOptions::with_tolerance(1e-6);
-        let dop853 = adaptive(
+        let dop853 = Integration::new(
             &dynamics,
             start,
             20.0,
-            ExplicitPair::Dop853,
-            options,
-            |_| {},
+            Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
         )
+        .run()
         .unwrap_or_else(|e| panic!("DOP853: {e}"));
-        let rk4 = rk4(&dynamics, start, 20.0, 400, |_| {}).unwrap_or_else(|e| panic!("RK4: {e}"));
+        let rk4 = Integration::new(&dynamics, start, 20.0, Rk4 { steps: 400 })
+            .run()
+            .unwrap_or_else(|e| panic!("RK4: {e}"));
         for (name, end) in [("DOP853", dop853.end), ("RK4", rk4.end)] {
             let error = tip_distance(end.q[0], phi);
             assert!(
@@ -287,19 +285,14 @@ fn crosses_its_singular_positions_at_a_tight_tolerance<S, const NQ: usize, const
     };
     let dynamics = Constrained::without_inputs(system, held).with_solver(solver);
     let (mut angles, mut residual) = (vec![start.q[0]], 0.0f64);
-    let end = adaptive(
-        &dynamics,
-        start,
-        t_end,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-10),
-        |s| {
+    let end = Integration::new(&dynamics, start, t_end, Adaptive::dop853(1e-10))
+        .observe(|s| {
             angles.push(s.q[0]);
             residual = residual.max(constraint_drift(system, s));
-        },
-    )
-    .unwrap_or_else(|e| panic!("N = {n}, {solver:?}: {e}"))
-    .end;
+        })
+        .run()
+        .unwrap_or_else(|e| panic!("N = {n}, {solver:?}: {e}"))
+        .end;
     let expected = reference_crossings(n, t_end);
     assert!(expected >= 3, "{expected}");
     assert_eq!(

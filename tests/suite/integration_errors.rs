@@ -4,8 +4,7 @@
 
 use dalembert::DynamicsError;
 use dalembert::integrate::{
-    self, AdaptiveOptions, ExplicitPair, Failure, GaussLegendre, State, TaylorOptions,
-    Unconstrained,
+    self, AdaptiveOptions, ExplicitPair, Failure, GaussLegendre, State, Taylor, Unconstrained,
 };
 
 dalembert::dalembert! {
@@ -40,39 +39,70 @@ fn a_nan_input_stops_every_integrator_at_its_time() {
     let finite = |s: &State<1, 1>| assert!(s.q[0].is_finite() && s.v[0].is_finite(), "{s:?}");
     let options = AdaptiveOptions::with_tolerance(1e-9);
     let results = [
-        ("RK4", integrate::rk4(&dynamics, start, 1.0, 100, finite)),
+        (
+            "RK4",
+            integrate::Integration::new(&dynamics, start, 1.0, integrate::Rk4 { steps: 100 })
+                .observe(finite)
+                .run(),
+        ),
         (
             "Gauss 4",
-            integrate::gauss_legendre(&dynamics, start, 1.0, 100, GaussLegendre::Order4, finite),
+            integrate::Integration::new(
+                &dynamics,
+                start,
+                1.0,
+                integrate::Gauss {
+                    rule: GaussLegendre::Order4,
+                    steps: 100,
+                },
+            )
+            .observe(finite)
+            .run(),
         ),
         (
             "SDIRK",
-            integrate::sdirk(&dynamics, start, 1.0, 100, finite),
+            integrate::Integration::new(&dynamics, start, 1.0, integrate::Sdirk { steps: 100 })
+                .observe(finite)
+                .run(),
         ),
         (
             "DOPRI5",
-            integrate::adaptive(
+            integrate::Integration::new(
                 &dynamics,
                 start,
                 1.0,
-                ExplicitPair::DormandPrince54,
-                options,
-                finite,
-            ),
+                integrate::Adaptive {
+                    pair: ExplicitPair::DormandPrince54,
+                    options: options,
+                },
+            )
+            .observe(finite)
+            .run(),
         ),
         (
             "DOP853",
-            integrate::adaptive(&dynamics, start, 1.0, ExplicitPair::Dop853, options, finite),
-        ),
-        (
-            "Taylor",
-            integrate::taylor(
+            integrate::Integration::new(
                 &dynamics,
                 start,
                 1.0,
-                TaylorOptions::with_tolerance(1e-12),
-                finite,
-            ),
+                integrate::Adaptive {
+                    pair: ExplicitPair::Dop853,
+                    options: options,
+                },
+            )
+            .observe(finite)
+            .run(),
+        ),
+        (
+            "Taylor",
+            integrate::Integration::new(
+                &dynamics,
+                start,
+                1.0,
+                integrate::Taylor::with_tolerance(1e-12),
+            )
+            .observe(finite)
+            .run(),
         ),
     ];
     for (name, result) in results {
@@ -113,22 +143,29 @@ fn fixed_step_outcomes(start: State<1, 1>, t_end: f64, steps: u64) -> Outcomes {
     vec![
         (
             "RK4",
-            outcome(integrate::rk4(&dynamics, start, t_end, steps, |_| {})),
+            outcome(
+                integrate::Integration::new(&dynamics, start, t_end, integrate::Rk4 { steps })
+                    .run(),
+            ),
         ),
         (
             "Gauss 4",
-            outcome(integrate::gauss_legendre(
-                &dynamics,
-                start,
-                t_end,
-                steps,
-                gauss,
-                |_| {},
-            )),
+            outcome(
+                integrate::Integration::new(
+                    &dynamics,
+                    start,
+                    t_end,
+                    integrate::Gauss { rule: gauss, steps },
+                )
+                .run(),
+            ),
         ),
         (
             "SDIRK",
-            outcome(integrate::sdirk(&dynamics, start, t_end, steps, |_| {})),
+            outcome(
+                integrate::Integration::new(&dynamics, start, t_end, integrate::Sdirk { steps })
+                    .run(),
+            ),
         ),
     ]
 }
@@ -143,22 +180,26 @@ fn variable_step_outcomes(
     let pendulum = pendulum();
     let dynamics = Unconstrained::new(&pendulum, |_, _, _| [0.0]);
     let pair = ExplicitPair::Dop853;
-    let taylor = TaylorOptions::with_tolerance(tolerance);
+    let taylor = Taylor::with_tolerance(tolerance);
     vec![
         (
             "DOP853",
-            outcome(integrate::adaptive(
-                &dynamics,
-                start,
-                t_end,
-                pair,
-                options,
-                |_| {},
-            )),
+            outcome(
+                integrate::Integration::new(
+                    &dynamics,
+                    start,
+                    t_end,
+                    integrate::Adaptive {
+                        pair: pair,
+                        options: options,
+                    },
+                )
+                .run(),
+            ),
         ),
         (
             "Taylor",
-            outcome(integrate::taylor(&dynamics, start, t_end, taylor, |_| {})),
+            outcome(integrate::Integration::new(&dynamics, start, t_end, taylor).run()),
         ),
     ]
 }
@@ -213,7 +254,7 @@ fn arguments_an_integration_cannot_start_from_are_errors() {
         assert_refused("first step", dop853.into_iter().take(1).collect());
         let pendulum = pendulum();
         let dynamics = Unconstrained::new(&pendulum, |_, _, _| [0.0]);
-        let step = integrate::rk4_step(&dynamics, &start, h).map_err(|e| e.cause);
+        let step = integrate::Rk4::step(&dynamics, &start, h).map_err(|e| e.cause);
         assert!(
             matches!(step, Err(Failure::InvalidArgument { .. })),
             "{step:?}"
@@ -232,15 +273,28 @@ fn arguments_an_integration_cannot_start_from_are_errors() {
     let dynamics = Unconstrained::new(&pendulum, |_, _, _| [0.0]);
     let unseen = |_: &State<1, 1>| panic!("a refused integration shows no state");
     let refused = [
-        integrate::rk4(&dynamics, start, 0.5, 10, unseen),
-        integrate::adaptive(&dynamics, start, 0.5, ExplicitPair::Dop853, good, unseen),
-        integrate::taylor(
+        integrate::Integration::new(&dynamics, start, 0.5, integrate::Rk4 { steps: 10 })
+            .observe(unseen)
+            .run(),
+        integrate::Integration::new(
             &dynamics,
             start,
             0.5,
-            TaylorOptions::with_tolerance(1e-12),
-            unseen,
-        ),
+            integrate::Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: good,
+            },
+        )
+        .observe(unseen)
+        .run(),
+        integrate::Integration::new(
+            &dynamics,
+            start,
+            0.5,
+            integrate::Taylor::with_tolerance(1e-12),
+        )
+        .observe(unseen)
+        .run(),
     ];
     for result in refused {
         let message = result.unwrap_err().to_string();

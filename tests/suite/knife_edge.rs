@@ -25,7 +25,7 @@
 //!   Gudermannian `gd(u) = atan(sinh u)`, `gd′ = sech`: the sleigh turns
 //!   through a finite angle and goes on straight at the speed `V`.
 
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, State, TaylorOptions, adaptive, taylor};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, ExplicitPair, Integration, State, Taylor};
 use dalembert::{Constrained, Stabilisation};
 use dalembert_fixtures::reference::{assert_close, flat};
 
@@ -100,15 +100,16 @@ fn knife_edge_start() -> State<3, 3> {
     on_the_blade(0.3, -0.7, 0.4, 1.5, 0.8)
 }
 
-/// `integrate::taylor` at 1e-15 on the index-1 form (no projection): after
+/// `Taylor` at 1e-15 on the index-1 form (no projection): after
 /// 10 s (1.3 turns) the state is the closed form's to 1e-12 (to 1e-15
 /// measured), the constraint holding to rounding.
 #[test]
 fn knife_edge_taylor_series_go_round_the_circle() {
     let start = knife_edge_start();
     let dynamics = Constrained::without_inputs(&KNIFE_EDGE, Stabilisation::None);
-    let options = TaylorOptions::with_tolerance(1e-15);
-    let end = taylor(&dynamics, start, 10.0, options, |_| {})
+    let options = Taylor::with_tolerance(1e-15);
+    let end = Integration::new(&dynamics, start, 10.0, options)
+        .run()
         .expect("integrates")
         .end;
     assert_close(
@@ -136,14 +137,17 @@ fn knife_edge_dop853_goes_round_the_circle() {
         let what = format!("DOP853 at {} s", s.t);
         assert_close(&what, &entries(s), &on_the_circle(&start, s.t), 1e-11);
     };
-    let end = adaptive(
+    let end = Integration::new(
         &dynamics,
         start,
         10.0,
-        ExplicitPair::Dop853,
-        options,
-        observe,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .observe(observe)
+    .run()
     .expect("integrates")
     .end;
     assert_eq!(end.t, 10.0);
@@ -193,13 +197,24 @@ fn chaplygin_sleigh_follows_its_closed_form_and_keeps_its_energy() {
             assert!(change.abs() < energy_tol, "{what}: energy {change:e}");
         };
         let dynamics = Constrained::without_inputs(&SLEIGH, Stabilisation::None);
-        let options = TaylorOptions::with_tolerance(1e-15);
-        taylor(&dynamics, start, 60.0, options, |s| check(s, 1e-13, 1e-14)).expect("integrates");
+        let options = Taylor::with_tolerance(1e-15);
+        Integration::new(&dynamics, start, 60.0, options)
+            .observe(|s| check(s, 1e-13, 1e-14))
+            .run()
+            .expect("integrates");
         let options = AdaptiveOptions::with_tolerance(1e-13);
         let dop853 = ExplicitPair::Dop853;
-        adaptive(&dynamics, start, 60.0, dop853, options, |s| {
-            check(s, 1e-11, 1e-12)
-        })
+        Integration::new(
+            &dynamics,
+            start,
+            60.0,
+            Adaptive {
+                pair: dop853,
+                options: options,
+            },
+        )
+        .observe(|s| check(s, 1e-11, 1e-12))
+        .run()
         .expect("integrates");
     }
 }
@@ -241,14 +256,17 @@ fn chaplygin_sleigh_in_kanes_speeds_follows_the_closed_form() {
         v: [0.5, 0.0, 3.0],
     };
     let dynamics = Constrained::without_inputs(&KANE_SLEIGH, Stabilisation::None);
-    let options = TaylorOptions::with_tolerance(1e-15);
+    let options = Taylor::with_tolerance(1e-15);
     let check = |s: &State<3, 3>| {
         let what = format!("at {} s", s.t);
         let reached = [s.q[2], s.v[0], s.v[2]];
         assert_close(&what, &reached, &sleigh_closed_form(&start, s.t), 1e-13);
         assert!(s.v[1].abs() < 1e-14, "{what}: u2 = {:e}", s.v[1]);
     };
-    taylor(&dynamics, kane_start, 60.0, options, check).expect("integrates");
+    Integration::new(&dynamics, kane_start, 60.0, options)
+        .observe(check)
+        .run()
+        .expect("integrates");
 }
 
 /// `linearize` in Kane's speeds, `(x, y, θ)` and `(u1, w)` independent, is

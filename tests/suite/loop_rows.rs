@@ -10,7 +10,9 @@ use crate::redundant_parallelogram::scalar_motion;
 use dalembert::constrained::{
     BARELY_INDEPENDENT, DriftLimits, constrained_accelerations, constraint_drift,
 };
-use dalembert::integrate::{AugmentedLagrangian, Failure, augmented_lagrangian, rk4};
+use dalembert::integrate::{
+    AugmentedLagrangian, AugmentedLagrangianSettings, Failure, Integration, Rk4,
+};
 use dalembert::{Constrained, DynamicsError, Stabilisation, State, energy};
 use dalembert_fixtures::reference::{array, assert_close, assert_near, reference};
 
@@ -78,22 +80,24 @@ fn crank_rocker_turns_its_crank_and_traces_the_coupler_curve_of_the_reference() 
     };
     let dynamics = Constrained::without_inputs(&linkage, projection);
     let (mut drift, mut energy_change, mut seen) = (0.0f64, 0.0f64, 0);
-    rk4(&dynamics, start, 1.0, 10_000, |s| {
-        drift = drift.max(constraint_drift(&linkage, s));
-        let change = energy(&linkage, &s.q, &s.v) - initial_energy;
-        energy_change = energy_change.max(change.abs() / initial_energy);
-        for expected in states {
-            if (s.t - expected["t"].as_f64().unwrap()).abs() < 1e-9 {
-                seen += 1;
-                let at = format!("t = {:.2}", s.t);
-                assert_near(&at, s.q[0], expected["phi"].as_f64().unwrap(), 1e-9);
-                assert_near(&at, s.v[0], expected["phi_dot"].as_f64().unwrap(), 1e-8);
-                let point: [f64; 2] = array(&expected["coupler_point"]);
-                assert_close(&at, &coupler_point(&s.q), &point, 1e-9);
+    Integration::new(&dynamics, start, 1.0, Rk4 { steps: 10_000 })
+        .observe(|s| {
+            drift = drift.max(constraint_drift(&linkage, s));
+            let change = energy(&linkage, &s.q, &s.v) - initial_energy;
+            energy_change = energy_change.max(change.abs() / initial_energy);
+            for expected in states {
+                if (s.t - expected["t"].as_f64().unwrap()).abs() < 1e-9 {
+                    seen += 1;
+                    let at = format!("t = {:.2}", s.t);
+                    assert_near(&at, s.q[0], expected["phi"].as_f64().unwrap(), 1e-9);
+                    assert_near(&at, s.v[0], expected["phi_dot"].as_f64().unwrap(), 1e-8);
+                    let point: [f64; 2] = array(&expected["coupler_point"]);
+                    assert_close(&at, &coupler_point(&s.q), &point, 1e-9);
+                }
             }
-        }
-    })
-    .unwrap();
+        })
+        .run()
+        .unwrap();
     println!("crank-rocker, 1 s: max |φ| {drift:.2e}, max |ΔE|/E {energy_change:.2e}");
     assert_eq!(seen, states.len());
     let last = states.last().unwrap()["phi"].as_f64().unwrap();
@@ -227,12 +231,14 @@ fn sleigh_on_a_circle_mixes_holonomic_and_nonholonomic_rows_with_inputs() {
     let inputs = |t: f64, _: &[f64; 3], _: &[f64; 3]| [u0 * t.sin(), 0.0];
     let dynamics = Constrained::new(&sleigh, inputs, projection);
     let (mut drift, mut slip) = (0.0f64, 0.0f64);
-    let end = rk4(&dynamics, start, 10.0, 10_000, |s| {
-        drift = drift.max(constraint_drift(&sleigh, s));
-        slip = slip.max(sleigh.constraint_velocity(s.t, &s.q, &s.v)[1].abs());
-    })
-    .unwrap()
-    .end;
+    let end = Integration::new(&dynamics, start, 10.0, Rk4 { steps: 10_000 })
+        .observe(|s| {
+            drift = drift.max(constraint_drift(&sleigh, s));
+            slip = slip.max(sleigh.constraint_velocity(s.t, &s.q, &s.v)[1].abs());
+        })
+        .run()
+        .unwrap()
+        .end;
     let t = 10.0f64;
     let theta = theta0 + w0 * t + u0 * (t - t.sin()) / I;
     println!(
@@ -278,10 +284,12 @@ fn parallelogram_four_bar_crosses_its_flat_positions_on_its_branch() {
     let run = |stabilisation| {
         let dynamics = Constrained::without_inputs(&linkage, stabilisation);
         let mut off_branch = 0.0f64;
-        rk4(&dynamics, start, 3.0, 30_000, |s| {
-            off_branch = off_branch.max(s.q[1].abs()).max((s.q[2] - s.q[0]).abs());
-        })
-        .map(|solution| (off_branch, solution.end))
+        Integration::new(&dynamics, start, 3.0, Rk4 { steps: 30_000 })
+            .observe(|s| {
+                off_branch = off_branch.max(s.q[1].abs()).max((s.q[2] - s.q[0]).abs());
+            })
+            .run()
+            .map(|solution| (off_branch, solution.end))
     };
     let projection = Stabilisation::Projection {
         tolerance: 1e-12,
@@ -306,10 +314,12 @@ fn parallelogram_four_bar_crosses_its_flat_positions_on_its_branch() {
         let dynamics = Constrained::without_inputs(&linkage, stabilisation)
             .with_drift_limits(DriftLimits::UNWATCHED);
         let mut off_branch = 0.0f64;
-        rk4(&dynamics, start, 3.0, 30_000, |s| {
-            off_branch = off_branch.max(s.q[1].abs()).max((s.q[2] - s.q[0]).abs());
-        })
-        .map(|_| off_branch)
+        Integration::new(&dynamics, start, 3.0, Rk4 { steps: 30_000 })
+            .observe(|s| {
+                off_branch = off_branch.max(s.q[1].abs()).max((s.q[2] - s.q[0]).abs());
+            })
+            .run()
+            .map(|_| off_branch)
     };
     let jumped = unwatched(Stabilisation::None).unwrap();
     assert!(jumped > 1e-3, "{jumped:e}");
@@ -343,10 +353,20 @@ fn parallelogram_four_bar_crosses_its_flat_positions_on_its_branch() {
     // The augmented Lagrangian crosses, like the projections.
     let dynamics = Constrained::without_inputs(&linkage, Stabilisation::None);
     let mut off_branch = 0.0f64;
-    let settings = AugmentedLagrangian::for_step(1e-4);
-    let end = augmented_lagrangian(&dynamics, start, 3.0, 30_000, settings, |s| {
+    let settings = AugmentedLagrangianSettings::for_step(1e-4);
+    let end = Integration::new(
+        &dynamics,
+        start,
+        3.0,
+        AugmentedLagrangian {
+            steps: 30_000,
+            settings,
+        },
+    )
+    .observe(|s| {
         off_branch = off_branch.max(s.q[1].abs()).max((s.q[2] - s.q[0]).abs());
     })
+    .run()
     .unwrap()
     .end;
     println!(

@@ -23,11 +23,14 @@ fn the_closed_loop_returns_to_upright() {
         v: [0.0; 2],
     };
     let mut largest_force = 0.0_f64;
-    let end = integrate::rk4(&controlled, start, 10.0, 10_000, |s| {
-        largest_force = largest_force.max(feedback(&gain, &s.q, &s.v)[0].abs());
-    })
-    .expect("integrates")
-    .end;
+    let end =
+        integrate::Integration::new(&controlled, start, 10.0, integrate::Rk4 { steps: 10_000 })
+            .observe(|s| {
+                largest_force = largest_force.max(feedback(&gain, &s.q, &s.v)[0].abs());
+            })
+            .run()
+            .expect("integrates")
+            .end;
     let distance = end
         .q
         .iter()
@@ -39,13 +42,13 @@ fn the_closed_loop_returns_to_upright() {
         "the controller acted ({largest_force} N)"
     );
     // Without the controller, the pole falls.
-    let falling = integrate::rk4(
+    let falling = integrate::Integration::new(
         &Unconstrained::new(&CART_POLE, |_, _: &[f64; 2], _: &[f64; 2]| [0.0]),
         start,
         2.0,
-        2_000,
-        |_| {},
+        integrate::Rk4 { steps: 2_000 },
     )
+    .run()
     .expect("integrates")
     .end;
     assert!(falling.q[1].abs() > 1.0, "the open loop falls: {falling:?}");

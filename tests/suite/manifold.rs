@@ -14,8 +14,8 @@ use std::ops::ControlFlow;
 
 use dalembert::MultibodySystem;
 use dalembert::integrate::{
-    AdaptiveOptions, ExplicitPair, GaussLegendre, State, Unconstrained, adaptive, adaptive_dense,
-    gauss_legendre, rk4, sdirk,
+    Adaptive, AdaptiveOptions, ExplicitPair, Gauss, GaussLegendre, Integration, Rk4, Sdirk, State,
+    Unconstrained,
 };
 
 /// A quaternion `(x, y, z, w)`, Pinocchio's order.
@@ -192,7 +192,10 @@ type FixedStep = fn(&FreeBody, State<4, 3>, f64, u64) -> State<4, 3>;
 
 fn by_rk4(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> State<4, 3> {
     let dynamics = Unconstrained::without_inputs(body);
-    rk4(&dynamics, start, t_end, steps, |_| {}).unwrap().end
+    Integration::new(&dynamics, start, t_end, Rk4 { steps })
+        .run()
+        .unwrap()
+        .end
 }
 
 fn by_gauss(
@@ -203,9 +206,18 @@ fn by_gauss(
     steps: u64,
 ) -> State<4, 3> {
     let dynamics = Unconstrained::without_inputs(body);
-    gauss_legendre(&dynamics, start, t_end, steps, method, |_| {})
-        .unwrap()
-        .end
+    Integration::new(
+        &dynamics,
+        start,
+        t_end,
+        Gauss {
+            rule: method,
+            steps,
+        },
+    )
+    .run()
+    .unwrap()
+    .end
 }
 
 fn by_gauss4(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> State<4, 3> {
@@ -218,7 +230,10 @@ fn by_gauss6(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> Sta
 
 fn by_sdirk(body: &FreeBody, start: State<4, 3>, t_end: f64, steps: u64) -> State<4, 3> {
     let dynamics = Unconstrained::without_inputs(body);
-    sdirk(&dynamics, start, t_end, steps, |_| {}).unwrap().end
+    Integration::new(&dynamics, start, t_end, Sdirk { steps })
+        .run()
+        .unwrap()
+        .end
 }
 
 /// The observed order of a fixed-step method on the axisymmetric body: the
@@ -257,9 +272,18 @@ fn the_adaptive_pairs_follow_the_closed_form_of_free_precession() {
         (ExplicitPair::Dop853, 1e-12, 1e-10),
     ] {
         let options = AdaptiveOptions::with_tolerance(tolerance);
-        let end = adaptive(&dynamics, start, 10.0, pair, options, |_| {})
-            .unwrap()
-            .end;
+        let end = Integration::new(
+            &dynamics,
+            start,
+            10.0,
+            Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .run()
+        .unwrap()
+        .end;
         let error = distance(&end, &top_at(&start, 10.0));
         assert!(error < bound, "{pair:?}: error {error}");
     }
@@ -269,10 +293,19 @@ fn the_adaptive_pairs_follow_the_closed_form_of_free_precession() {
 fn steps_at(pair: ExplicitPair, tolerance: f64) -> u64 {
     let dynamics = Unconstrained::without_inputs(&TUMBLER);
     let options = AdaptiveOptions::with_tolerance(tolerance);
-    adaptive(&dynamics, SPIN, 10.0, pair, options, |_| {})
-        .unwrap()
-        .statistics
-        .accepted_steps
+    Integration::new(
+        &dynamics,
+        SPIN,
+        10.0,
+        Adaptive {
+            pair: pair,
+            options: options,
+        },
+    )
+    .run()
+    .unwrap()
+    .statistics
+    .accepted_steps
 }
 
 #[test]
@@ -309,14 +342,17 @@ fn the_dzhanibekov_tumbler_keeps_its_energy_and_angular_momentum() {
         }
     };
     let options = AdaptiveOptions::with_tolerance(1e-12);
-    let end = adaptive(
+    let end = Integration::new(
         &dynamics,
         SPIN,
         100.0,
-        ExplicitPair::Dop853,
-        options,
-        observe,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .observe(observe)
+    .run()
     .unwrap()
     .end;
     assert!(energy_error < 1e-9, "energy {energy_error}");
@@ -369,22 +405,25 @@ fn dense_output_follows_free_precession_between_steps() {
     let dynamics = Unconstrained::without_inputs(&TOP);
     let options = AdaptiveOptions::with_tolerance(1e-12);
     let (mut worst, mut unit) = (0.0f64, 0.0f64);
-    adaptive_dense(
+    Integration::new(
         &dynamics,
         start,
         5.0,
-        ExplicitPair::Dop853,
-        options,
-        |step| {
-            let (a, b) = (step.start().t, step.end().t);
-            for k in 1..4 {
-                let s = step.state_at(a + (b - a) * f64::from(k) / 4.0);
-                worst = worst.max(distance(&s, &top_at(&start, s.t)));
-                unit = unit.max((norm(&s.q) - 1.0).abs());
-            }
-            ControlFlow::Continue(())
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
         },
     )
+    .dense(|step| {
+        let (a, b) = (step.start().t, step.end().t);
+        for k in 1..4 {
+            let s = step.state_at(a + (b - a) * f64::from(k) / 4.0);
+            worst = worst.max(distance(&s, &top_at(&start, s.t)));
+            unit = unit.max((norm(&s.q) - 1.0).abs());
+        }
+        ControlFlow::Continue(())
+    })
+    .run()
     .unwrap();
     assert!(worst < 1e-10, "{worst:e}");
     assert!(

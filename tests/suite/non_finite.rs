@@ -28,7 +28,7 @@ fn non_finite_parameters_are_errors() {
             Err(DynamicsError::NonFiniteEquations)
         );
         let state = State { t: 0.0, q, v: qd };
-        let error = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3)
+        let error = integrate::Rk4::step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3)
             .unwrap_err();
         assert_eq!(
             error.cause,
@@ -61,7 +61,7 @@ fn non_finite_parameters_are_errors() {
             max_iterations: 10,
         };
         assert!(
-            integrate::rk4_step(
+            integrate::Rk4::step(
                 &Constrained::without_inputs(&constrained, projection),
                 &start,
                 1e-3
@@ -114,9 +114,9 @@ fn non_finite_states_and_inputs_are_errors() {
             v: [0.0; 2],
         };
         assert!(
-            integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3).is_err()
+            integrate::Rk4::step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3).is_err()
         );
-        let step = integrate::rk4_step(
+        let step = integrate::Rk4::step(
             &Unconstrained::without_inputs(&pendulum),
             &State { t: 0.0, ..state },
             bad,

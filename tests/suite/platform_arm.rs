@@ -10,7 +10,7 @@
 //! constraint's velocity form) is refused rather than left to drift.
 
 use dalembert::constrained::ConstraintSolver;
-use dalembert::integrate::{AdaptiveOptions, DriftLevel, ExplicitPair, adaptive};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, DriftLevel, ExplicitPair, Integration};
 use dalembert::{Constrained, MultibodySystem, Stabilisation, State, Unconstrained};
 
 dalembert::dalembert! {
@@ -136,9 +136,18 @@ fn both_spellings_move_alike() {
         q: q0,
         v: v0,
     };
-    let end = adaptive(&driven, start, 3.0, ExplicitPair::Dop853, options, |_| {})
-        .expect("integrates")
-        .end;
+    let end = Integration::new(
+        &driven,
+        start,
+        3.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .run()
+    .expect("integrates")
+    .end;
     let (qc, vc) = on_constraint(t0, q0, v0);
     let held = Constrained::without_inputs(&CONSTRAINED, Stabilisation::None);
     let start = State {
@@ -146,9 +155,18 @@ fn both_spellings_move_alike() {
         q: qc,
         v: vc,
     };
-    let held_end = adaptive(&held, start, 3.0, ExplicitPair::Dop853, options, |_| {})
-        .expect("integrates")
-        .end;
+    let held_end = Integration::new(
+        &held,
+        start,
+        3.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .run()
+    .expect("integrates")
+    .end;
     let (qe, ve) = on_constraint(3.0, end.q, end.v);
     for i in 0..3 {
         assert!(
@@ -176,9 +194,19 @@ fn the_arm_on_the_driven_platform_keeps_its_jacobi_integral() {
     let mut worst: f64 = 0.0;
     let options = AdaptiveOptions::with_tolerance(1e-13);
     let dynamics = Unconstrained::without_inputs(&DRIVEN);
-    adaptive(&dynamics, start, 4.0, ExplicitPair::Dop853, options, |s| {
+    Integration::new(
+        &dynamics,
+        start,
+        4.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .observe(|s| {
         worst = worst.max((jacobi(s) - h0).abs());
     })
+    .run()
     .expect("integrates");
     assert!(worst < 1e-11 * h0.abs().max(1.0), "{worst:e}");
 }
@@ -194,8 +222,17 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
     };
     let held = Constrained::without_inputs(&CONSTRAINED, Stabilisation::None);
     let options = AdaptiveOptions::with_tolerance(1e-10);
-    let error =
-        adaptive(&held, start, 3.0, ExplicitPair::Dop853, options, |_| {}).expect_err("refused");
+    let error = Integration::new(
+        &held,
+        start,
+        3.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .run()
+    .expect_err("refused");
     assert_eq!(error.t, 0.5);
     let message = error.to_string();
     assert!(message.contains("constraint row 0"), "{message}");
@@ -212,7 +249,13 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         }
         other => panic!("expected the drift of row 0's velocity form, got {other:?}"),
     }
-    let rk4 = dalembert::integrate::rk4(&held, start, 3.0, 100, |_| {});
+    let rk4 = dalembert::integrate::Integration::new(
+        &held,
+        start,
+        3.0,
+        dalembert::integrate::Rk4 { steps: 100 },
+    )
+    .run();
     assert!(rk4.is_err(), "RK4 refuses it too");
     // Projected onto the constraints first, it starts, and moves as the
     // driven spelling does.
@@ -220,7 +263,17 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         .project_onto_constraints(&CONSTRAINED, &start, 1e-14, 5)
         .expect("projects");
     assert!((projected.v[0] - CONSTRAINED.Omega).abs() < 1e-14);
-    adaptive(&held, projected, 1.0, ExplicitPair::Dop853, options, |_| {}).expect("starts");
+    Integration::new(
+        &held,
+        projected,
+        1.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .run()
+    .expect("starts");
     // So does an integration that projects, whose first step moves it
     // onto the constraints; Baumgarte's terms would pull the speed in only
     // over time, off the constraints meanwhile, and are refused too.
@@ -229,21 +282,35 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         max_iterations: 5,
     };
     let stabilised = Constrained::without_inputs(&CONSTRAINED, projecting);
-    adaptive(
+    Integration::new(
         &stabilised,
         start,
         1.0,
-        ExplicitPair::Dop853,
-        options,
-        |_| {},
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .run()
     .expect("starts");
     let baumgarte = Stabilisation::Baumgarte {
         alpha: 10.0,
         beta: 10.0,
     };
     let pulled = Constrained::without_inputs(&CONSTRAINED, baumgarte);
-    assert!(adaptive(&pulled, start, 1.0, ExplicitPair::Dop853, options, |_| {}).is_err());
+    assert!(
+        Integration::new(
+            &pulled,
+            start,
+            1.0,
+            Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options
+            }
+        )
+        .run()
+        .is_err()
+    );
 }
 
 #[test]

@@ -7,8 +7,8 @@ use dalembert::constrained::{
     ConstraintSolver, DRIFT_LIMIT, DriftLimits, constrained_accelerations, constraint_drift,
 };
 use dalembert::integrate::{
-    AdaptiveOptions, AugmentedLagrangian, ExplicitPair, Failure, GaussLegendre, adaptive,
-    augmented_lagrangian, gauss_legendre, rk4, sdirk,
+    Adaptive, AdaptiveOptions, AugmentedLagrangian, AugmentedLagrangianSettings, ExplicitPair,
+    Failure, Gauss, GaussLegendre, Integration, Rk4, Sdirk,
 };
 use dalembert::{Constrained, DynamicsError, Stabilisation, State, energy};
 use dalembert_fixtures::reference::assert_close;
@@ -205,13 +205,24 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
     for (name, stabilisation) in [("Baumgarte", baumgarte), ("projection", projection)] {
         let dynamics = Constrained::without_inputs(&p, stabilisation);
         let mut run = Run::default();
-        rk4(&dynamics, start, 10.0, 10_000, |s| run.see(s, e0)).unwrap();
+        Integration::new(&dynamics, start, 10.0, Rk4 { steps: 10_000 })
+            .observe(|s| run.see(s, e0))
+            .run()
+            .unwrap();
         check(&format!("RK4, {name}"), run, expected, [2e-9, 1e-13, 1e-10]);
         let mut run = Run::default();
         let options = AdaptiveOptions::with_tolerance(1e-10);
-        adaptive(&dynamics, start, 10.0, ExplicitPair::Dop853, options, |s| {
-            run.see(s, e0)
-        })
+        Integration::new(
+            &dynamics,
+            start,
+            10.0,
+            Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
+        )
+        .observe(|s| run.see(s, e0))
+        .run()
         .unwrap();
         check(
             &format!("DOP853, {name}"),
@@ -221,14 +232,17 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
         );
         let mut run = Run::default();
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        adaptive(
+        Integration::new(
             &dynamics,
             start,
             10.0,
-            ExplicitPair::DormandPrince54,
-            options,
-            |s| run.see(s, e0),
+            Adaptive {
+                pair: ExplicitPair::DormandPrince54,
+                options: options,
+            },
         )
+        .observe(|s| run.see(s, e0))
+        .run()
         .unwrap();
         check(
             &format!("DOPRI5, {name}"),
@@ -237,9 +251,17 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
             [3e-5, 1e-13, 5e-6],
         );
         let mut run = Run::default();
-        gauss_legendre(&dynamics, start, 10.0, 2_000, GaussLegendre::Order4, |s| {
-            run.see(s, e0)
-        })
+        Integration::new(
+            &dynamics,
+            start,
+            10.0,
+            Gauss {
+                rule: GaussLegendre::Order4,
+                steps: 2_000,
+            },
+        )
+        .observe(|s| run.see(s, e0))
+        .run()
         .unwrap();
         check(
             &format!("Gauss 4, {name}"),
@@ -248,7 +270,10 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
             [2e-7, 1e-13, 5e-9],
         );
         let mut run = Run::default();
-        sdirk(&dynamics, start, 10.0, 10_000, |s| run.see(s, e0)).unwrap();
+        Integration::new(&dynamics, start, 10.0, Sdirk { steps: 10_000 })
+            .observe(|s| run.see(s, e0))
+            .run()
+            .unwrap();
         check(
             &format!("SDIRK, {name}"),
             run,
@@ -258,8 +283,19 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
     }
     let dynamics = Constrained::without_inputs(&p, Stabilisation::None);
     let mut run = Run::default();
-    let settings = AugmentedLagrangian::for_step(1e-3);
-    augmented_lagrangian(&dynamics, start, 10.0, 10_000, settings, |s| run.see(s, e0)).unwrap();
+    let settings = AugmentedLagrangianSettings::for_step(1e-3);
+    Integration::new(
+        &dynamics,
+        start,
+        10.0,
+        AugmentedLagrangian {
+            steps: 10_000,
+            settings,
+        },
+    )
+    .observe(|s| run.see(s, e0))
+    .run()
+    .unwrap();
     check("augmented Lagrangian", run, expected, [1e-3, 1e-10, 1e-5]);
     // Holding the energy too, and on the sparse solver.
     let held = Stabilisation::EnergyProjection {
@@ -269,7 +305,10 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
     };
     let dynamics = Constrained::without_inputs(&p, held);
     let mut run = Run::default();
-    rk4(&dynamics, start, 10.0, 10_000, |s| run.see(s, e0)).unwrap();
+    Integration::new(&dynamics, start, 10.0, Rk4 { steps: 10_000 })
+        .observe(|s| run.see(s, e0))
+        .run()
+        .unwrap();
     check(
         "RK4, energy projection",
         run,
@@ -279,7 +318,10 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
     let dynamics =
         Constrained::without_inputs(&p, projection).with_solver(ConstraintSolver::Sparse);
     let mut run = Run::default();
-    rk4(&dynamics, start, 10.0, 10_000, |s| run.see(s, e0)).unwrap();
+    Integration::new(&dynamics, start, 10.0, Rk4 { steps: 10_000 })
+        .observe(|s| run.see(s, e0))
+        .run()
+        .unwrap();
     check(
         "RK4, projection, sparse",
         run,
@@ -303,7 +345,9 @@ fn redundant_parallelogram_unstabilised_stops_at_its_drift_limit() {
     let e0 = energy(&p, &start.q, &start.v);
     let unwatched = Constrained::without_inputs(&p, Stabilisation::None)
         .with_drift_limits(DriftLimits::UNWATCHED);
-    let error = rk4(&unwatched, start, 10.0, 10_000, |_| {}).unwrap_err();
+    let error = Integration::new(&unwatched, start, 10.0, Rk4 { steps: 10_000 })
+        .run()
+        .unwrap_err();
     assert!(
         matches!(
             error.cause,
@@ -317,21 +361,27 @@ fn redundant_parallelogram_unstabilised_stops_at_its_drift_limit() {
     );
     let options = AdaptiveOptions::with_tolerance(1e-10);
     let mut run = Run::default();
-    adaptive(
+    Integration::new(
         &unwatched,
         start,
         10.0,
-        ExplicitPair::Dop853,
-        options,
-        |s| run.see(s, e0),
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .observe(|s| run.see(s, e0))
+    .run()
     .unwrap();
     println!("unwatched DOP853 at 1e-10: {run:?}");
     assert!(run.energy_change > 0.2, "{run:?}");
 
     let watched = Constrained::without_inputs(&p, Stabilisation::None);
     let mut last = start;
-    let error = rk4(&watched, start, 10.0, 10_000, |s| last = *s).unwrap_err();
+    let error = Integration::new(&watched, start, 10.0, Rk4 { steps: 10_000 })
+        .observe(|s| last = *s)
+        .run()
+        .unwrap_err();
     println!("unstabilised RK4: {error}");
     let Failure::ConstraintDrift {
         row,
@@ -351,9 +401,17 @@ fn redundant_parallelogram_unstabilised_stops_at_its_drift_limit() {
     assert_eq!((error.t, error.q), (last.t, last.q));
     assert!(constraint_drift(&p, &last) <= DRIFT_LIMIT);
     let mut last = start;
-    let error = adaptive(&watched, start, 10.0, ExplicitPair::Dop853, options, |s| {
-        last = *s
-    })
+    let error = Integration::new(
+        &watched,
+        start,
+        10.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .observe(|s| last = *s)
+    .run()
     .unwrap_err();
     println!("unstabilised DOP853 at 1e-10: {error} ({level:?} for RK4)");
     let at = match error.cause {

@@ -37,7 +37,7 @@
 //! (a purely imaginary pair) for `Ω² > g / 3r`, unstable (a positive real
 //! root) below; every other eigenvalue is zero.
 
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, State, TaylorOptions, adaptive, taylor};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, ExplicitPair, Integration, State, Taylor};
 use dalembert::{Constrained, Stabilisation, energy};
 use dalembert_fixtures::reference::{assert_close, assert_near_all, flat};
 use nalgebra::SMatrix;
@@ -147,7 +147,7 @@ fn lean_is_stable_above_the_closed_form_spin_rate() {
     }
 }
 
-/// From [`leaning`], on the index-1 form for 3 s: `integrate::taylor` at 1e-15 and DOP853 at 1e-14 reach
+/// From [`leaning`], on the index-1 form for 3 s: `Taylor` at 1e-15 and DOP853 at 1e-14 reach
 /// the same state to 1e-11, both rolling without slipping (the velocity
 /// form of the rows) and keeping the energy (the rows do no work) to
 /// 1e-12.
@@ -157,14 +157,24 @@ fn a_leaning_disc_rolls_alike_by_taylor_and_dop853() {
     let start = State { t: 0.0, q, v };
     let dynamics = Constrained::without_inputs(&DISC, Stabilisation::None);
     let initial = energy(&DISC, &start.q, &start.v);
-    let options = TaylorOptions::with_tolerance(1e-15);
-    let by_taylor = taylor(&dynamics, start, 3.0, options, |_| {})
+    let options = Taylor::with_tolerance(1e-15);
+    let by_taylor = Integration::new(&dynamics, start, 3.0, options)
+        .run()
         .expect("integrates")
         .end;
     let options = AdaptiveOptions::with_tolerance(1e-14);
-    let by_dop853 = adaptive(&dynamics, start, 3.0, ExplicitPair::Dop853, options, |_| {})
-        .expect("integrates")
-        .end;
+    let by_dop853 = Integration::new(
+        &dynamics,
+        start,
+        3.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .run()
+    .expect("integrates")
+    .end;
     let state = |s: &State<6, 6>| [s.q, s.v].concat();
     assert_close(
         "Taylor against DOP853",

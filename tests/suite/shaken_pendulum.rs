@@ -9,7 +9,7 @@
 //! from `θ(0) = 0`, `θ̇(0) = θ̇₀` is
 //! `θ = K sin(w t) + (θ̇₀ − K w)/ω₀ sin(ω₀ t)`, `K = (A w²/ℓ)/(ω₀² − w²)`.
 
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, ExplicitPair, Integration};
 use dalembert::{MultibodySystem, State, Unconstrained};
 use dalembert_codegen::testing::{Interpreter, Route, Sample};
 
@@ -124,10 +124,20 @@ fn small_shaking_follows_the_linearised_response() {
         absolute_tolerance: 1e-22,
         ..AdaptiveOptions::with_tolerance(1e-13)
     };
-    let end = adaptive(&dynamics, start, 10.0, ExplicitPair::Dop853, options, |s| {
+    let end = Integration::new(
+        &dynamics,
+        start,
+        10.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .observe(|s| {
         worst = worst.max((s.q[0] - closed(s.t)).abs());
         seen += 1;
     })
+    .run()
     .expect("integrates")
     .end;
     assert!(seen > 10, "{seen} states");

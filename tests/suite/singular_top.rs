@@ -5,7 +5,7 @@
 //! start — instead of blaming `phi` for having no inertia of its own. A
 //! body that really has no inertia about an axis is still named alone.
 
-use dalembert::integrate::rk4;
+use dalembert::integrate::{Integration, Rk4};
 use dalembert::{DynamicsError, State, Unconstrained};
 
 dalembert::dalembert! {
@@ -78,7 +78,14 @@ fn the_upright_top_names_the_two_angles_that_turn_about_one_axis() {
         q,
         v: [0.0, 0.0, 30.0],
     };
-    let stopped = rk4(&Unconstrained::without_inputs(&TOP), start, 1.0, 10, |_| {}).unwrap_err();
+    let stopped = Integration::new(
+        &Unconstrained::without_inputs(&TOP),
+        start,
+        1.0,
+        Rk4 { steps: 10 },
+    )
+    .run()
+    .unwrap_err();
     assert_eq!(stopped.t, 0.0);
     assert!(stopped.to_string().contains("`psi` and `phi`"), "{stopped}");
 }

@@ -12,7 +12,7 @@
 
 use std::f64::consts::PI;
 
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, ExplicitPair, Integration};
 use dalembert::{MultibodySystem, State, Unconstrained};
 
 dalembert::dalembert! {
@@ -99,17 +99,20 @@ fn the_rest_angle_is_stable_with_the_closed_form_frequency() {
     let jacobi = |s: &State<1, 1>| dalembert::jacobi_integral(&HOOP, s.t, &s.q, &s.v);
     let (h0, mut worst_jacobi) = (jacobi(&start), 0.0_f64);
     let options = AdaptiveOptions::with_tolerance(1e-13);
-    let end = adaptive(
+    let end = Integration::new(
         &dynamics,
         start,
         period,
-        ExplicitPair::Dop853,
-        options,
-        |s| {
-            farthest = farthest.max((s.q[0] - rest).abs());
-            worst_jacobi = worst_jacobi.max((jacobi(s) - h0).abs());
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
         },
     )
+    .observe(|s| {
+        farthest = farthest.max((s.q[0] - rest).abs());
+        worst_jacobi = worst_jacobi.max((jacobi(s) - h0).abs());
+    })
+    .run()
     .expect("integrates")
     .end;
     assert!(
@@ -142,9 +145,18 @@ fn the_bottom_is_unstable_with_the_closed_form_exponent() {
     };
     let dynamics = Unconstrained::without_inputs(&HOOP);
     let options = AdaptiveOptions::with_tolerance(1e-14);
-    let end = adaptive(&dynamics, start, 2.0, ExplicitPair::Dop853, options, |_| {})
-        .expect("integrates")
-        .end;
+    let end = Integration::new(
+        &dynamics,
+        start,
+        2.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .run()
+    .expect("integrates")
+    .end;
     let expected = 1e-9 * (exponent * 2.0).cosh();
     assert!(
         (end.q[0] - expected).abs() < 1e-6 * expected,
@@ -166,11 +178,21 @@ fn energy_is_not_conserved_but_the_jacobi_integral_is() {
     let (h0, e0) = (jacobi(&start), energy(&start));
     let (mut worst_jacobi, mut widest_energy, mut seen) = (0.0_f64, 0.0_f64, 0);
     let options = AdaptiveOptions::with_tolerance(1e-13);
-    adaptive(&dynamics, start, 5.0, ExplicitPair::Dop853, options, |s| {
+    Integration::new(
+        &dynamics,
+        start,
+        5.0,
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .observe(|s| {
         worst_jacobi = worst_jacobi.max((jacobi(s) - h0).abs());
         widest_energy = widest_energy.max((energy(s) - e0).abs());
         seen += 1;
     })
+    .run()
     .expect("integrates");
     assert!(seen > 10);
     // T₂ − T₀ + V: ½ m R² θ̇² − ½ m R² W² sin²θ − m g R cos θ.

@@ -51,35 +51,42 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
     let dynamics = Unconstrained::without_inputs(&CHAOTIC);
     let steps = |h: f64| (HORIZON / h).round() as u64;
     let rk4 = energy_errors(|observe| {
-        integrate::rk4(
+        integrate::Integration::new(
             &dynamics,
             CHAOTIC_START,
             CHAOTIC_START.t + HORIZON,
-            steps(5e-3),
-            observe,
+            integrate::Rk4 { steps: steps(5e-3) },
         )
+        .observe(observe)
+        .run()
     });
     let dop853 = energy_errors(|observe| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        integrate::adaptive(
+        integrate::Integration::new(
             &dynamics,
             CHAOTIC_START,
             HORIZON,
-            ExplicitPair::Dop853,
-            options,
-            observe,
+            integrate::Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
         )
+        .observe(observe)
+        .run()
     });
     let gauss = energy_errors(|observe| {
         let method = GaussLegendre::Order4;
-        integrate::gauss_legendre(
+        integrate::Integration::new(
             &dynamics,
             CHAOTIC_START,
             CHAOTIC_START.t + HORIZON,
-            steps(1e-2),
-            method,
-            observe,
+            integrate::Gauss {
+                rule: method,
+                steps: steps(1e-2),
+            },
         )
+        .observe(observe)
+        .run()
     });
     // Measured (10³ s | 10⁴ s): RK4 3.8e-4 → 3.8e-3 | 3.8e-3 → 3.9e-2;
     // DOP853 3.3e-6 → 3.3e-5 | 3.3e-5 → 3.2e-4 (2.6e-6 → 3.7e-5 with the
@@ -109,7 +116,16 @@ fn projection_holds_the_drift_of_the_adaptive_pair_on_the_slider_crank() {
     let drift_after_two_seconds = |stabilisation| {
         let dynamics = Constrained::new(&crank, |_, _, _| [0.0], stabilisation);
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        let end = integrate::adaptive(&dynamics, start, 2.0, ExplicitPair::Dop853, options, |_| {});
+        let end = integrate::Integration::new(
+            &dynamics,
+            start,
+            2.0,
+            integrate::Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
+        )
+        .run();
         constraint_drift(&crank, &end.unwrap().end)
     };
     let free = drift_after_two_seconds(Stabilisation::None);
@@ -131,14 +147,16 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
     let soft = Unconstrained::without_inputs(&SOFT);
     let options = AdaptiveOptions::with_tolerance(1e-6);
     let dop853 = |dynamics: &_| {
-        integrate::adaptive(
+        integrate::Integration::new(
             dynamics,
             STIFF_START,
             1.0,
-            ExplicitPair::Dop853,
-            options,
-            |_| {},
+            integrate::Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
         )
+        .run()
         .unwrap()
     };
     let explicit = dop853(&stiff);
@@ -155,13 +173,15 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
 
     // RK4 is stable below h ≈ 2.8/ω and blows up above it.
     let rk4 = |h: f64| {
-        integrate::rk4(
+        integrate::Integration::new(
             &stiff,
             STIFF_START,
             STIFF_START.t + 1.0,
-            (1.0 / h).round() as u64,
-            |_| {},
+            integrate::Rk4 {
+                steps: (1.0 / h).round() as u64,
+            },
         )
+        .run()
     };
     // Stable, it follows the slow motion, as SDIRK below: the fast mode
     // (≈ 1e-3 rad/s in the speeds) is resolved by neither RK4 at this step
@@ -173,7 +193,14 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
     assert!(unstable.t < 0.1, "{unstable}");
 
     // SDIRK at a twentieth of the steps stays on the slow motion.
-    let implicit = integrate::sdirk(&stiff, STIFF_START, STIFF_START.t + 1.0, 100, |_| {}).unwrap();
+    let implicit = integrate::Integration::new(
+        &stiff,
+        STIFF_START,
+        STIFF_START.t + 1.0,
+        integrate::Sdirk { steps: 100 },
+    )
+    .run()
+    .unwrap();
     assert!(
         state_error(&implicit.end, &explicit.end) < 1e-3,
         "{implicit:?}"
@@ -190,23 +217,43 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
     // the adaptive pairs, the first stage of the fifth step for Gauss.
     let gauss = |method, first_node: f64| {
         let h = 0.5 / (4.0 + first_node);
-        integrate::gauss_legendre(
+        integrate::Integration::new(
             &dynamics,
             TOWARDS_AXIS,
             TOWARDS_AXIS.t + 10.0 * h,
-            10,
-            method,
-            finite,
+            integrate::Gauss {
+                rule: method,
+                steps: 10,
+            },
         )
+        .observe(finite)
+        .run()
     };
     let adaptive = |pair| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        integrate::adaptive(&dynamics, TOWARDS_AXIS, 0.5, pair, options, finite)
+        integrate::Integration::new(
+            &dynamics,
+            TOWARDS_AXIS,
+            0.5,
+            integrate::Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .observe(finite)
+        .run()
     };
     let failures = [
         (
             "RK4",
-            integrate::rk4(&dynamics, TOWARDS_AXIS, TOWARDS_AXIS.t + 1.0, 8, finite),
+            integrate::Integration::new(
+                &dynamics,
+                TOWARDS_AXIS,
+                TOWARDS_AXIS.t + 1.0,
+                integrate::Rk4 { steps: 8 },
+            )
+            .observe(finite)
+            .run(),
         ),
         ("DOPRI5", adaptive(ExplicitPair::DormandPrince54)),
         ("DOP853", adaptive(ExplicitPair::Dop853)),
@@ -221,7 +268,14 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
         ),
         (
             "SDIRK",
-            integrate::sdirk(&dynamics, TOWARDS_AXIS, TOWARDS_AXIS.t + 1.0, 8, finite),
+            integrate::Integration::new(
+                &dynamics,
+                TOWARDS_AXIS,
+                TOWARDS_AXIS.t + 1.0,
+                integrate::Sdirk { steps: 8 },
+            )
+            .observe(finite)
+            .run(),
         ),
     ];
     for (name, result) in failures {
@@ -254,32 +308,38 @@ fn chaotic_trajectories_one_e_minus_ten_apart_part_after_about_nine_seconds() {
     let (h, steps) = (2e-3, 6_000);
     let mut first = Vec::with_capacity(steps + 1);
     let method = GaussLegendre::Order6;
-    integrate::gauss_legendre(
+    integrate::Integration::new(
         &dynamics,
         CHAOTIC_START,
         CHAOTIC_START.t + steps as f64 * h,
-        steps as u64,
-        method,
-        |s| first.push(*s),
+        integrate::Gauss {
+            rule: method,
+            steps: steps as u64,
+        },
     )
+    .observe(|s| first.push(*s))
+    .run()
     .unwrap();
     let mut nudged = CHAOTIC_START;
     nudged.q[0] += 1e-10;
     let mut parted = None;
     let mut index = 0;
-    integrate::gauss_legendre(
+    integrate::Integration::new(
         &dynamics,
         nudged,
         nudged.t + steps as f64 * h,
-        steps as u64,
-        method,
-        |s| {
-            if parted.is_none() && state_error(s, &first[index]) > 1e-3 {
-                parted = Some(s.t);
-            }
-            index += 1;
+        integrate::Gauss {
+            rule: method,
+            steps: steps as u64,
         },
     )
+    .observe(|s| {
+        if parted.is_none() && state_error(s, &first[index]) > 1e-3 {
+            parted = Some(s.t);
+        }
+        index += 1;
+    })
+    .run()
     .unwrap();
     // Measured: 8.75 s (Gauss 6, h = 1 ms); the reference README's
     // amplification of 1.3e7 by t = 10 puts it at about 9 s.

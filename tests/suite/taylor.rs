@@ -7,9 +7,7 @@
 
 use std::f64::consts::PI;
 
-use dalembert::integrate::{
-    Crossing, Event, State, TaylorOptions, Unconstrained, taylor, taylor_dense, taylor_with_events,
-};
+use dalembert::integrate::{Crossing, Event, Integration, State, Taylor, Unconstrained};
 use dalembert_fixtures::stability::chaotic_reference;
 use dalembert_generated::taylor_double_pendulum::TaylorDoublePendulum;
 use dalembert_generated::taylor_functions::TaylorFunctions;
@@ -153,15 +151,10 @@ fn free_precession_is_a_uniform_turn() {
         q: q0,
         v: v0,
     };
-    let end = taylor(
-        &dynamics,
-        start,
-        10.0,
-        TaylorOptions::with_tolerance(1e-15),
-        |_| {},
-    )
-    .expect("integrates")
-    .end;
+    let end = Integration::new(&dynamics, start, 10.0, Taylor::with_tolerance(1e-15))
+        .run()
+        .expect("integrates")
+        .end;
     let expected = [0.1 + 10.0 * psi_dot, theta, -0.2 + 10.0 * phi_dot];
     for i in 0..3 {
         close("q", end.q[i], expected[i], 1e-13);
@@ -186,14 +179,9 @@ fn the_chaotic_pendulum_reaches_its_reference() {
         q: [2.0, 2.0],
         v: [0.0, 0.0],
     };
-    let solution = taylor(
-        &dynamics,
-        start,
-        reference.t,
-        TaylorOptions::with_tolerance(1e-16),
-        |_| {},
-    )
-    .expect("integrates");
+    let solution = Integration::new(&dynamics, start, reference.t, Taylor::with_tolerance(1e-16))
+        .run()
+        .expect("integrates");
     let end = solution.end;
     let error = end
         .q
@@ -223,8 +211,9 @@ fn oscillating_pendulum() -> (TaylorDoublePendulum, State<2, 2>) {
 fn energy_drift(t_end: f64) -> f64 {
     let (pendulum, start) = oscillating_pendulum();
     let dynamics = Unconstrained::without_inputs(&pendulum);
-    let options = TaylorOptions::with_tolerance(1e-16);
-    let end = taylor(&dynamics, start, t_end, options, |_| {})
+    let options = Taylor::with_tolerance(1e-16);
+    let end = Integration::new(&dynamics, start, t_end, options)
+        .run()
         .expect("integrates")
         .end;
     let energy = |s: &State<2, 2>| dalembert::energy(&pendulum, &s.q, &s.v);
@@ -261,12 +250,8 @@ fn dense_output_is_the_closed_form_between_steps() {
         v: [0.0],
     };
     let mut checked = 0;
-    taylor_dense(
-        &dynamics,
-        start,
-        5.0,
-        TaylorOptions::with_tolerance(1e-15),
-        |step| {
+    Integration::new(&dynamics, start, 5.0, Taylor::with_tolerance(1e-15))
+        .dense(|step| {
             let (a, b) = (step.start().t, step.end().t);
             for theta in [0.25, 0.5, 0.9] {
                 let t = a + theta * (b - a);
@@ -276,9 +261,9 @@ fn dense_output_is_the_closed_form_between_steps() {
                 checked += 1;
             }
             std::ops::ControlFlow::Continue(())
-        },
-    )
-    .expect("integrates");
+        })
+        .run()
+        .expect("integrates");
     assert!(checked >= 6, "{checked} points");
 }
 
@@ -293,11 +278,13 @@ fn events_are_located_on_the_polynomial() {
         q: [0.3],
         v: [0.0],
     };
-    let options = TaylorOptions::with_tolerance(1e-15);
+    let options = Taylor::with_tolerance(1e-15);
     let through_zero = |_: f64, q: &[f64; 1], _: &[f64; 1]| q[0];
     let mut times = Vec::new();
     let event = Event::record(through_zero, Crossing::Either);
-    taylor_with_events(&dynamics, start, 6.0, options, event, |s| times.push(s.t))
+    Integration::new(&dynamics, start, 6.0, options)
+        .event(event, |s| times.push(s.t))
+        .run()
         .expect("integrates");
     let expected: Vec<f64> = (0..4).map(|n| PI / 4.0 + n as f64 * PI / 2.0).collect();
     assert_eq!(times.len(), expected.len(), "{times:?}");
@@ -305,7 +292,9 @@ fn events_are_located_on_the_polynomial() {
         assert!((t - e).abs() < 1e-12, "{t} against {e}");
     }
     let event = Event::stop_at(through_zero, Crossing::Rising);
-    let end = taylor_with_events(&dynamics, start, 6.0, options, event, |_| {})
+    let end = Integration::new(&dynamics, start, 6.0, options)
+        .event(event, |_| {})
+        .run()
         .expect("integrates")
         .end;
     assert!((end.t - 3.0 * PI / 4.0).abs() < 1e-12, "{}", end.t);

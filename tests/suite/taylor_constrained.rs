@@ -10,7 +10,7 @@
 use std::f64::consts::PI;
 
 use dalembert::constrained::constraint_drift;
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, State, TaylorOptions, adaptive, taylor};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, ExplicitPair, Integration, State, Taylor};
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, TaylorSystem, Unconstrained};
 use dalembert_codegen::testing::quaternion_rotation as rotation;
 use dalembert_fixtures::precession::free_precession;
@@ -89,9 +89,18 @@ fn seed_3_series_sum_to_dop853s_motion() {
     let dynamics = Constrained::new(&pendulum, move |_, _, _| [torque], Stabilisation::None);
     for tau in [0.02, 0.05, 0.1] {
         let options = AdaptiveOptions::with_tolerance(1e-14);
-        let end = adaptive(&dynamics, start, tau, ExplicitPair::Dop853, options, |_| {})
-            .expect("integrates")
-            .end;
+        let end = Integration::new(
+            &dynamics,
+            start,
+            tau,
+            Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
+        )
+        .run()
+        .expect("integrates")
+        .end;
         let summed: Vec<f64> = q.iter().chain(&v).map(|x| sum(x, tau)).collect();
         let integrated: Vec<f64> = end.q.iter().chain(&end.v).copied().collect();
         assert_close(&format!("τ = {tau}"), &summed, &integrated, 1e-12);
@@ -122,9 +131,10 @@ fn assert_swings_back<S, const NQ: usize, const NV: usize, const NU: usize, cons
     S: TaylorSystem<NQ, NV, NU> + ConstrainedSystem<NQ, NV, NU, NC>,
 {
     let dynamics = Constrained::without_inputs(system, Stabilisation::None);
-    let options = TaylorOptions::with_tolerance(1e-16);
+    let options = Taylor::with_tolerance(1e-16);
     let after = |t: f64| {
-        taylor(&dynamics, start, t, options, |_| {})
+        Integration::new(&dynamics, start, t, options)
+            .run()
             .expect("integrates")
             .end
     };
@@ -207,10 +217,11 @@ fn seed_3_keeps_its_constraints_and_energy() {
     let (pendulum, _) = seed_3();
     let start = assembled(&pendulum, 1.0, 2.0);
     let dynamics = Constrained::without_inputs(&pendulum, Stabilisation::None);
-    let options = TaylorOptions::with_tolerance(1e-16);
+    let options = Taylor::with_tolerance(1e-16);
     let energy = |s: &State<3, 3>| dalembert::energy(&pendulum, &s.q, &s.v);
     for (t_end, drift_bound, energy_bound) in [(10.0, 1e-13, 5e-13), (100.0, 1e-12, 1e-11)] {
-        let end = taylor(&dynamics, start, t_end, options, |_| {})
+        let end = Integration::new(&dynamics, start, t_end, options)
+            .run()
             .expect("integrates")
             .end;
         let drift = constraint_drift(&pendulum, &end);
@@ -276,9 +287,10 @@ fn the_quaternion_series_stay_unit() {
 fn free_precession_on_a_ball_joint_is_the_closed_form() {
     let (top, start) = ball_top();
     let dynamics = Unconstrained::without_inputs(&top);
-    let options = TaylorOptions::with_tolerance(1e-15);
+    let options = Taylor::with_tolerance(1e-15);
     let t = 10.0;
-    let end = taylor(&dynamics, start, t, options, |_| {})
+    let end = Integration::new(&dynamics, start, t, options)
+        .run()
         .expect("integrates")
         .end;
     let (omega, expected) = free_precession((top.I1, top.I3), &rotation(start.q), start.v, t);

@@ -6,7 +6,7 @@ use crate::free_body_and_stiff_chain_integration::{distance, dop853};
 use crate::integration_errors::PushedPendulum;
 
 use dalembert::energy;
-use dalembert::integrate::{self, State, TaylorOptions, Unconstrained};
+use dalembert::integrate::{self, State, Unconstrained};
 
 dalembert::dalembert! {
     /// A heavy top on a ball joint, its centre on its symmetry axis.
@@ -44,13 +44,14 @@ fn taylor_follows_dop853_on_a_heavy_top_and_keeps_its_energy() {
     let reference = dop853(&dynamics, start, t_end, 1e-14).end;
     let e0 = energy(&TOP, &start.q, &start.v);
     let mut drift: f64 = 0.0;
-    let taylor = integrate::taylor(
+    let taylor = integrate::Integration::new(
         &dynamics,
         start,
         t_end,
-        TaylorOptions::with_tolerance(1e-16),
-        |s| drift = drift.max((energy(&TOP, &s.q, &s.v) - e0).abs() / e0.abs()),
+        integrate::Taylor::with_tolerance(1e-16),
     )
+    .observe(|s| drift = drift.max((energy(&TOP, &s.q, &s.v) - e0).abs() / e0.abs()))
+    .run()
     .unwrap();
     let error = distance(&taylor.end, &reference);
     assert!(error < 1e-9, "{error:e}");
@@ -71,13 +72,13 @@ fn taylor_holds_a_constant_input_as_dop853_does() {
         v: [0.0],
     };
     let reference = dop853(&dynamics, start, 10.0, 1e-14).end;
-    let taylor = integrate::taylor(
+    let taylor = integrate::Integration::new(
         &dynamics,
         start,
         10.0,
-        TaylorOptions::with_tolerance(1e-15),
-        |_| {},
+        integrate::Taylor::with_tolerance(1e-15),
     )
+    .run()
     .unwrap()
     .end;
     assert!(
