@@ -10,9 +10,9 @@
 # With no TOPIC every section is measured again (about an hour of both
 # cores: run it on a quiet machine, nothing else running). With TOPICs only
 # those are measured; every other section is kept as it stands in
-# BENCHMARKS.md. DIR (or $DALEMBERT_PEERS) is the peers' timing harness,
-# Pinocchio and MuJoCo (the directory holding its run.sh), which the
-# sections against Pinocchio and MuJoCo need. A section whose script fails
+# BENCHMARKS.md. DIR (or $DALEMBERT_PEERS, or $PINOCCHIO_HARNESS) is the
+# peers' timing harness of Pinocchio and MuJoCo (the directory holding its
+# run.sh), which the sections against Pinocchio and MuJoCo need. A section whose script fails
 # keeps its previous text, and the script exits non-zero after the others.
 # --reassemble measures nothing: it rebuilds the file from the sections it
 # holds (after a new scripts/bench/TOPIC.sh, whose section then says how to
@@ -22,12 +22,18 @@ cd "$(dirname "$0")/.."
 
 while [ $# -gt 0 ]; do
     case "$1" in
-        --peers) export DALEMBERT_PEERS="$(cd "$2" && pwd)"; shift 2 ;;
+        --peers) DALEMBERT_PEERS="$(cd "$2" && pwd)"; shift 2 ;;
         --reassemble) reassemble=1; shift ;;
-        -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
         *) break ;;
     esac
 done
+
+# The harness's directory under both names the section scripts read.
+if [ -n "${DALEMBERT_PEERS:-${PINOCCHIO_HARNESS:-}}" ]; then
+    export DALEMBERT_PEERS="${DALEMBERT_PEERS:-$PINOCCHIO_HARNESS}"
+    export PINOCCHIO_HARNESS="${PINOCCHIO_HARNESS:-$DALEMBERT_PEERS}"
+fi
 
 topics=()
 for script in scripts/bench/*.sh; do

@@ -19,7 +19,8 @@ quietly() {
 }
 
 # The peers' timing harness (Pinocchio and MuJoCo), kept outside this
-# repository: its directory is DALEMBERT_PEERS (scripts/benchmarks.sh --peers DIR).
+# repository: its directory is DALEMBERT_PEERS (scripts/benchmarks.sh --peers DIR,
+# which also sets PINOCCHIO_HARNESS, the name other section scripts read).
 peers() {
     if [ -z "${DALEMBERT_PEERS:-}" ] || [ ! -f "$DALEMBERT_PEERS/run.sh" ]; then
         echo "set DALEMBERT_PEERS to the peers' harness directory (the one holding run.sh)" >&2
