@@ -9,6 +9,8 @@ peers_csv="$CARGO_TARGET_DIR/bench-peers/chains.csv"
 mkdir -p "$(dirname "$peers_csv")"
 quietly cargo bench -p dalembert-generated --bench spellings -- --warm-up-time 1 --measurement-time 3
 peers --ns 2,6,12,30 > "$peers_csv"
+quietly cargo bench -p dalembert-generated --bench chains --features large -- '^(planar|spatial)/60/'
+peers --ns 60 > "${peers_csv%.csv}_60.csv"
 
 cat <<'MD'
 ## Chains against Pinocchio and MuJoCo
@@ -22,6 +24,12 @@ MuJoCo's `mj_forward`. Ratios are ours / theirs.
 
 MD
 python3 benches/spellings_table.py "$peers_csv" "$CARGO_TARGET_DIR"
+cat <<'MD'
+
+At n = 60 (the `joint` spelling, generated with the `large` feature):
+
+MD
+table chains60 "${peers_csv%.csv}_60.csv"
 echo
 measured "criterion medians, the peers' medians of thread CPU time"
 cat <<'MD'
@@ -29,4 +37,6 @@ cat <<'MD'
     cargo bench -p dalembert-generated --bench spellings -- --warm-up-time 1 --measurement-time 3
     bash $DALEMBERT_PEERS/run.sh --ns 2,6,12,30
     python3 benches/spellings_table.py PEERS.csv
+    cargo bench -p dalembert-generated --bench chains --features large -- '^(planar|spatial)/60/'
+    bash $DALEMBERT_PEERS/run.sh --ns 60
 MD

@@ -6,7 +6,7 @@ Usage: criterion_table.py [--target DIR] [--since FILE] TABLE [PEER_CSV...]
   --target DIR   cargo's target directory (criterion's results are under
                  DIR/criterion); default $CARGO_TARGET_DIR or target
   --since FILE   read only the results written after FILE was
-  TABLE          seed | derivatives | integrators | throughput | list
+  TABLE          seed | chains60 | derivatives | integrators | throughput | list
                  (list: every benchmark whose id starts with $BENCH_PREFIX)
 
 Ours are criterion's medians (the `median` of `new/estimates.json`), the
@@ -112,6 +112,21 @@ def throughput(ours, peers):
         print(f"| {family} | {n} | {ns(step)} | {ns(theirs)} | {ratio(theirs, step)}× |")
 
 
+def chains60(ours, peers):
+    print("| family | M + f (ns) | / Pinocchio `crba` + `nle` | / MuJoCo M + f "
+          "| `accelerations` (ns) | / Pinocchio `aba` | / MuJoCo `mj_forward` |")
+    print("|---|---|---|---|---|---|---|")
+    for family in ("planar", "spatial"):
+        mf = ours.get(f"{family}/60/mass_matrix+forcing")
+        acc = ours.get(f"{family}/60/accelerations")
+        key = f"{family}_60"
+        crba, nle = peers.get((key, "pin_crba_sym")), peers.get((key, "pin_nle"))
+        pin_mf = crba + nle if crba and nle else None
+        print(f"| {family} | {ns(mf)} | {ratio(mf, pin_mf)} | {ratio(mf, peers.get((key, 'mj_M_f')))} "
+              f"| {ns(acc)} | {ratio(acc, peers.get((key, 'pin_aba')))} "
+              f"| {ratio(acc, peers.get((key, 'mj_forward')))} |")
+
+
 def listing(ours, _peers, prefix=""):
     print("| benchmark | median |")
     print("|---|---|")
@@ -122,7 +137,7 @@ def listing(ours, _peers, prefix=""):
         print(f"| `{key}` | {value / scale:.3g} {unit} |")
 
 
-TABLES = {"list": listing, "seed": seed, "derivatives": derivatives, "integrators": integrators,
+TABLES = {"list": listing, "chains60": chains60, "seed": seed, "derivatives": derivatives, "integrators": integrators,
           "throughput": throughput}
 
 if __name__ == "__main__":
