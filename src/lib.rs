@@ -43,9 +43,12 @@
 //! * [`integrate`]: the integrators, and which one to use for which job;
 //! * [`control`]: the exact jacobian of one integration step and its
 //!   adjoint, for trajectory optimisation;
-//! * [`math`]: the elementary functions the generated code calls;
-//! * [`series`]: the Taylor-coefficient recurrences that the code of
-//!   `outputs taylor;` calls ([`TaylorSystem`], [`integrate::Taylor`]).
+//! * [`TaylorSystem`]: the Taylor coefficients of the motion that a model
+//!   asking for `outputs taylor;` gives, which [`integrate::Taylor`] sums.
+//!
+//! What only the generated code calls (elementary functions, Taylor
+//! recurrences, the tree loops) lives in a hidden module and is no part
+//! of this API.
 //!
 //! The language, the generated API and the build-script route are described
 //! in the project's guide (`docs/README.md`, from getting started to the
@@ -56,12 +59,13 @@
 
 pub use dalembert_macros::dalembert;
 
+#[doc(hidden)]
+#[path = "private/mod.rs"]
+pub mod __private;
 pub mod constrained;
 pub mod control;
 pub mod dynamics;
 pub mod integrate;
-pub mod math;
-pub mod series;
 mod system;
 #[cfg(test)]
 mod test_systems;

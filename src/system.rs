@@ -108,10 +108,9 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
 
     /// The accelerations `v̇` that solve `M(q) v̇ = f(t, q, v, u)`.
     ///
-    /// Provided: a Cholesky factorisation of `M` on the stack
-    /// ([`cholesky_accelerations`](crate::dynamics::cholesky_accelerations),
-    /// whose checks and errors [`accelerations`](crate::accelerations)
-    /// documents). Generated systems override it with their emitted solver,
+    /// Provided: nalgebra's Cholesky factorisation of `M` on the stack, with
+    /// the checks and errors that [`accelerations`](crate::accelerations)
+    /// documents. Generated systems override it with their emitted solver,
     /// unrolled for their size; generated systems with constraints, with
     /// the accelerations the constraints allow
     /// ([`constrained_accelerations`](crate::constrained::constrained_accelerations),

@@ -102,7 +102,10 @@ mod taylor;
 
 pub use adaptive::{Adaptive, AdaptiveOptions, Crossing, DenseStep, Event, ExplicitPair};
 pub use augmented_lagrangian::{AugmentedLagrangian, AugmentedLagrangianSettings};
-pub use dynamics::{Constrained, Dynamics, InputLaw, NoInputs, Unconstrained};
+pub use dynamics::{
+    Closed, Constrained, Constraints, Dynamics, InputLaw, NoConstraints, NoInputs, Stabilised,
+    Unconstrained,
+};
 pub use gauss::{Gauss, GaussLegendre};
 pub use integration::{Dense, DenseMethod, Events, Integration, Method, Observer, Quiet, Watcher};
 pub use runge_kutta::{Rk4, State};

@@ -3,7 +3,7 @@
 //!
 //! At each step the generated `taylor_coefficients` expands the motion
 //! through the current state to order `p` (every elementary operation of
-//! the equations by its coefficient recurrence, [`crate::series`]; each
+//! the equations by its coefficient recurrence; each
 //! order of `M(q) v̇ = f` solved with the one factorisation of `M` at the
 //! step's start), and the step sums the series. Order and step follow Jorba
 //! & Zou (2005), as heyoka does, with their cost model re-fitted: for the
@@ -37,14 +37,12 @@ use std::ops::ControlFlow;
 
 use super::adaptive::{Continuous, DenseStep, observe};
 use super::arguments::{check_positive, check_span};
-use super::dynamics::InputLaw;
+use super::dynamics::{Closed, Constraints, InputLaw};
 use super::integration::{DenseMethod, Method, sealed};
-use super::{
-    Constrained, Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained,
-};
-use crate::series;
+use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics};
+use crate::__private::series;
+use crate::DynamicsError;
 use crate::system::{Expansion, TaylorSystem};
-use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
 
 /// The highest order the integrator uses (`ε ≈ 3e−20`).
 pub const MAX_ORDER: usize = 31;
@@ -67,36 +65,20 @@ pub trait TaylorDynamics<const NQ: usize, const NV: usize>: Dynamics<NQ, NV> {
     ) -> Result<Expansion<K, NQ, NV>, DynamicsError>;
 }
 
-impl<S, F, const NQ: usize, const NV: usize, const NU: usize> TaylorDynamics<NQ, NV>
-    for Unconstrained<'_, S, F, NU>
-where
-    S: TaylorSystem<NQ, NV, NU> + MultibodySystem<NQ, NV, NU>,
-    F: InputLaw<NQ, NV, NU>,
-{
-    #[inline]
-    fn expansion<const K: usize>(
-        &self,
-        t: f64,
-        q: &[f64; NQ],
-        v: &[f64; NV],
-        order: usize,
-    ) -> Result<Expansion<K, NQ, NV>, DynamicsError> {
-        let u = self.inputs.inputs(t, q, v);
-        self.system.taylor_coefficients::<K>(t, q, v, &u, order)
-    }
-}
-
-/// The series of a constrained system are those of its index-1 form
-/// `A v̇ = b`, solved by the default [`ConstraintSolver`](crate::constrained::ConstraintSolver)
-/// whatever [`with_solver`](Constrained::with_solver) chose: a
+/// The series of a system closed over its inputs, held at their value at
+/// the start of the step. Those of a constrained system are those of its
+/// index-1 form `A v̇ = b`, solved by the default
+/// [`ConstraintSolver`](crate::constrained::ConstraintSolver) whatever
+/// [`with_solver`](super::Constrained::with_solver) chose: a
 /// [`Stabilisation::Projection`](crate::Stabilisation::Projection) settles
 /// each step's end, Baumgarte's terms are not expanded (the motion is that
 /// of [`Stabilisation::None`](crate::Stabilisation::None)).
-impl<S, F, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>
-    TaylorDynamics<NQ, NV> for Constrained<'_, S, F, NU, NC>
+impl<S, F, C, const NQ: usize, const NV: usize, const NU: usize> TaylorDynamics<NQ, NV>
+    for Closed<'_, S, F, C, NU>
 where
-    S: TaylorSystem<NQ, NV, NU> + ConstrainedSystem<NQ, NV, NU, NC>,
+    S: TaylorSystem<NQ, NV, NU>,
     F: InputLaw<NQ, NV, NU>,
+    C: Constraints<S, NQ, NV, NU>,
 {
     #[inline]
     fn expansion<const K: usize>(

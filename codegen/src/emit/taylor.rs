@@ -6,7 +6,7 @@
 //! linear combination, a product a Cauchy product, a division a quotient,
 //! `x^n` products of squares (a reciprocal for `n < 0`), and each elementary
 //! function its recurrence (`sin` and `cos` of one argument as one pair).
-//! Every operation calls the runtime's recurrence (`dalembert::series`),
+//! Every operation calls the runtime's recurrence (`dalembert::__private::series`),
 //! which reads and writes the series without indexing. Order `k` of every
 //! node is computed from the lower orders, then order `k` of the
 //! accelerations from `M₀ q̈ₖ = fₖ − Σⱼ₌₁ᵏ Mⱼ q̈ₖ₋ⱼ` with the one `L D Lᵀ`
@@ -465,11 +465,11 @@ impl Written<'_> {
         match operand {
             Operand::Series(slot) => {
                 let x = &self.slots[slot];
-                quote!(::dalembert::series::at(&self.#x, k))
+                quote!(::dalembert::__private::series::at(&self.#x, k))
             }
             Operand::Constant(e) => {
                 let c = self.constant(e);
-                quote!(::dalembert::series::constant_at(#c, k))
+                quote!(::dalembert::__private::series::constant_at(#c, k))
             }
         }
     }
@@ -488,7 +488,7 @@ impl Written<'_> {
             .filter_map(move |(entry, x)| match entry {
                 Operand::Series(slot) => {
                     let m = &self.slots[*slot];
-                    Some(quote!(#sign ::dalembert::series::convolution_tail(&self.#m, &self.#x, k)))
+                    Some(quote!(#sign ::dalembert::__private::series::convolution_tail(&self.#m, &self.#x, k)))
                 }
                 Operand::Constant(_) => None,
             })
@@ -499,7 +499,7 @@ impl Written<'_> {
         match operand {
             Operand::Series(slot) => {
                 let x = &self.slots[slot];
-                quote!(::dalembert::series::at(&self.#x, 0))
+                quote!(::dalembert::__private::series::at(&self.#x, 0))
             }
             Operand::Constant(e) => self.constant(e),
         }
@@ -516,7 +516,7 @@ impl Written<'_> {
                     let (w, x) = (self.constant(*w), &self.slots[*x]);
                     quote!((#w, &self.#x))
                 });
-                quote!(::dalembert::series::linear(&mut self.#out, k, #constant, [#(#terms),*]);)
+                quote!(::dalembert::__private::series::linear(&mut self.#out, k, #constant, [#(#terms),*]);)
             }
             Operation::Call {
                 name,
@@ -529,7 +529,7 @@ impl Written<'_> {
                     quote!(&mut self.#p,)
                 });
                 let operands = operands.iter().map(|&x| &self.slots[x]);
-                quote!(::dalembert::series::#name(&mut self.#out, #partner #(&self.#operands,)* k);)
+                quote!(::dalembert::__private::series::#name(&mut self.#out, #partner #(&self.#operands,)* k);)
             }
         }
     }
@@ -660,7 +660,7 @@ impl Prelude {
         let n_constants = Literal::usize_unsuffixed(self.constants.len());
         let time_series = program.time.map(|slot| {
             let x = &self.slots[slot];
-            quote!(let mut #x = ::dalembert::series::time::<K>(t);)
+            quote!(let mut #x = ::dalembert::__private::series::time::<K>(t);)
         });
         let intermediate: Vec<&Ident> = program
             .operations
@@ -691,8 +691,8 @@ impl Prelude {
             };
             let [#(#q),*] = *q;
             let [#(#v),*] = *qd;
-            #(let mut #q = ::dalembert::series::start::<K>(#q);)*
-            #(let mut #v = ::dalembert::series::start::<K>(#v);)*
+            #(let mut #q = ::dalembert::__private::series::start::<K>(#q);)*
+            #(let mut #v = ::dalembert::__private::series::start::<K>(#v);)*
             #(let mut #a = [0.0; K];)*
             #(let mut #lambda = [0.0; K];)*
             #time_series
@@ -711,8 +711,8 @@ impl Prelude {
         let [q, v, a, _] = &self.state;
         let rates = &self.rates;
         quote! {
-            #(::dalembert::series::integral(&mut self.#v, &self.#a, k);)*
-            #(::dalembert::series::integral(&mut self.#q, &self.#rates, k);)*
+            #(::dalembert::__private::series::integral(&mut self.#v, &self.#a, k);)*
+            #(::dalembert::__private::series::integral(&mut self.#q, &self.#rates, k);)*
         }
     }
 
@@ -814,7 +814,7 @@ the constants they read, and the highest order asked for.";
                 #[inline(always)]
                 fn advance(&mut self, k: usize, solved: [f64; #nv_lit]) -> ([f64; #ne_lit], [f64; #nv_lit]) {
                     if let ::core::option::Option::Some(below) = k.checked_sub(1) {
-                        ::dalembert::series::assign_all([#(&mut self.#a),*], below, solved);
+                        ::dalembert::__private::series::assign_all([#(&mut self.#a),*], below, solved);
                         #integrals
                         if k == self.order {
                             return ([0.0; #ne_lit], [0.0; #nv_lit]);
@@ -860,7 +860,7 @@ the constants they read, and the highest order asked for.";
 /// `taylor_coefficients` of a system with constraints: order `k` of
 /// `M v̇ − Aᵀ λ = f`, `A v̇ = b` solved with the one factorisation of the
 /// saddle point at the expansion point that `constrained_accelerations`
-/// makes (`dalembert::constrained::constrained_series`), in a loop over the
+/// makes (`dalembert::__private::constrained_series`), in a loop over the
 /// orders.
 fn emit_constrained(model: &Model, prelude: &Prelude, function: &Function) -> TokenStream {
     let (nv, nc) = (model.nv(), prelude.state[3].len());
@@ -900,8 +900,8 @@ constants they read, and the highest order asked for.";
                     solved: ([f64; #nv_lit], [f64; #nc_lit]),
                 ) -> ([f64; #nv_lit], [f64; #nc_lit]) {
                     if let ::core::option::Option::Some(below) = k.checked_sub(1) {
-                        ::dalembert::series::assign_all([#(&mut self.#a),*], below, solved.0);
-                        ::dalembert::series::assign_all([#(&mut self.#lambda),*], below, solved.1);
+                        ::dalembert::__private::series::assign_all([#(&mut self.#a),*], below, solved.0);
+                        ::dalembert::__private::series::assign_all([#(&mut self.#lambda),*], below, solved.1);
                         #integrals
                         if k == self.order {
                             return ([0.0; #nv_lit], [0.0; #nc_lit]);
@@ -919,13 +919,13 @@ constants they read, and the highest order asked for.";
     let orders = quote! {
             let (forcing, bias) = series.advance(0, ([0.0; #nv_lit], [0.0; #nc_lit]));
             let (mass, jacobian) = series.saddle_point();
-            let equations = ::dalembert::constrained::SaddlePoint {
+            let equations = ::dalembert::__private::SaddlePoint {
                 mass: &mass,
                 forcing,
                 jacobian: &jacobian,
                 bias,
             };
-            ::dalembert::constrained::constrained_series(self, t, q, equations, |mut solved, solver| {
+            ::dalembert::__private::constrained_series(self, t, q, equations, |mut solved, solver| {
                 for k in 1..=series.order {
                     let (forcing, bias) = series.advance(k, solved);
                     if k < series.order {
@@ -1016,7 +1016,7 @@ mod tests {
         let body = taylor_body(crate::seeds::CONSTRAINED_PENDULUM);
         assert_eq!(body.matches("convolution_tail(").count(), 4, "{body}");
         assert!(
-            body.contains("::dalembert::constrained::constrained_series("),
+            body.contains("::dalembert::__private::constrained_series("),
             "{body}"
         );
     }
@@ -1050,7 +1050,7 @@ mod tests {
         let code = crate::generate(source).expect("generates");
         let body = &code[code.find("pub fn taylor_coefficients").expect("emitted")..];
         let calls = |name: &str| {
-            body.matches(&format!("::dalembert::series::{name}("))
+            body.matches(&format!("::dalembert::__private::series::{name}("))
                 .count()
         };
         assert_eq!(calls("sin_cos"), 1, "{body}");
