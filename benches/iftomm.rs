@@ -24,7 +24,8 @@ use criterion::{
 
 use dalembert::constrained::ConstraintSolver;
 use dalembert::integrate::{
-    AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
+    Adaptive, AdaptiveOptions, AugmentedLagrangian, AugmentedLagrangianSettings, ExplicitPair,
+    Integration, Rk4,
 };
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State, Unconstrained, energy};
 use dalembert_fixtures::cpu_time::thread_time_of;
@@ -55,14 +56,16 @@ fn error<const NQ: usize>(end: &State<NQ, NQ>, n: f64) -> f64 {
     };
     let options = AdaptiveOptions::with_tolerance(1e-13);
     let dynamics = Unconstrained::without_inputs(&reduced);
-    let phi = adaptive(
+    let phi = Integration::new(
         &dynamics,
         first,
         DURATION,
-        ExplicitPair::Dop853,
-        options,
-        |_| {},
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
     )
+    .run()
     .expect("reference")
     .end
     .q[0];
@@ -170,15 +173,10 @@ where
     };
     let dynamics = Constrained::without_inputs(system, stabilisation).with_solver(solver);
     let solution = match method {
-        Method::Dop853(tolerance) => adaptive(
-            &dynamics,
-            start,
-            DURATION,
-            ExplicitPair::Dop853,
-            AdaptiveOptions::with_tolerance(tolerance),
-            |_| {},
-        ),
-        Method::Rk4(steps) => rk4(&dynamics, start, DURATION, steps, |_| {}),
+        Method::Dop853(tolerance) => {
+            Integration::new(&dynamics, start, DURATION, Adaptive::dop853(tolerance)).run()
+        }
+        Method::Rk4(steps) => Integration::new(&dynamics, start, DURATION, Rk4 { steps }).run(),
     };
     solution.map(|s| s.end).map_err(|e| e.to_string())
 }
@@ -259,14 +257,16 @@ fn ten_four_bars(c: &mut Criterion) {
     let alf_steps = 10_000;
     let alf = move || {
         let dynamics = Constrained::without_inputs(&system, PROJECTION);
-        augmented_lagrangian(
+        Integration::new(
             &dynamics,
             four_bar_start(),
             DURATION,
-            alf_steps,
-            AugmentedLagrangian::for_step(DURATION / alf_steps as f64),
-            |_| {},
+            AugmentedLagrangian {
+                steps: alf_steps,
+                settings: AugmentedLagrangianSettings::for_step(DURATION / alf_steps as f64),
+            },
         )
+        .run()
         .map(|s| s.end)
         .map_err(|e| e.to_string())
     };

@@ -23,7 +23,7 @@ macro_rules! bench_system {
         let states = states::<$nq, $nu>($seed);
         // Every state must be solvable, or `accelerations` would time an early return.
         for s in &states {
-            dalembert::dynamics::cholesky_accelerations(&sys, s.t, &s.q, &s.v, &s.u)
+            dalembert::__private::cholesky_accelerations(&sys, s.t, &s.q, &s.v, &s.u)
                 .expect("solvable state");
         }
         let mut group = $c.benchmark_group($group);
@@ -48,7 +48,7 @@ macro_rules! bench_system {
         group.bench_function("accelerations", |b| {
             b.iter_custom(|iters| {
                 per_call(&states, iters, |s| {
-                    dalembert::dynamics::cholesky_accelerations(
+                    dalembert::__private::cholesky_accelerations(
                         black_box(&sys),
                         s.t,
                         &s.q,

@@ -17,7 +17,7 @@
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 
-use dalembert::integrate::{AdaptiveOptions, ExplicitPair, adaptive_dense};
+use dalembert::integrate::{Adaptive, AdaptiveOptions, ExplicitPair, Integration};
 use dalembert::{State, Unconstrained, energy};
 use dalembert_codegen::testing::{mat_vec, quaternion_rotation};
 use dalembert_generated::Dzhanibekov;
@@ -61,31 +61,34 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The drift at every step's end; the spin and the animation sampled
     // every SAMPLE seconds from DOP853's seventh-order dense output.
     let mut next = 0.0;
-    let solution = adaptive_dense(
+    let solution = Integration::new(
         &dynamics,
         start,
         END,
-        ExplicitPair::Dop853,
-        options,
-        |step| {
-            let s = step.end();
-            let l = momentum(s);
-            let dl = (0..3).map(|i| (l[i] - l0[i]).powi(2)).sum::<f64>().sqrt();
-            let scale = l0.iter().map(|x| x * x).sum::<f64>().sqrt();
-            let e = energy(&BRICK, &s.q, &s.v);
-            energy_drift.push((s.t, ((e - e0) / e0).abs()));
-            momentum_drift.push((s.t, dl / scale));
-            while next <= s.t {
-                let sample = step.state_at(next);
-                for (axis, w) in spin.iter_mut().zip(sample.v) {
-                    axis.push((next, w));
-                }
-                recording.push(next, &sample.q, energy(&BRICK, &sample.q, &sample.v));
-                next += SAMPLE;
-            }
-            ControlFlow::Continue(())
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
         },
-    )?;
+    )
+    .dense(|step| {
+        let s = step.end();
+        let l = momentum(s);
+        let dl = (0..3).map(|i| (l[i] - l0[i]).powi(2)).sum::<f64>().sqrt();
+        let scale = l0.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let e = energy(&BRICK, &s.q, &s.v);
+        energy_drift.push((s.t, ((e - e0) / e0).abs()));
+        momentum_drift.push((s.t, dl / scale));
+        while next <= s.t {
+            let sample = step.state_at(next);
+            for (axis, w) in spin.iter_mut().zip(sample.v) {
+                axis.push((next, w));
+            }
+            recording.push(next, &sample.q, energy(&BRICK, &sample.q, &sample.v));
+            next += SAMPLE;
+        }
+        ControlFlow::Continue(())
+    })
+    .run()?;
     let flips = spin[1].windows(2).filter(|w| w[0].1 * w[1].1 < 0.0).count();
     let worst = |drift: &[(f64, f64)]| drift.iter().fold(0.0_f64, |m, p| m.max(p.1));
     // Exact zeros have no place on a log scale.

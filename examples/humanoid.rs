@@ -50,16 +50,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut recording = Recording::new();
     let mut last = initial;
     let steps = (END / STEP).round() as u64;
-    integrate::rk4(
+    integrate::Integration::new(
         &Unconstrained::without_inputs(&humanoid),
         start,
         END,
-        steps,
-        |s| {
-            last = energy(&humanoid, &s.q, &s.v);
-            recording.push(s.t, &s.q, last);
-        },
-    )?;
+        integrate::Rk4 { steps },
+    )
+    .observe(|s| {
+        last = energy(&humanoid, &s.q, &s.v);
+        recording.push(s.t, &s.q, last);
+    })
+    .run()?;
     println!(
         "humanoid: {} steps of RK4, energy {initial:.6} J at the start, {last:.6} J after {END} s \
          (the dampers took {:.6} J)",

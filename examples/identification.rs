@@ -9,7 +9,8 @@
 //! cargo run --example identification
 //! ```
 
-use dalembert::{State, Unconstrained, integrate::rk4};
+use dalembert::integrate::{Integration, Rk4};
+use dalembert::{State, Unconstrained};
 use dalembert_codegen::testing::Random;
 use dalembert_generated::two_link_arm::TwoLinkArm;
 use nalgebra::{DMatrix, DVector};
@@ -68,15 +69,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut samples = Vec::new();
     let mut step = 0_u64;
     let steps = (DURATION / STEP).round() as u64;
-    rk4(&dynamics, start, DURATION, steps, |state| {
-        if step % SAMPLE_EVERY == 0 {
-            let tau = torques(state.t, &state.q, &state.v);
-            if let Ok(vdot) = arm.accelerations(state.t, &state.q, &state.v, &tau) {
-                samples.push((state.q, state.v, vdot, tau));
+    Integration::new(&dynamics, start, DURATION, Rk4 { steps })
+        .observe(|state| {
+            if step % SAMPLE_EVERY == 0 {
+                let tau = torques(state.t, &state.q, &state.v);
+                if let Ok(vdot) = arm.accelerations(state.t, &state.q, &state.v, &tau) {
+                    samples.push((state.q, state.v, vdot, tau));
+                }
             }
-        }
-        step += 1;
-    })?;
+            step += 1;
+        })
+        .run()?;
     // Noisy torques; stack Y π = τ over every sample.
     let mut random = Random::new(2026);
     let nb = TwoLinkArm::BASE_PARAMETERS.len();

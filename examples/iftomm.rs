@@ -33,7 +33,8 @@ use std::path::{Path, PathBuf};
 use clap::{Arg, Command, value_parser};
 use dalembert::constrained::{ConstraintSolver, constraint_drift};
 use dalembert::integrate::{
-    AdaptiveOptions, AugmentedLagrangian, ExplicitPair, adaptive, augmented_lagrangian, rk4,
+    Adaptive, AdaptiveOptions, AugmentedLagrangian, AugmentedLagrangianSettings, ExplicitPair,
+    Integration, Rk4,
 };
 use dalembert::{
     Constrained, ConstrainedSystem, IntegrationError, Solution, Stabilisation, State,
@@ -256,7 +257,9 @@ fn andrews(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
     };
     let written = Constrained::without_inputs(&ANDREWS_EQUATIONS, exact);
     let reference = tight(&written, andrews_start(), duration, 1e-13)?;
-    let check = rk4(&written, andrews_start(), duration, 300_000, |_| {})?.end;
+    let check = Integration::new(&written, andrews_start(), duration, Rk4 { steps: 300_000 })
+        .run()?
+        .end;
     let largest = |a: &State<7, 7>, b: &State<7, 7>| {
         a.q.iter()
             .zip(&b.q)
@@ -316,7 +319,9 @@ fn bricard(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
     };
     let dynamics = Constrained::without_inputs(&system, exact);
     let reference = tight(&dynamics, start, duration, 1e-13)?;
-    let check = rk4(&dynamics, start, duration, 100_000, |_| {})?.end;
+    let check = Integration::new(&dynamics, start, duration, Rk4 { steps: 100_000 })
+        .run()?
+        .end;
     let (p, c) = (third_rod_tip(&reference), third_rod_tip(&check));
     println!(
         "A04 reference: DOP853 (1e-13) and RK4 (h = 1e-4 s), both projected to 1e-14, differ by {:.1e} m at P3",
@@ -371,14 +376,16 @@ where
         max_steps: 100_000_000,
         ..AdaptiveOptions::with_tolerance(tolerance)
     };
-    Ok(adaptive(
+    Ok(Integration::new(
         dynamics,
         start,
         duration,
-        ExplicitPair::Dop853,
-        options,
-        |_| {},
-    )?
+        Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .run()?
     .end)
 }
 
@@ -475,7 +482,9 @@ where
         for &h in settings.steps {
             let n = (duration / h).round() as u64;
             record(&format!("RK4 + {kept}{suffix}"), h, &mut |observer| {
-                rk4(&dynamics, start, duration, n, observer)
+                Integration::new(&dynamics, start, duration, Rk4 { steps: n })
+                    .observe(observer)
+                    .run()
             })?;
         }
         for &tolerance in settings.tolerances {
@@ -487,14 +496,17 @@ where
                 &format!("DOP853 + {kept}{suffix}"),
                 tolerance,
                 &mut |observer| {
-                    adaptive(
+                    Integration::new(
                         &dynamics,
                         start,
                         duration,
-                        ExplicitPair::Dop853,
-                        options,
-                        observer,
+                        Adaptive {
+                            pair: ExplicitPair::Dop853,
+                            options: options,
+                        },
                     )
+                    .observe(observer)
+                    .run()
                 },
             )?;
         }
@@ -502,14 +514,17 @@ where
     for &h in settings.alf_steps {
         let n = (duration / h).round() as u64;
         record("augmented Lagrangian (index 3)", h, &mut |observer| {
-            augmented_lagrangian(
+            Integration::new(
                 &dynamics,
                 start,
                 duration,
-                n,
-                AugmentedLagrangian::for_step(h),
-                observer,
+                AugmentedLagrangian {
+                    steps: n,
+                    settings: AugmentedLagrangianSettings::for_step(h),
+                },
             )
+            .observe(observer)
+            .run()
         })?;
     }
     std::fs::write(out.join(format!("{}.csv", benchmark.stem)), to_csv(&points))?;

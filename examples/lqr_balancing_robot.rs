@@ -81,18 +81,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let (mut pitch, mut heading, mut torque) = (Vec::new(), Vec::new(), Vec::new());
     let mut recording = Recording::new();
-    let end = integrate::rk4(&controlled, start, END, STEPS, |s| {
-        pitch.push((s.t, s.q[3]));
-        heading.push((s.t, s.q[2]));
-        torque.push((s.t, feedback(&gain, &s.q, &s.v)[0] / 10.0));
-        let (u, e) = (
-            feedback(&gain, &s.q, &s.v),
-            energy(&BALANCING_ROBOT, &s.q, &s.v),
-        );
-        let power = input_power(&BALANCING_ROBOT, s.t, &s.q, &s.v, &u);
-        recording.push_driven(s.t, &s.q, e, power);
-    })?
-    .end;
+    let end = integrate::Integration::new(&controlled, start, END, integrate::Rk4 { steps: STEPS })
+        .observe(|s| {
+            pitch.push((s.t, s.q[3]));
+            heading.push((s.t, s.q[2]));
+            let u = feedback(&gain, &s.q, &s.v);
+            torque.push((s.t, u[0] / 10.0));
+            let e = energy(&BALANCING_ROBOT, &s.q, &s.v);
+            let power = input_power(&BALANCING_ROBOT, s.t, &s.q, &s.v, &u);
+            recording.push_driven(s.t, &s.q, e, power);
+        })
+        .run()?
+        .end;
     println!(
         "controlled, after {END} s: θ = {:.2e} rad, θ̇ = {:.2e} rad/s, mean wheel rate {:.4} rad/s (V/r = {:.4})",
         end.q[3],
@@ -102,9 +102,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let uncontrolled = Constrained::without_inputs(&BALANCING_ROBOT, Stabilisation::None);
     let mut falling = Vec::new();
-    integrate::rk4(&uncontrolled, start, 0.6, 600, |s| {
-        falling.push((s.t, s.q[3]));
-    })?;
+    integrate::Integration::new(&uncontrolled, start, 0.6, integrate::Rk4 { steps: 600 })
+        .observe(|s| {
+            falling.push((s.t, s.q[3]));
+        })
+        .run()?;
 
     let chart = out.join("lqr_balancing_robot.svg");
     line_chart(

@@ -47,21 +47,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         feedback(&gain, q, v)
     });
     let (mut angle, mut position, mut force) = (Vec::new(), Vec::new(), Vec::new());
-    let end = integrate::rk4(&controlled, start, END, STEPS, |s| {
-        angle.push((s.t, s.q[1]));
-        position.push((s.t, s.q[0]));
-        force.push((s.t, feedback(&gain, &s.q, &s.v)[0] / 10.0));
-    })?
-    .end;
+    let end = integrate::Integration::new(&controlled, start, END, integrate::Rk4 { steps: STEPS })
+        .observe(|s| {
+            angle.push((s.t, s.q[1]));
+            position.push((s.t, s.q[0]));
+            force.push((s.t, feedback(&gain, &s.q, &s.v)[0] / 10.0));
+        })
+        .run()?
+        .end;
     println!(
         "controlled, after {END} s: x = {:.2e} m, θ = {:.2e} rad",
         end.q[0], end.q[1]
     );
     let uncontrolled = Unconstrained::new(&CART_POLE, |_, _: &[f64; 2], _: &[f64; 2]| [0.0]);
     let mut falling = Vec::new();
-    integrate::rk4(&uncontrolled, start, 1.2, 1_200, |s| {
-        falling.push((s.t, s.q[1]));
-    })?;
+    integrate::Integration::new(&uncontrolled, start, 1.2, integrate::Rk4 { steps: 1_200 })
+        .observe(|s| {
+            falling.push((s.t, s.q[1]));
+        })
+        .run()?;
 
     let chart = out.join("lqr_cartpole.svg");
     line_chart(

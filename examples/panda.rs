@@ -55,12 +55,14 @@ fn simulate(
     };
     let mut joints = vec![Vec::new(); 7];
     let steps = (END / STEP).round() as u64;
-    integrate::rk4(&dynamics, start, END, steps, |state| {
-        for (joint, &angle) in joints.iter_mut().zip(&state.q) {
-            joint.push((state.t, angle));
-        }
-    })
-    .map_err(|e| format!("the simulation stopped at t = {}: {:?}", e.t, e.cause))?;
+    integrate::Integration::new(&dynamics, start, END, integrate::Rk4 { steps })
+        .observe(|state| {
+            for (joint, &angle) in joints.iter_mut().zip(&state.q) {
+                joint.push((state.t, angle));
+            }
+        })
+        .run()
+        .map_err(|e| format!("the simulation stopped at t = {}: {:?}", e.t, e.cause))?;
     Ok(joints)
 }
 

@@ -13,7 +13,7 @@
 use std::error::Error;
 use std::path::Path;
 
-use dalembert::integrate::rk4;
+use dalembert::integrate::{Integration, Rk4};
 use dalembert::{State, Unconstrained};
 use dalembert_lab::{Series, line_chart};
 
@@ -88,20 +88,22 @@ fn main() -> Result<(), Box<dyn Error>> {
     let (mut altitude, mut upright, mut roll) = (Vec::new(), Vec::new(), Vec::new());
     let (mut turned, mut last_t) = (0.0, 0.0);
     let mut hover_drift = 0.0_f64;
-    let end = rk4(&dynamics, start, 3.0, 3000, |s| {
-        let [_, _, z, qx, qy, _, _] = s.q;
-        // N.z · B.z: 1 upright, −1 upside down.
-        let cos_tilt = 1.0 - 2.0 * (qx * qx + qy * qy);
-        turned += s.v[3] * (s.t - last_t) / (2.0 * std::f64::consts::PI);
-        last_t = s.t;
-        if s.t <= HOVER {
-            hover_drift = hover_drift.max((z - 1.0).abs());
-        }
-        altitude.push((s.t, z));
-        upright.push((s.t, cos_tilt));
-        roll.push((s.t, turned));
-    })?
-    .end;
+    let end = Integration::new(&dynamics, start, 3.0, Rk4 { steps: 3000 })
+        .observe(|s| {
+            let [_, _, z, qx, qy, _, _] = s.q;
+            // N.z · B.z: 1 upright, −1 upside down.
+            let cos_tilt = 1.0 - 2.0 * (qx * qx + qy * qy);
+            turned += s.v[3] * (s.t - last_t) / (2.0 * std::f64::consts::PI);
+            last_t = s.t;
+            if s.t <= HOVER {
+                hover_drift = hover_drift.max((z - 1.0).abs());
+            }
+            altitude.push((s.t, z));
+            upright.push((s.t, cos_tilt));
+            roll.push((s.t, turned));
+        })
+        .run()?
+        .end;
     println!("hover: altitude held to {hover_drift:.1e} m for {HOVER} s");
     println!(
         "flip: {turned:.3} turns about B.x in {:.3} s, ending at altitude {:.3} m, \

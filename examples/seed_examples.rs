@@ -105,14 +105,16 @@ fn simulate_double_pendulum(
         let mut errors = Vec::new();
         let steps = (CHAOTIC_END / h).round() as u64;
         let dynamics = Unconstrained::without_inputs(&pendulum);
-        integrate::rk4(&dynamics, initial, CHAOTIC_END, steps, |s| {
-            if keep_angles {
-                angles[0].push((s.t, s.q[0]));
-                angles[1].push((s.t, s.q[1]));
-                recording.push(s.t, &s.q, energy(s));
-            }
-            errors.push((s.t, (energy(s) - e0).abs()));
-        })?;
+        integrate::Integration::new(&dynamics, initial, CHAOTIC_END, integrate::Rk4 { steps })
+            .observe(|s| {
+                if keep_angles {
+                    angles[0].push((s.t, s.q[0]));
+                    angles[1].push((s.t, s.q[1]));
+                    recording.push(s.t, &s.q, energy(s));
+                }
+                errors.push((s.t, (energy(s) - e0).abs()));
+            })
+            .run()?;
         let worst = errors.iter().map(|p| p.1).fold(0.0, f64::max);
         println!("double pendulum, RK4 h = {h}: max |E − E₀| = {worst:.3e} J over 10 s");
         drift.push((format!("RK4, h = {h} s"), errors));
@@ -223,8 +225,10 @@ fn record<const NQ: usize, const NV: usize>(
 ) -> Result<Recording, IntegrationError<NQ>> {
     let mut recording = Recording::new();
     let steps = (ANIMATION_END / ANIMATION_STEP).round() as u64;
-    integrate::rk4(dynamics, start, ANIMATION_END, steps, |s| {
-        recording.push(s.t, &s.q, energy(s));
-    })?;
+    integrate::Integration::new(dynamics, start, ANIMATION_END, integrate::Rk4 { steps })
+        .observe(|s| {
+            recording.push(s.t, &s.q, energy(s));
+        })
+        .run()?;
     Ok(recording)
 }

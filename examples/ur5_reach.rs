@@ -104,19 +104,21 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut recording = Recording::new();
     let mut last_q = START;
     let steps = (END / STEP).round() as u64;
-    integrate::rk4(&dynamics, start, END, steps, |s| {
-        let x = arm.position_tool0_origin(s.t, &s.q);
-        let (x_d, _) = target(center, s.t);
-        let distance = (0..3).map(|i| (x[i] - x_d[i]).powi(2)).sum::<f64>().sqrt();
-        error.push((s.t, 1e3 * distance));
-        path.push((x[1], x[2]));
-        wanted.push((x_d[1], x_d[2]));
-        let u = control(&arm, center, s.t, &s.q, &s.v);
-        let power = input_power(&arm, s.t, &s.q, &s.v, &u);
-        recording.push_driven(s.t, &s.q, energy(&arm, &s.q, &s.v), power);
-        last_q = s.q;
-    })
-    .map_err(|e| format!("the simulation stopped at t = {}: {:?}", e.t, e.cause))?;
+    integrate::Integration::new(&dynamics, start, END, integrate::Rk4 { steps })
+        .observe(|s| {
+            let x = arm.position_tool0_origin(s.t, &s.q);
+            let (x_d, _) = target(center, s.t);
+            let distance = (0..3).map(|i| (x[i] - x_d[i]).powi(2)).sum::<f64>().sqrt();
+            error.push((s.t, 1e3 * distance));
+            path.push((x[1], x[2]));
+            wanted.push((x_d[1], x_d[2]));
+            let u = control(&arm, center, s.t, &s.q, &s.v);
+            let power = input_power(&arm, s.t, &s.q, &s.v, &u);
+            recording.push_driven(s.t, &s.q, energy(&arm, &s.q, &s.v), power);
+            last_q = s.q;
+        })
+        .run()
+        .map_err(|e| format!("the simulation stopped at t = {}: {:?}", e.t, e.cause))?;
 
     let settled = error
         .iter()

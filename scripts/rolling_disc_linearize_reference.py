@@ -1,4 +1,4 @@
-"""SymPy's own linearisation of the rolling disc of tests/rolling_disc.rs
+"""SymPy's own linearisation of the rolling disc of tests/suite/rolling_disc.rs
 (`RollingDisc`), a thin uniform disc rolling without slipping on a
 horizontal plane (two nonholonomic rows), about a leaning, turning state on
 its constraint manifold: `KanesMethod(...).linearize(A_and_B=True)` with

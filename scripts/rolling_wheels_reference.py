@@ -1,4 +1,4 @@
-"""Independent SymPy references for tests/rolling_wheels.rs: wheels rolling
+"""Independent SymPy references for tests/suite/rolling_wheels.rs: wheels rolling
 without slipping, a Chaplygin sleigh, a differential-drive robot and a
 two-wheeled self-balancing robot, each built with sympy.physics.mechanics
 (`KanesMethod`, speeds u = qdot) from the textbook's contact point, not

@@ -1,5 +1,5 @@
 """SymPy's own linearisation of the knife-edge sled of
-tests/constrained_linearize.rs (`Sled`), a nonholonomic system, about a
+tests/suite/constrained_linearize.rs (`Sled`), a nonholonomic system, about a
 state on its constraint manifold: `KanesMethod(...).linearize(A_and_B=True)`
 with `x`, `y`, `theta` independent coordinates, the speeds of `x` and
 `theta` independent and that of `y` dependent (fixed by the no-slip row).

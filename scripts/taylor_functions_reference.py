@@ -2,7 +2,7 @@
 through one state, from SymPy: Lagrange's equations of the particle written
 here apart from the engine, x'' solved, and its derivatives along the flow
 (d/dt = ∂t + ẋ ∂x + ẍ ∂ẋ) evaluated at 30 digits. Prints the coefficients
-that `tests/taylor.rs` expects: q_k = x⁽ᵏ⁾/k!, v_k = x⁽ᵏ⁺¹⁾/k!.
+that `tests/suite/taylor.rs` expects: q_k = x⁽ᵏ⁾/k!, v_k = x⁽ᵏ⁺¹⁾/k!.
 
     python3 scripts/taylor_functions_reference.py
 """

@@ -1,6 +1,6 @@
 """Pinocchio's control outputs for the Unitree Z1 arm of example-robot-data.
 
-Writes tests/reference/z1_outputs.json, which tests/urdf_outputs.rs reads:
+Writes tests/reference/z1_outputs.json, which tests/suite/urdf_outputs.rs reads:
 for the arm on a fixed base and on Pinocchio's free flyer, at 3 random
 states each, the inverse dynamics and its derivatives
 (`computeRNEADerivatives`), the forward dynamics and its derivatives

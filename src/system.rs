@@ -108,10 +108,9 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
 
     /// The accelerations `v̇` that solve `M(q) v̇ = f(t, q, v, u)`.
     ///
-    /// Provided: a Cholesky factorisation of `M` on the stack
-    /// ([`cholesky_accelerations`](crate::dynamics::cholesky_accelerations),
-    /// whose checks and errors [`accelerations`](crate::accelerations)
-    /// documents). Generated systems override it with their emitted solver,
+    /// Provided: nalgebra's Cholesky factorisation of `M` on the stack, with
+    /// the checks and errors that [`accelerations`](crate::accelerations)
+    /// documents. Generated systems override it with their emitted solver,
     /// unrolled for their size; generated systems with constraints, with
     /// the accelerations the constraints allow
     /// ([`constrained_accelerations`](crate::constrained::constrained_accelerations),
@@ -175,7 +174,7 @@ pub type Expansion<const K: usize, const NQ: usize, const NV: usize> =
     ([[f64; K]; NQ], [[f64; K]; NV]);
 
 /// A system whose model asks for `outputs taylor;`: the Taylor coefficients
-/// of its motion through a state, which [`integrate::taylor`](crate::integrate::taylor)
+/// of its motion through a state, which [`integrate::Taylor`](crate::integrate::Taylor)
 /// sums.
 pub trait TaylorSystem<const NQ: usize, const NV: usize, const NU: usize>:
     MultibodySystem<NQ, NV, NU>

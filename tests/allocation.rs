@@ -1,6 +1,6 @@
 //! Generated functions and the runtime's solvers allocate nothing: a
 //! counting global allocator around calls of every generated function and
-//! of `accelerations`, `constrained_accelerations`, `rk4_step` (unconstrained
+//! of `accelerations`, `constrained_accelerations`, `Rk4::step` (unconstrained
 //! and constrained with projection), `energy`, the adaptive pairs and the
 //! Taylor integrator finds no allocation.
 
@@ -113,7 +113,7 @@ fn generated_functions_and_solvers_allocate_nothing() {
         let a = accelerations(&pendulum, 0.0, &q, &qd, &[]).map(|_| ());
         let b = constrained_accelerations(&constrained, 0.0, &cq, &cqd, &[0.5]).map(|_| ());
         let state = State { t: 0.0, q, v: qd };
-        let c = integrate::rk4_step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3)
+        let c = integrate::Rk4::step(&Unconstrained::without_inputs(&pendulum), &state, 1e-3)
             .map(|_| ());
         let start = State {
             t: 0.0,
@@ -124,7 +124,7 @@ fn generated_functions_and_solvers_allocate_nothing() {
             tolerance: 1e-12,
             max_iterations: 10,
         };
-        let d = integrate::rk4_step(
+        let d = integrate::Rk4::step(
             &Constrained::new(&constrained, |_, _, _| [0.5], projection),
             &start,
             1e-3,
@@ -142,7 +142,7 @@ fn generated_functions_and_solvers_allocate_nothing() {
 #[test]
 fn rank_revealing_solves_and_the_augmented_lagrangian_allocate_nothing() {
     use dalembert::constrained::ConstraintSolver;
-    use dalembert::integrate::{AugmentedLagrangian, augmented_lagrangian};
+    use dalembert::integrate::{AugmentedLagrangian, AugmentedLagrangianSettings, Integration};
     use dalembert_fixtures::iftomm::Bricard;
 
     // Bricard's mechanism: five closure rows of rank four.
@@ -165,9 +165,19 @@ fn rank_revealing_solves_and_the_augmented_lagrangian_allocate_nothing() {
         let solve = ConstraintSolver::RankRevealing
             .accelerations(&bricard, 0.0, &start.q, &start.v, &[])
             .is_ok();
-        let step = integrate::rk4_step(&dynamics, &start, 1e-3).is_ok();
-        let settings = AugmentedLagrangian::default();
-        let alf = augmented_lagrangian(&dynamics, start, 1e-2, 10, settings, |_| {}).is_ok();
+        let step = integrate::Rk4::step(&dynamics, &start, 1e-3).is_ok();
+        let settings = AugmentedLagrangianSettings::default();
+        let alf = Integration::new(
+            &dynamics,
+            start,
+            1e-2,
+            AugmentedLagrangian {
+                steps: 10,
+                settings,
+            },
+        )
+        .run()
+        .is_ok();
         (solve, step, alf)
     });
     assert_eq!(
@@ -193,21 +203,47 @@ fn adaptive_pairs_dense_output_and_events_allocate_nothing() {
     let options = integrate::AdaptiveOptions::with_tolerance(1e-10);
     let pair = integrate::ExplicitPair::Dop853;
     let (made, result) = allocations(|| {
-        let plain = integrate::adaptive(&dynamics, start, 1.0, pair, options, |_| {});
+        let plain = integrate::Integration::new(
+            &dynamics,
+            start,
+            1.0,
+            integrate::Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .run();
         let mut middle = 0.0;
-        let dense = integrate::adaptive_dense(&dynamics, start, 1.0, pair, options, |step| {
+        let dense = integrate::Integration::new(
+            &dynamics,
+            start,
+            1.0,
+            integrate::Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .dense(|step| {
             middle += step.state_at(0.5 * (step.start().t + step.end().t)).q[0];
             std::ops::ControlFlow::Continue(())
-        });
+        })
+        .run();
         let upright = integrate::Event::record(
             |_, q: &[f64; 2], _: &[f64; 2]| q[0],
             integrate::Crossing::Either,
         );
         let mut crossings = 0;
-        let events =
-            integrate::adaptive_with_events(&dynamics, start, 1.0, pair, options, upright, |_| {
-                crossings += 1
-            });
+        let events = integrate::Integration::new(
+            &dynamics,
+            start,
+            1.0,
+            integrate::Adaptive {
+                pair: pair,
+                options: options,
+            },
+        )
+        .event(upright, |_| crossings += 1)
+        .run();
         (plain.is_ok(), dense.is_ok(), events.is_ok(), crossings)
     });
     assert_eq!(made, 0, "the adaptive integrators allocated");
@@ -231,22 +267,24 @@ fn the_taylor_integrator_its_polynomials_and_events_allocate_nothing() {
         q: [0.3, -0.4],
         v: [0.5, 0.1],
     };
-    let options = integrate::TaylorOptions::with_tolerance(1e-14);
+    let options = integrate::Taylor::with_tolerance(1e-14);
     let (made, result) = allocations(|| {
-        let plain = integrate::taylor(&dynamics, start, 1.0, options, |_| {});
+        let plain = integrate::Integration::new(&dynamics, start, 1.0, options).run();
         let mut middle = 0.0;
-        let dense = integrate::taylor_dense(&dynamics, start, 1.0, options, |step| {
-            middle += step.state_at(0.5 * (step.start().t + step.end().t)).q[0];
-            std::ops::ControlFlow::Continue(())
-        });
+        let dense = integrate::Integration::new(&dynamics, start, 1.0, options)
+            .dense(|step| {
+                middle += step.state_at(0.5 * (step.start().t + step.end().t)).q[0];
+                std::ops::ControlFlow::Continue(())
+            })
+            .run();
         let upright = integrate::Event::record(
             |_, q: &[f64; 2], _: &[f64; 2]| q[0],
             integrate::Crossing::Either,
         );
         let mut crossings = 0;
-        let events = integrate::taylor_with_events(&dynamics, start, 1.0, options, upright, |_| {
-            crossings += 1
-        });
+        let events = integrate::Integration::new(&dynamics, start, 1.0, options)
+            .event(upright, |_| crossings += 1)
+            .run();
         (plain.is_ok(), dense.is_ok(), events.is_ok(), crossings)
     });
     assert_eq!(made, 0, "the Taylor integrator allocated");

@@ -77,15 +77,18 @@ fn run<S: ConstrainedSystem<3, 3, 1, 2>>(
         }
         step += 1;
     };
-    let end = integrate::rk4(
+    let end = integrate::Integration::new(
         // Unwatched: the drift is what this example charts.
         &Constrained::without_inputs(system, stabilisation)
             .with_drift_limits(DriftLimits::UNWATCHED),
         start,
         start.t + steps as f64 * STEP,
-        steps as u64,
-        observe,
+        integrate::Rk4 {
+            steps: steps as u64,
+        },
     )
+    .observe(observe)
+    .run()
     .map(|solution| solution.end)?;
     run.end = end;
     Ok(run)

@@ -192,11 +192,23 @@ impl FixedStep {
     ) -> Result<Solution<NQ, NQ>, IntegrationError<NQ>> {
         let steps = ((t_end - start.t) / h).round().max(1.0) as u64;
         match self {
-            Self::Rk4 => integrate::rk4(dynamics, start, t_end, steps, |_| {}),
-            Self::Gauss(method) => {
-                integrate::gauss_legendre(dynamics, start, t_end, steps, method, |_| {})
+            Self::Rk4 => {
+                integrate::Integration::new(dynamics, start, t_end, integrate::Rk4 { steps }).run()
             }
-            Self::Sdirk => integrate::sdirk(dynamics, start, t_end, steps, |_| {}),
+            Self::Gauss(method) => integrate::Integration::new(
+                dynamics,
+                start,
+                t_end,
+                integrate::Gauss {
+                    rule: method,
+                    steps,
+                },
+            )
+            .run(),
+            Self::Sdirk => {
+                integrate::Integration::new(dynamics, start, t_end, integrate::Sdirk { steps })
+                    .run()
+            }
         }
     }
 }
@@ -218,7 +230,18 @@ fn runs<'a, E: Dynamics<NQ, NQ>, const NQ: usize>(
         };
         for &tolerance in tolerances {
             let options = AdaptiveOptions::with_tolerance(tolerance);
-            let run = move || integrate::adaptive(dynamics, start, t_end, pair, options, |_| {});
+            let run = move || {
+                integrate::Integration::new(
+                    dynamics,
+                    start,
+                    t_end,
+                    integrate::Adaptive {
+                        pair: pair,
+                        options: options,
+                    },
+                )
+                .run()
+            };
             runs.push((format!("{name}{label}"), tolerance, Box::new(run)));
         }
     }
@@ -242,8 +265,8 @@ fn taylor_runs<'a, E: integrate::TaylorDynamics<NQ, NQ>, const NQ: usize>(
     tolerances
         .iter()
         .map(|&tolerance| {
-            let options = integrate::TaylorOptions::with_tolerance(tolerance);
-            let run = move || integrate::taylor(dynamics, start, t_end, options, |_| {});
+            let options = integrate::Taylor::with_tolerance(tolerance);
+            let run = move || integrate::Integration::new(dynamics, start, t_end, options).run();
             (
                 format!("Taylor{label}"),
                 tolerance,
@@ -270,16 +293,13 @@ fn regular_pendulum(out: &Path, repeats: usize) -> Result<(), Box<dyn Error>> {
         v: [0.0, 0.0],
     };
     let t_end = 10.0;
-    let tight = integrate::TaylorOptions::with_tolerance(1e-20);
-    let reference = integrate::taylor(&dynamics, start, t_end, tight, |_| {})?.end;
-    let check = integrate::adaptive(
-        &dynamics,
-        start,
-        t_end,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-16),
-        |_| {},
-    )?;
+    let tight = integrate::Taylor::with_tolerance(1e-20);
+    let reference = integrate::Integration::new(&dynamics, start, t_end, tight)
+        .run()?
+        .end;
+    let check =
+        integrate::Integration::new(&dynamics, start, t_end, integrate::Adaptive::dop853(1e-16))
+            .run()?;
     println!(
         "seed example 1 at 0.2 rad: reference (Taylor 1e-20) vs DOP853 1e-16: {:.2e}",
         state_error(&check.end, &reference)
@@ -356,14 +376,13 @@ fn chaotic_pendulum(out: &Path, repeats: usize, scipy: &Path) -> Result<(), Box<
         energy_error: ((energy(&CHAOTIC, &end.q, &end.v) - initial_energy) / initial_energy).abs(),
         drift: 0.0,
     };
-    let tightest = integrate::adaptive(
+    let tightest = integrate::Integration::new(
         &dynamics,
         CHAOTIC_START,
         CHAOTIC_END,
-        ExplicitPair::Dop853,
-        AdaptiveOptions::with_tolerance(1e-15),
-        |_| {},
-    )?;
+        integrate::Adaptive::dop853(1e-15),
+    )
+    .run()?;
     println!(
         "seed example 1: DOP853 at 1e-15 is {:.2e} from the 25-digit reference (chaotic limit ≈ {CHAOTIC_LIMIT:.1e})",
         state_error(&tightest.end, &reference)
@@ -513,8 +532,17 @@ where
     });
     let projected = &dynamics[2];
     let tight = AdaptiveOptions::with_tolerance(1e-14);
-    let reference =
-        integrate::adaptive(projected, start, t_end, ExplicitPair::Dop853, tight, |_| {})?.end;
+    let reference = integrate::Integration::new(
+        projected,
+        start,
+        t_end,
+        integrate::Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: tight,
+        },
+    )
+    .run()?
+    .end;
     let check = FixedStep::Gauss(GaussLegendre::Order6).run(projected, start, t_end, 1e-3)?;
     println!(
         "{title}: reference (DOP853 1e-14, projection) vs Gauss 6 h = 1e-3: {:.2e}",
@@ -592,38 +620,45 @@ fn energy_drift(out: &Path) -> Result<(), Box<dyn Error>> {
     let dynamics = Unconstrained::without_inputs(&CHAOTIC);
     let bar = progress("energy, 10⁴ s", 3);
     let rk4 = energy_history(HORIZON, 10.0, |observe| {
-        integrate::rk4(
+        integrate::Integration::new(
             &dynamics,
             CHAOTIC_START,
             CHAOTIC_START.t + 1e4,
-            2_000_000,
-            observe,
+            integrate::Rk4 { steps: 2_000_000 },
         )
+        .observe(observe)
+        .run()
         .map(drop)
     })?;
     bar.inc(1);
     let dop853 = energy_history(HORIZON, 10.0, |observe| {
         let options = AdaptiveOptions::with_tolerance(1e-8);
-        integrate::adaptive(
+        integrate::Integration::new(
             &dynamics,
             CHAOTIC_START,
             HORIZON,
-            ExplicitPair::Dop853,
-            options,
-            observe,
+            integrate::Adaptive {
+                pair: ExplicitPair::Dop853,
+                options: options,
+            },
         )
+        .observe(observe)
+        .run()
         .map(drop)
     })?;
     bar.inc(1);
     let gauss = energy_history(HORIZON, 10.0, |observe| {
-        integrate::gauss_legendre(
+        integrate::Integration::new(
             &dynamics,
             CHAOTIC_START,
             CHAOTIC_START.t + 1e4,
-            1_000_000,
-            GaussLegendre::Order4,
-            observe,
+            integrate::Gauss {
+                rule: GaussLegendre::Order4,
+                steps: 1_000_000,
+            },
         )
+        .observe(observe)
+        .run()
         .map(drop)
     })?;
     bar.finish();
@@ -673,23 +708,36 @@ fn stiff_joint(out: &Path) -> Result<(), Box<dyn Error>> {
     let dynamics = Unconstrained::without_inputs(&STIFF);
     let stretch = |s: &State<2, 2>| (s.t, (s.q[1] - s.q[0]).abs());
     let mut rk4 = Vec::new();
-    let rk4_end = integrate::rk4(&dynamics, STIFF_START, STIFF_START.t + 1.0, 500, |s| {
-        rk4.push(stretch(s))
-    });
+    let rk4_end = integrate::Integration::new(
+        &dynamics,
+        STIFF_START,
+        STIFF_START.t + 1.0,
+        integrate::Rk4 { steps: 500 },
+    )
+    .observe(|s| rk4.push(stretch(s)))
+    .run();
     let mut dop853 = Vec::new();
     let options = AdaptiveOptions::with_tolerance(1e-6);
-    let explicit = integrate::adaptive(
+    let explicit = integrate::Integration::new(
         &dynamics,
         STIFF_START,
         DURATION,
-        ExplicitPair::Dop853,
-        options,
-        |s| dop853.push(stretch(s)),
-    )?;
+        integrate::Adaptive {
+            pair: ExplicitPair::Dop853,
+            options: options,
+        },
+    )
+    .observe(|s| dop853.push(stretch(s)))
+    .run()?;
     let mut sdirk = Vec::new();
-    let implicit = integrate::sdirk(&dynamics, STIFF_START, STIFF_START.t + 1.0, 100, |s| {
-        sdirk.push(stretch(s))
-    })?;
+    let implicit = integrate::Integration::new(
+        &dynamics,
+        STIFF_START,
+        STIFF_START.t + 1.0,
+        integrate::Sdirk { steps: 100 },
+    )
+    .observe(|s| sdirk.push(stretch(s)))
+    .run()?;
     match rk4_end {
         Ok(end) => println!(
             "stiff joint: RK4 at h = 2 ms ends at stretch {:.3e}",
@@ -739,27 +787,33 @@ fn sensitivity(out: &Path) -> Result<(), Box<dyn Error>> {
     nudged.q[0] += 1e-10;
     let (h, steps) = (1e-3, 30_000);
     let mut first = Vec::with_capacity(steps + 1);
-    integrate::gauss_legendre(
+    integrate::Integration::new(
         &dynamics,
         CHAOTIC_START,
         CHAOTIC_START.t + steps as f64 * h,
-        steps as u64,
-        GaussLegendre::Order6,
-        |s| first.push(*s),
-    )?;
+        integrate::Gauss {
+            rule: GaussLegendre::Order6,
+            steps: steps as u64,
+        },
+    )
+    .observe(|s| first.push(*s))
+    .run()?;
     let mut separation = Vec::with_capacity(steps + 1);
     let mut index = 0;
-    integrate::gauss_legendre(
+    integrate::Integration::new(
         &dynamics,
         nudged,
         nudged.t + steps as f64 * h,
-        steps as u64,
-        GaussLegendre::Order6,
-        |s| {
-            separation.push((s.t, state_error(s, &first[index])));
-            index += 1;
+        integrate::Gauss {
+            rule: GaussLegendre::Order6,
+            steps: steps as u64,
         },
-    )?;
+    )
+    .observe(|s| {
+        separation.push((s.t, state_error(s, &first[index])));
+        index += 1;
+    })
+    .run()?;
     if let Some((t, _)) = separation.iter().find(|(_, d)| *d > 1e-3) {
         println!("sensitivity: trajectories 1e-10 apart separate beyond 1e-3 at t = {t:.2} s");
     }
@@ -786,22 +840,36 @@ fn singular_mass_matrix() {
     let outcomes = [
         (
             "RK4",
-            integrate::rk4(&dynamics, TOWARDS_AXIS, TOWARDS_AXIS.t + 1.0, 8, |_| {}),
+            integrate::Integration::new(
+                &dynamics,
+                TOWARDS_AXIS,
+                TOWARDS_AXIS.t + 1.0,
+                integrate::Rk4 { steps: 8 },
+            )
+            .run(),
         ),
         (
             "DOP853",
-            integrate::adaptive(
+            integrate::Integration::new(
                 &dynamics,
                 TOWARDS_AXIS,
                 0.5,
-                ExplicitPair::Dop853,
-                options,
-                |_| {},
-            ),
+                integrate::Adaptive {
+                    pair: ExplicitPair::Dop853,
+                    options: options,
+                },
+            )
+            .run(),
         ),
         (
             "SDIRK",
-            integrate::sdirk(&dynamics, TOWARDS_AXIS, TOWARDS_AXIS.t + 1.0, 8, |_| {}),
+            integrate::Integration::new(
+                &dynamics,
+                TOWARDS_AXIS,
+                TOWARDS_AXIS.t + 1.0,
+                integrate::Sdirk { steps: 8 },
+            )
+            .run(),
         ),
     ];
     for (name, outcome) in outcomes {

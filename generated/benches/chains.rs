@@ -3,7 +3,7 @@
 //! feature): `mass_matrix` + `forcing` (the counterpart of Pinocchio's
 //! `crba` + `nonLinearEffects`), the generated `accelerations` method
 //! (unrolled `L D Lᵀ` or articulated-body recursion, the counterpart of
-//! `aba`) and the runtime's generic `dalembert::dynamics::cholesky_accelerations` (nalgebra's
+//! `aba`) and the runtime's generic `dalembert::__private::cholesky_accelerations` (nalgebra's
 //! Cholesky). Same method as
 //! `benches/seed_examples.rs` (shared in `dalembert_fixtures::states`): 1000 fixed
 //! pseudo-random states, one call per iteration.
@@ -34,7 +34,7 @@ fn bench_chain<S: MultibodySystem<N, N, 0>, const N: usize>(
     let states = states::<N, 0>(N as u64);
     // Every state must be solvable, or `accelerations` would time an early return.
     for s in &states {
-        dalembert::dynamics::cholesky_accelerations(&system, s.t, &s.q, &s.v, &s.u)
+        dalembert::__private::cholesky_accelerations(&system, s.t, &s.q, &s.v, &s.u)
             .expect("solvable state");
     }
     let mut group = c.benchmark_group(format!("{family}/{N}"));
@@ -52,10 +52,10 @@ fn bench_chain<S: MultibodySystem<N, N, 0>, const N: usize>(
             })
         })
     });
-    group.bench_function("dalembert::dynamics::cholesky_accelerations", |b| {
+    group.bench_function("dalembert::__private::cholesky_accelerations", |b| {
         b.iter_custom(|iters| {
             per_call(&states, iters, |s| {
-                dalembert::dynamics::cholesky_accelerations(
+                dalembert::__private::cholesky_accelerations(
                     black_box(&system),
                     s.t,
                     &s.q,

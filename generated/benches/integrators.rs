@@ -30,8 +30,8 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::MultibodySystem;
 use dalembert::integrate::{
-    AdaptiveOptions, ExplicitPair, GaussLegendre, Solution, State, Unconstrained, adaptive,
-    gauss_legendre, rk4,
+    Adaptive, AdaptiveOptions, ExplicitPair, Gauss, GaussLegendre, Integration, Rk4, Solution,
+    State, Unconstrained,
 };
 use dalembert_fixtures::cpu_time::thread_time;
 use dalembert_generated::{
@@ -100,7 +100,11 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
     group.bench_function("rk4", |b| {
         b.iter_custom(|iters| {
             per_count(iters, || {
-                evaluations(rk4(&dynamics, initial, DURATION, STEPS, |_| {}).unwrap())
+                evaluations(
+                    Integration::new(&dynamics, initial, DURATION, Rk4 { steps: STEPS })
+                        .run()
+                        .unwrap(),
+                )
             })
         })
     });
@@ -113,7 +117,17 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
             b.iter_custom(|iters| {
                 per_count(iters, || {
                     evaluations(
-                        adaptive(&dynamics, initial, DURATION, pair, options, |_| {}).unwrap(),
+                        Integration::new(
+                            &dynamics,
+                            initial,
+                            DURATION,
+                            Adaptive {
+                                pair: pair,
+                                options: options,
+                            },
+                        )
+                        .run()
+                        .unwrap(),
                     )
                 })
             })
@@ -124,7 +138,17 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
             per_count(iters, || {
                 let method = GaussLegendre::Order4;
                 evaluations(
-                    gauss_legendre(&dynamics, initial, DURATION, STEPS, method, |_| {}).unwrap(),
+                    Integration::new(
+                        &dynamics,
+                        initial,
+                        DURATION,
+                        Gauss {
+                            rule: method,
+                            steps: STEPS,
+                        },
+                    )
+                    .run()
+                    .unwrap(),
                 )
             })
         })
@@ -152,7 +176,15 @@ fn bench_throughput<S: MultibodySystem<N, N, 0>, const N: usize>(
     c.bench_function(&format!("throughput/rk4_1ms/{family}/{N}"), |b| {
         b.iter_custom(|iters| {
             per_count(iters, || {
-                let run = rk4(&dynamics, initial, duration, THROUGHPUT_STEPS, |_| {});
+                let run = Integration::new(
+                    &dynamics,
+                    initial,
+                    duration,
+                    Rk4 {
+                        steps: THROUGHPUT_STEPS,
+                    },
+                )
+                .run();
                 evaluations(run.unwrap()) / 4
             })
         })

@@ -2,7 +2,7 @@
 //! `tests/reference/chains.json` (both families, n = 1..6, 10 random and 2
 //! special states each): `M`, `f = τ − nle` (our chains have no inputs, so
 //! `forcing = −nle`), `T`, `V` and the accelerations — of the runtime's
-//! `dalembert::dynamics::cholesky_accelerations` and of the generated, unrolled
+//! `dalembert::__private::cholesky_accelerations` and of the generated, unrolled
 //! `accelerations` method, which also agree with each other, the latter being
 //! what `dalembert::accelerations` calls. And the checked-in
 //! `models/*_chain_NN.dal` are exactly what `dalembert_codegen::chain::chain` writes.
@@ -84,7 +84,7 @@ fn check<S: MultibodySystem<N, N, 0>, const N: usize>(
         let v = state["V"].as_f64().unwrap();
         assert_close(&what("V"), &[system.potential_energy(&q)], &[v], TOLERANCE);
         // With τ = 0 our forcing gives the free motion: q̈ = M⁻¹(−nle).
-        let free = dalembert::dynamics::cholesky_accelerations(system, 0.0, &q, &qd, &[])
+        let free = dalembert::__private::cholesky_accelerations(system, 0.0, &q, &qd, &[])
             .expect("solvable");
         let mass_reference = numbers(&state["M"]);
         let residual: Vec<f64> = (0..N)

@@ -205,7 +205,7 @@ fn robots_match_central_differences() {
 }
 
 /// A branching tree large enough for the world-frame partials in loops
-/// (`dalembert::dynamics::TreeRecursion`), with a slide among its joints.
+/// (`dalembert::__private::TreeRecursion`), with a slide among its joints.
 #[test]
 fn a_branching_tree_matches_central_differences() {
     check!(6; spatial_tree_14::SpatialTree14 {});

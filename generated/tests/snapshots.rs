@@ -47,7 +47,7 @@ fn chain_operation_counts() {
 }
 
 /// The pairs of speeds that `mass_matrix` takes in a loop at run time
-/// (`dalembert::dynamics::tree_mass_matrix`, its table of `TreeSpeed`s
+/// (`dalembert::__private::tree_mass_matrix`, its table of `TreeSpeed`s
 /// `{ end, speed }`, speed `i` paired with the entries from `i` to before
 /// `end`), if it does, and that loop's operations: a dot product of six
 /// (11 operations) a pair.
@@ -157,7 +157,7 @@ fn tree_parents(code: &str) -> Option<Vec<Option<usize>>> {
     (!parents.is_empty()).then_some(parents)
 }
 
-/// The links of the loops of `dalembert::dynamics::TreeRecursion` and
+/// The links of the loops of `dalembert::__private::TreeRecursion` and
 /// their operations, counted in its source (`src/dynamics/tree_vectors.rs`):
 /// per link, in the first pass, 189 outwards, 351 for its own inertia in
 /// `N` with its rate, momentum and force, 42 for `y` and 11 for its entry
@@ -173,7 +173,7 @@ fn link_operations(parents: &[Option<usize>]) -> (usize, usize) {
 }
 
 /// The pairs of joints that the jacobian adds in a loop at run time
-/// (`dalembert::dynamics::add_tree_pairs`) and that loop's operations: per
+/// (`dalembert::__private::add_tree_pairs`) and that loop's operations: per
 /// link and each of it and its ancestors 4 dot products of six (11
 /// operations each) and 5 additions, and with each ancestor 2 more dot
 /// products and 2 additions; and the operations of its mass matrix

@@ -274,7 +274,7 @@ fn rk4_is_the_runtime_rk4_where_the_speeds_are_rates() {
     let mut random = Random::new(16);
     for _ in 0..STATES {
         let (start, u) = random_state(&system, &mut random);
-        let runtime = integrate::rk4_step(&Unconstrained::new(&system, |_, _, _| u), &start, H)
+        let runtime = integrate::Rk4::step(&Unconstrained::new(&system, |_, _, _| u), &start, H)
             .expect("a step");
         assert_eq!(rk4_step(&system, &start, &u, H).expect("a step"), runtime);
     }

@@ -105,7 +105,7 @@ pub(crate) enum Dependents {
 /// * For long runs through singular positions at a fixed step, or to match
 ///   the reference solutions of the IFToMM benchmarks, integrate with the
 ///   index-3 augmented Lagrangian method
-///   ([`augmented_lagrangian`](crate::integrate::augmented_lagrangian)),
+///   ([`AugmentedLagrangian`](crate::integrate::AugmentedLagrangian)),
 ///   which needs neither `A` of full rank nor `M` invertible.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ConstraintSolver {
@@ -413,7 +413,7 @@ where
 /// added eigenvalues `−β` make the equations stiff, so that an explicit
 /// method goes unstable once `β h` leaves its stability region (`β h ≳ 2.8`
 /// for RK4). Measured on seed example 3 with RK4, `h = 1e-3 s`, over 10 s
-/// (`tests/constraints.rs`): max `|φ|` is `2e-10` unstabilised, `2e-12` with
+/// (`tests/suite/constraints.rs`): max `|φ|` is `2e-10` unstabilised, `2e-12` with
 /// `α = β = 3.66/s` (the natural frequency), `1e-9` with `α = β = 100/s`;
 /// with `h = 1e-2 s` and `α = β = 300/s` the integration diverges. `α = β =
 /// 0` is [`constrained_accelerations`]. The returned `λ` include the

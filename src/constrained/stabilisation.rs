@@ -23,7 +23,7 @@ pub enum Stabilisation {
     /// Integrate `A q̈ = b` as it is: the drift grows with time, slowly
     /// while the rows are independent, but exponentially along redundant
     /// rows, which nothing holds once the state is off the manifold: in a
-    /// parallelogram with a third, redundant crank (`tests/closed_loops.rs`)
+    /// parallelogram with a third, redundant crank (`tests/suite/redundant_parallelogram.rs`)
     /// the middle crank leaves the others by `1e-9` rad in 4 s and by
     /// `1e-5` in 5.5 s. The integration stops with
     /// [`Failure::ConstraintDrift`](crate::integrate::Failure::ConstraintDrift)
@@ -50,7 +50,7 @@ pub enum Stabilisation {
     /// and the gains. See [`baumgarte_accelerations`](super::baumgarte_accelerations) for how to choose them.
     /// Not through singular positions: there the stabilising terms are
     /// divided by the vanishing gradient of a row, and the motion diverges
-    /// (unwatched, the parallelogram four-bar of `tests/closed_loops.rs`
+    /// (unwatched, the parallelogram four-bar of `tests/suite/loop_rows.rs`
     /// stops with
     /// [`NonFiniteEquations`](crate::DynamicsError::NonFiniteEquations)
     /// after its third flat position); watched, it stops with
@@ -111,7 +111,7 @@ mod tests {
     use super::*;
     use crate::constrained::ConstraintSolver;
     use crate::constrained::test_systems::PointOnCircle;
-    use crate::integrate::{Failure, rk4, rk4_step};
+    use crate::integrate::{Failure, Integration, Rk4};
     use crate::test_systems::Pendulum;
     use crate::{Constrained, DynamicsError, Unconstrained};
 
@@ -140,7 +140,10 @@ mod tests {
             drift = drift.max(constraint_drift(&CIRCLE, s));
         };
         let dynamics = Constrained::without_inputs(&CIRCLE, stabilisation);
-        rk4(&dynamics, at_rest(1.0), 2.0, 2000, observe).unwrap();
+        Integration::new(&dynamics, at_rest(1.0), 2.0, Rk4 { steps: 2000 })
+            .observe(observe)
+            .run()
+            .unwrap();
         (angles, drift)
     }
 
@@ -158,7 +161,10 @@ mod tests {
             v: [0.0],
         };
         let dynamics = Unconstrained::without_inputs(&pendulum);
-        rk4(&dynamics, start, 2.0, 2000, |s| reference.push(s.q[0])).unwrap();
+        Integration::new(&dynamics, start, 2.0, Rk4 { steps: 2000 })
+            .observe(|s| reference.push(s.q[0]))
+            .run()
+            .unwrap();
         let modes = [
             Stabilisation::None,
             Stabilisation::Baumgarte {
@@ -197,10 +203,12 @@ mod tests {
         let mut worst: f64 = 0.0;
         let dynamics = Constrained::without_inputs(&CIRCLE, energy_projection);
         // Long steps (0.1 s), whose truncation errors the scaling removes.
-        rk4(&dynamics, at_rest(1.0), 2.0, 20, |s| {
-            worst = worst.max((crate::energy(&CIRCLE, &s.q, &s.v) - start).abs());
-        })
-        .unwrap();
+        Integration::new(&dynamics, at_rest(1.0), 2.0, Rk4 { steps: 20 })
+            .observe(|s| {
+                worst = worst.max((crate::energy(&CIRCLE, &s.q, &s.v) - start).abs());
+            })
+            .run()
+            .unwrap();
         assert!(worst < 1e-13, "{worst:e}");
     }
 
@@ -226,7 +234,7 @@ mod tests {
         };
         let dynamics = Constrained::without_inputs(&twice, Stabilisation::None)
             .with_solver(ConstraintSolver::SchurComplement);
-        let error = rk4_step(&dynamics, &start, 0.1).unwrap_err();
+        let error = Rk4::step(&dynamics, &start, 0.1).unwrap_err();
         assert_eq!((error.t, error.q), (3.0, start.q));
         assert!(matches!(
             error.cause,
@@ -243,7 +251,7 @@ mod tests {
             max_iterations: 0,
         };
         let dynamics = Constrained::without_inputs(&CIRCLE, stingy);
-        let error = rk4_step(&dynamics, &start, 0.1).unwrap_err();
+        let error = Rk4::step(&dynamics, &start, 0.1).unwrap_err();
         assert_eq!(error.t, 0.1);
         assert!(matches!(
             error.cause,

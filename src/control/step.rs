@@ -12,7 +12,7 @@
 //!   `v⁺ = v + (h/6)(v̇₁ + 2v̇₂ + 2v̇₃ + v̇₄)` (Crocoddyl's
 //!   `IntegratedActionModelRK4`). Where every speed is its coordinate's
 //!   rate this is the classical method of
-//!   [`integrate::rk4_step`](crate::integrate::rk4_step), operation for
+//!   [`integrate::Rk4::step`](crate::integrate::Rk4::step), operation for
 //!   operation; on a quaternion joint that integrator moves `q` along
 //!   `q̇ = N(q) v` in the quaternion's four numbers instead (fourth order
 //!   on the group, where this step is second order in the rotation), a map
@@ -241,7 +241,7 @@ pub(super) const WEIGHTS: [f64; 4] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0
 /// One RK4 step from `state` with the inputs `u` held (the stages moved by
 /// the group update, see the module's docs), at `t + h`. Where every speed
 /// is its coordinate's rate, the same operations as
-/// [`integrate::rk4_step`](crate::integrate::rk4_step). Errors: those of the
+/// [`integrate::Rk4::step`](crate::integrate::Rk4::step). Errors: those of the
 /// system's `accelerations`.
 pub fn rk4_step<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,

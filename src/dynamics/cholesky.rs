@@ -1,9 +1,10 @@
 //! Cholesky factorisation `M = L Lᵀ` on the stack with a relative pivot test,
 //! shared by the mass matrix and the constraints' Schur complement.
 
-use nalgebra::{Cholesky, Const, SMatrix};
+use nalgebra::{Cholesky, Const, SMatrix, SVector};
 
-use super::{DynamicsError, NullMotion};
+use super::{DynamicsError, NullMotion, all_finite, pivot_names};
+use crate::MultibodySystem;
 
 /// A Cholesky pivot at most this fraction of the largest diagonal entry of the
 /// matrix counts as zero: the matrix is singular to working precision. The
@@ -130,4 +131,35 @@ mod tests {
             }
         ));
     }
+}
+
+/// The runtime's generic solver behind the provided
+/// [`MultibodySystem::accelerations`]: nalgebra's Cholesky factorisation of
+/// `M` on the stack, with the checks and errors of [`accelerations`](crate::accelerations).
+/// Generated systems solve with their own unrolled factorisation; tests and
+/// benchmarks compare it with this one.
+pub fn cholesky_accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    u: &[f64; NU],
+) -> Result<[f64; NV], DynamicsError>
+where
+    S: MultibodySystem<NQ, NV, NU> + ?Sized,
+{
+    if !(t.is_finite() && all_finite(q) && all_finite(v) && all_finite(u)) {
+        return Err(DynamicsError::NonFiniteState);
+    }
+    let mass = system.mass_matrix_at(t, q);
+    let forcing = system.forcing(t, q, v, u);
+    if !(mass.iter().all(all_finite) && all_finite(&forcing)) {
+        return Err(DynamicsError::NonFiniteEquations);
+    }
+    let factor = factor_mass_matrix(&mass, &pivot_names::<S, NQ, NV, NU>())?;
+    let vdot: [f64; NV] = factor.solve(&SVector::from(forcing)).into();
+    if !all_finite(&vdot) {
+        return Err(DynamicsError::NonFiniteAccelerations);
+    }
+    Ok(vdot)
 }

@@ -1,22 +1,17 @@
 //! Forward dynamics: the accelerations `v̇` that solve `M(q) v̇ = f`, and the
 //! total energy.
 
-mod cholesky;
+pub(crate) mod cholesky;
 mod error;
-mod null_motion;
-mod pairs;
-mod rows;
-mod tree_vectors;
+pub(crate) mod null_motion;
+pub(crate) mod pairs;
+pub(crate) mod rows;
+pub(crate) mod tree_vectors;
 
-use nalgebra::SVector;
-
-pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots, pivot_tolerance};
-pub(crate) use cholesky::{cholesky, factor_mass_matrix};
+pub use cholesky::RELATIVE_PIVOT_TOLERANCE;
+pub(crate) use cholesky::{cholesky, cholesky_accelerations, factor_mass_matrix};
 pub use error::DynamicsError;
-pub use null_motion::{NULL_MOTION_NAMES, NullMotion, with_null_motion};
-pub use pairs::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
-pub use rows::scale_and_subtract;
-pub use tree_vectors::{LinkState, TreeRecursion};
+pub use null_motion::NullMotion;
 
 use crate::MultibodySystem;
 
@@ -53,37 +48,6 @@ where
     S: MultibodySystem<NQ, NV, NU> + ?Sized,
 {
     system.accelerations(t, q, v, u)
-}
-
-/// The runtime's generic solver behind the provided
-/// [`MultibodySystem::accelerations`]: nalgebra's Cholesky factorisation of
-/// `M` on the stack, with the checks and errors of [`accelerations`].
-/// Generated systems solve with their own unrolled factorisation; this one
-/// stays callable to compare with it.
-pub fn cholesky_accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
-    system: &S,
-    t: f64,
-    q: &[f64; NQ],
-    v: &[f64; NV],
-    u: &[f64; NU],
-) -> Result<[f64; NV], DynamicsError>
-where
-    S: MultibodySystem<NQ, NV, NU> + ?Sized,
-{
-    if !(t.is_finite() && all_finite(q) && all_finite(v) && all_finite(u)) {
-        return Err(DynamicsError::NonFiniteState);
-    }
-    let mass = system.mass_matrix_at(t, q);
-    let forcing = system.forcing(t, q, v, u);
-    if !(mass.iter().all(all_finite) && all_finite(&forcing)) {
-        return Err(DynamicsError::NonFiniteEquations);
-    }
-    let factor = factor_mass_matrix(&mass, &pivot_names::<S, NQ, NV, NU>())?;
-    let vdot: [f64; NV] = factor.solve(&SVector::from(forcing)).into();
-    if !all_finite(&vdot) {
-        return Err(DynamicsError::NonFiniteAccelerations);
-    }
-    Ok(vdot)
 }
 
 /// The name reported for each pivot of the mass matrix: the coordinate when

@@ -7,7 +7,7 @@
 //! composite rigid bodies) and the tree's share of the forcing, which the
 //! generated code solves for `q̈`; a second adds what `q̈` changes and
 //! gives the seven spatial vectors of each link that
-//! [`add_tree_pairs`](super::add_tree_pairs) pairs. Where the same steps
+//! [`add_tree_pairs`](super::pairs::add_tree_pairs) pairs. Where the same steps
 //! unrolled for every link would be code that the processor streams from
 //! memory, this loop stays in its cache. Each link's steps run on its own
 //! structures (array of structures), whose pairs of components LLVM packs
@@ -50,7 +50,7 @@ pub struct LinkState {
 /// which gives `M` and the tree's share of `f`
 /// ([`TreeRecursion::mass_and_bias`]); then, with the solved `q̈`,
 /// [`TreeRecursion::link_vectors`] adds what the accelerations change and
-/// writes the vectors that [`add_tree_pairs`](super::add_tree_pairs) pairs.
+/// writes the vectors that [`add_tree_pairs`](super::pairs::add_tree_pairs) pairs.
 pub struct TreeRecursion<const L: usize> {
     moving: [Moving; L],
     subtrees: [Subtree; L],
@@ -644,7 +644,7 @@ fn symmetric(f: impl Fn(usize, usize) -> f64) -> Mat3 {
 #[cfg(test)]
 mod tests {
     use super::{LinkState, Mat3, TreeRecursion, Vec3, rotated, subspace};
-    use crate::dynamics::{TreeLink, add_tree_pairs};
+    use crate::dynamics::pairs::{TreeLink, add_tree_pairs};
 
     const NONE: usize = usize::MAX;
     /// The masses and lengths of a double pendulum in the plane `z = 0`,

@@ -16,6 +16,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::arguments::fixed_steps_to_take;
+use super::integration::{Method, sealed};
 use super::{Constrained, Failure, InputLaw, IntegrationError, Solution, State, Statistics};
 use crate::constrained::checked as finite;
 use crate::dynamics::{factor_mass_matrix, pivot_names};
@@ -30,9 +31,9 @@ use crate::{ConstrainedSystem, DynamicsError};
 /// crossings, while its positions hold `φ` to the tolerance.
 const VELOCITY_PRECISION: f64 = 1e-3;
 
-/// The settings of [`augmented_lagrangian`].
+/// The settings of the [`AugmentedLagrangian`] method.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AugmentedLagrangian {
+pub struct AugmentedLagrangianSettings {
     /// The penalty factor `α` (force per unit of constraint residual per
     /// unit of Jacobian row). It needs to be large against the mass matrix
     /// over `h²/4`, more so near singular positions, where the multipliers
@@ -52,7 +53,7 @@ pub struct AugmentedLagrangian {
     pub max_iterations: usize,
 }
 
-impl AugmentedLagrangian {
+impl AugmentedLagrangianSettings {
     /// The default settings with the penalty raised for steps below
     /// `1e-3 s`: `α = max(1e10, 1e4 / h²)` (in SI units, for masses about
     /// 1 kg), which keeps the penalty's weight `α h²/4` in the Newton matrix
@@ -68,7 +69,7 @@ impl AugmentedLagrangian {
     }
 }
 
-impl Default for AugmentedLagrangian {
+impl Default for AugmentedLagrangianSettings {
     /// `α = 1e10`, tolerance `1e-8`, 50 iterations: what the N-four-bar
     /// mechanism (A02) needs to cross its singular positions with unit
     /// masses and steps about `1e-3 s`.
@@ -81,42 +82,75 @@ impl Default for AugmentedLagrangian {
     }
 }
 
-/// Integrates the constrained `dynamics` from `initial` to `t_end` in `steps`
-/// equal steps of the index-3 augmented Lagrangian formulation with
-/// mass-orthogonal projections (the trapezoidal rule; second order), and
-/// returns the final state, exactly at `t_end`, with the work done
-/// (`rhs_evaluations` counts the evaluations of `M`, `f` and `A`, one per
-/// Newton iteration and one per projection).
+/// The index-3 augmented Lagrangian formulation with mass-orthogonal
+/// projections (the trapezoidal rule; second order) in `steps` equal steps
+/// to the final time (exactly there): closed loops with redundant
+/// constraints or singular positions at a fixed step, the formulation of
+/// the IFToMM benchmarks' reference solutions. It integrates
+/// [`Constrained`] dynamics only; the statistics' `rhs_evaluations` count
+/// the evaluations of `M`, `f` and `A`, one per Newton iteration and one
+/// per projection.
 ///
-/// Takes the same [`Constrained`] dynamics as the Runge–Kutta methods; its
-/// [`Stabilisation`](crate::Stabilisation) is not used (the method keeps
-/// `φ`, `ψ` and `A v̇ − b` at the level of its tolerance and penalty by
-/// itself), its [`ConstraintSolver`](crate::constrained::ConstraintSolver)
-/// only for the initial accelerations. Holonomic constraints are enforced at
-/// position, velocity and acceleration level; nonholonomic rows (with
+/// It takes the same [`Constrained`] dynamics as the Runge–Kutta methods;
+/// their [`Stabilisation`](crate::Stabilisation) is not used (the method
+/// keeps `φ`, `ψ` and `A v̇ − b` at the level of its tolerance and penalty
+/// by itself), their [`ConstraintSolver`](crate::constrained::ConstraintSolver)
+/// only for the initial accelerations. Holonomic constraints are enforced
+/// at position, velocity and acceleration level; nonholonomic rows (with
 /// `φ = 0`) by the projections only. The Newton matrix neglects the
 /// derivatives of the forcing and of `M` and `A` with respect to the
-/// configuration (exact for constant loads such as gravity at the solution;
-/// a quasi-Newton iteration otherwise, which converges for steps small
-/// against the stiffness of the loads).
+/// configuration (exact for constant loads such as gravity at the
+/// solution; a quasi-Newton iteration otherwise, which converges for steps
+/// small against the stiffness of the loads).
 ///
-/// `observer` sees the initial state and then the state after every step.
-/// Allocates nothing. Errors: the initial accelerations cannot be computed,
-/// the Newton matrix is not positive definite (a coordinate free to move
-/// without inertia), a non-finite value, or a step that does not converge.
-pub fn augmented_lagrangian<
-    S,
-    F,
-    const NQ: usize,
-    const NV: usize,
-    const NU: usize,
-    const NC: usize,
->(
+/// Errors: the initial accelerations cannot be computed, the Newton matrix
+/// is not positive definite (a coordinate free to move without inertia), a
+/// non-finite value, or a step that does not converge.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AugmentedLagrangian {
+    /// The number of equal steps to the final time.
+    pub steps: u64,
+    /// The penalty, tolerance and iterations of each step.
+    pub settings: AugmentedLagrangianSettings,
+}
+
+impl AugmentedLagrangian {
+    /// `steps` equal steps with the default settings for steps of about
+    /// `1e-3 s` ([`AugmentedLagrangianSettings::default`]).
+    pub fn with_steps(steps: u64) -> Self {
+        Self {
+            steps,
+            settings: AugmentedLagrangianSettings::default(),
+        }
+    }
+}
+
+impl sealed::Sealed for AugmentedLagrangian {}
+
+impl<S, F, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>
+    Method<Constrained<'_, S, F, NU, NC>, NQ, NV> for AugmentedLagrangian
+where
+    S: ConstrainedSystem<NQ, NV, NU, NC>,
+    F: InputLaw<NQ, NV, NU>,
+{
+    fn integrate(
+        self,
+        dynamics: &Constrained<'_, S, F, NU, NC>,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        observer: impl FnMut(&State<NQ, NV>),
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        augmented_lagrangian(dynamics, initial, t_end, self, observer)
+    }
+}
+
+/// [`AugmentedLagrangian`]'s integration of `dynamics` from `initial` to
+/// `t_end`, showing `observer` the initial state and every step's end.
+fn augmented_lagrangian<S, F, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>(
     dynamics: &Constrained<'_, S, F, NU, NC>,
     initial: State<NQ, NV>,
     t_end: f64,
-    steps: u64,
-    settings: AugmentedLagrangian,
+    AugmentedLagrangian { steps, settings }: AugmentedLagrangian,
     mut observer: impl FnMut(&State<NQ, NV>),
 ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
 where
@@ -184,7 +218,7 @@ struct Point<const NQ: usize, const NV: usize, const NC: usize> {
 /// The dynamics, the settings and the work done so far.
 struct Stepper<'d, 's, S, F, const NU: usize, const NC: usize> {
     dynamics: &'d Constrained<'s, S, F, NU, NC>,
-    settings: AugmentedLagrangian,
+    settings: AugmentedLagrangianSettings,
     evaluations: u64,
 }
 
@@ -347,7 +381,7 @@ impl<S, F, const NU: usize, const NC: usize> Stepper<'_, '_, S, F, NU, NC> {
 mod tests {
     use super::*;
     use crate::constrained::test_systems::{PointOnCircle, TiedMassless};
-    use crate::integrate::rk4;
+    use crate::integrate::{Integration, Rk4};
     use crate::test_systems::Pendulum;
     use crate::{Stabilisation, Unconstrained};
 
@@ -365,7 +399,11 @@ mod tests {
             v: [0.0],
         };
         let dynamics = Unconstrained::without_inputs(&pendulum);
-        rk4(&dynamics, start, 2.0, 20_000, |_| {}).unwrap().end.q[0]
+        Integration::new(&dynamics, start, 2.0, Rk4 { steps: 20_000 })
+            .run()
+            .unwrap()
+            .end
+            .q[0]
     }
 
     /// The angle error after 2 s of the circle pendulum with its constraint
@@ -387,9 +425,19 @@ mod tests {
         let observe = |s: &State<2, 2>| {
             residual = residual.max((s.q[0].hypot(s.q[1]) - 1.0).abs());
         };
-        let end = augmented_lagrangian(&dynamics, start, 2.0, steps, Default::default(), observe)
-            .unwrap()
-            .end;
+        let end = Integration::new(
+            &dynamics,
+            start,
+            2.0,
+            AugmentedLagrangian {
+                steps: steps,
+                settings: Default::default(),
+            },
+        )
+        .observe(observe)
+        .run()
+        .unwrap()
+        .end;
         (
             (end.q[0].atan2(-end.q[1]) - reference_angle()).abs(),
             residual,
@@ -422,9 +470,18 @@ mod tests {
             v: [1.0; 2],
         };
         let dynamics = Constrained::without_inputs(&system, Stabilisation::None);
-        let end = augmented_lagrangian(&dynamics, start, 1.0, 100, Default::default(), |_| {})
-            .unwrap()
-            .end;
+        let end = Integration::new(
+            &dynamics,
+            start,
+            1.0,
+            AugmentedLagrangian {
+                steps: 100,
+                settings: Default::default(),
+            },
+        )
+        .run()
+        .unwrap()
+        .end;
         // Uniform acceleration: the trapezoidal rule is exact, up to the
         // Newton tolerance (1e-8 per step).
         let a = system.push / system.m - system.g;

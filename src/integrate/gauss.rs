@@ -16,7 +16,7 @@
 //!   reversibility. Symmetric methods applied to reversible systems keep the
 //!   energy error bounded without drift over long times (Hairer, Lubich and
 //!   Wanner, *Geometric Numerical Integration*, ch. XI), which
-//!   `tests/stability.rs` measures on the chaotic double pendulum over
+//!   `tests/suite/stability.rs` measures on the chaotic double pendulum over
 //!   10⁴ s.
 //!
 //! The canonical alternative — a symplectic method on the Hamiltonian form
@@ -29,6 +29,7 @@
 //! The first guess of each step's stage slopes extrapolates the previous
 //! step's collocation polynomial, which saves a few iterations a step.
 
+use super::integration::{Method, sealed};
 use super::runge_kutta::{Kernel, Rate};
 use super::{Dynamics, Failure, IntegrationError, Solution, State};
 
@@ -50,32 +51,39 @@ pub enum GaussLegendre {
     Order6,
 }
 
-/// Integrates `dynamics` from `initial` to `t_end` in `steps` equal steps of
-/// the Gauss–Legendre method `method`, and returns the final state, exactly
-/// at `t_end`, with the work done.
-///
-/// `observer` sees the initial state and then the state after every step
-/// (after the dynamics' [`settle`](Dynamics::settle)). Allocates nothing.
-/// Stops at the first evaluation that fails, or with
-/// [`Failure::NotConverged`] when the stage iteration of a step does
-/// not converge (a step too large for the system's fastest motion, or a
-/// singular solution).
-pub fn gauss_legendre<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    steps: u64,
-    method: GaussLegendre,
-    observer: impl FnMut(&State<NQ, NV>),
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+/// The Gauss–Legendre collocation method `rule` in `steps` equal steps to
+/// the final time: long runs of conservative systems, whose energy error
+/// stays bounded. The final state is exactly at the final time. Stops at
+/// the first evaluation that fails, or with [`Failure::NotConverged`] when
+/// the stage iteration of a step does not converge (a step too large for
+/// the system's fastest motion, or a singular solution).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Gauss {
+    /// Which of the methods.
+    pub rule: GaussLegendre,
+    /// The number of equal steps to the final time.
+    pub steps: u64,
+}
+
+impl sealed::Sealed for Gauss {}
+
+impl<D, const NQ: usize, const NV: usize> Method<D, NQ, NV> for Gauss
 where
     D: Dynamics<NQ, NV>,
 {
-    let run = (dynamics, initial, t_end, steps);
-    match method {
-        GaussLegendre::Midpoint => integrate(run, &MIDPOINT, observer),
-        GaussLegendre::Order4 => integrate(run, &GAUSS4, observer),
-        GaussLegendre::Order6 => integrate(run, &GAUSS6, observer),
+    fn integrate(
+        self,
+        dynamics: &D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        observer: impl FnMut(&State<NQ, NV>),
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        let run = (dynamics, initial, t_end, self.steps);
+        match self.rule {
+            GaussLegendre::Midpoint => integrate(run, &MIDPOINT, observer),
+            GaussLegendre::Order4 => integrate(run, &GAUSS4, observer),
+            GaussLegendre::Order6 => integrate(run, &GAUSS6, observer),
+        }
     }
 }
 
@@ -180,7 +188,7 @@ impl Collocation {
     }
 }
 
-/// [`gauss_legendre`] with the tableau `scheme`; the first guess of each
+/// [`Gauss`] with the tableau `scheme`; the first guess of each
 /// step's stage slopes extrapolates the previous step's (the first step's
 /// is the slope at the start, for every stage).
 fn integrate<D, const NQ: usize, const NV: usize>(

@@ -18,7 +18,7 @@
 //! on its manifold after every step through the system's own update with no
 //! motion, `q ⊕ 0` (`integrate_configuration(q, 0, 0)`), which renormalises
 //! a quaternion when the system's exponential map returns a unit quaternion.
-//! Measured on a torque-free rigid body in quaternions (`tests/manifold.rs`):
+//! Measured on a torque-free rigid body in quaternions (`tests/suite/manifold.rs`):
 //! RK4, Gauss 4, Gauss 6 and SDIRK reach their orders 4.00, 4.00, 6.00 and
 //! 3.00; DOPRI5 and DOP853 need 9.4 and 7.1 times the steps for a tolerance
 //! 10⁵ and 10⁸ times smaller (10 expected at their orders). Renormalising
@@ -37,7 +37,7 @@
 //! (integrations run forward only), an infinite final time with a fixed
 //! number of steps, no steps, a tolerance that is zero, negative or NaN
 //! (DOP853 and DOPRI5: finite relative and absolute tolerances, not both
-//! zero), and a first step or an [`rk4_step`] that is not positive and
+//! zero), and a first step or an [`Rk4::step`] that is not positive and
 //! finite. A final time equal to the initial one is no error: the start is
 //! returned, no step taken. The adaptive methods and Taylor may run to
 //! `t_end = f64::INFINITY`, until a stopping event or their step budget.
@@ -59,45 +59,56 @@
 //!
 //! # Between steps
 //!
-//! The adaptive pairs give the state at any time inside a step
-//! ([`adaptive_dense`], [`DenseStep::state_at`]: DOPRI5's fourth-order and
-//! DOP853's seventh-order continuous extensions) and locate the zeros of a
-//! function `g(t, q, v)` on it to a few units in the last place of the
-//! time, recording them or stopping there ([`adaptive_with_events`],
-//! [`Event`]).
+//! The adaptive pairs and Taylor give the state at any time inside a step
+//! ([`Integration::dense`], [`DenseStep::state_at`]: DOPRI5's fourth-order
+//! and DOP853's seventh-order continuous extensions, Taylor's polynomial)
+//! and locate the zeros of a function `g(t, q, v)` on it to a few units in
+//! the last place of the time, recording them or stopping there
+//! ([`Integration::event`], [`Event`]).
+//!
+//! # Choosing a method
+//!
+//! An [`Integration`] runs one [`Method`], a value: switching method
+//! changes that value, nothing else. `docs/simulating.md` is the guide.
 //!
 //! | method | steps | use it for |
 //! |---|---|---|
-//! | [`rk4`] | fixed, `steps` to `t_end` | real-time loops, reproducible runs, a cheap default ([`rk4_step`]: one step at a time) |
-//! | [`adaptive`] with [`ExplicitPair::DormandPrince54`] | adaptive | moderate tolerances (`1e-6`…`1e-9`) on non-stiff systems |
-//! | [`adaptive`] with [`ExplicitPair::Dop853`] | adaptive | tight tolerances (`1e-10` and below): the least work per digit |
-//! | [`adaptive_dense`], [`adaptive_with_events`] | adaptive | output at any time, impacts, switching, stopping at a condition |
-//! | [`gauss_legendre`] | fixed | long runs of conservative systems: the energy error stays bounded |
-//! | [`taylor`] (and [`taylor_dense`], [`taylor_with_events`]) | variable order and step | tight tolerances (`1e-12`…`1e-16`) on systems whose model asks for `outputs taylor;`: the series of the motion, compiled from the model |
-//! | [`sdirk`] | fixed | stiff springs and joints, whose fast modes an explicit method must resolve |
-//! | [`augmented_lagrangian`] | fixed | closed loops with redundant constraints or singular positions at a fixed step: the index-3 formulation of the IFToMM benchmarks' reference solutions (constrained dynamics only) |
+//! | [`Rk4 { steps }`](Rk4) | fixed | real-time loops, reproducible runs, a cheap default ([`Rk4::step`]: one step at a time) |
+//! | [`Adaptive::dopri5(tolerance)`](Adaptive::dopri5) | adaptive | moderate tolerances (`1e-6`…`1e-9`) on non-stiff systems |
+//! | [`Adaptive::dop853(tolerance)`](Adaptive::dop853) | adaptive | tight tolerances (`1e-10` and below): the least work per digit |
+//! | [`Gauss { rule, steps }`](Gauss) | fixed | long runs of conservative systems: the energy error stays bounded |
+//! | [`Taylor::with_tolerance(tolerance)`](Taylor::with_tolerance) | variable order and step | tight tolerances (`1e-12`…`1e-16`) on systems whose model asks for `outputs taylor;`: the series of the motion, compiled from the model |
+//! | [`Sdirk { steps }`](Sdirk) | fixed | stiff springs and joints, whose fast modes an explicit method must resolve |
+//! | [`AugmentedLagrangian { steps, settings }`](AugmentedLagrangian) | fixed | closed loops with redundant constraints or singular positions at a fixed step: the index-3 formulation of the IFToMM benchmarks' reference solutions (constrained dynamics only) |
+//!
+//! Dense output and events need a method with a continuous extension
+//! ([`DenseMethod`]: [`Adaptive`] and [`Taylor`]); Taylor needs a system
+//! whose model asks for `outputs taylor;` ([`TaylorDynamics`]); the
+//! augmented Lagrangian method needs [`Constrained`] dynamics. Each is a
+//! bound of the method's [`Method`] implementation: asking for one where it
+//! is missing does not compile.
 
 mod adaptive;
 mod arguments;
 mod augmented_lagrangian;
 mod dynamics;
 mod gauss;
+mod integration;
 mod lu;
 mod runge_kutta;
 mod sdirk;
 mod solution;
 mod taylor;
 
-pub use adaptive::{
-    AdaptiveOptions, Crossing, DenseStep, Event, ExplicitPair, adaptive, adaptive_dense,
-    adaptive_with_events,
+pub use adaptive::{Adaptive, AdaptiveOptions, Crossing, DenseStep, Event, ExplicitPair};
+pub use augmented_lagrangian::{AugmentedLagrangian, AugmentedLagrangianSettings};
+pub use dynamics::{
+    Closed, Constrained, Constraints, Dynamics, InputLaw, NoConstraints, NoInputs, Stabilised,
+    Unconstrained,
 };
-pub use augmented_lagrangian::{AugmentedLagrangian, augmented_lagrangian};
-pub use dynamics::{Constrained, Dynamics, InputLaw, NoInputs, Unconstrained};
-pub use gauss::{GaussLegendre, gauss_legendre};
-pub use runge_kutta::{State, rk4, rk4_step};
-pub use sdirk::sdirk;
+pub use gauss::{Gauss, GaussLegendre};
+pub use integration::{Dense, DenseMethod, Events, Integration, Method, Observer, Quiet, Watcher};
+pub use runge_kutta::{Rk4, State};
+pub use sdirk::Sdirk;
 pub use solution::{DriftLevel, Failure, IntegrationError, Solution, Statistics};
-pub use taylor::{
-    MAX_ORDER, TaylorDynamics, TaylorOptions, taylor, taylor_dense, taylor_with_events,
-};
+pub use taylor::{MAX_ORDER, Taylor, TaylorDynamics};

@@ -8,6 +8,7 @@
 use std::cell::Cell;
 
 use super::arguments::{BAD_STEP, check_positive, fixed_steps_to_take};
+use super::integration::{Method, sealed};
 use super::{Dynamics, IntegrationError, Solution, Statistics};
 use crate::DynamicsError;
 
@@ -314,42 +315,52 @@ impl<'a, D> Kernel<'a, D> {
     }
 }
 
-/// Integrates `dynamics` from `initial` to `t_end` in `steps` equal steps of
-/// the classical fourth-order Runge–Kutta method (settled after each step),
-/// and returns the final state, exactly at `t_end`, with the work done.
-///
-/// `observer` sees the initial state and then the state after every step.
-/// Allocates nothing. Stops at the first step that fails; the error names
-/// the time and configuration of the failing stage.
-pub fn rk4<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    steps: u64,
-    observer: impl FnMut(&State<NQ, NV>),
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
-where
-    D: Dynamics<NQ, NV>,
-{
-    let kernel = Kernel::new(dynamics);
-    let step = |state: &State<NQ, NV>, h| rk4_stages(&kernel, state, h);
-    kernel.fixed_steps(initial, t_end, steps, step, observer)
+/// The classical fourth-order Runge–Kutta method in `steps` equal steps to
+/// the final time (settled after each step): real-time loops, reproducible
+/// runs, a cheap default. The final state is exactly at the final time; a
+/// failing step's error names the time and configuration of the failing
+/// stage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rk4 {
+    /// The number of equal steps to the final time.
+    pub steps: u64,
 }
 
-/// One step of length `h` of the classical fourth-order Runge–Kutta method
-/// from `state`, settled: the building block of a control loop that changes
-/// its inputs between steps.
-pub fn rk4_step<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    state: &State<NQ, NV>,
-    h: f64,
-) -> Result<State<NQ, NV>, IntegrationError<NQ>>
+impl Rk4 {
+    /// One step of length `h` of the method from `state`, settled: the
+    /// building block of a control loop that changes its inputs between
+    /// steps.
+    pub fn step<D, const NQ: usize, const NV: usize>(
+        dynamics: &D,
+        state: &State<NQ, NV>,
+        h: f64,
+    ) -> Result<State<NQ, NV>, IntegrationError<NQ>>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        check_positive(state, h, BAD_STEP)?;
+        let kernel = Kernel::new(dynamics);
+        kernel.settle(state, &rk4_stages(&kernel, state, h)?)
+    }
+}
+
+impl sealed::Sealed for Rk4 {}
+
+impl<D, const NQ: usize, const NV: usize> Method<D, NQ, NV> for Rk4
 where
     D: Dynamics<NQ, NV>,
 {
-    check_positive(state, h, BAD_STEP)?;
-    let kernel = Kernel::new(dynamics);
-    kernel.settle(state, &rk4_stages(&kernel, state, h)?)
+    fn integrate(
+        self,
+        dynamics: &D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        observer: impl FnMut(&State<NQ, NV>),
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        let kernel = Kernel::new(dynamics);
+        let step = |state: &State<NQ, NV>, h| rk4_stages(&kernel, state, h);
+        kernel.fixed_steps(initial, t_end, self.steps, step, observer)
+    }
 }
 
 /// The fraction of the step at which each of the first three slopes of RK4
@@ -395,7 +406,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrate::Failure;
+    use crate::integrate::{Failure, Integration};
     use crate::test_systems::{Pendulum, RotatingBar};
     use crate::{DynamicsError, Unconstrained, energy};
     use std::f64::consts::FRAC_PI_2;
@@ -433,7 +444,8 @@ mod tests {
     fn pendulum_angle(duration: f64, h: f64) -> f64 {
         let steps = (duration / h).round() as u64;
         let dynamics = Unconstrained::without_inputs(&PENDULUM);
-        let end = rk4(&dynamics, at_rest(1.0), duration, steps, |_| {})
+        let end = Integration::new(&dynamics, at_rest(1.0), duration, Rk4 { steps })
+            .run()
             .unwrap()
             .end;
         assert_eq!(end.t, duration);
@@ -450,7 +462,11 @@ mod tests {
             worst_drift = worst_drift.max(drift.abs());
         };
         let dynamics = Unconstrained::without_inputs(&PENDULUM);
-        let end = rk4(&dynamics, start, 10.0, 10_000, observe).unwrap().end;
+        let end = Integration::new(&dynamics, start, 10.0, Rk4 { steps: 10_000 })
+            .observe(observe)
+            .run()
+            .unwrap()
+            .end;
         assert_eq!(end.t, 10.0);
         let energy_scale = PENDULUM.m * PENDULUM.g * PENDULUM.l;
         assert!(worst_drift < 1e-8 * energy_scale, "drift {worst_drift}");
@@ -472,7 +488,10 @@ mod tests {
             previous = *s;
         };
         let dynamics = Unconstrained::without_inputs(&PENDULUM);
-        rk4(&dynamics, at_rest(0.01), 5.0, 5_000, observe).unwrap();
+        Integration::new(&dynamics, at_rest(0.01), 5.0, Rk4 { steps: 5_000 })
+            .observe(observe)
+            .run()
+            .unwrap();
         assert_eq!(found, 2);
         let period = crossings[1] - crossings[0];
         let expected = PENDULUM.small_angle_period();
@@ -497,7 +516,7 @@ mod tests {
         // A constant torque on the bar's tilt: θ̈ = u / I exactly while φ̇ = 0.
         let (bar, start) = (UNIT_BAR, UNIT_BAR_AT_REST);
         let torque = |t: f64, _: &[f64; 2], _: &[f64; 2]| [0.0, 2.0 * t];
-        let end = rk4_step(&Unconstrained::new(&bar, torque), &start, 0.5).unwrap();
+        let end = Rk4::step(&Unconstrained::new(&bar, torque), &start, 0.5).unwrap();
         // θ̈ = 2t (I = 1), so θ = t³/3 and θ̇ = t², which RK4 integrates exactly.
         assert!((end.q[1] - 0.125 / 3.0).abs() < 1e-15, "{end:?}");
         assert!((end.v[1] - 0.25).abs() < 1e-15 && end.q[0] == 0.0);
@@ -519,7 +538,10 @@ mod tests {
         };
         let mut observed = 0;
         let dynamics = Unconstrained::without_inputs(&bar);
-        let error = rk4(&dynamics, start, 1.0, 8, |_| observed += 1).unwrap_err();
+        let error = Integration::new(&dynamics, start, 1.0, Rk4 { steps: 8 })
+            .observe(|_| observed += 1)
+            .run()
+            .unwrap_err();
         assert_eq!(error.t, 0.5);
         assert!((error.q[1] - FRAC_PI_2).abs() < 1e-12);
         assert!(matches!(
@@ -543,7 +565,10 @@ mod tests {
         let dynamics = Unconstrained::without_inputs(&PENDULUM);
         for (t_end, steps) in [(5.0, 3_000), (0.3, 7), (1e-3, 1)] {
             let mut last = 0.0;
-            let solution = rk4(&dynamics, at_rest(1.0), t_end, steps, |s| last = s.t).unwrap();
+            let solution = Integration::new(&dynamics, at_rest(1.0), t_end, Rk4 { steps })
+                .observe(|s| last = s.t)
+                .run()
+                .unwrap();
             assert_eq!((solution.end.t, last), (t_end, t_end));
             assert_eq!(solution.statistics.accepted_steps, steps);
             assert_eq!(solution.statistics.rhs_evaluations, 4 * steps);
@@ -554,7 +579,10 @@ mod tests {
     fn a_closure_input_law_needs_no_annotations() {
         let (bar, start) = (UNIT_BAR, UNIT_BAR_AT_REST);
         let dynamics = Unconstrained::new(&bar, |_, _, _| [0.0, 1.0]);
-        let end = rk4(&dynamics, start, 1.0, 10, |_| {}).unwrap().end;
+        let end = Integration::new(&dynamics, start, 1.0, Rk4 { steps: 10 })
+            .run()
+            .unwrap()
+            .end;
         // θ̈ = u / I = 1 while φ̇ = 0: θ = t²/2.
         assert!((end.q[1] - 0.5).abs() < 1e-14, "{end:?}");
     }
@@ -575,7 +603,7 @@ mod tests {
             if t > 2.0 { [f64::NAN, 0.0] } else { [0.0; 2] }
         };
         let dynamics = Unconstrained::new(&bar, torque_fails_later);
-        let error = rk4_step(&dynamics, &start, 0.5).unwrap_err();
+        let error = Rk4::step(&dynamics, &start, 0.5).unwrap_err();
         assert_eq!(
             error.cause,
             Failure::Dynamics(DynamicsError::NonFiniteState)
@@ -586,7 +614,7 @@ mod tests {
     #[test]
     fn non_finite_state_fails_the_first_stage() {
         let dynamics = Unconstrained::without_inputs(&PENDULUM);
-        let error = rk4_step(&dynamics, &at_rest(f64::INFINITY), 0.1).unwrap_err();
+        let error = Rk4::step(&dynamics, &at_rest(f64::INFINITY), 0.1).unwrap_err();
         assert_eq!(
             error.cause,
             Failure::Dynamics(DynamicsError::NonFiniteState)

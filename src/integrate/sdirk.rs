@@ -21,6 +21,7 @@
 //! evaluating the right-hand side again, so stiff components are damped,
 //! not amplified.
 
+use super::integration::{Method, sealed};
 use super::lu::Lu;
 use super::runge_kutta::{Kernel, Rate};
 use super::{Dynamics, Failure, IntegrationError, Solution, State};
@@ -56,28 +57,34 @@ const NEWTON_TOLERANCE: f64 = 1e-12;
 /// the stage speeds' size is rounding, not divergence.
 const ROUNDING_PLATEAU: f64 = 1e-9;
 
-/// Integrates `dynamics` from `initial` to `t_end` in `steps` equal steps of
-/// the L-stable SDIRK method, and returns the final state, exactly at
-/// `t_end`, with the work done.
-///
-/// `observer` sees the initial state and then the state after every step
-/// (after the dynamics' [`settle`](Dynamics::settle)). Allocates nothing.
-/// Stops at the first evaluation that fails, or with
-/// [`Failure::NotConverged`] when the Newton iteration of a stage does
-/// not converge.
-pub fn sdirk<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    steps: u64,
-    observer: impl FnMut(&State<NQ, NV>),
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+/// The L-stable SDIRK method in `steps` equal steps to the final time:
+/// stiff springs and joints, whose fast modes an explicit method must
+/// resolve. The final state is exactly at the final time. Stops at the
+/// first evaluation that fails, or with [`Failure::NotConverged`] when the
+/// Newton iteration of a stage does not converge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sdirk {
+    /// The number of equal steps to the final time.
+    pub steps: u64,
+}
+
+impl sealed::Sealed for Sdirk {}
+
+impl<D, const NQ: usize, const NV: usize> Method<D, NQ, NV> for Sdirk
 where
     D: Dynamics<NQ, NV>,
 {
-    let kernel = Kernel::new(dynamics);
-    let step = |state: &State<NQ, NV>, h| sdirk_step(&kernel, state, h);
-    kernel.fixed_steps(initial, t_end, steps, step, observer)
+    fn integrate(
+        self,
+        dynamics: &D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        observer: impl FnMut(&State<NQ, NV>),
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        let kernel = Kernel::new(dynamics);
+        let step = |state: &State<NQ, NV>, h| sdirk_step(&kernel, state, h);
+        kernel.fixed_steps(initial, t_end, self.steps, step, observer)
+    }
 }
 
 /// One SDIRK step of length `h` from `state`.

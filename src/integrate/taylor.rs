@@ -3,7 +3,7 @@
 //!
 //! At each step the generated `taylor_coefficients` expands the motion
 //! through the current state to order `p` (every elementary operation of
-//! the equations by its coefficient recurrence, [`crate::series`]; each
+//! the equations by its coefficient recurrence; each
 //! order of `M(q) v̇ = f` solved with the one factorisation of `M` at the
 //! step's start), and the step sums the series. Order and step follow Jorba
 //! & Zou (2005), as heyoka does, with their cost model re-fitted: for the
@@ -19,8 +19,9 @@
 //! fastest of 1, 1.25, 1.5 and 2 measured on seed example 1.
 //!
 //! The polynomial of a step is its continuous
-//! extension, free: [`taylor_dense`] gives it, and events are located on it
-//! ([`taylor_with_events`]).
+//! extension, free: [`Integration::dense`](super::Integration::dense) gives
+//! it, and events are located on it
+//! ([`Integration::event`](super::Integration::event)).
 //!
 //! The inputs are held at their value at the start of each step (the
 //! series of a system driven by `u(t, q, v)` is that of the frozen inputs):
@@ -34,15 +35,14 @@
 
 use std::ops::ControlFlow;
 
-use super::adaptive::{Continuous, DenseStep, Event, EventFailure, observe, watch};
+use super::adaptive::{Continuous, DenseStep, observe};
 use super::arguments::{check_positive, check_span};
-use super::dynamics::InputLaw;
-use super::{
-    Constrained, Dynamics, Failure, IntegrationError, Solution, State, Statistics, Unconstrained,
-};
-use crate::series;
+use super::dynamics::{Closed, Constraints, InputLaw};
+use super::integration::{DenseMethod, Method, sealed};
+use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics};
+use crate::__private::series;
+use crate::DynamicsError;
 use crate::system::{Expansion, TaylorSystem};
-use crate::{ConstrainedSystem, DynamicsError, MultibodySystem};
 
 /// The highest order the integrator uses (`ε ≈ 3e−20`).
 pub const MAX_ORDER: usize = 31;
@@ -65,36 +65,20 @@ pub trait TaylorDynamics<const NQ: usize, const NV: usize>: Dynamics<NQ, NV> {
     ) -> Result<Expansion<K, NQ, NV>, DynamicsError>;
 }
 
-impl<S, F, const NQ: usize, const NV: usize, const NU: usize> TaylorDynamics<NQ, NV>
-    for Unconstrained<'_, S, F, NU>
-where
-    S: TaylorSystem<NQ, NV, NU> + MultibodySystem<NQ, NV, NU>,
-    F: InputLaw<NQ, NV, NU>,
-{
-    #[inline]
-    fn expansion<const K: usize>(
-        &self,
-        t: f64,
-        q: &[f64; NQ],
-        v: &[f64; NV],
-        order: usize,
-    ) -> Result<Expansion<K, NQ, NV>, DynamicsError> {
-        let u = self.inputs.inputs(t, q, v);
-        self.system.taylor_coefficients::<K>(t, q, v, &u, order)
-    }
-}
-
-/// The series of a constrained system are those of its index-1 form
-/// `A v̇ = b`, solved by the default [`ConstraintSolver`](crate::constrained::ConstraintSolver)
-/// whatever [`with_solver`](Constrained::with_solver) chose: a
+/// The series of a system closed over its inputs, held at their value at
+/// the start of the step. Those of a constrained system are those of its
+/// index-1 form `A v̇ = b`, solved by the default
+/// [`ConstraintSolver`](crate::constrained::ConstraintSolver) whatever
+/// [`with_solver`](super::Constrained::with_solver) chose: a
 /// [`Stabilisation::Projection`](crate::Stabilisation::Projection) settles
 /// each step's end, Baumgarte's terms are not expanded (the motion is that
 /// of [`Stabilisation::None`](crate::Stabilisation::None)).
-impl<S, F, const NQ: usize, const NV: usize, const NU: usize, const NC: usize>
-    TaylorDynamics<NQ, NV> for Constrained<'_, S, F, NU, NC>
+impl<S, F, C, const NQ: usize, const NV: usize, const NU: usize> TaylorDynamics<NQ, NV>
+    for Closed<'_, S, F, C, NU>
 where
-    S: TaylorSystem<NQ, NV, NU> + ConstrainedSystem<NQ, NV, NU, NC>,
+    S: TaylorSystem<NQ, NV, NU>,
     F: InputLaw<NQ, NV, NU>,
+    C: Constraints<S, NQ, NV, NU>,
 {
     #[inline]
     fn expansion<const K: usize>(
@@ -109,9 +93,17 @@ where
     }
 }
 
-/// Tolerance and limits of a Taylor integration.
+/// Taylor series of the motion, of the order and with the steps that a
+/// tolerance asks for, to the final time (exactly there): tight tolerances
+/// (`1e-12`…`1e-16`) on systems whose model asks for `outputs taylor;`
+/// ([`TaylorDynamics`]; the series compiled from the model). The
+/// statistics' `rhs_evaluations` count the expansions, one a step. Stops
+/// at the first expansion that fails (singular mass matrix, non-finite
+/// values: the error names its time and configuration), when the step
+/// falls below the resolution of the time, or when `max_steps` run out.
+/// Each step's polynomial is its continuous extension ([`DenseMethod`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TaylorOptions {
+pub struct Taylor {
     /// The local error asked of each step: absolute for a state of norm
     /// below one, relative above.
     pub tolerance: f64,
@@ -119,7 +111,7 @@ pub struct TaylorOptions {
     pub max_steps: u64,
 }
 
-impl TaylorOptions {
+impl Taylor {
     /// `tolerance` and a budget of ten million steps.
     pub fn with_tolerance(tolerance: f64) -> Self {
         Self {
@@ -140,66 +132,36 @@ impl TaylorOptions {
     }
 }
 
-/// Integrates `dynamics` from `initial` to `t_end` by Taylor series of the
-/// order and with the steps that `options` ask for, and returns the final
-/// state (exactly at `t_end`) with the work done (`rhs_evaluations` counts
-/// the expansions, one a step).
-///
-/// `observer` sees the initial state and every step's end. Allocates
-/// nothing. Stops at the first expansion that fails (singular mass matrix,
-/// non-finite values: the error names its time and configuration), when
-/// the step falls below the resolution of the time, or when
-/// `options.max_steps` run out.
-pub fn taylor<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    options: TaylorOptions,
-    observer: impl FnMut(&State<NQ, NV>),
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+impl sealed::Sealed for Taylor {}
+
+impl<D, const NQ: usize, const NV: usize> Method<D, NQ, NV> for Taylor
 where
     D: TaylorDynamics<NQ, NV>,
 {
-    Run::checked(dynamics, initial, t_end, options)?.dense(observe(&initial, observer))
+    fn integrate(
+        self,
+        dynamics: &D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        observer: impl FnMut(&State<NQ, NV>),
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        Run::checked(dynamics, initial, t_end, self)?.dense(observe(&initial, observer))
+    }
 }
 
-/// [`taylor`] showing each step with its polynomial: `on_step` sees a
-/// [`DenseStep`], whose [`state_at`](DenseStep::state_at) sums the step's
-/// series at any time inside it, and may end the integration there by
-/// returning [`ControlFlow::Break`] with the state to end at.
-pub fn taylor_dense<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    options: TaylorOptions,
-    on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+impl<D, const NQ: usize, const NV: usize> DenseMethod<D, NQ, NV> for Taylor
 where
     D: TaylorDynamics<NQ, NV>,
 {
-    Run::checked(dynamics, initial, t_end, options)?.dense(on_step)
-}
-
-/// [`taylor`] watching `event`, as
-/// [`adaptive_with_events`](super::adaptive_with_events) does: each zero of
-/// its function crossed in a step is located on the step's polynomial to a
-/// few units in the last place of the time and given to `on_event`; a
-/// stopping event ends the integration at its first zero.
-pub fn taylor_with_events<D, G, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    options: TaylorOptions,
-    event: Event<G>,
-    on_event: impl FnMut(&State<NQ, NV>),
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
-where
-    D: TaylorDynamics<NQ, NV>,
-    G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64,
-{
-    let failure = EventFailure::default();
-    let on_step = watch(event, &initial, on_event, &failure)?;
-    failure.or(taylor_dense(dynamics, initial, t_end, options, on_step))
+    fn integrate_dense(
+        self,
+        dynamics: &D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        Run::checked(dynamics, initial, t_end, self)?.dense(on_step)
+    }
 }
 
 /// What a Taylor integration is asked to do.
@@ -207,7 +169,7 @@ struct Run<'a, D, const NQ: usize, const NV: usize> {
     dynamics: &'a D,
     initial: State<NQ, NV>,
     t_end: f64,
-    options: TaylorOptions,
+    options: Taylor,
 }
 
 impl<'a, D, const NQ: usize, const NV: usize> Run<'a, D, NQ, NV>
@@ -221,7 +183,7 @@ where
         dynamics: &'a D,
         initial: State<NQ, NV>,
         t_end: f64,
-        options: TaylorOptions,
+        options: Taylor,
     ) -> Result<Self, IntegrationError<NQ>> {
         check_span(&initial, t_end, true)?;
         check_positive(

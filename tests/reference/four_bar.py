@@ -1,4 +1,4 @@
-"""The crank-rocker four-bar of `tests/closed_loops.rs` in its one independent
+"""The crank-rocker four-bar of `tests/suite/loop_rows.rs` in its one independent
 coordinate, integrated by SciPy: the reference `four_bar.json`.
 
 Independent of dalembert: the position analysis is solved in closed form

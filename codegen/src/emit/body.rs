@@ -433,7 +433,7 @@ impl Writer<'_> {
         }
     }
 
-    /// `let (s, c) = ::dalembert::math::sin_cos(x);` binding a sine and the
+    /// `let (s, c) = ::dalembert::__private::math::sin_cos(x);` binding a sine and the
     /// cosine of the same argument with one call (the runtime's, cheaper
     /// than `f64::sin_cos`: see its `math` module); `::libm::sincos(x)`
     /// without the runtime.
@@ -442,7 +442,7 @@ impl Writer<'_> {
             true => self.method_call(arg, "sin_cos"),
             false => {
                 let argument = self.expr(arg);
-                quote!(::dalembert::math::sin_cos(#argument))
+                quote!(::dalembert::__private::math::sin_cos(#argument))
             }
         };
         let (s, c) = (self.temporary_name(sine), self.temporary_name(cosine));
@@ -451,7 +451,7 @@ impl Writer<'_> {
         self.bound.insert(cosine, quote!(#c));
     }
 
-    /// `let ([s1, s2, …], [c1, c2, …]) = ::dalembert::math::sin_cos_all([x1,
+    /// `let ([s1, s2, …], [c1, c2, …]) = ::dalembert::__private::math::sin_cos_all([x1,
     /// x2, …]);` binding the sines and cosines of several angles with one
     /// call of the runtime (which computes them side by side, see its `math`
     /// module). Without the runtime, or for a single angle, one
@@ -474,7 +474,7 @@ impl Writer<'_> {
             cosines.push(c);
         }
         self.statements.extend(quote!(
-            let ([#(#sines),*], [#(#cosines),*]) = ::dalembert::math::sin_cos_all([#(#arguments),*]);
+            let ([#(#sines),*], [#(#cosines),*]) = ::dalembert::__private::math::sin_cos_all([#(#arguments),*]);
         ));
     }
 

@@ -4,9 +4,9 @@
 //! `L D Lᵀ` factorisation that solved for `v̇`; for a large tree `M`, `f`
 //! and the world-frame partials computed by loops of the runtime rather
 //! than unrolled: `M` and the inertia and gravity terms of `f` by the first
-//! pass of `dalembert::dynamics::TreeRecursion` from the links' states,
+//! pass of `dalembert::__private::TreeRecursion` from the links' states,
 //! each link's vectors by its second pass at the solved `v̇`, their pairs
-//! by `dalembert::dynamics::add_tree_pairs`) and
+//! by `dalembert::__private::add_tree_pairs`) and
 //! `linearize` (the state-space matrices `A`, `B` of `ẋ = (q̇, v̇)` about a
 //! state).
 
@@ -54,7 +54,7 @@ fn solved_columns(
 }
 
 /// The tree of `paired` as the runtime's table of
-/// `dalembert::dynamics::TreeLink`s, bound to `TREE`: each link's parent,
+/// `dalembert::__private::TreeLink`s, bound to `TREE`: each link's parent,
 /// its row in the elimination `order`, its columns among `columns` and
 /// where its subtree ends.
 fn tree_table(paired: &PairedTree, order: &[usize], columns: &[(usize, usize)]) -> TokenStream {
@@ -71,10 +71,10 @@ fn tree_table(paired: &PairedTree, order: &[usize], columns: &[(usize, usize)]) 
         let [by_q, by_v] = [0, 1].map(|block| index(columns.iter().position(|&c| c == (block, speed))));
         let parent = index(parent);
         let end = Literal::usize_unsuffixed(end);
-        quote!(::dalembert::dynamics::TreeLink { parent: #parent, row: #row, by_q: #by_q, by_v: #by_v, end: #end })
+        quote!(::dalembert::__private::TreeLink { parent: #parent, row: #row, by_q: #by_q, by_v: #by_v, end: #end })
     });
     let l = Literal::usize_unsuffixed(paired.speeds.len());
-    quote!(const TREE: [::dalembert::dynamics::TreeLink; #l] = [#(#table),*];)
+    quote!(const TREE: [::dalembert::__private::TreeLink; #l] = [#(#table),*];)
 }
 
 /// Whether the link of speed `a` is that of speed `b` or beyond it in the
@@ -91,7 +91,7 @@ fn descends(paired: &PairedTree, a: usize, b: usize) -> bool {
     false
 }
 
-/// `dalembert::dynamics::LinkState` of the entries `entries`, in the order
+/// `dalembert::__private::LinkState` of the entries `entries`, in the order
 /// of the engine's `LinkState::entries`.
 fn link_state(entries: &[TokenStream]) -> TokenStream {
     let matrix = |rows: &[TokenStream]| {
@@ -102,7 +102,7 @@ fn link_state(entries: &[TokenStream]) -> TokenStream {
     let [speed, mass] = [&entries[18], &entries[19]];
     let (moment, inertia) = (&entries[20..23], matrix(&entries[23..32]));
     quote! {
-        ::dalembert::dynamics::LinkState {
+        ::dalembert::__private::LinkState {
             rotation: #rotation,
             offset: [#(#offset),*],
             axis: [#(#axis),*],
@@ -282,7 +282,7 @@ fn looped_rows(
         #check
         let ([#(mut #rows),*], states, gravity, residual): (
             [[f64; #count]; #n],
-            [::dalembert::dynamics::LinkState; #l],
+            [::dalembert::__private::LinkState; #l],
             [f64; 3],
             [f64; #n],
         ) = {
@@ -290,7 +290,7 @@ fn looped_rows(
             (#values, [#(#states),*], [#(#gravity),*], [#(#residual),*])
         };
         #table
-        let mut tree = ::dalembert::dynamics::TreeRecursion::default();
+        let mut tree = ::dalembert::__private::TreeRecursion::default();
         tree.sweep(&states, &TREE, &gravity);
         let (mass, bias): ([[f64; #n]; #n], [f64; #n]) = tree.mass_and_bias(&TREE);
         #(#mass_entries)*
@@ -306,7 +306,7 @@ fn looped_rows(
         }
         let mut vectors = [[[0.0; 6]; 7]; #l];
         tree.link_vectors(&TREE, &accelerations, &mut vectors);
-        ::dalembert::dynamics::add_tree_pairs([#(&mut #rows),*], &vectors, &TREE);
+        ::dalembert::__private::add_tree_pairs([#(&mut #rows),*], &vectors, &TREE);
     }
 }
 
@@ -553,7 +553,7 @@ fn constrained_partials(
     let mut rows = |columns: usize| acting_rows(model, block(nc, columns));
     let (c_q, c_v) = (rows(nv), rows(nv));
     let accelerations = quote! {
-        ::dalembert::constrained::AccelerationPartials {
+        ::dalembert::__private::AccelerationPartials {
             residual_by_q: #r_q,
             residual_by_v: #r_v,
             residual_by_u: #r_u,
@@ -566,7 +566,7 @@ fn constrained_partials(
             let (psi_q, phi_q) = (rows(nv), rows(nv));
             let (k_q, k_v) = (all(block(nv, nv)), all(block(nv, nv)));
             quote! {
-                ::dalembert::constrained::ConstrainedPartials {
+                ::dalembert::__private::ConstrainedPartials {
                     accelerations: #accelerations,
                     velocity_by_q: #psi_q,
                     position_by_q: #phi_q,
@@ -665,11 +665,11 @@ pub fn emit_constrained_linearize(
             dynamic_by_q: #dq_pattern,
             dynamic_by_v: #dv_pattern,
             dynamic_by_u: [#(#du),*],
-        } = ::dalembert::constrained::linearize_on_constraints(
+        } = ::dalembert::__private::linearize_on_constraints(
             &self.mass_matrix(q),
             &#jacobian,
             &partials,
-            &::dalembert::constrained::ManifoldChart {
+            &::dalembert::__private::ManifoldChart {
                 holonomic: [#(#holonomic),*],
                 coordinates: [#(#coordinates),*],
                 speeds: [#(#speeds),*],
@@ -712,7 +712,7 @@ pub fn emit_constrained_accelerations_jacobian(
             u: &#inputs,
         ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
             #partials
-            ::dalembert::constrained::constrained_accelerations_jacobian(
+            ::dalembert::__private::constrained_accelerations_jacobian(
                 &self.mass_matrix(q),
                 &#jacobian,
                 &partials,

@@ -413,7 +413,7 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
 }
 
 /// The return type and value of a `mass_matrix` whose pairs the
-/// runtime's loop takes (`dalembert::dynamics::tree_mass_matrix`), from
+/// runtime's loop takes (`dalembert::__private::tree_mass_matrix`), from
 /// the entries `outputs` of each speed's `Sⱼ` and `Fⱼ` and the table of
 /// `tree`.
 fn tree_mass_matrix(
@@ -427,12 +427,12 @@ fn tree_mass_matrix(
     });
     let table = tree.ends.iter().zip(&tree.speeds).map(|(&end, &speed)| {
         let [end, speed] = [end, speed].map(Literal::usize_unsuffixed);
-        quote!(::dalembert::dynamics::TreeSpeed { end: #end, speed: #speed })
+        quote!(::dalembert::__private::TreeSpeed { end: #end, speed: #speed })
     });
     let (row, nv) = (array(nv), Literal::usize_unsuffixed(nv));
     (
         quote!([#row; #nv]),
-        quote!(::dalembert::dynamics::tree_mass_matrix(&[#(#vectors),*], &[#(#table),*])),
+        quote!(::dalembert::__private::tree_mass_matrix(&[#(#vectors),*], &[#(#table),*])),
     )
 }
 

@@ -206,7 +206,7 @@ pub fn elimination(
     Elimination {
         entries,
         factor: quote! {
-            let tolerance = ::dalembert::dynamics::pivot_tolerance([#(#diagonal),*]);
+            let tolerance = ::dalembert::__private::pivot_tolerance([#(#diagonal),*]);
             #factor
         },
         substitutions: quote!(#forward #backward),
@@ -328,13 +328,13 @@ fn articulated_body(
         if !finite(&[#(#forcing),*]) {
             return ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations);
         }
-        ::dalembert::dynamics::check_pivots([#(#pivots),*], #names)
-            .map_err(|e| ::dalembert::dynamics::with_null_motion(e, #mass_at_state))?;
+        ::dalembert::__private::check_pivots([#(#pivots),*], #names)
+            .map_err(|e| ::dalembert::__private::with_null_motion(e, #mass_at_state))?;
         let qdd = [#(#accelerations),*];
     }
 }
 
-/// The arguments of `dalembert::dynamics::with_null_motion` after the
+/// The arguments of `dalembert::__private::with_null_motion` after the
 /// error, in an emitted function of `(t, q, ..)`: the mass matrix at the
 /// state (computed on the error path only, to name the speeds whose
 /// columns became dependent) and the names of its rows, by coordinate
@@ -422,7 +422,7 @@ fn factorisation_code(
         );
         let (p, r) = (format_ident!("p{}", j), format_ident!("r{}", j));
         let singular = quote! {
-            ::dalembert::dynamics::with_null_motion(
+            ::dalembert::__private::with_null_motion(
                 ::dalembert::DynamicsError::SingularMassMatrix {
                     index: #jj,
                     coordinate: #coordinate,
@@ -504,7 +504,7 @@ fn backward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
 /// names the mutable array holding row `i` (in the elimination order) of
 /// `B`, and holds that of `X` after `L Y = B` and `D Lᵀ X = −Y` (the
 /// negation folded into the reciprocal pivots). Each step is one
-/// `dalembert::dynamics::scale_and_subtract` over the columns.
+/// `dalembert::__private::scale_and_subtract` over the columns.
 pub fn negated_row_substitutions(pattern: &[Vec<bool>], rows: &[Ident]) -> TokenStream {
     let nq = pattern.len();
     let step = |i: usize, factor: TokenStream, terms: Vec<(Ident, usize)>| -> TokenStream {
@@ -513,7 +513,7 @@ pub fn negated_row_substitutions(pattern: &[Vec<bool>], rows: &[Ident]) -> Token
             let other = &rows[*k];
             quote!((#l, &#other))
         });
-        quote!(::dalembert::dynamics::scale_and_subtract(&mut #row, #factor, [#(#terms),*]);)
+        quote!(::dalembert::__private::scale_and_subtract(&mut #row, #factor, [#(#terms),*]);)
     };
     let mut out = TokenStream::new();
     for (i, row) in pattern.iter().enumerate() {

@@ -3,7 +3,7 @@
 //! program on series (`crate::series`, `plan::Taylor`).
 //!
 //! Order `k` of every series is computed from the lower orders by the
-//! runtime's recurrences (`dalembert::series`), which read and write the
+//! runtime's recurrences (`dalembert::__private::series`), which read and write the
 //! series without indexing; then order `k` of the accelerations from
 //! `M₀ q̈ₖ = fₖ − Σⱼ₌₁ᵏ Mⱼ q̈ₖ₋ⱼ` with the one `L D Lᵀ` factorisation of
 //! `M₀` (only the entries of `M` that move contribute to the sum), and
@@ -60,11 +60,11 @@ impl Written<'_> {
         match operand {
             Operand::Series(slot) => {
                 let x = &self.slots[slot];
-                quote!(::dalembert::series::at(&self.#x, k))
+                quote!(::dalembert::__private::series::at(&self.#x, k))
             }
             Operand::Constant(e) => {
                 let c = self.constant(e);
-                quote!(::dalembert::series::constant_at(#c, k))
+                quote!(::dalembert::__private::series::constant_at(#c, k))
             }
         }
     }
@@ -83,7 +83,7 @@ impl Written<'_> {
             .filter_map(move |(entry, x)| match entry {
                 Operand::Series(slot) => {
                     let m = &self.slots[*slot];
-                    Some(quote!(#sign ::dalembert::series::convolution_tail(&self.#m, &self.#x, k)))
+                    Some(quote!(#sign ::dalembert::__private::series::convolution_tail(&self.#m, &self.#x, k)))
                 }
                 Operand::Constant(_) => None,
             })
@@ -94,7 +94,7 @@ impl Written<'_> {
         match operand {
             Operand::Series(slot) => {
                 let x = &self.slots[slot];
-                quote!(::dalembert::series::at(&self.#x, 0))
+                quote!(::dalembert::__private::series::at(&self.#x, 0))
             }
             Operand::Constant(e) => self.constant(e),
         }
@@ -111,7 +111,7 @@ impl Written<'_> {
                     let (w, x) = (self.constant(*w), &self.slots[*x]);
                     quote!((#w, &self.#x))
                 });
-                quote!(::dalembert::series::linear(&mut self.#out, k, #constant, [#(#terms),*]);)
+                quote!(::dalembert::__private::series::linear(&mut self.#out, k, #constant, [#(#terms),*]);)
             }
             Operation::Call {
                 name,
@@ -124,7 +124,7 @@ impl Written<'_> {
                     quote!(&mut self.#p,)
                 });
                 let operands = operands.iter().map(|&x| &self.slots[x]);
-                quote!(::dalembert::series::#name(&mut self.#out, #partner #(&self.#operands,)* k);)
+                quote!(::dalembert::__private::series::#name(&mut self.#out, #partner #(&self.#operands,)* k);)
             }
         }
     }
@@ -253,7 +253,7 @@ impl<'a> Prelude<'a> {
         let n_constants = Literal::usize_unsuffixed(self.constants.len());
         let time_series = program.time.map(|slot| {
             let x = &self.slots[slot];
-            quote!(let mut #x = ::dalembert::series::time::<K>(t);)
+            quote!(let mut #x = ::dalembert::__private::series::time::<K>(t);)
         });
         let intermediate: Vec<&Ident> = program
             .operations
@@ -284,8 +284,8 @@ impl<'a> Prelude<'a> {
             };
             let [#(#q),*] = *q;
             let [#(#v),*] = *qd;
-            #(let mut #q = ::dalembert::series::start::<K>(#q);)*
-            #(let mut #v = ::dalembert::series::start::<K>(#v);)*
+            #(let mut #q = ::dalembert::__private::series::start::<K>(#q);)*
+            #(let mut #v = ::dalembert::__private::series::start::<K>(#v);)*
             #(let mut #a = [0.0; K];)*
             #(let mut #lambda = [0.0; K];)*
             #time_series
@@ -304,8 +304,8 @@ impl<'a> Prelude<'a> {
         let [q, v, a, _] = &self.state;
         let rates = &self.rates;
         quote! {
-            #(::dalembert::series::integral(&mut self.#v, &self.#a, k);)*
-            #(::dalembert::series::integral(&mut self.#q, &self.#rates, k);)*
+            #(::dalembert::__private::series::integral(&mut self.#v, &self.#a, k);)*
+            #(::dalembert::__private::series::integral(&mut self.#q, &self.#rates, k);)*
         }
     }
 
@@ -408,7 +408,7 @@ the constants they read, and the highest order asked for.";
                 #[inline(always)]
                 fn advance(&mut self, k: usize, solved: [f64; #nv_lit]) -> ([f64; #ne_lit], [f64; #nv_lit]) {
                     if let ::core::option::Option::Some(below) = k.checked_sub(1) {
-                        ::dalembert::series::assign_all([#(&mut self.#a),*], below, solved);
+                        ::dalembert::__private::series::assign_all([#(&mut self.#a),*], below, solved);
                         #integrals
                         if k == self.order {
                             return ([0.0; #ne_lit], [0.0; #nv_lit]);
@@ -454,7 +454,7 @@ the constants they read, and the highest order asked for.";
 /// `taylor_coefficients` of a system with constraints: order `k` of
 /// `M v̇ − Aᵀ λ = f`, `A v̇ = b` solved with the one factorisation of the
 /// saddle point at the expansion point that `constrained_accelerations`
-/// makes (`dalembert::constrained::constrained_series`), in a loop over the
+/// makes (`dalembert::__private::constrained_series`), in a loop over the
 /// orders.
 fn emit_constrained(model: &Model, prelude: &Prelude<'_>, function: &Function) -> TokenStream {
     let (nv, nc) = (model.nv(), prelude.state[3].len());
@@ -494,8 +494,8 @@ constants they read, and the highest order asked for.";
                     solved: ([f64; #nv_lit], [f64; #nc_lit]),
                 ) -> ([f64; #nv_lit], [f64; #nc_lit]) {
                     if let ::core::option::Option::Some(below) = k.checked_sub(1) {
-                        ::dalembert::series::assign_all([#(&mut self.#a),*], below, solved.0);
-                        ::dalembert::series::assign_all([#(&mut self.#lambda),*], below, solved.1);
+                        ::dalembert::__private::series::assign_all([#(&mut self.#a),*], below, solved.0);
+                        ::dalembert::__private::series::assign_all([#(&mut self.#lambda),*], below, solved.1);
                         #integrals
                         if k == self.order {
                             return ([0.0; #nv_lit], [0.0; #nc_lit]);
@@ -513,13 +513,13 @@ constants they read, and the highest order asked for.";
     let orders = quote! {
             let (forcing, bias) = series.advance(0, ([0.0; #nv_lit], [0.0; #nc_lit]));
             let (mass, jacobian) = series.saddle_point();
-            let equations = ::dalembert::constrained::SaddlePoint {
+            let equations = ::dalembert::__private::SaddlePoint {
                 mass: &mass,
                 forcing,
                 jacobian: &jacobian,
                 bias,
             };
-            ::dalembert::constrained::constrained_series(self, t, q, equations, |mut solved, solver| {
+            ::dalembert::__private::constrained_series(self, t, q, equations, |mut solved, solver| {
                 for k in 1..=series.order {
                     let (forcing, bias) = series.advance(k, solved);
                     if k < series.order {
@@ -610,7 +610,7 @@ mod tests {
         let body = taylor_body(crate::seeds::CONSTRAINED_PENDULUM);
         assert_eq!(body.matches("convolution_tail(").count(), 4, "{body}");
         assert!(
-            body.contains("::dalembert::constrained::constrained_series("),
+            body.contains("::dalembert::__private::constrained_series("),
             "{body}"
         );
     }
@@ -644,7 +644,7 @@ mod tests {
         let code = crate::generate(source).expect("generates");
         let body = &code[code.find("pub fn taylor_coefficients").expect("emitted")..];
         let calls = |name: &str| {
-            body.matches(&format!("::dalembert::series::{name}("))
+            body.matches(&format!("::dalembert::__private::series::{name}("))
                 .count()
         };
         assert_eq!(calls("sin_cos"), 1, "{body}");

@@ -2,7 +2,7 @@
 //! for a free body, Euler's equations about a fixed point for a heavy top),
 //! on both routes: the recursion over the tree and the general dot
 //! products of partial velocities. (Speeds of a `speeds` statement are
-//! checked end to end, in the project's `tests/floating.rs`.)
+//! checked end to end, in the project's `tests/suite/free_body.rs`.)
 
 use crate::equations::{Equations, derive};
 use crate::expr::Pool;

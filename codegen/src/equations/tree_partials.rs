@@ -92,7 +92,7 @@ pub struct LinkVectors {
 }
 
 /// One link of the tree at a state, what the runtime's recursion
-/// (`dalembert::dynamics::TreeRecursion`) computes its [`LinkVectors`]
+/// (`dalembert::__private::TreeRecursion`) computes its [`LinkVectors`]
 /// from, with the accelerations it is given after its first pass: its
 /// placement in its parent, its joint's axis `(e, 0)` of a turn or
 /// `(0, e)` of a slide in its axes, the joint's speed, and its inertia

@@ -119,7 +119,7 @@ const TAYLOR_DOCS: &str =
 inputs `u` held constant: entry `[i][k]` of the two arrays is the coefficient
 of `τᵏ` in `qᵢ(t + τ)` and `q̇ᵢ(t + τ)`, for `k ≤ order` (and `k < K`; the
 rest are zero). Every elementary operation of `M` and `f` has its
-recurrence (`dalembert::series`: Cauchy products, quotients, the `sin`/`cos`
+recurrence in the runtime (Cauchy products, quotients, the `sin`/`cos`
 pair, …), computed order by order from the lower orders; order `k` of
 `M(q) q̈ = f` gives `M₀ q̈ₖ = fₖ − Σⱼ₌₁ᵏ Mⱼ q̈ₖ₋ⱼ`, solved with the one
 `L D Lᵀ` factorisation of `M₀ = M(q)`, and `q̇ₖ₊₁ = q̈ₖ / (k + 1)`,
@@ -132,7 +132,7 @@ const CONSTRAINED_TAYLOR_DOCS: &str =
     "With constraints, order `k` solves `M₀ q̈ₖ − A₀ᵀ λₖ = fₖ − Σⱼ₌₁ᵏ (Mⱼ q̈ₖ₋ⱼ −
 Aⱼᵀ λₖ₋ⱼ)`, `A₀ q̈ₖ = bₖ − Σⱼ₌₁ᵏ Aⱼ q̈ₖ₋ⱼ` with the one factorisation of the
 saddle point that `constrained_accelerations` makes
-(`dalembert::constrained::constrained_series`), with its errors.";
+(`dalembert::__private::constrained_series`), with its errors.";
 
 /// What the docs of `taylor_coefficients` add where the speeds are not
 /// the coordinates' rates.

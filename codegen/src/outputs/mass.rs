@@ -54,7 +54,7 @@ pub fn mass_matrix(
          `Mᵢⱼ = Mⱼᵢ = Sᵢ · Fⱼ` for each speed `i` and each `j` of its subtree\n\
          (`i` itself, its joint's later speeds and its descendants'; the\n\
          other pairs are zero), by a loop of the runtime over the tree's\n\
-         table, depth-first (`dalembert::dynamics::tree_mass_matrix`)."
+         table, depth-first (`dalembert::__private::tree_mass_matrix`)."
     );
     Function {
         body: Body::MassPairs(tree),

@@ -1,7 +1,7 @@
 //! Between the steps of an adaptive integration: the continuous extension
 //! of each accepted step ([`DenseStep`]: the state at any time inside it)
 //! and the zeros of a user function `g(t, q, v)` located on it ([`Event`],
-//! [`adaptive_with_events`]).
+//! [`Integration::event`](crate::integrate::Integration::event)).
 //!
 //! The extensions are Hairer's: Shampine's fourth-order interpolant of
 //! DOPRI5 (free: it reuses the step's slopes) and DOP853's seventh-order one
@@ -9,15 +9,15 @@
 //! at eight points of a step, or by the turning point of `g` between two of
 //! them, and located on the interpolant by the Illinois variant of regula
 //! falsi, to a few units in the last place of the time
-//! ([`adaptive_with_events`] says what is guaranteed).
+//! ([`Integration::event`](crate::integrate::Integration::event) says what
+//! is guaranteed).
 
 use std::cell::Cell;
 use std::ops::ControlFlow;
 
 use super::rows::{Slopes, Tableau};
-use super::{AdaptiveOptions, ExplicitPair, adaptive_dense};
 use crate::integrate::runge_kutta::Rate;
-use crate::integrate::{Dynamics, Failure, IntegrationError, Solution, State};
+use crate::integrate::{Dynamics, Failure, IntegrationError, State};
 
 /// The coefficients `r₂…r₈` of the nested interpolant of one step (see
 /// `tableaux::DenseOutput`).
@@ -249,53 +249,6 @@ const RATE_STEP: f64 = 1e-4;
 /// zero is located to the last bits of the time long before.
 const MAX_ROOT_ITERATIONS: usize = 200;
 
-/// [`adaptive`](super::adaptive) watching the event `event`: every zero of
-/// its function on the way is located on the step's continuous extension
-/// to a few units in the last place of the time and given to `on_event` as
-/// the interpolated state there, in the order of time; a stopping event
-/// ends the integration at its first zero, and the [`Solution`] ends there.
-/// A zero at the initial state itself is not an event (the function must
-/// leave zero and come back), nor is a zero the function touches without
-/// changing sign.
-///
-/// How the zeros are found, and what is guaranteed: each step is cut into
-/// eight equal parts, and `g` is evaluated at their ends on the continuous
-/// extension. A part whose ends differ in sign holds a zero, located by
-/// the Illinois regula falsi. A part whose ends agree in sign may still
-/// hold two zeros (closer together than an eighth of the step); then `g`
-/// turns back towards zero inside it, so its rate (central differences on
-/// the extension) points towards zero at the part's start and away from it
-/// at its end: the turning point between is located (a zero of the rate),
-/// and if `g` has changed sign there both zeros are located, one on either
-/// side. So every zero where `g` changes sign is found, in order, as long
-/// as `g` turns at most once in each eighth of a step (three zeros or two
-/// turning points inside one eighth of a step can still pair off unseen:
-/// keep the tolerance small against the time between them).
-///
-/// A NaN or infinite value of `g` (at the start, at a sample or during a
-/// search) is an error, [`Failure::NonFiniteEvent`](crate::integrate::Failure::NonFiniteEvent),
-/// at the time and interpolated configuration where it was met. Allocates
-/// nothing.
-pub fn adaptive_with_events<D, G, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    pair: ExplicitPair,
-    options: AdaptiveOptions,
-    event: Event<G>,
-    on_event: impl FnMut(&State<NQ, NV>),
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
-where
-    D: Dynamics<NQ, NV>,
-    G: Fn(f64, &[f64; NQ], &[f64; NV]) -> f64,
-{
-    let failure = EventFailure::default();
-    let on_step = watch(event, &initial, on_event, &failure)?;
-    failure.or(adaptive_dense(
-        dynamics, initial, t_end, pair, options, on_step,
-    ))
-}
-
 /// What an integration reporting to `observer` does at each step: shows it
 /// the step's end and goes on. `observer` sees `initial` first, here.
 pub(crate) fn observe<D, const NQ: usize, const NV: usize>(
@@ -349,7 +302,7 @@ fn finite_at<const NQ: usize, const NV: usize>(
 
 /// What an integration watching `event` from `initial` does at each step
 /// (its continuous extension, [`DenseStep`]): locates the zeros crossed in
-/// the step (see [`adaptive_with_events`]), gives the state at each to
+/// the step (see [`Integration::event`](crate::integrate::Integration::event)), gives the state at each to
 /// `on_event`, and breaks at the first if the event stops the integration;
 /// breaks at a non-finite value of the event function, recorded in
 /// `failure`. Fails at once if the value at `initial` is not finite.

@@ -25,11 +25,12 @@ use std::ops::ControlFlow;
 
 use dense::Interpolant;
 pub(crate) use dense::{Continuous, EventFailure, observe, watch};
-pub use dense::{Crossing, DenseStep, Event, adaptive_with_events};
+pub use dense::{Crossing, DenseStep, Event};
 use rows::{Estimate, MAX_SLOPES, Slopes, Tableau};
 use tableaux::{DOP853, DOPRI5};
 
 use super::arguments::{BAD_STEP, check_positive, check_span, check_tolerances};
+use super::integration::{DenseMethod, Method, sealed};
 use super::runge_kutta::{Kernel, Rate};
 use super::{Dynamics, Failure, IntegrationError, Solution, State, Statistics};
 
@@ -74,68 +75,101 @@ impl AdaptiveOptions {
     }
 }
 
-/// Integrates `dynamics` from `initial` to `t_end` with the adaptive pair
-/// `pair`, and returns the final state (exactly at `t_end`) with the work
-/// done.
-///
-/// `observer` sees the initial state and then every accepted step, after
-/// the dynamics' [`settle`](Dynamics::settle). Allocates nothing. Stops
-/// at the first evaluation that fails (singular mass matrix, non-finite
-/// values: the error names its time and configuration), when the step size
-/// falls below the resolution of the time, or when `options.max_steps` run
-/// out.
-pub fn adaptive<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    pair: ExplicitPair,
-    options: AdaptiveOptions,
-    observer: impl FnMut(&State<NQ, NV>),
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+/// An embedded explicit pair with step-size control to the final time
+/// (exactly there), the method of choice for non-stiff systems at a
+/// tolerance: DOPRI5 for moderate ones (`1e-6`…`1e-9`), DOP853 for tight
+/// ones (`1e-10` and below, the least work per digit). Stops at the first
+/// evaluation that fails (singular mass matrix, non-finite values: the
+/// error names its time and configuration), when the step size falls below
+/// the resolution of the time, or when `options.max_steps` run out. Its
+/// steps have a continuous extension ([`DenseMethod`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Adaptive {
+    /// The pair.
+    pub pair: ExplicitPair,
+    /// Its tolerances and limits.
+    pub options: AdaptiveOptions,
+}
+
+impl Adaptive {
+    /// Dormand–Prince 5(4) with `rtol = atol = tolerance`
+    /// ([`AdaptiveOptions::with_tolerance`]).
+    pub fn dopri5(tolerance: f64) -> Self {
+        Self {
+            pair: ExplicitPair::DormandPrince54,
+            options: AdaptiveOptions::with_tolerance(tolerance),
+        }
+    }
+
+    /// Dormand–Prince 8(5,3) with `rtol = atol = tolerance`
+    /// ([`AdaptiveOptions::with_tolerance`]).
+    pub fn dop853(tolerance: f64) -> Self {
+        Self {
+            pair: ExplicitPair::Dop853,
+            options: AdaptiveOptions::with_tolerance(tolerance),
+        }
+    }
+
+    /// The integration of `dynamics` from `initial` to `t_end`, checked,
+    /// with or without the steps' continuous extension.
+    fn run<D, const NQ: usize, const NV: usize>(
+        self,
+        dynamics: &D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        dense: bool,
+    ) -> Result<Run<'_, D, NQ, NV>, IntegrationError<NQ>>
+    where
+        D: Dynamics<NQ, NV>,
+    {
+        let run = Run {
+            dynamics,
+            initial,
+            t_end,
+            options: self.options,
+            dense,
+        };
+        run.check()?;
+        Ok(run)
+    }
+}
+
+impl sealed::Sealed for Adaptive {}
+
+impl<D, const NQ: usize, const NV: usize> Method<D, NQ, NV> for Adaptive
 where
     D: Dynamics<NQ, NV>,
 {
-    let run = Run {
-        dynamics,
-        initial,
-        t_end,
-        options,
-        dense: false,
-    };
-    run.check()?;
-    let on_step = observe(&initial, observer);
-    integrate_with(run, pair, on_step)
+    fn integrate(
+        self,
+        dynamics: &D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        observer: impl FnMut(&State<NQ, NV>),
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        let run = self.run(dynamics, initial, t_end, false)?;
+        integrate_with(run, self.pair, observe(&initial, observer))
+    }
 }
 
-/// [`adaptive`] with the continuous extension of every step: `on_step`
-/// sees each accepted step as a [`DenseStep`], which gives the state at any
-/// time inside it (DOPRI5: Shampine's fourth-order interpolant, no extra
-/// evaluation; DOP853: its seventh-order one, three more evaluations a
-/// step), and may end the integration there by returning
-/// [`ControlFlow::Break`] with the state to end at.
-pub fn adaptive_dense<D, const NQ: usize, const NV: usize>(
-    dynamics: &D,
-    initial: State<NQ, NV>,
-    t_end: f64,
-    pair: ExplicitPair,
-    options: AdaptiveOptions,
-    on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
-) -> Result<Solution<NQ, NV>, IntegrationError<NQ>>
+impl<D, const NQ: usize, const NV: usize> DenseMethod<D, NQ, NV> for Adaptive
 where
     D: Dynamics<NQ, NV>,
 {
-    let run = Run {
-        dynamics,
-        initial,
-        t_end,
-        options,
-        dense: true,
-    };
-    run.check()?;
-    integrate_with(run, pair, on_step)
+    fn integrate_dense(
+        self,
+        dynamics: &D,
+        initial: State<NQ, NV>,
+        t_end: f64,
+        on_step: impl FnMut(&DenseStep<'_, NQ, NV, D>) -> ControlFlow<State<NQ, NV>>,
+    ) -> Result<Solution<NQ, NV>, IntegrationError<NQ>> {
+        let run = self.run(dynamics, initial, t_end, true)?;
+        integrate_with(run, self.pair, on_step)
+    }
 }
 
-/// [`adaptive_dense`] of `run` with the tableau of `pair`.
+/// The integration `run` with the tableau of `pair`, showing `on_step`
+/// every step.
 ///
 /// Every evaluation of the integration, from the initial slope to the
 /// dense output's extra stages, happens at the one call in this loop, for

@@ -1,0 +1,22 @@
+//! What only generated code calls, out of the user's API (serde's
+//! `__private` pattern): the elementary functions and Taylor recurrences the
+//! emitted functions call, the tables and loops of the looped tree route,
+//! the unrolled solvers' helpers, the constrained linearisation's and
+//! series' entry points, and the runtime's generic Cholesky solver that
+//! tests and benchmarks compare the emitted one with. Hidden from the docs
+//! and free to change with the code generator; nothing here is for users.
+
+pub mod math;
+pub mod series;
+
+pub use crate::constrained::linearize::{
+    AccelerationPartials, ConstrainedPartials, ManifoldChart, constrained_accelerations_jacobian,
+    linearize_on_constraints,
+};
+pub use crate::constrained::multipliers::SaddlePoint;
+pub use crate::constrained::series::{SeriesSolver, constrained_series};
+pub use crate::dynamics::cholesky::{check_pivots, cholesky_accelerations, pivot_tolerance};
+pub use crate::dynamics::null_motion::{NULL_MOTION_NAMES, with_null_motion};
+pub use crate::dynamics::pairs::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
+pub use crate::dynamics::rows::scale_and_subtract;
+pub use crate::dynamics::tree_vectors::{LinkState, TreeRecursion};
