@@ -3,9 +3,12 @@
 its straight-line code (the output of `dalembert generate MODEL.dal`).
 
 usage: op_counts.py GENERATED.rs [FUNCTION ...]
-Prints CSV: function,add,mul,div,sqrt,sincos,flops,runtime_loops where add
-counts additions, subtractions and negations of a value, flops = add + mul +
-div, sincos counts `sin_cos` calls (and lone `sin`/`cos`) and runtime_loops
+Prints CSV: function,add,mul,div,sqrt,sincos,flops,row_solve,runtime_loops
+where add counts additions, subtractions and negations of a value, flops =
+add + mul + div, sincos the angles of `sin_cos_all` and `sin_cos` calls,
+row_solve the share of flops in the row operations of the solve through
+`L D Lᵀ` (the runtime's `scale_and_subtract`, counted from its arguments: see
+add_row_operations) and runtime_loops
 names the runtime's loops the function calls (`dalembert::dynamics::…`),
 whose operations are not in the counts (docs/humanoid.md counts them from
 the tree). Every operator in the body counts once: the generated code is
@@ -57,7 +60,7 @@ def functions(text):
 
 
 def count(body):
-    counts = dict(add=0, mul=0, div=0, sqrt=0, sincos=0)
+    counts = dict(add=0, mul=0, div=0, sqrt=0, sincos=0, row_solve=0)
     toks = tokens(body)
     for k, (kind, tok) in enumerate(toks):
         prev = toks[k - 1] if k else ("op", "")
@@ -104,17 +107,18 @@ def add_row_operations(body, counts):
         k = terms.count("(")
         counts["mul"] += columns * (1 + k)
         counts["add"] += columns * k
+        counts["row_solve"] += columns * (1 + 2 * k)
 
 
 def main():
     path, wanted = sys.argv[1], set(sys.argv[2:])
     text = open(path).read()
-    print("function,add,mul,div,sqrt,sincos,flops,runtime_loops")
+    print("function,add,mul,div,sqrt,sincos,flops,row_solve,runtime_loops")
     for name, body in functions(text):
         if wanted and name not in wanted:
             continue
         c = count(body)
-        print(f"{name},{c['add']},{c['mul']},{c['div']},{c['sqrt']},{c['sincos']},{c['flops']},{c['runtime_loops']}")
+        print(f"{name},{c['add']},{c['mul']},{c['div']},{c['sqrt']},{c['sincos']},{c['flops']},{c['row_solve']},{c['runtime_loops']}")
 
 
 if __name__ == "__main__":
