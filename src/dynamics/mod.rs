@@ -14,7 +14,7 @@ pub use cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots, pivot_tolerance};
 pub(crate) use cholesky::{cholesky, factor_mass_matrix};
 pub use error::DynamicsError;
 pub use null_motion::{NULL_MOTION_NAMES, NullMotion, with_null_motion};
-pub use pairs::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
+pub use pairs::{TreeLink, TreeSpeed, add_to_diagonal, add_tree_pairs, tree_mass_matrix};
 pub use rows::scale_and_subtract;
 pub use tree_vectors::{LinkState, TreeRecursion};
 
