@@ -5,11 +5,14 @@
 #   scripts/bench/humanoid.sh
 #
 # Times, in the same window:
-# * ours: `cargo bench -p dalembert-generated --bench robots --features humanoids`
-#   (criterion, the fixtures' 1000 states): `mass_matrix` + `forcing`,
-#   `dalembert::accelerations` and `accelerations_jacobian` of the floating
-#   Unitree G1 and Talos (tests/reference/humanoids/) and Solo-12, and the first two
-#   of dm_control's humanoid and cheetah (imported from MJCF);
+# * ours: scripts/bench/humanoid_timing.rs (thread CPU time, the peers' method):
+#   `mass_matrix` + `forcing`, `dalembert::accelerations` and
+#   `accelerations_jacobian` of the floating Unitree G1 and Talos
+#   (tests/reference/humanoids/) and Solo-12, imported with `--floating` and
+#   `accelerations_jacobian, linearize` (as generated/build.rs does under its
+#   `humanoids` feature), and the first two of dm_control's humanoid and cheetah
+#   (imported from MJCF); built in release in a temporary crate that depends on
+#   this repository (sharing its target directory), which also gives the build time;
 # * Pinocchio (header-only, -O3 -march=native): the peers' harness
 #   `run.sh --urdf ROBOT.urdf --floating` (pin_crba_sym + pin_nle, pin_aba,
 #   pin_aba_derivatives), from $PINOCCHIO_HARNESS (the folder of run.sh);
@@ -24,18 +27,40 @@ WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 cd "$ROOT"
 
-# Ours: criterion's middle estimate per function, in ns, as "robot function ns".
-cargo bench -q -p dalembert-generated --bench robots --features humanoids -- \
-  'robots/(floating_solo12|g1|talos_reduced|humanoid|cheetah)/(mass_matrix\+forcing|accelerations)' \
-  2>/dev/null | awk '
-    /^robots\// { name = $1 }
-    /time:/ {
-      gsub(/[\[\]]/, "");
-      for (i = 1; i <= NF; i++) if ($i == "time:") { v = $(i + 3); u = $(i + 4) }
-      f = (u == "ns") ? 1 : (u == "µs" || u == "us") ? 1e3 : (u == "ms") ? 1e6 : 1e9;
-      split(name, p, "/"); printf "%s %s %.1f\n", p[2], p[3], v * f
-    }' > "$WORK/ours.txt"
-
+# Ours: the models' code, then the harness, as "robot function ns".
+cargo build -q --release -p dalembert-codegen --bin dalembert
+DALEMBERT="$ROOT/target/release/dalembert"
+mkdir -p "$WORK/models" "$WORK/crate"
+for entry in g1:humanoids/g1.urdf talos_reduced:humanoids/talos_reduced.urdf solo12:urdf/solo12.urdf; do
+  "$DALEMBERT" urdf "tests/reference/${entry#*:}" --floating \
+    --outputs "accelerations_jacobian, linearize" > "$WORK/models/${entry%%:*}.dal"
+done
+for model in humanoid cheetah; do
+  "$DALEMBERT" mjcf "tests/reference/mjcf/dm_control/$model.xml" > "$WORK/models/$model.dal"
+done
+for model in g1 talos_reduced solo12 humanoid cheetah; do
+  "$DALEMBERT" generate "$WORK/models/$model.dal" > "$WORK/models/$model.rs"
+done
+{
+  echo '[package]'
+  echo 'name = "humanoid-timing"'
+  echo 'version = "0.0.0"'
+  echo 'edition = "2024"'
+  echo 'publish = false'
+  echo '[[bin]]'
+  echo 'name = "humanoid-timing"'
+  echo "path = \"$ROOT/scripts/bench/humanoid_timing.rs\""
+  echo '[dependencies]'
+  echo "dalembert = { path = \"$ROOT\", default-features = false }"
+  echo '[workspace]'
+} > "$WORK/crate/Cargo.toml"
+# The runtime first, so that the timed build is the models' code alone.
+CARGO_TARGET_DIR="$ROOT/target" cargo build -q --release -p dalembert
+start=$(date +%s.%N)
+HUMANOID_MODELS="$WORK/models" CARGO_TARGET_DIR="$ROOT/target" \
+  cargo build -q --release --manifest-path "$WORK/crate/Cargo.toml"
+build_s=$(echo "$(date +%s.%N) - $start" | bc -l | xargs printf '%.0f')
+"$ROOT/target/release/humanoid-timing" > "$WORK/ours.txt"
 ours() { awk -v r="$1" -v f="$2" '$1 == r && $2 == f { print $3 }' "$WORK/ours.txt"; }
 
 # Pinocchio: median ns per algorithm, as "robot algo ns".
@@ -67,8 +92,9 @@ sum() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { print a +
 
 echo "## Floating humanoids against Pinocchio and MuJoCo"
 echo
-echo "Measured $(date -u +%Y-%m-%d) with \`scripts/bench/humanoid.sh\` (ours: criterion, default"
-echo "build; Pinocchio: the peers' harness, header-only, \`-O3 -march=native\`, thread CPU time;"
+echo "Measured $(date -u +%Y-%m-%d) with \`scripts/bench/humanoid.sh\` (ours: default release"
+echo "build, \`scripts/bench/humanoid_timing.rs\`; Pinocchio: the peers' harness, header-only,"
+echo "\`-O3 -march=native\`; both thread CPU time, the median of repeats over 1000 random states;"
 echo "MuJoCo: \`mj_forward\` through its C API, contacts, constraints and actuation disabled), in one"
 echo "run; µs per call, and ours / theirs. Targets (issue #40): M + f ≤ 0.20 of \`crba\` +"
 echo "\`nonLinearEffects\`, accelerations ≤ 0.20 of \`aba\`, \`accelerations_jacobian\` ≤ 0.33 of"
@@ -94,3 +120,6 @@ for model in humanoid:27 cheetah:9; do
   mf=$(ours "$name" "mass_matrix+forcing"); acc=$(ours "$name" accelerations); fwd=$(mj "$name")
   echo "| dm_control $name ($nv) | $(us "$mf") | $(us "$acc") | $(us "$fwd") | $(ratio "$mf" "$fwd") | $(ratio "$acc" "$fwd") |"
 done
+echo
+echo "Building the five models' code (the humanoids and Solo-12 with \`accelerations_jacobian\` and"
+echo "\`linearize\`) with the harness in release took ${build_s} s wall, the runtime built beforehand."
