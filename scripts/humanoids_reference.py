@@ -15,7 +15,6 @@ usage (in a Python environment with `pin` and `numpy`, e.g. the peers' venv):
     python scripts/humanoids_reference.py [--out tests/reference/humanoids/pinocchio.json]
 """
 import argparse
-import math
 import os
 import sys
 
@@ -23,8 +22,8 @@ import numpy as np
 import pinocchio as pin
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from derivatives_reference import derivatives  # noqa: E402
-from urdf_reference import coordinate_order, write_document  # noqa: E402
+from derivatives_reference import floating_entry  # noqa: E402
+from urdf_reference import write_document  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HUMANOIDS = os.path.join(ROOT, "tests", "reference", "humanoids")
@@ -33,35 +32,12 @@ STATES = 3
 SEED = 20261128
 
 
-def floating_entry(file, rng):
-    """The robot on the free flyer at STATES random states."""
-    path = os.path.join(HUMANOIDS, file)
-    model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
-    order = coordinate_order(path)
-    joints = [model.joints[model.getJointId(name)] for name in order]
-    assert all(j.nq == 1 for j in joints), "one angle or slide per joint"
-    perm = np.array(list(range(6)) + [j.idx_v for j in joints])
-    states = []
-    for _ in range(STATES):
-        q = pin.neutral(model)
-        q[:3] = rng.uniform(-1.0, 1.0, 3)
-        quaternion = rng.normal(size=4)
-        q[3:7] = quaternion / np.linalg.norm(quaternion)
-        angles = rng.uniform(-math.pi, math.pi, len(order))
-        q[[j.idx_q for j in joints]] = angles
-        v, a = rng.uniform(-2.0, 2.0, model.nv), rng.uniform(-5.0, 5.0, model.nv)
-        tau = rng.uniform(-10.0, 10.0, len(order))
-        vp, ap, taup = np.zeros(model.nv), np.zeros(model.nv), np.zeros(model.nv)
-        vp[perm], ap[perm], taup[perm[6:]] = v, a, tau
-        entry = {"q": [float(x) for x in list(q[:7]) + list(angles)],
-                 "qd": [float(x) for x in v], "tau": [float(x) for x in tau]}
-        entry.update(derivatives(model, q, vp, taup, ap, perm))
-        # The humanoids ask for no `inverse_dynamics_jacobian`: M is kept.
-        del entry["dtau_dq"], entry["dtau_dv"]
-        nle = pin.nonLinearEffects(model, model.createData(), q, vp)
-        entry["f"] = [float(x) for x in (taup - nle)[perm]]
-        states.append(entry)
-    return {"model": os.path.splitext(file)[0] + "_floating", "nv": model.nv, "states": states}
+def forcing_only(model, q, v, tau, perm, entry):
+    """Adds f = tau - nle; drops dtau_dq and dtau_dv (the humanoids ask for no
+    `inverse_dynamics_jacobian`), M kept."""
+    nle = pin.nonLinearEffects(model, model.createData(), q, v)
+    entry["f"] = [float(x) for x in (tau - nle)[perm]]
+    del entry["dtau_dq"], entry["dtau_dv"]
 
 
 def main():
@@ -80,7 +56,7 @@ def main():
         "q is the base's position and quaternion (x, y, z, w), then the joints; derivatives by "
         "q in the tangent space. Matrices row by row, entry [i][j] the derivative of component "
         "i by variable j, in dalembert's coordinate order.",
-        [floating_entry(f, rng) for f in FILES],
+        [floating_entry(f, rng, HUMANOIDS, STATES, forcing_only) for f in FILES],
     )
 
 

@@ -156,23 +156,16 @@ int main(int argc, char** argv) {
   for (int j = 0; j < nv; ++j) { v[j] = C(0.1 * (j + 1)); a[j] = C(0.3 - 0.01 * j); tau[j] = C(1.0 + 0.2 * j); }
 
   std::printf("robot,nv,algo,add,mul,div,sqrt,sincos,other,flops\n");
-  reset();
-  pin::crba(cmodel, data, q);
-  report(robot, nv, "crba");
-  reset();
-  pin::nonLinearEffects(cmodel, data, q, v);
-  report(robot, nv, "nonLinearEffects");
-  reset();
-  pin::rnea(cmodel, data, q, v, a);
-  report(robot, nv, "rnea");
-  reset();
-  pin::aba(cmodel, data, q, v, tau);
-  report(robot, nv, "aba");
-  reset();
-  pin::computeABADerivatives(cmodel, data, q, v, tau);
-  report(robot, nv, "computeABADerivatives");
-  reset();
-  pin::computeRNEADerivatives(cmodel, data, q, v, a);
-  report(robot, nv, "computeRNEADerivatives");
+  auto count = [&](const char* algo, auto run) {
+    reset();
+    run();
+    report(robot, nv, algo);
+  };
+  count("crba", [&] { pin::crba(cmodel, data, q); });
+  count("nonLinearEffects", [&] { pin::nonLinearEffects(cmodel, data, q, v); });
+  count("rnea", [&] { pin::rnea(cmodel, data, q, v, a); });
+  count("aba", [&] { pin::aba(cmodel, data, q, v, tau); });
+  count("computeABADerivatives", [&] { pin::computeABADerivatives(cmodel, data, q, v, tau); });
+  count("computeRNEADerivatives", [&] { pin::computeRNEADerivatives(cmodel, data, q, v, a); });
   return 0;
 }
