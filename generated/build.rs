@@ -94,6 +94,19 @@ fn main() {
             builder.model(path);
         }
     }
+    if std::env::var_os("CARGO_FEATURE_HUMANOIDS").is_some() {
+        // The floating humanoids of `tests/reference/humanoids/`, with their
+        // derivatives, for the benches only.
+        for (file, name) in [("g1", "G1"), ("talos_reduced", "Talos")] {
+            builder.urdf_with(
+                format!("../tests/reference/humanoids/{file}.urdf"),
+                dalembert_codegen::ImportOptions::new()
+                    .floating(true)
+                    .name(name)
+                    .outputs("accelerations_jacobian, linearize"),
+            );
+        }
+    }
     let written = builder
         .model_dir("models")
         .urdf("../tests/reference/urdf/panda.urdf")

@@ -110,19 +110,21 @@ def robot_entry(file, rng):
     return {"model": os.path.splitext(file)[0], "nv": model.nv, "states": states}
 
 
-def floating_entry(file, rng):
+def floating_entry(file, rng, folder=ROBOTS, count=STATES, extra=None):
     """The robot on Pinocchio's free flyer, as dalembert's `--floating` writes it: q is the
     base's position and unit quaternion (x, y, z, w) then the joints in Pinocchio's order; v the
     base's linear and angular velocity in its own axes then the joints'. The derivatives by
-    q are Pinocchio's, in the tangent space (q ⊕ δ = q exp(δ))."""
-    path = os.path.join(ROBOTS, file)
+    q are Pinocchio's, in the tangent space (q ⊕ δ = q exp(δ)). `count` states of the robot
+    `file` of `folder`; `extra(model, q, v, tau, perm, entry)`, if given, edits each state's
+    entry (v and tau in Pinocchio's order)."""
+    path = os.path.join(folder, file)
     model = pin.buildModelFromUrdf(path, pin.JointModelFreeFlyer())
     order = coordinate_order(path)
     joints = [model.joints[model.getJointId(name)] for name in order]
     assert all(j.nq == 1 for j in joints), "one angle or slide per joint"
     perm = np.array(list(range(6)) + [j.idx_v for j in joints])
     states = []
-    for _ in range(STATES):
+    for _ in range(count):
         q = pin.neutral(model)
         q[:3] = rng.uniform(-1.0, 1.0, 3)
         quaternion = rng.normal(size=4)
@@ -136,6 +138,8 @@ def floating_entry(file, rng):
         entry = {"q": [float(x) for x in list(q[:7]) + list(angles)],
                  "qd": [float(x) for x in v], "tau": [float(x) for x in tau]}
         entry.update(derivatives(model, q, vp, taup, ap, perm))
+        if extra:
+            extra(model, q, vp, taup, perm, entry)
         states.append(entry)
     return {"model": os.path.splitext(file)[0] + "_floating", "nv": model.nv, "states": states}
 

@@ -122,3 +122,43 @@ fn the_target_is_a_speed_and_the_value_a_constant() {
     let error = dalembert_codegen::check(&with("armature 0.1 dt(q);")).unwrap_err();
     assert!(error.to_string().contains("`on` and a speed"), "{error}");
 }
+
+/// `source` (a model ending in `}`) with `statements` added before its end.
+fn with_statements(source: &str, statements: &str) -> String {
+    let end = source.rfind('}').expect("a system ends with `}`");
+    format!("{}{statements}\n{}", &source[..end], &source[end..])
+}
+
+/// The looped tree routes take the armatures too: a large tree's
+/// `mass_matrix` adds them to the diagonal that the runtime's pairs fill,
+/// and its looped `accelerations_jacobian` to the diagonal entries of the
+/// runtime's `M` that it factorises (neither loop of the runtime knows
+/// them): the entries of the generated code, by name.
+#[test]
+fn the_looped_tree_routes_add_the_armatures() {
+    use dalembert_codegen::chain::{Family, chain};
+    let armature = "    armature 0.25 on dt(q3);\n    armature 0.5 on dt(q7);";
+    let large =
+        dalembert_codegen::generate(&with_statements(&chain(Family::Spatial, 30), armature))
+            .unwrap()
+            .replace(char::is_whitespace, "");
+    assert!(large.contains("dalembert::dynamics::tree_mass_matrix"));
+    assert!(
+        large.contains("dalembert::dynamics::add_to_diagonal(&mutm,[(2,0.25),(6,0.5)]);"),
+        "the armatures after the pairs"
+    );
+    let outputs = format!("{armature}\n    outputs accelerations_jacobian;");
+    let derivatives =
+        dalembert_codegen::generate(&with_statements(&chain(Family::Spatial, 12), &outputs))
+            .unwrap()
+            .replace(char::is_whitespace, "");
+    assert!(derivatives.contains("TreeRecursion::default()"));
+    // Speed 2 (q3) and 6 (q7) are rows 9 and 5 of the reversed chain.
+    for (entry, value) in [("m2_2=mass[9][9]+", "0.25"), ("m6_6=mass[5][5]+", "0.5")] {
+        assert!(
+            derivatives.contains(&format!("{entry}{value};")),
+            "{entry}{value} in the looped accelerations_jacobian"
+        );
+    }
+    assert!(derivatives.contains("m1_1=mass[10][10];"));
+}

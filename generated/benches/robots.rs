@@ -12,7 +12,13 @@
 //! per iteration; the floating Solo-12's states put a unit quaternion (the
 //! rotation by a random rotation vector) in place of three of the angles.
 //!
-//! Run with `cargo bench -p dalembert-generated --bench robots`; time
+//! The robots with derivatives (the floating Solo-12 of
+//! `dalembert_generated::derivatives` and, with the `humanoids` feature, the
+//! floating Unitree G1 and Talos) also time `accelerations_jacobian`, the
+//! counterpart of `computeABADerivatives`.
+//!
+//! Run with `cargo bench -p dalembert-generated --bench robots [--features
+//! humanoids]`; time
 //! Pinocchio in the same window with
 //! `bash ../shared/peers/pinocchio/run.sh --urdf tests/reference/urdf/panda.urdf`
 //! (`--floating` for its free flyer; BENCHMARKS.md), and MuJoCo's
@@ -120,6 +126,54 @@ fn bench_robot<S, const NQ: usize, const NV: usize, const NU: usize>(
     group.finish();
 }
 
+/// `accelerations_jacobian` of a robot with derivatives, in group
+/// `robots/NAME` beside its dynamics.
+fn bench_jacobian<S, R, const NQ: usize, const NV: usize, const NU: usize>(
+    c: &mut Criterion,
+    name: &str,
+    robot: S,
+    states: &[Call<NQ, NV, NU>],
+    jacobian: fn(&S, f64, &[f64; NQ], &[f64; NV], &[f64; NU]) -> R,
+) {
+    let mut group = c.benchmark_group(format!("robots/{name}"));
+    group.bench_function("accelerations_jacobian", |b| {
+        b.iter_custom(|iters| {
+            per_call(states, iters, |s| {
+                jacobian(black_box(&robot), s.t, &s.q, &s.v, &s.u)
+            })
+        })
+    });
+    group.finish();
+}
+
+/// The floating robots with derivatives: their dynamics and
+/// `accelerations_jacobian`.
+fn floating_with_derivatives(c: &mut Criterion) {
+    use dalembert_generated::derivatives::floating_solo12::FloatingSolo as Solo;
+    bench_jacobian(
+        c,
+        "floating_solo12",
+        Solo {},
+        &floating(),
+        Solo::accelerations_jacobian,
+    );
+    #[cfg(feature = "humanoids")]
+    {
+        use dalembert_generated::{g1::G1, talos_reduced::Talos};
+        let (g1, talos) = (floating(), floating());
+        bench_robot(c, "g1", G1 {}, &g1);
+        bench_jacobian(c, "g1", G1 {}, &g1, G1::accelerations_jacobian);
+        bench_robot(c, "talos_reduced", Talos {}, &talos);
+        bench_jacobian(
+            c,
+            "talos_reduced",
+            Talos {},
+            &talos,
+            Talos::accelerations_jacobian,
+        );
+    }
+}
+
 fn robots(c: &mut Criterion) {
     bench_robot(c, "panda", Panda {}, &fixed_base());
     bench_robot(c, "ur5", Ur5 {}, &fixed_base());
@@ -139,6 +193,6 @@ criterion_group! {
     config = Criterion::default()
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
-    targets = robots
+    targets = robots, floating_with_derivatives
 }
 criterion_main!(benches);

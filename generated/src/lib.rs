@@ -162,6 +162,19 @@ model!(
     spatial_chain_60
 );
 
+// The floating humanoids of `tests/reference/humanoids/`, with the
+// `humanoids` feature only (imported by build.rs with their derivatives).
+#[cfg(feature = "humanoids")]
+model!(
+    /// Unitree G1 (29 joints) on a floating base: 36 coordinates, 35 speeds.
+    g1
+);
+#[cfg(feature = "humanoids")]
+model!(
+    /// PAL Talos (reduced: 32 joints) on a floating base: 39 coordinates, 38 speeds.
+    talos_reduced
+);
+
 // URDF robots (`tests/reference/urdf/*.urdf`), imported by `Builder::urdf`;
 // tests/urdf.rs checks them against Pinocchio.
 model!(

@@ -92,11 +92,13 @@ fn generated_code_has_no_panic_path() {
     let trees = std::fs::read_dir(crate_dir.join("trees")).expect("trees/ exists");
     // The 60-link chains of the `large` feature.
     let large = if cfg!(feature = "large") { 2 } else { 0 };
+    // The two floating humanoids of the `humanoids` feature.
+    let humanoids = if cfg!(feature = "humanoids") { 2 } else { 0 };
     // build.rs's MJCF entries: dm_control's cheetah and humanoid.
     let mjcf = 2;
     assert_eq!(
         checked,
-        models.count() + robots.count() + trees.count() + large + mjcf,
+        models.count() + robots.count() + trees.count() + large + humanoids + mjcf,
         "one generated file per model, per URDF robot, per tree and per MJCF model"
     );
 }

@@ -9,7 +9,8 @@
 //!   vectors a link (Carpentier and Mansard's recursion, see the engine's
 //!   `tree_partials`), [`add_tree_pairs`];
 //! * its mass matrix by composite rigid bodies, two spatial vectors a speed
-//!   (see the engine's `tree_mass`), [`tree_mass_matrix`].
+//!   (see the engine's `tree_mass`), [`tree_mass_matrix`], and the
+//!   armatures on its diagonal, [`add_to_diagonal`].
 
 /// One link of the tree: where its pairs go. An index `usize::MAX` is
 /// none (the root's parent, a column that is not solved).
@@ -132,9 +133,23 @@ pub fn tree_mass_matrix<const N: usize, const L: usize>(
     m
 }
 
+/// Adds each `(k, a)` of `terms` to `m[k][k]` (the armatures of a `M`
+/// that [`tree_mass_matrix`] computed, which knows only the links'
+/// inertias); an index outside `m` is skipped.
+pub fn add_to_diagonal<const N: usize, const K: usize>(
+    m: &mut [[f64; N]; N],
+    terms: [(usize, f64); K],
+) {
+    for (k, a) in terms {
+        if let Some(entry) = m.get_mut(k).and_then(|row| row.get_mut(k)) {
+            *entry += a;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
+    use super::{TreeLink, TreeSpeed, add_to_diagonal, add_tree_pairs, tree_mass_matrix};
 
     /// A unit vector along entry `k` times `x`.
     fn along(k: usize, x: f64) -> [f64; 6] {
@@ -194,6 +209,13 @@ mod tests {
         // Row 0 (τ₁): ∂τ₁/∂q₁ = y₁·Ψ̈₁ + z₁·Ψ̇₁ = 29·23 + 31·19,
         // ∂τ₁/∂v₁ = z₁·S₁ + 2 y₁·Ψ̇₁ = 0, ∂τ₁/∂v₀ = z₁·S₀ + 2 y₁·Ψ̇₀ = 0.
         assert_eq!(first, [100.0 + 29.0 * 23.0 + 31.0 * 19.0, 100.0, 100.0]);
+    }
+
+    #[test]
+    fn armatures_add_to_their_diagonal_entries_and_up() {
+        let mut m = [[1.0, 2.0], [2.0, 5.0]];
+        add_to_diagonal(&mut m, [(1, 0.25), (0, 0.5), (1, 0.125), (7, 9.0)]);
+        assert_eq!(m, [[1.5, 2.0], [2.0, 5.375]]);
     }
 
     #[test]

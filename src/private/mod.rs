@@ -17,6 +17,8 @@ pub use crate::constrained::multipliers::SaddlePoint;
 pub use crate::constrained::series::{SeriesSolver, constrained_series};
 pub use crate::dynamics::cholesky::{check_pivots, cholesky_accelerations, pivot_tolerance};
 pub use crate::dynamics::null_motion::{NULL_MOTION_NAMES, with_null_motion};
-pub use crate::dynamics::pairs::{TreeLink, TreeSpeed, add_tree_pairs, tree_mass_matrix};
+pub use crate::dynamics::pairs::{
+    TreeLink, TreeSpeed, add_to_diagonal, add_tree_pairs, tree_mass_matrix,
+};
 pub use crate::dynamics::rows::scale_and_subtract;
 pub use crate::dynamics::tree_vectors::{LinkState, TreeRecursion};

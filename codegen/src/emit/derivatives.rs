@@ -244,13 +244,18 @@ fn looped_rows(
         .flat_map(|v| v.expressions.iter().copied())
         .collect();
     let columns = partials.columns;
-    let roots = [partials.rows(order), rest].concat();
+    // The armatures, which the runtime's `M` knows nothing of, last.
+    let armature: Vec<ExprId> = model.armature.iter().map(|&(_, a)| a).collect();
+    let roots = [partials.rows(order), rest, armature].concat();
     let body = straight_line(pool, names, &roots);
     let (nv, entry_count) = (model.nv(), rows.len() * columns.len());
     let values = row_values(&body.outputs, rows.len(), columns.len());
-    let states = &body.outputs[entry_count..body.outputs.len() - 3 - nv];
-    let gravity = &body.outputs[body.outputs.len() - 3 - nv..body.outputs.len() - nv];
-    let residual = &body.outputs[body.outputs.len() - nv..];
+    let (outputs, armature) = body
+        .outputs
+        .split_at(body.outputs.len() - model.armature.len());
+    let states = &outputs[entry_count..outputs.len() - 3 - nv];
+    let gravity = &outputs[outputs.len() - 3 - nv..outputs.len() - nv];
+    let residual = &outputs[outputs.len() - nv..];
     let states = states.chunks(LinkState::ENTRIES).map(link_state);
     let l = Literal::usize_unsuffixed(paired.speeds.len());
     let (count, n) = (
@@ -261,7 +266,8 @@ fn looped_rows(
     let row = |speed: usize| {
         Literal::usize_unsuffixed(order.iter().position(|&s| s == speed).unwrap_or(speed))
     };
-    // The runtime writes each entry at the descendant's row.
+    // The runtime writes each entry at the descendant's row; a diagonal
+    // entry gets its speed's armatures.
     let mass_entries = entries.iter().map(|&(i, j)| {
         let (name, (r, c)) = (
             mass(i, j),
@@ -270,7 +276,13 @@ fn looped_rows(
                 false => (row(i), row(j)),
             },
         );
-        quote!(let #name = mass[#r][#c];)
+        let added = model
+            .armature
+            .iter()
+            .zip(armature)
+            .filter(|((speed, _), _)| i == j && *speed == i)
+            .map(|(_, value)| value);
+        quote!(let #name = mass[#r][#c] #(+ #added)*;)
     });
     let forcing = right_hand_side.iter().enumerate().map(|(k, name)| {
         let (r, k) = (row(k), Literal::usize_unsuffixed(k));

@@ -415,12 +415,14 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
 /// The return type and value of a `mass_matrix` whose pairs the
 /// runtime's loop takes (`dalembert::__private::tree_mass_matrix`), from
 /// the entries `outputs` of each speed's `Sⱼ` and `Fⱼ` and the table of
-/// `tree`.
+/// `tree`, then the armatures (the rest of `outputs`) added to its
+/// diagonal (`dalembert::__private::add_to_diagonal`).
 fn tree_mass_matrix(
     nv: usize,
     tree: &SpeedTree,
     outputs: &[TokenStream],
 ) -> (TokenStream, TokenStream) {
+    let (outputs, armature) = outputs.split_at(12 * tree.speeds.len());
     let vectors = outputs.chunks(12).map(|speed| {
         let [s, f] = [&speed[..6], &speed[6..]];
         quote!([[#(#s),*], [#(#f),*]])
@@ -430,10 +432,22 @@ fn tree_mass_matrix(
         quote!(::dalembert::__private::TreeSpeed { end: #end, speed: #speed })
     });
     let (row, nv) = (array(nv), Literal::usize_unsuffixed(nv));
-    (
-        quote!([#row; #nv]),
-        quote!(::dalembert::__private::tree_mass_matrix(&[#(#vectors),*], &[#(#table),*])),
-    )
+    let pairs = quote!(::dalembert::__private::tree_mass_matrix(&[#(#vectors),*], &[#(#table),*]));
+    let value = match armature.is_empty() {
+        true => pairs,
+        false => {
+            let terms = tree.armature.iter().zip(armature).map(|(&speed, value)| {
+                let speed = Literal::usize_unsuffixed(speed);
+                quote!((#speed, #value))
+            });
+            quote! {{
+                let mut m = #pairs;
+                ::dalembert::__private::add_to_diagonal(&mut m, [#(#terms),*]);
+                m
+            }}
+        }
+    };
+    (quote!([#row; #nv]), value)
 }
 
 /// The runtime's traits, forwarding to the inherent functions (and to the

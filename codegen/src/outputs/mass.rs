@@ -1,6 +1,7 @@
 //! `mass_matrix`: its entries unrolled, or, for a tree whose unrolled `M`
 //! is large, two vectors a speed in straight-line code whose dot products
-//! a loop of the runtime takes (see `equations::tree_mass`).
+//! a loop of the runtime takes (see `equations::tree_mass`), the armatures
+//! added to its diagonal after.
 
 use super::{Argument, Body, Function, SpeedTree, Value};
 use crate::equations::{Equations, tree_mass};
@@ -39,6 +40,7 @@ pub fn mass_matrix(
     let tree = SpeedTree {
         ends: speeds.iter().map(|s| s.end).collect(),
         speeds: speeds.iter().map(|s| s.speed).collect(),
+        armature: model.armature.iter().map(|&(speed, _)| speed).collect(),
     };
     let vectors: Vec<Vec<_>> = speeds
         .iter()
@@ -54,15 +56,21 @@ pub fn mass_matrix(
          `Mᵢⱼ = Mⱼᵢ = Sᵢ · Fⱼ` for each speed `i` and each `j` of its subtree\n\
          (`i` itself, its joint's later speeds and its descendants'; the\n\
          other pairs are zero), by a loop of the runtime over the tree's\n\
-         table, depth-first (`dalembert::__private::tree_mass_matrix`)."
+         table, depth-first (`dalembert::__private::tree_mass_matrix`); the\n\
+         armatures, if any, then added to the diagonal."
     );
+    let mut function = Function::new(
+        "mass_matrix",
+        &docs,
+        &[Argument::Coordinates],
+        Value::matrix(&vectors, 12),
+    );
+    if !model.armature.is_empty() {
+        let armature = model.armature.iter().map(|&(_, value)| value).collect();
+        function.results.push(Value::vector(armature));
+    }
     Function {
         body: Body::MassPairs(tree),
-        ..Function::new(
-            "mass_matrix",
-            &docs,
-            &[Argument::Coordinates],
-            Value::matrix(&vectors, 12),
-        )
+        ..function
     }
 }

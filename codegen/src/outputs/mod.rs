@@ -51,7 +51,8 @@ pub struct PairedTree {
 }
 
 /// The tree of a `mass_matrix` whose pairs of speeds a loop of the runtime
-/// takes: its result holds each speed's `Sⱼ` and `Fⱼ` (12 entries a row).
+/// takes: its first result holds each speed's `Sⱼ` and `Fⱼ` (12 entries a
+/// row), its second (if any armature) the armatures added to the diagonal.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SpeedTree {
     /// Where each speed's subtree ends among the speeds (depth-first: the
@@ -59,6 +60,9 @@ pub struct SpeedTree {
     pub ends: Vec<usize>,
     /// The index of each speed.
     pub speeds: Vec<usize>,
+    /// The speed of each `armature` statement, in the order of the second
+    /// result's entries.
+    pub armature: Vec<usize>,
 }
 
 /// How a generated function computes what it returns.

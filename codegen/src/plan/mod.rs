@@ -150,7 +150,7 @@ pub fn plan(
     forms: &mut ReadableForms,
     target: Target,
 ) -> Plan {
-    let mass = mass_matrix(model, equations, pool, target);
+    let mass = mass_matrix(equations, pool, target);
     let mut functions = outputs::standard(model, equations, pool, mass);
     // A looped `M`'s vectors are new expressions, optimised as the outputs are.
     if let Some(mass) = functions
@@ -205,14 +205,12 @@ impl Plan {
     }
 }
 
-/// [`MassMatrix::Looped`] for a crate with the runtime, a model without
-/// armature (the runtime's loop knows none) and an unrolled `M` costing
-/// more than [`MASS_PAIRS_LOOPED_ABOVE`] operations.
-fn mass_matrix(model: &Model, equations: &Equations, pool: &Pool, target: Target) -> MassMatrix {
+/// [`MassMatrix::Looped`] for a crate with the runtime and an unrolled `M`
+/// costing more than [`MASS_PAIRS_LOOPED_ABOVE`] operations (armatures are
+/// added to the looped `M`'s diagonal after the runtime's loop).
+fn mass_matrix(equations: &Equations, pool: &Pool, target: Target) -> MassMatrix {
     let entries: Vec<ExprId> = equations.mass_matrix.iter().flatten().copied().collect();
-    let looped = target == Target::Std
-        && model.armature.is_empty()
-        && operations(pool, &entries) > MASS_PAIRS_LOOPED_ABOVE;
+    let looped = target == Target::Std && operations(pool, &entries) > MASS_PAIRS_LOOPED_ABOVE;
     match looped {
         true => MassMatrix::Looped,
         false => MassMatrix::Unrolled,

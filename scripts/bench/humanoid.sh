@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# Floating humanoids and MuJoCo's humanoid against the peers, in one run: prints
+# one markdown section (BENCHMARKS.md, via scripts/benchmarks.sh).
+#
+#   scripts/bench/humanoid.sh
+#
+# Times, in the same window:
+# * ours: scripts/bench/humanoid_timing.rs (thread CPU time, the peers' method):
+#   `mass_matrix` + `forcing`, `dalembert::accelerations` and
+#   `accelerations_jacobian` of the floating Unitree G1 and Talos
+#   (tests/reference/humanoids/) and Solo-12, imported with `--floating` and
+#   `accelerations_jacobian, linearize` (as generated/build.rs does under its
+#   `humanoids` feature), and the first two of dm_control's humanoid and cheetah
+#   (imported from MJCF); built in release in a temporary crate that depends on
+#   this repository (sharing its target directory), which also gives the build time;
+# * Pinocchio (header-only, -O3 -march=native): the peers' harness
+#   `run.sh --urdf ROBOT.urdf --floating` (pin_crba_sym + pin_nle, pin_aba,
+#   pin_aba_derivatives), from $PINOCCHIO_HARNESS (the folder of run.sh);
+# * MuJoCo's mj_forward through its C API (scripts/bench/mj_forward.c, contacts,
+#   constraints and actuation disabled), built against $MUJOCO_DIR (the folder
+#   holding include/mujoco/mujoco.h and libmujoco.so*, e.g. the `mujoco` wheel's
+#   package folder).
+# A peer whose variable is unset is left out of the table.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+cd "$ROOT"
+
+# Ours: the models' code, then the harness, as "robot function ns".
+cargo build -q --release -p dalembert-codegen --bin dalembert
+DALEMBERT="$ROOT/target/release/dalembert"
+mkdir -p "$WORK/models" "$WORK/crate"
+for entry in g1:humanoids/g1.urdf talos_reduced:humanoids/talos_reduced.urdf solo12:urdf/solo12.urdf; do
+  "$DALEMBERT" urdf "tests/reference/${entry#*:}" --floating \
+    --outputs "accelerations_jacobian, linearize" > "$WORK/models/${entry%%:*}.dal"
+done
+for model in humanoid cheetah; do
+  "$DALEMBERT" mjcf "tests/reference/mjcf/dm_control/$model.xml" > "$WORK/models/$model.dal"
+done
+for model in g1 talos_reduced solo12 humanoid cheetah; do
+  "$DALEMBERT" generate "$WORK/models/$model.dal" > "$WORK/models/$model.rs"
+done
+{
+  echo '[package]'
+  echo 'name = "humanoid-timing"'
+  echo 'version = "0.0.0"'
+  echo 'edition = "2024"'
+  echo 'publish = false'
+  echo '[[bin]]'
+  echo 'name = "humanoid-timing"'
+  echo "path = \"$ROOT/scripts/bench/humanoid_timing.rs\""
+  echo '[dependencies]'
+  echo "dalembert = { path = \"$ROOT\", default-features = false }"
+  echo '[workspace]'
+} > "$WORK/crate/Cargo.toml"
+# The runtime first, so that the timed build is the models' code alone.
+CARGO_TARGET_DIR="$ROOT/target" cargo build -q --release -p dalembert
+start=$(date +%s.%N)
+HUMANOID_MODELS="$WORK/models" CARGO_TARGET_DIR="$ROOT/target" \
+  cargo build -q --release --manifest-path "$WORK/crate/Cargo.toml"
+build_s=$(echo "$(date +%s.%N) - $start" | bc -l | xargs printf '%.0f')
+"$ROOT/target/release/humanoid-timing" > "$WORK/ours.txt"
+ours() { awk -v r="$1" -v f="$2" '$1 == r && $2 == f { print $3 }' "$WORK/ours.txt"; }
+
+# Pinocchio: median ns per algorithm, as "robot algo ns".
+: > "$WORK/pinocchio.txt"
+if [ -n "${PINOCCHIO_HARNESS:-}" ]; then
+  for robot in humanoids/g1 humanoids/talos_reduced urdf/solo12; do
+    bash "$PINOCCHIO_HARNESS/run.sh" --urdf "tests/reference/$robot.urdf" --floating \
+      --only pin_ 2>/dev/null | awk -F, -v r="$(basename "$robot")" \
+      'NR > 1 { print r, $4, $5 }' >> "$WORK/pinocchio.txt"
+  done
+fi
+pin() { awk -v r="$1" -v a="$2" '$1 == r && $2 == a { print $3 }' "$WORK/pinocchio.txt"; }
+
+# MuJoCo: median ns of mj_forward, as "model ns".
+: > "$WORK/mujoco.txt"
+if [ -n "${MUJOCO_DIR:-}" ]; then
+  cc -O2 scripts/bench/mj_forward.c -I"$MUJOCO_DIR/include" "$(ls "$MUJOCO_DIR"/libmujoco.so* | head -n1)" \
+    -Wl,-rpath,"$MUJOCO_DIR" -lm -o "$WORK/mj_forward"
+  for model in humanoid cheetah; do
+    "$WORK/mj_forward" "tests/reference/mjcf/dm_control/$model.xml" 2>/dev/null |
+      awk -F, -v m="$model" 'NR > 1 { print m, $5 }' >> "$WORK/mujoco.txt"
+  done
+fi
+mj() { awk -v m="$1" '$1 == m { print $2 }' "$WORK/mujoco.txt"; }
+
+us() { [ -n "$1" ] && awk -v x="$1" 'BEGIN { printf "%.2f", x / 1000 }' || printf -- "–"; }
+ratio() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { printf "**%.2f**", a / b }' || printf -- "–"; }
+sum() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { print a + b }' || true; }
+
+echo "## Floating humanoids against Pinocchio and MuJoCo"
+echo
+echo "Measured $(date -u +%Y-%m-%d) with \`scripts/bench/humanoid.sh\` (ours: default release"
+echo "build, \`scripts/bench/humanoid_timing.rs\`; Pinocchio: the peers' harness, header-only,"
+echo "\`-O3 -march=native\`; both thread CPU time, the median of repeats over 1000 random states;"
+echo "MuJoCo: \`mj_forward\` through its C API, contacts, constraints and actuation disabled), in one"
+echo "run; µs per call, and ours / theirs. Targets (issue #40): M + f ≤ 0.20 of \`crba\` +"
+echo "\`nonLinearEffects\`, accelerations ≤ 0.20 of \`aba\`, \`accelerations_jacobian\` ≤ 0.33 of"
+echo "\`computeABADerivatives\`; ≤ 0.25 of \`mj_forward\` (issue #35). The operation counts that"
+echo "explain the gaps: docs/humanoid.md."
+echo
+echo "| robot (speeds) | M + f | crba + nle | ratio | accelerations | aba | ratio | accelerations_jacobian | computeABADerivatives | ratio |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for robot in g1:35 talos_reduced:38 solo12:18; do
+  name=${robot%%:*}; nv=${robot##*:}
+  mine=$name; [ "$name" = solo12 ] && mine=floating_solo12
+  mf=$(ours "$mine" "mass_matrix+forcing"); acc=$(ours "$mine" accelerations)
+  jac=$(ours "$mine" accelerations_jacobian)
+  pmf=$(sum "$(pin "$name" pin_crba_sym)" "$(pin "$name" pin_nle)")
+  paba=$(pin "$name" pin_aba); pder=$(pin "$name" pin_aba_derivatives)
+  echo "| $name, floating ($nv) | $(us "$mf") | $(us "$pmf") | $(ratio "$mf" "$pmf") | $(us "$acc") | $(us "$paba") | $(ratio "$acc" "$paba") | $(us "$jac") | $(us "$pder") | $(ratio "$jac" "$pder") |"
+done
+echo
+echo "| MJCF model (speeds) | M + f | accelerations | mj_forward | M + f / mj_forward | accelerations / mj_forward |"
+echo "|---|---|---|---|---|---|"
+for model in humanoid:27 cheetah:9; do
+  name=${model%%:*}; nv=${model##*:}
+  mf=$(ours "$name" "mass_matrix+forcing"); acc=$(ours "$name" accelerations); fwd=$(mj "$name")
+  echo "| dm_control $name ($nv) | $(us "$mf") | $(us "$acc") | $(us "$fwd") | $(ratio "$mf" "$fwd") | $(ratio "$acc" "$fwd") |"
+done
+echo
+echo "Building the five models' code (the humanoids and Solo-12 with \`accelerations_jacobian\` and"
+echo "\`linearize\`) with the harness in release took ${build_s} s wall, the runtime built beforehand."

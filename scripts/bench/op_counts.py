@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""Arithmetic operations of each function of a generated model, counted in
+its straight-line code (the output of `dalembert generate MODEL.dal`).
+
+usage: op_counts.py GENERATED.rs [FUNCTION ...]
+Prints CSV: function,add,mul,div,sqrt,sincos,flops,row_solve,runtime_loops
+where add counts additions, subtractions and negations of a value, flops =
+add + mul + div, sincos the angles of `sin_cos_all` and `sin_cos` calls,
+row_solve the share of flops in the row operations of the solve through
+`L D Lᵀ` (the runtime's `scale_and_subtract`, counted from its arguments: see
+add_row_operations) and runtime_loops
+names the runtime's loops the function calls (`dalembert::dynamics::…`),
+whose operations are not in the counts (docs/humanoid.md counts them from
+the tree). Every operator in the body counts once: the generated code is
+straight-line (no loops of its own), so a static count is the count of one
+call. The `finite` checks and index arithmetic are not arithmetic on values
+and are left out (`usize` literals and `[i]` indices carry no operators).
+"""
+import re
+import sys
+
+TOKEN = re.compile(
+    r"""(?P<num>\d+\.\d*(?:[eE][+-]?\d+)?|\d+(?:[eE][+-]?\d+)?(?:_?f64|usize)?)
+      |(?P<ident>[A-Za-z_][A-Za-z0-9_]*)
+      |(?P<op>\+=|-=|\*=|/=|->|=>|::|==|!=|<=|>=|&&|\|\||[-+*/(){}\[\];,.=&!<>|:#?'"])
+      |(?P<space>\s+)""",
+    re.X,
+)
+OPERAND_END = {")", "]"}
+
+
+def tokens(text):
+    """The tokens of `text`, comments and strings removed."""
+    text = re.sub(r"//[^\n]*", "", text)
+    text = re.sub(r'r#*"(?:.|\n)*?"#*|"(?:\\.|[^"\\])*"', '""', text)
+    out = []
+    for m in TOKEN.finditer(text):
+        if m.lastgroup != "space":
+            out.append((m.lastgroup, m.group()))
+    return out
+
+
+def functions(text):
+    """`(name, body)` of every `pub fn` of the generated impl."""
+    found = []
+    for m in re.finditer(r"\n    pub fn (\w+)", text):
+        start = text.index("{", text.index(")", m.end()))
+        # The return type may hold braces only in generic bounds, which the
+        # generated code has none of; match the body's braces.
+        depth, i = 0, start
+        while True:
+            c = text[i]
+            depth += c == "{"
+            depth -= c == "}"
+            i += 1
+            if depth == 0:
+                break
+        found.append((m.group(1), text[start:i]))
+    return found
+
+
+def count(body):
+    counts = dict(add=0, mul=0, div=0, sqrt=0, sincos=0, row_solve=0)
+    toks = tokens(body)
+    for k, (kind, tok) in enumerate(toks):
+        prev = toks[k - 1] if k else ("op", "")
+        after_operand = prev[0] in ("num", "ident") or prev[1] in OPERAND_END
+        if prev[0] == "ident" and prev[1] in ("return", "let", "mut", "in", "if", "else"):
+            after_operand = False
+        nxt = toks[k + 1] if k + 1 < len(toks) else ("op", "")
+        if tok in ("+", "+=", "-=") or (tok == "-" and after_operand):
+            counts["add"] += 1
+        elif tok == "-" and nxt[0] != "num":
+            counts["add"] += 1  # a negated value
+        elif tok in ("*=",) or (tok == "*" and after_operand):
+            counts["mul"] += 1
+        elif tok in ("/", "/="):
+            counts["div"] += 1
+        elif kind == "ident" and prev[1] == "." and tok in ("sin_cos", "sin", "cos"):
+            counts["sincos"] += 1
+        elif kind == "ident" and prev[1] == "." and tok == "sqrt":
+            counts["sqrt"] += 1
+        elif kind == "ident" and prev[1] == "." and tok == "mul_add":
+            counts["mul"] += 1
+            counts["add"] += 1
+    add_row_operations(body, counts)
+    for angles in re.findall(r"sin_cos_all\(\[(.*?)\]\)", body, re.S):
+        counts["sincos"] += len([a for a in angles.split(",") if a.strip()])
+    counts["flops"] = counts["add"] + counts["mul"] + counts["div"]
+    loops = sorted(set(re.findall(r"dalembert::dynamics::(\w+)", body)))
+    calls = sorted(set(re.findall(r"\btree\.(\w+)\(", body)))
+    counts["runtime_loops"] = " ".join(loops + [f"TreeRecursion::{c}" for c in calls])
+    return counts
+
+
+def add_row_operations(body, counts):
+    """The row operations of the solve through `L D Lᵀ` (the runtime's
+    `scale_and_subtract(row, factor, [(l, other), …])`: one product a column
+    and a product and a subtraction a column per term), on rows as wide as
+    the function's `[[f64; C]; N]` rows."""
+    width = re.search(r"\]: \[\[f64; (\d+)\]; \d+\] = \{", body)
+    calls = re.findall(r"scale_and_subtract\(\s*&mut \w+,\s*[^,]+,\s*\[(.*?)\]\s*,?\s*\)", body, re.S)
+    if not calls or not width:
+        return
+    columns = int(width.group(1))
+    for terms in calls:
+        k = terms.count("(")
+        counts["mul"] += columns * (1 + k)
+        counts["add"] += columns * k
+        counts["row_solve"] += columns * (1 + 2 * k)
+
+
+def main():
+    path, wanted = sys.argv[1], set(sys.argv[2:])
+    text = open(path).read()
+    print("function,add,mul,div,sqrt,sincos,flops,row_solve,runtime_loops")
+    for name, body in functions(text):
+        if wanted and name not in wanted:
+            continue
+        c = count(body)
+        print(f"{name},{c['add']},{c['mul']},{c['div']},{c['sqrt']},{c['sincos']},{c['flops']},{c['row_solve']},{c['runtime_loops']}")
+
+
+if __name__ == "__main__":
+    main()
