@@ -13,7 +13,7 @@
 //!   it exits with an error, and a model when it succeeds.
 //!
 //! `FUZZ_CASES` cases run in CI (300); the ignored test runs 10 000
-//! (`cargo test -p dalembert-codegen --test urdf_fuzz -- --ignored`).
+//! (`cargo test -p dalembert-codegen --test suite urdf_fuzz:: -- --ignored`).
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};

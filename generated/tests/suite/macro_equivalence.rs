@@ -4,7 +4,7 @@
 //! that token-level spelling the printer normalises (a raw or plain doc
 //! string, a trailing comma) and the `@generated` header do not count.
 
-mod common;
+use crate::common;
 
 #[test]
 fn macro_and_build_step_emit_the_same_items() {
