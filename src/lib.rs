@@ -50,7 +50,8 @@
 //! in the project's README and `docs/language.md`; `Pendulum::EQUATIONS` and
 //! the struct's docs show the derived equations.
 
-#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+#![deny(missing_docs)]
+#![warn(rust_2018_idioms, unused_qualifications)]
 
 pub use dalembert_macros::dalembert;
 

@@ -13,7 +13,8 @@
 //! Lagrange's) for differential tests of the emitted code; it lives in
 //! [`testing`] with the benchmark chain generator.
 
-#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+#![deny(missing_docs)]
+#![warn(rust_2018_idioms, unused_qualifications)]
 
 mod build;
 mod chain;
