@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Pinocchio's dynamics and derivatives of the floating humanoids of
-tests/reference/humanoids/ (Unitree G1, Talos), for generated/tests/humanoids.rs.
+tests/reference/humanoids/ (Unitree G1, Talos), for generated/tests/suite/humanoids.rs.
 
 At random states of each robot on Pinocchio's free flyer (built by its own URDF
 parser), this script records crba (M, symmetric), f = tau - nle (the forcing,

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """MuJoCo's numbers for the sample of fuzzed MJCF files that dalembert imports
-(codegen/tests/mjcf_fuzz.rs, `sample()`): the reference half of
+(codegen/tests/suite/mjcf_fuzz.rs, `sample()`): the reference half of
 scripts/mjcf_fuzz_reference.sh.
 
 For each file of FOLDER (case_NNN.xml, sorted; the folder also holds the files

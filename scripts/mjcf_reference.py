@@ -13,7 +13,7 @@ records, after mj_forward:
     T, V energy[1], energy[0]
 
 converted to dalembert's conventions (the schema of
-tests/reference/README_chains.md, read by codegen/tests/mjcf_import.rs): a free
+tests/reference/README_chains.md, read by codegen/tests/suite/mjcf_import.rs): a free
 joint's qpos (x, y, z, w, x, y, z) becomes (x, y, z, qx, qy, qz, qw), and its
 linear velocity, which MuJoCo gives in world axes, is taken in the body's axes,
 v_body = R^T v_world. With T the map from our speeds to MuJoCo's (R on each free

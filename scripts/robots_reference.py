@@ -2,7 +2,7 @@
 """Pinocchio's values for branching robots and every link's frame.
 
 Writes tests/reference/robots/pinocchio.json, which
-codegen/tests/urdf_branching.rs and codegen/tests/urdf_frames.rs read (see
+codegen/tests/suite/urdf_branching.rs and codegen/tests/suite/urdf_frames.rs read (see
 tests/reference/robots/README.md):
 
 * "dynamics": for three branching robots whose siblings are not listed in

@@ -11,7 +11,7 @@
 // shared module more helpers than it uses.
 #![allow(dead_code)]
 
-#[path = "../../../codegen/tests/pinocchio/mod.rs"]
+#[path = "../../../codegen/tests/suite/pinocchio.rs"]
 mod pinocchio;
 
 use dalembert::MultibodySystem;

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Pinocchio's numbers for the sample of fuzzed URDF files that dalembert
-imports (codegen/tests/urdf_fuzz.rs, `sample()`): the reference half of
+imports (codegen/tests/suite/urdf_fuzz.rs, `sample()`): the reference half of
 scripts/urdf_fuzz_reference.sh.
 
 For each file of FOLDER (case_NNN.urdf, sorted), Pinocchio's own URDF parser

@@ -55,7 +55,8 @@
 //! language reference `docs/language.md`); `Pendulum::EQUATIONS` and the
 //! struct's docs show the derived equations.
 
-#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+#![deny(missing_docs)]
+#![warn(rust_2018_idioms, unused_qualifications)]
 
 pub use dalembert_macros::dalembert;
 

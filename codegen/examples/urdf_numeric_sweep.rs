@@ -14,7 +14,7 @@
 //! [`TOLERANCE`] of their largest entry and `q̈` to [`TOLERANCE`] times the
 //! condition number of `M` (the most any solver can promise).
 
-#[path = "../tests/pinocchio/mod.rs"]
+#[path = "../tests/suite/pinocchio.rs"]
 mod pinocchio;
 
 use dalembert_codegen::Urdf;

@@ -15,7 +15,8 @@
 //! fixtures. [`chain`] writes the benchmark chains as model text (what
 //! `dalembert chain` prints).
 
-#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+#![deny(missing_docs)]
+#![warn(rust_2018_idioms, unused_qualifications)]
 
 mod api;
 mod build;

@@ -30,7 +30,7 @@ impl Evaluation {
     }
 
     /// Panics with `context` unless every number of `self` agrees with
-    /// `other` to [`TOLERANCE`] relative to the largest magnitude of its
+    /// `other` to `TOLERANCE` (1e-10) relative to the largest magnitude of its
     /// kind (at least one).
     pub fn assert_agrees(&self, other: &Evaluation, context: &str) {
         let pairs: [(&str, Vec<f64>, Vec<f64>); 4] = [
@@ -56,7 +56,7 @@ impl Evaluation {
     }
 }
 
-/// Panics with `context` unless `m` is symmetric (to [`TOLERANCE`]) and
+/// Panics with `context` unless `m` is symmetric (to `TOLERANCE`, 1e-10) and
 /// positive definite: its Cholesky factorisation succeeds.
 pub fn assert_positive_definite(m: &[Vec<f64>], context: &str) {
     let n = m.len();

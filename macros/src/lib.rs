@@ -6,7 +6,8 @@
 //! Use it through the `dalembert` crate, which re-exports it with the
 //! runtime the generated code implements.
 
-#![warn(missing_docs, rust_2018_idioms, unused_qualifications)]
+#![deny(missing_docs)]
+#![warn(rust_2018_idioms, unused_qualifications)]
 
 use proc_macro::TokenStream;
 

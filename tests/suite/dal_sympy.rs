@@ -1,6 +1,7 @@
 //! dal_sympy's values at one state (the independent SymPy reading of the
 //! language, `scripts/dal_sympy.py --values`, 30 digits) and the checks of a
-//! system against them: `M`, `f`, `T`, `V`, the accelerations and, for
+//! system against them (`scripts/acceptance_reference.py` regenerates them and
+//! checks them against the tests): `M`, `f`, `T`, `V`, the accelerations and, for
 //! constrained systems, `A`, `b` and the residual, all at 1e-11.
 
 use dalembert::constrained::constrained_accelerations;

@@ -73,7 +73,7 @@ fn crank_rocker_turns_its_crank_and_traces_the_coupler_curve_of_the_reference() 
         initial_energy,
         1e-14,
     );
-    let states = reference["states"].as_array().unwrap();
+    let states = dalembert_fixtures::reference::states(&reference);
     let projection = Stabilisation::Projection {
         tolerance: 1e-12,
         max_iterations: 5,

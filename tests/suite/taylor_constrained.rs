@@ -30,7 +30,7 @@ fn seed_3() -> (TaylorConstrainedPendulum, Vec<serde_json::Value>) {
         l: parameter("l"),
         g: parameter("g"),
     };
-    let states = system["states"].as_array().expect("states").clone();
+    let states = dalembert_fixtures::reference::states(&system).to_vec();
     (pendulum, states)
 }
 

@@ -369,7 +369,7 @@ pub fn check_sample(
             agreement.peer_refuses.push(format!("{what}: {error}"));
             continue;
         }
-        let worst = super::pinocchio::worst_errors(
+        let worst = crate::pinocchio::worst_errors(
             &sampled.model,
             &case["entry"],
             dalembert_codegen::testing::Route::Dalembert,
@@ -378,7 +378,7 @@ pub fn check_sample(
         let condition = case["cond"].as_f64().unwrap();
         for ((error, quantity), scale) in worst
             .iter()
-            .zip(super::pinocchio::QUANTITIES)
+            .zip(crate::pinocchio::QUANTITIES)
             .zip([1.0, 1.0, 1.0, 1.0, condition])
         {
             assert!(

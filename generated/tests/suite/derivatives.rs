@@ -313,7 +313,7 @@ fn assert_agrees(what: &str, got: &[f64], want: &Value) {
 
 /// The reference states of `model` in `derivatives.json`.
 fn reference_states(model: &str) -> Vec<Value> {
-    let text = include_str!("../../tests/reference/derivatives.json");
+    let text = include_str!("../../../tests/reference/derivatives.json");
     let document: Value = serde_json::from_str(text).expect("derivatives.json parses");
     let entry = document["models"]
         .as_array()
@@ -321,7 +321,7 @@ fn reference_states(model: &str) -> Vec<Value> {
         .iter()
         .find(|m| m["model"] == model)
         .unwrap_or_else(|| panic!("{model} in derivatives.json"));
-    entry["states"].as_array().expect("states").clone()
+    dalembert_fixtures::reference::states(entry).to_vec()
 }
 
 /// Both Jacobians of `system` against Pinocchio's at every reference state

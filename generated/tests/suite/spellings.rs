@@ -55,7 +55,7 @@ fn numbers(v: &Value) -> Vec<f64> {
 /// Pinocchio's `M`, `−nle`, `T`, `V` and the state, for every state of the
 /// `family` chain of `n` links.
 fn references(family: Family, n: u64) -> Vec<(Vec<f64>, Vec<f64>, Evaluation)> {
-    let text = include_str!("../../tests/reference/chains.json");
+    let text = include_str!("../../../tests/reference/chains.json");
     let reference: Value = serde_json::from_str(text).expect("chains.json parses");
     let model = reference["models"]
         .as_array()
@@ -64,7 +64,7 @@ fn references(family: Family, n: u64) -> Vec<(Vec<f64>, Vec<f64>, Evaluation)> {
         .find(|m| m["family"] == family.name() && m["n"] == n)
         .unwrap_or_else(|| panic!("no {} n={n} in chains.json", family.name()))
         .clone();
-    let states = model["states"].as_array().unwrap();
+    let states = dalembert_fixtures::reference::states(&model);
     let special = model["special_states"].as_array().unwrap();
     states
         .iter()

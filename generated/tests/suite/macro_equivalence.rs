@@ -7,7 +7,7 @@
 //! file's text for the build step, the tokens for an `expand` called outside
 //! a macro; it must read as the same tokens.
 
-mod common;
+use crate::common;
 
 /// `file` with its `SOURCE` constant's text taken out, and that text.
 fn without_source(mut file: syn::File) -> (syn::File, String) {

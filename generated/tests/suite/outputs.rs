@@ -9,7 +9,7 @@
 use dalembert_codegen::testing::{Interpreter, Random, Route, Values};
 use dalembert_generated::two_link_arm::TwoLinkArm;
 
-const SOURCE: &str = include_str!("../models/two_link_arm.dal");
+const SOURCE: &str = include_str!("../../models/two_link_arm.dal");
 
 fn arm(random: &mut Random) -> TwoLinkArm {
     let mut draw = || random.uniform(0.5, 1.5);

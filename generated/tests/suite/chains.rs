@@ -182,4 +182,4 @@ fn chain_models_are_what_the_generator_writes() {
     assert!(seen >= 12, "only {seen} chain models");
 }
 
-mod common;
+use crate::common;

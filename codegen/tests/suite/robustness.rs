@@ -30,9 +30,9 @@ const TIME_LIMIT: Duration = Duration::from_secs(20);
 /// of the language (joints, particles, forces, reacting torques, potentials,
 /// dissipation, holonomic and nonholonomic constraints).
 const MODELS: [&str; 5] = [
-    include_str!("../../generated/models/double_pendulum.dal"),
-    include_str!("../../generated/models/rotating_bar.dal"),
-    include_str!("../../generated/models/constrained_pendulum.dal"),
+    include_str!("../../../generated/models/double_pendulum.dal"),
+    include_str!("../../../generated/models/rotating_bar.dal"),
+    include_str!("../../../generated/models/constrained_pendulum.dal"),
     "/// Everything at once.
     pub Gyro {
         parameters m, a, b, c, g, k, r;

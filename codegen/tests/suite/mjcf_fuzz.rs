@@ -18,16 +18,14 @@
 //!   `scripts/mjcf_fuzz_reference.sh`).
 //!
 //! `FUZZ_CASES` cases run in CI; the ignored test runs 10 000
-//! (`cargo test -p dalembert-codegen --test mjcf_fuzz -- --ignored`).
+//! (`cargo test -p dalembert-codegen --test suite mjcf_fuzz:: -- --ignored`).
 
 use std::path::{Path, PathBuf};
 
 use dalembert_codegen::Mjcf;
-use fuzz::{Element, Mutant, Rng, attribute, attributes, splice, unreadable};
+use crate::fuzz::{self, Element, Mutant, Rng, attribute, attributes, splice, unreadable};
 use serde_json::Value;
 
-mod fuzz;
-mod pinocchio;
 
 /// Cases run in CI.
 const FUZZ_CASES: usize = 300;

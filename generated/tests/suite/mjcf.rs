@@ -13,7 +13,7 @@ const TOLERANCE: f64 = 1e-12;
 
 /// The reference states of `model`.
 fn states(model: &str) -> Vec<Value> {
-    let text = include_str!("../../tests/reference/mjcf/mujoco.json");
+    let text = include_str!("../../../tests/reference/mjcf/mujoco.json");
     let reference: Value = serde_json::from_str(text).expect("mujoco.json parses");
     let entry = reference["models"]
         .as_array()

@@ -111,7 +111,7 @@ pub fn for_each_state(
     inputs: impl Fn(&Value) -> Vec<f64>,
     mut visit: impl FnMut(&Value, &Values<'_>),
 ) {
-    for state in entry["states"].as_array().unwrap() {
+    for state in dalembert_fixtures::reference::states(entry) {
         let (q, qd, u) = (vector(&state["q"]), vector(&state["qd"]), inputs(state));
         let at = Values {
             parameters: &[],

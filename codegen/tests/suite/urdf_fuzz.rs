@@ -13,15 +13,13 @@
 //!   it exits with an error, and a model when it succeeds.
 //!
 //! `FUZZ_CASES` cases run in CI (300); the ignored test runs 10 000
-//! (`cargo test -p dalembert-codegen --test urdf_fuzz -- --ignored`).
+//! (`cargo test -p dalembert-codegen --test suite urdf_fuzz:: -- --ignored`).
 
 use std::path::{Path, PathBuf};
 
 use dalembert_codegen::Urdf;
-use fuzz::{Element, Mutant, Rng, attribute, attributes, splice, unreadable};
+use crate::fuzz::{self, Element, Mutant, Rng, attribute, attributes, splice, unreadable};
 
-mod fuzz;
-mod pinocchio;
 
 /// Cases run in CI.
 const FUZZ_CASES: usize = 300;

@@ -68,7 +68,7 @@ fn rnea_errors(interpreter: &Interpreter, entry: &Value) -> [f64; 3] {
     let n = interpreter.nq();
     let (zeros, no_inputs) = (vec![0.0; n], vec![0.0; interpreter.nu()]);
     let mut worst = [0.0_f64; 3];
-    for state in entry["states"].as_array().unwrap() {
+    for state in dalembert_fixtures::reference::states(entry) {
         let (q, qd, tau, qdd) = (
             vector(&state["q"]),
             vector(&state["qd"]),
@@ -127,7 +127,7 @@ fn inverse_dynamics_is_pinocchios_rnea_on_the_robots() {
     let robots = reference("urdf/pinocchio.json");
     // The free-flyer entries hold the joints' torques only (the base has
     // none) and no gravity torque: their `M` and `f` are checked against
-    // Pinocchio's in generated/tests/urdf.rs.
+    // Pinocchio's in generated/tests/suite/urdf.rs.
     let fixed = |entry: &&Value| entry["nq"] == entry["nv"];
     for entry in robots["models"].as_array().unwrap().iter().filter(fixed) {
         let path = reference_path(&format!("urdf/{}", entry["urdf"].as_str().unwrap()));

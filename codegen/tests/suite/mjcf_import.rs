@@ -7,7 +7,7 @@
 //! `scripts/mjcf_reference.py` with MuJoCo's own compiler, contacts,
 //! constraints and actuation disabled), in our conventions.
 
-mod pinocchio;
+use crate::pinocchio;
 
 use dalembert_codegen::Mjcf;
 use dalembert_codegen::testing::{Interpreter, Route};

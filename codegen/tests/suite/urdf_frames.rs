@@ -9,7 +9,7 @@
 //! geometry (what the outputs `position(L_origin)` and `rotation(L)`
 //! compute), and asked for as outputs through [`Urdf::outputs`].
 
-mod robots;
+use crate::robots;
 
 use dalembert_codegen::Urdf;
 use dalembert_codegen::testing::{Interpreter, Values};

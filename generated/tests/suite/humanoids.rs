@@ -7,8 +7,7 @@
 //! (`scripts/humanoids_reference.py`).
 //!
 //! Run with `cargo test -p dalembert-generated --features humanoids --test
-//! humanoids` (add `--release`: the humanoids' code is large).
-#![cfg(feature = "humanoids")]
+//! suite humanoids::` (add `--release`: the humanoids' code is large).
 
 use dalembert::MultibodySystem;
 use dalembert_generated::{g1::G1, talos_reduced::Talos};

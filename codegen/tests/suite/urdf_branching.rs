@@ -18,8 +18,8 @@
 
 // Shared with `tests/urdf.rs`, which uses the rest of it.
 #[allow(dead_code)]
-mod pinocchio;
-mod robots;
+use crate::pinocchio;
+use crate::robots;
 
 use dalembert_codegen::Urdf;
 use dalembert_codegen::testing::{Interpreter, Route, Values};

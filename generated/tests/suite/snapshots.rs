@@ -1,13 +1,13 @@
 //! Snapshots of everything derived from `models/*.dal`: the generated Rust
 //! and the rendered equations. Reviewing a change to a model or to the
-//! derivation means reading the diff of `tests/snapshots/` (`cargo insta
+//! derivation means reading the diff of `tests/suite/snapshots/` (`cargo insta
 //! test`); with `CI=true` a changed snapshot fails.
 //!
 //! The benchmark chains are snapshotted in full only at two links; longer
 //! chains (up to 30 links, thousands of lines) as a summary: the operations
 //! per call of each function, which is what a review of them needs.
 
-mod common;
+use crate::common;
 
 use dalembert_codegen::Style;
 
@@ -259,7 +259,7 @@ fn build_output_is_the_deterministic_generate() {
 /// snapshotted.
 #[test]
 fn every_model_is_included() {
-    let lib = include_str!("../src/lib.rs");
+    let lib = include_str!("../../src/lib.rs");
     for model in common::models() {
         assert!(
             lib.contains(&format!("    {}\n);", model.name)),

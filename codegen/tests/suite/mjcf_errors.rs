@@ -211,7 +211,7 @@ fn an_unknown_default_class_is_reported_once() {
 
 #[test]
 fn an_unknown_childclass_is_reported() {
-    // Found by the fuzz (codegen/tests/mjcf_fuzz.rs): a lookup through it
+    // Found by the fuzz (codegen/tests/suite/mjcf_fuzz.rs): a lookup through it
     // missed silently, the `main` class's defaults included.
     assert_error(
         &model(
