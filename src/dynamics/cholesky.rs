@@ -94,6 +94,37 @@ pub(crate) fn cholesky<const N: usize>(
     Ok(factor)
 }
 
+/// The runtime's generic solver behind the provided
+/// [`MultibodySystem::accelerations`]: nalgebra's Cholesky factorisation of
+/// `M` on the stack, with the checks and errors of [`accelerations`](crate::accelerations).
+/// Generated systems solve with their own unrolled factorisation; tests and
+/// benchmarks compare it with this one.
+pub fn cholesky_accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    u: &[f64; NU],
+) -> Result<[f64; NV], DynamicsError>
+where
+    S: MultibodySystem<NQ, NV, NU> + ?Sized,
+{
+    if !(t.is_finite() && all_finite(q) && all_finite(v) && all_finite(u)) {
+        return Err(DynamicsError::NonFiniteState);
+    }
+    let mass = system.mass_matrix_at(t, q);
+    let forcing = system.forcing(t, q, v, u);
+    if !(mass.iter().all(all_finite) && all_finite(&forcing)) {
+        return Err(DynamicsError::NonFiniteEquations);
+    }
+    let factor = factor_mass_matrix(&mass, &pivot_names::<S, NQ, NV, NU>())?;
+    let vdot: [f64; NV] = factor.solve(&SVector::from(forcing)).into();
+    if !all_finite(&vdot) {
+        return Err(DynamicsError::NonFiniteAccelerations);
+    }
+    Ok(vdot)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -131,35 +162,4 @@ mod tests {
             }
         ));
     }
-}
-
-/// The runtime's generic solver behind the provided
-/// [`MultibodySystem::accelerations`]: nalgebra's Cholesky factorisation of
-/// `M` on the stack, with the checks and errors of [`accelerations`](crate::accelerations).
-/// Generated systems solve with their own unrolled factorisation; tests and
-/// benchmarks compare it with this one.
-pub fn cholesky_accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
-    system: &S,
-    t: f64,
-    q: &[f64; NQ],
-    v: &[f64; NV],
-    u: &[f64; NU],
-) -> Result<[f64; NV], DynamicsError>
-where
-    S: MultibodySystem<NQ, NV, NU> + ?Sized,
-{
-    if !(t.is_finite() && all_finite(q) && all_finite(v) && all_finite(u)) {
-        return Err(DynamicsError::NonFiniteState);
-    }
-    let mass = system.mass_matrix_at(t, q);
-    let forcing = system.forcing(t, q, v, u);
-    if !(mass.iter().all(all_finite) && all_finite(&forcing)) {
-        return Err(DynamicsError::NonFiniteEquations);
-    }
-    let factor = factor_mass_matrix(&mass, &pivot_names::<S, NQ, NV, NU>())?;
-    let vdot: [f64; NV] = factor.solve(&SVector::from(forcing)).into();
-    if !all_finite(&vdot) {
-        return Err(DynamicsError::NonFiniteAccelerations);
-    }
-    Ok(vdot)
 }

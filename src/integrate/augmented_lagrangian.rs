@@ -430,7 +430,7 @@ mod tests {
             start,
             2.0,
             AugmentedLagrangian {
-                steps: steps,
+                steps,
                 settings: Default::default(),
             },
         )
