@@ -15,7 +15,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::constrained::DriftLimits;
-use dalembert::integrate::rk4;
+use dalembert::integrate::{Integration, Rk4};
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State};
 use dalembert_fixtures::iftomm::{FourBars10, four_bar_start};
 use dalembert_fixtures::slider_crank::SEED_3;
@@ -54,7 +54,11 @@ fn runs<S, const NQ: usize, const NU: usize, const NC: usize>(
                 Constrained::without_inputs(system, stabilisation).with_drift_limits(limits);
             let end = start.t + h * STEPS as f64;
             group.bench_function(format!("{stabilised}/{watched}"), |b| {
-                b.iter(|| rk4(&dynamics, black_box(start), end, STEPS, |_| {}).unwrap())
+                b.iter(|| {
+                    Integration::new(&dynamics, black_box(start), end, Rk4 { steps: STEPS })
+                        .run()
+                        .unwrap()
+                })
             });
         }
     }

@@ -83,12 +83,14 @@ fn a_driven_page_plots_the_energy_change_beside_the_inputs_work() {
         v: [0.0],
     };
     let mut recording = Recording::new();
-    let end = integrate::rk4(&dynamics, start, 1.0, 1000, |s| {
-        let power = input_power(&table, s.t, &s.q, &s.v, &u);
-        recording.push_driven(s.t, &s.q, energy(&table, &s.q, &s.v), power);
-    })
-    .unwrap()
-    .end;
+    let end = integrate::Integration::new(&dynamics, start, 1.0, integrate::Rk4 { steps: 1000 })
+        .observe(|s| {
+            let power = input_power(&table, s.t, &s.q, &s.v, &u);
+            recording.push_driven(s.t, &s.q, energy(&table, &s.q, &s.v), power);
+        })
+        .run()
+        .unwrap()
+        .end;
     // The macro's text as written, comments kept.
     assert!(
         DrivenTurntable::SOURCE.starts_with(

@@ -27,7 +27,7 @@ pub enum OutputKind {
     /// `linearize`: the state-space matrices `A`, `B` about a state.
     Linearize,
     /// `taylor`: the Taylor coefficients of the motion through a state, to
-    /// any order (`taylor_coefficients`, for `dalembert::integrate::taylor`).
+    /// any order (`taylor_coefficients`, for `dalembert::integrate::Taylor`).
     Taylor,
     /// `position(P)`: where a point is, from `O`.
     Position(PointId),

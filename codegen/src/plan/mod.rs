@@ -77,7 +77,7 @@ pub const RECOMBINATION_BUDGET: usize = 200;
 /// The orders of `taylor_coefficients` emitted one by one, each with its
 /// own copy of the recurrences (a constant order, so sums of compile-time
 /// length); higher orders run in a loop. The runtime's Taylor integrator
-/// uses up to 31 (`dalembert::integrate::taylor::MAX_ORDER`).
+/// uses up to 31 (`dalembert::integrate::MAX_ORDER`).
 pub const UNROLLED_ORDERS: usize = 31;
 
 /// The most temporaries a body binds each with its own `let`. Each `let`

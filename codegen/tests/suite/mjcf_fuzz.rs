@@ -22,10 +22,9 @@
 
 use std::path::{Path, PathBuf};
 
-use dalembert_codegen::Mjcf;
 use crate::fuzz::{self, Element, Mutant, Rng, attribute, attributes, splice, unreadable};
+use dalembert_codegen::Mjcf;
 use serde_json::Value;
-
 
 /// Cases run in CI.
 const FUZZ_CASES: usize = 300;

@@ -17,9 +17,8 @@
 
 use std::path::{Path, PathBuf};
 
-use dalembert_codegen::Urdf;
 use crate::fuzz::{self, Element, Mutant, Rng, attribute, attributes, splice, unreadable};
-
+use dalembert_codegen::Urdf;
 
 /// Cases run in CI.
 const FUZZ_CASES: usize = 300;
