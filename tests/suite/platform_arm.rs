@@ -305,7 +305,7 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
             1.0,
             Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options
+                options
             }
         )
         .run()
