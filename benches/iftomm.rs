@@ -62,7 +62,7 @@ fn error<const NQ: usize>(end: &State<NQ, NQ>, n: f64) -> f64 {
         DURATION,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()

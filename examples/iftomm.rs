@@ -382,7 +382,7 @@ where
         duration,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()?
@@ -502,7 +502,7 @@ where
                         duration,
                         Adaptive {
                             pair: ExplicitPair::Dop853,
-                            options: options,
+                            options,
                         },
                     )
                     .observe(observer)

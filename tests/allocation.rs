@@ -207,10 +207,7 @@ fn adaptive_pairs_dense_output_and_events_allocate_nothing() {
             &dynamics,
             start,
             1.0,
-            integrate::Adaptive {
-                pair: pair,
-                options: options,
-            },
+            integrate::Adaptive { pair, options },
         )
         .run();
         let mut middle = 0.0;
@@ -218,10 +215,7 @@ fn adaptive_pairs_dense_output_and_events_allocate_nothing() {
             &dynamics,
             start,
             1.0,
-            integrate::Adaptive {
-                pair: pair,
-                options: options,
-            },
+            integrate::Adaptive { pair, options },
         )
         .dense(|step| {
             middle += step.state_at(0.5 * (step.start().t + step.end().t)).q[0];
@@ -237,10 +231,7 @@ fn adaptive_pairs_dense_output_and_events_allocate_nothing() {
             &dynamics,
             start,
             1.0,
-            integrate::Adaptive {
-                pair: pair,
-                options: options,
-            },
+            integrate::Adaptive { pair, options },
         )
         .event(upright, |_| crossings += 1)
         .run();

@@ -235,10 +235,7 @@ fn runs<'a, E: Dynamics<NQ, NQ>, const NQ: usize>(
                     dynamics,
                     start,
                     t_end,
-                    integrate::Adaptive {
-                        pair: pair,
-                        options: options,
-                    },
+                    integrate::Adaptive { pair, options },
                 )
                 .run()
             };
@@ -639,7 +636,7 @@ fn energy_drift(out: &Path) -> Result<(), Box<dyn Error>> {
             HORIZON,
             integrate::Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .observe(observe)
@@ -724,7 +721,7 @@ fn stiff_joint(out: &Path) -> Result<(), Box<dyn Error>> {
         DURATION,
         integrate::Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(|s| dop853.push(stretch(s)))
@@ -856,7 +853,7 @@ fn singular_mass_matrix() {
                 0.5,
                 integrate::Adaptive {
                     pair: ExplicitPair::Dop853,
-                    options: options,
+                    options,
                 },
             )
             .run(),

@@ -117,17 +117,9 @@ fn bench_system<S: MultibodySystem<N, N, 0>, const N: usize>(
             b.iter_custom(|iters| {
                 per_count(iters, || {
                     evaluations(
-                        Integration::new(
-                            &dynamics,
-                            initial,
-                            DURATION,
-                            Adaptive {
-                                pair: pair,
-                                options: options,
-                            },
-                        )
-                        .run()
-                        .unwrap(),
+                        Integration::new(&dynamics, initial, DURATION, Adaptive { pair, options })
+                            .run()
+                            .unwrap(),
                     )
                 })
             })

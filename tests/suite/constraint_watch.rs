@@ -91,7 +91,7 @@ fn a_start_off_the_velocity_form_is_refused_unless_projected() {
             3.0,
             Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .run()

@@ -59,10 +59,7 @@ fn one_step_dense_error(pair: ExplicitPair, h: f64) -> f64 {
         &dynamics,
         start,
         0.3 + h,
-        integrate::Adaptive {
-            pair: pair,
-            options: options,
-        },
+        integrate::Adaptive { pair, options },
     )
     .dense(|step| {
         assert_eq!(step.state_at(step.start().t), *step.start());
@@ -125,7 +122,7 @@ fn dense_output_outside_a_step_extrapolates_its_polynomial() {
         2.0,
         integrate::Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .dense(|step| {
@@ -166,10 +163,7 @@ fn a_falling_mass_stops_at_the_floor_at_the_square_root_of_two_h_over_g_with_or_
             &dynamics,
             start,
             5.0,
-            integrate::Adaptive {
-                pair: pair,
-                options: options,
-            },
+            integrate::Adaptive { pair, options },
         )
         .event(floor, |_| {
             events += 1;
@@ -187,10 +181,7 @@ fn a_falling_mass_stops_at_the_floor_at_the_square_root_of_two_h_over_g_with_or_
             &dynamics,
             start,
             f64::INFINITY,
-            integrate::Adaptive {
-                pair: pair,
-                options: options,
-            },
+            integrate::Adaptive { pair, options },
         )
         .event(floor, |_| {})
         .run();
@@ -226,7 +217,7 @@ fn a_large_swing_passes_the_vertical_once_a_period_of_its_elliptic_integral() {
             2.2 * period,
             integrate::Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .event(Event::record(vertical, crossing), |s| times.push(s.t))
@@ -307,7 +298,7 @@ fn a_zero_at_the_start_or_a_touch_is_no_event_and_the_landing_is() {
         5.0,
         integrate::Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .event(Event::stop_at(floor, Crossing::Either), |_| {})
@@ -325,7 +316,7 @@ fn a_zero_at_the_start_or_a_touch_is_no_event_and_the_landing_is() {
         8.0 / G,
         integrate::Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .event(Event::record(touch, Crossing::Either), |_| touches += 1)

@@ -109,10 +109,7 @@ fn a_pendulum_stops_as_it_passes_the_vertical() {
                 &dynamics,
                 at_rest(amplitude),
                 10.0,
-                Adaptive {
-                    pair: pair,
-                    options: options,
-                },
+                Adaptive { pair, options },
             )
             .event(vertical, |s| seen.push(*s))
             .run()
@@ -142,7 +139,7 @@ fn every_pass_of_the_vertical_is_recorded() {
         5.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .event(vertical, |s| passes.push(s.t))
@@ -179,19 +176,11 @@ fn a_thrown_body_stops_where_it_falls_through_a_height() {
             move |_, q: &[f64; 1], _: &[f64; 1]| q[0] - height,
             Crossing::Falling,
         );
-        let end = Integration::new(
-            &dynamics,
-            start,
-            100.0,
-            Adaptive {
-                pair: pair,
-                options: options,
-            },
-        )
-        .event(floor, |_| {})
-        .run()
-        .unwrap()
-        .end;
+        let end = Integration::new(&dynamics, start, 100.0, Adaptive { pair, options })
+            .event(floor, |_| {})
+            .run()
+            .unwrap()
+            .end;
         assert!((end.t - expected).abs() < 1e-12, "{pair:?}: {}", end.t);
         assert!((end.q[0] - height).abs() < 1e-12, "{end:?}");
     }
@@ -206,28 +195,20 @@ fn dense_output_follows_the_oscillator_between_steps() {
     ] {
         let options = AdaptiveOptions::with_tolerance(tolerance);
         let (mut worst, mut steps) = (0.0f64, 0);
-        Integration::new(
-            &dynamics,
-            at_rest(1.0),
-            20.0,
-            Adaptive {
-                pair: pair,
-                options: options,
-            },
-        )
-        .dense(|step| {
-            let (a, b) = (step.start().t, step.end().t);
-            for k in 1..8 {
-                let t = a + (b - a) * f64::from(k) / 8.0;
-                let s = step.state_at(t);
-                assert_eq!(s.t, t);
-                worst = worst.max((s.q[0] - t.cos()).abs().max((s.v[0] + t.sin()).abs()));
-            }
-            steps += 1;
-            ControlFlow::Continue(())
-        })
-        .run()
-        .unwrap();
+        Integration::new(&dynamics, at_rest(1.0), 20.0, Adaptive { pair, options })
+            .dense(|step| {
+                let (a, b) = (step.start().t, step.end().t);
+                for k in 1..8 {
+                    let t = a + (b - a) * f64::from(k) / 8.0;
+                    let s = step.state_at(t);
+                    assert_eq!(s.t, t);
+                    worst = worst.max((s.q[0] - t.cos()).abs().max((s.v[0] + t.sin()).abs()));
+                }
+                steps += 1;
+                ControlFlow::Continue(())
+            })
+            .run()
+            .unwrap();
         assert!(steps > 10, "{pair:?}: {steps} steps");
         assert!(worst < bound, "{pair:?}: {worst:e}");
     }
@@ -243,7 +224,7 @@ fn a_step_observer_may_end_the_integration() {
         20.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .dense(|step| {
@@ -271,18 +252,10 @@ fn a_non_finite_event_value_is_an_error_naming_its_time() {
         for pair in PAIRS {
             let mut events = 0;
             let event = Event::record(undefined_late, Crossing::Either);
-            let error = Integration::new(
-                &dynamics,
-                at_rest(1.0),
-                5.0,
-                Adaptive {
-                    pair: pair,
-                    options: options,
-                },
-            )
-            .event(event, |_| events += 1)
-            .run()
-            .unwrap_err();
+            let error = Integration::new(&dynamics, at_rest(1.0), 5.0, Adaptive { pair, options })
+                .event(event, |_| events += 1)
+                .run()
+                .unwrap_err();
             println!("{pair:?}: {error}");
             assert!(
                 matches!(error.cause, Failure::NonFiniteEvent { value } if value.is_nan() == bad.is_nan()),
@@ -305,7 +278,7 @@ fn a_non_finite_event_value_is_an_error_naming_its_time() {
             5.0,
             Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .event(event, |_| {})
@@ -338,10 +311,7 @@ fn two_zeros_closer_than_an_eighth_of_a_step_are_both_found() {
             &dynamics,
             at_rest(1.0),
             2.0 * PI,
-            Adaptive {
-                pair: pair,
-                options: options,
-            },
+            Adaptive { pair, options },
         )
         .dense(|step| {
             let (a, b) = (step.start().t, step.end().t);
@@ -361,18 +331,10 @@ fn two_zeros_closer_than_an_eighth_of_a_step_are_both_found() {
             let mut found = Vec::new();
             let event = Event::record(g, crossing);
             let start = at_rest(1.0);
-            Integration::new(
-                &dynamics,
-                start,
-                2.0 * PI,
-                Adaptive {
-                    pair: pair,
-                    options: options,
-                },
-            )
-            .event(event, |s| found.push(s.t))
-            .run()
-            .unwrap();
+            Integration::new(&dynamics, start, 2.0 * PI, Adaptive { pair, options })
+                .event(event, |s| found.push(s.t))
+                .run()
+                .unwrap();
             found
         };
         let found = zeros(Crossing::Either);
@@ -390,10 +352,7 @@ fn two_zeros_closer_than_an_eighth_of_a_step_are_both_found() {
             &dynamics,
             at_rest(1.0),
             2.0 * PI,
-            Adaptive {
-                pair: pair,
-                options: options,
-            },
+            Adaptive { pair, options },
         )
         .event(event, |_| {})
         .run()

@@ -49,16 +49,8 @@ fn unconstrained_answers_are_finite_or_errors() {
                     ..AdaptiveOptions::with_tolerance(1e-8)
                 };
                 let pair = ExplicitPair::DormandPrince54;
-                let adapted = Integration::new(
-                    &dynamics,
-                    state,
-                    0.1,
-                    Adaptive {
-                        pair: pair,
-                        options: options,
-                    },
-                )
-                .run();
+                let adapted =
+                    Integration::new(&dynamics, state, 0.1, Adaptive { pair, options }).run();
                 assert!(
                     finite(&adapted, |s| [s.end.q, s.end.v].concat()),
                     "{what}: DOPRI5 {adapted:?}"

@@ -65,7 +65,7 @@ where
         t_end,
         integrate::Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()

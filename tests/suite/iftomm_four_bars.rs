@@ -245,7 +245,7 @@ fn forty_four_bars_with_their_energy_held() {
             20.0,
             Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .run()

@@ -73,7 +73,7 @@ fn a_nan_input_stops_every_integrator_at_its_time() {
                 1.0,
                 integrate::Adaptive {
                     pair: ExplicitPair::DormandPrince54,
-                    options: options,
+                    options,
                 },
             )
             .observe(finite)
@@ -87,7 +87,7 @@ fn a_nan_input_stops_every_integrator_at_its_time() {
                 1.0,
                 integrate::Adaptive {
                     pair: ExplicitPair::Dop853,
-                    options: options,
+                    options,
                 },
             )
             .observe(finite)
@@ -189,10 +189,7 @@ fn variable_step_outcomes(
                     &dynamics,
                     start,
                     t_end,
-                    integrate::Adaptive {
-                        pair: pair,
-                        options: options,
-                    },
+                    integrate::Adaptive { pair, options },
                 )
                 .run(),
             ),

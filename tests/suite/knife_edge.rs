@@ -143,7 +143,7 @@ fn knife_edge_dop853_goes_round_the_circle() {
         10.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(observe)
@@ -210,7 +210,7 @@ fn chaplygin_sleigh_follows_its_closed_form_and_keeps_its_energy() {
             60.0,
             Adaptive {
                 pair: dop853,
-                options: options,
+                options,
             },
         )
         .observe(|s| check(s, 1e-11, 1e-12))

@@ -272,18 +272,10 @@ fn the_adaptive_pairs_follow_the_closed_form_of_free_precession() {
         (ExplicitPair::Dop853, 1e-12, 1e-10),
     ] {
         let options = AdaptiveOptions::with_tolerance(tolerance);
-        let end = Integration::new(
-            &dynamics,
-            start,
-            10.0,
-            Adaptive {
-                pair: pair,
-                options: options,
-            },
-        )
-        .run()
-        .unwrap()
-        .end;
+        let end = Integration::new(&dynamics, start, 10.0, Adaptive { pair, options })
+            .run()
+            .unwrap()
+            .end;
         let error = distance(&end, &top_at(&start, 10.0));
         assert!(error < bound, "{pair:?}: error {error}");
     }
@@ -293,19 +285,11 @@ fn the_adaptive_pairs_follow_the_closed_form_of_free_precession() {
 fn steps_at(pair: ExplicitPair, tolerance: f64) -> u64 {
     let dynamics = Unconstrained::without_inputs(&TUMBLER);
     let options = AdaptiveOptions::with_tolerance(tolerance);
-    Integration::new(
-        &dynamics,
-        SPIN,
-        10.0,
-        Adaptive {
-            pair: pair,
-            options: options,
-        },
-    )
-    .run()
-    .unwrap()
-    .statistics
-    .accepted_steps
+    Integration::new(&dynamics, SPIN, 10.0, Adaptive { pair, options })
+        .run()
+        .unwrap()
+        .statistics
+        .accepted_steps
 }
 
 #[test]
@@ -348,7 +332,7 @@ fn the_dzhanibekov_tumbler_keeps_its_energy_and_angular_momentum() {
         100.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(observe)
@@ -411,7 +395,7 @@ fn dense_output_follows_free_precession_between_steps() {
         5.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .dense(|step| {

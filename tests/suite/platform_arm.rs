@@ -142,7 +142,7 @@ fn both_spellings_move_alike() {
         3.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()
@@ -161,7 +161,7 @@ fn both_spellings_move_alike() {
         3.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()
@@ -200,7 +200,7 @@ fn the_arm_on_the_driven_platform_keeps_its_jacobi_integral() {
         4.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(|s| {
@@ -228,7 +228,7 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         3.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()
@@ -269,7 +269,7 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         1.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()
@@ -288,7 +288,7 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         1.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()
@@ -305,7 +305,7 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
             1.0,
             Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options
+                options
             }
         )
         .run()

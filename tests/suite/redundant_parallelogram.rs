@@ -218,7 +218,7 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
             10.0,
             Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .observe(|s| run.see(s, e0))
@@ -238,7 +238,7 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
             10.0,
             Adaptive {
                 pair: ExplicitPair::DormandPrince54,
-                options: options,
+                options,
             },
         )
         .observe(|s| run.see(s, e0))
@@ -367,7 +367,7 @@ fn redundant_parallelogram_unstabilised_stops_at_its_drift_limit() {
         10.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(|s| run.see(s, e0))
@@ -407,7 +407,7 @@ fn redundant_parallelogram_unstabilised_stops_at_its_drift_limit() {
         10.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(|s| last = *s)

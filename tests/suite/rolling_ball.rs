@@ -237,7 +237,7 @@ fn dop853_with_projection_follows_the_closed_form() {
             2.0,
             Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .run()

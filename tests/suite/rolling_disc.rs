@@ -169,7 +169,7 @@ fn a_leaning_disc_rolls_alike_by_taylor_and_dop853() {
         3.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()

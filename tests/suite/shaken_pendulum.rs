@@ -130,7 +130,7 @@ fn small_shaking_follows_the_linearised_response() {
         10.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(|s| {

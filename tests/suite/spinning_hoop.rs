@@ -105,7 +105,7 @@ fn the_rest_angle_is_stable_with_the_closed_form_frequency() {
         period,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(|s| {
@@ -151,7 +151,7 @@ fn the_bottom_is_unstable_with_the_closed_form_exponent() {
         2.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .run()
@@ -184,7 +184,7 @@ fn energy_is_not_conserved_but_the_jacobi_integral_is() {
         5.0,
         Adaptive {
             pair: ExplicitPair::Dop853,
-            options: options,
+            options,
         },
     )
     .observe(|s| {

@@ -68,7 +68,7 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
             HORIZON,
             integrate::Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .observe(observe)
@@ -122,7 +122,7 @@ fn projection_holds_the_drift_of_the_adaptive_pair_on_the_slider_crank() {
             2.0,
             integrate::Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .run();
@@ -153,7 +153,7 @@ fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdir
             1.0,
             integrate::Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .run()
@@ -235,10 +235,7 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
             &dynamics,
             TOWARDS_AXIS,
             0.5,
-            integrate::Adaptive {
-                pair: pair,
-                options: options,
-            },
+            integrate::Adaptive { pair, options },
         )
         .observe(finite)
         .run()

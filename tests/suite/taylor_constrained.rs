@@ -95,7 +95,7 @@ fn seed_3_series_sum_to_dop853s_motion() {
             tau,
             Adaptive {
                 pair: ExplicitPair::Dop853,
-                options: options,
+                options,
             },
         )
         .run()
