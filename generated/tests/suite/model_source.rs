@@ -12,7 +12,7 @@ use dalembert_lab::{Recording, Scene};
 fn a_built_system_carries_the_file_it_was_built_from() {
     assert_eq!(
         DoublePendulum::SOURCE,
-        include_str!("../models/double_pendulum.dal")
+        include_str!("../../models/double_pendulum.dal")
     );
     let ur5 = dalembert_codegen::Urdf::read("../tests/reference/urdf/ur5_robot.urdf")
         .unwrap()
