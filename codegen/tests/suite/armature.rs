@@ -142,9 +142,9 @@ fn the_looped_tree_routes_add_the_armatures() {
         dalembert_codegen::generate(&with_statements(&chain(Family::Spatial, 30), armature))
             .unwrap()
             .replace(char::is_whitespace, "");
-    assert!(large.contains("dalembert::dynamics::tree_mass_matrix"));
+    assert!(large.contains("dalembert::__private::tree_mass_matrix"));
     assert!(
-        large.contains("dalembert::dynamics::add_to_diagonal(&mutm,[(2,0.25),(6,0.5)]);"),
+        large.contains("dalembert::__private::add_to_diagonal(&mutm,[(2,0.25),(6,0.5)]);"),
         "the armatures after the pairs"
     );
     let outputs = format!("{armature}\n    outputs accelerations_jacobian;");
