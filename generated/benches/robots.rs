@@ -126,6 +126,10 @@ fn bench_robot<S, const NQ: usize, const NV: usize, const NU: usize>(
     group.finish();
 }
 
+/// A generated `accelerations_jacobian(&self, t, q, v, u)`.
+type Jacobian<S, R, const NQ: usize, const NV: usize, const NU: usize> =
+    fn(&S, f64, &[f64; NQ], &[f64; NV], &[f64; NU]) -> R;
+
 /// `accelerations_jacobian` of a robot with derivatives, in group
 /// `robots/NAME` beside its dynamics.
 fn bench_jacobian<S, R, const NQ: usize, const NV: usize, const NU: usize>(
@@ -133,7 +137,7 @@ fn bench_jacobian<S, R, const NQ: usize, const NV: usize, const NU: usize>(
     name: &str,
     robot: S,
     states: &[Call<NQ, NV, NU>],
-    jacobian: fn(&S, f64, &[f64; NQ], &[f64; NV], &[f64; NU]) -> R,
+    jacobian: Jacobian<S, R, NQ, NV, NU>,
 ) {
     let mut group = c.benchmark_group(format!("robots/{name}"));
     group.bench_function("accelerations_jacobian", |b| {
