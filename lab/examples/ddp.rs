@@ -24,7 +24,9 @@ use dalembert::control::{
 };
 use dalembert_fixtures::cart_pole::{CART_POLE, CartPole};
 use dalembert_fixtures::cpu_time::thread_time_of;
-use dalembert_lab::ddp::{Settings, Solve, cart_pole_swing_up, solve, ur5_reach};
+use dalembert_lab::ddp::{
+    Settings, Solve, UR5_TOOL_TARGET, cart_pole_swing_up, solve, ur5_pose_reach, ur5_reach,
+};
 use dalembert_lab::{Series, line_chart, line_chart_log_y};
 use std::path::{Path, PathBuf};
 
@@ -32,46 +34,10 @@ use std::path::{Path, PathBuf};
 /// for its animation.
 const CART_POLE_MODEL: &str = include_str!("../../generated/models/cart_pole.dal");
 
-/// The UR5's URDF file, whose import the UR5's animation draws.
-const UR5_URDF: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../tests/reference/urdf/ur5_robot.urdf"
-);
+#[path = "../models/ur5.rs"]
+mod ur5;
 
-dalembert::dalembert! {
-    /// The UR5 of `tests/reference/urdf/ur5_robot.urdf` as `dalembert urdf
-    /// tests/reference/urdf/ur5_robot.urdf --name Ur5` prints it (its comment
-    /// lines left out), asking for the derivatives of its accelerations and
-    /// of its inverse dynamics.
-    pub Ur5 {
-        coordinates shoulder_pan_joint, shoulder_lift_joint, elbow_joint, wrist_1_joint, wrist_2_joint, wrist_3_joint;
-        inputs tau_shoulder_pan_joint, tau_shoulder_lift_joint, tau_elbow_joint, tau_wrist_1_joint, tau_wrist_2_joint, tau_wrist_3_joint;
-        joint revolute shoulder_link_origin { parent: N, child: shoulder_link, axis: z, coordinate: shoulder_pan_joint, at: O + 0.089159 * N.z };
-        body shoulder_link_body { mass: 3.7, center: shoulder_link_origin, frame: shoulder_link, inertia: [0.010267495893, 0.010267495893, 0.00666] };
-        torque tau_shoulder_pan_joint * N.z on shoulder_link reacting N;
-        frame shoulder_lift_joint_frame = shoulder_link.rotate_y(1.57079632679);
-        joint revolute upper_arm_link_origin { parent: shoulder_lift_joint_frame, child: upper_arm_link, axis: y, coordinate: shoulder_lift_joint, at: shoulder_link_origin + 0.13585 * shoulder_link.y };
-        body upper_arm_link_body { mass: 8.393, center: upper_arm_link_origin + 0.28 * upper_arm_link.z, frame: upper_arm_link, inertia: [0.22689067591, 0.22689067591, 0.0151074] };
-        torque tau_shoulder_lift_joint * shoulder_lift_joint_frame.y on upper_arm_link reacting shoulder_lift_joint_frame;
-        joint revolute forearm_link_origin { parent: upper_arm_link, child: forearm_link, axis: y, coordinate: elbow_joint, at: upper_arm_link_origin - 0.1197 * upper_arm_link.y + 0.425 * upper_arm_link.z };
-        body forearm_link_body { mass: 2.275, center: forearm_link_origin + 0.25 * forearm_link.z, frame: forearm_link, inertia: [0.049443313556, 0.049443313556, 0.004095] };
-        torque tau_elbow_joint * upper_arm_link.y on forearm_link reacting upper_arm_link;
-        frame wrist_1_joint_frame = forearm_link.rotate_y(1.57079632679);
-        joint revolute wrist_1_link_origin { parent: wrist_1_joint_frame, child: wrist_1_link, axis: y, coordinate: wrist_1_joint, at: forearm_link_origin + 0.39225 * forearm_link.z };
-        body wrist_1_link_body { mass: 1.219, center: wrist_1_link_origin, frame: wrist_1_link, inertia: [0.111172755531, 0.111172755531, 0.21942] };
-        torque tau_wrist_1_joint * wrist_1_joint_frame.y on wrist_1_link reacting wrist_1_joint_frame;
-        joint revolute wrist_2_link_origin { parent: wrist_1_link, child: wrist_2_link, axis: z, coordinate: wrist_2_joint, at: wrist_1_link_origin + 0.093 * wrist_1_link.y };
-        body wrist_2_link_body { mass: 1.219, center: wrist_2_link_origin, frame: wrist_2_link, inertia: [0.111172755531, 0.111172755531, 0.21942] };
-        torque tau_wrist_2_joint * wrist_1_link.z on wrist_2_link reacting wrist_1_link;
-        joint revolute wrist_3_link_origin { parent: wrist_2_link, child: wrist_3_link, axis: y, coordinate: wrist_3_joint, at: wrist_2_link_origin + 0.09465 * wrist_2_link.z };
-        body wrist_3_link_body { mass: 0.1879, center: wrist_3_link_origin, frame: wrist_3_link, inertia: [0.0171364731454, 0.0171364731454, 0.033822] };
-        torque tau_wrist_3_joint * wrist_2_link.y on wrist_3_link reacting wrist_2_link;
-        gravity -9.81 * N.z;
-        outputs accelerations_jacobian, inverse_dynamics_jacobian;
-    }
-}
-
-dalembert::differentiable!(Ur5; inverse);
+use ur5::Ur5;
 
 /// Solves `run` `repeats` times, returning the last solve and the best
 /// time per iteration, in CPU time of the thread (the machine is shared:
@@ -196,7 +162,7 @@ fn write_inputs<const NQ: usize, const NV: usize, const NU: usize>(
 }
 
 /// `(t, value)` of coordinate or speed `i` along a solve.
-fn path<const NQ: usize, const NV: usize, const NU: usize>(
+fn path_of<const NQ: usize, const NV: usize, const NU: usize>(
     solved: &Solve<NQ, NV, NU>,
     value: impl Fn(&State<NQ, NV>) -> f64,
 ) -> Vec<(f64, f64)> {
@@ -216,26 +182,92 @@ fn convergence<const NQ: usize, const NV: usize, const NU: usize>(
         .collect()
 }
 
-fn charts(
-    out: &Path,
-    ur5: &Solve<6, 6, 6>,
-    cart_pole: &Solve<2, 2, 1>,
+/// `‖e‖`.
+fn norm(e: &[f64; 3]) -> f64 {
+    e.iter().map(|a| a * a).sum::<f64>().sqrt()
+}
+
+/// The pose reach: the tool's position against the target's, and the
+/// joints.
+fn pose_charts(out: &Path, pose: &Solve<6, 6, 6>) -> Result<(), Box<dyn std::error::Error>> {
+    let ur5 = Ur5 {};
+    let tool: Vec<[f64; 3]> = pose
+        .states
+        .iter()
+        .map(|s| ur5.position_tool0_origin(0.0, &s.q))
+        .collect();
+    let times: Vec<f64> = pose.states.iter().map(|s| s.t).collect();
+    let ends = [times[0], *times.last().expect("the end")];
+    let axes: Vec<Vec<(f64, f64)>> = (0..3)
+        .map(|i| times.iter().zip(&tool).map(|(t, p)| (*t, p[i])).collect())
+        .collect();
+    let targets: Vec<Vec<(f64, f64)>> = (0..3)
+        .map(|i| {
+            ends.iter()
+                .map(|t| (*t, UR5_TOOL_TARGET.position[i]))
+                .collect()
+        })
+        .collect();
+    let names = [("x", "x*"), ("y", "y*"), ("z", "z*")];
+    let series: Vec<Series<'_>> = (0..3)
+        .flat_map(|i| {
+            [
+                Series {
+                    name: names[i].0,
+                    points: &axes[i],
+                },
+                Series {
+                    name: names[i].1,
+                    points: &targets[i],
+                },
+            ]
+        })
+        .collect();
+    line_chart(
+        &out.join("ddp_ur5_pose_tool.svg"),
+        "UR5's tool reaching a pose: its position (the target's as flat lines x*, y*, z*)",
+        "t (s)",
+        "tool0 position (m)",
+        &series,
+    )?;
+    joint_chart(
+        &out.join("ddp_ur5_pose_joints.svg"),
+        "UR5's tool reaching a pose: DDP over exact Euler-step jacobians",
+        pose,
+    )
+}
+
+/// The joint angles of a UR5 solve.
+fn joint_chart(
+    path: &Path,
+    title: &str,
+    solved: &Solve<6, 6, 6>,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let joints: Vec<Vec<(f64, f64)>> = (0..6).map(|i| path(ur5, |s| s.q[i])).collect();
+    let joints: Vec<Vec<(f64, f64)>> = (0..6).map(|i| path_of(solved, |s| s.q[i])).collect();
     let names = ["q1", "q2", "q3", "q4", "q5", "q6"];
     let series: Vec<Series<'_>> = joints
         .iter()
         .zip(names)
         .map(|(points, name)| Series { name, points })
         .collect();
-    line_chart(
+    line_chart(path, title, "t (s)", "joint angle (rad)", &series)?;
+    Ok(())
+}
+
+fn charts(
+    out: &Path,
+    (ur5, pose): (&Solve<6, 6, 6>, &Solve<6, 6, 6>),
+    cart_pole: &Solve<2, 2, 1>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    joint_chart(
         &out.join("ddp_ur5.svg"),
-        "UR5 reaching a pose: DDP over exact Euler-step jacobians",
-        "t (s)",
-        "joint angle (rad)",
-        &series,
+        "UR5 reaching a joint-space pose: DDP over exact Euler-step jacobians",
+        ur5,
     )?;
-    let (x, theta) = (path(cart_pole, |s| s.q[0]), path(cart_pole, |s| s.q[1]));
+    let (x, theta) = (
+        path_of(cart_pole, |s| s.q[0]),
+        path_of(cart_pole, |s| s.q[1]),
+    );
     let force: Vec<(f64, f64)> = cart_pole
         .states
         .iter()
@@ -262,7 +294,7 @@ fn charts(
             },
         ],
     )?;
-    let (a, b) = (convergence(ur5), convergence(cart_pole));
+    let (a, b, c) = (convergence(ur5), convergence(cart_pole), convergence(pose));
     line_chart_log_y(
         &out.join("ddp_convergence.svg"),
         "DDP: cost above the final cost, per iteration",
@@ -276,6 +308,10 @@ fn charts(
             Series {
                 name: "cart-pole",
                 points: &b,
+            },
+            Series {
+                name: "UR5 tool pose",
+                points: &c,
             },
         ],
     )?;
@@ -297,23 +333,9 @@ where
     recording
 }
 
-/// Both solves as animated scenes: the cart-pole, and the UR5 as the
-/// segments between its joints.
-fn scenes(
-    out: &Path,
-    ur5: &Solve<6, 6, 6>,
-    cart_pole: &Solve<2, 2, 1>,
-) -> Result<(), Box<dyn std::error::Error>> {
-    let p = CART_POLE;
-    dalembert_lab::Scene::new(CART_POLE_MODEL, &[p.m_c, p.m_p, p.l, p.g])?
-        .title("Cart-pole swing-up by DDP (semi-implicit Euler, h = 20 ms)")
-        .write(
-            out.join("ddp_cart_pole.html"),
-            &recording(&CART_POLE, cart_pole),
-        )?;
-    let model = dalembert_codegen::Urdf::read(UR5_URDF)?.model()?;
-    let mut scene = dalembert_lab::Scene::new(&model, &[])?
-        .title("UR5 reaching a pose by DDP (semi-implicit Euler, h = 10 ms)");
+/// The UR5's scene: the segments between its joints and to its tool.
+fn ur5_scene(title: &str) -> Result<dalembert_lab::Scene, dalembert_lab::SceneError> {
+    let mut scene = dalembert_lab::Scene::of(&Ur5 {})?.title(title);
     let mut previous = "O".to_string();
     for link in [
         "shoulder",
@@ -329,7 +351,27 @@ fn scenes(
             .body_size(&format!("{link}_link_body"), [0.08; 3])?;
         previous = origin;
     }
-    scene.write(out.join("ddp_ur5.html"), &recording(&Ur5 {}, ur5))?;
+    scene.segment(&previous, "tool0_origin")
+}
+
+/// The solves as animated scenes: the cart-pole, and the UR5 as the
+/// segments between its joints.
+fn scenes(
+    out: &Path,
+    (ur5, pose): (&Solve<6, 6, 6>, &Solve<6, 6, 6>),
+    cart_pole: &Solve<2, 2, 1>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let p = CART_POLE;
+    dalembert_lab::Scene::new(CART_POLE_MODEL, &[p.m_c, p.m_p, p.l, p.g])?
+        .title("Cart-pole swing-up by DDP (semi-implicit Euler, h = 20 ms)")
+        .write(
+            out.join("ddp_cart_pole.html"),
+            &recording(&CART_POLE, cart_pole),
+        )?;
+    ur5_scene("UR5 reaching a joint-space pose by DDP (semi-implicit Euler, h = 10 ms)")?
+        .write(out.join("ddp_ur5.html"), &recording(&Ur5 {}, ur5))?;
+    ur5_scene("UR5's tool reaching a pose by DDP (semi-implicit Euler, h = 10 ms)")?
+        .write(out.join("ddp_ur5_pose.html"), &recording(&Ur5 {}, pose))?;
     Ok(())
 }
 
@@ -344,7 +386,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let ur5 = Ur5 {};
     let problem = ur5_reach();
     let (ur5_solve, ur5_seconds) = timed(5, || {
-        solve::<_, 6, 6, 6, 12>(
+        solve::<_, _, 6, 6, 6, 12>(
             &ur5,
             &problem,
             (euler_step, euler_step_jacobian),
@@ -355,12 +397,33 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     });
     report("ur5", &ur5_solve, ur5_seconds);
 
+    let pose = ur5_pose_reach(&ur5, ur5::tool());
+    let hold = ur5::holding(&pose.regularisation.start.q);
+    let (pose_solve, pose_seconds) = timed(5, || {
+        solve::<_, _, 6, 6, 6, 12>(
+            &ur5,
+            &pose,
+            (euler_step, euler_step_jacobian),
+            vec![hold; pose.regularisation.horizon],
+            &settings,
+        )
+        .expect("the UR5 pose problem solves")
+    });
+    report("ur5_pose", &pose_solve, pose_seconds);
+    let end = pose_solve.states.last().expect("the end");
+    let (translation, rotation) = ur5::tool().errors(&ur5, &end.q, &UR5_TOOL_TARGET);
+    println!(
+        "{{\"pose_error\": \"ur5_pose\", \"translation\": {:.3e}, \"rotation\": {:.3e}}}",
+        norm(&translation),
+        norm(&rotation)
+    );
+
     // The fixtures' cart-pole asks for `linearize`, which brings its
     // `accelerations_jacobian`.
     let cart_pole = Differentiated::new(&CART_POLE, CartPole::accelerations_jacobian);
     let problem = cart_pole_swing_up();
     let (cart_pole_solve, cart_pole_seconds) = timed(5, || {
-        solve::<_, 2, 2, 1, 4>(
+        solve::<_, _, 2, 2, 1, 4>(
             &cart_pole,
             &problem,
             (euler_step, euler_step_jacobian),
@@ -373,8 +436,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     step_timings();
     write_inputs(&out.join("ddp_ur5_inputs.json"), &ur5_solve)?;
+    write_inputs(&out.join("ddp_ur5_pose_inputs.json"), &pose_solve)?;
     write_inputs(&out.join("ddp_cart_pole_inputs.json"), &cart_pole_solve)?;
-    charts(&out, &ur5_solve, &cart_pole_solve)?;
-    scenes(&out, &ur5_solve, &cart_pole_solve)?;
+    charts(&out, (&ur5_solve, &pose_solve), &cart_pole_solve)?;
+    pose_charts(&out, &pose_solve)?;
+    scenes(&out, (&ur5_solve, &pose_solve), &cart_pole_solve)?;
     Ok(())
 }

@@ -6,7 +6,9 @@
 //! (semi-implicit Euler, or any step with its jacobian), the running cost
 //! `h (½ ‖x ⊖ x*‖²_Q + ½ ‖u‖²_R)` (Crocoddyl's `IntegratedActionModelEuler`
 //! scales the running cost by the step) and the terminal cost
-//! `½ ‖x_T ⊖ x*‖²_{Q_T}`, with diagonal weights. The configuration space must
+//! `½ ‖x_T ⊖ x*‖²_{Q_T}`, with diagonal weights ([`Problem`]), and a frame
+//! reaching a pose, with the pose error's costs added ([`PoseProblem`]);
+//! any other [`Objective`] will do. The configuration space must
 //! be a vector space (the cost's derivatives by `q` are then plain).
 //!
 //! The solver is DDP with the Gauss–Newton model of the dynamics (iLQR,
@@ -18,6 +20,7 @@
 //! failure, as Crocoddyl's defaults do. It stops when
 //! `Σₖ ‖Q_uₖ‖² < threshold` (Crocoddyl's `stoppingCriteria` and `th_stop`).
 
+use crate::pose::{FrameOutputs, Placement};
 use dalembert::State;
 use dalembert::control::{ControlError, Differentiable, StepJacobian};
 use nalgebra::{SMatrix, SVector};
@@ -129,6 +132,56 @@ impl Default for Settings {
     }
 }
 
+/// The derivatives of a cost at one node: gradients and Gauss–Newton
+/// Hessians on the state `(q, v)` stacked in `NX = 2 NV` entries and on the
+/// inputs (the costs here have no cross term `l_xu`).
+#[derive(Clone, Copy, Debug)]
+pub struct Expansion<const NX: usize, const NU: usize> {
+    /// `∂l/∂x`.
+    pub lx: SVector<f64, NX>,
+    /// `∂l/∂u`.
+    pub lu: SVector<f64, NU>,
+    /// `∂²l/∂x²` (Gauss–Newton).
+    pub lxx: SMatrix<f64, NX, NX>,
+    /// `∂²l/∂u²`.
+    pub luu: SMatrix<f64, NU, NU>,
+}
+
+/// What the solver asks of a problem: its start, horizon and step (a
+/// [`Problem`]'s), its running cost per step (scaled by the step, as
+/// Crocoddyl's `IntegratedActionModelEuler` scales it) and its terminal
+/// cost, with their derivatives.
+pub trait Objective<const NQ: usize, const NV: usize, const NU: usize> {
+    /// The start, horizon and step (and the quadratic costs).
+    fn problem(&self) -> &Problem<NQ, NV, NU>;
+
+    /// The running cost of one step from `x` under `u`.
+    fn running(&self, x: &State<NQ, NV>, u: &[f64; NU]) -> f64;
+
+    /// The terminal cost at `x`.
+    fn terminal(&self, x: &State<NQ, NV>) -> f64;
+
+    /// The running cost's derivatives; `NX` is `2 NV`.
+    fn running_derivatives<const NX: usize>(
+        &self,
+        x: &State<NQ, NV>,
+        u: &[f64; NU],
+    ) -> Expansion<NX, NU>;
+
+    /// The terminal cost's derivatives (`lu`, `luu` zero); `NX` is `2 NV`.
+    fn terminal_derivatives<const NX: usize>(&self, x: &State<NQ, NV>) -> Expansion<NX, NU>;
+
+    /// The total cost of a trajectory.
+    fn cost(&self, states: &[State<NQ, NV>], inputs: &[[f64; NU]]) -> f64 {
+        let running: f64 = states
+            .iter()
+            .zip(inputs)
+            .map(|(x, u)| self.running(x, u))
+            .sum();
+        running + self.terminal(&states[self.problem().horizon])
+    }
+}
+
 impl<const NQ: usize, const NV: usize, const NU: usize> Problem<NQ, NV, NU> {
     /// `x ⊖ x*` on a vector space.
     fn error(&self, x: &State<NQ, NV>) -> ([f64; NV], [f64; NV]) {
@@ -146,8 +199,47 @@ impl<const NQ: usize, const NV: usize, const NU: usize> Problem<NQ, NV, NU> {
             .sum::<f64>()
     }
 
-    /// The running cost of one step.
-    fn running_cost(&self, x: &State<NQ, NV>, u: &[f64; NU]) -> f64 {
+    /// The derivatives of `s ½ ‖x ⊖ x*‖²_W (+ s ½ ‖u‖²_R with `u`)`.
+    fn quadratic<const NX: usize>(
+        &self,
+        x: &State<NQ, NV>,
+        (wq, wv): &([f64; NV], [f64; NV]),
+        u: Option<&[f64; NU]>,
+        s: f64,
+    ) -> Expansion<NX, NU> {
+        let (dq, dv) = self.error(x);
+        let weight = |i: usize| match i < NV {
+            true => s * wq[i],
+            false => s * wv[i - NV],
+        };
+        let r = SVector::<f64, NU>::from(self.input_weights) * s;
+        let (lu, luu) = match u {
+            Some(u) => (
+                r.component_mul(&SVector::from(*u)),
+                SMatrix::from_diagonal(&r),
+            ),
+            None => (SVector::zeros(), SMatrix::zeros()),
+        };
+        Expansion {
+            lx: SVector::from_fn(|i, _| match i < NV {
+                true => weight(i) * dq[i],
+                false => weight(i) * dv[i - NV],
+            }),
+            lu,
+            lxx: SMatrix::from_diagonal(&SVector::<f64, NX>::from_fn(|i, _| weight(i))),
+            luu,
+        }
+    }
+}
+
+impl<const NQ: usize, const NV: usize, const NU: usize> Objective<NQ, NV, NU>
+    for Problem<NQ, NV, NU>
+{
+    fn problem(&self) -> &Problem<NQ, NV, NU> {
+        self
+    }
+
+    fn running(&self, x: &State<NQ, NV>, u: &[f64; NU]) -> f64 {
         let inputs = 0.5
             * (0..NU)
                 .map(|i| self.input_weights[i] * u[i] * u[i])
@@ -155,34 +247,165 @@ impl<const NQ: usize, const NV: usize, const NU: usize> Problem<NQ, NV, NU> {
         self.step * (self.state_cost(x, &self.state_weights) + inputs)
     }
 
-    /// The total cost of a trajectory.
-    pub fn cost(&self, states: &[State<NQ, NV>], inputs: &[[f64; NU]]) -> f64 {
-        let running: f64 = states
-            .iter()
-            .zip(inputs)
-            .map(|(x, u)| self.running_cost(x, u))
-            .sum();
-        running + self.state_cost(&states[self.horizon], &self.terminal_weights)
+    fn terminal(&self, x: &State<NQ, NV>) -> f64 {
+        self.state_cost(x, &self.terminal_weights)
     }
 
-    /// The gradient of `½ ‖x ⊖ x*‖²_W` scaled by `s`, and its diagonal
-    /// Hessian, on `(q, v)` stacked in `NX = 2 NV` entries.
-    fn state_derivatives<const NX: usize>(
+    fn running_derivatives<const NX: usize>(
         &self,
         x: &State<NQ, NV>,
-        (wq, wv): &([f64; NV], [f64; NV]),
+        u: &[f64; NU],
+    ) -> Expansion<NX, NU> {
+        self.quadratic(x, &self.state_weights, Some(u), self.step)
+    }
+
+    fn terminal_derivatives<const NX: usize>(&self, x: &State<NQ, NV>) -> Expansion<NX, NU> {
+        self.quadratic(x, &self.terminal_weights, None, 1.0)
+    }
+}
+
+/// A frame reaching a pose: the quadratic costs of `regularisation` (its
+/// `target` the posture the state is drawn to) plus, at every step and at
+/// the end, `½ w_p ‖p − p*‖² + ½ w_R ‖log₃(R*ᵀ R)‖²` of the frame's pose
+/// error ([`crate::pose`]), the running part scaled by the step as the
+/// rest: Crocoddyl's `ResidualModelFrameTranslation` and
+/// `ResidualModelFrameRotation` under `ActivationModelQuad`, with their
+/// Gauss–Newton Hessians `w Jᵀ J`.
+pub struct PoseProblem<'a, S, const NQ: usize, const NV: usize, const NU: usize> {
+    /// Start, horizon, step and the quadratic state and input costs.
+    pub regularisation: Problem<NQ, NV, NU>,
+    /// The system whose frame it is.
+    pub system: &'a S,
+    /// The frame's kinematic outputs.
+    pub frame: FrameOutputs<S, NQ, NV>,
+    /// The pose to reach.
+    pub target: Placement,
+    /// `(w_p, w_R)` of the running cost.
+    pub running_weights: (f64, f64),
+    /// `(w_p, w_R)` of the terminal cost.
+    pub terminal_weights: (f64, f64),
+}
+
+/// The UR5's tool flange reaching a pose (the tool's placement at
+/// `(1, −1, 1.5, −1.5, 0.8, 0.5)`, 1.5 rad turned from the start's, 0.5 m
+/// away) from `(0, −1.5, 1, −1, 0, 0)` at rest in 100 steps of 10 ms; the
+/// state drawn to the start's posture at rest, the speeds to zero at the
+/// end. `frame` gives `tool0`'s outputs. `scripts/ddp_crocoddyl.py` writes
+/// the same numbers; both start from the inputs that hold the start
+/// against gravity.
+pub fn ur5_pose_reach<S>(system: &S, frame: FrameOutputs<S, 6, 6>) -> PoseProblem<'_, S, 6, 6, 6> {
+    let start = [0.0, -1.5, 1.0, -1.0, 0.0, 0.0];
+    PoseProblem {
+        regularisation: Problem {
+            start: State {
+                t: 0.0,
+                q: start,
+                v: [0.0; 6],
+            },
+            target: (start, [0.0; 6]),
+            horizon: 100,
+            step: 0.01,
+            state_weights: ([1e-2; 6], [0.1; 6]),
+            input_weights: [1e-3; 6],
+            terminal_weights: ([0.0; 6], [10.0; 6]),
+        },
+        system,
+        frame,
+        target: UR5_TOOL_TARGET,
+        running_weights: (100.0, 10.0),
+        terminal_weights: (1e4, 1e3),
+    }
+}
+
+/// The UR5's `tool0` placement at `(1, −1, 1.5, −1.5, 0.8, 0.5)`, as
+/// Pinocchio 4.0 computes it, to 17 digits (the same digits as
+/// `scripts/ddp_crocoddyl.py`'s).
+pub const UR5_TOOL_TARGET: Placement = Placement {
+    position: [0.23022976075720533, 0.6667019958705028, 0.2572689936541279],
+    rotation: [
+        [
+            -0.9261982387312231,
+            -0.01208504409715379,
+            -0.3768431693428319,
+        ],
+        [
+            -0.27730725263608436,
+            -0.6553517176574692,
+            0.7025772653586448,
+        ],
+        [-0.25545549554982644, 0.7552271697129115, 0.6036343362672622],
+    ],
+};
+
+impl<S, const NQ: usize, const NV: usize, const NU: usize> PoseProblem<'_, S, NQ, NV, NU> {
+    /// `½ w_p ‖p − p*‖² + ½ w_R ‖log₃(R*ᵀ R)‖²` at `x`.
+    fn pose_cost(&self, x: &State<NQ, NV>, (wp, wr): (f64, f64)) -> f64 {
+        let (p, r) = self.frame.errors(self.system, &x.q, &self.target);
+        let square = |e: [f64; 3]| e.iter().map(|a| a * a).sum::<f64>();
+        0.5 * (wp * square(p) + wr * square(r))
+    }
+
+    /// Adds `s` times the pose cost's gradient and Gauss–Newton Hessian at
+    /// `x` to `expansion`.
+    fn add_pose<const NX: usize>(
+        &self,
+        expansion: &mut Expansion<NX, NU>,
+        x: &State<NQ, NV>,
+        (wp, wr): (f64, f64),
         s: f64,
-    ) -> (SVector<f64, NX>, SVector<f64, NX>) {
-        let (dq, dv) = self.error(x);
-        let gradient = SVector::from_fn(|i, _| match i < NV {
-            true => s * wq[i] * dq[i],
-            false => s * wv[i - NV] * dv[i - NV],
-        });
-        let hessian = SVector::from_fn(|i, _| match i < NV {
-            true => s * wq[i],
-            false => s * wv[i - NV],
-        });
-        (gradient, hessian)
+    ) {
+        let e = self.frame.error(self.system, &x.q, &self.target);
+        let terms = [
+            (s * wp, e.translation, e.translation_jacobian),
+            (s * wr, e.rotation, e.rotation_jacobian),
+        ];
+        for (w, r, jacobian) in terms {
+            for i in 0..NV {
+                expansion.lx[i] += w * (0..3).map(|k| jacobian[k][i] * r[k]).sum::<f64>();
+                for j in 0..NV {
+                    expansion.lxx[(i, j)] +=
+                        w * (0..3).map(|k| jacobian[k][i] * jacobian[k][j]).sum::<f64>();
+                }
+            }
+        }
+    }
+}
+
+impl<S, const NQ: usize, const NV: usize, const NU: usize> Objective<NQ, NV, NU>
+    for PoseProblem<'_, S, NQ, NV, NU>
+{
+    fn problem(&self) -> &Problem<NQ, NV, NU> {
+        &self.regularisation
+    }
+
+    fn running(&self, x: &State<NQ, NV>, u: &[f64; NU]) -> f64 {
+        self.regularisation.running(x, u)
+            + self.regularisation.step * self.pose_cost(x, self.running_weights)
+    }
+
+    fn terminal(&self, x: &State<NQ, NV>) -> f64 {
+        self.regularisation.terminal(x) + self.pose_cost(x, self.terminal_weights)
+    }
+
+    fn running_derivatives<const NX: usize>(
+        &self,
+        x: &State<NQ, NV>,
+        u: &[f64; NU],
+    ) -> Expansion<NX, NU> {
+        let mut expansion = self.regularisation.running_derivatives(x, u);
+        self.add_pose(
+            &mut expansion,
+            x,
+            self.running_weights,
+            self.regularisation.step,
+        );
+        expansion
+    }
+
+    fn terminal_derivatives<const NX: usize>(&self, x: &State<NQ, NV>) -> Expansion<NX, NU> {
+        let mut expansion = self.regularisation.terminal_derivatives(x);
+        self.add_pose(&mut expansion, x, self.terminal_weights, 1.0);
+        expansion
     }
 }
 
@@ -213,45 +436,37 @@ struct Policy<const NX: usize, const NU: usize> {
     stop: f64,
 }
 
-/// The backward pass at the trajectory `states`, `inputs` with the step
-/// jacobians `derivatives`, or `None` when some `Q_uu + μ I` is not
+/// The dynamics' and costs' derivatives at one node: `(F_x, F_u)` and the
+/// running cost's expansion.
+type Node<const NX: usize, const NU: usize> = (
+    SMatrix<f64, NX, NX>,
+    SMatrix<f64, NX, NU>,
+    Expansion<NX, NU>,
+);
+
+/// The backward pass from the terminal cost's expansion `terminal` over
+/// the nodes `derivatives`, or `None` when some `Q_uu + μ I` is not
 /// positive definite.
-fn backward<const NQ: usize, const NV: usize, const NU: usize, const NX: usize>(
-    problem: &Problem<NQ, NV, NU>,
-    states: &[State<NQ, NV>],
-    inputs: &[[f64; NU]],
-    derivatives: &[(SMatrix<f64, NX, NX>, SMatrix<f64, NX, NU>)],
+fn backward<const NX: usize, const NU: usize>(
+    terminal: &Expansion<NX, NU>,
+    derivatives: &[Node<NX, NU>],
     mu: f64,
 ) -> Option<Policy<NX, NU>> {
-    let t = problem.horizon;
-    let (mut vx, hessian) =
-        problem.state_derivatives::<NX>(&states[t], &problem.terminal_weights, 1.0);
-    let mut vxx = SMatrix::<f64, NX, NX>::from_diagonal(&hessian);
+    let t = derivatives.len();
+    let (mut vx, mut vxx) = (terminal.lx, terminal.lxx);
     let mut policy = Policy {
         feedforward: vec![SVector::zeros(); t],
         gains: vec![SMatrix::zeros(); t],
         expected: (0.0, 0.0),
         stop: 0.0,
     };
-    for k in (0..t).rev() {
-        let (fx, fu) = &derivatives[k];
-        let (lx, lxx) =
-            problem.state_derivatives::<NX>(&states[k], &problem.state_weights, problem.step);
-        let u = SVector::<f64, NU>::from(inputs[k]);
-        let r = SVector::<f64, NU>::from(problem.input_weights) * problem.step;
-        let lu = r.component_mul(&u);
+    for (k, (fx, fu, l)) in derivatives.iter().enumerate().rev() {
         let vxx_fx = vxx * fx;
         let vxx_fu = vxx * fu;
-        let qx = lx + fx.transpose() * vx;
-        let qu = lu + fu.transpose() * vx;
-        let mut qxx = fx.transpose() * vxx_fx;
-        for i in 0..NX {
-            qxx[(i, i)] += lxx[i];
-        }
-        let mut quu = fu.transpose() * vxx_fu;
-        for i in 0..NU {
-            quu[(i, i)] += r[i];
-        }
+        let qx = l.lx + fx.transpose() * vx;
+        let qu = l.lu + fu.transpose() * vx;
+        let qxx = l.lxx + fx.transpose() * vxx_fx;
+        let quu = l.luu + fu.transpose() * vxx_fu;
         let qux = fu.transpose() * vxx_fx;
         let mut regularised = quu;
         for i in 0..NU {
@@ -278,16 +493,18 @@ fn backward<const NQ: usize, const NV: usize, const NU: usize, const NX: usize>(
 /// Solves `problem` for `system` with the step `step` and its jacobian
 /// `with_jacobian`, from the inputs `guess` (rolled out from the start).
 /// `NX` must be `2 NV`.
-pub fn solve<S, const NQ: usize, const NV: usize, const NU: usize, const NX: usize>(
+pub fn solve<S, O, const NQ: usize, const NV: usize, const NU: usize, const NX: usize>(
     system: &S,
-    problem: &Problem<NQ, NV, NU>,
+    objective: &O,
     (step, with_jacobian): (Step<S, NQ, NV, NU>, StepWithJacobian<S, NQ, NV, NU>),
     guess: Vec<[f64; NU]>,
     settings: &Settings,
 ) -> Result<Solve<NQ, NV, NU>, ControlError>
 where
     S: Differentiable<NQ, NV, NU>,
+    O: Objective<NQ, NV, NU>,
 {
+    let problem = objective.problem();
     assert_eq!(NX, 2 * NV, "the state has 2 NV entries");
     assert_eq!(guess.len(), problem.horizon, "one input per step");
     let rollout = |inputs: &[[f64; NU]]| -> Result<Vec<State<NQ, NV>>, ControlError> {
@@ -301,7 +518,7 @@ where
     };
     let mut inputs = guess;
     let mut states = rollout(&inputs)?;
-    let mut costs = vec![problem.cost(&states, &inputs)];
+    let mut costs = vec![objective.cost(&states, &inputs)];
     let (mut mu, floor, ceiling) = settings.regularisation;
     let mut stop = f64::INFINITY;
     let mut iterations = 0;
@@ -310,10 +527,12 @@ where
         derivatives.clear();
         for (x, u) in states.iter().zip(&inputs) {
             let (_, jacobian) = with_jacobian(system, x, u, problem.step)?;
-            derivatives.push(matrices::<NV, NU, NX>(&jacobian));
+            let (fx, fu) = matrices::<NV, NU, NX>(&jacobian);
+            derivatives.push((fx, fu, objective.running_derivatives::<NX>(x, u)));
         }
+        let terminal = objective.terminal_derivatives::<NX>(&states[problem.horizon]);
         let policy = loop {
-            match backward::<NQ, NV, NU, NX>(problem, &states, &inputs, &derivatives, mu) {
+            match backward(&terminal, &derivatives, mu) {
                 Some(policy) => break Some(policy),
                 None if mu < ceiling => mu *= 10.0,
                 None => break None,
@@ -342,7 +561,7 @@ where
                 trial_states.push(step(system, &x, &u, problem.step)?);
                 trial_inputs.push(u);
             }
-            let cost = problem.cost(&trial_states, &trial_inputs);
+            let cost = objective.cost(&trial_states, &trial_inputs);
             let expected = -(alpha * policy.expected.0 + alpha * alpha * policy.expected.1);
             if current - cost >= 0.1 * expected || alpha < 1e-3 && cost < current {
                 break Some((trial_states, trial_inputs, cost));

@@ -3,7 +3,8 @@
 //! work-precision harness that measures what accuracy
 //! each integrator buys per unit of time, linear-quadratic regulators
 //! from a system's linearisation, and differential dynamic programming over
-//! the exact step jacobians ([`ddp`]). The `dalembert` crate itself pulls
+//! the exact step jacobians ([`ddp`]), with costs on a frame's pose
+//! ([`pose`]). The `dalembert` crate itself pulls
 //! no plotting library; this one pulls no command-line one.
 //!
 //! A scene of a generated system needs nothing but the system: it carries
@@ -24,6 +25,7 @@
 mod chart;
 pub mod ddp;
 mod lqr;
+pub mod pose;
 mod scene;
 mod work_precision;
 
