@@ -1,8 +1,9 @@
 #!/bin/sh
 # The DDP problems of lab/examples/ddp.rs solved by dalembert and by
 # Crocoddyl (scripts/ddp_crocoddyl.py) back to back, one thread each, and
-# compared: relative difference of the final costs and the ratio of the
-# times per iteration (best of 5 solves each, CPU time of the thread).
+# compared: relative difference of the final costs (the script fails when
+# it is above 1e-6) and the ratio of the times per iteration (best of 5
+# solves each, CPU time of the thread).
 #
 #   scripts/ddp_compare.sh [CROCODDYL_PYTHON]
 #
@@ -24,6 +25,7 @@ def solves(path):
     return {r["problem"]: r for r in map(json.loads, open(path)) if "problem" in r}
 ours, theirs = solves(sys.argv[1]), solves(sys.argv[2])
 costed = {r["costed"]: r["cost"] for r in map(json.loads, open(sys.argv[2])) if "costed" in r}
+apart = []
 for name in ours:
     if name in costed:
         c = costed[name]
@@ -35,4 +37,11 @@ for name in ours:
           f"iterations {a['iterations']} vs {b['iterations']}; "
           f"time per iteration {a['seconds_per_iteration'] * 1e6:.1f} us vs "
           f"{b['seconds_per_iteration'] * 1e6:.1f} us: ratio {a['seconds_per_iteration'] / b['seconds_per_iteration']:.3f}")
+    if abs(a['cost'] - b['cost']) > 1e-6 * abs(b['cost']):
+        apart.append(name)
+for r in map(json.loads, open(sys.argv[1])):
+    if "pose_error" in r:
+        print(f"{r['pose_error']}: dalembert's tool ends {r['translation']:.1e} m and {r['rotation']:.1e} rad from the target")
+if apart:
+    sys.exit(f"the optimal costs differ by more than 1e-6 relative: {', '.join(apart)}")
 PY

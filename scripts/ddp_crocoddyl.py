@@ -1,7 +1,10 @@
 """The problems of `examples/ddp.rs` posed to Crocoddyl's SolverFDDP.
 
 A UR5 (tests/reference/urdf/ur5_robot.urdf, as Pinocchio reads it) reaching
-a joint-space pose, horizon 100 x 10 ms, and a cart-pole (the model of
+a joint-space pose, horizon 100 x 10 ms; the same UR5's tool flange `tool0`
+reaching a pose (ResidualModelFrameTranslation and ResidualModelFrameRotation
+under ActivationModelQuad, with state and control regularisation), 100 x
+10 ms, from the torques that hold the start against gravity; and a cart-pole (the model of
 generated/models/cart_pole.dal built as a Pinocchio model) swinging up,
 150 x 20 ms. Both: IntegratedActionModelEuler (semi-implicit Euler) over
 DifferentialActionModelFreeFwdDynamics, running cost
@@ -44,9 +47,22 @@ REPEATS = 5
 INPUTS = sys.argv[sys.argv.index("--inputs") + 1] if "--inputs" in sys.argv else None
 
 
-def quadratic(state, nu, xref, state_weights, input_weights):
-    """The cost 1/2 |x - x*|^2_Q (+ 1/2 |u|^2_R when input_weights)."""
+def quadratic(state, nu, xref, state_weights, input_weights, pose=None):
+    """The cost 1/2 |x - x*|^2_Q (+ 1/2 |u|^2_R when input_weights), plus
+    with `pose = (frame, (p*, R*), (w_p, w_R))` the frame's pose error
+    1/2 w_p |p - p*|^2 + 1/2 w_R |log3(R*^T R)|^2."""
     costs = crocoddyl.CostModelSum(state, nu)
+    if pose is not None:
+        frame, (position, rotation), (wp, wr) = pose
+        for name, residual, weight in (
+            ("translation", crocoddyl.ResidualModelFrameTranslation(state, frame, position, nu), wp),
+            ("rotation", crocoddyl.ResidualModelFrameRotation(state, frame, rotation, nu), wr),
+        ):
+            costs.addCost(
+                name,
+                crocoddyl.CostModelResidual(state, crocoddyl.ActivationModelQuad(3), residual),
+                weight,
+            )
     costs.addCost(
         "state",
         crocoddyl.CostModelResidual(
@@ -69,13 +85,16 @@ def quadratic(state, nu, xref, state_weights, input_weights):
     return costs
 
 
-def problem(state, actuation, start, target, horizon, dt, weights):
+def problem(state, actuation, start, target, horizon, dt, weights, pose=None):
+    """With `pose = (frame, (p*, R*), running (w_p, w_R), terminal (w_p, w_R))`
+    the frame's pose error costs too."""
     running_weights, input_weights, terminal_weights = weights
+    running_pose, terminal_pose = (None, None) if pose is None else (pose[:3], pose[:2] + pose[3:])
     running = crocoddyl.IntegratedActionModelEuler(
         crocoddyl.DifferentialActionModelFreeFwdDynamics(
             state,
             actuation,
-            quadratic(state, actuation.nu, target, running_weights, input_weights),
+            quadratic(state, actuation.nu, target, running_weights, input_weights, running_pose),
         ),
         dt,
     )
@@ -83,7 +102,7 @@ def problem(state, actuation, start, target, horizon, dt, weights):
         crocoddyl.DifferentialActionModelFreeFwdDynamics(
             state,
             actuation,
-            quadratic(state, actuation.nu, target, terminal_weights, None),
+            quadratic(state, actuation.nu, target, terminal_weights, None, terminal_pose),
         ),
         0.0,
     )
@@ -100,12 +119,13 @@ def cost_of(name, shooting, path):
     print(json.dumps({"costed": name, "inputs": path, "cost": shooting.calc(xs, us)}))
 
 
-def solve(name, shooting, nu):
+def solve(name, shooting, nu, guess=None):
+    """Solves from the inputs `guess` (zero when None) rolled out."""
     best, solver = float("inf"), None
     for _ in range(REPEATS):
         solver = crocoddyl.SolverFDDP(shooting)
         solver.th_stop = 1e-12
-        us = [np.zeros(nu)] * shooting.T
+        us = [np.zeros(nu) if guess is None else guess.copy() for _ in range(shooting.T)]
         xs = shooting.rollout(us)
         began = time.thread_time()
         solver.solve(xs, us, 500, True, 1e-9)
@@ -137,6 +157,38 @@ def ur5():
     target = np.array([1.0, -1.0, 1.5, -1.5, 0.8, 0.5] + [0.0] * 6)
     weights = ([1.0] * 6 + [0.1] * 6, [1e-3] * 6, [1e3] * 6 + [10.0] * 6)
     return solve("ur5", problem(state, actuation, start, target, 100, 0.01, weights), 6)
+
+
+# The UR5's tool flange `tool0` at (1, -1, 1.5, -1.5, 0.8, 0.5), as Pinocchio
+# 4.0 computes it, to 17 digits (lab/src/ddp.rs's UR5_TOOL_TARGET).
+TOOL_TARGET = (
+    np.array([0.23022976075720533, 0.6667019958705028, 0.2572689936541279]),
+    np.array(
+        [
+            [-0.9261982387312231, -0.01208504409715379, -0.3768431693428319],
+            [-0.27730725263608436, -0.6553517176574692, 0.7025772653586448],
+            [-0.25545549554982644, 0.7552271697129115, 0.6036343362672622],
+        ]
+    ),
+)
+
+
+def ur5_pose():
+    """The UR5's tool reaching TOOL_TARGET (lab/src/ddp.rs's ur5_pose_reach):
+    the state drawn to the start's posture at rest, the speeds to zero at the
+    end, the frame's translation and rotation errors weighted (100, 10) per
+    second and (1e4, 1e3) at the end; from the torques holding the start
+    against gravity."""
+    model = pin.buildModelFromUrdf(os.path.join(ROOT, "tests/reference/urdf/ur5_robot.urdf"))
+    state = crocoddyl.StateMultibody(model)
+    actuation = crocoddyl.ActuationModelFull(state)
+    q0 = np.array([0.0, -1.5, 1.0, -1.0, 0.0, 0.0])
+    start = np.concatenate([q0, np.zeros(6)])
+    weights = ([1e-2] * 6 + [0.1] * 6, [1e-3] * 6, [0.0] * 6 + [10.0] * 6)
+    pose = (model.getFrameId("tool0"), TOOL_TARGET, (100.0, 10.0), (1e4, 1e3))
+    hold = pin.rnea(model, model.createData(), q0, np.zeros(6), np.zeros(6))
+    shooting = problem(state, actuation, start, start, 100, 0.01, weights, pose)
+    return solve("ur5_pose", shooting, 6, hold)
 
 
 class CartActuation(crocoddyl.ActuationModelAbstract):
@@ -178,4 +230,5 @@ def cart_pole():
 
 if __name__ == "__main__":
     ur5()
+    ur5_pose()
     cart_pole()

@@ -7,7 +7,7 @@ use dalembert_lab::ddp::{Settings, cart_pole_swing_up, solve};
 
 /// Crocoddyl 3.2.1's optimal cost of the swing-up
 /// (`scripts/ddp_crocoddyl.py`, 28 Nov 2026: 172 iterations of
-/// `SolverFDDP`, `Σ ‖Q_u‖² = 8e-13` at the end).
+/// `SolverFDDP`, `Σ ‖Q_u‖² = 8e-13` at the end; `tests/data/ddp_crocoddyl.jsonl`).
 const CROCODDYL_COST: f64 = 1.13941415063911;
 
 #[test]
@@ -15,7 +15,7 @@ fn the_swing_up_reaches_crocoddyls_optimal_cost() {
     let cart_pole = Differentiated::new(&CART_POLE, CartPole::accelerations_jacobian);
     let problem = cart_pole_swing_up();
     let settings = Settings::default();
-    let solved = solve::<_, 2, 2, 1, 4>(
+    let solved = solve::<_, _, 2, 2, 1, 4>(
         &cart_pole,
         &problem,
         (euler_step, euler_step_jacobian),
