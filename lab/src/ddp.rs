@@ -11,9 +11,11 @@
 //! any other [`Objective`] will do. The configuration space must
 //! be a vector space (the cost's derivatives by `q` are then plain).
 //!
-//! The solver is DDP with the Gauss–Newton model of the dynamics (iLQR,
-//! exact for these costs): a backward pass of the Riccati recursion with
-//! `μ I` added to `Q_uu`, a forward pass of the feedback policy from
+//! The solver is DDP with the Gauss–Newton model of the dynamics (iLQR;
+//! the quadratic costs' Hessians are exact, the pose error's Gauss–Newton's
+//! as Crocoddyl's): a backward pass of the Riccati recursion with
+//! `μ I` added to `Q_uu` and the value function updated as Crocoddyl's
+//! `computeValueFunction` updates it, a forward pass of the feedback policy from
 //! `x₀` with a backtracking line search (`α = 1, ½, ¼, …`, accepted when
 //! the cost falls by at least a tenth of the expected improvement), `μ`
 //! divided by 10 after a full step and multiplied by 10 after a
@@ -478,11 +480,10 @@ fn backward<const NX: usize, const NU: usize>(
         policy.stop += qu.norm_squared();
         policy.expected.0 += feedforward.dot(&qu);
         policy.expected.1 += 0.5 * feedforward.dot(&(quu * feedforward));
-        vx = qx
-            + gain.transpose() * (quu * feedforward)
-            + gain.transpose() * qu
-            + qux.transpose() * feedforward;
-        vxx = qxx + gain.transpose() * quu * gain + gain.transpose() * qux + qux.transpose() * gain;
+        // Crocoddyl's value update: `Q_uu K = −Q_ux` and `Q_uu k = −Q_u`
+        // fold the full expansion's terms into one each.
+        vx = qx + gain.transpose() * qu;
+        vxx = qxx + qux.transpose() * gain;
         vxx = 0.5 * (vxx + vxx.transpose());
         policy.feedforward[k] = feedforward;
         policy.gains[k] = gain;
