@@ -1,10 +1,15 @@
 //! Differential dynamic programming over the exact step derivatives
 //! (`dalembert::control::euler_step_jacobian`): a UR5 reaching a joint-space
 //! pose (horizon 100 × 10 ms) and a cart-pole swinging up (150 × 20 ms),
-//! quadratic costs, semi-implicit Euler steps, solved by
-//! `dalembert_lab::ddp` from zero inputs. `scripts/ddp_crocoddyl.py` poses
-//! the same problems to Crocoddyl's `SolverFDDP`; `scripts/ddp_compare.sh`
-//! runs both and compares cost and time per iteration.
+//! quadratic costs, from zero inputs; the UR5's tool flange `tool0`
+//! reaching a pose (100 × 10 ms, `dalembert_lab::ddp::ur5_pose_reach`: the
+//! translation and `log₃` rotation errors of `dalembert_lab::pose` over the
+//! generated `position`, `rotation`, `jacobian` and `angular_jacobian` of
+//! the tool, `lab/models/ur5.rs`) from the torques that hold the start;
+//! semi-implicit Euler steps, solved by `dalembert_lab::ddp`.
+//! `scripts/ddp_crocoddyl.py` poses the same problems to Crocoddyl's
+//! `SolverFDDP`; `scripts/ddp_compare.sh` runs both and compares cost and
+//! time per iteration.
 //!
 //! ```text
 //! cargo run --release -p dalembert-lab --example ddp [-- --out DIR]
@@ -12,8 +17,10 @@
 //!
 //! Prints one JSON line per problem (final cost, iterations, seconds per
 //! iteration) and per timed call (the UR5's step jacobians and adjoints),
-//! and writes to `DIR` (default `target/charts`) the charts, both solves
-//! animated (`ddp_ur5.html`, `ddp_cart_pole.html`) and the optimal inputs
+//! and the tool's final pose error, and writes to `DIR` (default
+//! `target/charts`) the charts (`ddp_*.svg`: joints, the tool's position
+//! against its target, the cost per iteration), the solves animated
+//! (`ddp_ur5.html`, `ddp_ur5_pose.html`, `ddp_cart_pole.html`) and the optimal inputs
 //! (`ddp_*_inputs.json`, which `scripts/ddp_crocoddyl.py --inputs` costs in
 //! Crocoddyl's problems).
 
@@ -318,7 +325,8 @@ fn charts(
     Ok(())
 }
 
-/// The recording of a solve's states, with their energies.
+/// The recording of a solve's states, with their energies and the power
+/// of the inputs (each held over its step, the last one at the end).
 fn recording<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     solved: &Solve<NQ, NV, NU>,
@@ -327,8 +335,11 @@ where
     S: dalembert::MultibodySystem<NQ, NV, NU>,
 {
     let mut recording = dalembert_lab::Recording::new();
-    for s in &solved.states {
-        recording.push(s.t, &s.q, dalembert::energy(system, &s.q, &s.v));
+    let last = solved.inputs.last().expect("one step at least");
+    for (k, s) in solved.states.iter().enumerate() {
+        let u = solved.inputs.get(k).unwrap_or(last);
+        let power = dalembert_lab::input_power(system, s.t, &s.q, &s.v, u);
+        recording.push_driven(s.t, &s.q, dalembert::energy(system, &s.q, &s.v), power);
     }
     recording
 }
