@@ -194,47 +194,33 @@ fn norm(e: &[f64; 3]) -> f64 {
     e.iter().map(|a| a * a).sum::<f64>().sqrt()
 }
 
-/// The pose reach: the tool's position against the target's, and the
+/// The pose reach: the tool's translation and rotation errors, and the
 /// joints.
 fn pose_charts(out: &Path, pose: &Solve<6, 6, 6>) -> Result<(), Box<dyn std::error::Error>> {
     let ur5 = Ur5 {};
-    let tool: Vec<[f64; 3]> = pose
+    // The translation error's components, then the rotation error's.
+    let errors: Vec<(f64, [f64; 6])> = pose
         .states
         .iter()
-        .map(|s| ur5.position_tool0_origin(0.0, &s.q))
-        .collect();
-    let times: Vec<f64> = pose.states.iter().map(|s| s.t).collect();
-    let ends = [times[0], *times.last().expect("the end")];
-    let axes: Vec<Vec<(f64, f64)>> = (0..3)
-        .map(|i| times.iter().zip(&tool).map(|(t, p)| (*t, p[i])).collect())
-        .collect();
-    let targets: Vec<Vec<(f64, f64)>> = (0..3)
-        .map(|i| {
-            ends.iter()
-                .map(|t| (*t, UR5_TOOL_TARGET.position[i]))
-                .collect()
+        .map(|s| {
+            let (p, r) = ur5::tool().errors(&ur5, &s.q, &UR5_TOOL_TARGET);
+            (s.t, [p[0], p[1], p[2], r[0], r[1], r[2]])
         })
         .collect();
-    let names = [("x", "x*"), ("y", "y*"), ("z", "z*")];
-    let series: Vec<Series<'_>> = (0..3)
-        .flat_map(|i| {
-            [
-                Series {
-                    name: names[i].0,
-                    points: &axes[i],
-                },
-                Series {
-                    name: names[i].1,
-                    points: &targets[i],
-                },
-            ]
-        })
+    let components: Vec<Vec<(f64, f64)>> = (0..6)
+        .map(|i| errors.iter().map(|(t, e)| (*t, e[i])).collect())
+        .collect();
+    let names = ["x − x*", "y − y*", "z − z*", "log₃ x", "log₃ y", "log₃ z"];
+    let series: Vec<Series<'_>> = components
+        .iter()
+        .zip(names)
+        .map(|(points, name)| Series { name, points })
         .collect();
     line_chart(
         &out.join("ddp_ur5_pose_tool.svg"),
-        "UR5's tool reaching a pose: its position (the target's as flat lines x*, y*, z*)",
+        "UR5's tool reaching a pose: p − p* and log₃(R*ᵀ R) of tool0",
         "t (s)",
-        "tool0 position (m)",
+        "translation error (m), rotation error (rad)",
         &series,
     )?;
     joint_chart(
