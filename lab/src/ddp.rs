@@ -289,7 +289,7 @@ pub struct PoseProblem<'a, S, const NQ: usize, const NV: usize, const NU: usize>
 }
 
 /// The UR5's tool flange reaching a pose (the tool's placement at
-/// `(1, −1, 1.5, −1.5, 0.8, 0.5)`, 1.5 rad turned from the start's, 0.5 m
+/// `(1, −1, 1.5, −1.5, 0.8, 0.5)`, 1.5 rad turned from the start's, 0.69 m
 /// away) from `(0, −1.5, 1, −1, 0, 0)` at rest in 100 steps of 10 ms; the
 /// state drawn to the start's posture at rest, the speeds to zero at the
 /// end. `frame` gives `tool0`'s outputs. `scripts/ddp_crocoddyl.py` writes
