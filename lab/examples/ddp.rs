@@ -211,11 +211,7 @@ fn pose_charts(out: &Path, pose: &Solve<6, 6, 6>) -> Result<(), Box<dyn std::err
         .map(|i| errors.iter().map(|(t, e)| (*t, e[i])).collect())
         .collect();
     let names = ["x − x*", "y − y*", "z − z*", "log₃ x", "log₃ y", "log₃ z"];
-    let series: Vec<Series<'_>> = components
-        .iter()
-        .zip(names)
-        .map(|(points, name)| Series { name, points })
-        .collect();
+    let series = named(&components, &names);
     line_chart(
         &out.join("ddp_ur5_pose_tool.svg"),
         "UR5's tool reaching a pose: p − p* and log₃(R*ᵀ R) of tool0",
@@ -237,14 +233,18 @@ fn joint_chart(
     solved: &Solve<6, 6, 6>,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let joints: Vec<Vec<(f64, f64)>> = (0..6).map(|i| path_of(solved, |s| s.q[i])).collect();
-    let names = ["q1", "q2", "q3", "q4", "q5", "q6"];
-    let series: Vec<Series<'_>> = joints
+    let series = named(&joints, &["q1", "q2", "q3", "q4", "q5", "q6"]);
+    line_chart(path, title, "t (s)", "joint angle (rad)", &series)?;
+    Ok(())
+}
+
+/// The curves `points` as chart series named `names`.
+fn named<'a>(points: &'a [Vec<(f64, f64)>], names: &[&'a str]) -> Vec<Series<'a>> {
+    points
         .iter()
         .zip(names)
         .map(|(points, name)| Series { name, points })
-        .collect();
-    line_chart(path, title, "t (s)", "joint angle (rad)", &series)?;
-    Ok(())
+        .collect()
 }
 
 fn charts(
