@@ -330,6 +330,17 @@ impl<'a> Reader<'a> {
     /// A `<default>` class and the classes nested in it.
     fn default_class(&mut self, element: Element<'a>, parent: Option<String>) {
         let name = match (self.own(element, "class"), &parent) {
+            (Some(class), None) if class.value != "main" => {
+                self.problem(
+                    class.loc,
+                    format!(
+                        "a top-level `<default>` is the class `main`, which cannot be renamed \
+                         (found `class=\"{}\"`): expected no `class` (or `class=\"main\"`), and the named classes nested in it",
+                        class.value
+                    ),
+                );
+                return;
+            }
             (Some(class), _) => class.value.to_owned(),
             (None, None) => "main".to_owned(),
             (None, Some(_)) => {
@@ -377,15 +388,51 @@ impl<'a> Reader<'a> {
                 );
             }
         }
-        if self.classes.contains_key(&name) {
-            self.problem(
-                element.loc(),
-                format!("the default class `{name}` is defined twice"),
-            );
+        match self.classes.get_mut(&name) {
+            // Several top-level `<default>`s (one per included file, say)
+            // are one class `main`, merged attribute by attribute, the
+            // later winning, as MuJoCo reads them.
+            Some(_) if class.parent.is_none() => self.merge_into_main(&name, class),
+            Some(_) => {
+                self.problem(
+                    element.loc(),
+                    format!("the default class `{name}` is defined twice"),
+                );
+                self.classes.insert(name.clone(), class);
+            }
+            None => {
+                self.classes.insert(name.clone(), class);
+            }
         }
-        self.classes.insert(name.clone(), class);
         for child in nested {
             self.default_class(child, Some(name.clone()));
+        }
+    }
+
+    /// Merges a second top-level `<default>`'s attributes into the class
+    /// `main`. The classes made before keep `main`'s attributes as they
+    /// were: MuJoCo copies a parent class into a child when it makes it,
+    /// so they no longer look up to `main`.
+    fn merge_into_main(&mut self, main: &str, later: Class<'a>) {
+        let Some(earlier) = self.classes.get(main).map(|c| c.attributes.clone()) else {
+            return;
+        };
+        for class in self.classes.values_mut() {
+            if class.parent.as_deref() != Some(main) {
+                continue;
+            }
+            class.parent = None;
+            for (tag, attributes) in &earlier {
+                let own = class.attributes.entry(tag.clone()).or_default();
+                for (name, attribute) in attributes {
+                    own.entry(name.clone()).or_insert_with(|| attribute.clone());
+                }
+            }
+        }
+        if let Some(class) = self.classes.get_mut(main) {
+            for (tag, attributes) in later.attributes {
+                class.attributes.entry(tag).or_default().extend(attributes);
+            }
         }
     }
 

@@ -9,6 +9,7 @@ mod build_api;
 mod cli;
 mod fuzz;
 mod long_input;
+mod mjcf_defaults;
 mod mjcf_errors;
 mod mjcf_fuzz;
 mod mjcf_import;
