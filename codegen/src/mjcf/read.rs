@@ -43,6 +43,9 @@ pub(super) struct Body {
     pub joints: Vec<Joint>,
     /// Mass, centre and central inertia in the body frame.
     pub mass: MassProperties,
+    /// `gravcomp`: the fraction of the body's weight a passive force at
+    /// its centre of mass holds up.
+    pub gravcomp: f64,
 }
 
 /// The joint types of MJCF.
@@ -133,6 +136,7 @@ pub(super) fn read(files: &Files<'_>) -> Result<Model, Vec<Problem>> {
         problems: Vec::new(),
         notes: Vec::new(),
         bodies: Vec::new(),
+        actuator_gravcomp: Vec::new(),
     };
     if root.tag() != "mujoco" {
         reader.problem(
@@ -162,6 +166,7 @@ pub(super) fn read(files: &Files<'_>) -> Result<Model, Vec<Problem>> {
         quat: IDENTITY,
         joints: Vec::new(),
         mass: MassProperties::NONE,
+        gravcomp: 0.0,
     });
     for element in &top {
         match element.tag() {
@@ -171,6 +176,7 @@ pub(super) fn read(files: &Files<'_>) -> Result<Model, Vec<Problem>> {
         }
     }
     reader.total_mass();
+    reader.check_actuator_gravcomp();
     if !reader.problems.is_empty() {
         return Err(reader.problems);
     }
@@ -190,6 +196,8 @@ struct Reader<'a> {
     problems: Vec<Problem>,
     notes: Vec<String>,
     bodies: Vec<Body>,
+    /// The joints' `actuatorgravcomp="true"` attributes.
+    actuator_gravcomp: Vec<Loc>,
 }
 
 impl<'a> Reader<'a> {
@@ -433,6 +441,24 @@ impl<'a> Reader<'a> {
             for (tag, attributes) in later.attributes {
                 class.attributes.entry(tag).or_default().extend(attributes);
             }
+        }
+    }
+
+    /// A joint with `actuatorgravcomp="true"` takes the gravity
+    /// compensation of the bodies beyond it through its actuator, not as
+    /// a passive force: refused where some body has `gravcomp` (the
+    /// import leaves actuators out).
+    fn check_actuator_gravcomp(&mut self) {
+        if self.bodies.iter().all(|b| b.gravcomp == 0.0) {
+            return;
+        }
+        for loc in std::mem::take(&mut self.actuator_gravcomp) {
+            self.problem(
+                loc,
+                "`actuatorgravcomp=\"true\"` is not supported: it sends the bodies' gravity \
+                 compensation (`gravcomp`) through the actuators, which the import leaves out"
+                    .to_owned(),
+            );
         }
     }
 
@@ -706,6 +732,9 @@ impl<'a> Reader<'a> {
         let childclass = own_childclass.map(|c| c.value).or(inherited);
         let pos = self.numbers::<3>(element, None, "pos").unwrap_or([0.0; 3]);
         let quat = self.orientation(element, None).unwrap_or(IDENTITY);
+        let gravcomp = self
+            .numbers::<1>(element, None, "gravcomp")
+            .map_or(0.0, |[c]| c);
         let index = self.bodies.len();
         self.bodies.push(Body {
             name: self.own(element, "name").map(|n| n.value.to_owned()),
@@ -714,6 +743,7 @@ impl<'a> Reader<'a> {
             quat,
             joints: Vec::new(),
             mass: MassProperties::NONE,
+            gravcomp,
         });
         let children = self.files.children(element);
         let mut inertial = None;
@@ -866,6 +896,23 @@ impl<'a> Reader<'a> {
             damping: scalar(self, "damping"),
             armature: scalar(self, "armature"),
         };
+        if let Some(attribute) = self
+            .attribute(element, childclass, "springdamper")
+            .filter(|a| a.value.split_whitespace().any(|w| w.parse() != Ok(0.0)))
+        {
+            self.problem(
+                attribute.loc,
+                "`springdamper` is not supported: MuJoCo derives the stiffness and damping \
+                 from the joint's inertia at `qpos0`; expected `stiffness` and `damping`"
+                    .to_owned(),
+            );
+        }
+        if let Some(attribute) = self
+            .attribute(element, childclass, "actuatorgravcomp")
+            .filter(|a| a.value == "true")
+        {
+            self.actuator_gravcomp.push(attribute.loc);
+        }
         if matches!(kind, JointKind::Ball | JointKind::Free) && joint.stiffness != 0.0 {
             let loc = self
                 .attribute(element, childclass, "stiffness")

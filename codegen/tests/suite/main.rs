@@ -12,6 +12,7 @@ mod long_input;
 mod mjcf_defaults;
 mod mjcf_errors;
 mod mjcf_fuzz;
+mod mjcf_gravcomp;
 mod mjcf_import;
 mod model_size;
 mod outputs;
