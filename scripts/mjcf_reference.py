@@ -24,8 +24,8 @@ speeds that are not a free joint's, in speed order (the model's inputs).
 
 usage (in a Python environment with `mujoco` and `numpy`):
     python scripts/mjcf_reference.py [--out tests/reference/mjcf/mujoco.json]
-    python scripts/mjcf_reference.py --files features/gravcomp.xml \
-        --out tests/reference/mjcf/gravcomp.json
+    python scripts/mjcf_reference.py --files features/gravcomp.xml features/free_armature.xml \
+        --out tests/reference/mjcf/passive.json
 """
 import argparse
 import json

@@ -359,6 +359,19 @@ impl Writer<'_> {
         }
     }
 
+    /// MuJoCo puts a free joint's armature `a` on its linear speeds in
+    /// world axes, `½ a |v|²` of the origin's velocity `v` in `N`; on the
+    /// speeds in the body's axes that inertia also turns with the body:
+    /// `a (v̇ + ω × v)`, whose second term (no part of `M`) is written
+    /// as the force `−a ω × v` at the origin.
+    fn free_armature_turning(&self, b: usize, armature: f64) -> String {
+        let (frame, origin) = (&self.frames[b], &self.origins[b]);
+        format!(
+            "force {} * cross(angular_velocity({frame}), velocity({origin})) at {origin};",
+            number(-armature)
+        )
+    }
+
     /// The joints' springs (`½ k (q − springref)²`), dampers (`½ d v²`
     /// per speed) and armatures (on `M`'s diagonal), as MuJoCo's passive
     /// forces and `dof_armature`.
@@ -389,6 +402,13 @@ impl Writer<'_> {
                     for speed in &speeds {
                         armatures.push(format!("armature {} on {speed};", number(joint.armature)));
                     }
+                    if joint.kind == JointKind::Free {
+                        armatures.push(format!(
+                            "// `{name}`'s linear armature is in world axes, as MuJoCo's: it \
+                             turns with the body."
+                        ));
+                        armatures.push(self.free_armature_turning(b, joint.armature));
+                    }
                 }
             }
         }
@@ -409,7 +429,6 @@ impl Writer<'_> {
     }
 }
 
-/// The speeds of a joint named `name`, as the language writes them.
 /// The vector `v` in `N`'s axes, its zero components left out.
 fn in_n(v: [f64; 3]) -> String {
     let terms: Vec<String> = v
@@ -421,6 +440,7 @@ fn in_n(v: [f64; 3]) -> String {
     terms.join(" + ").replace("+ -", "- ")
 }
 
+/// The speeds of a joint named `name`, as the language writes them.
 fn speeds(kind: JointKind, name: &str) -> Vec<String> {
     let suffixes: &[&str] = match kind {
         JointKind::Hinge | JointKind::Slide => return vec![format!("dt({name})")],
