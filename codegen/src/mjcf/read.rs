@@ -242,20 +242,24 @@ impl<'a> Reader<'a> {
         }
     }
 
-    /// Tendons with stiffness or damping add passive forces: refused;
+    /// Tendons with stiffness or damping add passive forces, with
+    /// armature inertia (`M += Jᵀ a J`, off the diagonal too): refused;
     /// others only serve actuators and limits: noted.
     fn tendons(&mut self, element: Element<'a>) {
         for tendon in self.files.children(element) {
-            for name in ["stiffness", "damping"] {
+            for (name, adds) in [
+                ("stiffness", "a passive force"),
+                ("damping", "a passive force"),
+                ("armature", "inertia"),
+            ] {
                 let value = self.attribute(tendon, None, name);
                 if let Some(value) = value {
                     if value.value.trim().parse::<f64>().is_ok_and(|x| x != 0.0) {
                         self.problem(
                             value.loc,
                             format!(
-                                "a tendon with `{name}` is not imported: its passive force \
-                                 acts along the tendon's length, which the import does not \
-                                 model"
+                                "a tendon with `{name}` is not imported: it adds {adds} \
+                                 along the tendon's length, which the import does not model"
                             ),
                         );
                     }
@@ -773,6 +777,7 @@ impl<'a> Reader<'a> {
             }
         }
         self.check_joints(index);
+        self.check_planes(index, &geoms, childclass);
         self.bodies[index].mass = self.mass(inertial, &geoms, childclass);
         let mut leaf = true;
         for child in children {
@@ -806,6 +811,26 @@ impl<'a> Reader<'a> {
             index = self.bodies[index].parent;
         }
         false
+    }
+
+    /// MuJoCo allows plane geoms only in bodies that do not move.
+    fn check_planes(&mut self, index: usize, geoms: &[Element<'a>], childclass: Option<&str>) {
+        if !self.moves(index) {
+            return;
+        }
+        for geom in geoms {
+            if let Some(kind) = self
+                .attribute(*geom, childclass, "type")
+                .filter(|t| t.value == "plane")
+            {
+                self.problem(
+                    kind.loc,
+                    "a plane geom in a moving body (MuJoCo allows planes only in static \
+                     bodies); expected a box, or the plane in a body that does not move"
+                        .to_owned(),
+                );
+            }
+        }
     }
 
     /// MuJoCo's rules on a body's joints: a free joint alone, in a body

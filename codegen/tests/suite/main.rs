@@ -14,6 +14,7 @@ mod mjcf_errors;
 mod mjcf_fuzz;
 mod mjcf_import;
 mod mjcf_passive;
+mod mjcf_refusals;
 mod model_size;
 mod outputs;
 mod pinocchio;

@@ -13,11 +13,7 @@
 //!   world axes, which in the body's axes (ours) also turns with the body
 //!   (`a ω × v`); the import added only `M`'s diagonal, and `f` differed.
 //!
-//! The joint attributes the import cannot write are refused:
-//! `springdamper` (MuJoCo derives a stiffness and damping from the
-//! joint's inertia at `qpos0`) and `actuatorgravcomp` beside a `gravcomp`
-//! body (the compensation then goes through the actuators, which the
-//! import leaves out).
+//! What the import cannot write is refused (`mjcf_refusals.rs`).
 
 use crate::pinocchio::{QUANTITIES, worst_errors};
 
@@ -68,44 +64,4 @@ fn gravity_compensation_matches_mujoco() {
 fn a_free_joints_armature_matches_mujoco() {
     let model = matches_mujoco("free_armature", &[Route::Dalembert]);
     assert!(model.contains("armature 0.1 on f_vx;"), "{model}");
-}
-
-/// The error of importing `text`: its one line of message and where.
-fn refused(text: &str) -> String {
-    let error = Mjcf::new("model.xml", text)
-        .model()
-        .expect_err("the import fails");
-    let diagnostics = error.diagnostics();
-    assert_eq!(diagnostics.len(), 1, "{error}");
-    let d = &diagnostics[0];
-    format!("{}:{}", d.line().unwrap_or(0), d.message())
-}
-
-#[test]
-fn a_spring_damper_from_the_inertia_is_refused() {
-    let found = refused(
-        "<mujoco>\n  <worldbody>\n    <body>\n      <joint type=\"slide\" springdamper=\"0.5 0.8\"/>\n      \
-         <geom size=\".1\"/>\n    </body>\n  </worldbody>\n</mujoco>\n",
-    );
-    assert!(
-        found.starts_with("4:`springdamper` is not supported"),
-        "{found}"
-    );
-}
-
-#[test]
-fn compensation_through_the_actuators_is_refused() {
-    let body = "<body gravcomp=\"1\">\n      <joint actuatorgravcomp=\"true\"/>\n      \
-                <geom size=\".1\" pos=\"0 0 -.5\"/>\n    </body>";
-    let found = refused(&format!(
-        "<mujoco>\n  <worldbody>\n    {body}\n  </worldbody>\n</mujoco>\n"
-    ));
-    assert!(
-        found.starts_with("4:`actuatorgravcomp=\"true\"` is not supported"),
-        "{found}"
-    );
-    // Without a `gravcomp` body the attribute changes nothing: imported.
-    let plain = body.replace(" gravcomp=\"1\"", "");
-    let text = format!("<mujoco>\n  <worldbody>\n    {plain}\n  </worldbody>\n</mujoco>\n");
-    Mjcf::new("model.xml", &text).model().unwrap();
 }
