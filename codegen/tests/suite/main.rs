@@ -28,3 +28,4 @@ mod urdf_cli;
 mod urdf_errors;
 mod urdf_frames;
 mod urdf_fuzz;
+mod urdf_jacobians;
