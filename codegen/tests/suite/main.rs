@@ -21,6 +21,7 @@ mod pinocchio;
 mod report_equations;
 mod robots;
 mod robustness;
+mod rolling_axle;
 mod rolling_planes;
 mod rolling_rows;
 mod urdf;
