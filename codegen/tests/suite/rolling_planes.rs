@@ -7,6 +7,8 @@
 //! evaluated with numpy (`tests/reference/rolling_planes.json`,
 //! `scripts/rolling_planes_reference.py`).
 
+use crate::urdf_frames::numbers;
+
 use dalembert_codegen::testing::{Interpreter, Route, Values};
 use serde_json::Value;
 
@@ -29,13 +31,6 @@ fn disc(frame: &str, normal: &str) -> String {
             rolling contact {{ wheel: B, axle: B.y, center: G, radius: r, plane: {normal}, tire: rt, through: Q }};
         }}"
     )
-}
-
-fn numbers(value: &Value) -> Vec<f64> {
-    match value {
-        Value::Array(items) => items.iter().flat_map(numbers).collect(),
-        other => vec![other.as_f64().expect("a number")],
-    }
 }
 
 fn matches_closed_form(case: &str, frame: &str, normal: &str) {

@@ -8,27 +8,14 @@
 //! tool links on fixed joints (`tests/reference/robots/jacobians.json`,
 //! `scripts/urdf_jacobians_reference.py`).
 
+use crate::urdf_frames::{largest_difference, numbers};
+
 use dalembert_codegen::Urdf;
 use dalembert_codegen::testing::{Interpreter, Route, Values};
 use serde_json::Value;
 
 /// Agreement required, entry by entry (metres, metres per radian).
 const TOLERANCE: f64 = 1e-12;
-
-fn numbers(value: &Value) -> Vec<f64> {
-    match value {
-        Value::Array(items) => items.iter().flat_map(numbers).collect(),
-        other => vec![other.as_f64().expect("a number")],
-    }
-}
-
-fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
 
 #[test]
 fn link_jacobians_are_pinocchios_frame_jacobians() {
