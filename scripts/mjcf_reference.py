@@ -24,6 +24,8 @@ speeds that are not a free joint's, in speed order (the model's inputs).
 
 usage (in a Python environment with `mujoco` and `numpy`):
     python scripts/mjcf_reference.py [--out tests/reference/mjcf/mujoco.json]
+    python scripts/mjcf_reference.py --files features/gravcomp.xml features/free_armature.xml \
+        --out tests/reference/mjcf/passive.json
 """
 import argparse
 import json
@@ -140,12 +142,14 @@ def entry(file, rng):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=os.path.join(MODELS, "mujoco.json"))
+    parser.add_argument("--files", nargs="+", default=FILES,
+                        help="models under tests/reference/mjcf/ (default: the suite's list)")
     args = parser.parse_args()
     rng = np.random.default_rng(SEED)
     out = {
         "source": "MuJoCo %s, scripts/mjcf_reference.py (seed %d, %d states per model)"
                   % (mujoco.__version__, SEED, STATES),
-        "models": [entry(file, rng) for file in FILES],
+        "models": [entry(file, rng) for file in args.files],
     }
     with open(args.out, "w") as f:
         json.dump(out, f, indent=1)

@@ -43,6 +43,9 @@ pub(super) struct Body {
     pub joints: Vec<Joint>,
     /// Mass, centre and central inertia in the body frame.
     pub mass: MassProperties,
+    /// `gravcomp`: the fraction of the body's weight a passive force at
+    /// its centre of mass holds up.
+    pub gravcomp: f64,
 }
 
 /// The joint types of MJCF.
@@ -133,6 +136,7 @@ pub(super) fn read(files: &Files<'_>) -> Result<Model, Vec<Problem>> {
         problems: Vec::new(),
         notes: Vec::new(),
         bodies: Vec::new(),
+        actuator_gravcomp: Vec::new(),
     };
     if root.tag() != "mujoco" {
         reader.problem(
@@ -162,6 +166,7 @@ pub(super) fn read(files: &Files<'_>) -> Result<Model, Vec<Problem>> {
         quat: IDENTITY,
         joints: Vec::new(),
         mass: MassProperties::NONE,
+        gravcomp: 0.0,
     });
     for element in &top {
         match element.tag() {
@@ -171,6 +176,7 @@ pub(super) fn read(files: &Files<'_>) -> Result<Model, Vec<Problem>> {
         }
     }
     reader.total_mass();
+    reader.check_actuator_gravcomp();
     if !reader.problems.is_empty() {
         return Err(reader.problems);
     }
@@ -190,6 +196,8 @@ struct Reader<'a> {
     problems: Vec<Problem>,
     notes: Vec<String>,
     bodies: Vec<Body>,
+    /// The joints' `actuatorgravcomp="true"` attributes.
+    actuator_gravcomp: Vec<Loc>,
 }
 
 impl<'a> Reader<'a> {
@@ -234,20 +242,24 @@ impl<'a> Reader<'a> {
         }
     }
 
-    /// Tendons with stiffness or damping add passive forces: refused;
+    /// Tendons with stiffness or damping add passive forces, with
+    /// armature inertia (`M += Jᵀ a J`, off the diagonal too): refused;
     /// others only serve actuators and limits: noted.
     fn tendons(&mut self, element: Element<'a>) {
         for tendon in self.files.children(element) {
-            for name in ["stiffness", "damping"] {
+            for (name, adds) in [
+                ("stiffness", "a passive force"),
+                ("damping", "a passive force"),
+                ("armature", "inertia"),
+            ] {
                 let value = self.attribute(tendon, None, name);
                 if let Some(value) = value {
                     if value.value.trim().parse::<f64>().is_ok_and(|x| x != 0.0) {
                         self.problem(
                             value.loc,
                             format!(
-                                "a tendon with `{name}` is not imported: its passive force \
-                                 acts along the tendon's length, which the import does not \
-                                 model"
+                                "a tendon with `{name}` is not imported: it adds {adds} \
+                                 along the tendon's length, which the import does not model"
                             ),
                         );
                     }
@@ -330,6 +342,17 @@ impl<'a> Reader<'a> {
     /// A `<default>` class and the classes nested in it.
     fn default_class(&mut self, element: Element<'a>, parent: Option<String>) {
         let name = match (self.own(element, "class"), &parent) {
+            (Some(class), None) if class.value != "main" => {
+                self.problem(
+                    class.loc,
+                    format!(
+                        "a top-level `<default>` is the class `main`, which cannot be renamed \
+                         (found `class=\"{}\"`): expected no `class` (or `class=\"main\"`), and the named classes nested in it",
+                        class.value
+                    ),
+                );
+                return;
+            }
             (Some(class), _) => class.value.to_owned(),
             (None, None) => "main".to_owned(),
             (None, Some(_)) => {
@@ -377,15 +400,69 @@ impl<'a> Reader<'a> {
                 );
             }
         }
-        if self.classes.contains_key(&name) {
-            self.problem(
-                element.loc(),
-                format!("the default class `{name}` is defined twice"),
-            );
+        match self.classes.get_mut(&name) {
+            // Several top-level `<default>`s (one per included file, say)
+            // are one class `main`, merged attribute by attribute, the
+            // later winning, as MuJoCo reads them.
+            Some(_) if class.parent.is_none() => self.merge_into_main(&name, class),
+            Some(_) => {
+                self.problem(
+                    element.loc(),
+                    format!("the default class `{name}` is defined twice"),
+                );
+                self.classes.insert(name.clone(), class);
+            }
+            None => {
+                self.classes.insert(name.clone(), class);
+            }
         }
-        self.classes.insert(name.clone(), class);
         for child in nested {
             self.default_class(child, Some(name.clone()));
+        }
+    }
+
+    /// Merges a second top-level `<default>`'s attributes into the class
+    /// `main`. The classes made before keep `main`'s attributes as they
+    /// were: MuJoCo copies a parent class into a child when it makes it,
+    /// so they no longer look up to `main`.
+    fn merge_into_main(&mut self, main: &str, later: Class<'a>) {
+        let Some(earlier) = self.classes.get(main).map(|c| c.attributes.clone()) else {
+            return;
+        };
+        for class in self.classes.values_mut() {
+            if class.parent.as_deref() != Some(main) {
+                continue;
+            }
+            class.parent = None;
+            for (tag, attributes) in &earlier {
+                let own = class.attributes.entry(tag.clone()).or_default();
+                for (name, attribute) in attributes {
+                    own.entry(name.clone()).or_insert_with(|| attribute.clone());
+                }
+            }
+        }
+        if let Some(class) = self.classes.get_mut(main) {
+            for (tag, attributes) in later.attributes {
+                class.attributes.entry(tag).or_default().extend(attributes);
+            }
+        }
+    }
+
+    /// A joint with `actuatorgravcomp="true"` takes the gravity
+    /// compensation of the bodies beyond it through its actuator, not as
+    /// a passive force: refused where some body has `gravcomp` (the
+    /// import leaves actuators out).
+    fn check_actuator_gravcomp(&mut self) {
+        if self.bodies.iter().all(|b| b.gravcomp == 0.0) {
+            return;
+        }
+        for loc in std::mem::take(&mut self.actuator_gravcomp) {
+            self.problem(
+                loc,
+                "`actuatorgravcomp=\"true\"` is not supported: it sends the bodies' gravity \
+                 compensation (`gravcomp`) through the actuators, which the import leaves out"
+                    .to_owned(),
+            );
         }
     }
 
@@ -659,6 +736,9 @@ impl<'a> Reader<'a> {
         let childclass = own_childclass.map(|c| c.value).or(inherited);
         let pos = self.numbers::<3>(element, None, "pos").unwrap_or([0.0; 3]);
         let quat = self.orientation(element, None).unwrap_or(IDENTITY);
+        let gravcomp = self
+            .numbers::<1>(element, None, "gravcomp")
+            .map_or(0.0, |[c]| c);
         let index = self.bodies.len();
         self.bodies.push(Body {
             name: self.own(element, "name").map(|n| n.value.to_owned()),
@@ -667,6 +747,7 @@ impl<'a> Reader<'a> {
             quat,
             joints: Vec::new(),
             mass: MassProperties::NONE,
+            gravcomp,
         });
         let children = self.files.children(element);
         let mut inertial = None;
@@ -696,6 +777,7 @@ impl<'a> Reader<'a> {
             }
         }
         self.check_joints(index);
+        self.check_planes(index, &geoms, childclass);
         self.bodies[index].mass = self.mass(inertial, &geoms, childclass);
         let mut leaf = true;
         for child in children {
@@ -729,6 +811,26 @@ impl<'a> Reader<'a> {
             index = self.bodies[index].parent;
         }
         false
+    }
+
+    /// MuJoCo allows plane geoms only in bodies that do not move.
+    fn check_planes(&mut self, index: usize, geoms: &[Element<'a>], childclass: Option<&str>) {
+        if !self.moves(index) {
+            return;
+        }
+        for geom in geoms {
+            if let Some(kind) = self
+                .attribute(*geom, childclass, "type")
+                .filter(|t| t.value == "plane")
+            {
+                self.problem(
+                    kind.loc,
+                    "a plane geom in a moving body (MuJoCo allows planes only in static \
+                     bodies); expected a box, or the plane in a body that does not move"
+                        .to_owned(),
+                );
+            }
+        }
     }
 
     /// MuJoCo's rules on a body's joints: a free joint alone, in a body
@@ -819,6 +921,23 @@ impl<'a> Reader<'a> {
             damping: scalar(self, "damping"),
             armature: scalar(self, "armature"),
         };
+        if let Some(attribute) = self
+            .attribute(element, childclass, "springdamper")
+            .filter(|a| a.value.split_whitespace().any(|w| w.parse() != Ok(0.0)))
+        {
+            self.problem(
+                attribute.loc,
+                "`springdamper` is not supported: MuJoCo derives the stiffness and damping \
+                 from the joint's inertia at `qpos0`; expected `stiffness` and `damping`"
+                    .to_owned(),
+            );
+        }
+        if let Some(attribute) = self
+            .attribute(element, childclass, "actuatorgravcomp")
+            .filter(|a| a.value == "true")
+        {
+            self.actuator_gravcomp.push(attribute.loc);
+        }
         if matches!(kind, JointKind::Ball | JointKind::Free) && joint.stiffness != 0.0 {
             let loc = self
                 .attribute(element, childclass, "stiffness")

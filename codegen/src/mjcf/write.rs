@@ -186,19 +186,9 @@ impl Writer<'_> {
         for b in 1..model.bodies.len() {
             self.body(b);
         }
-        let [gx, gy, gz] = model.gravity;
-        if [gx, gy, gz] != [0.0; 3] {
+        if model.gravity != [0.0; 3] {
             self.comment("Gravity from `<option gravity>`.".to_owned());
-            let mut terms = Vec::new();
-            for (g, axis) in [(gx, "x"), (gy, "y"), (gz, "z")] {
-                if g != 0.0 {
-                    terms.push(format!("{} * N.{axis}", number(g)));
-                }
-            }
-            self.statement(format!(
-                "gravity {};",
-                terms.join(" + ").replace("+ -", "- ")
-            ));
+            self.statement(format!("gravity {};", in_n(model.gravity)));
         }
         self.passive();
         self.lines.push("}".to_owned());
@@ -357,6 +347,29 @@ impl Writer<'_> {
         let name = self.names.fresh(&format!("{}_mass", self.body_names[b]));
         let center = offset(origin, body.center, frame);
         self.statement(body_statement(&name, &body, &center, frame));
+        let gravcomp = self.model.bodies[b].gravcomp;
+        if gravcomp != 0.0 && self.model.gravity != [0.0; 3] {
+            // MuJoCo's `qfrc_gravcomp`, part of its passive force (not of
+            // its potential energy).
+            let lift = self.model.gravity.map(|g| -gravcomp * body.mass * g);
+            self.lines.push(format!(
+                "    // Gravity compensation, `gravcomp=\"{gravcomp}\"`: that part of the weight held up."
+            ));
+            self.statement(format!("force {} at {center};", in_n(lift)));
+        }
+    }
+
+    /// MuJoCo puts a free joint's armature `a` on its linear speeds in
+    /// world axes, `½ a |v|²` of the origin's velocity `v` in `N`; on the
+    /// speeds in the body's axes that inertia also turns with the body:
+    /// `a (v̇ + ω × v)`, whose second term (no part of `M`) is written
+    /// as the force `−a ω × v` at the origin.
+    fn free_armature_turning(&self, b: usize, armature: f64) -> String {
+        let (frame, origin) = (&self.frames[b], &self.origins[b]);
+        format!(
+            "force {} * cross(angular_velocity({frame}), velocity({origin})) at {origin};",
+            number(-armature)
+        )
     }
 
     /// The joints' springs (`½ k (q − springref)²`), dampers (`½ d v²`
@@ -389,6 +402,13 @@ impl Writer<'_> {
                     for speed in &speeds {
                         armatures.push(format!("armature {} on {speed};", number(joint.armature)));
                     }
+                    if joint.kind == JointKind::Free {
+                        armatures.push(format!(
+                            "// `{name}`'s linear armature is in world axes, as MuJoCo's: it \
+                             turns with the body."
+                        ));
+                        armatures.push(self.free_armature_turning(b, joint.armature));
+                    }
                 }
             }
         }
@@ -407,6 +427,17 @@ impl Writer<'_> {
             }
         }
     }
+}
+
+/// The vector `v` in `N`'s axes, its zero components left out.
+fn in_n(v: [f64; 3]) -> String {
+    let terms: Vec<String> = v
+        .iter()
+        .zip(["x", "y", "z"])
+        .filter(|(c, _)| **c != 0.0)
+        .map(|(c, axis)| format!("{} * N.{axis}", number(*c)))
+        .collect();
+    terms.join(" + ").replace("+ -", "- ")
 }
 
 /// The speeds of a joint named `name`, as the language writes them.

@@ -32,6 +32,10 @@ impl Resolver {
         );
         let frame = wheel.and_then(|e| self.frame(e));
         let axle_axis = axle.and_then(|e| self.frame_axis(e));
+        let axle_axis = match (frame, axle, axle_axis) {
+            (Some(frame), Some(e), Some(axis)) => self.fixed_axle(e, axis, frame),
+            _ => axle_axis,
+        };
         let center = center.and_then(|e| self.point_value(e, GEOMETRY));
         let radius = radius.and_then(|e| self.scalar(e, SHAPE));
         let plane_axis = plane.and_then(|e| self.fixed_normal(e));
@@ -126,6 +130,47 @@ impl Resolver {
     /// reference configuration).
     fn scalar_parts(&self) -> Vec<usize> {
         self.model.balls.iter().map(|b| b.quaternion[3]).collect()
+    }
+
+    /// The axle: a unit vector of a frame that does not turn in the
+    /// wheel's frame (the wheel turns about it).
+    fn fixed_axle(
+        &mut self,
+        e: &Expr,
+        axis: crate::model::closure::FrameAxis,
+        wheel: crate::model::FrameId,
+    ) -> Option<crate::model::closure::FrameAxis> {
+        if self.frame_turns_in(axis.0, wheel) && !self.axis_fixed_in(axis, wheel) {
+            self.errors.push(
+                e.range(),
+                "the wheel turns about its axle: expected a unit vector of the wheel's frame \
+                 or of a frame fixed in it, such as `F.y` of `wheel: F`",
+            );
+            return None;
+        }
+        Some(axis)
+    }
+
+    /// Whether the unit vector `axis` has constant components in
+    /// `frame`'s axes (`C.y` in `B = C.rotate_y(phi)`).
+    fn axis_fixed_in(
+        &mut self,
+        axis: crate::model::closure::FrameAxis,
+        frame: crate::model::FrameId,
+    ) -> bool {
+        let components = self.with_geometry(|geometry, pool| {
+            let a = Vector::unit(pool, axis.0, axis.1);
+            (0..3)
+                .map(|i| {
+                    let e = Vector::unit(pool, frame, i);
+                    geometry.dot(pool, &a, &e)
+                })
+                .collect::<Vec<_>>()
+        });
+        let moving = SymKinds::COORD | SymKinds::TIME;
+        components
+            .iter()
+            .all(|&c| !self.pool.kinds(c).intersects(moving))
     }
 
     /// The plane's normal: a unit vector of a frame that does not turn.

@@ -122,6 +122,30 @@ impl Resolver {
         })
     }
 
+    /// Whether `frame` turns relative to `other`: some placement on the
+    /// way from either to their common ancestor moves (a ball, or an
+    /// angle that is not constant).
+    pub(super) fn frame_turns_in(&self, frame: FrameId, other: FrameId) -> bool {
+        let path = |mut f: FrameId| {
+            let mut path = vec![f];
+            while let Some(placement) = &self.model.frames[f.0].placement {
+                f = placement.parent;
+                path.push(f);
+            }
+            path
+        };
+        let (up, other_up) = (path(frame), path(other));
+        let moves = |f: &FrameId| {
+            self.model.frames[f.0].placement.as_ref().is_some_and(|p| {
+                p.ball.is_some() || !SymKinds::PARAM.contains(self.pool.kinds(p.angle))
+            })
+        };
+        let below_common = |path: &[FrameId], other: &[FrameId]| {
+            path.iter().take_while(|f| !other.contains(f)).any(moves)
+        };
+        below_common(&up, &other_up) || below_common(&other_up, &up)
+    }
+
     /// Whether `frame` turns in `N`.
     pub(super) fn frame_turns(&self, mut frame: FrameId) -> bool {
         while let Some(placement) = &self.model.frames[frame.0].placement {
