@@ -120,6 +120,7 @@ impl Program {
             Node::Mul(factors) => self.scaled_product(&factors),
             Node::Pow(..) => self.product(&[e]),
             Node::Func(function, argument) => self.function(function, argument),
+            Node::Group(sum) => self.series(sum),
             Node::Number(_) => return Operand::Constant(e),
         };
         self.nodes.insert(e, slot);
@@ -260,7 +261,6 @@ impl Program {
     fn function(&mut self, function: Func, argument: ExprId) -> Slot {
         let x = self.series(argument);
         let (name, paired) = match function {
-            Func::Group => return x,
             Func::Sin | Func::Cos => ("sin_cos", true),
             Func::Tan => ("tan", true),
             Func::Sqrt => ("sqrt", false),
