@@ -12,13 +12,16 @@
 //! with their angle sums recombined, and how many orders are unrolled
 //! ([`Taylor`]); which form (DAG or compact) each result takes
 //! ([`optimize`]); and when a long body declares its temporaries ahead.
-//! [`plan`] drives the outputs and hands them their routes; the partials'
-//! route is asked for ([`partials`]) where the outputs have built both
-//! candidates. Emission then only writes code from the plan. Every
+//! [`plan`] drives the outputs and hands them their routes; the partials
+//! of `τ` are derived by both candidate routes and measured in
+//! [`partials`], which hands the outputs those of the route chosen (at the
+//! first output that returns them). Emission then only writes code from
+//! the plan. Every
 //! threshold is a constant below, with what was measured to set it.
 
 pub mod cost;
 pub mod optimize;
+pub mod partials;
 pub mod solve;
 
 use crate::emit::Target;
@@ -214,22 +217,6 @@ fn mass_matrix(equations: &Equations, pool: &Pool, target: Target) -> MassMatrix
     match looped {
         true => MassMatrix::Looped,
         false => MassMatrix::Unrolled,
-    }
-}
-
-/// The route of the partials of `τ` of a tree whose recursion's partials
-/// are `recursive` and whose symbolic ones are `symbolic` (every entry):
-/// the recursion where it costs fewer operations or where both cost more
-/// than [`TREE_LOOPED_ABOVE`], and then in loops (which cost no code).
-pub fn partials(pool: &Pool, recursive: &[ExprId], symbolic: &[ExprId]) -> Partials {
-    let cost = operations(pool, recursive);
-    let symbolic_cost = operations(pool, symbolic);
-    if cost.min(symbolic_cost) > TREE_LOOPED_ABOVE {
-        Partials::Looped
-    } else if cost < symbolic_cost {
-        Partials::Recursive
-    } else {
-        Partials::Symbolic
     }
 }
 
