@@ -185,12 +185,14 @@ impl Plan {
     /// Plans the program of `taylor_coefficients`, if it is emitted (for a
     /// crate with the runtime, a system with a factorisation or
     /// constraints). It runs last, after the docs are rendered: the
-    /// program is lowered in a copy of the pool as it is then, so that its
-    /// new nodes are numbered, and its code ordered, as before.
+    /// program's new nodes come after every node the other functions and
+    /// the docs read, whose ids (which order sums and products, and so the
+    /// code) are then as without it.
     pub fn plan_taylor(
         &mut self,
         model: &Model,
-        pool: &Pool,
+        pool: &mut Pool,
+        forms: &mut ReadableForms,
         equations: &Equations,
         target: Target,
     ) {
@@ -201,7 +203,7 @@ impl Plan {
             && self.functions.iter().any(|f| f.body == Body::Taylor)
         {
             self.taylor = Some(Taylor {
-                lowered: taylor_program(pool, model.nq(), equations),
+                lowered: taylor_program(pool, forms, model.nq(), equations),
                 unrolled_orders: UNROLLED_ORDERS,
             });
         }
@@ -222,10 +224,17 @@ fn mass_matrix(equations: &Equations, pool: &Pool, target: Target) -> MassMatrix
 
 /// The equations lowered to series as derived, or with their angle sums
 /// recombined (within [`RECOMBINATION_BUDGET`]) when that takes fewer
-/// recurrences (the work of each order).
-fn taylor_program(pool: &Pool, nq: usize, equations: &Equations) -> Lowered {
+/// recurrences (the work of each order). Both are lowered over `pool`
+/// (the recurrences are counted on the programs); the other's nodes are
+/// never emitted.
+fn taylor_program(
+    pool: &mut Pool,
+    forms: &mut ReadableForms,
+    nq: usize,
+    equations: &Equations,
+) -> Lowered {
     let derived = Lowered::derived(pool, nq, equations);
-    let recombined = Lowered::recombined(pool, nq, equations, RECOMBINATION_BUDGET);
+    let recombined = Lowered::recombined(pool, forms, nq, equations, RECOMBINATION_BUDGET);
     if recombined.recurrences() < derived.recurrences() {
         recombined
     } else {
