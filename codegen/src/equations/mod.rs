@@ -119,7 +119,8 @@ impl Equations {
     }
 
     /// The same equations without groups
-    /// ([`Node::Group`](crate::expr::Node::Group)), as plain canonical expressions (for rendering).
+    /// ([`Node::Group`](crate::expr::Node::Group)), as plain canonical
+    /// expressions (for rendering).
     pub fn ungrouped(&self, pool: &mut Pool) -> Equations {
         let mut plain = self.clone();
         let roots: Vec<ExprId> = plain.expressions_mut().map(|e| *e).collect();

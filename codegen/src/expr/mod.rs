@@ -37,12 +37,13 @@
 //!   merges its terms with the terms around it. The derivations group
 //!   only sums (a coefficient stays outside); a pass that rebuilds a group
 //!   over a new argument ([`Pool::regroup`]) keeps it odd (never over a
-//!   negative argument) and never over a number. Groups are not in the language: the recursive derivations
-//!   group each step's running totals so that the next step costs a few
-//!   operations, not as many as the terms so far (canonical sums would
-//!   flatten one step into the next); [`Pool::ungroup`] flattens them
-//!   again for the readable forms. Every pass has one arm for the kind
-//!   (the identity where it computes, parentheses where it renders);
+//!   negative argument) and never over a number. Groups are not in the
+//!   language: the recursive derivations group each step's running totals
+//!   so that the next step costs a few operations, not as many as the
+//!   terms so far (canonical sums would flatten one step into the next);
+//!   [`Pool::ungroup`] flattens them again for the readable forms. Every
+//!   pass has one arm for the kind (the identity where it computes, free
+//!   in the cost model, parentheses where it renders);
 //! * integer powers of products are distributed over the factors
 //!   (`(2xy)⁻¹ = ½x⁻¹y⁻¹`), never over sums;
 //! * odd and even functions take a non-negative argument:
