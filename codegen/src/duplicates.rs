@@ -13,7 +13,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use crate::expr::{Env, ExprId, Func, Node, Pool, Sym, SymKinds};
+use crate::expr::{Env, ExprId, Node, Pool, Sym, SymKinds};
 use crate::plan::cost::{node_operations, operations};
 
 /// Nodes of one DAG whose values agree, up to sign, at every state.
@@ -29,7 +29,7 @@ pub struct Group {
 
 /// The groups of equal-valued distinct nodes among those computing
 /// `roots`, valued at each of `states`, largest excess first. Constants,
-/// [`Func::Group`] wrappers and negations `−1·x` (the same computation as
+/// [`Node::Group`] wrappers and negations `−1·x` (the same computation as
 /// `x`) are skipped; nodes that vanish at every state form a group of
 /// their own (value 0).
 pub fn duplicates(pool: &Pool, roots: &[ExprId], states: &[&dyn Env]) -> Vec<Group> {
@@ -79,7 +79,7 @@ pub fn exclusive_operations(pool: &Pool, roots: &[ExprId], e: ExprId) -> usize {
     let mut stack: Vec<ExprId> = roots.iter().copied().filter(|&r| r != e).collect();
     while let Some(n) = stack.pop() {
         if others.insert(n) {
-            stack.extend(children(pool, n).iter().filter(|&&c| c != e));
+            stack.extend(pool.children(n).iter().filter(|&&c| c != e));
         }
     }
     pool.topo_order(&[e])
@@ -89,23 +89,13 @@ pub fn exclusive_operations(pool: &Pool, roots: &[ExprId], e: ExprId) -> usize {
         .sum()
 }
 
-/// A node's operands.
-fn children(pool: &Pool, e: ExprId) -> &[ExprId] {
-    match pool.node(e) {
-        Node::Add(terms) => terms,
-        Node::Mul(factors) => factors,
-        Node::Pow(base, _) | Node::Func(_, base) => std::slice::from_ref(base),
-        Node::Number(_) | Node::Sym(_) => &[],
-    }
-}
-
 /// A node whose value is trivially another's or a constant.
 fn is_trivial(pool: &Pool, e: ExprId) -> bool {
     if pool.kinds(e) == SymKinds::EMPTY {
         return true;
     }
     match pool.node(e) {
-        Node::Func(Func::Group, _) => true,
+        Node::Group(_) => true,
         Node::Mul(factors) => {
             factors.len() == 2 && pool.constant_value(factors[0]).is_some_and(|c| c == -1.0)
         }
@@ -143,7 +133,7 @@ fn rounded(at: &[f64]) -> Option<(Vec<i64>, f64)> {
 /// groups: the duplication comes from a smaller group.
 fn inherited(pool: &Pool, group: &[(ExprId, f64)], class: &HashMap<ExprId, usize>) -> bool {
     let shape = |e: ExprId| {
-        let operands = children(pool, e);
+        let operands = pool.children(e);
         if operands.is_empty() {
             return None;
         }
@@ -179,6 +169,7 @@ pub fn shallow(pool: &Pool, e: ExprId, depth: usize) -> String {
         Node::Mul(factors) => join(factors, "·"),
         Node::Pow(base, exponent) => format!("{}^{exponent}", join(&[*base], "")),
         Node::Func(f, arg) => format!("{}{}", f.name(), join(&[*arg], "")),
+        Node::Group(sum) => format!("group{}", join(&[*sum], "")),
     }
 }
 

@@ -263,7 +263,7 @@ fn derive_items(input: TokenStream, source: &str, target: Target) -> syn::Result
     }
     let (equation_lines, text) = render::equations_doc(&model, &equations, &mut pool, &mut forms);
     docs.extend(equation_lines);
-    plan.plan_taylor(&model, &pool, &equations, target);
+    plan.plan_taylor(&model, &mut pool, &mut forms, &equations, target);
     Ok(emit::emit(
         &model,
         &pool,

@@ -7,10 +7,13 @@
 //! a quotient, `x^n` products of squares (a reciprocal for `n < 0`), and
 //! each elementary function its recurrence (`sin` and `cos` of one
 //! argument as one pair). Every operation is a call of the runtime's
-//! recurrence (`dalembert::series`) of that name. The program is built in
-//! its own copy of the pool (its linear combinations' weights are new
-//! expressions); which of the two forms of the equations it lowers is the
-//! plan's choice (`plan::Taylor`).
+//! recurrence (`dalembert::series`) of that name. The program is built over
+//! the derivation's pool, after every other function is planned and the
+//! docs rendered: its linear combinations' weights (and the recombined
+//! form's readable forms) are interned there, after every node the other
+//! functions read. Which of the two forms of the equations it lowers is
+//! the plan's choice (`plan::Taylor`); the other's nodes stay in the pool,
+//! never emitted.
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool, Sym, SymKinds};
@@ -50,14 +53,11 @@ pub enum Operand {
     Series(Slot),
 }
 
-/// The program of one system: its series and how each is computed.
+/// The program of one system: its series and how each is computed, its
+/// constants expressions in the derivation's pool.
 pub struct Program {
-    /// The pool of the lowered expressions and of the program's constants.
-    pub pool: Pool,
     /// How each series is computed, by slot.
     pub operations: Vec<Operation>,
-    nodes: HashMap<ExprId, Slot>,
-    calls: HashMap<(&'static str, Vec<Slot>), Slot>,
     /// The series of the coordinates, the speeds, the accelerations and
     /// the multipliers: set by the recursion itself.
     pub coordinates: Vec<Slot>,
@@ -71,27 +71,40 @@ pub struct Program {
 /// The symbols whose series move within a step (inputs are held).
 const MOVING: SymKinds = SymKinds::COORD.union(SymKinds::SPEED).union(SymKinds::TIME);
 
-impl Program {
+/// A program being lowered over the derivation's pool.
+struct Lowering<'a> {
+    pool: &'a mut Pool,
+    program: Program,
+    /// The series of each node lowered so far.
+    nodes: HashMap<ExprId, Slot>,
+    /// The series of each call made so far.
+    calls: HashMap<(&'static str, Vec<Slot>), Slot>,
+}
+
+impl<'a> Lowering<'a> {
     /// The series of the state: `q`, `v` and `v̇`, then the multipliers
     /// `λ` of `sizes[2]` constraints.
-    fn new(pool: Pool, sizes: [usize; 3]) -> Self {
+    fn new(pool: &'a mut Pool, sizes: [usize; 3]) -> Self {
         let [nq, nv, nc] = sizes;
-        let mut program = Program {
-            pool,
+        let program = Program {
             operations: Vec::new(),
-            nodes: HashMap::new(),
-            calls: HashMap::new(),
             coordinates: Vec::new(),
             speeds: Vec::new(),
             accelerations: Vec::new(),
             multipliers: Vec::new(),
             time: None,
         };
-        program.coordinates = program.states(nq);
-        program.speeds = program.states(nv);
-        program.accelerations = program.states(nv);
-        program.multipliers = program.states(nc);
-        program
+        let mut lowering = Lowering {
+            pool,
+            program,
+            nodes: HashMap::new(),
+            calls: HashMap::new(),
+        };
+        lowering.program.coordinates = lowering.states(nq);
+        lowering.program.speeds = lowering.states(nv);
+        lowering.program.accelerations = lowering.states(nv);
+        lowering.program.multipliers = lowering.states(nc);
+        lowering
     }
 
     /// `n` series set by the recursion itself.
@@ -100,8 +113,8 @@ impl Program {
     }
 
     fn push(&mut self, operation: Operation) -> Slot {
-        self.operations.push(operation);
-        self.operations.len() - 1
+        self.program.operations.push(operation);
+        self.program.operations.len() - 1
     }
 
     /// The operand computing `e`, its series lowered (once) if it moves.
@@ -113,13 +126,14 @@ impl Program {
             return Operand::Series(slot);
         }
         let slot = match self.pool.node(e).clone() {
-            Node::Sym(Sym::Coord(i)) => self.coordinates[i as usize],
-            Node::Sym(Sym::Speed(i)) => self.speeds[i as usize],
+            Node::Sym(Sym::Coord(i)) => self.program.coordinates[i as usize],
+            Node::Sym(Sym::Speed(i)) => self.program.speeds[i as usize],
             Node::Sym(_) => self.time_slot(),
             Node::Add(terms) => self.sum(&terms),
             Node::Mul(factors) => self.scaled_product(&factors),
             Node::Pow(..) => self.product(&[e]),
             Node::Func(function, argument) => self.function(function, argument),
+            Node::Group(sum) => self.series(sum),
             Node::Number(_) => return Operand::Constant(e),
         };
         self.nodes.insert(e, slot);
@@ -153,11 +167,11 @@ impl Program {
     }
 
     fn time_slot(&mut self) -> Slot {
-        match self.time {
+        match self.program.time {
             Some(slot) => slot,
             None => {
                 let slot = self.push(Operation::State);
-                self.time = Some(slot);
+                self.program.time = Some(slot);
                 slot
             }
         }
@@ -260,7 +274,6 @@ impl Program {
     fn function(&mut self, function: Func, argument: ExprId) -> Slot {
         let x = self.series(argument);
         let (name, paired) = match function {
-            Func::Group => return x,
             Func::Sin | Func::Cos => ("sin_cos", true),
             Func::Tan => ("tan", true),
             Func::Sqrt => ("sqrt", false),
@@ -285,7 +298,7 @@ impl Program {
         if let Some(&slot) = self.calls.get(&(name, vec![x])) {
             return slot;
         }
-        let slot = self.operations.len();
+        let slot = self.program.operations.len();
         self.push(Operation::Call {
             name,
             partner: Some(slot + 1),
@@ -370,40 +383,45 @@ pub struct Lowered {
 }
 
 impl Lowered {
-    /// The equations as derived, lowered in a copy of `pool`, then the
-    /// rates of `nq` coordinates.
-    pub fn derived(pool: &Pool, nq: usize, equations: &Equations) -> Self {
-        Lowered::new(pool.clone(), nq, &Expressions::of(equations))
+    /// The equations as derived, lowered over `pool`, then the rates of
+    /// `nq` coordinates.
+    pub fn derived(pool: &mut Pool, nq: usize, equations: &Equations) -> Self {
+        Lowered::new(pool, nq, &Expressions::of(equations))
     }
 
     /// The equations with their angle sums recombined (their readable
-    /// forms, for the entries that expand to at most `budget` monomials),
-    /// lowered in a copy of `pool`, then the rates of `nq` coordinates.
-    pub fn recombined(pool: &Pool, nq: usize, equations: &Equations, budget: usize) -> Self {
-        let mut pool = pool.clone();
-        let mut forms = ReadableForms::default();
+    /// `forms`, for the entries that expand to at most `budget`
+    /// monomials), lowered over `pool`, then the rates of `nq`
+    /// coordinates.
+    pub fn recombined(
+        pool: &mut Pool,
+        forms: &mut ReadableForms,
+        nq: usize,
+        equations: &Equations,
+        budget: usize,
+    ) -> Self {
         let recombined =
-            Expressions::of(equations).map(|e| forms.get(&mut pool, e, budget).unwrap_or(e));
+            Expressions::of(equations).map(|e| forms.get(pool, e, budget).unwrap_or(e));
         Lowered::new(pool, nq, &recombined)
     }
 
-    /// The entries of `expressions` lowered in `pool`, then the rates of
+    /// The entries of `expressions` lowered over `pool`, then the rates of
     /// `nq` coordinates (a speed where it is its coordinate's rate).
-    fn new(pool: Pool, nq: usize, expressions: &Expressions) -> Self {
+    fn new(pool: &mut Pool, nq: usize, expressions: &Expressions) -> Self {
         let sizes = [nq, expressions.forcing.len(), expressions.bias.len()];
-        let mut program = Program::new(pool, sizes);
-        let matrix = program.lower_rows(&expressions.matrix);
-        let forcing = program.lower_all(&expressions.forcing);
-        let jacobian = program.lower_rows(&expressions.jacobian);
-        let bias = program.lower_all(&expressions.bias);
+        let mut lowering = Lowering::new(pool, sizes);
+        let matrix = lowering.lower_rows(&expressions.matrix);
+        let forcing = lowering.lower_all(&expressions.forcing);
+        let jacobian = lowering.lower_rows(&expressions.jacobian);
+        let bias = lowering.lower_all(&expressions.bias);
         let rates = (0..nq as u32)
             .map(|i| {
-                let rate = program.pool.rate(i);
-                program.series(rate)
+                let rate = lowering.pool.rate(i);
+                lowering.series(rate)
             })
             .collect();
         Lowered {
-            program,
+            program: lowering.program,
             matrix,
             forcing,
             jacobian,

@@ -255,7 +255,7 @@ fn count_uses(
             Some(sum) => std::iter::once(sum.inner)
                 .chain(sum.rest.iter().copied())
                 .collect(),
-            None => children(pool.node(e)),
+            None => pool.children(e).to_vec(),
         };
         for child in written {
             *uses.entry(child).or_default() += 1;
@@ -371,15 +371,6 @@ fn angle_pairs(
         .collect()
 }
 
-fn children(node: &Node) -> Vec<ExprId> {
-    match node {
-        Node::Number(_) | Node::Sym(_) => Vec::new(),
-        Node::Add(items) | Node::Mul(items) => items.to_vec(),
-        Node::Pow(base, _) => vec![*base],
-        Node::Func(_, arg) => vec![*arg],
-    }
-}
-
 struct Writer<'a> {
     pool: &'a Pool,
     names: &'a Names,
@@ -404,7 +395,7 @@ impl Writer<'_> {
         }
         match self.pool.node(e) {
             Node::Number(_) | Node::Sym(_) => false,
-            Node::Func(..) => true,
+            Node::Func(..) | Node::Group(_) => true,
             _ => uses.get(&e).copied().unwrap_or(0) > 1,
         }
     }
@@ -413,7 +404,7 @@ impl Writer<'_> {
     /// symbol or a bound temporary) takes that name: no `let x2 = x1;`.
     /// Returns whether it did. (A literal keeps its typed `let`.)
     fn alias_group(&mut self, e: ExprId) -> bool {
-        let Node::Func(Func::Group, arg) = self.pool.node(e) else {
+        let Node::Group(arg) = self.pool.node(e) else {
             return false;
         };
         let named = self
@@ -557,8 +548,8 @@ impl Writer<'_> {
                 None => self.sum(terms),
             },
             Node::Mul(_) | Node::Pow(..) => self.product(e),
-            Node::Func(Func::Group, arg) => self.expr(*arg),
             Node::Func(f, arg) => self.method_call(*arg, f.name()),
+            Node::Group(sum) => self.expr(*sum),
         }
     }
 
@@ -585,7 +576,6 @@ impl Writer<'_> {
         let tokens = self.expr(e);
         let simple = self.bound.contains_key(&e)
             || match self.pool.node(e) {
-                Node::Func(Func::Group, _) => false,
                 Node::Sym(_) | Node::Func(..) => true,
                 Node::Number(n) => !n.is_negative(),
                 _ => false,

@@ -142,7 +142,7 @@ pub fn emit_taylor(
     factorisation: Option<&Factorisation>,
 ) -> TokenStream {
     let constrained = !equations.constraint_jacobian.is_empty();
-    let prelude = Prelude::new(names, &taylor.lowered);
+    let prelude = Prelude::new(pool, names, &taylor.lowered);
     match factorisation {
         Some(factorisation) if !constrained => {
             let solver = elimination(model, pool, equations, factorisation, None);
@@ -156,6 +156,8 @@ pub fn emit_taylor(
 /// out, the declarations of its series and constants, and the work of an
 /// order before its solve.
 struct Prelude<'a> {
+    /// The derivation's pool, which holds the program's constants.
+    pool: &'a Pool,
     lowered: &'a Lowered,
     /// The name of each slot, then of each bound constant.
     slots: Vec<Ident>,
@@ -176,9 +178,9 @@ struct Prelude<'a> {
 
 impl<'a> Prelude<'a> {
     /// The program of `lowered` named after `names`, declared.
-    fn new(names: &Names, lowered: &'a Lowered) -> Self {
+    fn new(pool: &'a Pool, names: &Names, lowered: &'a Lowered) -> Self {
         let program = &lowered.program;
-        let (pool, operations) = (&program.pool, &program.operations);
+        let operations = &program.operations;
         // Every constant the program reads, bound once.
         let mut constants: Vec<ExprId> = Vec::new();
         let mut read = |e: ExprId| {
@@ -224,6 +226,7 @@ impl<'a> Prelude<'a> {
             constant_names,
             state,
             rates,
+            pool,
             lowered,
         };
         prelude.declare(names);
@@ -233,7 +236,7 @@ impl<'a> Prelude<'a> {
     /// The names and statements around the program's own.
     fn written(&self) -> Written<'_> {
         Written {
-            pool: &self.lowered.program.pool,
+            pool: self.pool,
             slots: &self.slots,
             constants: &self.constant_names,
         }
@@ -248,7 +251,7 @@ impl<'a> Prelude<'a> {
             .iter()
             .map(|e| &self.constant_names[e])
             .collect();
-        let body = straight_line(&program.pool, names, &self.constants);
+        let body = straight_line(self.pool, names, &self.constants);
         let (statements, outputs) = (&body.statements, &body.outputs);
         let n_constants = Literal::usize_unsuffixed(self.constants.len());
         let time_series = program.time.map(|slot| {

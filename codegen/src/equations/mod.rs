@@ -118,8 +118,9 @@ impl Equations {
             .any(|&e| pool.kinds(e).intersects(crate::expr::SymKinds::TIME))
     }
 
-    /// The same equations without [`Func::Group`](crate::expr::Func::Group)
-    /// nodes, as plain canonical expressions (for rendering).
+    /// The same equations without groups
+    /// ([`Node::Group`](crate::expr::Node::Group)), as plain canonical
+    /// expressions (for rendering).
     pub fn ungrouped(&self, pool: &mut Pool) -> Equations {
         let mut plain = self.clone();
         let roots: Vec<ExprId> = plain.expressions_mut().map(|e| *e).collect();

@@ -20,7 +20,7 @@
 //! columns that vanish are left out. Inputs are set to zero (`Y π` is the
 //! force the motion needs beyond the inputs); time must not appear.
 
-use crate::expr::{ExprId, Func, Node, Number, Pool, Sym, SymKinds};
+use crate::expr::{ExprId, Node, Number, Pool, Sym, SymKinds};
 use std::collections::{BTreeMap, HashMap};
 
 /// Most parameter products one expression may hold.
@@ -110,7 +110,7 @@ fn polynomial(
             product
         }
         Node::Pow(base, n) => power(pool, e, &known[&base], n)?,
-        Node::Func(Func::Group, arg) => known[&arg].clone(),
+        Node::Group(sum) => known[&sum].clone(),
         Node::Func(f, arg) => match as_constant(pool, &known[&arg]) {
             Some(argument) => {
                 let value = pool.func(f, argument);

@@ -122,9 +122,9 @@ impl Pool {
             // A group's derivative stays one operand: the derivative of a
             // recursion's grouped running totals is then a recursion of the
             // same shape, not its steps flattened into one another.
-            Node::Func(Func::Group, arg) => {
-                let darg = self.known_derivative(arg, d);
-                self.group(darg)
+            Node::Group(sum) => {
+                let dsum = self.known_derivative(sum, d);
+                self.group(dsum)
             }
             Node::Func(f, arg) => {
                 let darg = self.known_derivative(arg, d);
@@ -185,7 +185,6 @@ impl Pool {
             Func::Ln => self.powi(arg, -1),
             // x / |x|
             Func::Abs => self.div(arg, call),
-            Func::Group => self.one(),
         }
     }
 }

@@ -53,6 +53,11 @@ impl Printer<'_> {
                 self.expr(*arg, Prec::Sum);
                 self.out.push(')');
             }
+            Node::Group(sum) => {
+                self.out.push('(');
+                self.expr(*sum, Prec::Sum);
+                self.out.push(')');
+            }
             Node::Add(terms) => self.sum(terms),
             Node::Number(_) | Node::Mul(_) | Node::Pow(..) => {
                 let (c, factors) = self.monomial(e);
@@ -73,7 +78,7 @@ impl Printer<'_> {
             Node::Pow(..) => Prec::Power,
             Node::Number(Number::Rational(r)) if r.num >= 0 && r.is_integer() => Prec::Atom,
             Node::Number(n) if n.is_negative() || n.as_rational().is_some() => Prec::Product,
-            Node::Number(_) | Node::Sym(_) | Node::Func(..) => Prec::Atom,
+            Node::Number(_) | Node::Sym(_) | Node::Func(..) | Node::Group(_) => Prec::Atom,
         }
     }
 

@@ -17,7 +17,6 @@ impl Func {
             Func::Exp => x.exp(),
             Func::Ln => x.ln(),
             Func::Abs => x.abs(),
-            Func::Group => x,
         }
     }
 }
@@ -64,6 +63,7 @@ impl Pool {
             Node::Mul(factors) => factors.iter().map(of).product(),
             Node::Pow(base, exp) => of(base).powi(*exp),
             Node::Func(f, arg) => f.apply(of(arg)),
+            Node::Group(sum) => of(sum),
         }
     }
 }

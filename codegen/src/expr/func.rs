@@ -24,13 +24,12 @@ impl Func {
             Func::Exp => "exp",
             Func::Ln => "ln",
             Func::Abs => "abs",
-            Func::Group => "group",
         }
     }
 
     fn parity(self) -> Parity {
         match self {
-            Func::Sin | Func::Tan | Func::Group => Parity::Odd,
+            Func::Sin | Func::Tan => Parity::Odd,
             Func::Cos | Func::Abs => Parity::Even,
             Func::Sqrt | Func::Exp | Func::Ln => Parity::None,
         }
@@ -61,7 +60,6 @@ impl Func {
             Func::Ln if n.is_one() => Some(Number::ZERO),
             Func::Sqrt => n.as_rational()?.sqrt_exact().map(Number::Rational),
             Func::Abs => Some(n.abs()),
-            Func::Group => Some(n),
             _ => None,
         }
     }
@@ -121,24 +119,43 @@ impl Pool {
         Some(self.sum(negated))
     }
 
-    /// `a` as one operand ([`Func::Group`]) if it is a sum, or a numeric
-    /// multiple of one; anything else is already one.
+    /// `a` as one operand ([`Node::Group`]) if it is a sum, or a numeric
+    /// multiple of one (the coefficient outside); anything else is already
+    /// one.
     pub fn group(&mut self, a: ExprId) -> ExprId {
         let (c, rest) = self.split_coefficient(a);
         match self.node(rest) {
             Node::Add(_) => {
-                let group = self.intern(Node::Func(Func::Group, rest));
+                let group = self.intern(Node::Group(rest));
                 self.scale(c, group)
             }
             _ => a,
         }
     }
 
-    /// `roots` with every [`Func::Group`] replaced by its argument, so that
-    /// its sums flatten into their surroundings again.
+    /// `arg` as one operand where a pass rebuilds a group over a new
+    /// argument: a number is itself, and a group is odd like `sin` (the
+    /// group of an argument that counts as negative, see [`Pool::func`],
+    /// is the negated group of its negation), so that the readable forms'
+    /// expansion keeps `(a − b)` and `−(b − a)` one node.
+    pub fn regroup(&mut self, arg: ExprId) -> ExprId {
+        if self.as_number(arg).is_some() {
+            return arg;
+        }
+        match self.negated(arg) {
+            Some(positive) => {
+                let group = self.intern(Node::Group(positive));
+                self.neg(group)
+            }
+            None => self.intern(Node::Group(arg)),
+        }
+    }
+
+    /// `roots` with every [`Node::Group`] replaced by its sum, so that its
+    /// terms flatten into their surroundings again.
     pub fn ungroup(&mut self, roots: &[ExprId]) -> Vec<ExprId> {
         self.rebuild(roots, |pool, node, images| match pool.node(node) {
-            Node::Func(Func::Group, _) => images[0],
+            Node::Group(_) => images[0],
             _ => pool.with_children(node, images),
         })
     }

@@ -21,8 +21,29 @@
 //! * in a pool made [`Pool::with_positive_sums`] (every derivation's), a
 //!   sum whose first non-constant term has a negative coefficient is `−1`
 //!   times the sum with every sign turned, so that `a − b` and `b − a`
-//!   share one sum (expansion for the readable forms builds sums as they
-//!   come);
+//!   share one sum. The one exception to one node per value: the
+//!   readable forms (`crate::readable`, and the docs' collected sums) are
+//!   expanded inside [`Pool::with_flat_signs`], where sums are built as
+//!   they come, so that their recombination rules see every term with its
+//!   sign; a readable form may therefore hold `b − a` where the derived
+//!   expressions hold `−(a − b)`. The two families meet where a readable
+//!   form is chosen over its derived expression (the optimiser's compact
+//!   forms, the Taylor program's recombined form): the choice is by cost,
+//!   and one function may then compute a difference in both
+//!   orientations;
+//! * a group ([`Node::Group`], made by [`Pool::group`]) holds a sum as one
+//!   operand: its value is the sum's, its derivative the sum's derivative
+//!   grouped, and construction never spreads a coefficient into it nor
+//!   merges its terms with the terms around it. The derivations group
+//!   only sums (a coefficient stays outside); a pass that rebuilds a group
+//!   over a new argument ([`Pool::regroup`]) keeps it odd (never over a
+//!   negative argument) and never over a number. Groups are not in the
+//!   language: the recursive derivations group each step's running totals
+//!   so that the next step costs a few operations, not as many as the
+//!   terms so far (canonical sums would flatten one step into the next);
+//!   [`Pool::ungroup`] flattens them again for the readable forms. Every
+//!   pass has one arm for the kind (the identity where it computes, free
+//!   in the cost model, parentheses where it renders);
 //! * integer powers of products are distributed over the factors
 //!   (`(2xy)⁻¹ = ½x⁻¹y⁻¹`), never over sums;
 //! * odd and even functions take a non-negative argument:
@@ -107,12 +128,6 @@ pub enum Func {
     Ln,
     /// `abs`.
     Abs,
-    /// The identity, kept as a node: a sum held as one operand, which
-    /// construction never distributes a coefficient into nor merges with
-    /// other terms. Not in the language; the recursive assembly groups each
-    /// step's running totals with it so that the next step costs a few
-    /// operations, not as many as the terms so far.
-    Group,
 }
 
 /// An exact rational `num/den` with `den > 0` and `gcd(num, den) = 1`.
@@ -150,6 +165,9 @@ pub enum Node {
     Pow(ExprId, i32),
     /// An elementary function of one argument.
     Func(Func, ExprId),
+    /// A sum held as one operand (see the module docs): its value is the
+    /// sum's, and so is its derivative's, grouped again.
+    Group(ExprId),
 }
 
 /// Values of the symbols for numeric evaluation.

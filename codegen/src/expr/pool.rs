@@ -271,7 +271,7 @@ fn node_children(node: &Node) -> &[ExprId] {
     match node {
         Node::Add(terms) => terms,
         Node::Mul(factors) => factors,
-        Node::Pow(base, _) => std::slice::from_ref(base),
+        Node::Pow(base, _) | Node::Group(base) => std::slice::from_ref(base),
         Node::Func(_, arg) => std::slice::from_ref(arg),
         Node::Number(_) | Node::Sym(_) => &[],
     }

@@ -111,6 +111,7 @@ impl Pool {
             Node::Mul(_) => self.product(children.iter().copied()),
             Node::Pow(_, exp) => self.powi(children[0], exp),
             Node::Func(f, _) => self.func(f, children[0]),
+            Node::Group(_) => self.regroup(children[0]),
         }
     }
 }

@@ -8,61 +8,31 @@ use crate::equations::derivatives::{
     ResidualJacobian, TangentDirections, along, direction_names, plain_speeds, residual_jacobian,
     tangent_directions, tangent_kinematics,
 };
-use crate::equations::{
-    Equations, LinkState, TreeJacobian, depth_first, inverse_dynamics, tree_jacobian,
-};
+use crate::equations::{Equations, LinkState, TreeJacobian, depth_first, inverse_dynamics};
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Chart;
 use crate::model::Model;
-use crate::plan::{self, Partials};
+use crate::plan::Partials;
+use crate::plan::partials::TauPartials;
 use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
 
-/// The partials of the inverse dynamics `τ`, found once for every output
-/// that returns them.
-pub struct TauPartials {
-    /// `∂τ/∂δ`, `∂τ/∂v`, `∂τ/∂u`.
-    jacobian: ResidualJacobian,
-    /// How they were found, for the docs.
-    how: String,
-    /// With [`Partials::Looped`], the tree's recursion in its parts.
-    tree: Option<TreeJacobian>,
-}
-
-/// The partials of `τ` and how they were found, for the docs: of a tree
-/// of revolute and prismatic joints, by the route the plan chooses
-/// between the world-frame recursion and the symbolic partials of `τ`
-/// ([`plan::partials`]), and with [`Partials::Looped`] that recursion in
-/// its parts too (whose loops cost no code).
-pub fn partials(model: &Model, equations: &Equations, pool: &mut Pool) -> TauPartials {
-    let (tau, recursive) = inverse_dynamics(model, equations, pool);
-    let derived_by = match recursive {
-        true => "the Newton–Euler recursion over the kinematic tree",
-        false => "the mass matrix and the forcing",
-    };
-    let symbolic = format!("`τ`, derived by {derived_by},\ndifferentiated symbolically");
-    let directions = tangent_directions(model, pool);
-    let jacobian = residual_jacobian(pool, &tau, &directions, model.inputs.len());
-    if let Some(tree) = tree_jacobian(model, equations, pool) {
-        let combined = tree.combined(pool);
-        let route = plan::partials(pool, &entries(&combined), &entries(&jacobian));
-        if route != Partials::Symbolic {
-            let looped = route == Partials::Looped;
-            let recursion = "the inertia and gravity terms of `τ` differentiated by the\n\
-                             recursion of Carpentier and Mansard over the kinematic tree in\n\
-                             the axes of `N`, its loads, springs and dampers symbolically";
-            return TauPartials {
-                jacobian: combined,
-                how: recursion.to_string(),
-                tree: looped.then_some(tree),
-            };
+/// How the partials of `τ` were found, for the docs.
+fn how(partials: &TauPartials) -> &'static str {
+    match (partials.route, partials.recursive_tau) {
+        (Partials::Recursive | Partials::Looped, _) => {
+            "the inertia and gravity terms of `τ` differentiated by the\n\
+             recursion of Carpentier and Mansard over the kinematic tree in\n\
+             the axes of `N`, its loads, springs and dampers symbolically"
         }
-    }
-    TauPartials {
-        jacobian,
-        how: symbolic,
-        tree: None,
+        (Partials::Symbolic, true) => {
+            "`τ`, derived by the Newton–Euler recursion over the kinematic tree,\n\
+             differentiated symbolically"
+        }
+        (Partials::Symbolic, false) => {
+            "`τ`, derived by the mass matrix and the forcing,\ndifferentiated symbolically"
+        }
     }
 }
 
@@ -111,12 +81,6 @@ fn paired_results(
     (results, paired)
 }
 
-/// Every entry of `jacobian`.
-fn entries(jacobian: &ResidualJacobian) -> Vec<ExprId> {
-    let blocks = [&jacobian.coordinates, &jacobian.speeds, &jacobian.inputs];
-    blocks.into_iter().flatten().flatten().copied().collect()
-}
-
 /// A function named `name` computing `results` as `body` says.
 fn function(
     name: &str,
@@ -141,7 +105,7 @@ pub fn inverse_dynamics_jacobian(
     partials: &TauPartials,
 ) -> Function {
     let nv = model.nv();
-    let TauPartials { jacobian, how, .. } = partials;
+    let (jacobian, how) = (&partials.jacobian, how(partials));
     let tangent = tangent_note(model);
     function(
         "inverse_dynamics_jacobian",
@@ -164,11 +128,8 @@ pub fn inverse_dynamics_jacobian(
 /// `accelerations_jacobian(t, q, v, u) -> Result<(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u), _>`.
 pub fn accelerations_jacobian(model: &Model, partials: &TauPartials, pool: &Pool) -> Function {
     let (nv, nu) = (model.nv(), model.inputs.len());
-    let TauPartials {
-        jacobian,
-        how,
-        tree,
-    } = partials;
+    let TauPartials { jacobian, tree, .. } = partials;
+    let how = how(partials);
     let tangent = tangent_note(model);
     let (results, paired) = match tree {
         Some(tree) => {

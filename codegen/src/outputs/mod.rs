@@ -14,7 +14,8 @@ mod mass;
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool};
 use crate::model::{Model, OutputKind};
-use crate::plan::MassMatrix;
+use crate::plan::partials::TauPartials;
+use crate::plan::{self, MassMatrix};
 use proc_macro2::Ident;
 
 /// One generated inherent function.
@@ -367,10 +368,10 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Reque
 
 /// The partials of `τ` in `found`, found there first if they are not yet.
 fn tau_partials<'a>(
-    found: &'a mut Option<derivatives::TauPartials>,
+    found: &'a mut Option<TauPartials>,
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
-) -> &'a derivatives::TauPartials {
-    found.get_or_insert_with(|| derivatives::partials(model, equations, pool))
+) -> &'a TauPartials {
+    found.get_or_insert_with(|| plan::partials::tau_partials(model, equations, pool))
 }

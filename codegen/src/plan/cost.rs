@@ -31,7 +31,7 @@ pub fn operations(pool: &Pool, roots: &[ExprId]) -> usize {
 /// its children computed.
 pub fn node_operations(pool: &Pool, e: ExprId) -> usize {
     match pool.node(e) {
-        Node::Number(_) | Node::Sym(_) | Node::Func(Func::Group, _) => 0,
+        Node::Number(_) | Node::Sym(_) | Node::Group(_) => 0,
         Node::Add(terms) => terms.len() - 1,
         Node::Mul(factors) => factors.len() - 1,
         Node::Pow(_, _) => 1,
@@ -77,10 +77,9 @@ pub fn cost_past(pool: &Pool, e: ExprId, computed: &HashSet<ExprId>, limit: usiz
 /// The operations of one node, its children computed.
 fn node_cost(pool: &Pool, n: ExprId) -> usize {
     match pool.node(n) {
-        Node::Number(_) | Node::Sym(_) => 0,
+        Node::Number(_) | Node::Sym(_) | Node::Group(_) => 0,
         Node::Add(items) | Node::Mul(items) => items.len() - 1,
         Node::Pow(_, exp) => exp.unsigned_abs() as usize,
-        Node::Func(Func::Group, _) => 0,
         Node::Func(_, arg) if matches!(pool.node(*arg), Node::Sym(_)) => 0,
         Node::Func(..) => FUNCTION_COST,
     }

@@ -12,13 +12,16 @@
 //! with their angle sums recombined, and how many orders are unrolled
 //! ([`Taylor`]); which form (DAG or compact) each result takes
 //! ([`optimize`]); and when a long body declares its temporaries ahead.
-//! [`plan`] drives the outputs and hands them their routes; the partials'
-//! route is asked for ([`partials`]) where the outputs have built both
-//! candidates. Emission then only writes code from the plan. Every
+//! [`plan`] drives the outputs and hands them their routes; the partials
+//! of `τ` are derived by both candidate routes and measured in
+//! [`partials`], which hands the outputs those of the route chosen (at the
+//! first output that returns them). Emission then only writes code from
+//! the plan. Every
 //! threshold is a constant below, with what was measured to set it.
 
 pub mod cost;
 pub mod optimize;
+pub mod partials;
 pub mod solve;
 
 use crate::emit::Target;
@@ -182,12 +185,14 @@ impl Plan {
     /// Plans the program of `taylor_coefficients`, if it is emitted (for a
     /// crate with the runtime, a system with a factorisation or
     /// constraints). It runs last, after the docs are rendered: the
-    /// program is lowered in a copy of the pool as it is then, so that its
-    /// new nodes are numbered, and its code ordered, as before.
+    /// program's new nodes come after every node the other functions and
+    /// the docs read, whose ids (which order sums and products, and so the
+    /// code) are then as without it.
     pub fn plan_taylor(
         &mut self,
         model: &Model,
-        pool: &Pool,
+        pool: &mut Pool,
+        forms: &mut ReadableForms,
         equations: &Equations,
         target: Target,
     ) {
@@ -198,7 +203,7 @@ impl Plan {
             && self.functions.iter().any(|f| f.body == Body::Taylor)
         {
             self.taylor = Some(Taylor {
-                lowered: taylor_program(pool, model.nq(), equations),
+                lowered: taylor_program(pool, forms, model.nq(), equations),
                 unrolled_orders: UNROLLED_ORDERS,
             });
         }
@@ -217,28 +222,19 @@ fn mass_matrix(equations: &Equations, pool: &Pool, target: Target) -> MassMatrix
     }
 }
 
-/// The route of the partials of `τ` of a tree whose recursion's partials
-/// are `recursive` and whose symbolic ones are `symbolic` (every entry):
-/// the recursion where it costs fewer operations or where both cost more
-/// than [`TREE_LOOPED_ABOVE`], and then in loops (which cost no code).
-pub fn partials(pool: &Pool, recursive: &[ExprId], symbolic: &[ExprId]) -> Partials {
-    let cost = operations(pool, recursive);
-    let symbolic_cost = operations(pool, symbolic);
-    if cost.min(symbolic_cost) > TREE_LOOPED_ABOVE {
-        Partials::Looped
-    } else if cost < symbolic_cost {
-        Partials::Recursive
-    } else {
-        Partials::Symbolic
-    }
-}
-
 /// The equations lowered to series as derived, or with their angle sums
 /// recombined (within [`RECOMBINATION_BUDGET`]) when that takes fewer
-/// recurrences (the work of each order).
-fn taylor_program(pool: &Pool, nq: usize, equations: &Equations) -> Lowered {
+/// recurrences (the work of each order). Both are lowered over `pool`
+/// (the recurrences are counted on the programs); the other's nodes are
+/// never emitted.
+fn taylor_program(
+    pool: &mut Pool,
+    forms: &mut ReadableForms,
+    nq: usize,
+    equations: &Equations,
+) -> Lowered {
     let derived = Lowered::derived(pool, nq, equations);
-    let recombined = Lowered::recombined(pool, nq, equations, RECOMBINATION_BUDGET);
+    let recombined = Lowered::recombined(pool, forms, nq, equations, RECOMBINATION_BUDGET);
     if recombined.recurrences() < derived.recurrences() {
         recombined
     } else {

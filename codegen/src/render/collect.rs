@@ -4,9 +4,9 @@
 //! `2 I₃ …`, `−2 I_1c …`, `−2 m ℓ² …`, with the parameters and the number
 //! common to all of them outside the parentheses (`(m_B − m_A) g y`).
 //!
-//! The collected sum is a [`Func::Group`](crate::expr::Func::Group) of the
-//! parameter parts, which the printers parenthesise; it is for the docs
-//! only (the equations and the generated code never see it).
+//! The collected sum is a group ([`Node::Group`](crate::expr::Node::Group))
+//! of the parameter parts, which the printers parenthesise; it is for the
+//! docs only (the equations and the generated code never see it).
 
 use crate::expr::{ExprId, Node, Number, Pool, Sym};
 use crate::readable::factors;

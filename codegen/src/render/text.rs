@@ -408,6 +408,8 @@ struct Notation {
     /// its word subscript (`_φ`, `_{\phi}`) and digits if any.
     name: fn(&mut String, &Name, usize),
     call: fn(Func) -> Call,
+    /// What encloses a group (a collected sum).
+    parentheses: (&'static str, &'static str),
     /// Between two factors when one is a name of several letters, which a
     /// plain space would read as a product of letters (`m ma`).
     word_times: &'static str,
@@ -435,6 +437,7 @@ const UNICODE: Notation = Notation {
     fraction: unicode_fraction,
     name: unicode_name,
     call: unicode_call,
+    parentheses: ("(", ")"),
     word_times: "·",
     leibniz: true,
 };
@@ -448,6 +451,7 @@ const LATEX: Notation = Notation {
     fraction: latex_fraction,
     name: latex_name,
     call: latex_call,
+    parentheses: ("\\left(", "\\right)"),
     word_times: " ",
     leibniz: false,
 };
@@ -518,7 +522,6 @@ fn unicode_call(f: Func) -> Call {
     match f {
         Func::Sqrt => Call::Operator("√", ""),
         Func::Abs => Call::Enclosed("|", "|"),
-        Func::Group => Call::Enclosed("(", ")"),
         _ => Call::Operator(f.name(), " "),
     }
 }
@@ -588,7 +591,6 @@ fn latex_call(f: Func) -> Call {
     match f {
         Func::Sqrt => Call::Enclosed("\\sqrt{", "}"),
         Func::Abs => Call::Enclosed("\\left|", "\\right|"),
-        Func::Group => Call::Enclosed("\\left(", "\\right)"),
         Func::Sin => Call::Operator("\\sin", " "),
         Func::Cos => Call::Operator("\\cos", " "),
         Func::Tan => Call::Operator("\\tan", " "),
@@ -739,8 +741,8 @@ enum FactorClass {
 fn factor_order(pool: &Pool, base: ExprId, exp: i32) -> (FactorClass, bool, Option<Sym>, ExprId) {
     let Node::Sym(s) = *pool.node(base) else {
         // A collected sum of parameters leads the parameters.
-        let parameters = matches!(pool.node(base), Node::Func(Func::Group, _))
-            && SymKinds::PARAM.contains(pool.kinds(base));
+        let parameters =
+            matches!(pool.node(base), Node::Group(_)) && SymKinds::PARAM.contains(pool.kinds(base));
         let class = match parameters {
             true => FactorClass::Param,
             false => FactorClass::Composite,
@@ -896,6 +898,7 @@ impl<'a> Walker<'a> {
                 self.power(exp);
             }
             Node::Func(f, arg) => self.call(f, arg, exp, flipped),
+            Node::Group(sum) => self.enclosed(self.notation.parentheses, sum, exp, false),
             _ => {
                 self.parenthesised(base, false);
                 self.power(exp);
@@ -926,12 +929,7 @@ impl<'a> Walker<'a> {
     /// Writes `f(arg)^exp`: `sin θ`, `sin²(θ₂ − θ₁)`, `(ln x)²`, `|x|⁻¹`.
     fn call(&mut self, f: Func, arg: ExprId, exp: i32, flipped: bool) {
         match (self.notation.call)(f) {
-            Call::Enclosed(open, close) => {
-                self.out.push_str(open);
-                self.expr_signed(arg, flipped);
-                self.out.push_str(close);
-                self.power(exp);
-            }
+            Call::Enclosed(open, close) => self.enclosed((open, close), arg, exp, flipped),
             Call::Operator(name, gap)
                 if exp > 0 && matches!(f, Func::Sin | Func::Cos | Func::Tan) =>
             {
@@ -952,6 +950,14 @@ impl<'a> Walker<'a> {
                 self.power(exp);
             }
         }
+    }
+
+    /// Writes `open arg close^exp`, the argument negated if `flipped`.
+    fn enclosed(&mut self, (open, close): (&str, &str), arg: ExprId, exp: i32, flipped: bool) {
+        self.out.push_str(open);
+        self.expr_signed(arg, flipped);
+        self.out.push_str(close);
+        self.power(exp);
     }
 
     /// Writes the operand of an operator: `θ₁` after a gap if it is a
