@@ -67,7 +67,7 @@ dalembert::dalembert! {
         body wrist_3_link_body { mass: 0.1879, center: wrist_3_link_origin, frame: wrist_3_link, inertia: [0.0171364731454, 0.0171364731454, 0.033822] };
         torque tau_wrist_3_joint * wrist_2_link.y on wrist_3_link reacting wrist_2_link;
         gravity -9.81 * N.z;
-        outputs accelerations_jacobian, inverse_dynamics_jacobian;
+        outputs accelerations_jacobian, inverse_dynamics_adjoint;
     }
 }
 
