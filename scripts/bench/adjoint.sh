@@ -51,6 +51,24 @@ echo
 measured "criterion medians of thread CPU time, 1000 states"
 cat <<'MD'
 
+The operations of the generated functions (`dalembert check MODEL --stats`,
+the chain asking for `outputs inverse_dynamics, inverse_dynamics_adjoint;`):
+
+| n | `inverse_dynamics` | `inverse_dynamics_adjoint` | sweep / `τ` | sweep per link |
+|---|---|---|---|---|
+MD
+model="$(mktemp --suffix .dal)"
+for n in 6 12 30 60; do
+    cargo run -q -p dalembert-codegen --bin dalembert -- chain spatial "$n" 2>/dev/null \
+        | sed 's/^}$/    outputs inverse_dynamics, inverse_dynamics_adjoint;\n}/' > "$model"
+    cargo run -q -p dalembert-codegen --bin dalembert -- check "$model" --stats 2>/dev/null \
+        | awk -v n="$n" '$2 == "inverse_dynamics" { tau = $1 } $2 == "inverse_dynamics_adjoint" { sweep = $1 }
+            END { printf "| %d | %d | %d | %.2f | %.0f |\n", n, tau, sweep, sweep / tau, sweep / n }'
+done
+rm -f "$model"
+cat <<'MD'
+
     cargo bench -p dalembert-generated --bench adjoint --features large -- --warm-up-time 1 --measurement-time 3
-    bash scripts/bench/adjoint.sh
+    dalembert chain spatial N > chain.dal   # plus `outputs inverse_dynamics, inverse_dynamics_adjoint;`
+    dalembert check chain.dal --stats
 MD

@@ -10,7 +10,7 @@
 //! system with constraints (seed example 3).
 
 use super::step_derivatives::{
-    H, STATES, STEP, Step, StepWithJacobian, TOLERANCE, assert_column, random_state,
+    H, STATES, STEP, Step, StepWithJacobian, assert_column, random_state,
 };
 use dalembert::State;
 use dalembert::control::{
