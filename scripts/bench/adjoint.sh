@@ -3,6 +3,9 @@
 # reverse sweep, against forming accelerations_jacobian and its product,
 # on the spatial chains of 6, 12, 30 and 60 links (generated/benches/adjoint.rs).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
+# Absolute: criterion writes under it from the bench's own directory.
+CARGO_TARGET_DIR="$(realpath -m "$CARGO_TARGET_DIR")"
+export CARGO_TARGET_DIR
 
 quietly cargo bench -p dalembert-generated --bench adjoint --features large -- --warm-up-time 1 --measurement-time 3
 
