@@ -34,26 +34,47 @@ const WITH_DERIVATIVES: [&str; 13] = [
 ];
 
 /// The statement the copies add.
-const DERIVATIVES: &str = "outputs accelerations_jacobian, linearize, inverse_dynamics_jacobian;";
+const DERIVATIVES: &str = "outputs accelerations_jacobian, linearize, inverse_dynamics_jacobian, inverse_dynamics_adjoint;";
 
-/// Writes and generates the copies of [`WITH_DERIVATIVES`].
+/// The statement the copies of the spatial chains of 30 and 60 links add
+/// (the adjoint's bench, with the `large` feature).
+const ADJOINT: &str = "outputs accelerations_jacobian, inverse_dynamics_adjoint;";
+
+/// Writes and generates the copies of [`WITH_DERIVATIVES`] (and with the
+/// `large` feature those of the spatial chains of 30 and 60 links).
 fn with_derivatives(out: &std::path::Path) {
     let dir = out.join("derivatives");
     std::fs::create_dir_all(&dir).expect("OUT_DIR is writable");
     let mut builder = dalembert_codegen::Builder::new();
     builder.out_dir(&dir).emit_rerun_if_changed(false);
-    for name in WITH_DERIVATIVES {
-        let source = match name.strip_suffix(".urdf") {
-            Some(robot) => {
-                dalembert_codegen::Urdf::read(format!("../tests/reference/urdf/{robot}.urdf"))
-                    .and_then(|urdf| urdf.model())
-                    .unwrap_or_else(|e| panic!("\n{e}\n"))
-            }
-            None => std::fs::read_to_string(format!("models/{name}.dal")).expect("a model"),
-        };
+    let mut copies: Vec<(String, String, &str)> = WITH_DERIVATIVES
+        .iter()
+        .map(|name| {
+            let source = match name.strip_suffix(".urdf") {
+                Some(robot) => {
+                    dalembert_codegen::Urdf::read(format!("../tests/reference/urdf/{robot}.urdf"))
+                        .and_then(|urdf| urdf.model())
+                        .unwrap_or_else(|e| panic!("\n{e}\n"))
+                }
+                None => std::fs::read_to_string(format!("models/{name}.dal")).expect("a model"),
+            };
+            (
+                name.trim_end_matches(".urdf").to_string(),
+                source,
+                DERIVATIVES,
+            )
+        })
+        .collect();
+    if std::env::var_os("CARGO_FEATURE_LARGE").is_some() {
+        for n in [30, 60] {
+            let name = format!("spatial_chain_{n}");
+            copies.push((name, chain(Family::Spatial, n), ADJOINT));
+        }
+    }
+    for (name, source, statement) in copies {
         let end = source.rfind('}').expect("a system ends with `}`");
-        let copy = format!("{}    {DERIVATIVES}\n{}", &source[..end], &source[end..]);
-        let path = dir.join(format!("{}.dal", name.trim_end_matches(".urdf")));
+        let copy = format!("{}    {statement}\n{}", &source[..end], &source[end..]);
+        let path = dir.join(format!("{name}.dal"));
         if std::fs::read_to_string(&path).ok().as_deref() != Some(copy.as_str()) {
             std::fs::write(&path, copy).expect("OUT_DIR is writable");
         }

@@ -18,6 +18,7 @@ pub fn after_derivation(model: &Model, pool: &Pool, equations: &Equations) -> sy
     let mut errors = Errors::default();
     check_inertia(model, pool, equations, &mut errors);
     check_regressor(model, pool, equations, &mut errors);
+    check_adjoint(model, &mut errors);
     errors.finish(())
 }
 
@@ -73,4 +74,31 @@ fn check_regressor(model: &Model, pool: &Pool, equations: &Equations, errors: &m
             format!("this model has no regressor: {why}; remove `regressor` from `outputs`"),
         );
     }
+}
+
+/// `inverse_dynamics_adjoint` is the reverse sweep of the unconstrained
+/// `M v̇ − f`: with constraints the accelerations solve the saddle-point
+/// system `M v̇ = f + Aᵀ λ`, `A v̇ = b`, whose adjoint (a solve with that
+/// system, then the sweep of the residuals `M v̇ − f − Aᵀ λ` and `A v̇ − b`
+/// weighted by both halves of its solution) is not generated.
+fn check_adjoint(model: &Model, errors: &mut Errors) {
+    let Some(output) = model
+        .outputs
+        .iter()
+        .find(|o| o.kind == OutputKind::InverseDynamicsAdjoint)
+    else {
+        return;
+    };
+    if model.constraints.is_empty() {
+        return;
+    }
+    errors.push(
+        output.function.span(),
+        "`inverse_dynamics_adjoint` is the vector–jacobian product of the unconstrained \
+         inverse dynamics `M v̇ − f`, and this system has constraints (`M v̇ = f + Aᵀ λ`, \
+         `A v̇ = b`), whose adjoint is not generated: ask for `accelerations_jacobian`, whose \
+         step jacobians (`dalembert::control::euler_step_jacobian`, `rk4_step_jacobian`) hold \
+         with constraints, and remove `inverse_dynamics_adjoint` from `outputs`"
+            .to_string(),
+    );
 }

@@ -1,10 +1,11 @@
 //! The UR5 of `tests/reference/urdf/ur5_robot.urdf`, shared by the DDP
 //! example and its test: the model as
 //! `dalembert urdf tests/reference/urdf/ur5_robot.urdf --name Ur5 --outputs
-//! "accelerations_jacobian, inverse_dynamics_jacobian, position(tool0_origin),
+//! "accelerations_jacobian, inverse_dynamics_adjoint, position(tool0_origin),
 //! rotation(tool0), jacobian(tool0_origin), angular_jacobian(tool0)"` prints
 //! it (its comment lines left out), with the tool flange `tool0`'s pose
-//! outputs and the derivatives of its accelerations and inverse dynamics.
+//! outputs, the derivatives of its accelerations and the adjoint of its
+//! inverse dynamics.
 
 use dalembert_lab::pose::FrameOutputs;
 
@@ -45,7 +46,7 @@ dalembert::dalembert! {
         frame tool0 = wrist_3_link.rotate_x(-1.57079632679);
         point tool0_origin = wrist_3_link_origin + 0.0823 * wrist_3_link.y;
         gravity -9.81 * N.z;
-        outputs accelerations_jacobian, inverse_dynamics_jacobian, position(tool0_origin), rotation(tool0), jacobian(tool0_origin), angular_jacobian(tool0);
+        outputs accelerations_jacobian, inverse_dynamics_adjoint, position(tool0_origin), rotation(tool0), jacobian(tool0_origin), angular_jacobian(tool0);
     }
 }
 

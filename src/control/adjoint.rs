@@ -1,44 +1,47 @@
 //! Vector–jacobian products: `λᵀ ∂v̇/∂(q, v, u)` without forming the
-//! jacobian, and the step counterpart `λ⁺ᵀ ∂x⁺/∂(x, u)` of semi-implicit
-//! Euler, for gradient methods and long horizons.
+//! jacobian, and the step counterparts `λ⁺ᵀ ∂x⁺/∂(x, u)` of semi-implicit
+//! Euler and RK4, for gradient methods and long horizons.
 //!
-//! Differentiating `τ(q, v, v̇(q, v, u)) = 0`, with `τ = M v̇ − f` the
+//! Differentiating `τ(q, v, v̇(q, v, u), u) = 0`, with `τ = M v̇ − f` the
 //! inverse dynamics, gives `∂v̇/∂x = −M⁻¹ ∂τ/∂x`, so
-//! `λᵀ ∂v̇/∂x = −μᵀ ∂τ/∂x` with `μ = M⁻¹ λ`: one solve with `M` where the
-//! jacobian takes one per column. This first route reads `∂τ/∂q`, `∂τ/∂v`
-//! from the generated `inverse_dynamics_jacobian` (the model asks for it)
-//! and forms `μᵀ ∂τ/∂x` as a product, `O(n²)` where a reverse sweep of
-//! the Newton–Euler recursion would be `O(n)` (that sweep is not generated
-//! today). By the inputs, `λᵀ ∂v̇/∂u = μᵀ ∂f/∂u` with the columns of `∂f/∂u`
-//! taken as `f(u + eⱼ) − f(u)`: exact where the inputs enter the forcing
-//! affinely (forces and torques proportional to them, every imported
-//! robot's `tau`), not otherwise.
+//! `λᵀ ∂v̇/∂x = −μᵀ ∂τ/∂x` with `μ = M⁻¹ λ` (`M` is symmetric): one solve
+//! with `M` (the runtime's Cholesky factorisation) where the jacobian takes
+//! one per column, then the generated `inverse_dynamics_adjoint` (the model
+//! asks for it), the gradient of `μᵀ τ` by one reverse sweep over `τ`:
+//! `O(n)` on a tree, whose `τ` is the Newton–Euler recursion, where
+//! `∂τ/∂x` has `2n²` entries. It is exact by the inputs too (`∂τ/∂u`
+//! is differentiated like the rest, however the inputs enter).
 //!
-//! `inverse_dynamics_jacobian` is that of the unconstrained equations: these
-//! products are for systems without constraints.
+//! `inverse_dynamics_adjoint` is that of the unconstrained equations, and
+//! the code generator refuses it for a model with constraints: these
+//! products are for systems without constraints (the step jacobians of
+//! [`step`](super::step) hold with constraints).
 
 use super::step::{NODES, WEIGHTS};
 use super::{ConfigurationSpace, ControlError, Differentiable};
 use crate::dynamics::factor_mass_matrix;
 use crate::{DynamicsError, State};
 
-/// A system whose model also asks for `inverse_dynamics_jacobian`
-/// (DESIGN §7), through [`differentiable!`](crate::differentiable) with
-/// `; inverse`.
+/// `(μᵀ ∂τ/∂q, μᵀ ∂τ/∂v, μᵀ ∂τ/∂u)`, `∂τ/∂q` in the tangent space.
+pub type InverseDynamicsAdjoint<const NV: usize, const NU: usize> =
+    ([f64; NV], [f64; NV], [f64; NU]);
+
+/// A system whose model also asks for `inverse_dynamics_adjoint`, through
+/// [`differentiable!`](crate::differentiable) with `; inverse`.
 pub trait InverseDifferentiable<const NQ: usize, const NV: usize, const NU: usize>:
     Differentiable<NQ, NV, NU>
 {
-    /// `(∂τ/∂q, ∂τ/∂v, ∂τ/∂v̇ = M)` of `τ = M v̇ − f` at `(t, q, v, v̇, u)`,
-    /// `∂τ/∂q` in the tangent space.
-    #[allow(clippy::type_complexity)]
-    fn inverse_dynamics_jacobian(
+    /// `(μᵀ ∂τ/∂q, μᵀ ∂τ/∂v, μᵀ ∂τ/∂u)` of `τ = M v̇ − f` at
+    /// `(t, q, v, v̇, u)` and weights `mu`, `∂τ/∂q` in the tangent space.
+    fn inverse_dynamics_adjoint(
         &self,
         t: f64,
         q: &[f64; NQ],
         v: &[f64; NV],
         vdot: &[f64; NV],
         u: &[f64; NU],
-    ) -> ([[f64; NV]; NV], [[f64; NV]; NV], [[f64; NV]; NV]);
+        mu: &[f64; NV],
+    ) -> InverseDynamicsAdjoint<NV, NU>;
 }
 
 /// `λᵀ ∂v̇/∂q` (in the tangent space), `λᵀ ∂v̇/∂v`, `λᵀ ∂v̇/∂u`.
@@ -64,7 +67,8 @@ fn solve<const NV: usize>(
     Ok(std::array::from_fn(|i| x[i]))
 }
 
-/// `λᵀ ∂v̇/∂(q, v, u)` at `(t, q, v, u)` whose accelerations are `vdot`.
+/// `λᵀ ∂v̇/∂(q, v, u)` at `(t, q, v, u)` whose accelerations are `vdot`:
+/// `−μᵀ ∂τ/∂(q, v, u)` at `μ = M⁻¹ λ`.
 fn adjoint_at<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     (t, q, v, u): (f64, &[f64; NQ], &[f64; NV], &[f64; NU]),
@@ -74,33 +78,12 @@ fn adjoint_at<S, const NQ: usize, const NV: usize, const NU: usize>(
 where
     S: InverseDifferentiable<NQ, NV, NU>,
 {
-    let (tau_q, tau_v, mass) = system.inverse_dynamics_jacobian(t, q, v, vdot, u);
-    let mu = solve(&mass, lambda, &S::SPEEDS)?;
-    let weighted = |rows: &[[f64; NV]; NV]| -> [f64; NV] {
-        let mut g = [0.0; NV];
-        for (m, row) in mu.iter().zip(rows) {
-            for (x, y) in g.iter_mut().zip(row) {
-                *x -= m * y;
-            }
-        }
-        g
-    };
-    let by_u = match NU {
-        0 => [0.0; NU],
-        _ => {
-            let f = system.forcing(t, q, v, u);
-            std::array::from_fn(|j| {
-                let mut moved = *u;
-                moved[j] += 1.0;
-                let g = system.forcing(t, q, v, &moved);
-                (0..NV).map(|i| mu[i] * (g[i] - f[i])).sum()
-            })
-        }
-    };
+    let mu = solve(&system.mass_matrix_at(t, q), lambda, &S::SPEEDS)?;
+    let (by_q, by_v, by_u) = system.inverse_dynamics_adjoint(t, q, v, vdot, u, &mu);
     Ok(AccelerationsAdjoint {
-        by_q: weighted(&tau_q),
-        by_v: weighted(&tau_v),
-        by_u,
+        by_q: by_q.map(|x| -x),
+        by_v: by_v.map(|x| -x),
+        by_u: by_u.map(|x| -x),
     })
 }
 

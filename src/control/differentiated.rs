@@ -3,15 +3,16 @@
 //! [`differentiable!`](crate::differentiable) cannot implement this crate's
 //! traits for it).
 
+use super::adjoint::InverseDynamicsAdjoint;
 use super::{AccelerationsJacobian, Differentiable, InverseDifferentiable};
 use crate::{DynamicsError, MultibodySystem};
 
 /// `system` with its `accelerations_jacobian` (and, for the adjoints, its
-/// `inverse_dynamics_jacobian`) passed as functions:
+/// `inverse_dynamics_adjoint`) passed as functions:
 ///
 /// ```ignore
 /// let ur5 = Differentiated::new(&Ur5 {}, Ur5::accelerations_jacobian)
-///     .with_inverse(Ur5::inverse_dynamics_jacobian);
+///     .with_inverse(Ur5::inverse_dynamics_adjoint);
 /// let (next, jacobian) = dalembert::control::euler_step_jacobian(&ur5, &state, &u, 0.01)?;
 /// ```
 ///
@@ -23,8 +24,8 @@ pub struct Differentiated<'a, S, J, I = ()> {
     pub system: &'a S,
     /// Its `accelerations_jacobian(&system, t, q, v, u)`.
     pub accelerations_jacobian: J,
-    /// Its `inverse_dynamics_jacobian(&system, t, q, v, v̇, u)`, or `()`.
-    pub inverse_dynamics_jacobian: I,
+    /// Its `inverse_dynamics_adjoint(&system, t, q, v, v̇, u, μ)`, or `()`.
+    pub inverse_dynamics_adjoint: I,
 }
 
 impl<'a, S, J> Differentiated<'a, S, J> {
@@ -33,16 +34,16 @@ impl<'a, S, J> Differentiated<'a, S, J> {
         Self {
             system,
             accelerations_jacobian,
-            inverse_dynamics_jacobian: (),
+            inverse_dynamics_adjoint: (),
         }
     }
 
-    /// The same with its `inverse_dynamics_jacobian` too.
-    pub fn with_inverse<I>(self, inverse_dynamics_jacobian: I) -> Differentiated<'a, S, J, I> {
+    /// The same with its `inverse_dynamics_adjoint` too.
+    pub fn with_inverse<I>(self, inverse_dynamics_adjoint: I) -> Differentiated<'a, S, J, I> {
         Differentiated {
             system: self.system,
             accelerations_jacobian: self.accelerations_jacobian,
-            inverse_dynamics_jacobian,
+            inverse_dynamics_adjoint,
         }
     }
 }
@@ -143,9 +144,6 @@ where
     }
 }
 
-/// `(∂τ/∂q, ∂τ/∂v, M)`.
-type InverseDynamicsJacobian<const NV: usize> = ([[f64; NV]; NV], [[f64; NV]; NV], [[f64; NV]; NV]);
-
 impl<S, J, I, const NQ: usize, const NV: usize, const NU: usize> InverseDifferentiable<NQ, NV, NU>
     for Differentiated<'_, S, J, I>
 where
@@ -157,17 +155,26 @@ where
         &[f64; NV],
         &[f64; NU],
     ) -> Result<AccelerationsJacobian<NV, NU>, DynamicsError>,
-    I: Fn(&S, f64, &[f64; NQ], &[f64; NV], &[f64; NV], &[f64; NU]) -> InverseDynamicsJacobian<NV>,
+    I: Fn(
+        &S,
+        f64,
+        &[f64; NQ],
+        &[f64; NV],
+        &[f64; NV],
+        &[f64; NU],
+        &[f64; NV],
+    ) -> InverseDynamicsAdjoint<NV, NU>,
 {
     #[inline]
-    fn inverse_dynamics_jacobian(
+    fn inverse_dynamics_adjoint(
         &self,
         t: f64,
         q: &[f64; NQ],
         v: &[f64; NV],
         vdot: &[f64; NV],
         u: &[f64; NU],
-    ) -> InverseDynamicsJacobian<NV> {
-        (self.inverse_dynamics_jacobian)(self.system, t, q, v, vdot, u)
+        mu: &[f64; NV],
+    ) -> InverseDynamicsAdjoint<NV, NU> {
+        (self.inverse_dynamics_adjoint)(self.system, t, q, v, vdot, u, mu)
     }
 }

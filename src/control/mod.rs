@@ -3,7 +3,7 @@
 //!
 //! A system differentiates through this module when its model asks for
 //! `outputs accelerations_jacobian;` (and, for the adjoints,
-//! `inverse_dynamics_jacobian`) and it implements [`Differentiable`] (and
+//! `inverse_dynamics_adjoint`) and it implements [`Differentiable`] (and
 //! [`InverseDifferentiable`]): the [`differentiable!`](crate::differentiable)
 //! macro writes both for a generated struct of the calling crate by
 //! forwarding to its inherent functions, and [`Differentiated`] pairs any
@@ -72,7 +72,7 @@ pub trait Differentiable<const NQ: usize, const NV: usize, const NU: usize>:
 /// generated structs whose model asks for `outputs accelerations_jacobian;`
 /// (add `; inverse` after the list for
 /// [`InverseDifferentiable`](crate::control::InverseDifferentiable) too, when
-/// the model also asks for `inverse_dynamics_jacobian`), by forwarding to
+/// the model also asks for `inverse_dynamics_adjoint`), by forwarding to
 /// their inherent functions:
 ///
 /// ```ignore
@@ -106,19 +106,16 @@ macro_rules! differentiable {
             for $system
         {
             #[inline]
-            fn inverse_dynamics_jacobian(
+            fn inverse_dynamics_adjoint(
                 &self,
                 t: f64,
                 q: &[f64; <$system>::NQ],
                 v: &[f64; <$system>::NV],
                 vdot: &[f64; <$system>::NV],
                 u: &[f64; <$system>::NU],
-            ) -> (
-                [[f64; <$system>::NV]; <$system>::NV],
-                [[f64; <$system>::NV]; <$system>::NV],
-                [[f64; <$system>::NV]; <$system>::NV],
-            ) {
-                <$system>::inverse_dynamics_jacobian(self, t, q, v, vdot, u)
+                mu: &[f64; <$system>::NV],
+            ) -> $crate::control::adjoint::InverseDynamicsAdjoint<{ <$system>::NV }, { <$system>::NU }> {
+                <$system>::inverse_dynamics_adjoint(self, t, q, v, vdot, u, mu)
             }
         }
     )+};

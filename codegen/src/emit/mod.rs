@@ -372,6 +372,11 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
             Argument::Speeds => ("qd", quote!(&#nv), reads(|s| matches!(s, Sym::Speed(_)))),
             Argument::Accelerations => ("qdd", quote!(&#nv), reads(|s| matches!(s, Sym::Accel(_)))),
             Argument::Inputs => ("u", quote!(&#nu), reads(|s| matches!(s, Sym::Input(_)))),
+            Argument::Weights => (
+                "mu",
+                quote!(&#nv),
+                reads(|s| matches!(s, Sym::Multiplier(_))),
+            ),
         };
         let name = argument_name(name, used);
         quote!(#name: #ty)
@@ -401,14 +406,36 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
     };
     let docs = function.docs.iter().map(|line| raw_string(line));
     let (name, statements) = (&function.name, &body.statements);
+    let weights = match function.arguments.contains(&Argument::Weights) {
+        true => load_weights(model.nv(), &body.used),
+        false => TokenStream::new(),
+    };
     quote! {
         #(#[doc = #docs])*
         #[inline]
         #[must_use]
         pub fn #name(&self, #(#arguments),*) -> #ty {
+            #weights
             #statements
             #value
         }
+    }
+}
+
+/// `let [lambda0, _, ..] = *mu;`: the weights of a vector–jacobian
+/// product (the symbols `Sym::Multiplier`, which the body names
+/// `lambda{i}`), `_` for those it does not read; nothing if it reads none.
+fn load_weights(nv: usize, used: &std::collections::BTreeSet<Sym>) -> TokenStream {
+    let patterns = (0..nv).map(|i| match used.contains(&Sym::Multiplier(i as u32)) {
+        true => {
+            let name = format_ident!("lambda{}", i);
+            quote!(#name)
+        }
+        false => quote!(_),
+    });
+    match (0..nv).any(|i| used.contains(&Sym::Multiplier(i as u32))) {
+        true => quote!(let [#(#patterns),*] = *mu;),
+        false => TokenStream::new(),
     }
 }
 

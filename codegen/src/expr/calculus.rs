@@ -164,7 +164,7 @@ impl Pool {
     }
 
     /// `f'(arg)`, where `call` is the node `f(arg)`.
-    fn func_derivative(&mut self, f: Func, call: ExprId, arg: ExprId) -> ExprId {
+    pub(super) fn func_derivative(&mut self, f: Func, call: ExprId, arg: ExprId) -> ExprId {
         match f {
             Func::Sin => self.cos(arg),
             Func::Cos => {

@@ -62,7 +62,8 @@
 //! Files: `number` (exact arithmetic), `decimal` (literal values), `kinds`
 //! (symbol summaries), `pool` (interning, queries, traversal), `canon`
 //! (sums, products, powers), `func` (elementary functions), `rebuild`
-//! (bottom-up rewriting), `calculus` (derivatives), `eval` (the interpreter), and for tests `expand` and
+//! (bottom-up rewriting), `calculus` (derivatives), `reverse` (gradients
+//! by reverse accumulation), `eval` (the interpreter), and for tests `expand` and
 //! `display`.
 
 mod calculus;
@@ -78,6 +79,7 @@ mod kinds;
 mod number;
 mod pool;
 mod rebuild;
+mod reverse;
 #[cfg(test)]
 pub(crate) mod test_util;
 #[cfg(test)]

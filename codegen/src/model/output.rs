@@ -22,6 +22,9 @@ pub enum OutputKind {
     /// `inverse_dynamics_jacobian`: `∂τ/∂q`, `∂τ/∂v` and `∂τ/∂v̇ = M` of the
     /// inverse dynamics `τ = M v̇ − f`.
     InverseDynamicsJacobian,
+    /// `inverse_dynamics_adjoint`: `μᵀ ∂τ/∂q`, `μᵀ ∂τ/∂v`, `μᵀ ∂τ/∂u` of the
+    /// inverse dynamics at given weights `μ`, by one reverse sweep.
+    InverseDynamicsAdjoint,
     /// `accelerations_jacobian`: `∂v̇/∂q`, `∂v̇/∂v`, `∂v̇/∂u`.
     AccelerationsJacobian,
     /// `linearize`: the state-space matrices `A`, `B` about a state.
@@ -70,7 +73,7 @@ pub enum Availability {
 
 /// Every output name of the language, what it needs in parentheses and
 /// whether it is generated.
-pub const KINDS: [(&str, Subject, Availability); 13] = [
+pub const KINDS: [(&str, Subject, Availability); 14] = [
     ("inverse_dynamics", Subject::None, Availability::Ready),
     ("regressor", Subject::None, Availability::Ready),
     ("accelerations_jacobian", Subject::None, Availability::Ready),
@@ -78,6 +81,11 @@ pub const KINDS: [(&str, Subject, Availability); 13] = [
     ("taylor", Subject::None, Availability::Ready),
     (
         "inverse_dynamics_jacobian",
+        Subject::None,
+        Availability::Ready,
+    ),
+    (
+        "inverse_dynamics_adjoint",
         Subject::None,
         Availability::Ready,
     ),
@@ -111,6 +119,7 @@ pub fn kind(name: &str, point: Option<PointId>, frame: Option<FrameId>) -> Optio
         ("inverse_dynamics", ..) => OutputKind::InverseDynamics,
         ("regressor", ..) => OutputKind::Regressor,
         ("inverse_dynamics_jacobian", ..) => OutputKind::InverseDynamicsJacobian,
+        ("inverse_dynamics_adjoint", ..) => OutputKind::InverseDynamicsAdjoint,
         ("accelerations_jacobian", ..) => OutputKind::AccelerationsJacobian,
         ("linearize", ..) => OutputKind::Linearize,
         ("taylor", ..) => OutputKind::Taylor,

@@ -102,6 +102,7 @@ pub fn function(
         OutputKind::InverseDynamics
         | OutputKind::Regressor
         | OutputKind::InverseDynamicsJacobian
+        | OutputKind::InverseDynamicsAdjoint
         | OutputKind::AccelerationsJacobian
         | OutputKind::Linearize
         | OutputKind::Taylor => return None,

@@ -6,6 +6,7 @@
 //! emitter; the results of one function are computed by one straight-line
 //! body, so they share their subexpressions.
 
+mod adjoint;
 mod derivatives;
 mod dynamics;
 mod kinematic;
@@ -111,6 +112,9 @@ pub enum Argument {
     Accelerations,
     /// `u: &[f64; NU]`.
     Inputs,
+    /// `mu: &[f64; NV]`, the weights of a vector–jacobian product, one per
+    /// speed (the symbols [`Sym::Multiplier`](crate::expr::Sym::Multiplier)).
+    Weights,
 }
 
 /// A returned value: a scalar, an array or an array of rows.
@@ -326,6 +330,9 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Reque
                         model, equations, partials,
                     ))
             }
+            OutputKind::InverseDynamicsAdjoint => requested
+                .functions
+                .push(adjoint::inverse_dynamics_adjoint(model, equations, pool)),
             OutputKind::AccelerationsJacobian if !model.constraints.is_empty() => requested
                 .functions
                 .push(derivatives::constrained_accelerations_jacobian(

@@ -4,6 +4,7 @@
 //! and links in a fraction of the time of one per subject. Run one subject
 //! with `cargo test -p dalembert-generated --test suite <module>::`.
 
+mod adjoints;
 mod chains;
 mod common;
 mod derivatives;

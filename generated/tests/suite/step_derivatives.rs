@@ -1,5 +1,5 @@
 //! The exact jacobian of one integration step (`dalembert::control`:
-//! semi-implicit Euler and RK4) and the adjoints, against central
+//! semi-implicit Euler and RK4), against central
 //! differences of the steps themselves: on the chains, the UR5 and the
 //! panda, a floating quadruped (Solo-12 on a free joint: SE(3)), a body on
 //! a spherical joint (SO(3)) and a constrained pendulum. A perturbation of
@@ -9,25 +9,24 @@
 
 use dalembert::State;
 use dalembert::control::{
-    ConfigurationSpace, ControlError, Differentiable, Differentiated, InverseDifferentiable,
-    StepAdjoint, StepJacobian, accelerations_adjoint, euler_step, euler_step_adjoint,
-    euler_step_jacobian, rk4_step, rk4_step_adjoint, rk4_step_jacobian,
+    ConfigurationSpace, ControlError, Differentiable, Differentiated, StepJacobian, euler_step,
+    euler_step_jacobian, rk4_step, rk4_step_jacobian,
 };
 use dalembert::{MultibodySystem, Unconstrained, integrate};
 use dalembert_codegen::testing::Random;
 use dalembert_generated::derivatives::*;
 
 /// Relative agreement required of the central differences.
-const TOLERANCE: f64 = 1e-6;
+pub(super) const TOLERANCE: f64 = 1e-6;
 
 /// Step of the central differences.
-const STEP: f64 = 1e-6;
+pub(super) const STEP: f64 = 1e-6;
 
 /// Time step of the integration steps.
-const H: f64 = 0.01;
+pub(super) const H: f64 = 0.01;
 
 /// Random states checked per system.
-const STATES: usize = 3;
+pub(super) const STATES: usize = 3;
 
 dalembert::dalembert! {
     /// Seed example 3 (a bar whose centre is held on a circle by two
@@ -68,7 +67,7 @@ dalembert::dalembert! {
 
 /// A random state with inputs: coordinates in `[−π, π)` (each quaternion
 /// normalised), speeds and inputs in `[−2, 2)`.
-fn random_state<S, const NQ: usize, const NV: usize, const NU: usize>(
+pub(super) fn random_state<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     random: &mut Random,
 ) -> (State<NQ, NV>, [f64; NU])
@@ -86,9 +85,9 @@ where
 }
 
 /// A step and its jacobian.
-type Step<S, const NQ: usize, const NV: usize, const NU: usize> =
+pub(super) type Step<S, const NQ: usize, const NV: usize, const NU: usize> =
     fn(&S, &State<NQ, NV>, &[f64; NU], f64) -> Result<State<NQ, NV>, ControlError>;
-type StepWithJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
+pub(super) type StepWithJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
     fn(
         &S,
         &State<NQ, NV>,
@@ -97,7 +96,7 @@ type StepWithJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
     ) -> Result<(State<NQ, NV>, StepJacobian<NV, NU>), ControlError>;
 
 /// `|exact − numeric| ≤ TOLERANCE (1 + |numeric|_max)` over one column.
-fn assert_column<const N: usize>(what: &str, exact: [f64; N], numeric: [f64; N]) {
+pub(super) fn assert_column<const N: usize>(what: &str, exact: [f64; N], numeric: [f64; N]) {
     let scale = 1.0 + numeric.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     for i in 0..N {
         assert!(
@@ -290,120 +289,6 @@ fn speeds_of_a_speeds_statement_are_refused_by_name() {
     .expect_err("no group");
     assert_eq!(error, ControlError::UnsupportedSpeed { speed: "wx" });
     assert!(error.to_string().contains("`wx`"), "{error}");
-}
-
-/// `λᵀ J` for a matrix `J` of `N` rows.
-fn weighted<const N: usize, const M: usize>(lambda: &[f64; N], matrix: &[[f64; M]; N]) -> [f64; M] {
-    std::array::from_fn(|j| (0..N).map(|i| lambda[i] * matrix[i][j]).sum())
-}
-
-/// The adjoints of `system` against `λᵀ` times the exact jacobians (each
-/// checked against central differences above).
-fn check_adjoints<S, const NQ: usize, const NV: usize, const NU: usize>(
-    name: &str,
-    system: &S,
-    seed: u64,
-) where
-    S: InverseDifferentiable<NQ, NV, NU>,
-{
-    let mut random = Random::new(seed);
-    for _ in 0..STATES {
-        let (start, u) = random_state(system, &mut random);
-        let lambda: [f64; NV] = std::array::from_fn(|_| random.uniform(-1.0, 1.0));
-        let State { t, q, v } = start;
-        let (by_q, by_v, by_u) = system
-            .accelerations_jacobian(t, &q, &v, &u)
-            .expect("solvable");
-        let (vdot, adjoint) =
-            accelerations_adjoint(system, t, &q, &v, &u, &lambda).expect("solvable");
-        assert_eq!(vdot, system.accelerations(t, &q, &v, &u).expect("solvable"));
-        assert_column(
-            &format!("{name} λᵀ∂v̇/∂q"),
-            adjoint.by_q,
-            weighted(&lambda, &by_q),
-        );
-        assert_column(
-            &format!("{name} λᵀ∂v̇/∂v"),
-            adjoint.by_v,
-            weighted(&lambda, &by_v),
-        );
-        assert_column(
-            &format!("{name} λᵀ∂v̇/∂u"),
-            adjoint.by_u,
-            weighted(&lambda, &by_u),
-        );
-        let mu: [f64; NV] = std::array::from_fn(|_| random.uniform(-1.0, 1.0));
-        let steps: [(
-            &str,
-            StepWithJacobian<S, NQ, NV, NU>,
-            StepAdjointFn<S, NQ, NV, NU>,
-        ); 2] = [
-            ("Euler", euler_step_jacobian, euler_step_adjoint),
-            ("RK4", rk4_step_jacobian, rk4_step_adjoint),
-        ];
-        for (method, with_jacobian, adjoint) in steps {
-            let (end, jacobian) = with_jacobian(system, &start, &u, H).expect("a step");
-            let (adjoint_end, step) = adjoint(system, &start, &u, H, &lambda, &mu).expect("a step");
-            assert_eq!(adjoint_end, end);
-            let both = |a: &[[f64; NV]; NV], b: &[[f64; NV]; NV]| -> [f64; NV] {
-                let (x, y) = (weighted(&lambda, a), weighted(&mu, b));
-                std::array::from_fn(|i| x[i] + y[i])
-            };
-            let by_u: [f64; NU] = {
-                let (x, y) = (
-                    weighted(&lambda, &jacobian.q_by_u),
-                    weighted(&mu, &jacobian.v_by_u),
-                );
-                std::array::from_fn(|i| x[i] + y[i])
-            };
-            let what = |of: &str| format!("{name} {method} step λᵀ∂x⁺/∂{of}");
-            assert_column(
-                &what("q"),
-                step.by_q,
-                both(&jacobian.q_by_q, &jacobian.v_by_q),
-            );
-            assert_column(
-                &what("v"),
-                step.by_v,
-                both(&jacobian.q_by_v, &jacobian.v_by_v),
-            );
-            assert_column(&what("u"), step.by_u, by_u);
-        }
-    }
-}
-
-/// A step's adjoint.
-type StepAdjointFn<S, const NQ: usize, const NV: usize, const NU: usize> =
-    fn(
-        &S,
-        &State<NQ, NV>,
-        &[f64; NU],
-        f64,
-        &[f64; NV],
-        &[f64; NV],
-    ) -> Result<(State<NQ, NV>, StepAdjoint<NV, NU>), ControlError>;
-
-/// Each listed system, with its generated jacobians.
-macro_rules! check_adjoints {
-    ($seed:expr; $($module:ident :: $system:ident $fields:tt),* $(,)?) => {$(
-        check_adjoints(
-            stringify!($system),
-            &Differentiated::new(&$module::$system $fields, $module::$system::accelerations_jacobian)
-                .with_inverse($module::$system::inverse_dynamics_jacobian),
-            $seed,
-        );
-    )*};
-}
-
-#[test]
-fn adjoints_are_the_jacobians_transposed_products() {
-    check_adjoints!(17;
-        spatial_chain_12::SpatialChain12 {},
-        ur5_robot::Ur5 {},
-        panda::Panda {},
-        floating_solo12::FloatingSolo {},
-        dzhanibekov::Dzhanibekov { m: 12.0, a: 3.0, b: 2.0, c: 1.0 },
-    );
 }
 
 #[test]

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Section "Adjoints": λᵀ ∂v̇/∂(q, v, u) by one solve with M and the generated
+# reverse sweep, against forming accelerations_jacobian and its product,
+# on the spatial chains of 6, 12, 30 and 60 links (generated/benches/adjoint.rs).
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
+# Absolute: criterion writes under it from the bench's own directory.
+CARGO_TARGET_DIR="$(realpath -m "$CARGO_TARGET_DIR")"
+export CARGO_TARGET_DIR
+
+quietly cargo bench -p dalembert-generated --bench adjoint --features large -- --warm-up-time 1 --measurement-time 3
+
+cat <<'MD'
+## Adjoints: the reverse sweep against forming the jacobian
+
+`accelerations_adjoint` (`dalembert::control`: `accelerations`, one Cholesky
+solve `μ = M⁻¹ λ`, then the generated `inverse_dynamics_adjoint`, the
+gradient of `μᵀ τ` by one reverse sweep over the Newton–Euler recursion)
+against `accelerations_jacobian` followed by the product `λᵀ J` (what a
+gradient method would do without the adjoint), on the spatial chains.
+`inverse_dynamics_adjoint` is the sweep alone: its growth with `n` is the
+reverse sweep's; the rest of the adjoint is the forward dynamics and the
+dense solve with `M`.
+
+MD
+python3 - "$CARGO_TARGET_DIR" "$STAMP" <<'PY'
+import glob, json, os, sys
+target, stamp = sys.argv[1], sys.argv[2]
+floor = os.path.getmtime(stamp)
+found = {}
+for path in glob.glob(os.path.join(target, "criterion", "adjoint_*", "*", "new", "estimates.json")):
+    if os.path.getmtime(path) < floor:
+        continue
+    with open(path.replace("estimates.json", "benchmark.json")) as f:
+        name = json.load(f)["full_id"]
+    with open(path) as f:
+        found[name] = json.load(f)["median"]["point_estimate"]
+if not found:
+    sys.exit("no criterion results found: did the bench run?")
+ns = sorted({int(k.split("/")[1]) for k in found})
+def cell(x):
+    return "–" if x is None else (f"{x:.1f}" if x < 100 else f"{x:.0f}")
+print("| n | `inverse_dynamics_adjoint` (ns) | per link | `accelerations_adjoint` (ns) "
+      "| `accelerations_jacobian` + `λᵀ J` (ns) | jacobian / adjoint |")
+print("|---|---|---|---|---|---|")
+for n in ns:
+    sweep = found.get(f"adjoint/{n}/inverse_dynamics_adjoint")
+    adjoint = found.get(f"adjoint/{n}/accelerations_adjoint")
+    jacobian = found.get(f"adjoint/{n}/accelerations_jacobian_product")
+    per_link = None if sweep is None else sweep / n
+    ratio = f"{jacobian / adjoint:.2f}" if jacobian and adjoint else "–"
+    print(f"| {n} | {cell(sweep)} | {cell(per_link)} | {cell(adjoint)} | {cell(jacobian)} | {ratio} |")
+PY
+echo
+measured "criterion medians of thread CPU time, 1000 states"
+cat <<'MD'
+
+The operations of the generated functions (`dalembert check MODEL --stats`,
+the chain asking for `outputs inverse_dynamics, inverse_dynamics_adjoint;`):
+
+| n | `inverse_dynamics` | `inverse_dynamics_adjoint` | sweep / `τ` | sweep per link |
+|---|---|---|---|---|
+MD
+model="$(mktemp --suffix .dal)"
+for n in 6 12 30 60; do
+    cargo run -q -p dalembert-codegen --bin dalembert -- chain spatial "$n" 2>/dev/null \
+        | sed 's/^}$/    outputs inverse_dynamics, inverse_dynamics_adjoint;\n}/' > "$model"
+    cargo run -q -p dalembert-codegen --bin dalembert -- check "$model" --stats 2>/dev/null \
+        | awk -v n="$n" '$2 == "inverse_dynamics" { tau = $1 } $2 == "inverse_dynamics_adjoint" { sweep = $1 }
+            END { printf "| %d | %d | %d | %.2f | %.0f |\n", n, tau, sweep, sweep / tau, sweep / n }'
+done
+rm -f "$model"
+cat <<'MD'
+
+    cargo bench -p dalembert-generated --bench adjoint --features large -- --warm-up-time 1 --measurement-time 3
+    dalembert chain spatial N > chain.dal   # plus `outputs inverse_dynamics, inverse_dynamics_adjoint;`
+    dalembert check chain.dal --stats
+MD
