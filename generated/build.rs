@@ -36,13 +36,30 @@ const WITH_DERIVATIVES: [&str; 13] = [
 /// The statement the copies add.
 const DERIVATIVES: &str = "outputs accelerations_jacobian, linearize, inverse_dynamics_jacobian;";
 
-/// Writes and generates the copies of [`WITH_DERIVATIVES`].
-fn with_derivatives(out: &std::path::Path) {
-    let dir = out.join("derivatives");
+/// The models whose copy asks for `accelerations_x4` (four states in SIMD
+/// lanes): every route of `accelerations` (factorised, articulated), every
+/// elementary function, time, a ball joint, a floating base, two robots.
+const WITH_LANES: [&str; 10] = [
+    "double_pendulum",
+    "dzhanibekov",
+    "taylor_functions",
+    "planar_chain_06",
+    "spatial_chain_06",
+    "spatial_chain_12",
+    "spatial_chain_30",
+    "floating_solo12",
+    "panda.urdf",
+    "ur5_robot.urdf",
+];
+
+/// Writes the copies of the models `names` adding `statement` into
+/// `OUT_DIR/dir/`, and generates them.
+fn with_outputs(out: &std::path::Path, dir: &str, names: &[&str], statement: &str) {
+    let dir = out.join(dir);
     std::fs::create_dir_all(&dir).expect("OUT_DIR is writable");
     let mut builder = dalembert_codegen::Builder::new();
     builder.out_dir(&dir).emit_rerun_if_changed(false);
-    for name in WITH_DERIVATIVES {
+    for name in names {
         let source = match name.strip_suffix(".urdf") {
             Some(robot) => {
                 dalembert_codegen::Urdf::read(format!("../tests/reference/urdf/{robot}.urdf"))
@@ -52,7 +69,7 @@ fn with_derivatives(out: &std::path::Path) {
             None => std::fs::read_to_string(format!("models/{name}.dal")).expect("a model"),
         };
         let end = source.rfind('}').expect("a system ends with `}`");
-        let copy = format!("{}    {DERIVATIVES}\n{}", &source[..end], &source[end..]);
+        let copy = format!("{}    {statement}\n{}", &source[..end], &source[end..]);
         let path = dir.join(format!("{}.dal", name.trim_end_matches(".urdf")));
         if std::fs::read_to_string(&path).ok().as_deref() != Some(copy.as_str()) {
             std::fs::write(&path, copy).expect("OUT_DIR is writable");
@@ -169,5 +186,6 @@ fn main() {
         .expect("writing to a String");
     }
     std::fs::write(out.join("chain_references.rs"), references).expect("OUT_DIR is writable");
-    with_derivatives(&out);
+    with_outputs(&out, "derivatives", &WITH_DERIVATIVES, DERIVATIVES);
+    with_outputs(&out, "lanes", &WITH_LANES, "outputs accelerations_x4;");
 }

@@ -18,6 +18,7 @@ pub fn after_derivation(model: &Model, pool: &Pool, equations: &Equations) -> sy
     let mut errors = Errors::default();
     check_inertia(model, pool, equations, &mut errors);
     check_regressor(model, pool, equations, &mut errors);
+    check_lanes(model, &mut errors);
     errors.finish(())
 }
 
@@ -71,6 +72,27 @@ fn check_regressor(model: &Model, pool: &Pool, equations: &Equations, errors: &m
         errors.push(
             output.function.span(),
             format!("this model has no regressor: {why}; remove `regressor` from `outputs`"),
+        );
+    }
+}
+
+/// `accelerations_x4` writes the unconstrained solve of `accelerations`
+/// over SIMD lanes; a system with constraints solves a saddle point at run
+/// time (`dalembert::accelerations_x4` takes its four states one by one).
+fn check_lanes(model: &Model, errors: &mut Errors) {
+    let Some(output) = model
+        .outputs
+        .iter()
+        .find(|o| o.kind == OutputKind::AccelerationsX4)
+    else {
+        return;
+    };
+    if !model.constraints.is_empty() {
+        errors.push(
+            output.function.span(),
+            "`accelerations_x4` is for systems without constraints; remove it from `outputs` \
+             (`dalembert::accelerations_x4` solves four states of this system one by one)"
+                .to_string(),
         );
     }
 }
