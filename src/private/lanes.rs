@@ -232,6 +232,14 @@ pub fn articulated_pivots_hold<const N: usize>(pivots: [Lanes; N]) -> [bool; LAN
     core::array::from_fn(|k| check_pivots(pivots.map(|p| p[k]), [""; N]).is_ok())
 }
 
+/// Four states: their times, coordinates, speeds and inputs.
+pub type States<'a, const NQ: usize, const NV: usize, const NU: usize> = (
+    [f64; LANES],
+    &'a [[f64; NQ]; LANES],
+    &'a [[f64; NV]; LANES],
+    &'a [[f64; NU]; LANES],
+);
+
 /// The accelerations of each state: the lanes' `solved` where the state,
 /// its pivots (`hold`) and its result are all good, else what the scalar
 /// `accelerations` (`scalar`) says of that state, an error or a value.
@@ -239,12 +247,7 @@ pub fn articulated_pivots_hold<const N: usize>(pivots: [Lanes; N]) -> [bool; LAN
 pub fn per_state<const NQ: usize, const NV: usize, const NU: usize>(
     solved: [Lanes; NV],
     hold: [bool; LANES],
-    states: (
-        [f64; LANES],
-        &[[f64; NQ]; LANES],
-        &[[f64; NV]; LANES],
-        &[[f64; NU]; LANES],
-    ),
+    states: States<'_, NQ, NV, NU>,
     scalar: impl Fn(f64, &[f64; NQ], &[f64; NV], &[f64; NU]) -> Result<[f64; NV], DynamicsError>,
 ) -> [Result<[f64; NV], DynamicsError>; LANES] {
     let (t, q, v, u) = states;
