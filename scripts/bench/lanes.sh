@@ -15,7 +15,7 @@ RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR="$v3" \
     quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
 peers_csv=()
 if [ -n "${DALEMBERT_PEERS:-}" ]; then
-    peers --ns 12 --only derivatives > "$out/chains.csv"
+    peers --ns 12 --families spatial > "$out/chains.csv"
     peers --urdf tests/reference/urdf/panda.urdf --only derivatives > "$out/panda.csv"
     peers --urdf tests/reference/urdf/solo12.urdf --floating --only derivatives > "$out/floating_solo12.csv"
     peers_csv=("$out"/{chains,panda,floating_solo12}.csv)
@@ -28,7 +28,9 @@ cat <<'MD'
 one call, one state in each lane of a `wide::f64x4`, against the scalar
 `accelerations`, per state (the batched call's time over four). The chains
 of 6 and 12 take the unrolled `L D Lᵀ`, the chain of 30, the panda and
-Solo-12 the articulated-body recursion. Below, `accelerations_jacobian`
+Solo-12 the articulated-body recursion. Below, one RK4 step of the chain of
+12 through the scalar call and through `accelerations_x4` (four states a
+step) against MuJoCo's `mj_step` with its RK4, and `accelerations_jacobian`
 against the same states' `accelerations` and, when measured in the same
 window, Pinocchio's `computeABADerivatives`.
 
@@ -60,6 +62,13 @@ for name, peer in [("spatial_chain_12", "spatial_12"), ("panda", "panda"), ("flo
     one = default.get(f"lanes/{name}/accelerations")
     theirs = peers.get((peer, "pin_aba_derivatives"))
     print(f"| {name} | {ns(jacobian)} | {ratio(jacobian, one)} | {ns(theirs)} | {ratio(jacobian, theirs)} |")
+print()
+print("| RK4 step, h = 1 ms, spatial chain of 12 | default (ns) | MuJoCo `mj_step` RK4 / ours | v3 (ns) | MuJoCo / ours |")
+print("|---|---|---|---|---|")
+mujoco = peers.get(("spatial_12", "mj_step_rk4"))
+for label, bench in [("one state a call", "rk4 step"), ("four a call, per state", "rk4 step x4 per state")]:
+    ours, fast = default.get(f"lanes/spatial_chain_12/{bench}"), avx.get(f"lanes/spatial_chain_12/{bench}")
+    print(f"| {label} | {ns(ours)} | {ratio(mujoco, ours)} | {ns(fast)} | {ratio(mujoco, fast)} |")
 PY
 echo
 measured "criterion medians of thread CPU time; the peers' medians in the same window where given"
@@ -67,6 +76,6 @@ cat <<'MD'
 
     cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
     RUSTFLAGS="-C target-cpu=x86-64-v3" cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
-    bash $DALEMBERT_PEERS/run.sh --ns 12 --only derivatives
+    bash $DALEMBERT_PEERS/run.sh --ns 12 --families spatial
     bash $DALEMBERT_PEERS/run.sh --urdf tests/reference/urdf/panda.urdf --only derivatives   # and solo12.urdf --floating
 MD
