@@ -64,6 +64,17 @@ fn batches<S: MultibodySystem<NQ, NV, NU>, const NQ: usize, const NV: usize, con
         .collect()
 }
 
+/// The states of `batches`, one by one.
+#[allow(clippy::type_complexity)]
+fn singles<const NQ: usize, const NV: usize, const NU: usize>(
+    batches: &[Batch<NQ, NV, NU>],
+) -> Vec<(f64, [f64; NQ], [f64; NV], [f64; NU])> {
+    batches
+        .iter()
+        .flat_map(|(t, q, v, u)| (0..4).map(move |k| (t[k], q[k], v[k], u[k])))
+        .collect()
+}
+
 /// The batched call of a system.
 type X4<S, const NQ: usize, const NV: usize, const NU: usize> =
     fn(
@@ -91,10 +102,7 @@ fn bench_jacobian<S, const NQ: usize, const NV: usize, const NU: usize>(
 ) where
     S: MultibodySystem<NQ, NV, NU>,
 {
-    let states: Vec<_> = batches(&system)
-        .iter()
-        .flat_map(|(t, q, v, u)| (0..4).map(move |k| (t[k], q[k], v[k], u[k])))
-        .collect();
+    let states = singles(&batches(&system));
     let mut group = c.benchmark_group(format!("lanes/{name}"));
     group.bench_function("accelerations_jacobian", |b| {
         b.iter_custom(|iters| {
@@ -123,10 +131,7 @@ fn bench_system<S, const NQ: usize, const NV: usize, const NU: usize>(
             dalembert::accelerations(&system, t[k], &q[k], &v[k], &u[k]).expect("solvable state");
         }
     }
-    let states: Vec<_> = batches
-        .iter()
-        .flat_map(|(t, q, v, u)| (0..4).map(move |k| (t[k], q[k], v[k], u[k])))
-        .collect();
+    let states = singles(&batches);
     let mut group = c.benchmark_group(format!("lanes/{name}"));
     group.bench_function("accelerations", |b| {
         b.iter_custom(|iters| {
