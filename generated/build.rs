@@ -40,14 +40,26 @@ const DERIVATIVES: &str = "outputs accelerations_jacobian, linearize, inverse_dy
 /// (the adjoint's bench, with the `large` feature).
 const ADJOINT: &str = "outputs accelerations_jacobian, inverse_dynamics_adjoint;";
 
-/// Writes and generates the copies of [`WITH_DERIVATIVES`] (and with the
-/// `large` feature those of the spatial chains of 30 and 60 links).
-fn with_derivatives(out: &std::path::Path) {
-    let dir = out.join("derivatives");
-    std::fs::create_dir_all(&dir).expect("OUT_DIR is writable");
-    let mut builder = dalembert_codegen::Builder::new();
-    builder.out_dir(&dir).emit_rerun_if_changed(false);
-    let mut copies: Vec<(String, String, &str)> = WITH_DERIVATIVES
+/// The models whose copy asks for `accelerations_x4` (four states in SIMD
+/// lanes): every route of `accelerations` (factorised, articulated), every
+/// elementary function, time, a ball joint, a floating base, two robots.
+const WITH_LANES: [&str; 10] = [
+    "double_pendulum",
+    "dzhanibekov",
+    "taylor_functions",
+    "planar_chain_06",
+    "spatial_chain_06",
+    "spatial_chain_12",
+    "spatial_chain_30",
+    "floating_solo12",
+    "panda.urdf",
+    "ur5_robot.urdf",
+];
+
+/// The copies of the models `names` (`models/NAME.dal`, or a URDF robot by
+/// its file name), each with `statement`: (name, source, statement).
+fn copies<'a>(names: &[&str], statement: &'a str) -> Vec<(String, String, &'a str)> {
+    names
         .iter()
         .map(|name| {
             let source = match name.strip_suffix(".urdf") {
@@ -58,19 +70,18 @@ fn with_derivatives(out: &std::path::Path) {
                 }
                 None => std::fs::read_to_string(format!("models/{name}.dal")).expect("a model"),
             };
-            (
-                name.trim_end_matches(".urdf").to_string(),
-                source,
-                DERIVATIVES,
-            )
+            (name.trim_end_matches(".urdf").to_string(), source, statement)
         })
-        .collect();
-    if std::env::var_os("CARGO_FEATURE_LARGE").is_some() {
-        for n in [30, 60] {
-            let name = format!("spatial_chain_{n}");
-            copies.push((name, chain(Family::Spatial, n), ADJOINT));
-        }
-    }
+        .collect()
+}
+
+/// Writes `copies` (each source with its statement added) into
+/// `OUT_DIR/dir/`, and generates them.
+fn with_outputs(out: &std::path::Path, dir: &str, copies: Vec<(String, String, &str)>) {
+    let dir = out.join(dir);
+    std::fs::create_dir_all(&dir).expect("OUT_DIR is writable");
+    let mut builder = dalembert_codegen::Builder::new();
+    builder.out_dir(&dir).emit_rerun_if_changed(false);
     for (name, source, statement) in copies {
         let end = source.rfind('}').expect("a system ends with `}`");
         let copy = format!("{}    {statement}\n{}", &source[..end], &source[end..]);
@@ -190,5 +201,12 @@ fn main() {
         .expect("writing to a String");
     }
     std::fs::write(out.join("chain_references.rs"), references).expect("OUT_DIR is writable");
-    with_derivatives(&out);
+    let mut derivatives = copies(&WITH_DERIVATIVES, DERIVATIVES);
+    if std::env::var_os("CARGO_FEATURE_LARGE").is_some() {
+        for n in [30, 60] {
+            derivatives.push((format!("spatial_chain_{n}"), chain(Family::Spatial, n), ADJOINT));
+        }
+    }
+    with_outputs(&out, "derivatives", derivatives);
+    with_outputs(&out, "lanes", copies(&WITH_LANES, "outputs accelerations_x4;"));
 }

@@ -72,7 +72,9 @@ mod system;
 mod test_systems;
 
 pub use constrained::Stabilisation;
-pub use dynamics::{DynamicsError, accelerations, energy, energy_at, jacobi_integral};
+pub use dynamics::{
+    DynamicsError, accelerations, accelerations_x4, energy, energy_at, jacobi_integral,
+};
 pub use integrate::{Constrained, IntegrationError, Solution, State, Unconstrained};
 pub use system::{ConstrainedSystem, Model, MultibodySystem, TaylorSystem};
 

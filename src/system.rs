@@ -124,6 +124,24 @@ pub trait MultibodySystem<const NQ: usize, const NV: usize, const NU: usize> {
     ) -> Result<[f64; NV], DynamicsError> {
         cholesky_accelerations(self, t, q, v, u)
     }
+
+    /// The accelerations of four states at once, state `k` being
+    /// `(t[k], q[k], v[k], u[k])`: entry `k` is what
+    /// [`accelerations`](MultibodySystem::accelerations) gives for state `k`.
+    ///
+    /// Provided: the four calls one after the other. A generated system
+    /// whose model asks for `outputs accelerations_x4;` overrides it with
+    /// its emitted solve over SIMD lanes, one state a lane (its inherent
+    /// `accelerations_x4`; `docs/speed.md`, "Four states at once").
+    fn accelerations_x4(
+        &self,
+        t: [f64; 4],
+        q: &[[f64; NQ]; 4],
+        v: &[[f64; NV]; 4],
+        u: &[[f64; NU]; 4],
+    ) -> [Result<[f64; NV], DynamicsError>; 4] {
+        std::array::from_fn(|k| self.accelerations(t[k], &q[k], &v[k], &u[k]))
+    }
 }
 
 /// A system with `NC` constraints: `M v̇ = f + Aᵀ λ` and `A v̇ = b`.

@@ -285,3 +285,33 @@ fn the_taylor_integrator_its_polynomials_and_events_allocate_nothing() {
         "the pendulum crosses θ₁ = 0 within 1 s: {result:?}"
     );
 }
+
+/// `accelerations_x4` over lanes, on both routes of the solve (the unrolled
+/// factorisation of seed example 1, the articulated-body recursion of the
+/// chain of 30) and through the scalar call of a state that fails.
+#[test]
+fn four_states_in_lanes_allocate_nothing() {
+    use dalembert_generated::lanes::{double_pendulum, spatial_chain_30};
+    let pendulum = double_pendulum::DoublePendulum {
+        m: 1.0,
+        L: 1.2,
+        g: 9.81,
+    };
+    let chain = spatial_chain_30::SpatialChain30 {};
+    let q = [[0.3, -0.4], [f64::NAN, 0.0], [0.1, 0.2], [1.0, 2.0]];
+    let v = [[0.5, 0.1]; 4];
+    let chain_q: [[f64; 30]; 4] =
+        std::array::from_fn(|k| std::array::from_fn(|i| 0.1 * (i + k) as f64));
+    let chain_v = [[0.2; 30]; 4];
+    let (made, (a, b)) = allocations(|| {
+        (
+            pendulum.accelerations_x4([0.0; 4], &q, &v, &[[]; 4]),
+            dalembert::accelerations_x4(&chain, [0.0; 4], &chain_q, &chain_v, &[[]; 4]),
+        )
+    });
+    assert_eq!(made, 0, "accelerations_x4 allocated");
+    assert!(
+        a[1].is_err() && a[0].is_ok() && b.iter().all(Result::is_ok),
+        "{a:?} {b:?}"
+    );
+}

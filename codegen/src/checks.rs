@@ -19,6 +19,7 @@ pub fn after_derivation(model: &Model, pool: &Pool, equations: &Equations) -> sy
     check_inertia(model, pool, equations, &mut errors);
     check_regressor(model, pool, equations, &mut errors);
     check_adjoint(model, &mut errors);
+    check_lanes(model, &mut errors);
     errors.finish(())
 }
 
@@ -101,4 +102,23 @@ fn check_adjoint(model: &Model, errors: &mut Errors) {
          with constraints, and remove `inverse_dynamics_adjoint` from `outputs`"
             .to_string(),
     );
+/// `accelerations_x4` writes the unconstrained solve of `accelerations`
+/// over SIMD lanes; a system with constraints solves a saddle point at run
+/// time (`dalembert::accelerations_x4` takes its four states one by one).
+fn check_lanes(model: &Model, errors: &mut Errors) {
+    let Some(output) = model
+        .outputs
+        .iter()
+        .find(|o| o.kind == OutputKind::AccelerationsX4)
+    else {
+        return;
+    };
+    if !model.constraints.is_empty() {
+        errors.push(
+            output.function.span(),
+            "`accelerations_x4` is for systems without constraints; remove it from `outputs` \
+             (`dalembert::accelerations_x4` solves four states of this system one by one)"
+                .to_string(),
+        );
+    }
 }

@@ -50,6 +50,26 @@ where
     system.accelerations(t, q, v, u)
 }
 
+/// The accelerations of four states at once: entry `k` is
+/// [`accelerations`] of state `(t[k], q[k], v[k], u[k])`, with its checks
+/// and errors. The system's own [`MultibodySystem::accelerations_x4`]:
+/// for a generated system whose model asks for `outputs accelerations_x4;`,
+/// its emitted solve with one state in each lane of a SIMD vector (results
+/// equal to the scalar call's to a few units in the last place), else the
+/// four scalar calls.
+pub fn accelerations_x4<S, const NQ: usize, const NV: usize, const NU: usize>(
+    system: &S,
+    t: [f64; 4],
+    q: &[[f64; NQ]; 4],
+    v: &[[f64; NV]; 4],
+    u: &[[f64; NU]; 4],
+) -> [Result<[f64; NV], DynamicsError>; 4]
+where
+    S: MultibodySystem<NQ, NV, NU> + ?Sized,
+{
+    system.accelerations_x4(t, q, v, u)
+}
+
 /// The name reported for each pivot of the mass matrix: the coordinate when
 /// every speed is its coordinate's rate, else the speed.
 pub(crate) fn pivot_names<S, const NQ: usize, const NV: usize, const NU: usize>()

@@ -65,6 +65,14 @@ fn sin_cos_out_of_line<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
     sin_cos_each(x)
 }
 
+/// The sines and the cosines of four angles, one in each lane of the
+/// generated code over lanes (`super::lanes`): the kernel of
+/// [`sin_cos_all`], always in the caller's body.
+#[inline(always)]
+pub(crate) fn sin_cos_lanes(x: [f64; 4]) -> ([f64; 4], [f64; 4]) {
+    sin_cos_each(x)
+}
+
 /// The sines and the cosines of the angles `x`: the body of [`sin_cos_all`].
 ///
 /// The angles go through the kernel in two loops, an even count of them

@@ -6,6 +6,7 @@
 //! tests and benchmarks compare the emitted one with. Hidden from the docs
 //! and free to change with the code generator; nothing here is for users.
 
+pub mod lanes;
 pub mod math;
 pub mod series;
 

@@ -9,6 +9,7 @@ use quote::{format_ident, quote};
 use std::collections::{BTreeSet, HashMap};
 
 /// Rust names for the symbols of one model.
+#[derive(Clone)]
 pub struct Names {
     /// Parameter field names, by index.
     pub parameters: Vec<Ident>,
@@ -25,6 +26,11 @@ pub struct Names {
     /// Whether elementary functions are called through `libm` (for
     /// `#![no_std]` crates) instead of as `f64`'s methods.
     pub libm: bool,
+    /// Whether the body computes four states at once, one in each lane of
+    /// a `dalembert::__private::lanes::Lanes` (`super::lanes`): the
+    /// parameters are loaded into every lane, the temporaries are lanes,
+    /// and the functions are the runtime's `lanes` module's.
+    pub lanes: bool,
 }
 
 impl Names {
@@ -41,6 +47,22 @@ impl Names {
 }
 
 impl Names {
+    /// The type of the body's numbers: `f64`, or the lanes.
+    fn number_type(&self) -> TokenStream {
+        match self.lanes {
+            true => quote!(::dalembert::__private::lanes::Lanes),
+            false => quote!(::core::primitive::f64),
+        }
+    }
+
+    /// The runtime's module of elementary functions for the body.
+    fn functions(&self) -> TokenStream {
+        match self.lanes {
+            true => quote!(::dalembert::__private::lanes),
+            false => quote!(::dalembert::__private::math),
+        }
+    }
+
     fn symbol(&self, sym: Sym) -> Ident {
         match sym {
             Sym::Time => Ident::new("t", Span::call_site()),
@@ -63,7 +85,10 @@ impl Names {
         for (i, name) in self.parameters.iter().enumerate() {
             if used.contains(&Sym::Param(i as u32)) {
                 patterns.push(quote!(#name));
-                values.push(quote!(self.#name));
+                values.push(match self.lanes {
+                    true => quote!(::dalembert::__private::lanes::splat(self.#name)),
+                    false => quote!(self.#name),
+                });
             }
         }
         let arrays: [ArrayArgument<'_>; 4] = [
@@ -218,8 +243,11 @@ fn write(
             None => writer.bind(e),
         }
     }
-    let outputs = roots.iter().map(|&r| writer.expr(r)).collect();
-    let declarations = declarations(writer.declared.as_deref().unwrap_or_default());
+    let outputs = roots.iter().map(|&r| writer.output(r)).collect();
+    let declarations = declarations(
+        writer.declared.as_deref().unwrap_or_default(),
+        &names.number_type(),
+    );
     let statements = writer.statements;
     Straight {
         statements: quote!(#loads #declarations #statements),
@@ -230,13 +258,13 @@ fn write(
 
 /// `let (x1, x2, …): (f64, f64, …);` declaring `names` ahead of their
 /// assignments, [`DECLARED_TOGETHER`] to a statement.
-fn declarations(names: &[Ident]) -> TokenStream {
+fn declarations(names: &[Ident], ty: &TokenStream) -> TokenStream {
     names
         .chunks(DECLARED_TOGETHER)
         .map(|chunk| {
-            let types = chunk.iter().map(|_| quote!(::core::primitive::f64));
+            let types = chunk.iter().map(|_| ty);
             match chunk {
-                [name] => quote!(let #name: ::core::primitive::f64;),
+                [name] => quote!(let #name: #ty;),
                 _ => quote!(let (#(#chunk),*): (#(#types),*);),
             }
         })
@@ -432,8 +460,8 @@ impl Writer<'_> {
         let call = match self.names.libm {
             true => self.method_call(arg, "sin_cos"),
             false => {
-                let argument = self.expr(arg);
-                quote!(::dalembert::__private::math::sin_cos(#argument))
+                let (argument, functions) = (self.expr(arg), self.names.functions());
+                quote!(#functions::sin_cos(#argument))
             }
         };
         let (s, c) = (self.temporary_name(sine), self.temporary_name(cosine));
@@ -464,8 +492,9 @@ impl Writer<'_> {
             sines.push(s);
             cosines.push(c);
         }
+        let functions = self.names.functions();
         self.statements.extend(quote!(
-            let ([#(#sines),*], [#(#cosines),*]) = ::dalembert::__private::math::sin_cos_all([#(#arguments),*]);
+            let ([#(#sines),*], [#(#cosines),*]) = #functions::sin_cos_all([#(#arguments),*]);
         ));
     }
 
@@ -497,14 +526,20 @@ impl Writer<'_> {
     /// that no literal's type is left for Rust to guess; in a long body
     /// ([`DECLARED_AHEAD_ABOVE`]) `x = value;`, `x` declared ahead.
     fn bind(&mut self, e: ExprId) {
-        let value = self.compound(e);
+        let value = match self.names.lanes && self.pool.kinds(e).is_empty() {
+            true => {
+                let value = self.compound(e);
+                quote!(::dalembert::__private::lanes::splat(#value))
+            }
+            false => self.compound(e),
+        };
         let name = self.temporary_name(e);
         self.statements.extend(match &mut self.declared {
             Some(declared) => {
                 declared.push(name.clone());
                 quote!(#name = #value;)
             }
-            None if self.pool.kinds(e).is_empty() => {
+            None if self.pool.kinds(e).is_empty() && !self.names.lanes => {
                 quote!(let #name: ::core::primitive::f64 = #value;)
             }
             None => quote!(let #name = #value;),
@@ -525,6 +560,17 @@ impl Writer<'_> {
         }
         self.temporaries += 1;
         format_ident!("{}{}", self.names.temporary, self.temporaries - 1)
+    }
+
+    /// The expression of the root `e`: [`Writer::expr`], a constant put
+    /// into every lane in a body over lanes, so that a function's results
+    /// have one type.
+    fn output(&self, e: ExprId) -> TokenStream {
+        let value = self.expr(e);
+        match self.names.lanes && self.pool.kinds(e).is_empty() && !self.bound.contains_key(&e) {
+            true => quote!(::dalembert::__private::lanes::splat(#value)),
+            false => value,
+        }
     }
 
     /// The expression of `e`, by name if bound.
@@ -562,6 +608,10 @@ impl Writer<'_> {
             return quote!(::libm::#function(#argument));
         }
         let method = Ident::new(method, Span::call_site());
+        if self.names.lanes {
+            let argument = self.expr(arg);
+            return quote!(::dalembert::__private::lanes::#method(#argument));
+        }
         let receiver = self.operand(arg);
         if !self.bound.contains_key(&arg) && matches!(self.pool.node(arg), Node::Number(_)) {
             quote!(::core::primitive::f64::#method(#receiver))
@@ -715,6 +765,10 @@ impl Writer<'_> {
             _ if self.names.libm => {
                 let n = Literal::f64_unsuffixed(f64::from(n));
                 quote!(::libm::pow(#x, #n))
+            }
+            _ if self.names.lanes => {
+                let n = Literal::i32_unsuffixed(n);
+                quote!(::dalembert::__private::lanes::powi(#x, #n))
             }
             _ => {
                 let n = Literal::i32_unsuffixed(n);

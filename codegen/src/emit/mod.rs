@@ -10,6 +10,7 @@
 mod body;
 mod configuration;
 mod derivatives;
+mod lanes;
 mod solve;
 mod taylor;
 
@@ -90,6 +91,9 @@ pub fn emit(
             (Body::ConstrainedAccelerationsJacobian, Target::Std) => {
                 derivatives::emit_constrained_accelerations_jacobian(model, pool, &names, function)
             }
+            (Body::AccelerationsX4, Target::Std) => {
+                lanes::emit_accelerations_x4(model, pool, equations, &names, plan, &function.docs)
+            }
             (Body::Taylor, Target::Std) => match &plan.taylor {
                 Some(program) => taylor::emit_taylor(
                     (model, pool, equations),
@@ -122,7 +126,16 @@ pub fn emit(
             let check = configuration::emit_rate_check(model, pool, &names);
             let has_check = !check.is_empty();
             items.push(check);
-            let emitted = [has_solver, has_check, equations.time_dependent(pool)];
+            let has_lanes = plan
+                .functions
+                .iter()
+                .any(|f| f.body == Body::AccelerationsX4);
+            let emitted = [
+                has_solver,
+                has_check,
+                equations.time_dependent(pool),
+                has_solver && has_lanes,
+            ];
             let vanishing = model.vanishing_rows();
             let mut traits =
                 emit_trait_impls(name, [nq, nv, nu, nc], emitted, vanishing.as_deref());
@@ -230,6 +243,7 @@ fn names(model: &Model, target: Target) -> Names {
         inputs: model.inputs.clone(),
         temporary,
         libm: target == Target::NoStd,
+        lanes: false,
     }
 }
 
@@ -486,14 +500,16 @@ fn tree_mass_matrix(
 /// time-dependent system (the third of `emitted`) forwards the traits'
 /// `_at` functions and has no value for the time-free ones (see
 /// [`TraitFunction::undefined`]). The rows that vanish identically, if
-/// any, are its `VANISHING_ROWS`.
+/// any, are its `VANISHING_ROWS`. A system with `accelerations_x4` (the
+/// fourth of `emitted`) forwards the trait's to it.
 fn emit_trait_impls(
     name: &Ident,
     sizes: [usize; 4],
-    emitted: [bool; 3],
+    emitted: [bool; 4],
     vanishing: Option<&[bool]>,
 ) -> TokenStream {
-    let [has_solver, has_check, timed] = emitted;
+    let [has_solver, has_check, timed, has_lanes] = emitted;
+    let lanes = has_lanes.then(|| lanes::emit_trait_method(name, [sizes[0], sizes[1], sizes[2]]));
     let [nq, nv, nu, nc] = sizes;
     let (coordinates, vector) = (array(nq), array(nv));
     let (inputs, rows_out) = (array(nu), array(nc));
@@ -587,6 +603,7 @@ fn emit_trait_impls(
                 #name::integrate_configuration(self, q, v, h)
             }
             #accelerations
+            #lanes
             #check
         }
     };

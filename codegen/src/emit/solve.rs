@@ -163,6 +163,18 @@ impl Elimination {
     }
 }
 
+/// How the unrolled factorisation tests its pivots.
+#[derive(Clone, Copy)]
+enum Pivots<'a> {
+    /// Each as it is formed, against `tolerance`: a pivot that fails
+    /// returns `SingularMassMatrix`, passed through the closure, if any
+    /// (`Err(checked(error))`).
+    Checked(Option<&'a Ident>),
+    /// Not at all: the caller tests the pivots `p{j}` (the solve over
+    /// lanes, whose states fail apart).
+    Unchecked,
+}
+
 /// The planned elimination of `M x = f` written out. A pivot that fails
 /// returns `SingularMassMatrix`, passed through the closure `checked` if
 /// any (`Err(checked(error))`).
@@ -173,13 +185,42 @@ pub fn elimination(
     factorisation: &Factorisation,
     checked: Option<&Ident>,
 ) -> Elimination {
+    eliminate(
+        model,
+        pool,
+        equations,
+        factorisation,
+        Pivots::Checked(checked),
+    )
+}
+
+/// The planned elimination of `M x = f` written out without a test of
+/// its pivots, which are named `p{j}` (`j` in the elimination order) for
+/// the caller to test, and without `tolerance`.
+pub fn unchecked_elimination(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    factorisation: &Factorisation,
+) -> Elimination {
+    eliminate(model, pool, equations, factorisation, Pivots::Unchecked)
+}
+
+/// [`elimination`], its pivots tested as `pivots` says.
+fn eliminate(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    factorisation: &Factorisation,
+    pivots: Pivots<'_>,
+) -> Elimination {
     let nq = model.nv();
     let Factorisation { order, pattern } = factorisation;
     let order = Order {
         speeds: order.clone(),
     };
     let mass_at_state = mass_at_state(model, pool, equations);
-    let factor = factorisation_code(model, pattern, &order, checked, &mass_at_state);
+    let factor = factorisation_code(model, pattern, &order, pivots, &mass_at_state);
     let forward = forward_substitution(pattern, &order);
     let backward = backward_substitution(pattern);
     let mut solution: Vec<Ident> = vec![format_ident!("x0"); nq];
@@ -205,9 +246,12 @@ pub fn elimination(
         .collect();
     Elimination {
         entries,
-        factor: quote! {
-            let tolerance = ::dalembert::__private::pivot_tolerance([#(#diagonal),*]);
-            #factor
+        factor: match pivots {
+            Pivots::Checked(_) => quote! {
+                let tolerance = ::dalembert::__private::pivot_tolerance([#(#diagonal),*]);
+                #factor
+            },
+            Pivots::Unchecked => factor,
         },
         substitutions: quote!(#forward #backward),
         right_hand_side: (0..nq).map(|i| format_ident!("f{}", i)).collect(),
@@ -390,14 +434,15 @@ fn unscaled(i: usize, j: usize) -> Ident {
 }
 
 /// The columns of `M = L D Lᵀ` (no square roots): the entries `Lᵢⱼ Dⱼ`,
-/// the pivot `Dⱼ` and its test, its reciprocal, then `Lᵢⱼ`. A failed
-/// pivot's error goes through the closure `checked`, if any, with the
-/// speeds that move no mass there (see [`mass_at_state`]).
+/// the pivot `Dⱼ` and its test (if `pivots` says so), its reciprocal,
+/// then `Lᵢⱼ`. A failed pivot's error goes through the closure of
+/// [`Pivots::Checked`], if any, with the speeds that move no mass there
+/// (see [`mass_at_state`]).
 fn factorisation_code(
     model: &Model,
     pattern: &[Vec<bool>],
     order: &Order,
-    checked: Option<&Ident>,
+    pivots: Pivots<'_>,
     mass_at_state: &TokenStream,
 ) -> TokenStream {
     let nq = pattern.len();
@@ -432,15 +477,21 @@ fn factorisation_code(
                 #mass_at_state,
             )
         };
-        let error = match checked {
-            Some(checked) => quote!(#checked(#singular)),
-            None => singular,
-        };
+        let test = match pivots {
+            Pivots::Checked(Some(checked)) => Some(quote!(#checked(#singular))),
+            Pivots::Checked(None) => Some(singular),
+            Pivots::Unchecked => None,
+        }
+        .map(|error| {
+            quote! {
+                if !(#p > tolerance) {
+                    return ::core::result::Result::Err(#error);
+                }
+            }
+        });
         out.extend(quote! {
             let #p = #pivot;
-            if !(#p > tolerance) {
-                return ::core::result::Result::Err(#error);
-            }
+            #test
             let #r = 1.0 / #p;
         });
         for i in (j + 1..nq).filter(|&i| pattern[i][j]) {

@@ -29,6 +29,9 @@ pub enum OutputKind {
     AccelerationsJacobian,
     /// `linearize`: the state-space matrices `A`, `B` about a state.
     Linearize,
+    /// `accelerations_x4`: the accelerations of four states at once, one
+    /// state in each lane of a SIMD vector.
+    AccelerationsX4,
     /// `taylor`: the Taylor coefficients of the motion through a state, to
     /// any order (`taylor_coefficients`, for `dalembert::integrate::Taylor`).
     Taylor,
@@ -73,12 +76,13 @@ pub enum Availability {
 
 /// Every output name of the language, what it needs in parentheses and
 /// whether it is generated.
-pub const KINDS: [(&str, Subject, Availability); 14] = [
+pub const KINDS: [(&str, Subject, Availability); 15] = [
     ("inverse_dynamics", Subject::None, Availability::Ready),
     ("regressor", Subject::None, Availability::Ready),
     ("accelerations_jacobian", Subject::None, Availability::Ready),
     ("linearize", Subject::Coordinates, Availability::Ready),
     ("taylor", Subject::None, Availability::Ready),
+    ("accelerations_x4", Subject::None, Availability::Ready),
     (
         "inverse_dynamics_jacobian",
         Subject::None,
@@ -123,6 +127,7 @@ pub fn kind(name: &str, point: Option<PointId>, frame: Option<FrameId>) -> Optio
         ("accelerations_jacobian", ..) => OutputKind::AccelerationsJacobian,
         ("linearize", ..) => OutputKind::Linearize,
         ("taylor", ..) => OutputKind::Taylor,
+        ("accelerations_x4", ..) => OutputKind::AccelerationsX4,
         ("position", Some(p), _) => OutputKind::Position(p),
         ("velocity", Some(p), _) => OutputKind::Velocity(p),
         ("acceleration", Some(p), _) => OutputKind::Acceleration(p),

@@ -113,6 +113,31 @@ pub fn taylor(model: &Model, equations: &Equations, pool: &Pool) -> Function {
     }
 }
 
+/// `accelerations_x4(t, q, v, u)`: four states at once (its body is the
+/// emitter's, from the plan's route of `accelerations`).
+pub fn accelerations_x4() -> Function {
+    Function {
+        body: Body::AccelerationsX4,
+        results: Vec::new(),
+        ..Function::new(
+            "accelerations_x4",
+            ACCELERATIONS_X4_DOCS,
+            &[Time, Coordinates, Speeds, Inputs],
+            Value::vector(Vec::new()),
+        )
+    }
+}
+
+/// The docs of `accelerations_x4`.
+const ACCELERATIONS_X4_DOCS: &str =
+    "The accelerations of four states at once: entry `k` is `accelerations` of the
+state `(t[k], q[k], qd[k], u[k])`. The same straight-line solve, with each
+number of the four states in one lane of a SIMD vector
+(`wide::f64x4`): equal to the scalar call's results to a few units in the
+last place. A state that is not finite, or whose solve fails a pivot or
+gives a non-finite value, is answered by the scalar `accelerations`, with
+its error.";
+
 /// The docs of `taylor_coefficients`.
 const TAYLOR_DOCS: &str =
     "The Taylor coefficients of the motion through the state `(t, q, q̇)` with the

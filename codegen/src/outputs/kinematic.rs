@@ -105,6 +105,7 @@ pub fn function(
         | OutputKind::InverseDynamicsAdjoint
         | OutputKind::AccelerationsJacobian
         | OutputKind::Linearize
+        | OutputKind::AccelerationsX4
         | OutputKind::Taylor => return None,
     };
     let subject = output.subject.as_deref().unwrap_or_default();

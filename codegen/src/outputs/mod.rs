@@ -93,6 +93,10 @@ pub enum Body {
     /// are the partials of the residuals that the runtime's
     /// `constrained_accelerations_jacobian` takes.
     ConstrainedAccelerationsJacobian,
+    /// `accelerations_x4`: `accelerations` written again over SIMD lanes,
+    /// one state a lane, by the route the plan chose for `accelerations`
+    /// (it has no results of its own).
+    AccelerationsX4,
     /// `taylor_coefficients`: its results are `M` and `f`, whose Taylor
     /// coefficients it computes order by order, solving each order with one
     /// factorisation of `M`.
@@ -365,6 +369,7 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Reque
             OutputKind::Taylor => requested
                 .functions
                 .push(dynamics::taylor(model, equations, pool)),
+            OutputKind::AccelerationsX4 => requested.functions.push(dynamics::accelerations_x4()),
             _ => requested
                 .functions
                 .extend(kinematic::function(model, kinematics, pool, output)),

@@ -8,6 +8,7 @@ mod armature;
 mod build_api;
 mod cli;
 mod fuzz;
+mod lanes;
 mod long_input;
 mod mjcf_defaults;
 mod mjcf_errors;

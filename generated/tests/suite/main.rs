@@ -10,6 +10,7 @@ mod common;
 mod derivatives;
 #[cfg(feature = "humanoids")]
 mod humanoids;
+mod lanes;
 mod looped;
 mod macro_equivalence;
 mod mjcf;

@@ -102,3 +102,29 @@ fn generated_code_has_no_panic_path() {
         "one generated file per model, per URDF robot, per tree and per MJCF model"
     );
 }
+
+/// The same scan over the copies asking for `accelerations_x4`
+/// (`OUT_DIR/lanes/`): the solve over lanes has no panic path either (its
+/// states are destructured and handed to the runtime, never indexed).
+#[test]
+fn code_over_lanes_has_no_panic_path() {
+    let dir = Path::new(env!("OUT_DIR")).join("lanes");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&dir).expect("OUT_DIR/lanes exists") {
+        let path = entry.expect("a directory entry").path();
+        if path.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let code = std::fs::read_to_string(&path).expect("readable generated code");
+        assert!(
+            code.contains("pub fn accelerations_x4"),
+            "{}",
+            path.display()
+        );
+        let mut found = Vec::new();
+        panic_paths(code.parse().expect("generated code lexes"), &mut found);
+        assert!(found.is_empty(), "{}: {found:?}", path.display());
+        checked += 1;
+    }
+    assert!(checked >= 10, "the lanes' copies: {checked}");
+}

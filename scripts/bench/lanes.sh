@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Section "Four states at once": the generated accelerations_x4 (one state in
+# each lane of a wide::f64x4) against the scalar accelerations, per state, on
+# the default target and on x86-64-v3 (generated/benches/lanes.rs, built a
+# second time in a target directory of its own), and accelerations_jacobian
+# against Pinocchio's computeABADerivatives in the same window when the
+# peers' harness is given (DALEMBERT_PEERS).
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
+
+out="$CARGO_TARGET_DIR/bench-peers/lanes"
+mkdir -p "$out"
+v3="$CARGO_TARGET_DIR/x86-64-v3"
+quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR="$v3" \
+    quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+peers_csv=()
+if [ -n "${DALEMBERT_PEERS:-}" ]; then
+    peers --ns 12 --families spatial > "$out/chains.csv"
+    peers --urdf tests/reference/urdf/panda.urdf --only derivatives > "$out/panda.csv"
+    peers --urdf tests/reference/urdf/solo12.urdf --floating --only derivatives > "$out/floating_solo12.csv"
+    peers_csv=("$out"/{chains,panda,floating_solo12}.csv)
+fi
+
+cat <<'MD'
+## Four states at once
+
+`accelerations_x4` (from `outputs accelerations_x4;`) solves four states in
+one call, one state in each lane of a `wide::f64x4`, against the scalar
+`accelerations`, per state (the batched call's time over four). The chains
+of 6 and 12 take the unrolled `L D Lᵀ`, the chain of 30, the panda and
+Solo-12 the articulated-body recursion. Below, one RK4 step of the chain of
+12 through the scalar call and through `accelerations_x4` (four states a
+step) against MuJoCo's `mj_step` with its RK4, and `accelerations_jacobian`
+against the same states' `accelerations` and, when measured in the same
+window, Pinocchio's `computeABADerivatives`.
+
+MD
+python3 - "$CARGO_TARGET_DIR" "$v3" "$STAMP" "${peers_csv[@]}" <<'PY'
+import sys
+sys.path.insert(0, "scripts/bench/lib")
+from criterion_table import medians, ns, peer_rows, ratio
+
+target, v3, since, *csvs = sys.argv[1:]
+default, avx = medians(target, since), medians(v3, since)
+peers = peer_rows(csvs)
+systems = [("spatial_chain_06", 6), ("spatial_chain_12", 12), ("spatial_chain_30", 30),
+           ("panda", 9), ("floating_solo12", 18)]
+print("| system | n | scalar (ns) | x4, per state (ns) | ratio | v3 scalar (ns) | v3 x4, per state (ns) | v3 ratio |")
+print("|---|---|---|---|---|---|---|---|")
+for name, n in systems:
+    row = []
+    for found in (default, avx):
+        one = found.get(f"lanes/{name}/accelerations")
+        four = found.get(f"lanes/{name}/accelerations_x4 per state")
+        row += [ns(one), ns(four), ratio(four, one)]
+    print(f"| {name} | {n} | " + " | ".join(row) + " |")
+print()
+print("| system | `accelerations_jacobian` (ns) | / `accelerations` | `computeABADerivatives` (ns) | ratio |")
+print("|---|---|---|---|---|")
+for name, peer in [("spatial_chain_12", "spatial_12"), ("panda", "panda"), ("floating_solo12", "floating_solo12")]:
+    jacobian = default.get(f"lanes/{name}/accelerations_jacobian")
+    one = default.get(f"lanes/{name}/accelerations")
+    theirs = peers.get((peer, "pin_aba_derivatives"))
+    print(f"| {name} | {ns(jacobian)} | {ratio(jacobian, one)} | {ns(theirs)} | {ratio(jacobian, theirs)} |")
+print()
+print("| RK4 step, h = 1 ms, spatial chain of 12 | default (ns) | MuJoCo `mj_step` RK4 / ours | v3 (ns) | MuJoCo / ours |")
+print("|---|---|---|---|---|")
+mujoco = peers.get(("spatial_12", "mj_step_rk4"))
+for label, bench in [("one state a call", "rk4 step"), ("four a call, per state", "rk4 step x4 per state")]:
+    ours, fast = default.get(f"lanes/spatial_chain_12/{bench}"), avx.get(f"lanes/spatial_chain_12/{bench}")
+    print(f"| {label} | {ns(ours)} | {ratio(mujoco, ours)} | {ns(fast)} | {ratio(mujoco, fast)} |")
+PY
+echo
+measured "criterion medians of thread CPU time; the peers' medians in the same window where given"
+cat <<'MD'
+
+    cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+    RUSTFLAGS="-C target-cpu=x86-64-v3" cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+    bash $DALEMBERT_PEERS/run.sh --ns 12 --families spatial
+    bash $DALEMBERT_PEERS/run.sh --urdf tests/reference/urdf/panda.urdf --only derivatives   # and solo12.urdf --floating
+MD
