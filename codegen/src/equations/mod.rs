@@ -290,18 +290,25 @@ impl TreeJacobian {
     }
 }
 
-/// The [`TreeJacobian`] of a tree of revolute and prismatic joints;
-/// `None` for any other model.
+/// The [`TreeJacobian`] of a tree of revolute, prismatic, spherical and
+/// free joints whose one-speed joints move along their speeds' tangent
+/// directions (each coordinate's rate its speed); `None` for any other
+/// model.
 pub fn tree_jacobian(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
 ) -> Option<TreeJacobian> {
-    if !model.balls.is_empty() {
+    let Mechanics { kinematics, tree } = &*equations.mechanics;
+    let (tree, joints) = (tree.as_ref()?, model.tree.as_ref()?);
+    let plain = derivatives::plain_speeds(model);
+    let along_its_speed = joints.links.iter().zip(&tree.links).all(|(joint, link)| {
+        let speed = link.columns.first().map(|c| c.speed);
+        joint.ball.is_some() || speed.is_some_and(|k| plain.contains(&(k, joint.coordinate)))
+    });
+    if !along_its_speed {
         return None;
     }
-    let Mechanics { kinematics, tree } = &*equations.mechanics;
-    let tree = tree.as_ref()?;
     let links = tree_partials::link_vectors(tree, pool)?;
     let states = tree_partials::link_states(tree, pool);
     let loads = tree.applied_loads(pool);
