@@ -23,7 +23,7 @@
 //! The residual can come from any derivation of the same equations: built
 //! from `M` and `f` or from a Newton–Euler sweep, which for a
 //! tree is linear in the number of links where `M v̇` is quadratic. For a
-//! tree of revolute and prismatic joints the partials of its inertia and
+//! tree of revolute, prismatic, spherical and free joints the partials of its inertia and
 //! gravity terms also have a recursion of their own in the axes of `N`
 //! (`tree_partials`, through [`super::tree_jacobian`]), which
 //! differentiates only the rest of the residual (the applied loads, springs

@@ -251,7 +251,7 @@ pub fn inverse_dynamics(
 }
 
 /// The partials of the inverse dynamics `τ = M v̇ − f` of a tree of
-/// revolute and prismatic joints in two parts: the applied loads,
+/// revolute, prismatic, spherical and free joints in two parts: the applied loads,
 /// potentials and dissipation (everything in `τ` but its inertia and
 /// gravity terms) differentiated symbolically, and the vectors of each
 /// link whose pairs give the rest (see `tree_partials`).

@@ -31,7 +31,7 @@ pub struct TauPartials {
 }
 
 /// The partials of `τ` and how they were found, for the docs: of a tree
-/// of revolute and prismatic joints, by the route the plan chooses
+/// of revolute, prismatic, spherical and free joints, by the route the plan chooses
 /// between the world-frame recursion and the symbolic partials of `τ`
 /// ([`plan::partials`]), and with [`Partials::Looped`] that recursion in
 /// its parts too (whose loops cost no code).
