@@ -888,6 +888,116 @@ mod tests {
         turn(unit([0.3, -0.8, 0.5]), 0.9)
     }
 
+    /// A free body (its six speeds: velocity then angular velocity in its
+    /// axes, one link each) carrying a pendulum, at body placement
+    /// `(rotation, position)`, pendulum angle `angle` and speeds `v`.
+    fn floating(rotation: Mat3, position: Vec3, angle: f64, v: &[f64; 7]) -> [LinkState; 7] {
+        let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let (mass, center) = (2.5, [0.1, -0.2, 0.05]);
+        std::array::from_fn(|k| match k {
+            6 => turning(angle, 0.3, v[6], M2, L2),
+            _ => {
+                let mut axis = [0.0; 6];
+                axis[if k < 3 { k + 3 } else { k - 3 }] = 1.0;
+                let (rotation, offset) = match k {
+                    0 => (rotation, position),
+                    _ => (identity, [0.0; 3]),
+                };
+                let carries = k == 5;
+                let c = center.map(|x| if carries { mass * x } else { 0.0 });
+                let inertia = [[0.3, 0.01, 0.0], [0.01, 0.2, -0.02], [0.0, -0.02, 0.4]];
+                LinkState {
+                    rotation,
+                    offset,
+                    axis,
+                    speed: v[k],
+                    mass: if carries { mass } else { 0.0 },
+                    moment: c,
+                    inertia: inertia.map(|row| row.map(|x| if carries { x } else { 0.0 })),
+                }
+            }
+        })
+    }
+
+    #[test]
+    fn a_free_joints_pairs_are_the_central_differences_along_its_tangent_directions() {
+        // Links 0–5 the free joint's speeds (joint 0), each the parent of
+        // the next; link 6 the pendulum on the body. Rows in speed order;
+        // columns ∂/∂δ₀…δ₆, then ∂/∂v₀…v₆.
+        let links: [TreeLink; 7] = std::array::from_fn(|k| TreeLink {
+            parent: k.wrapping_sub(1),
+            joint: if k < 6 { 0 } else { 6 },
+            row: k,
+            by_q: k,
+            by_v: 7 + k,
+            end: 7,
+        });
+        let gravity = [0.0, 0.0, -G];
+        let rotation = orientation();
+        let (position, angle) = ([0.4, -0.3, 1.2], 0.7);
+        let v = [0.3, -0.5, 0.8, 1.1, -0.7, 0.4, -1.3];
+        let a = [0.2, 0.9, -0.4, -1.0, 0.6, 0.3, 1.5];
+        // τ = M q̈ + τ⁰ by the first pass.
+        let tau = |states: &[LinkState; 7]| -> [f64; 7] {
+            let mut tree = TreeRecursion::default();
+            tree.sweep(states, &links, &gravity);
+            let (m, bias): ([[f64; 7]; 7], [f64; 7]) = tree.mass_and_bias(&links);
+            std::array::from_fn(|i| {
+                let lower: f64 = (0..7).map(|j| (m[i][j] + m[j][i]) * a[j]).sum();
+                bias[i] + lower - m[i][i] * a[i]
+            })
+        };
+        let mut tree = TreeRecursion::default();
+        tree.sweep(&floating(rotation, position, angle, &v), &links, &gravity);
+        let mut vectors = [[[0.0; 6]; 8]; 7];
+        tree.link_vectors(&links, &a, &mut vectors);
+        let mut rows = [[0.0; 14]; 7];
+        let [r0, r1, r2, r3, r4, r5, r6] = &mut rows;
+        add_tree_pairs([r0, r1, r2, r3, r4, r5, r6], &vectors, &links);
+        let h = 1e-6;
+        // The body moved along its k-th axis (k < 3) or turned about it.
+        let moved = |k: usize, d: f64| -> [LinkState; 7] {
+            let (mut r, mut p, mut angle) = (rotation, position, angle);
+            match k {
+                0..3 => p = std::array::from_fn(|i| p[i] + d * rotation[i][k]),
+                3..6 => {
+                    let mut axis = [0.0; 3];
+                    axis[k - 3] = 1.0;
+                    let turned = turn(axis, d);
+                    r = std::array::from_fn(|i| {
+                        std::array::from_fn(|j| (0..3).map(|m| rotation[i][m] * turned[m][j]).sum())
+                    });
+                }
+                _ => angle += d,
+            }
+            floating(r, p, angle, &v)
+        };
+        let sped = |k: usize, d: f64| -> [LinkState; 7] {
+            let mut w = v;
+            w[k] += d;
+            floating(rotation, position, angle, &w)
+        };
+        for k in 0..7 {
+            let by_q = tau(&moved(k, h)).map(|x| x / (2.0 * h));
+            let by_q_minus = tau(&moved(k, -h)).map(|x| x / (2.0 * h));
+            let by_v = tau(&sped(k, h)).map(|x| x / (2.0 * h));
+            let by_v_minus = tau(&sped(k, -h)).map(|x| x / (2.0 * h));
+            for i in 0..7 {
+                let (want_q, want_v) = (by_q[i] - by_q_minus[i], by_v[i] - by_v_minus[i]);
+                assert!(
+                    close(rows[i][k], want_q, 1e-7),
+                    "∂τ{i}/∂δ{k}: {} against {want_q}",
+                    rows[i][k]
+                );
+                assert!(
+                    close(rows[i][7 + k], want_v, 1e-7),
+                    "∂τ{i}/∂v{k}: {} against {want_v}",
+                    rows[i][7 + k]
+                );
+            }
+        }
+    }
+
     #[test]
     fn a_rotated_tensor_is_the_triple_product_diagonal_or_not() {
         let r = orientation();
