@@ -31,9 +31,12 @@ cd "$ROOT"
 cargo build -q --release -p dalembert-codegen --bin dalembert
 DALEMBERT="$ROOT/target/release/dalembert"
 mkdir -p "$WORK/models" "$WORK/crate"
-for entry in g1:humanoids/g1.urdf talos_reduced:humanoids/talos_reduced.urdf solo12:urdf/solo12.urdf; do
-  "$DALEMBERT" urdf "tests/reference/${entry#*:}" --floating \
-    --outputs "accelerations_jacobian, linearize" > "$WORK/models/${entry%%:*}.dal"
+# Named as humanoid_timing.rs names them.
+for entry in g1:humanoids/g1.urdf:G1 talos_reduced:humanoids/talos_reduced.urdf:Talos \
+  solo12:urdf/solo12.urdf:FloatingSolo12; do
+  IFS=: read -r model file name <<< "$entry"
+  "$DALEMBERT" urdf "tests/reference/$file" --floating --name "$name" \
+    --outputs "accelerations_jacobian, linearize" > "$WORK/models/$model.dal"
 done
 for model in humanoid cheetah; do
   "$DALEMBERT" mjcf "tests/reference/mjcf/dm_control/$model.xml" > "$WORK/models/$model.dal"

@@ -8,7 +8,8 @@
 #
 # Ours: `dalembert urdf ROBOT.urdf [--floating] --outputs accelerations_jacobian`,
 # then `dalembert generate`, counted by scripts/bench/op_counts.py (the straight-line
-# code and the solve's row operations; none of these robots takes a runtime loop).
+# code, the solve's row operations and, where the jacobian takes the runtime's loops
+# over the tree (the floating robots), their operations counted from its table of links).
 # Pinocchio's: scripts/bench/pinocchio_op_counts.cpp, its algorithms run once on a
 # counting scalar, built against the headers under $PINOCCHIO_PREFIX (the `pin`
 # wheel's cmeel.prefix, holding include/pinocchio and include/eigen3), the robot
@@ -42,7 +43,9 @@ echo
 echo "Counted $(date -u +%Y-%m-%d) with \`scripts/bench/op_counts.sh\`: flops (additions,"
 echo "subtractions, negations, multiplications, divisions) of one call; sin/cos not included."
 echo "Ours: the generated code (\`dalembert generate\`), straight-line, each shared subexpression"
-echo "once, and the solve's row operations (in brackets, their share); Pinocchio's: its header-only"
+echo "once, the solve's row operations (in brackets, their share) and the runtime's loops over the"
+echo "tree where the jacobian takes them (the floating robots; counted per link and pair of links"
+echo "from the loops' source, \`scripts/bench/op_counts.py\`); Pinocchio's: its header-only"
 echo "algorithms run once on a counting scalar (\`scripts/bench/pinocchio_op_counts.cpp\`; it"
 echo "multiplies the structural zeros of its dense 6-vectors and 6×6 blocks, which it packs into"
 echo "SIMD registers)."

@@ -18,6 +18,10 @@
 pub struct TreeLink {
     /// The parent's index among the links (parents before children).
     pub parent: usize,
+    /// The index of the link of its joint's first speed: its own for a
+    /// joint of one speed; a joint of several speeds (spherical, free) is
+    /// as many links, each the parent of the next, sharing one frame.
+    pub joint: usize,
     /// The row of the link's speed.
     pub row: usize,
     /// The column of `∂τ/∂q` by the link's speed.
@@ -45,10 +49,10 @@ fn add<const C: usize>(row: &mut [f64; C], c: usize, value: f64) {
 
 /// Link `k` and its ancestors, from `k` to the root.
 fn lineage<'a, const L: usize>(
-    vectors: &'a [[[f64; 6]; 7]; L],
+    vectors: &'a [[[f64; 6]; 8]; L],
     links: &'a [TreeLink; L],
     k: usize,
-) -> impl Iterator<Item = (&'a [[f64; 6]; 7], &'a TreeLink)> {
+) -> impl Iterator<Item = (&'a [[f64; 6]; 8], &'a TreeLink)> {
     let mut j = k;
     core::iter::from_fn(move || {
         let here = (vectors.get(j)?, links.get(j)?);
@@ -58,38 +62,58 @@ fn lineage<'a, const L: usize>(
 }
 
 /// Adds, for every link `i` and each `j` of it and its ancestors, with
-/// `vectors[k] = [Sₖ, Ψ̇ₖ, Ψ̈ₖ, yₖ, zₖ, wₖ, uₖ]` (motions and forces in one
-/// frame):
+/// `vectors[k] = [Sₖ, Ψ̇ₖ, Ψ̈ₖ, Ψ̇ₖ + Φₖ, yₖ, zₖ, wₖ, uₖ]` (motions and
+/// forces in one frame):
 ///
 /// ```text
-/// ∂τᵢ/∂qⱼ += yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ        ∂τᵢ/∂q̇ⱼ += zᵢ · Sⱼ + 2 yᵢ · Ψ̇ⱼ
+/// ∂τᵢ/∂qⱼ += yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ        ∂τᵢ/∂q̇ⱼ += zᵢ · Sⱼ + yᵢ · (Ψ̇ⱼ + Φⱼ)
 /// ∂τⱼ/∂qᵢ += Sⱼ · wᵢ   (j ≠ i)      ∂τⱼ/∂q̇ᵢ += Sⱼ · uᵢ   (j ≠ i)
 /// ```
 ///
-/// into `rows[row of τ][column of the variable]` as `links` places them.
-/// Link `i`'s own row is found once and its entries added one by one (each
-/// gets at most one value from the pairs); the ancestors' rows, one entry
-/// pair each, in a second walk up the tree.
+/// the second row the first's with `i` and `j` exchanged where both are
+/// speeds of one joint (each of its columns turns with the others), into
+/// `rows[row of τ][column of the variable]` as `links` places them. Link
+/// `i`'s own row is found once and its entries added one by one (each gets
+/// at most one value from the pairs); the ancestors' rows, one entry pair
+/// each, in a second walk up the tree.
 pub fn add_tree_pairs<const C: usize, const N: usize, const L: usize>(
     mut rows: [&mut [f64; C]; N],
-    vectors: &[[[f64; 6]; 7]; L],
+    vectors: &[[[f64; 6]; 8]; L],
     links: &[TreeLink; L],
 ) {
-    for (i, ([.., y, z, w, u], link)) in vectors.iter().zip(links).enumerate() {
+    for (i, (own, link)) in vectors.iter().zip(links).enumerate() {
         if let Some(row) = rows.get_mut(link.row) {
-            for ([s, rate, second_rate, ..], other) in lineage(vectors, links, i) {
-                add(row, other.by_q, dot(y, second_rate) + dot(z, rate));
-                let y_rate = dot(y, rate);
-                add(row, other.by_v, dot(z, s) + (y_rate + y_rate));
+            for (other, ancestor) in lineage(vectors, links, i) {
+                let (by_q, by_v) = ancestor_pair(own, other);
+                add(row, ancestor.by_q, by_q);
+                add(row, ancestor.by_v, by_v);
             }
         }
-        for ([s, ..], other) in lineage(vectors, links, link.parent) {
-            if let Some(row) = rows.get_mut(other.row) {
-                add(row, link.by_q, dot(s, w));
-                add(row, link.by_v, dot(s, u));
+        let [.., w, u] = own;
+        for (other, ancestor) in lineage(vectors, links, link.parent) {
+            if let Some(row) = rows.get_mut(ancestor.row) {
+                let (by_q, by_v) = match ancestor.joint == link.joint {
+                    true => ancestor_pair(other, own),
+                    false => (dot(&other[0], w), dot(&other[0], u)),
+                };
+                add(row, link.by_q, by_q);
+                add(row, link.by_v, by_v);
             }
         }
     }
+}
+
+/// `(∂τᵢ/∂qⱼ, ∂τᵢ/∂q̇ⱼ)` of the link of `own` (`i`) and that of `other`
+/// (`j`, an ancestor of `i`, `i` itself or a speed of its joint):
+/// `yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ` and `zᵢ · Sⱼ + yᵢ · (Ψ̇ⱼ + Φⱼ)`.
+#[inline(always)]
+fn ancestor_pair(own: &[[f64; 6]; 8], other: &[[f64; 6]; 8]) -> (f64, f64) {
+    let [.., y, z, _, _] = own;
+    let [s, rate, second_rate, driven, ..] = other;
+    (
+        dot(y, second_rate) + dot(z, rate),
+        dot(z, s) + dot(y, driven),
+    )
 }
 
 /// One speed of a tree for [`tree_mass_matrix`], the speeds depth-first
@@ -166,6 +190,7 @@ mod tests {
         let links = [
             TreeLink {
                 parent: none,
+                joint: 0,
                 row: 1,
                 by_q: none,
                 by_v: 1,
@@ -173,19 +198,22 @@ mod tests {
             },
             TreeLink {
                 parent: 0,
+                joint: 1,
                 row: 0,
                 by_q: 0,
                 by_v: 2,
                 end: 2,
             },
         ];
-        // [S, Ψ̇, Ψ̈, y, z, w, u], each along one entry so that each dot
-        // product is one product of the two scales or zero.
+        // [S, Ψ̇, Ψ̈, Ψ̇ + Φ, y, z, w, u], each along one entry so that each
+        // dot product is one product of the two scales or zero (one-speed
+        // joints: Ψ̇ + Φ = 2 Ψ̇).
         let vectors = [
             [
                 along(0, 1.0),
                 along(1, 2.0),
                 along(2, 3.0),
+                along(1, 4.0),
                 along(1, 5.0),
                 along(0, 7.0),
                 along(3, 11.0),
@@ -195,6 +223,7 @@ mod tests {
                 along(3, 17.0),
                 along(4, 19.0),
                 along(5, 23.0),
+                along(4, 38.0),
                 along(5, 29.0),
                 along(4, 31.0),
                 along(0, 37.0),
@@ -203,11 +232,11 @@ mod tests {
         ];
         let (mut first, mut second) = ([100.0; 3], [200.0; 3]);
         add_tree_pairs([&mut first, &mut second], &vectors, &links);
-        // Row 1 (τ₀): ∂τ₀/∂v₀ = z₀·S₀ + 2 y₀·Ψ̇₀ = 7 + 2·10; ∂τ₀/∂q₁ = S₀·w₁
+        // Row 1 (τ₀): ∂τ₀/∂v₀ = z₀·S₀ + y₀·(Ψ̇₀ + Φ₀) = 7 + 5·4; ∂τ₀/∂q₁ = S₀·w₁
         // = 37, ∂τ₀/∂v₁ = S₀·u₁ = 41 (j = 0 ≺ i = 1); ∂τ₀/∂q₀ not solved.
         assert_eq!(second, [200.0 + 37.0, 200.0 + 27.0, 200.0 + 41.0]);
         // Row 0 (τ₁): ∂τ₁/∂q₁ = y₁·Ψ̈₁ + z₁·Ψ̇₁ = 29·23 + 31·19,
-        // ∂τ₁/∂v₁ = z₁·S₁ + 2 y₁·Ψ̇₁ = 0, ∂τ₁/∂v₀ = z₁·S₀ + 2 y₁·Ψ̇₀ = 0.
+        // ∂τ₁/∂v₁ = z₁·S₁ + y₁·(Ψ̇₁ + Φ₁) = 0, ∂τ₁/∂v₀ = z₁·S₀ + y₁·(Ψ̇₀ + Φ₀) = 0.
         assert_eq!(first, [100.0 + 29.0 * 23.0 + 31.0 * 19.0, 100.0, 100.0]);
     }
 

@@ -18,6 +18,13 @@
 //!
 //! Spatial vectors are in `N`'s axes at `N`'s origin: `(ω, v)` for a
 //! motion, `(n, f)` for a force.
+//!
+//! A joint of several speeds (spherical, free) is as many links, one a
+//! speed, each the parent of the next ([`TreeLink::joint`] names the
+//! first): the first is placed in the joint's parent, the others at the
+//! first's frame; the last carries the link's inertia. Every column's
+//! rates `Ψ̇`, `Ψ̈` are taken from the joint's parent, and `Φ = v × S`
+//! (`v` the twist of the joint's last link) from the link's own twist.
 
 use super::pairs::TreeLink;
 
@@ -136,38 +143,41 @@ impl<const L: usize> TreeRecursion<L> {
         (mass, bias)
     }
 
-    /// Writes into `vectors` `[Sⱼ, Ψ̇ⱼ, Ψ̈ⱼ, yⱼ, zⱼ, wⱼ, uⱼ]` of every link
-    /// `j` at the accelerations `accelerations` (by the rows that `links`
-    /// gives), each `(angular, linear)`:
+    /// Writes into `vectors` `[Sⱼ, Ψ̇ⱼ, Ψ̈ⱼ, Ψ̇ⱼ + Φⱼ, yⱼ, zⱼ, wⱼ, uⱼ]` of
+    /// every link `j` at the accelerations `accelerations` (by the rows
+    /// that `links` gives), each `(angular, linear)`:
     ///
     /// ```text
-    /// Ψ̇ⱼ = v_λ × Sⱼ                Ψ̈ⱼ = a_λ × Sⱼ + v_λ × Ψ̇ⱼ
+    /// Ψ̇ⱼ = v_λ × Sⱼ                Ψ̈ⱼ = a_λ × Sⱼ + v_λ × Ψ̇ⱼ      Φⱼ = vⱼ × Sⱼ
     /// vⱼ = v_λ + Sⱼ q̇ⱼ             aⱼ = a_λ + Sⱼ q̈ⱼ + Ψ̇ⱼ q̇ⱼ   (the base at −g)
     /// yⱼ = Iᶜⱼ Sⱼ                  zⱼ = İᶜⱼ Sⱼ − Sⱼ ×* hᶜⱼ
-    /// uⱼ = İᶜⱼ Sⱼ + Sⱼ ×* hᶜⱼ + 2 Iᶜⱼ Ψ̇ⱼ
+    /// uⱼ = İᶜⱼ Sⱼ + Sⱼ ×* hᶜⱼ + Iᶜⱼ (Ψ̇ⱼ + Φⱼ)
     /// wⱼ = Sⱼ ×* Fⱼ + Iᶜⱼ Ψ̈ⱼ + İᶜⱼ Ψ̇ⱼ + Ψ̇ⱼ ×* hᶜⱼ
     /// ```
     ///
     /// with `Iᶜⱼ`, its rate `İᶜⱼ`, the momentum `hᶜⱼ` and the inertia force
-    /// `Fⱼ` summed over the subtree of `j`. `Ψ̈ⱼ`'s first term is taken here,
-    /// at `a_λ = a⁰_λ + Δa_λ` (the sweep's acceleration and the share that
-    /// `q̈` moves, `Δaⱼ = Δa_λ + Sⱼ q̈ⱼ`), and the accelerations add
-    /// `Σₖ Iₖ Δaₖ = Iᶜⱼ Δa_λ + Σₘ yₘ q̈ₘ` (`k`, `m` over the subtree of
+    /// `Fⱼ` summed over the subtree of `j`, and `λ` the parent of `j`'s
+    /// joint (`Φⱼ = Ψ̇ⱼ` for a joint of one speed). `Ψ̈ⱼ`'s first term is
+    /// taken here, at `a_λ = a⁰_λ + Δa_λ` (the sweep's acceleration and the
+    /// share that `q̈` moves, `Δaⱼ = Δa_λ + Sⱼ q̈ⱼ`), and the accelerations
+    /// add `Σₖ Iₖ Δaₖ = Iᶜⱼ Δa_λ + Σₘ yₘ q̈ₘ` (`k`, `m` over the subtree of
     /// `j`) to `Fⱼ`.
     pub fn link_vectors<const N: usize>(
         &mut self,
         links: &[TreeLink; L],
         accelerations: &[f64; N],
-        vectors: &mut [[[f64; 6]; 7]; L],
+        vectors: &mut [[[f64; 6]; 8]; L],
     ) {
         let mut moved = [Spatial::ZERO; L];
         let mut pushed = [Spatial::ZERO; L];
         let mut driven = [Spatial::ZERO; L];
         for (j, (link, y)) in links.iter().zip(&self.unit_momenta).enumerate() {
             let (done, rest) = self.moving.split_at_mut(j);
-            let (above, parent) = match (moved.get(link.parent), done.get(link.parent)) {
-                (Some(above), Some(parent)) => (*above, parent.acceleration),
-                _ => (Spatial::ZERO, self.base),
+            let above = moved.get(link.parent).copied().unwrap_or(Spatial::ZERO);
+            let joint_parent = links.get(link.joint).map_or(usize::MAX, |l| l.parent);
+            let parent = match (moved.get(joint_parent), done.get(joint_parent)) {
+                (Some(moved), Some(parent)) => parent.acceleration.add(moved),
+                _ => self.base,
             };
             let qdd = accelerations.get(link.row).copied().unwrap_or_default();
             if let (Some(moving), Some(moved), Some(pushed), Some(driven)) = (
@@ -178,7 +188,7 @@ impl<const L: usize> TreeRecursion<L> {
             ) {
                 moving.second_rate = moving
                     .second_rate
-                    .add(&motion_cross(&parent.add(&above), &moving.subspace));
+                    .add(&motion_cross(&parent, &moving.subspace));
                 *moved = above.add(&moving.subspace.scale(qdd));
                 *pushed = above;
                 *driven = y.scale(qdd);
@@ -190,19 +200,41 @@ impl<const L: usize> TreeRecursion<L> {
                 *parent = parent.add(this);
             }
         }
-        for (((vectors, moving), (subtree, y)), (driven, pushed)) in vectors
+        for (j, (((vectors, moving), (subtree, y)), (driven, pushed))) in vectors
             .iter_mut()
             .zip(&self.moving)
             .zip(self.subtrees.iter_mut().zip(&self.unit_momenta))
             .zip(driven.iter().zip(&pushed))
+            .enumerate()
         {
             subtree.force = subtree
                 .force
                 .add(&subtree.inertia.times(pushed))
                 .add(driven);
-            *vectors = link_vectors(moving, subtree, y);
+            let through_link = match joint_twist(links, &self.moving, j) {
+                Some(twist) => motion_cross(twist, &moving.subspace),
+                None => moving.rate,
+            };
+            *vectors = link_vectors(moving, subtree, y, &moving.rate.add(&through_link));
         }
     }
+}
+
+/// The twist of link `j`'s joint, that of its last speed's link, if the
+/// joint has several speeds; `None` for a joint of one speed (whose
+/// `Φ = Ψ̇`).
+#[inline(always)]
+fn joint_twist<'a, const L: usize>(
+    links: &[TreeLink; L],
+    moving: &'a [Moving; L],
+    j: usize,
+) -> Option<&'a Spatial> {
+    let joint = links.get(j)?.joint;
+    let mut last = j;
+    while links.get(last + 1).is_some_and(|l| l.joint == joint) {
+        last += 1;
+    }
+    (joint != j || last != j).then(|| moving.get(last).map(|m| &m.twist))?
 }
 
 /// Whether `link`, the `j`-th, is the child of the link just before it
@@ -228,16 +260,15 @@ fn dot6(a: &Spatial, b: &Spatial) -> f64 {
     dot(&a.angular, &b.angular) + dot(&a.linear, &b.linear)
 }
 
-/// `[S, Ψ̇, Ψ̈, y, z, w, u]` of a link from its outward step, its
-/// subtree's composites and `y`.
+/// `[S, Ψ̇, Ψ̈, Ψ̇ + Φ, y, z, w, u]` of a link from its outward step, its
+/// subtree's composites, `y` and `Ψ̇ + Φ`.
 #[inline(always)]
-fn link_vectors(link: &Moving, subtree: &Subtree, y: &Spatial) -> [[f64; 6]; 7] {
+fn link_vectors(link: &Moving, subtree: &Subtree, y: &Spatial, driven: &Spatial) -> [[f64; 6]; 8] {
     let (s, rate) = (&link.subspace, &link.rate);
     let turned = subtree.rate_times(s);
     let carried = force_cross(s, &subtree.momentum);
-    let pushed = subtree.inertia.times(rate);
     let z = turned.sub(&carried);
-    let u = turned.add(&carried).add(&pushed).add(&pushed);
+    let u = turned.add(&carried).add(&subtree.inertia.times(driven));
     let w = force_cross(s, &subtree.force)
         .add(&subtree.inertia.times(&link.second_rate))
         .add(&subtree.rate_times(rate))
@@ -246,6 +277,7 @@ fn link_vectors(link: &Moving, subtree: &Subtree, y: &Spatial) -> [[f64; 6]; 7] 
         s.flat(),
         rate.flat(),
         link.second_rate.flat(),
+        driven.flat(),
         y.flat(),
         z.flat(),
         w.flat(),
@@ -314,20 +346,28 @@ fn outwards<const L: usize>(
         } else {
             moving.get(link.parent).unwrap_or(&base)
         };
-        previous = step_outwards(parent, state);
+        previous = match link.joint == j {
+            true => step_outwards(parent, parent, state),
+            false => {
+                let joint_parent = links.get(link.joint).map_or(usize::MAX, |l| l.parent);
+                step_outwards(parent, moving.get(joint_parent).unwrap_or(&base), state)
+            }
+        };
         if let Some(this) = moving.get_mut(j) {
             *this = previous;
         }
     }
 }
 
-/// The link of `state` from its parent's `parent`.
+/// The link of `state` from its parent's `parent`, the rates of its
+/// column from the twist of its joint's parent, `joint_parent` (the
+/// parent itself for a joint's first speed).
 #[inline(always)]
-fn step_outwards(parent: &Moving, state: &LinkState) -> Moving {
+fn step_outwards(parent: &Moving, joint_parent: &Moving, state: &LinkState) -> Moving {
     let rotation = mat_mul(&parent.rotation, &state.rotation);
     let origin = add3(&parent.origin, &mat_vec(&parent.rotation, &state.offset));
     let subspace = subspace(&rotation, &origin, &state.axis);
-    let (v, a) = (&parent.twist, &parent.acceleration);
+    let v = &joint_parent.twist;
     let rate = motion_cross(v, &subspace);
     let second_rate = motion_cross(v, &rate);
     Moving {
@@ -336,8 +376,8 @@ fn step_outwards(parent: &Moving, state: &LinkState) -> Moving {
         subspace,
         rate,
         second_rate,
-        twist: v.add(&subspace.scale(state.speed)),
-        acceleration: a.add(&rate.scale(state.speed)),
+        twist: parent.twist.add(&subspace.scale(state.speed)),
+        acceleration: parent.acceleration.add(&rate.scale(state.speed)),
     }
 }
 
@@ -391,6 +431,10 @@ fn inwards<const L: usize>(
 /// `link`, with its rate, momentum and inertia force.
 #[inline(always)]
 fn own(state: &LinkState, link: &Moving) -> Subtree {
+    if state.mass == 0.0 && state.moment == [0.0; 3] && state.inertia == [[0.0; 3]; 3] {
+        // A joint's speed before its last (or a massless link).
+        return Subtree::ZERO;
+    }
     let (rotation, origin, mass) = (&link.rotation, &link.origin, state.mass);
     let turned = mat_vec(rotation, &state.moment);
     let moment = add3(&turned, &vec3(|i| mass * origin[i]));
@@ -660,6 +704,7 @@ mod tests {
     const LINKS: [TreeLink; 2] = [
         TreeLink {
             parent: NONE,
+            joint: 0,
             row: 1,
             by_q: 0,
             by_v: 2,
@@ -667,6 +712,7 @@ mod tests {
         },
         TreeLink {
             parent: 0,
+            joint: 1,
             row: 0,
             by_q: 1,
             by_v: 3,
@@ -763,6 +809,7 @@ mod tests {
         let (m0, m1, m2) = (2.0, 0.7, 1.3);
         let link = |parent: usize, row: usize, end: usize| TreeLink {
             parent,
+            joint: row,
             row,
             by_q: NONE,
             by_v: NONE,
@@ -792,7 +839,7 @@ mod tests {
         let (q, v, a) = ([0.4, -1.1], [0.9, -0.3], [-2.0, 1.3]);
         let mut tree = TreeRecursion::default();
         tree.sweep(&states(q, v), &LINKS, &[0.0, -G, 0.0]);
-        let mut vectors = [[[0.0; 6]; 7]; 2];
+        let mut vectors = [[[0.0; 6]; 8]; 2];
         tree.link_vectors(&LINKS, &[a[1], a[0]], &mut vectors);
         let (mut row0, mut row1) = ([0.0; 4], [0.0; 4]);
         add_tree_pairs([&mut row0, &mut row1], &vectors, &LINKS);
@@ -839,6 +886,116 @@ mod tests {
     /// A link's orientation, turned about no coordinate axis.
     fn orientation() -> Mat3 {
         turn(unit([0.3, -0.8, 0.5]), 0.9)
+    }
+
+    /// A free body (its six speeds: velocity then angular velocity in its
+    /// axes, one link each) carrying a pendulum, at body placement
+    /// `(rotation, position)`, pendulum angle `angle` and speeds `v`.
+    fn floating(rotation: Mat3, position: Vec3, angle: f64, v: &[f64; 7]) -> [LinkState; 7] {
+        let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let (mass, center) = (2.5, [0.1, -0.2, 0.05]);
+        std::array::from_fn(|k| match k {
+            6 => turning(angle, 0.3, v[6], M2, L2),
+            _ => {
+                let mut axis = [0.0; 6];
+                axis[if k < 3 { k + 3 } else { k - 3 }] = 1.0;
+                let (rotation, offset) = match k {
+                    0 => (rotation, position),
+                    _ => (identity, [0.0; 3]),
+                };
+                let carries = k == 5;
+                let c = center.map(|x| if carries { mass * x } else { 0.0 });
+                let inertia = [[0.3, 0.01, 0.0], [0.01, 0.2, -0.02], [0.0, -0.02, 0.4]];
+                LinkState {
+                    rotation,
+                    offset,
+                    axis,
+                    speed: v[k],
+                    mass: if carries { mass } else { 0.0 },
+                    moment: c,
+                    inertia: inertia.map(|row| row.map(|x| if carries { x } else { 0.0 })),
+                }
+            }
+        })
+    }
+
+    #[test]
+    fn a_free_joints_pairs_are_the_central_differences_along_its_tangent_directions() {
+        // Links 0–5 the free joint's speeds (joint 0), each the parent of
+        // the next; link 6 the pendulum on the body. Rows in speed order;
+        // columns ∂/∂δ₀…δ₆, then ∂/∂v₀…v₆.
+        let links: [TreeLink; 7] = std::array::from_fn(|k| TreeLink {
+            parent: k.wrapping_sub(1),
+            joint: if k < 6 { 0 } else { 6 },
+            row: k,
+            by_q: k,
+            by_v: 7 + k,
+            end: 7,
+        });
+        let gravity = [0.0, 0.0, -G];
+        let rotation = orientation();
+        let (position, angle) = ([0.4, -0.3, 1.2], 0.7);
+        let v = [0.3, -0.5, 0.8, 1.1, -0.7, 0.4, -1.3];
+        let a = [0.2, 0.9, -0.4, -1.0, 0.6, 0.3, 1.5];
+        // τ = M q̈ + τ⁰ by the first pass.
+        let tau = |states: &[LinkState; 7]| -> [f64; 7] {
+            let mut tree = TreeRecursion::default();
+            tree.sweep(states, &links, &gravity);
+            let (m, bias): ([[f64; 7]; 7], [f64; 7]) = tree.mass_and_bias(&links);
+            std::array::from_fn(|i| {
+                let lower: f64 = (0..7).map(|j| (m[i][j] + m[j][i]) * a[j]).sum();
+                bias[i] + lower - m[i][i] * a[i]
+            })
+        };
+        let mut tree = TreeRecursion::default();
+        tree.sweep(&floating(rotation, position, angle, &v), &links, &gravity);
+        let mut vectors = [[[0.0; 6]; 8]; 7];
+        tree.link_vectors(&links, &a, &mut vectors);
+        let mut rows = [[0.0; 14]; 7];
+        let [r0, r1, r2, r3, r4, r5, r6] = &mut rows;
+        add_tree_pairs([r0, r1, r2, r3, r4, r5, r6], &vectors, &links);
+        let h = 1e-6;
+        // The body moved along its k-th axis (k < 3) or turned about it.
+        let moved = |k: usize, d: f64| -> [LinkState; 7] {
+            let (mut r, mut p, mut angle) = (rotation, position, angle);
+            match k {
+                0..3 => p = std::array::from_fn(|i| p[i] + d * rotation[i][k]),
+                3..6 => {
+                    let mut axis = [0.0; 3];
+                    axis[k - 3] = 1.0;
+                    let turned = turn(axis, d);
+                    r = std::array::from_fn(|i| {
+                        std::array::from_fn(|j| (0..3).map(|m| rotation[i][m] * turned[m][j]).sum())
+                    });
+                }
+                _ => angle += d,
+            }
+            floating(r, p, angle, &v)
+        };
+        let sped = |k: usize, d: f64| -> [LinkState; 7] {
+            let mut w = v;
+            w[k] += d;
+            floating(rotation, position, angle, &w)
+        };
+        for k in 0..7 {
+            let by_q = tau(&moved(k, h)).map(|x| x / (2.0 * h));
+            let by_q_minus = tau(&moved(k, -h)).map(|x| x / (2.0 * h));
+            let by_v = tau(&sped(k, h)).map(|x| x / (2.0 * h));
+            let by_v_minus = tau(&sped(k, -h)).map(|x| x / (2.0 * h));
+            for i in 0..7 {
+                let (want_q, want_v) = (by_q[i] - by_q_minus[i], by_v[i] - by_v_minus[i]);
+                assert!(
+                    close(rows[i][k], want_q, 1e-7),
+                    "∂τ{i}/∂δ{k}: {} against {want_q}",
+                    rows[i][k]
+                );
+                assert!(
+                    close(rows[i][7 + k], want_v, 1e-7),
+                    "∂τ{i}/∂v{k}: {} against {want_v}",
+                    rows[i][7 + k]
+                );
+            }
+        }
     }
 
     #[test]

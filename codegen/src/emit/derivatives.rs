@@ -66,12 +66,18 @@ fn tree_table(paired: &PairedTree, order: &[usize], columns: &[(usize, usize)]) 
         })
     };
     let ends = subtree_ends(&paired.parents);
-    let table = paired.parents.iter().zip(&paired.speeds).zip(ends).map(|((&parent, &speed), end)| {
+    let links = paired
+        .parents
+        .iter()
+        .zip(&paired.joints)
+        .zip(&paired.speeds)
+        .zip(ends);
+    let table = links.map(|(((&parent, &joint), &speed), end)| {
         let row = index(order.iter().position(|&s| s == speed));
         let [by_q, by_v] = [0, 1].map(|block| index(columns.iter().position(|&c| c == (block, speed))));
         let parent = index(parent);
-        let end = Literal::usize_unsuffixed(end);
-        quote!(::dalembert::__private::TreeLink { parent: #parent, row: #row, by_q: #by_q, by_v: #by_v, end: #end })
+        let (joint, end) = (Literal::usize_unsuffixed(joint), Literal::usize_unsuffixed(end));
+        quote!(::dalembert::__private::TreeLink { parent: #parent, joint: #joint, row: #row, by_q: #by_q, by_v: #by_v, end: #end })
     });
     let l = Literal::usize_unsuffixed(paired.speeds.len());
     quote!(const TREE: [::dalembert::__private::TreeLink; #l] = [#(#table),*];)
@@ -316,7 +322,7 @@ fn looped_rows(
                 ::dalembert::DynamicsError::NonFiniteAccelerations
             ));
         }
-        let mut vectors = [[[0.0; 6]; 7]; #l];
+        let mut vectors = [[[0.0; 6]; 8]; #l];
         tree.link_vectors(&TREE, &accelerations, &mut vectors);
         ::dalembert::__private::add_tree_pairs([#(&mut #rows),*], &vectors, &TREE);
     }

@@ -23,7 +23,7 @@
 //! The residual can come from any derivation of the same equations: built
 //! from `M` and `f` or from a Newton–Euler sweep, which for a
 //! tree is linear in the number of links where `M v̇` is quadratic. For a
-//! tree of revolute and prismatic joints the partials of its inertia and
+//! tree of revolute, prismatic, spherical and free joints the partials of its inertia and
 //! gravity terms also have a recursion of their own in the axes of `N`
 //! (`tree_partials`, through [`super::tree_jacobian`]), which
 //! differentiates only the rest of the residual (the applied loads, springs
@@ -351,6 +351,65 @@ mod tests {
                     (got_v - expected_v[i][j]).abs() < 1e-14,
                     "K_v[{i}][{j}] = {got_v}"
                 );
+            }
+        }
+    }
+
+    /// The world-frame recursion's partials against the symbolic ones of
+    /// the Newton–Euler sweep, along the same tangent directions, for a
+    /// free joint at the root and a ball joint inside the tree (whose
+    /// coordinates central differences would leave the unit sphere).
+    #[test]
+    fn the_recursions_partials_of_joints_of_several_speeds_are_the_symbolic_ones() {
+        use crate::equations::quaternion_check::{BALL_IN_CHAIN, LOADED};
+        for source in [LOADED, BALL_IN_CHAIN] {
+            let system =
+                crate::language::parse_system(source.parse().expect("tokens")).expect("parses");
+            let (model, mut pool) = crate::model::resolve(&system).expect("a valid model");
+            let equations = super::super::derive(&model, &mut pool);
+            let (tau, _) = super::super::inverse_dynamics(&model, &equations, &mut pool);
+            let (nq, nv, nu) = (model.nq(), model.nv(), model.inputs.len());
+            let directions = tangent_directions(&model, &mut pool);
+            let symbolic = residual_jacobian(&mut pool, &tau, &directions, nu);
+            let tree = super::super::tree_jacobian(&model, &equations, &mut pool)
+                .expect("the recursion takes joints of several speeds");
+            let recursion = tree.combined(&mut pool);
+            let mut random = Random::new(5);
+            let mut draw =
+                |n: usize| -> Vec<f64> { (0..n).map(|_| random.uniform(-1.0, 1.0)).collect() };
+            for _ in 0..3 {
+                let mut q = draw(nq);
+                for ball in &model.balls {
+                    let norm = ball.quaternion.map(|i| q[i] * q[i]).iter().sum::<f64>();
+                    for i in ball.quaternion {
+                        q[i] /= norm.sqrt();
+                    }
+                }
+                let parameters = draw(model.parameters.len());
+                let point = Point {
+                    parameters: parameters.iter().map(|p| 1.0 + p.abs() / 2.0).collect(),
+                    q,
+                    v: draw(nv),
+                    a: draw(nv),
+                    u: draw(nu),
+                };
+                let pairs = [
+                    (&recursion.coordinates, &symbolic.coordinates),
+                    (&recursion.speeds, &symbolic.speeds),
+                    (&recursion.inputs, &symbolic.inputs),
+                ];
+                for (block, (got, want)) in pairs.into_iter().enumerate() {
+                    for (i, (got, want)) in got.iter().zip(want).enumerate() {
+                        for (j, (&got, &want)) in got.iter().zip(want).enumerate() {
+                            let (got, want) = (pool.eval(got, &point), pool.eval(want, &point));
+                            assert!(
+                                (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                                "{}: block {block} [{i}][{j}]: {got} against {want}",
+                                model.name
+                            );
+                        }
+                    }
+                }
             }
         }
     }

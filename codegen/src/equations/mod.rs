@@ -252,7 +252,7 @@ pub fn inverse_dynamics(
 }
 
 /// The partials of the inverse dynamics `τ = M v̇ − f` of a tree of
-/// revolute and prismatic joints in two parts: the applied loads,
+/// revolute, prismatic, spherical and free joints in two parts: the applied loads,
 /// potentials and dissipation (everything in `τ` but its inertia and
 /// gravity terms) differentiated symbolically, and the vectors of each
 /// link whose pairs give the rest (see `tree_partials`).
@@ -291,18 +291,25 @@ impl TreeJacobian {
     }
 }
 
-/// The [`TreeJacobian`] of a tree of revolute and prismatic joints;
-/// `None` for any other model.
+/// The [`TreeJacobian`] of a tree of revolute, prismatic, spherical and
+/// free joints whose one-speed joints move along their speeds' tangent
+/// directions (each coordinate's rate its speed); `None` for any other
+/// model.
 pub fn tree_jacobian(
     model: &Model,
     equations: &Equations,
     pool: &mut Pool,
 ) -> Option<TreeJacobian> {
-    if !model.balls.is_empty() {
+    let Mechanics { kinematics, tree } = &*equations.mechanics;
+    let (tree, joints) = (tree.as_ref()?, model.tree.as_ref()?);
+    let plain = derivatives::plain_speeds(model);
+    let along_its_speed = joints.links.iter().zip(&tree.links).all(|(joint, link)| {
+        let speed = link.columns.first().map(|c| c.speed);
+        joint.ball.is_some() || speed.is_some_and(|k| plain.contains(&(k, joint.coordinate)))
+    });
+    if !along_its_speed {
         return None;
     }
-    let Mechanics { kinematics, tree } = &*equations.mechanics;
-    let tree = tree.as_ref()?;
     let links = tree_partials::link_vectors(tree, pool)?;
     let states = tree_partials::link_states(tree, pool);
     let loads = tree.applied_loads(pool);

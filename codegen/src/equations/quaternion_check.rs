@@ -46,7 +46,7 @@ pub(super) const LOADED: &str = "pub Loaded {
 
 /// A revolute link carrying a ball joint away from the root, with a body
 /// on each side: a joint of several speeds inside the tree.
-const BALL_IN_CHAIN: &str = "pub BallInChain {
+pub(super) const BALL_IN_CHAIN: &str = "pub BallInChain {
     parameters m, a, b, g;
     coordinates s;
     inputs T;

@@ -2,8 +2,8 @@
 //! tree's inverse dynamics `τ = M v̇ − f`, by a recursion over the tree in
 //! the axes of `N` (Carpentier and Mansard, "Analytical derivatives of
 //! rigid body dynamics algorithms", RSS 2018: the derivatives of the
-//! recursive Newton–Euler algorithm), for trees whose joints are all
-//! revolute or prismatic.
+//! recursive Newton–Euler algorithm), for trees of revolute, prismatic,
+//! spherical and free joints.
 //!
 //! Every spatial quantity is in `N`'s axes at `N`'s origin: the motion
 //! subspace `Sᵢ` of joint `i` (`(e, o × e)` for a turn about the unit axis
@@ -28,6 +28,19 @@
 //! `zᵢ = Lᶜᵢᵀ Sᵢ = İᶜᵢ Sᵢ − Sᵢ ×* hᶜᵢ`, the second `Sᵢ` dotted with one
 //! vector per `j`: a few dot products of six per entry, against a sweep
 //! differentiated link by link in the body-frame recursion.
+//!
+//! A joint of several speeds (spherical, free) is one column `Sₖ` a speed,
+//! each fixed in the link (the link's own axes at its origin), its `∂/∂q`
+//! along the tangent direction that moves the link by `Sₖ` (as the
+//! symbolic route's `tangent_directions`). Three things differ from a
+//! chain of one-speed joints: every column's `Ψ̇ₖ`, `Ψ̈ₖ` are taken from
+//! the joint's parent (`v_λ`, `a_λ`), and the link's twist and
+//! acceleration are `v_λ + Σ Sₖ q̇ₖ` and `a_λ + Σ (Sₖ q̈ₖ + Ψ̇ₖ q̇ₖ)`;
+//! in `∂τ/∂q̇` the rate of a column through the link's own twist,
+//! `Φₖ = vᵢ × Sₖ`, replaces one of the two `Ψ̇ₖ` (for a one-speed joint
+//! `Φ = Ψ̇`: the `2` above), so each link carries `Ψ̇ₖ + Φₖ`; and since
+//! each column turns with the others, every pair of columns of one joint
+//! takes the first row's formulas both ways, none the second's.
 
 use super::recursive::{
     Column, Composite, JointTree, Link, group3, grouped as grouped_composite, rotate_tensor,
@@ -54,15 +67,25 @@ struct Moving {
     rotation: Mat3,
     /// The link's origin, from `N`'s.
     origin: Vec3,
-    /// The joint's motion subspace `S`.
+    /// One per speed of the joint.
+    columns: Vec<ColumnMotion>,
+    /// The link's twist and acceleration.
+    twist: Spatial,
+    acceleration: Spatial,
+}
+
+/// One column of a joint's motion subspace and its rates.
+struct ColumnMotion {
+    /// `S`.
     subspace: Spatial,
     /// `Ψ̇ = v_λ × S`.
     rate: Spatial,
     /// `Ψ̈ = a_λ × S + v_λ × Ψ̇`.
     second_rate: Spatial,
-    /// The link's twist and acceleration.
-    twist: Spatial,
-    acceleration: Spatial,
+    /// `Ψ̇ + Φ` with `Φ = v × S` (`2 Ψ̇` for a one-speed joint).
+    driven: Spatial,
+    /// The speed's index.
+    speed: usize,
 }
 
 /// The composites of a subtree: inertia `(m, first moment c, inertia about
@@ -78,25 +101,35 @@ struct Subtree {
     force: Spatial,
 }
 
-/// What the partials of one link's joint pair with those of its ancestors
-/// and descendants, in `N`'s axes: the link's parent and speed, and seven
-/// spatial vectors of six entries (angular then linear), `Sⱼ`, `Ψ̇ⱼ`, `Ψ̈ⱼ`,
-/// `yⱼ`, `zⱼ`, `wⱼ`, `uⱼ`, in that order.
+/// What the partials of one speed of a link's joint pair with those of
+/// its ancestors and descendants, in `N`'s axes: its parent, joint and
+/// speed, and eight spatial vectors of six entries (angular then linear),
+/// `Sⱼ`, `Ψ̇ⱼ`, `Ψ̈ⱼ`, `Ψ̇ⱼ + Φⱼ`, `yⱼ`, `zⱼ`, `wⱼ`, `uⱼ`, in that order. A
+/// joint of several speeds is as many entries, each the parent of the
+/// next.
 pub struct LinkVectors {
-    /// The parent's index among the links (parents before children).
+    /// The parent's index among the entries (parents before children):
+    /// the previous speed of the same joint, else the last of the parent
+    /// link's joint.
     pub parent: Option<usize>,
-    /// The index of the joint's speed.
+    /// The index of the entry of the joint's first speed (its own for a
+    /// one-speed joint).
+    pub joint: usize,
+    /// The index of the speed.
     pub speed: usize,
-    /// `Sⱼ`, `Ψ̇ⱼ`, `Ψ̈ⱼ`, `yⱼ`, `zⱼ`, `wⱼ`, `uⱼ`.
-    pub vectors: [[ExprId; 6]; 7],
+    /// `Sⱼ`, `Ψ̇ⱼ`, `Ψ̈ⱼ`, `Ψ̇ⱼ + Φⱼ`, `yⱼ`, `zⱼ`, `wⱼ`, `uⱼ`.
+    pub vectors: [[ExprId; 6]; 8],
 }
 
-/// One link of the tree at a state, what the runtime's recursion
-/// (`dalembert::__private::TreeRecursion`) computes its [`LinkVectors`]
-/// from, with the accelerations it is given after its first pass: its
-/// placement in its parent, its joint's axis `(e, 0)` of a turn or
-/// `(0, e)` of a slide in its axes, the joint's speed, and its inertia
-/// about its origin in its axes.
+/// One speed of a link of the tree at a state, what the runtime's
+/// recursion (`dalembert::__private::TreeRecursion`) computes its
+/// [`LinkVectors`] from, with the accelerations it is given after its
+/// first pass: its placement in its parent entry, its column `(e, 0)` of a
+/// turn or `(0, e)` of a slide in the link's axes, the speed, and the
+/// inertia about the link's origin in its axes. A joint of several speeds
+/// puts the link's placement on its first entry and its inertia on its
+/// last; the others are placed at their parent entry (the identity, no
+/// offset) and carry no mass.
 pub struct LinkState {
     /// Maps the link's components to its parent's.
     pub rotation: Mat3,
@@ -128,60 +161,86 @@ impl LinkState {
     }
 }
 
-/// The [`LinkState`] of every link of `tree` (whose [`link_vectors`] are
-/// found).
+/// The [`LinkState`] of every speed of `tree` (whose [`link_vectors`] are
+/// found), in the order of its [`LinkVectors`].
 pub(super) fn link_states(tree: &JointTree, pool: &mut Pool) -> Vec<LinkState> {
     let zero = pool.zero();
     let inertias = tree.link_inertias(pool);
-    tree.links
-        .iter()
-        .zip(inertias)
-        .map(|(link, inertia)| {
-            let column = &link.columns[0];
-            let [a, b, c] = column.axis;
+    let mut states = Vec::new();
+    for (link, inertia) in tree.links.iter().zip(inertias) {
+        let last = link.columns.len() - 1;
+        for (c, column) in link.columns.iter().enumerate() {
+            let [a, b, d] = column.axis;
             let axis = match column.turns {
-                true => [a, b, c, zero, zero, zero],
-                false => [zero, zero, zero, a, b, c],
+                true => [a, b, d, zero, zero, zero],
+                false => [zero, zero, zero, a, b, d],
             };
-            LinkState {
-                rotation: link.rotation,
-                offset: link.offset,
+            let (rotation, offset) = match c {
+                0 => (link.rotation, link.offset),
+                _ => (identity(pool), [zero; 3]),
+            };
+            let massless = Composite {
+                mass: zero,
+                moment: [zero; 3],
+                inertia: [[zero; 3]; 3],
+            };
+            let inertia = if c == last { inertia } else { massless };
+            states.push(LinkState {
+                rotation,
+                offset,
                 axis,
                 speed: pool.sym(Sym::Speed(column.speed as u32)),
                 mass: inertia.mass,
                 moment: inertia.moment,
                 inertia: inertia.inertia,
-            }
-        })
-        .collect()
+            });
+        }
+    }
+    states
 }
 
-/// The [`LinkVectors`] of every link of `tree`, `None` unless every joint
-/// is a revolute or prismatic joint whose coordinate's rate is the speed
-/// of the same index.
+/// The [`LinkVectors`] of every speed of `tree`, link by link and each
+/// joint's speeds in order; `None` if a joint is of another kind than
+/// revolute, prismatic, spherical or free.
 pub(super) fn link_vectors(tree: &JointTree, pool: &mut Pool) -> Option<Vec<LinkVectors>> {
-    let one_speed = |l: &Link| {
-        matches!(l.kind, JointKind::Revolute | JointKind::Prismatic) && l.columns.len() == 1
+    let known = |l: &Link| match l.kind {
+        JointKind::Revolute | JointKind::Prismatic => l.columns.len() == 1,
+        _ => !l.columns.is_empty(),
     };
-    if !pool.rates_are_speeds() || !tree.links.iter().all(one_speed) {
+    if !tree.links.iter().all(known) {
         return None;
     }
     let links = forward(tree, pool);
     let subtrees = backward(tree, &links, pool);
-    let vectors = links
-        .iter()
-        .zip(&subtrees)
-        .zip(&tree.links)
-        .map(|((link, subtree), joint)| {
-            let Columns { y, z, w, u } = columns(pool, link, subtree);
-            let parts = [link.subspace, link.rate, link.second_rate, y, z, w, u];
-            LinkVectors {
-                parent: joint.parent,
-                speed: joint.columns[0].speed,
+    let mut vectors: Vec<LinkVectors> = Vec::new();
+    let mut last_entry: Vec<usize> = Vec::with_capacity(links.len());
+    for ((link, subtree), joint) in links.iter().zip(&subtrees).zip(&tree.links) {
+        let first = vectors.len();
+        for column in &link.columns {
+            let Columns { y, z, w, u } = columns(pool, column, subtree);
+            let parts = [
+                column.subspace,
+                column.rate,
+                column.second_rate,
+                column.driven,
+                y,
+                z,
+                w,
+                u,
+            ];
+            let parent = match vectors.len() {
+                k if k > first => Some(k - 1),
+                _ => joint.parent.map(|p| last_entry[p]),
+            };
+            vectors.push(LinkVectors {
+                parent,
+                joint: first,
+                speed: column.speed,
                 vectors: parts.map(|x| x.entries()),
-            }
-        })
-        .collect();
+            });
+        }
+        last_entry.push(vectors.len() - 1);
+    }
     Some(vectors)
 }
 
@@ -189,31 +248,49 @@ pub(super) fn link_vectors(tree: &JointTree, pool: &mut Pool) -> Option<Vec<Link
 /// speeds from its links' [`LinkVectors`], entry by entry:
 ///
 /// ```text
-/// j ⪯ i:  ∂τᵢ/∂qⱼ = yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ    ∂τᵢ/∂q̇ⱼ = zᵢ · Sⱼ + 2 yᵢ · Ψ̇ⱼ
+/// j ⪯ i:  ∂τᵢ/∂qⱼ = yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ    ∂τᵢ/∂q̇ⱼ = zᵢ · Sⱼ + yᵢ · (Ψ̇ⱼ + Φⱼ)
 /// j ≺ i:  ∂τⱼ/∂qᵢ = Sⱼ · wᵢ              ∂τⱼ/∂q̇ᵢ = Sⱼ · uᵢ
 /// ```
+///
+/// the second row the first's with `i` and `j` exchanged where both are
+/// speeds of one joint.
 pub(super) fn paired(links: &[LinkVectors], n: usize, pool: &mut Pool) -> (Block, Block) {
     let zero = pool.zero();
     let (mut by_q, mut by_v) = (vec![vec![zero; n]; n], vec![vec![zero; n]; n]);
     for (i, link) in links.iter().enumerate() {
-        let [.., y, z, w, u] = &link.vectors;
         let mut ancestor = Some(i);
         while let Some(j) = ancestor {
             let other = &links[j];
-            let [s, rate, second_rate, ..] = &other.vectors;
-            let terms = [dot6(pool, y, second_rate), dot6(pool, z, rate)];
-            by_q[link.speed][other.speed] = pool.sum(terms);
-            let y_rate = dot6(pool, y, rate);
-            let terms = [dot6(pool, z, s), pool.add(y_rate, y_rate)];
-            by_v[link.speed][other.speed] = pool.sum(terms);
+            let (q, v) = ancestor_pair(pool, link, other);
+            by_q[link.speed][other.speed] = q;
+            by_v[link.speed][other.speed] = v;
             if j != i {
-                by_q[other.speed][link.speed] = dot6(pool, s, w);
-                by_v[other.speed][link.speed] = dot6(pool, s, u);
+                let (q, v) = match other.joint == link.joint {
+                    true => ancestor_pair(pool, other, link),
+                    false => {
+                        let ([s, ..], [.., w, u]) = (&other.vectors, &link.vectors);
+                        (dot6(pool, s, w), dot6(pool, s, u))
+                    }
+                };
+                by_q[other.speed][link.speed] = q;
+                by_v[other.speed][link.speed] = v;
             }
             ancestor = other.parent;
         }
     }
     (by_q, by_v)
+}
+
+/// `(∂τᵢ/∂qⱼ, ∂τᵢ/∂q̇ⱼ)` of `i = link` and `j = other`, `j` an ancestor of
+/// `i`, `i` itself, or a speed of its joint: `yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ` and
+/// `zᵢ · Sⱼ + yᵢ · (Ψ̇ⱼ + Φⱼ)`.
+fn ancestor_pair(pool: &mut Pool, link: &LinkVectors, other: &LinkVectors) -> (ExprId, ExprId) {
+    let [.., y, z, _, _] = &link.vectors;
+    let [s, rate, second_rate, driven, ..] = &other.vectors;
+    let terms = [dot6(pool, y, second_rate), dot6(pool, z, rate)];
+    let by_q = pool.sum(terms);
+    let terms = [dot6(pool, z, s), dot6(pool, y, driven)];
+    (by_q, pool.sum(terms))
 }
 
 /// `a · b` of a motion and a force, six entries each.
@@ -227,10 +304,10 @@ pub(super) fn dot6(pool: &mut Pool, a: &[ExprId; 6], b: &[ExprId; 6]) -> ExprId 
     pool.sum(terms)
 }
 
-/// What the entries of one joint `i`'s row and column are dot products
+/// What the entries of one speed `i`'s row and column are dot products
 /// with: `yᵢ = Iᶜᵢ Sᵢ`, `zᵢ = Lᶜᵢᵀ Sᵢ` (with the `Ψ` of the joints up to
-/// `i`), `wᵢ = Sᵢ ×* Fᵢ + Iᶜᵢ Ψ̈ᵢ + Lᶜᵢ Ψ̇ᵢ` and `uᵢ = Lᶜᵢ Sᵢ + 2 Iᶜᵢ Ψ̇ᵢ`
-/// (with the `S` of its ancestors).
+/// `i`), `wᵢ = Sᵢ ×* Fᵢ + Iᶜᵢ Ψ̈ᵢ + Lᶜᵢ Ψ̇ᵢ` and
+/// `uᵢ = Lᶜᵢ Sᵢ + Iᶜᵢ (Ψ̇ᵢ + Φᵢ)` (with the `S` of its ancestors).
 struct Columns {
     y: Spatial,
     z: Spatial,
@@ -238,16 +315,16 @@ struct Columns {
     u: Spatial,
 }
 
-/// The [`Columns`] of a link, from its subtree's composites, sharing
-/// `İᶜ S` and `S ×* hᶜ` between `Lᶜ S` and `Lᶜᵀ S`.
-fn columns(pool: &mut Pool, link: &Moving, subtree: &Subtree) -> Columns {
+/// The [`Columns`] of one speed of a link, from its subtree's composites,
+/// sharing `İᶜ S` and `S ×* hᶜ` between `Lᶜ S` and `Lᶜᵀ S`.
+fn columns(pool: &mut Pool, link: &ColumnMotion, subtree: &Subtree) -> Columns {
     let (s, rate) = (&link.subspace, &link.rate);
     let y = inertia_times(pool, &subtree.inertia, s);
     let turned = rate_times(pool, subtree, s);
     let carried = force_cross(pool, s, &subtree.momentum);
     let z = sub(pool, &turned, &carried);
-    let pushed = inertia_times(pool, &subtree.inertia, rate);
-    let terms = [turned, carried, pushed, pushed];
+    let pushed = inertia_times(pool, &subtree.inertia, &link.driven);
+    let terms = [turned, carried, pushed];
     let u = sum(pool, &terms);
     let terms = [
         force_cross(pool, s, &subtree.force),
@@ -260,17 +337,15 @@ fn columns(pool: &mut Pool, link: &Moving, subtree: &Subtree) -> Columns {
     Columns { y, z, w, u }
 }
 
-/// The links outwards: placement in `N`, motion subspace, twist,
-/// acceleration (the symbols `q̈`, the base at `−g`) and the rates `Ψ̇`,
-/// `Ψ̈` of the subspace.
+/// The links outwards: placement in `N`, twist, acceleration (the symbols
+/// `q̈`, the base at `−g`), and each speed's column of the motion subspace
+/// with its rates `Ψ̇`, `Ψ̈`, `Ψ̇ + Φ`.
 fn forward(tree: &JointTree, pool: &mut Pool) -> Vec<Moving> {
     let zero = pool.zero();
     let base = Moving {
         rotation: identity(pool),
         origin: [zero; 3],
-        subspace: Spatial::zero(pool),
-        rate: Spatial::zero(pool),
-        second_rate: Spatial::zero(pool),
+        columns: Vec::new(),
         twist: Spatial::zero(pool),
         acceleration: Spatial {
             angular: [zero; 3],
@@ -281,29 +356,46 @@ fn forward(tree: &JointTree, pool: &mut Pool) -> Vec<Moving> {
     for link in &tree.links {
         let parent = link.parent.map_or(&base, |p| &links[p]);
         let (rotation, origin) = placed(pool, (&parent.rotation, &parent.origin), link);
-        let column = &link.columns[0];
-        let subspace = subspace(pool, (&rotation, &origin), column);
         let (v, a) = (&parent.twist, &parent.acceleration);
-        let rate = motion_cross(pool, v, &subspace);
-        let rate = grouped(pool, &rate);
-        let turned = motion_cross(pool, a, &subspace);
-        let carried = motion_cross(pool, v, &rate);
-        let second_rate = add(pool, &turned, &carried);
-        let second_rate = grouped(pool, &second_rate);
-        let speed = pool.sym(Sym::Speed(column.speed as u32));
-        let accel = pool.sym(Sym::Accel(column.speed as u32));
-        let moved = scale(pool, speed, &subspace);
-        let twist = add(pool, v, &moved);
+        let mut twist_terms = vec![*v];
+        let mut acceleration_terms = vec![*a];
+        let mut columns: Vec<ColumnMotion> = Vec::with_capacity(link.columns.len());
+        for column in &link.columns {
+            let subspace = subspace(pool, (&rotation, &origin), column);
+            let rate = motion_cross(pool, v, &subspace);
+            let rate = grouped(pool, &rate);
+            let turned = motion_cross(pool, a, &subspace);
+            let carried = motion_cross(pool, v, &rate);
+            let second_rate = add(pool, &turned, &carried);
+            let second_rate = grouped(pool, &second_rate);
+            let speed = pool.sym(Sym::Speed(column.speed as u32));
+            let accel = pool.sym(Sym::Accel(column.speed as u32));
+            twist_terms.push(scale(pool, speed, &subspace));
+            acceleration_terms.push(scale(pool, accel, &subspace));
+            acceleration_terms.push(scale(pool, speed, &rate));
+            columns.push(ColumnMotion {
+                subspace,
+                rate,
+                second_rate,
+                driven: add(pool, &rate, &rate),
+                speed: column.speed,
+            });
+        }
+        let twist = sum(pool, &twist_terms);
         let twist = grouped(pool, &twist);
-        let terms = [*a, scale(pool, accel, &subspace), scale(pool, speed, &rate)];
-        let acceleration = sum(pool, &terms);
+        if columns.len() > 1 {
+            for column in &mut columns {
+                let through_link = motion_cross(pool, &twist, &column.subspace);
+                let driven = add(pool, &column.rate, &through_link);
+                column.driven = grouped(pool, &driven);
+            }
+        }
+        let acceleration = sum(pool, &acceleration_terms);
         let acceleration = grouped(pool, &acceleration);
         links.push(Moving {
             rotation,
             origin,
-            subspace,
-            rate,
-            second_rate,
+            columns,
             twist,
             acceleration,
         });

@@ -59,6 +59,10 @@ fn paired_results(
             .iter()
             .map(|&l| parents[l].and_then(position))
             .collect(),
+        joints: order
+            .iter()
+            .map(|&l| position(tree.links[l].joint).unwrap_or(l))
+            .collect(),
         speeds: order.iter().map(|&l| tree.links[l].speed).collect(),
         nonzero: [nonzero(&combined.coordinates), nonzero(&combined.speeds)],
     };

@@ -45,6 +45,9 @@ pub struct PairedTree {
     /// Each link's parent among the links (depth-first: parents before
     /// children, each subtree's links together).
     pub parents: Vec<Option<usize>>,
+    /// The link of each one's joint's first speed (a joint of several
+    /// speeds is as many links, each the parent of the next).
+    pub joints: Vec<usize>,
     /// Each link's speed.
     pub speeds: Vec<usize>,
     /// Whether each column of `∂τ/∂q` and of `∂τ/∂v`, pairs included, can

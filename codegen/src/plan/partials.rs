@@ -1,8 +1,8 @@
 //! The route of the partials of the inverse dynamics `τ = M v̇ − f`, which
 //! `inverse_dynamics_jacobian`, `accelerations_jacobian` and `linearize`
-//! return: `τ` differentiated symbolically, or (for a tree of revolute and
-//! prismatic joints) the world-frame recursion's partials, unrolled or in
-//! the runtime's loops.
+//! return: `τ` differentiated symbolically, or (for a tree of revolute,
+//! prismatic, spherical and free joints) the world-frame recursion's
+//! partials, unrolled or in the runtime's loops.
 //!
 //! The choice is by operation count ([`operations`]), and an operation
 //! count is a property of expressions: both candidates are derived here

@@ -39,7 +39,7 @@ fn assert_agrees(what: &str, got: &[f64], want: &[f64]) -> f64 {
 
 /// The reference states of `model`.
 fn reference_states(model: &str) -> Vec<Value> {
-    let text = include_str!("../../tests/reference/humanoids/pinocchio.json");
+    let text = include_str!("../../../tests/reference/humanoids/pinocchio.json");
     let document: Value = serde_json::from_str(text).expect("pinocchio.json parses");
     let entry = document["models"]
         .as_array()

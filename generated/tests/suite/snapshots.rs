@@ -175,8 +175,9 @@ fn link_operations(parents: &[Option<usize>]) -> (usize, usize) {
 /// The pairs of joints that the jacobian adds in a loop at run time
 /// (`dalembert::__private::add_tree_pairs`) and that loop's operations: per
 /// link and each of it and its ancestors 4 dot products of six (11
-/// operations each) and 5 additions, and with each ancestor 2 more dot
-/// products and 2 additions; and the operations of its mass matrix
+/// operations each) and 4 additions, and with each ancestor 2 more dot
+/// products and 2 additions (4 and 4 with an ancestor of the link's own
+/// joint, none in these models); and the operations of its mass matrix
 /// (`TreeRecursion::mass_and_bias`), one dot product of six a pair.
 fn pair_operations(parents: &[Option<usize>]) -> (usize, usize, usize) {
     let depth = |mut link: usize| {
@@ -188,7 +189,7 @@ fn pair_operations(parents: &[Option<usize>]) -> (usize, usize, usize) {
     };
     let ancestors: usize = (0..parents.len()).map(depth).sum();
     let pairs = parents.len() + ancestors;
-    (pairs, 49 * pairs + 24 * ancestors, 11 * pairs)
+    (pairs, 48 * pairs + 24 * ancestors, 11 * pairs)
 }
 
 /// The columns of the jacobian's solve (`let [mut b0, …]: [[f64; C]; N]`) and
