@@ -23,7 +23,7 @@ and MuJoCo's M + bias, `accelerations` against Pinocchio's `aba` and
 MuJoCo's `mj_forward`. Ratios are ours / theirs.
 
 MD
-python3 benches/spellings_table.py "$peers_csv" "$CARGO_TARGET_DIR"
+python3 benches/spellings_table.py "$peers_csv" "$CARGO_TARGET_DIR" --since "$STAMP"
 cat <<'MD'
 
 At n = 60 (the `joint` spelling, generated with the `large` feature):

@@ -1,29 +1,48 @@
 #!/usr/bin/env bash
-# Section "DDP": lab/examples/ddp.rs's UR5 reach and cart-pole swing-up
-# solved by dalembert_lab::ddp and by Crocoddyl's FDDP (scripts/ddp_compare.sh).
+# Section "DDP": lab/examples/ddp.rs's problems solved by dalembert_lab::ddp
+# and by Crocoddyl's FDDP (scripts/ddp_compare.sh, which leaves the solvers'
+# JSON lines in target/ddp_compare/), CROCODDYL_PYTHON the Python with
+# Crocoddyl (default ~/.cache/crocoddyl-venv/bin/python).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
-compare=$(scripts/ddp_compare.sh ${CROCODDYL_PYTHON:+"$CROCODDYL_PYTHON"} | grep -E 'relative difference' )
+quietly scripts/ddp_compare.sh ${CROCODDYL_PYTHON:+"$CROCODDYL_PYTHON"}
 
 cat <<'MD'
 ## DDP over the exact step jacobians against Crocoddyl
 
-The same two problems (a UR5 reach, horizon 100 × 10 ms; a cart-pole
-swing-up, 150 × 20 ms) solved by `dalembert_lab::ddp` over
-`dalembert::control::euler_step_jacobian` and by Crocoddyl's `SolverFDDP`;
-time per iteration is the best of 5 solves, CPU time of the solving thread
-(`docs/control.md`).
+The problems of `lab/examples/ddp.rs` solved by `dalembert_lab::ddp` over
+`dalembert::control::euler_step_jacobian` and by Crocoddyl's `SolverFDDP`
+on the same problem (`scripts/ddp_crocoddyl.py`); time per iteration is
+the best of 5 solves, CPU time of the solving thread. The cart-pole's
+actuation in Crocoddyl is a Python model, so only the UR5's ratio is a fair
+one.
 
-```text
 MD
-echo "$compare"
-echo '```'
+python3 - target/ddp_compare/dalembert.jsonl target/ddp_compare/crocoddyl.jsonl <<'PY'
+import json, sys
+def solves(path):
+    with open(path) as f:
+        return {r["problem"]: r for r in map(json.loads, f) if "problem" in r}
+ours, theirs = solves(sys.argv[1]), solves(sys.argv[2])
+if not ours or set(ours) != set(theirs):
+    sys.exit(f"the solvers' problems differ: {sorted(ours)} against {sorted(theirs)}")
+print("| problem | cost, dalembert | cost, Crocoddyl | relative difference | iterations | µs per iteration, dalembert | Crocoddyl | ratio |")
+print("|---|---|---|---|---|---|---|---|")
+summaries = []
+for name, a in ours.items():
+    b = theirs[name]
+    ratio = a["seconds_per_iteration"] / b["seconds_per_iteration"]
+    print(f"| {name} | {a['cost']:.10g} | {b['cost']:.10g} | {abs(a['cost'] - b['cost']) / abs(b['cost']):.1e} "
+          f"| {a['iterations']} / {b['iterations']} | {a['seconds_per_iteration'] * 1e6:.1f} "
+          f"| {b['seconds_per_iteration'] * 1e6:.1f} | **{ratio:.2f}** |")
+    if "ur5" in name:
+        summaries.append(f"<!-- summary: DDP, time per iteration, {name} | Crocoddyl `SolverFDDP` | {ratio:.2f} -->")
+print()
+print("\n".join(summaries))
+PY
 echo
 measured "one run of each solver"
 cat <<'MD'
 
     scripts/ddp_compare.sh [CROCODDYL_PYTHON]
-
-![DDP, UR5](docs/charts/ddp_ur5.svg)
-![DDP convergence](docs/charts/ddp_convergence.svg)
 MD

@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 log="$CARGO_TARGET_DIR/bench-peers/iftomm.log"
 mkdir -p "$(dirname "$log")"
-cargo bench --bench iftomm 2> "$log" >&2
+cargo bench -p dalembert --bench iftomm 2> "$log" >&2
 
 cat <<'MD'
 ## IFToMM A02: whole simulations through singular positions
@@ -30,5 +30,5 @@ echo
 measured "criterion medians of thread CPU time"
 cat <<'MD'
 
-    cargo bench --bench iftomm
+    cargo bench -p dalembert --bench iftomm
 MD

@@ -5,12 +5,9 @@
 # (cargo's and criterion's output on stderr).
 #
 #   bash scripts/bench/reliability.sh
-set -euo pipefail
-cd "$(dirname "${BASH_SOURCE[0]}")/../.."
-target="${CARGO_TARGET_DIR:-target}"
-stamp="$(mktemp)"
-trap 'rm -f "$stamp"' EXIT
-cargo bench -p dalembert --bench drift_watch -- --warm-up-time 1 --measurement-time 3 >&2
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
+
+quietly cargo bench -p dalembert --bench drift_watch -- --warm-up-time 1 --measurement-time 3
 
 cat <<'MD'
 ## The drift watch's cost
@@ -23,7 +20,7 @@ complement). RK4, 1000 steps (of 1 ms; of 0.5 ms for the four-bars, whose cranks
 watched and with `DriftLimits::UNWATCHED`:
 
 MD
-python3 - "$target/criterion" "$stamp" <<'PY'
+python3 - "$CRITERION_DIR" "$STAMP" <<'PY'
 import glob, json, os, sys
 root, stamp = sys.argv[1], os.path.getmtime(sys.argv[2])
 STEPS = 1000
@@ -46,9 +43,9 @@ for system, label in systems:
         u = medians[f"drift_watch/{system}/{stabilisation}/unwatched"]
         print(f"| {label} | {stabilisation} | {w:.2f} | {u:.2f} | {(w - u) / w:.0%} |")
 PY
-load=$(cut -d' ' -f1-3 /proc/loadavg)
-printf '\nMeasured %s, commit `%s`, %s cores, load average %s.\n\n' \
-    "$(date -u '+%a %d %b %Y %H:%M UTC')" "$(git rev-parse --short HEAD)" "$(nproc)" "$load"
+echo
+measured "criterion medians"
 cat <<'MD'
+
     cargo bench -p dalembert --bench drift_watch -- --warm-up-time 1 --measurement-time 3
 MD

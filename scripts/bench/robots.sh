@@ -21,7 +21,7 @@ Pinocchio reading the same files: `mass_matrix` + `forcing` against `crba`
 ours / theirs.
 
 MD
-python3 benches/robots_table.py "$out"/{panda,ur5,solo12,floating_solo12}.csv --target "$CARGO_TARGET_DIR"
+python3 benches/robots_table.py "$out"/{panda,ur5,solo12,floating_solo12}.csv --target "$CARGO_TARGET_DIR" --since "$STAMP"
 echo
 measured "criterion medians, the peers' medians of thread CPU time"
 cat <<'MD'

@@ -34,6 +34,27 @@ peers_python() {
     echo "${PEERS_VENV:-$HOME/.cache/dalembert-peers-venv}/bin/python"
 }
 
+# That environment's site-packages: Pinocchio's and Eigen's headers under
+# cmeel.prefix/, MuJoCo's C API (headers and library) under mujoco/.
+peers_site() {
+    "$(peers_python)" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])'
+}
+
+# Builds scripts/bench/mj_forward.c (MuJoCo's mj_forward timed through its C
+# API) as $1, against $MUJOCO_DIR (headers and libmujoco.so*; default: the
+# `mujoco` wheel in the peers' Python environment).
+build_mj_forward() {
+    local mujoco="${MUJOCO_DIR:-$(peers_site)/mujoco}"
+    cc -O2 scripts/bench/mj_forward.c -I"$mujoco/include" "$(ls "$mujoco"/libmujoco.so* | head -n1)" \
+        -Wl,-rpath,"$mujoco" -lm -o "$1"
+}
+
+# One row of BENCHMARKS.md's opening summary (scripts/benchmarks.sh gathers
+# them from every section): measure, against, ours / theirs.
+summary() {
+    printf '<!-- summary: %s | %s | %s -->\n' "$1" "$2" "$3"
+}
+
 # The measurement line under a table: when, on which commit, how loaded.
 measured() {
     local load

@@ -51,8 +51,28 @@ def peer_rows(paths):
     return rows
 
 
+def summary(measure, against, ratios):
+    """A row of BENCHMARKS.md's opening table: the span of ours / theirs."""
+    ratios = [r for r in ratios if r is not None]
+    if not ratios:
+        sys.exit(f"no ratio for the summary of {measure} against {against}: missing figures")
+    span = f"{min(ratios):.2f}" if len(ratios) == 1 else f"{min(ratios):.2f}–{max(ratios):.2f}"
+    print(f"<!-- summary: {measure} | {against} | {span} -->")
+
+
+def quotient(a, b):
+    return a / b if a is not None and b else None
+
+
 def ratio(a, b):
     return f"{a / b:.2f}" if a is not None and b else "–"
+
+
+def required(ours, keys):
+    """Fails the table when one of its benchmarks has no fresh result."""
+    missing = [k for k in keys if k not in ours]
+    if missing:
+        sys.exit("no fresh result for " + ", ".join(missing) + ": did the bench run?")
 
 
 def ns(x):
@@ -62,6 +82,8 @@ def ns(x):
 def seed(ours, _peers):
     print("| system | `mass_matrix` | `forcing` | both | `cholesky_accelerations` |")
     print("|---|---|---|---|---|")
+    required(ours, ["harness_overhead"] + [f"{g}/{f}" for g in ("seed1_double_pendulum", "seed2_rotating_bar")
+                                           for f in ("mass_matrix", "forcing", "mass_matrix+forcing", "accelerations")])
     for group, label in [("seed1_double_pendulum", "seed example 1, double pendulum"),
                          ("seed2_rotating_bar", "seed example 2, rotating bar")]:
         cells = [ns(ours.get(f"{group}/{f}")) for f in
@@ -76,18 +98,25 @@ def derivatives(ours, peers):
           "| Pinocchio `computeABADerivatives` (ns) | ours / Pinocchio |")
     print("|---|---|---|---|---|---|")
     systems = sorted({k.split("/")[1] for k in ours if k.startswith("derivatives/")})
+    if not systems:
+        sys.exit("no results of the derivatives bench")
+    ratios = []
     for system in systems:
         acc = ours.get(f"derivatives/{system}/accelerations")
         jac = ours.get(f"derivatives/{system}/accelerations_jacobian")
         key = system.replace("_chain_0", "_").replace("_chain_", "_").replace("_robot", "")
         pin = peers.get((key, "pin_aba_derivatives"))
         print(f"| {system} | {ns(acc)} | {ns(jac)} | {ratio(jac, acc)} | {ns(pin)} | {ratio(jac, pin)} |")
+        ratios.append(quotient(jac, pin))
+    print()
+    summary("`accelerations_jacobian`, chains n ≤ 12, panda, UR5", "Pinocchio `computeABADerivatives`", ratios)
 
 
 def integrators(ours, _peers):
     methods = [("floor: bare accelerations loop", "floor (bare `accelerations` loop)"),
                ("rk4", "RK4"), ("gauss4", "Gauss 4"), ("dopri5", "DOPRI5"), ("dop853", "DOP853")]
     systems = [("planar_12", "planar chain of 12"), ("seed_1", "seed example 1")]
+    required(ours, [f"integrators/{s}/{m}" for s, _ in systems for m, _ in methods])
     print("| | " + " | ".join(f"{label} (ns) | / floor" for _, label in systems) + " |")
     print("|---|" + "---|---|" * len(systems))
     for method, label in methods:
@@ -105,26 +134,41 @@ def throughput(ours, peers):
     print("| family | n | ours per RK4 step (ns) | MuJoCo `mj_step` RK4 (ns) | MuJoCo / ours |")
     print("|---|---|---|---|---|")
     keys = [k.split("/")[2:4] for k in ours if k.startswith("throughput/rk4_1ms/")]
+    if not keys:
+        sys.exit("no results of the throughput benches")
+    ratios = []
     for family, n in sorted(keys, key=lambda k: (k[0], int(k[1]))):
         key = f"throughput/rk4_1ms/{family}/{n}"
         step = ours[key]
         theirs = peers.get((f"{family}_{n}", "mj_step_rk4"))
         print(f"| {family} | {n} | {ns(step)} | {ns(theirs)} | {ratio(theirs, step)}× |")
+        if int(n) <= 12:
+            ratios.append(quotient(step, theirs))
+    print()
+    summary("one RK4 step, chains n ≤ 12", "MuJoCo's RK4 step (`mj_step`)", ratios)
 
 
 def chains60(ours, peers):
     print("| family | M + f (ns) | / Pinocchio `crba` + `nle` | / MuJoCo M + f "
           "| `accelerations` (ns) | / Pinocchio `aba` | / MuJoCo `mj_forward` |")
     print("|---|---|---|---|---|---|---|")
+    mf_ratios, acc_ratios = [], []
     for family in ("planar", "spatial"):
         mf = ours.get(f"{family}/60/mass_matrix+forcing")
         acc = ours.get(f"{family}/60/accelerations")
         key = f"{family}_60"
         crba, nle = peers.get((key, "pin_crba_sym")), peers.get((key, "pin_nle"))
         pin_mf = crba + nle if crba and nle else None
+        if mf is None or acc is None or pin_mf is None:
+            sys.exit(f"{family}/60: missing figures (ours or the peers')")
+        mf_ratios.append(mf / pin_mf)
+        acc_ratios.append(quotient(acc, peers.get((key, "pin_aba"))))
         print(f"| {family} | {ns(mf)} | {ratio(mf, pin_mf)} | {ratio(mf, peers.get((key, 'mj_M_f')))} "
               f"| {ns(acc)} | {ratio(acc, peers.get((key, 'pin_aba')))} "
               f"| {ratio(acc, peers.get((key, 'mj_forward')))} |")
+    print()
+    summary("`mass_matrix` + `forcing`, chains n = 60", "Pinocchio `crba` + `nonLinearEffects`", mf_ratios)
+    summary("`accelerations`, chains n = 60", "Pinocchio `aba`", acc_ratios)
 
 
 def listing(ours, _peers, prefix=""):
