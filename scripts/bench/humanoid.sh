@@ -127,7 +127,6 @@ echo
 summary "\`mass_matrix\` + \`forcing\`, G1 floating (35 speeds)" "Pinocchio \`crba\` + \`nonLinearEffects\`" "$(ratio "$g1_mf" "$g1_pmf" | tr -d '*')"
 summary "\`accelerations\`, G1 floating" "Pinocchio \`aba\`" "$(ratio "$(ours g1 accelerations)" "$(pin g1 pin_aba)" | tr -d '*')"
 summary "\`accelerations_jacobian\`, G1 floating" "Pinocchio \`computeABADerivatives\`" "$(ratio "$(ours g1 accelerations_jacobian)" "$(pin g1 pin_aba_derivatives)" | tr -d '*')"
-summary "\`accelerations\`, dm_control humanoid (27 speeds)" "MuJoCo \`mj_forward\` (C API)" "$(ratio "$(ours humanoid accelerations)" "$(mj humanoid)" | tr -d '*')"
 echo
 measured "ours and the peers' medians of thread CPU time"
 cat <<'MD'

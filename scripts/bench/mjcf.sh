@@ -21,33 +21,7 @@ its C API with contacts, constraints and actuation disabled (positions, M
 and its factorisation, bias forces, accelerations): ours / theirs.
 
 MD
-python3 - "$CRITERION_DIR" "$STAMP" "$out" <<'PY'
-import csv, glob, json, os, sys
-root, stamp, out = sys.argv[1], os.path.getmtime(sys.argv[2]), sys.argv[3]
-ours = {}
-for path in glob.glob(os.path.join(root, "**", "new", "benchmark.json"), recursive=True):
-    estimates = path.replace("benchmark.json", "estimates.json")
-    if os.path.getmtime(estimates) < stamp:
-        continue  # an earlier run's
-    with open(path) as f:
-        name = json.load(f)["full_id"]
-    with open(estimates) as f:
-        ours[name] = json.load(f)["median"]["point_estimate"]
-print("| model | `mass_matrix` + `forcing` (ns) | `accelerations` (ns) | MuJoCo `mj_forward` (ns) | M + f / `mj_forward` | accelerations / `mj_forward` |")
-print("|---|---|---|---|---|---|")
-for model in ("cheetah", "humanoid"):
-    mf = ours.get(f"robots/{model}/mass_matrix+forcing")
-    acc = ours.get(f"robots/{model}/accelerations")
-    with open(os.path.join(out, model + ".csv")) as f:
-        forward = next(float(r["median_ns"]) for r in csv.DictReader(f) if r["algo"] == "mj_forward")
-    if mf is None or acc is None:
-        sys.exit(f"no fresh result of robots/{model}: did the bench run?")
-    print(f"| {model} | {mf:.0f} | {acc:.0f} | {forward:.0f} | {mf / forward:.2f} | **{acc / forward:.2f}** |")
-    if model == "humanoid":
-        summary = acc / forward
-print()
-print(f"<!-- summary: `accelerations`, dm_control humanoid (27 speeds) | MuJoCo `mj_forward` | {summary:.2f} -->")
-PY
+table mjcf "$out"/{cheetah,humanoid}.csv
 echo
 measured "criterion medians, MuJoCo's median of thread CPU time"
 cat <<'MD'

@@ -20,29 +20,7 @@ complement). RK4, 1000 steps (of 1 ms; of 0.5 ms for the four-bars, whose cranks
 watched and with `DriftLimits::UNWATCHED`:
 
 MD
-python3 - "$CRITERION_DIR" "$STAMP" <<'PY'
-import glob, json, os, sys
-root, stamp = sys.argv[1], os.path.getmtime(sys.argv[2])
-STEPS = 1000
-medians = {}
-for path in glob.glob(os.path.join(root, "**", "new", "benchmark.json"), recursive=True):
-    estimates = path.replace("benchmark.json", "estimates.json")
-    if os.path.getmtime(estimates) < stamp:
-        continue  # an earlier run's
-    with open(path) as f:
-        name = json.load(f)["full_id"]
-    with open(estimates) as f:
-        medians[name] = json.load(f)["median"]["point_estimate"] / STEPS / 1e3
-systems = [("seed_3", "seed example 3 (3 coordinates, 2 rows)"),
-           ("four_bars_10", "IFToMM A02, ten four-bars (21 coordinates, 20 rows)")]
-print("| system | stabilisation | watched (µs/step) | unwatched (µs/step) | watch's share |")
-print("|---|---|---|---|---|")
-for system, label in systems:
-    for stabilisation in ("unstabilised", "projected"):
-        w = medians[f"drift_watch/{system}/{stabilisation}/watched"]
-        u = medians[f"drift_watch/{system}/{stabilisation}/unwatched"]
-        print(f"| {label} | {stabilisation} | {w:.2f} | {u:.2f} | {(w - u) / w:.0%} |")
-PY
+table drift_watch
 echo
 measured "criterion medians"
 cat <<'MD'

@@ -6,7 +6,8 @@ Usage: criterion_table.py [--target DIR] [--since FILE] TABLE [PEER_CSV...]
   --target DIR   cargo's target directory (criterion's results are under
                  DIR/criterion); default $CARGO_TARGET_DIR or target
   --since FILE   read only the results written after FILE was
-  TABLE          seed | chains60 | derivatives | integrators | throughput | list
+  TABLE          seed | chains60 | derivatives | integrators | throughput | mjcf |
+                 drift_watch | list
                  (list: every benchmark whose id starts with $BENCH_PREFIX)
 
 Ours are criterion's medians (the `median` of `new/estimates.json`), the
@@ -80,10 +81,10 @@ def ns(x):
 
 
 def seed(ours, _peers):
-    print("| system | `mass_matrix` | `forcing` | both | `cholesky_accelerations` |")
-    print("|---|---|---|---|---|")
     required(ours, ["harness_overhead"] + [f"{g}/{f}" for g in ("seed1_double_pendulum", "seed2_rotating_bar")
                                            for f in ("mass_matrix", "forcing", "mass_matrix+forcing", "accelerations")])
+    print("| system | `mass_matrix` | `forcing` | both | `cholesky_accelerations` |")
+    print("|---|---|---|---|---|")
     for group, label in [("seed1_double_pendulum", "seed example 1, double pendulum"),
                          ("seed2_rotating_bar", "seed example 2, rotating bar")]:
         cells = [ns(ours.get(f"{group}/{f}")) for f in
@@ -181,7 +182,37 @@ def listing(ours, _peers, prefix=""):
         print(f"| `{key}` | {value / scale:.3g} {unit} |")
 
 
-TABLES = {"list": listing, "chains60": chains60, "seed": seed, "derivatives": derivatives, "integrators": integrators,
+def mjcf(ours, peers):
+    print("| model | `mass_matrix` + `forcing` (ns) | `accelerations` (ns) | MuJoCo `mj_forward` (ns) "
+          "| M + f / `mj_forward` | accelerations / `mj_forward` |")
+    print("|---|---|---|---|---|---|")
+    models = ("cheetah", "humanoid")
+    required(ours, [f"robots/{m}/{f}" for m in models for f in ("mass_matrix+forcing", "accelerations")])
+    for model in models:
+        mf, acc = ours[f"robots/{model}/mass_matrix+forcing"], ours[f"robots/{model}/accelerations"]
+        forward = peers.get((model, "mj_forward"))
+        print(f"| {model} | {ns(mf)} | {ns(acc)} | {ns(forward)} | {ratio(mf, forward)} | **{ratio(acc, forward)}** |")
+    print()
+    summary("`accelerations`, dm_control humanoid (27 speeds)", "MuJoCo `mj_forward`",
+            [quotient(ours["robots/humanoid/accelerations"], peers.get(("humanoid", "mj_forward")))])
+
+
+def drift_watch(ours, _peers, steps=1000):
+    systems = [("seed_3", "seed example 3 (3 coordinates, 2 rows)"),
+               ("four_bars_10", "IFToMM A02, ten four-bars (21 coordinates, 20 rows)")]
+    keys = [f"drift_watch/{s}/{st}/{w}" for s, _ in systems for st in ("unstabilised", "projected")
+            for w in ("watched", "unwatched")]
+    required(ours, keys)
+    print("| system | stabilisation | watched (µs/step) | unwatched (µs/step) | watch's share |")
+    print("|---|---|---|---|---|")
+    for system, label in systems:
+        for stabilisation in ("unstabilised", "projected"):
+            w = ours[f"drift_watch/{system}/{stabilisation}/watched"] / steps / 1e3
+            u = ours[f"drift_watch/{system}/{stabilisation}/unwatched"] / steps / 1e3
+            print(f"| {label} | {stabilisation} | {w:.2f} | {u:.2f} | {(w - u) / w:.0%} |")
+
+
+TABLES = {"mjcf": mjcf, "drift_watch": drift_watch, "list": listing, "chains60": chains60, "seed": seed, "derivatives": derivatives, "integrators": integrators,
           "throughput": throughput}
 
 if __name__ == "__main__":
