@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 out="$CARGO_TARGET_DIR/bench-peers/mjcf"
 mkdir -p "$out"
-quietly cargo bench -p dalembert-generated --bench robots -- 'robots/(cheetah|humanoid)/'
+quietly cargo bench -p dalembert-generated --features large --bench robots -- 'robots/(cheetah|humanoid)/'
 build_mj_forward "$out/mj_forward"
 for model in cheetah humanoid; do
     "$out/mj_forward" "tests/reference/mjcf/dm_control/$model.xml" > "$out/$model.csv"
@@ -26,7 +26,7 @@ echo
 measured "criterion medians, MuJoCo's median of thread CPU time"
 cat <<'MD'
 
-    cargo bench -p dalembert-generated --bench robots -- 'robots/(cheetah|humanoid)/'
+    cargo bench -p dalembert-generated --features large --bench robots -- 'robots/(cheetah|humanoid)/'
     cc -O2 scripts/bench/mj_forward.c -I$MUJOCO/include $MUJOCO/libmujoco.so* -lm -o mj_forward
     ./mj_forward tests/reference/mjcf/dm_control/humanoid.xml   # and cheetah.xml
 MD
