@@ -4,7 +4,11 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../../.."
 
-export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-target}"
+# Absolute: cargo runs each bench in its package's folder, and criterion
+# writes its results under $CARGO_TARGET_DIR/criterion from there.
+CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-target}"
+case "$CARGO_TARGET_DIR" in /*) ;; *) CARGO_TARGET_DIR="$(pwd)/$CARGO_TARGET_DIR" ;; esac
+export CARGO_TARGET_DIR
 CRITERION_DIR="$CARGO_TARGET_DIR/criterion"
 BENCH_LIB="scripts/bench/lib"
 
