@@ -17,11 +17,12 @@ taylor=$(run --taylor)
 cat <<'MD'
 ## Work-precision: what each integrator buys
 
-Final-state error against CPU time, every integrator of `dalembert::integrate`
+Final-state error against time, every integrator of `dalembert::integrate`
 on the generated code, SciPy's `solve_ivp` over a SymPy `lambdify(cse=True)`
 right-hand side beside them. Seed example 1 from θ₁ = θ₂ = 2 rad is chaotic
 (no double-precision method gets much below 3e-8); `--taylor` redraws the
-regular pendulum at 0.2 rad and seed example 3. CPU time to reach the same
+regular pendulum at 0.2 rad and seed example 3 with the Taylor integrator.
+Both sides' times are wall time (median of repeats), to reach the same
 final-state error:
 
 MD
@@ -51,10 +52,9 @@ What the run printed:
 ```text
 MD
 echo "$summary"
-echo "$taylor"
 echo '```'
 echo
-measured "one run, CPU time"
+measured "one run, wall time"
 cat <<'MD'
 
     scripts/scipy_baseline.sh --out target/charts/scipy_dop853.csv
