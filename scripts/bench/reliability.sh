@@ -22,7 +22,7 @@ watched and with `DriftLimits::UNWATCHED`:
 MD
 table drift_watch
 echo
-measured "criterion medians"
+measured "criterion medians of thread CPU time"
 cat <<'MD'
 
     cargo bench -p dalembert --bench drift_watch -- --warm-up-time 1 --measurement-time 3
