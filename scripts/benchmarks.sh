@@ -131,11 +131,10 @@ Current figures only; the history is in git (the notebook the code's
 comments cite by name: `git show b28e585:BENCHMARKS.md`). Each section
 comes from one script of `scripts/bench/`, which runs the criterion benches
 and, against Pinocchio 4.1 and MuJoCo 4.0, the peers' timing harness (kept
-outside this repository). Regenerate every section with
+outside this repository). Regenerate every section, or some
+(`scripts/benchmarks.sh --peers DIR chains robots`), with
 
     scripts/benchmarks.sh --peers DIR
-
-or some of them with `scripts/benchmarks.sh --peers DIR chains robots`.
 
 **How to read them.** Ours are criterion medians of one call, cycling over
 1000 fixed pseudo-random states so nothing is hoisted or folded
