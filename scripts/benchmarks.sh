@@ -24,9 +24,10 @@
 # 15-20 from other builds), the release builds already made: chains 9 min,
 # robots 2.5, derivatives 2.5, integrators 2.5, mjcf 0.5, reliability 3.5,
 # seed_examples 1, work_precision 4 (its example's release build included),
-# iftomm 6.5; ddp, humanoid and op_counts not timed (each builds its
-# models in release, and op_counts Pinocchio's counting build: long). A
-# fresh clone adds the release builds: under that load 23 min for the root
+# iftomm 6.5, ddp 3 (its example's release build included); humanoid and
+# op_counts not timed (each builds its models in release, op_counts also
+# Pinocchio's counting build: each over 20 min under that load). A fresh
+# clone adds the release builds: under that load 23 min for the root
 # crate's, 6 + 4 for the generated crate's (with `large`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
