@@ -36,7 +36,7 @@ while [ $# -gt 0 ]; do
     case "$1" in
         --peers) DALEMBERT_PEERS="$(cd "$2" && pwd)"; shift 2 ;;
         --reassemble) reassemble=1; shift ;;
-        -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,31p' "$0"; exit 0 ;;
         *) break ;;
     esac
 done
