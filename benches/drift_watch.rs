@@ -17,6 +17,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use dalembert::constrained::DriftLimits;
 use dalembert::integrate::{Integration, Rk4};
 use dalembert::{Constrained, ConstrainedSystem, Stabilisation, State};
+use dalembert_fixtures::cpu_time::thread_time_of;
 use dalembert_fixtures::iftomm::{FourBars10, four_bar_start};
 use dalembert_fixtures::slider_crank::SEED_3;
 
@@ -54,10 +55,23 @@ fn runs<S, const NQ: usize, const NU: usize, const NC: usize>(
                 Constrained::without_inputs(system, stabilisation).with_drift_limits(limits);
             let end = start.t + h * STEPS as f64;
             group.bench_function(format!("{stabilised}/{watched}"), |b| {
-                b.iter(|| {
-                    Integration::new(&dynamics, black_box(start), end, Rk4 { steps: STEPS })
-                        .run()
-                        .unwrap()
+                // Thread CPU time, as the other benches: the machine is shared.
+                b.iter_custom(|iters| {
+                    (0..iters)
+                        .map(|_| {
+                            thread_time_of(|| {
+                                Integration::new(
+                                    &dynamics,
+                                    black_box(start),
+                                    end,
+                                    Rk4 { steps: STEPS },
+                                )
+                                .run()
+                                .unwrap()
+                            })
+                            .0
+                        })
+                        .sum()
                 })
             });
         }

@@ -1,15 +1,16 @@
 #!/usr/bin/env python3
 """Merge the `spellings` criterion medians with the Pinocchio/MuJoCo peer CSV.
 
-Usage: python3 benches/spellings_table.py PEER_CSV [TARGET_DIR]
-  PEER_CSV     output of `bash ../shared/peers/pinocchio/run.sh --ns 2,6,12,30`
+Usage: python3 benches/spellings_table.py PEER_CSV [TARGET_DIR] [--since FILE]
+  PEER_CSV     output of the peers' harness `run.sh --ns 2,6,12,30`
   TARGET_DIR   default: $CARGO_TARGET_DIR or target
+  --since FILE read only the criterion results written after FILE was
 
 Prints the Markdown table of BENCHMARKS.md: per family, spelling and n, the
 median ns per call of `mass_matrix` + `forcing` and of the generated
 `accelerations`, with the ratios to Pinocchio (crba_sym + nle; aba) and to
 MuJoCo (M + f; forward) of the same run, and the slowest-to-fastest spelling
-ratio.
+ratio; and the summary rows of BENCHMARKS.md's opening table (n ≤ 12).
 """
 import csv
 import glob
@@ -17,11 +18,19 @@ import json
 import os
 import sys
 
-peer_csv = sys.argv[1]
-target = sys.argv[2] if len(sys.argv) > 2 else os.environ.get("CARGO_TARGET_DIR", "target")
+args = sys.argv[1:]
+since = 0.0
+if "--since" in args:
+    i = args.index("--since")
+    since = os.path.getmtime(args[i + 1])
+    del args[i : i + 2]
+peer_csv = args[0]
+target = args[1] if len(args) > 1 else os.environ.get("CARGO_TARGET_DIR", "target")
 
 ours = {}  # (family, spelling, n, function) -> median ns
 for path in glob.glob(os.path.join(target, "criterion", "**", "new", "benchmark.json"), recursive=True):
+    if os.path.getmtime(path.replace("benchmark.json", "estimates.json")) < since:
+        continue  # an earlier run's
     with open(path) as f:
         bench = json.load(f)
     parts = bench["group_id"].split("/")
@@ -39,7 +48,10 @@ with open(peer_csv) as f:
 spellings = ["joints", "symbolic", "seed"]
 print("| family | n | spelling | M + f (ns) | / Pinocchio crba+nle | / MuJoCo M+f | accelerations (ns) | / Pinocchio aba | / MuJoCo forward |")
 print("|---|---|---|---|---|---|---|---|---|")
+if not ours:
+    sys.exit("no criterion results of the spellings bench: did it run?")
 spread = []
+headline = {"M + f": [], "Pinocchio": [], "MuJoCo": []}
 for family in ["planar", "spatial"]:
     for n in sorted({k[2] for k in ours if k[0] == family}):
         pin_mf = peer.get((family, n, "pin_crba_sym"), 0) + peer.get((family, n, "pin_nle"), 0)
@@ -55,6 +67,11 @@ for family in ["planar", "spatial"]:
             row_mf.append(mf)
             row_acc.append(acc)
             ratio = lambda a, b: f"{a / b:.2f}" if b else "–"
+            if n <= 12 and pin_mf and pin_aba:
+                headline["M + f"].append(mf / pin_mf)
+                headline["Pinocchio"].append(acc / pin_aba)
+            if n <= 12 and mj_fwd:
+                headline["MuJoCo"].append(acc / mj_fwd)
             print(f"| {family} | {n} | {spelling} | {mf:.0f} | {ratio(mf, pin_mf)} | {ratio(mf, mj_mf)} "
                   f"| {acc:.0f} | {ratio(acc, pin_aba)} | {ratio(acc, mj_fwd)} |")
         if row_mf:
@@ -64,3 +81,11 @@ print("| family | n | slowest / fastest spelling, M + f | accelerations |")
 print("|---|---|---|---|")
 for family, n, mf, acc in spread:
     print(f"| {family} | {n} | {mf:.2f} | {acc:.2f} |")
+
+if not all(headline.values()):
+    sys.exit("the peers' CSV lacks Pinocchio's or MuJoCo's rows")
+span = lambda values: f"{min(values):.2f}–{max(values):.2f}"
+print()
+print(f"<!-- summary: `mass_matrix` + `forcing`, chains n ≤ 12 | Pinocchio `crba` + `nonLinearEffects` | {span(headline['M + f'])} -->")
+print(f"<!-- summary: `accelerations`, chains n ≤ 12 | Pinocchio `aba` | {span(headline['Pinocchio'])} -->")
+print(f"<!-- summary: `accelerations`, chains n ≤ 12 | MuJoCo `mj_forward` | {span(headline['MuJoCo'])} -->")

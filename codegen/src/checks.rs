@@ -102,6 +102,8 @@ fn check_adjoint(model: &Model, errors: &mut Errors) {
          with constraints, and remove `inverse_dynamics_adjoint` from `outputs`"
             .to_string(),
     );
+}
+
 /// `accelerations_x4` writes the unconstrained solve of `accelerations`
 /// over SIMD lanes; a system with constraints solves a saddle point at run
 /// time (`dalembert::accelerations_x4` takes its four states one by one).

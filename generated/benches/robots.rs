@@ -18,12 +18,9 @@
 //! counterpart of `computeABADerivatives`.
 //!
 //! Run with `cargo bench -p dalembert-generated --bench robots [--features
-//! humanoids]`; time
-//! Pinocchio in the same window with
-//! `bash ../shared/peers/pinocchio/run.sh --urdf tests/reference/urdf/panda.urdf`
-//! (`--floating` for its free flyer; BENCHMARKS.md), and MuJoCo's
-//! `mj_forward` on the cheetah and the humanoid with
-//! `python scripts/mjcf_timing.py`.
+//! humanoids]`; `scripts/benchmarks.sh --peers DIR robots mjcf` runs it with
+//! Pinocchio (the peers' harness, `run.sh --urdf ROBOT.urdf [--floating]`) and
+//! MuJoCo's `mj_forward` (`scripts/bench/mj_forward.c`) in the same window.
 
 use std::hint::black_box;
 use std::time::Duration;

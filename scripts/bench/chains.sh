@@ -7,9 +7,9 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 peers_csv="$CARGO_TARGET_DIR/bench-peers/chains.csv"
 mkdir -p "$(dirname "$peers_csv")"
-quietly cargo bench -p dalembert-generated --bench spellings -- --warm-up-time 1 --measurement-time 3
+quietly cargo bench -p dalembert-generated --features large --bench spellings -- --warm-up-time 1 --measurement-time 3
 peers --ns 2,6,12,30 > "$peers_csv"
-quietly cargo bench -p dalembert-generated --bench chains --features large -- '^(planar|spatial)/60/'
+quietly cargo bench -p dalembert-generated --features large --bench chains -- '^(planar|spatial)/60/'
 peers --ns 60 > "${peers_csv%.csv}_60.csv"
 
 cat <<'MD'
@@ -23,7 +23,7 @@ and MuJoCo's M + bias, `accelerations` against Pinocchio's `aba` and
 MuJoCo's `mj_forward`. Ratios are ours / theirs.
 
 MD
-python3 benches/spellings_table.py "$peers_csv" "$CARGO_TARGET_DIR"
+python3 benches/spellings_table.py "$peers_csv" "$CARGO_TARGET_DIR" --since "$STAMP"
 cat <<'MD'
 
 At n = 60 (the `joint` spelling, generated with the `large` feature):
@@ -34,9 +34,9 @@ echo
 measured "criterion medians, the peers' medians of thread CPU time"
 cat <<'MD'
 
-    cargo bench -p dalembert-generated --bench spellings -- --warm-up-time 1 --measurement-time 3
+    cargo bench -p dalembert-generated --features large --bench spellings -- --warm-up-time 1 --measurement-time 3
     bash $DALEMBERT_PEERS/run.sh --ns 2,6,12,30
     python3 benches/spellings_table.py PEERS.csv
-    cargo bench -p dalembert-generated --bench chains --features large -- '^(planar|spatial)/60/'
+    cargo bench -p dalembert-generated --features large --bench chains -- '^(planar|spatial)/60/'
     bash $DALEMBERT_PEERS/run.sh --ns 60
 MD

@@ -15,21 +15,24 @@
 #   this repository (sharing its target directory), which also gives the build time;
 # * Pinocchio (header-only, -O3 -march=native): the peers' harness
 #   `run.sh --urdf ROBOT.urdf --floating` (pin_crba_sym + pin_nle, pin_aba,
-#   pin_aba_derivatives), from $PINOCCHIO_HARNESS (the folder of run.sh);
+#   pin_aba_derivatives), from $PINOCCHIO_HARNESS (the folder of run.sh; set by
+#   scripts/benchmarks.sh --peers DIR);
 # * MuJoCo's mj_forward through its C API (scripts/bench/mj_forward.c, contacts,
 #   constraints and actuation disabled), built against $MUJOCO_DIR (the folder
-#   holding include/mujoco/mujoco.h and libmujoco.so*, e.g. the `mujoco` wheel's
-#   package folder).
-# A peer whose variable is unset is left out of the table.
-set -euo pipefail
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+#   holding include/mujoco/mujoco.h and libmujoco.so*; default: the `mujoco`
+#   wheel's package folder in the peers' Python environment).
+# Without either peer the script fails.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
+ROOT="$(pwd)"
 WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-cd "$ROOT"
+trap 'rm -rf "$WORK" "$STAMP"' EXIT
+mkdir -p "$CARGO_TARGET_DIR"
+TARGET="$(cd "$CARGO_TARGET_DIR" && pwd)"
+[ -f "${PINOCCHIO_HARNESS:-}/run.sh" ] || { echo "set PINOCCHIO_HARNESS (or --peers DIR) to the peers' harness" >&2; exit 1; }
 
 # Ours: the models' code, then the harness, as "robot function ns".
 cargo build -q --release -p dalembert-codegen --bin dalembert
-DALEMBERT="$ROOT/target/release/dalembert"
+DALEMBERT="$TARGET/release/dalembert"
 mkdir -p "$WORK/models" "$WORK/crate"
 # Named as humanoid_timing.rs names them.
 for entry in g1:humanoids/g1.urdf:G1 talos_reduced:humanoids/talos_reduced.urdf:Talos \
@@ -58,48 +61,44 @@ done
   echo '[workspace]'
 } > "$WORK/crate/Cargo.toml"
 # The runtime first, so that the timed build is the models' code alone.
-CARGO_TARGET_DIR="$ROOT/target" cargo build -q --release -p dalembert
+CARGO_TARGET_DIR="$TARGET" cargo build -q --release -p dalembert
 start=$(date +%s.%N)
-HUMANOID_MODELS="$WORK/models" CARGO_TARGET_DIR="$ROOT/target" \
+HUMANOID_MODELS="$WORK/models" CARGO_TARGET_DIR="$TARGET" \
   cargo build -q --release --manifest-path "$WORK/crate/Cargo.toml"
 build_s=$(echo "$(date +%s.%N) - $start" | bc -l | xargs printf '%.0f')
-"$ROOT/target/release/humanoid-timing" > "$WORK/ours.txt"
+"$TARGET/release/humanoid-timing" > "$WORK/ours.txt"
 ours() { awk -v r="$1" -v f="$2" '$1 == r && $2 == f { print $3 }' "$WORK/ours.txt"; }
 
 # Pinocchio: median ns per algorithm, as "robot algo ns".
 : > "$WORK/pinocchio.txt"
-if [ -n "${PINOCCHIO_HARNESS:-}" ]; then
-  for robot in humanoids/g1 humanoids/talos_reduced urdf/solo12; do
-    bash "$PINOCCHIO_HARNESS/run.sh" --urdf "tests/reference/$robot.urdf" --floating \
-      --only pin_ 2>/dev/null | awk -F, -v r="$(basename "$robot")" \
-      'NR > 1 { print r, $4, $5 }' >> "$WORK/pinocchio.txt"
-  done
-fi
+for robot in humanoids/g1 humanoids/talos_reduced urdf/solo12; do
+  bash "$PINOCCHIO_HARNESS/run.sh" --urdf "tests/reference/$robot.urdf" --floating \
+    --only pin_ | awk -F, -v r="$(basename "$robot")" \
+    'NR > 1 { print r, $4, $5 }' >> "$WORK/pinocchio.txt"
+done
 pin() { awk -v r="$1" -v a="$2" '$1 == r && $2 == a { print $3 }' "$WORK/pinocchio.txt"; }
 
 # MuJoCo: median ns of mj_forward, as "model ns".
 : > "$WORK/mujoco.txt"
-if [ -n "${MUJOCO_DIR:-}" ]; then
-  cc -O2 scripts/bench/mj_forward.c -I"$MUJOCO_DIR/include" "$(ls "$MUJOCO_DIR"/libmujoco.so* | head -n1)" \
-    -Wl,-rpath,"$MUJOCO_DIR" -lm -o "$WORK/mj_forward"
-  for model in humanoid cheetah; do
-    "$WORK/mj_forward" "tests/reference/mjcf/dm_control/$model.xml" 2>/dev/null |
-      awk -F, -v m="$model" 'NR > 1 { print m, $5 }' >> "$WORK/mujoco.txt"
-  done
-fi
+build_mj_forward "$WORK/mj_forward"
+for model in humanoid cheetah; do
+  "$WORK/mj_forward" "tests/reference/mjcf/dm_control/$model.xml" |
+    awk -F, -v m="$model" 'NR > 1 { print m, $5 }' >> "$WORK/mujoco.txt"
+done
+[ "$(wc -l < "$WORK/pinocchio.txt")" -ge 18 ] && [ "$(wc -l < "$WORK/mujoco.txt")" -eq 2 ] &&
+  [ "$(wc -l < "$WORK/ours.txt")" -ge 13 ] || { echo "ours or the peers' figures are incomplete" >&2; exit 1; }
 mj() { awk -v m="$1" '$1 == m { print $2 }' "$WORK/mujoco.txt"; }
 
 us() { [ -n "$1" ] && awk -v x="$1" 'BEGIN { printf "%.2f", x / 1000 }' || printf -- "–"; }
-ratio() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { printf "**%.2f**", a / b }' || printf -- "–"; }
+ratio() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { printf "**%.2f**", a / b }' || { echo "missing figures" >&2; exit 1; }; }
 sum() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { print a + b }' || true; }
 
 echo "## Floating humanoids against Pinocchio and MuJoCo"
 echo
-echo "Measured $(date -u +%Y-%m-%d) with \`scripts/bench/humanoid.sh\` (ours: default release"
-echo "build, \`scripts/bench/humanoid_timing.rs\`; Pinocchio: the peers' harness, header-only,"
-echo "\`-O3 -march=native\`; both thread CPU time, the median of repeats over 1000 random states;"
-echo "MuJoCo: \`mj_forward\` through its C API, contacts, constraints and actuation disabled), in one"
-echo "run; µs per call, and ours / theirs. Targets (issue #40): M + f ≤ 0.20 of \`crba\` +"
+echo "Ours: default release build, \`scripts/bench/humanoid_timing.rs\`; Pinocchio: the peers'"
+echo "harness, header-only, \`-O3 -march=native\`; both thread CPU time, the median of repeats over"
+echo "1000 random states; MuJoCo: \`mj_forward\` through its C API, contacts, constraints and"
+echo "actuation disabled; all in one run; µs per call, and ours / theirs. Targets (issue #40): M + f ≤ 0.20 of \`crba\` +"
 echo "\`nonLinearEffects\`, accelerations ≤ 0.20 of \`aba\`, \`accelerations_jacobian\` ≤ 0.33 of"
 echo "\`computeABADerivatives\`; ≤ 0.25 of \`mj_forward\` (issue #35). The operation counts that"
 echo "explain the gaps: docs/humanoid.md."
@@ -126,3 +125,14 @@ done
 echo
 echo "Building the five models' code (the humanoids and Solo-12 with \`accelerations_jacobian\` and"
 echo "\`linearize\`) with the harness in release took ${build_s} s wall, the runtime built beforehand."
+g1_mf=$(ours g1 "mass_matrix+forcing"); g1_pmf=$(sum "$(pin g1 pin_crba_sym)" "$(pin g1 pin_nle)")
+echo
+summary "\`mass_matrix\` + \`forcing\`, G1 floating (35 speeds)" "Pinocchio \`crba\` + \`nonLinearEffects\`" "$(ratio "$g1_mf" "$g1_pmf" | tr -d '*')"
+summary "\`accelerations\`, G1 floating" "Pinocchio \`aba\`" "$(ratio "$(ours g1 accelerations)" "$(pin g1 pin_aba)" | tr -d '*')"
+summary "\`accelerations_jacobian\`, G1 floating" "Pinocchio \`computeABADerivatives\`" "$(ratio "$(ours g1 accelerations_jacobian)" "$(pin g1 pin_aba_derivatives)" | tr -d '*')"
+echo
+measured "ours and the peers' medians of thread CPU time"
+cat <<'MD'
+
+    scripts/bench/humanoid.sh   # with PINOCCHIO_HARNESS=DIR, as scripts/benchmarks.sh --peers DIR sets it
+MD

@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 out="$CARGO_TARGET_DIR/bench-peers/integrators"
 mkdir -p "$out"
-quietly cargo bench -p dalembert-generated --bench integrators
+quietly cargo bench -p dalembert-generated --features large --bench integrators
 peers --ns 2,6,12,30 --only mj_step > "$out/chains.csv"
 
 cat <<'MD'
@@ -28,6 +28,6 @@ echo
 measured "criterion medians, the peers' medians of thread CPU time"
 cat <<'MD'
 
-    cargo bench -p dalembert-generated --bench integrators
+    cargo bench -p dalembert-generated --features large --bench integrators
     bash $DALEMBERT_PEERS/run.sh --ns 2,6,12,30 --only mj_step
 MD

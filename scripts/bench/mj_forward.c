@@ -1,9 +1,9 @@
 // MuJoCo's time per mj_forward through its C API, on an MJCF model with
 // contacts, constraints and actuation disabled (as tests/reference/mjcf/
 // compares): the counterpart of `mass_matrix` + `forcing` + the solve, that
-// is of `dalembert::accelerations`. scripts/bench/humanoid.sh builds and runs
-// it; scripts/mjcf_timing.py is the same measurement through the Python
-// bindings (whose loop overhead it has to subtract).
+// is of `dalembert::accelerations`. scripts/bench/humanoid.sh and mjcf.sh build
+// and run it; scripts/mjcf_timing.py is the same measurement through the
+// Python bindings (whose loop overhead it has to subtract).
 //
 // Build: cc -O2 mj_forward.c -I$MUJOCO/include $MUJOCO/libmujoco.so* -lm
 //   ($MUJOCO: the folder of MuJoCo's headers and shared library, e.g. the

@@ -1,31 +1,32 @@
 #!/usr/bin/env bash
 # Section "MJCF": dm_control's cheetah and humanoid imported by Builder::mjcf
-# against MuJoCo's mj_forward through its Python bindings
-# (generated/benches/robots.rs and scripts/mjcf_timing.py, same window).
+# against MuJoCo's mj_forward through its C API (generated/benches/robots.rs
+# and scripts/bench/mj_forward.c, same window).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
-quietly cargo bench -p dalembert-generated --bench robots -- 'robots/(cheetah|humanoid)/'
-mujoco=$("$(peers_python)" scripts/mjcf_timing.py)
+out="$CARGO_TARGET_DIR/bench-peers/mjcf"
+mkdir -p "$out"
+quietly cargo bench -p dalembert-generated --features large --bench robots -- 'robots/(cheetah|humanoid)/'
+build_mj_forward "$out/mj_forward"
+for model in cheetah humanoid; do
+    "$out/mj_forward" "tests/reference/mjcf/dm_control/$model.xml" > "$out/$model.csv"
+done
 
 cat <<'MD'
 ## MJCF models against MuJoCo
 
 dm_control's cheetah (9 speeds, fixed base) and humanoid (27 speeds, free
-joint) imported by `Builder::mjcf`, against MuJoCo's `mj_forward` with
-contacts, constraints and actuation disabled. MuJoCo is timed through its
-Python bindings, the binding's call left in: its figure is an upper bound,
-loose for the small cheetah.
+joint) imported by `Builder::mjcf`, against MuJoCo's `mj_forward` through
+its C API with contacts, constraints and actuation disabled (positions, M
+and its factorisation, bias forces, accelerations): ours / theirs.
 
 MD
-BENCH_PREFIX=robots/ table list | grep -E '^\|(---| benchmark)|cheetah|humanoid'
+table mjcf "$out"/{cheetah,humanoid}.csv
 echo
-echo '```text'
-echo "$mujoco"
-echo '```'
-echo
-measured "criterion medians; MuJoCo's best of seven rounds"
+measured "criterion medians, MuJoCo's median of thread CPU time"
 cat <<'MD'
 
-    cargo bench -p dalembert-generated --bench robots -- 'robots/(cheetah|humanoid)/'
-    python scripts/mjcf_timing.py   # in the peers' Python environment (mujoco)
+    cargo bench -p dalembert-generated --features large --bench robots -- 'robots/(cheetah|humanoid)/'
+    cc -O2 scripts/bench/mj_forward.c -I$MUJOCO/include $MUJOCO/libmujoco.so* -lm -o mj_forward
+    ./mj_forward tests/reference/mjcf/dm_control/humanoid.xml   # and cheetah.xml
 MD

@@ -12,18 +12,20 @@
 # over the tree (the floating robots), their operations counted from its table of links).
 # Pinocchio's: scripts/bench/pinocchio_op_counts.cpp, its algorithms run once on a
 # counting scalar, built against the headers under $PINOCCHIO_PREFIX (the `pin`
-# wheel's cmeel.prefix, holding include/pinocchio and include/eigen3), the robot
-# read by the peers' harness's urdf_model.py ($PINOCCHIO_HARNESS) with $PYTHON (an
-# environment with `pin`). Without those variables only our counts are printed.
-set -euo pipefail
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+# wheel's cmeel.prefix, holding include/pinocchio and include/eigen3; default: the
+# peers' Python environment's), the robot read by the peers' harness's urdf_model.py
+# ($PINOCCHIO_HARNESS, set by scripts/benchmarks.sh --peers DIR) with $PYTHON (an
+# environment with `pin`; default: the peers'). Without the harness only our counts
+# are printed.
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-cd "$ROOT"
+trap 'rm -rf "$WORK" "$STAMP"' EXIT
 cargo build -q --release -p dalembert-codegen --bin dalembert
-DALEMBERT="$ROOT/target/release/dalembert"
+DALEMBERT="$CARGO_TARGET_DIR/release/dalembert"
 COUNTER=""
-if [ -n "${PINOCCHIO_PREFIX:-}" ] && [ -n "${PINOCCHIO_HARNESS:-}" ]; then
+if [ -n "${PINOCCHIO_HARNESS:-}" ]; then
+  PINOCCHIO_PREFIX="${PINOCCHIO_PREFIX:-$(peers_site)/cmeel.prefix}"
+  PYTHON="${PYTHON:-$(peers_python)}"
   g++ -O1 -DNDEBUG -std=c++17 -w -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
     -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 \
     -I"$PINOCCHIO_PREFIX/include" -I"$PINOCCHIO_PREFIX/include/eigen3" \
@@ -40,8 +42,8 @@ ratio() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { printf 
 
 echo "## Operation counts: generated functions against Pinocchio's algorithms"
 echo
-echo "Counted $(date -u +%Y-%m-%d) with \`scripts/bench/op_counts.sh\`: flops (additions,"
-echo "subtractions, negations, multiplications, divisions) of one call; sin/cos not included."
+echo "Flops (additions, subtractions, negations, multiplications, divisions) of one call;"
+echo "sin/cos not included."
 echo "Ours: the generated code (\`dalembert generate\`), straight-line, each shared subexpression"
 echo "once, the solve's row operations (in brackets, their share) and the runtime's loops over the"
 echo "tree where the jacobian takes them (the floating robots; counted per link and pair of links"
@@ -76,3 +78,6 @@ for entry in "ur5_robot:urdf/ur5_robot.urdf:" "solo12:urdf/solo12.urdf:" \
   aba=$(pin "$WORK/$name.pin.csv" aba); der=$(pin "$WORK/$name.pin.csv" computeABADerivatives)
   echo "| $name ($nv) | $(k "$mf") | $(k "$pmf") | $(ratio "$mf" "$pmf") | $(k "$acc") | $(k "$aba") | $(ratio "$acc" "$aba") | $(k "$jac") ($(k "$jsolve")) | $(k "$der") | $(ratio "$jac" "$der") | $(ratio "$jac" "$acc") |"
 done
+echo
+printf 'Counted %s, commit `%s`.\n\n' "$(date -u '+%a %d %b %Y %H:%M UTC')" "$(git rev-parse --short HEAD)"
+echo "    scripts/bench/op_counts.sh   # with PINOCCHIO_HARNESS=DIR, as scripts/benchmarks.sh --peers DIR sets it"

@@ -5,12 +5,9 @@
 # (cargo's and criterion's output on stderr).
 #
 #   bash scripts/bench/reliability.sh
-set -euo pipefail
-cd "$(dirname "${BASH_SOURCE[0]}")/../.."
-target="${CARGO_TARGET_DIR:-target}"
-stamp="$(mktemp)"
-trap 'rm -f "$stamp"' EXIT
-cargo bench -p dalembert --bench drift_watch -- --warm-up-time 1 --measurement-time 3 >&2
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
+
+quietly cargo bench -p dalembert --bench drift_watch -- --warm-up-time 1 --measurement-time 3
 
 cat <<'MD'
 ## The drift watch's cost
@@ -23,32 +20,10 @@ complement). RK4, 1000 steps (of 1 ms; of 0.5 ms for the four-bars, whose cranks
 watched and with `DriftLimits::UNWATCHED`:
 
 MD
-python3 - "$target/criterion" "$stamp" <<'PY'
-import glob, json, os, sys
-root, stamp = sys.argv[1], os.path.getmtime(sys.argv[2])
-STEPS = 1000
-medians = {}
-for path in glob.glob(os.path.join(root, "**", "new", "benchmark.json"), recursive=True):
-    estimates = path.replace("benchmark.json", "estimates.json")
-    if os.path.getmtime(estimates) < stamp:
-        continue  # an earlier run's
-    with open(path) as f:
-        name = json.load(f)["full_id"]
-    with open(estimates) as f:
-        medians[name] = json.load(f)["median"]["point_estimate"] / STEPS / 1e3
-systems = [("seed_3", "seed example 3 (3 coordinates, 2 rows)"),
-           ("four_bars_10", "IFToMM A02, ten four-bars (21 coordinates, 20 rows)")]
-print("| system | stabilisation | watched (µs/step) | unwatched (µs/step) | watch's share |")
-print("|---|---|---|---|---|")
-for system, label in systems:
-    for stabilisation in ("unstabilised", "projected"):
-        w = medians[f"drift_watch/{system}/{stabilisation}/watched"]
-        u = medians[f"drift_watch/{system}/{stabilisation}/unwatched"]
-        print(f"| {label} | {stabilisation} | {w:.2f} | {u:.2f} | {(w - u) / w:.0%} |")
-PY
-load=$(cut -d' ' -f1-3 /proc/loadavg)
-printf '\nMeasured %s, commit `%s`, %s cores, load average %s.\n\n' \
-    "$(date -u '+%a %d %b %Y %H:%M UTC')" "$(git rev-parse --short HEAD)" "$(nproc)" "$load"
+table drift_watch
+echo
+measured "criterion medians of thread CPU time"
 cat <<'MD'
+
     cargo bench -p dalembert --bench drift_watch -- --warm-up-time 1 --measurement-time 3
 MD

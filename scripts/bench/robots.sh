@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 out="$CARGO_TARGET_DIR/bench-peers/robots"
 mkdir -p "$out"
-quietly cargo bench -p dalembert-generated --bench robots -- 'robots/(panda|ur5|solo12|floating_solo12)/'
+quietly cargo bench -p dalembert-generated --features large --bench robots -- 'robots/(panda|ur5|solo12|floating_solo12)/'
 peers --urdf tests/reference/urdf/panda.urdf > "$out/panda.csv"
 peers --urdf tests/reference/urdf/ur5_robot.urdf > "$out/ur5.csv"
 peers --urdf tests/reference/urdf/solo12.urdf > "$out/solo12.csv"
@@ -21,12 +21,12 @@ Pinocchio reading the same files: `mass_matrix` + `forcing` against `crba`
 ours / theirs.
 
 MD
-python3 benches/robots_table.py "$out"/{panda,ur5,solo12,floating_solo12}.csv --target "$CARGO_TARGET_DIR"
+python3 benches/robots_table.py "$out"/{panda,ur5,solo12,floating_solo12}.csv --target "$CARGO_TARGET_DIR" --since "$STAMP"
 echo
 measured "criterion medians, the peers' medians of thread CPU time"
 cat <<'MD'
 
-    cargo bench -p dalembert-generated --bench robots -- 'robots/(panda|ur5|solo12|floating_solo12)/'
+    cargo bench -p dalembert-generated --features large --bench robots -- 'robots/(panda|ur5|solo12|floating_solo12)/'
     bash $DALEMBERT_PEERS/run.sh --urdf tests/reference/urdf/panda.urdf   # ur5_robot, solo12, solo12 --floating
     python3 benches/robots_table.py panda.csv ur5.csv solo12.csv floating_solo12.csv
 MD

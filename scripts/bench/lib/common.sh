@@ -4,7 +4,11 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../../.."
 
-export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-target}"
+# Absolute: cargo runs each bench in its package's folder, and criterion
+# writes its results under $CARGO_TARGET_DIR/criterion from there.
+CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-target}"
+case "$CARGO_TARGET_DIR" in /*) ;; *) CARGO_TARGET_DIR="$(pwd)/$CARGO_TARGET_DIR" ;; esac
+export CARGO_TARGET_DIR
 CRITERION_DIR="$CARGO_TARGET_DIR/criterion"
 BENCH_LIB="scripts/bench/lib"
 
@@ -32,6 +36,27 @@ peers() {
 # The Python with Pinocchio and MuJoCo the peers' harness installs.
 peers_python() {
     echo "${PEERS_VENV:-$HOME/.cache/dalembert-peers-venv}/bin/python"
+}
+
+# That environment's site-packages: Pinocchio's and Eigen's headers under
+# cmeel.prefix/, MuJoCo's C API (headers and library) under mujoco/.
+peers_site() {
+    "$(peers_python)" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])'
+}
+
+# Builds scripts/bench/mj_forward.c (MuJoCo's mj_forward timed through its C
+# API) as $1, against $MUJOCO_DIR (headers and libmujoco.so*; default: the
+# `mujoco` wheel in the peers' Python environment).
+build_mj_forward() {
+    local mujoco="${MUJOCO_DIR:-$(peers_site)/mujoco}"
+    cc -O2 scripts/bench/mj_forward.c -I"$mujoco/include" "$(ls "$mujoco"/libmujoco.so* | head -n1)" \
+        -Wl,-rpath,"$mujoco" -lm -o "$1"
+}
+
+# One row of BENCHMARKS.md's opening summary (scripts/benchmarks.sh gathers
+# them from every section): measure, against, ours / theirs.
+summary() {
+    printf '<!-- summary: %s | %s | %s -->\n' "$1" "$2" "$3"
 }
 
 # The measurement line under a table: when, on which commit, how loaded.
