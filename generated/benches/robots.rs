@@ -19,9 +19,9 @@
 //!
 //! Run with `cargo bench -p dalembert-generated --bench robots [--features
 //! humanoids]`; time
-//! Pinocchio in the same window with
-//! `bash ../shared/peers/pinocchio/run.sh --urdf tests/reference/urdf/panda.urdf`
-//! (`--floating` for its free flyer; BENCHMARKS.md), and MuJoCo's
+//! Pinocchio in the same window with its C++ harness on the same file
+//! (`tests/reference/urdf/panda.urdf`, with its free flyer for the floating
+//! base; `scripts/bench/robots.sh` and BENCHMARKS.md say how), and MuJoCo's
 //! `mj_forward` on the cheetah and the humanoid with
 //! `python scripts/mjcf_timing.py`.
 
