@@ -11,8 +11,8 @@ q ~ U(-pi, pi), qd ~ U(-2, 2), tau ~ U(-10, 10)) and two special ones:
 Pinocchio's crba (mirrored to the full matrix), nonLinearEffects,
 computeGeneralizedGravity, aba, and the energies.
 
-    ~/.cache/dalembert-peers-venv/bin/python scripts/chains_reference.py > tests/reference/chains.json
-    ~/.cache/dalembert-peers-venv/bin/python scripts/chains_reference.py --check tests/reference/chains.json
+    python3 scripts/chains_reference.py > tests/reference/chains.json
+    python3 scripts/chains_reference.py --check tests/reference/chains.json
 
 With --check it compares with the stored file instead and prints the largest
 difference of every field (exit 1 unless all agree to 1e-15 relative).

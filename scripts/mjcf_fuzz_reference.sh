@@ -6,11 +6,11 @@
 #
 #   bash scripts/mjcf_fuzz_reference.sh
 #
-# PYTHON (default: ~/.cache/dalembert-peers-venv/bin/python) must have
+# PYTHON (default: python3) must have
 # `mujoco`, `pin` (the script shares urdf_fuzz_reference.py's command line) and `numpy`.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-python="${PYTHON:-$HOME/.cache/dalembert-peers-venv/bin/python}"
+python="${PYTHON:-python3}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cd "$root"

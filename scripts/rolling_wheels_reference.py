@@ -19,7 +19,7 @@ For the self-balancing robot it adds `KanesMethod.linearize` (SymPy's
 `Linearizer`) about upright motion at a forward speed: the reduced A and
 its eigenvalues.
 
-Run: ~/.cache/dalembert-peers-venv/bin/python scripts/rolling_wheels_reference.py
+Run: python3 scripts/rolling_wheels_reference.py  (SymPy and mpmath installed)
 It writes tests/reference/rolling_wheels.json (SymPy 1.14, mpmath 30 digits).
 """
 

@@ -6,11 +6,11 @@
 #
 #   bash scripts/urdf_fuzz_reference.sh
 #
-# PYTHON (default: ~/.cache/dalembert-peers-venv/bin/python) must have `pin`
+# PYTHON (default: python3) must have `pin`
 # and `numpy`.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-python="${PYTHON:-$HOME/.cache/dalembert-peers-venv/bin/python}"
+python="${PYTHON:-python3}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cd "$root"

@@ -8,8 +8,7 @@
 #
 #   bash scripts/urdf_numeric_sweep.sh [VERSION]   # default 6.0.0
 #
-# PYTHON (default: the peers' environment, ~/.cache/dalembert-peers-venv) must
-# have `pin` and `numpy`. scripts/urdf_numeric_sweep.py writes Pinocchio's
+# PYTHON (default: python3) must have `pin` (Pinocchio 4.1) and `numpy`. scripts/urdf_numeric_sweep.py writes Pinocchio's
 # side (urdf_reference.py's entries: 10 random states a case, in dalembert's
 # coordinate order), codegen/examples/urdf_numeric_sweep.rs imports each file
 # as `dalembert urdf [--floating]` does, evaluates it with the interpreter and
@@ -24,7 +23,7 @@
 set -euo pipefail
 version="${1:-6.0.0}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
-python="${PYTHON:-$HOME/.cache/dalembert-peers-venv/bin/python}"
+python="${PYTHON:-python3}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 python3 -m pip download --quiet --no-deps --dest "$work" "example-robot-data==$version"

@@ -12,8 +12,8 @@ velocity and the angular velocity in the world's axes, which are the
 `angular_velocity` and `angular_jacobian` outputs of the link's origin point
 and frame).
 
-    ~/.cache/dalembert-peers-venv/bin/pip install example-robot-data
-    ~/.cache/dalembert-peers-venv/bin/python scripts/z1_outputs_reference.py
+    pip install pin example-robot-data
+    python3 scripts/z1_outputs_reference.py
 """
 
 import json

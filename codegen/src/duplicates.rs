@@ -191,7 +191,7 @@ mod tests {
     use super::*;
     use crate::chain::{Family, chain};
     use crate::expr::test_util::Scratch;
-    use crate::interpret::Values;
+    use crate::geometry::Values;
     use crate::outputs::Function;
     use crate::random::Random;
 

@@ -8,7 +8,8 @@
 //! macro and [`generate`] for build scripts, wrapped by [`Builder`] and
 //! [`generate_file`], which read `.dal` files and report errors with file,
 //! line and column. [`Urdf`] imports a robot description (URDF) as a
-//! model in the same language. Beside the generator, an interpreter evaluates the
+//! model in the same language. [`Geometry`] evaluates a model's named
+//! points and frames numerically, for drawing it. Beside the generator, an interpreter evaluates the
 //! derived equations numerically (by d'Alembert's route or, independently,
 //! Lagrange's) for differential tests of the emitted code; it lives in
 //! `testing`, behind the non-default feature `testing`, with the other test
@@ -27,6 +28,7 @@ mod duplicates;
 mod emit;
 mod equations;
 mod expr;
+mod geometry;
 #[cfg(any(test, feature = "testing"))]
 mod interpret;
 mod kinematics;
@@ -51,6 +53,7 @@ pub use build::{
     BuildError, Builder, Diagnostic, ImportOptions, ModelFile, Severity, generate_file,
 };
 pub use emit::Target;
+pub use geometry::{Geometry, Values};
 pub use mjcf::Mjcf;
 pub use render::Style;
 pub use size::{DERIVATION_LIMIT, DerivationEstimate, FunctionSize, OPERATION_LIMIT};
@@ -67,9 +70,9 @@ pub use urdf::{Imported, Urdf};
 ///   optimised equations) with the first, which checks the optimiser and
 ///   the emitter, and the two routes with each other, which checks the
 ///   d'Alembert assembly.
-/// * [`Geometry`](testing::Geometry) gives the positions of a model's points
-///   and the rotations of its frames from the engine's kinematics (what the
-///   animations draw).
+/// * [`Values`](testing::Values): the values of every symbol, as the
+///   interpreter and [`Geometry`] read them (the same type as the crate's
+///   root [`Values`]).
 /// * [`Random`](testing::Random) is the one deterministic generator of the
 ///   project's random states.
 /// * [`quaternion_rotation`](testing::quaternion_rotation), [`cross`](testing::cross),
@@ -79,7 +82,8 @@ pub use urdf::{Imported, Urdf};
 /// * [`Shape`](testing::Shape): the benchmark trees as URDF text.
 #[cfg(feature = "testing")]
 pub mod testing {
-    pub use crate::interpret::{Geometry, Interpreter, Route, Sample, Values};
+    pub use crate::geometry::Values;
+    pub use crate::interpret::{Interpreter, Route, Sample};
     pub use crate::random::Random;
     pub use crate::rigid::{cross, mat_vec, quaternion_rotation, transpose_vec};
     pub use crate::trees::Shape;

@@ -22,12 +22,12 @@
 //! recordings are decimated uniformly in time for display, never truncated.
 //!
 //! Positions come from one place, [`Kinematics`]: today the engine's own
-//! kinematics, evaluated by its interpreter.
+//! kinematics, evaluated by [`dalembert_codegen::Geometry`].
 
 use std::fmt::{self, Write as _};
 use std::path::{Path, PathBuf};
 
-use dalembert_codegen::testing::{Interpreter, Values};
+use dalembert_codegen::{Geometry, Values};
 
 /// The page the data is embedded in.
 const TEMPLATE: &str = include_str!("scene.html");
@@ -172,11 +172,11 @@ struct Kinematics {
 }
 
 /// The engine's kinematics of the system in `source` with `parameters`:
-/// the same expressions its equations are derived from, evaluated by the
-/// interpreter.
+/// the same expressions its equations are derived from, evaluated by
+/// [`Geometry`].
 fn engine_kinematics(source: &str, parameters: &[f64]) -> Result<Kinematics, SceneError> {
-    let geometry = Interpreter::geometry(source)
-        .map_err(|e| SceneError(format!("cannot read the model: {e}")))?;
+    let geometry =
+        Geometry::new(source).map_err(|e| SceneError(format!("cannot read the model: {e}")))?;
     if parameters.len() != geometry.np() {
         return error(format!(
             "the model has {} parameters, {} values were given",

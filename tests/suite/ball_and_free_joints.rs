@@ -1,14 +1,15 @@
 //! Spherical and free joints (docs/architecture.md §4) against independent routes: a
 //! bob on a ball joint at the tip of a turning arm against the same system
 //! in Z-Y-X angles (whose `M`, `f`, `T`, `V` are checked against
-//! dal_sympy.py's numbers first), with the angles' rates and accelerations
+//! dal_sympy.py's numbers first, `tests/reference/dal_sympy_states.json`), with the angles' rates and accelerations
 //! mapped to the body-axis angular velocity and its rate by hand; the
 //! quaternion kinematics `q̇ = ½ q ⊗ (ω, 0)`; and a free body whose joint
 //! point is neither `O` nor its centre of mass, against Newton–Euler in
 //! closed form.
 
+use dalembert::Model;
 use dalembert_codegen::testing::{cross, quaternion_rotation, transpose_vec};
-use dalembert_fixtures::reference::{assert_near, assert_near_all};
+use dalembert_fixtures::reference::{SympyState, assert_near, assert_near_all, sympy_states};
 
 dalembert::dalembert! {
     /// A bob on a ball joint at the tip of a turning arm, in Z-Y-X angles.
@@ -94,97 +95,10 @@ fn ball_swing() -> SwingBall {
     }
 }
 
-/// dal_sympy's `M`, `f`, `T`, `V` of `SwingEuler` at a state `(q, v, u)`.
-struct Reference {
-    q: [f64; 4],
-    v: [f64; 4],
-    u: [f64; 1],
-    mass: [[f64; 4]; 4],
-    forcing: [f64; 4],
-    kinetic: f64,
-    potential: f64,
+/// dal_sympy's `M`, `f`, `T`, `V` of `SwingEuler` at its stored states.
+fn swing_states() -> Vec<SympyState<4, 1>> {
+    sympy_states("SwingEuler", &EULER.parameter_values())
 }
-
-const REFERENCES: [Reference; 2] = [
-    Reference {
-        q: [0.4, 0.7, -0.5, 0.9],
-        v: [1.1, -0.6, 0.8, 1.3],
-        u: [0.7],
-        mass: [
-            [
-                0.9970866641983817,
-                0.17370402855014316,
-                -0.012211284564129265,
-                0.23086148556354033,
-            ],
-            [
-                0.17370402855014316,
-                0.22498805956857146,
-                0.09206592994680247,
-                0.1468016454243921,
-            ],
-            [
-                -0.012211284564129265,
-                0.09206592994680247,
-                0.1275317329266314,
-                -0.035249710933236755,
-            ],
-            [
-                0.23086148556354033,
-                0.1468016454243921,
-                -0.035249710933236755,
-                0.255,
-            ],
-        ],
-        forcing: [
-            1.2388352264628955,
-            -0.18340415705737573,
-            2.1400762626959504,
-            -3.3350535744618535,
-        ],
-        kinetic: 0.9094051430191631,
-        potential: -1.9848870471457742,
-    },
-    Reference {
-        q: [-1.2, -0.3, 1.1, -0.4],
-        v: [-0.5, 1.7, -1.2, 0.4],
-        u: [-1.9],
-        mass: [
-            [
-                0.47253576693004784,
-                -0.10959215842211162,
-                0.006305551667218666,
-                0.1452369716799558,
-            ],
-            [
-                -0.10959215842211162,
-                0.18294658289239568,
-                -0.057104579591789946,
-                -0.20845734056424173,
-            ],
-            [
-                0.006305551667218666,
-                -0.057104579591789946,
-                0.2453301054417636,
-                0.017523825403889273,
-            ],
-            [
-                0.1452369716799558,
-                -0.20845734056424173,
-                0.017523825403889273,
-                0.255,
-            ],
-        ],
-        forcing: [
-            -2.2251807439963165,
-            0.2032322340099155,
-            -3.1654909592752487,
-            0.4798487468318376,
-        ],
-        kinetic: 0.5546826449766726,
-        potential: -2.6311795844629655,
-    },
-];
 
 /// The Hamilton product `p ⊗ r` of quaternions `(x, y, z, w)`.
 fn product([px, py, pz, pw]: [f64; 4], [rx, ry, rz, rw]: [f64; 4]) -> [f64; 4] {
@@ -227,13 +141,13 @@ fn body_rates(
 
 #[test]
 fn the_euler_angle_swing_matches_dal_sympy() {
-    for r in &REFERENCES {
+    for r in &swing_states() {
         for (k, row) in EULER.mass_matrix(&r.q).iter().enumerate() {
             assert_near_all(&format!("M[{k}]"), row, &r.mass[k], 1e-11);
         }
         assert_near_all(
             "f",
-            &EULER.forcing(0.0, &r.q, &r.v, &r.u),
+            &EULER.forcing(r.t, &r.q, &r.v, &r.u),
             &r.forcing,
             1e-11,
         );
@@ -253,9 +167,9 @@ fn a_ball_joint_on_a_turning_arm_moves_as_its_euler_angles() {
         ["dt(phi)", "ball_wx", "ball_wy", "ball_wz"]
     );
     let swing = ball_swing();
-    for r in &REFERENCES {
+    for r in &swing_states() {
         let accelerations =
-            dalembert::accelerations(&EULER, 0.0, &r.q, &r.v, &r.u).expect("regular");
+            dalembert::accelerations(&EULER, r.t, &r.q, &r.v, &r.u).expect("regular");
         let angles = [r.q[1], r.q[2], r.q[3]];
         let (omega, omega_rate) = body_rates(
             angles,
@@ -267,7 +181,7 @@ fn a_ball_joint_on_a_turning_arm_moves_as_its_euler_angles() {
         let v = [r.v[0], omega[0], omega[1], omega[2]];
         assert_near("T", swing.kinetic_energy(&q, &v), r.kinetic, 1e-11);
         assert_near("V", swing.potential_energy(&q), r.potential, 1e-11);
-        let ball = dalembert::accelerations(&swing, 0.0, &q, &v, &r.u).expect("regular");
+        let ball = dalembert::accelerations(&swing, r.t, &q, &v, &r.u).expect("regular");
         let expected = [
             accelerations[0],
             omega_rate[0],

@@ -3,10 +3,12 @@
 //! springs, dampers and a support shaken with time, a body with symbolic
 //! products of inertia and parameters inside functions, and speeds of one's
 //! own; their base parameters independent; and `inverse_dynamics` against the
-//! `M v̇ − f` of the SymPy reading `dal_sympy.py`.
+//! `M v̇ − f` of the SymPy reading `dal_sympy.py` (stored in
+//! `tests/reference/dal_sympy_states.json`).
 
 use crate::planar_arm_outputs::ARM_BY_POINTS;
-use dalembert_fixtures::reference::{assert_close, flat};
+use dalembert::Model;
+use dalembert_fixtures::reference::{SympyState, assert_close, flat, sympy_states};
 
 use crate::output_checks::*;
 
@@ -374,80 +376,23 @@ fn base_parameters_are_independent() {
     assert!(independence(|q, v, a| RATES_TOP.regressor(q, v, a)) > 1e-5);
 }
 
-/// One state of an independent SymPy reading of the language
-/// (`dal_sympy.py --values` at the test's parameters, 30 digits, kept
-/// outside this repository): `t`, `q`, `v`, `u`, and the `M` and `f` it
-/// derives.
-type SympyState = (f64, [f64; 2], [f64; 2], [f64; 1], [[f64; 2]; 2], [f64; 2]);
-
-/// `FullInertia` without its outputs, read by SymPy.
-const FULL_INERTIA_SYMPY: [SympyState; 2] = [
-    (
-        0.3,
-        [0.7, -1.1],
-        [1.3, -0.4],
-        [0.8],
-        [
-            [0.26416310936186566, 0.10206722005121893],
-            [0.10206722005121893, 0.13125],
-        ],
-        [-0.950607968011449, -1.3031689877263903],
-    ),
-    (
-        -0.5,
-        [-2.2, 0.9],
-        [-0.6, 1.7],
-        [-1.2],
-        [
-            [0.2717598081708933, -0.08665111088309363],
-            [-0.08665111088309363, 0.13125],
-        ],
-        [0.5401780060333977, -3.6150070916547956],
-    ),
-];
-
-/// `ShakenSprings` without its outputs and marker, read by SymPy.
-const SHAKEN_SYMPY: [SympyState; 2] = [
-    (
-        0.3,
-        [0.2, -1.1],
-        [1.3, -0.4],
-        [0.8],
-        [
-            [2.5, 0.19051037099874246],
-            [0.19051037099874246, 0.29399999999999993],
-        ],
-        [-2.2051314398261215, 4.416008385938953],
-    ),
-    (
-        1.7,
-        [-0.4, 2.5],
-        [-0.6, 1.7],
-        [-1.2],
-        [
-            [2.5, -0.3364803185297121],
-            [-0.3364803185297121, 0.29399999999999993],
-        ],
-        [4.605729003320435, -3.380736500713409],
-    ),
-];
-
 /// `inverse_dynamics` is SymPy's `M v̇ − f`: the six-entry symbolic inertia
 /// on a tilted axis, and the springs, the angle-dependent dampers and the
 /// load that varies with time.
 #[test]
 fn inverse_dynamics_is_sympys_reading() {
     let vdot = [0.9, -1.4];
-    let expected = |(_, _, _, _, mass, forcing): &SympyState| -> [f64; 2] {
-        std::array::from_fn(|i| matrix_times(mass, &vdot)[i] - forcing[i])
+    let expected = |state: &SympyState<2, 1>| -> [f64; 2] {
+        std::array::from_fn(|i| matrix_times(&state.mass, &vdot)[i] - state.forcing[i])
     };
-    for state in &FULL_INERTIA_SYMPY {
-        let (t, q, v, u, ..) = *state;
+    let parameters = FULL_INERTIA.parameter_values();
+    for state in &sympy_states::<2, 1>("FullInertia", &parameters) {
+        let SympyState { t, q, v, u, .. } = *state;
         let tau = FULL_INERTIA.inverse_dynamics(t, &q, &v, &vdot, &u);
         assert_close("tilted body", &tau, &expected(state), 1e-13);
     }
-    for state in &SHAKEN_SYMPY {
-        let (t, q, v, u, ..) = *state;
+    for state in &sympy_states::<2, 1>("ShakenSprings", &SHAKEN.parameter_values()) {
+        let SympyState { t, q, v, u, .. } = *state;
         let tau = SHAKEN.inverse_dynamics(t, &q, &v, &vdot, &u);
         assert_close("springs and dampers", &tau, &expected(state), 1e-13);
     }

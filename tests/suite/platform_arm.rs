@@ -10,7 +10,7 @@
 //! constraint's velocity form) is refused rather than left to drift.
 
 use dalembert::constrained::ConstraintSolver;
-use dalembert::integrate::{Adaptive, AdaptiveOptions, DriftLevel, ExplicitPair, Integration};
+use dalembert::integrate::{Adaptive, DriftLevel, Integration};
 use dalembert::{Constrained, MultibodySystem, Stabilisation, State, Unconstrained};
 
 dalembert::dalembert! {
@@ -129,25 +129,17 @@ fn both_spellings_have_the_same_accelerations_and_energies() {
 #[test]
 fn both_spellings_move_alike() {
     let (t0, q0, v0) = (0.2, [0.4, -0.3], [0.5, 1.0]);
-    let options = AdaptiveOptions::with_tolerance(1e-12);
+    let dop853 = Adaptive::dop853(1e-12);
     let driven = Unconstrained::without_inputs(&DRIVEN);
     let start = State {
         t: t0,
         q: q0,
         v: v0,
     };
-    let end = Integration::new(
-        &driven,
-        start,
-        3.0,
-        Adaptive {
-            pair: ExplicitPair::Dop853,
-            options,
-        },
-    )
-    .run()
-    .expect("integrates")
-    .end;
+    let end = Integration::new(&driven, start, 3.0, dop853)
+        .run()
+        .expect("integrates")
+        .end;
     let (qc, vc) = on_constraint(t0, q0, v0);
     let held = Constrained::without_inputs(&CONSTRAINED, Stabilisation::None);
     let start = State {
@@ -155,18 +147,10 @@ fn both_spellings_move_alike() {
         q: qc,
         v: vc,
     };
-    let held_end = Integration::new(
-        &held,
-        start,
-        3.0,
-        Adaptive {
-            pair: ExplicitPair::Dop853,
-            options,
-        },
-    )
-    .run()
-    .expect("integrates")
-    .end;
+    let held_end = Integration::new(&held, start, 3.0, dop853)
+        .run()
+        .expect("integrates")
+        .end;
     let (qe, ve) = on_constraint(3.0, end.q, end.v);
     for i in 0..3 {
         assert!(
@@ -192,22 +176,14 @@ fn the_arm_on_the_driven_platform_keeps_its_jacobi_integral() {
     let jacobi = |s: &State<2, 2>| dalembert::jacobi_integral(&DRIVEN, s.t, &s.q, &s.v);
     let h0 = jacobi(&start);
     let mut worst: f64 = 0.0;
-    let options = AdaptiveOptions::with_tolerance(1e-13);
+    let dop853 = Adaptive::dop853(1e-13);
     let dynamics = Unconstrained::without_inputs(&DRIVEN);
-    Integration::new(
-        &dynamics,
-        start,
-        4.0,
-        Adaptive {
-            pair: ExplicitPair::Dop853,
-            options,
-        },
-    )
-    .observe(|s| {
-        worst = worst.max((jacobi(s) - h0).abs());
-    })
-    .run()
-    .expect("integrates");
+    Integration::new(&dynamics, start, 4.0, dop853)
+        .observe(|s| {
+            worst = worst.max((jacobi(s) - h0).abs());
+        })
+        .run()
+        .expect("integrates");
     assert!(worst < 1e-11 * h0.abs().max(1.0), "{worst:e}");
 }
 
@@ -221,18 +197,10 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         v: vc,
     };
     let held = Constrained::without_inputs(&CONSTRAINED, Stabilisation::None);
-    let options = AdaptiveOptions::with_tolerance(1e-10);
-    let error = Integration::new(
-        &held,
-        start,
-        3.0,
-        Adaptive {
-            pair: ExplicitPair::Dop853,
-            options,
-        },
-    )
-    .run()
-    .expect_err("refused");
+    let dop853 = Adaptive::dop853(1e-10);
+    let error = Integration::new(&held, start, 3.0, dop853)
+        .run()
+        .expect_err("refused");
     assert_eq!(error.t, 0.5);
     let message = error.to_string();
     assert!(message.contains("constraint row 0"), "{message}");
@@ -263,17 +231,9 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         .project_onto_constraints(&CONSTRAINED, &start, 1e-14, 5)
         .expect("projects");
     assert!((projected.v[0] - CONSTRAINED.Omega).abs() < 1e-14);
-    Integration::new(
-        &held,
-        projected,
-        1.0,
-        Adaptive {
-            pair: ExplicitPair::Dop853,
-            options,
-        },
-    )
-    .run()
-    .expect("starts");
+    Integration::new(&held, projected, 1.0, dop853)
+        .run()
+        .expect("starts");
     // So does an integration that projects, whose first step moves it
     // onto the constraints; Baumgarte's terms would pull the speed in only
     // over time, off the constraints meanwhile, and are refused too.
@@ -282,35 +242,15 @@ fn a_start_off_the_driven_speed_is_refused_unless_projected() {
         max_iterations: 5,
     };
     let stabilised = Constrained::without_inputs(&CONSTRAINED, projecting);
-    Integration::new(
-        &stabilised,
-        start,
-        1.0,
-        Adaptive {
-            pair: ExplicitPair::Dop853,
-            options,
-        },
-    )
-    .run()
-    .expect("starts");
+    Integration::new(&stabilised, start, 1.0, dop853)
+        .run()
+        .expect("starts");
     let baumgarte = Stabilisation::Baumgarte {
         alpha: 10.0,
         beta: 10.0,
     };
     let pulled = Constrained::without_inputs(&CONSTRAINED, baumgarte);
-    assert!(
-        Integration::new(
-            &pulled,
-            start,
-            1.0,
-            Adaptive {
-                pair: ExplicitPair::Dop853,
-                options
-            }
-        )
-        .run()
-        .is_err()
-    );
+    assert!(Integration::new(&pulled, start, 1.0, dop853).run().is_err());
 }
 
 #[test]

@@ -7,8 +7,8 @@ use dalembert::constrained::{
     ConstraintSolver, DRIFT_LIMIT, DriftLimits, constrained_accelerations, constraint_drift,
 };
 use dalembert::integrate::{
-    Adaptive, AdaptiveOptions, AugmentedLagrangian, AugmentedLagrangianSettings, ExplicitPair,
-    Failure, Gauss, GaussLegendre, Integration, Rk4, Sdirk,
+    Adaptive, AugmentedLagrangian, AugmentedLagrangianSettings, Failure, Gauss, GaussLegendre,
+    Integration, Rk4, Sdirk,
 };
 use dalembert::{Constrained, DynamicsError, Stabilisation, State, energy};
 use dalembert_fixtures::reference::assert_close;
@@ -211,19 +211,11 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
             .unwrap();
         check(&format!("RK4, {name}"), run, expected, [2e-9, 1e-13, 1e-10]);
         let mut run = Run::default();
-        let options = AdaptiveOptions::with_tolerance(1e-10);
-        Integration::new(
-            &dynamics,
-            start,
-            10.0,
-            Adaptive {
-                pair: ExplicitPair::Dop853,
-                options,
-            },
-        )
-        .observe(|s| run.see(s, e0))
-        .run()
-        .unwrap();
+        let dop853 = Adaptive::dop853(1e-10);
+        Integration::new(&dynamics, start, 10.0, dop853)
+            .observe(|s| run.see(s, e0))
+            .run()
+            .unwrap();
         check(
             &format!("DOP853, {name}"),
             run,
@@ -231,19 +223,10 @@ fn redundant_parallelogram_through_every_integrator_with_stabilisation() {
             [1e-8, 1e-13, 2e-9],
         );
         let mut run = Run::default();
-        let options = AdaptiveOptions::with_tolerance(1e-8);
-        Integration::new(
-            &dynamics,
-            start,
-            10.0,
-            Adaptive {
-                pair: ExplicitPair::DormandPrince54,
-                options,
-            },
-        )
-        .observe(|s| run.see(s, e0))
-        .run()
-        .unwrap();
+        Integration::new(&dynamics, start, 10.0, Adaptive::dopri5(1e-8))
+            .observe(|s| run.see(s, e0))
+            .run()
+            .unwrap();
         check(
             &format!("DOPRI5, {name}"),
             run,
@@ -359,20 +342,12 @@ fn redundant_parallelogram_unstabilised_stops_at_its_drift_limit() {
         ),
         "{error}"
     );
-    let options = AdaptiveOptions::with_tolerance(1e-10);
+    let dop853 = Adaptive::dop853(1e-10);
     let mut run = Run::default();
-    Integration::new(
-        &unwatched,
-        start,
-        10.0,
-        Adaptive {
-            pair: ExplicitPair::Dop853,
-            options,
-        },
-    )
-    .observe(|s| run.see(s, e0))
-    .run()
-    .unwrap();
+    Integration::new(&unwatched, start, 10.0, dop853)
+        .observe(|s| run.see(s, e0))
+        .run()
+        .unwrap();
     println!("unwatched DOP853 at 1e-10: {run:?}");
     assert!(run.energy_change > 0.2, "{run:?}");
 
@@ -401,18 +376,10 @@ fn redundant_parallelogram_unstabilised_stops_at_its_drift_limit() {
     assert_eq!((error.t, error.q), (last.t, last.q));
     assert!(constraint_drift(&p, &last) <= DRIFT_LIMIT);
     let mut last = start;
-    let error = Integration::new(
-        &watched,
-        start,
-        10.0,
-        Adaptive {
-            pair: ExplicitPair::Dop853,
-            options,
-        },
-    )
-    .observe(|s| last = *s)
-    .run()
-    .unwrap_err();
+    let error = Integration::new(&watched, start, 10.0, dop853)
+        .observe(|s| last = *s)
+        .run()
+        .unwrap_err();
     println!("unstabilised DOP853 at 1e-10: {error} ({level:?} for RK4)");
     let at = match error.cause {
         Failure::ConstraintDrift { t, .. } => t,

@@ -13,7 +13,7 @@
 use std::f64::consts::FRAC_PI_2;
 
 use dalembert::constrained::constraint_drift;
-use dalembert::integrate::{self, AdaptiveOptions, ExplicitPair, Failure, GaussLegendre};
+use dalembert::integrate::{self, ExplicitPair, Failure, GaussLegendre};
 use dalembert::{
     Constrained, DynamicsError, IntegrationError, Solution, Stabilisation, State, Unconstrained,
     energy,
@@ -61,15 +61,11 @@ fn gauss_keeps_the_chaotic_pendulums_energy_bounded_while_rk4_and_dop853_drift()
         .run()
     });
     let dop853 = energy_errors(|observe| {
-        let options = AdaptiveOptions::with_tolerance(1e-8);
         integrate::Integration::new(
             &dynamics,
             CHAOTIC_START,
             HORIZON,
-            integrate::Adaptive {
-                pair: ExplicitPair::Dop853,
-                options,
-            },
+            integrate::Adaptive::dop853(1e-8),
         )
         .observe(observe)
         .run()
@@ -115,17 +111,9 @@ fn projection_holds_the_drift_of_the_adaptive_pair_on_the_slider_crank() {
     let start = crank.assembled(0.0, dalembert_fixtures::slider_crank::CRANK_SPEED);
     let drift_after_two_seconds = |stabilisation| {
         let dynamics = Constrained::new(&crank, |_, _, _| [0.0], stabilisation);
-        let options = AdaptiveOptions::with_tolerance(1e-8);
-        let end = integrate::Integration::new(
-            &dynamics,
-            start,
-            2.0,
-            integrate::Adaptive {
-                pair: ExplicitPair::Dop853,
-                options,
-            },
-        )
-        .run();
+        let end =
+            integrate::Integration::new(&dynamics, start, 2.0, integrate::Adaptive::dop853(1e-8))
+                .run();
         constraint_drift(&crank, &end.unwrap().end)
     };
     let free = drift_after_two_seconds(Stabilisation::None);
@@ -145,16 +133,12 @@ const SOFT: StiffDoublePendulum = StiffDoublePendulum { k: 0.0, ..STIFF };
 fn a_stiff_joint_forces_explicit_methods_to_tiny_steps_but_not_the_l_stable_sdirk() {
     let stiff = Unconstrained::without_inputs(&STIFF);
     let soft = Unconstrained::without_inputs(&SOFT);
-    let options = AdaptiveOptions::with_tolerance(1e-6);
     let dop853 = |dynamics: &_| {
         integrate::Integration::new(
             dynamics,
             STIFF_START,
             1.0,
-            integrate::Adaptive {
-                pair: ExplicitPair::Dop853,
-                options,
-            },
+            integrate::Adaptive::dop853(1e-6),
         )
         .run()
         .unwrap()
@@ -230,7 +214,7 @@ fn every_integrator_that_meets_the_singular_mass_matrix_stops_naming_time_and_co
         .run()
     };
     let adaptive = |pair| {
-        let options = AdaptiveOptions::with_tolerance(1e-8);
+        let options = integrate::AdaptiveOptions::with_tolerance(1e-8);
         integrate::Integration::new(
             &dynamics,
             TOWARDS_AXIS,

@@ -6,7 +6,7 @@
 
 use crate::equations::{Equations, derive};
 use crate::expr::Pool;
-use crate::interpret::Values;
+use crate::geometry::Values;
 use crate::model::{Model, resolve};
 use crate::random::Random;
 use crate::rigid::{cross, mat_vec, quaternion_rotation as rotation, transpose_vec};

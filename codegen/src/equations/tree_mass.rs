@@ -137,7 +137,7 @@ mod tests {
     use crate::equations::tree_partials::dot6;
     use crate::equations::{derive, tree_mass};
     use crate::expr::{ExprId, Pool};
-    use crate::interpret::Values;
+    use crate::geometry::Values;
     use crate::random::Random;
     use crate::trees::Shape;
 

@@ -51,7 +51,7 @@ fn links_match_pinocchio(robot: &str) -> usize {
         .floating(entry["floating"].as_bool().unwrap())
         .model()
         .unwrap();
-    let geometry = Interpreter::geometry(&model).unwrap();
+    let geometry = dalembert_codegen::Geometry::new(&model).unwrap();
     let states = entry["states"].as_array().unwrap();
     assert!(!states.is_empty());
     for state in states {
@@ -114,7 +114,7 @@ fn the_tool_frame_of_an_arm_is_an_output() {
     );
     let interpreter =
         Interpreter::new(&model, dalembert_codegen::testing::Route::Dalembert).unwrap();
-    let geometry = Interpreter::geometry(&model).unwrap();
+    let geometry = dalembert_codegen::Geometry::new(&model).unwrap();
     let q = [0.3, -1.1, 1.4, -0.2, 0.9, 2.0];
     let at = |q: &[f64; 6]| -> [f64; 3] {
         let values = Values {

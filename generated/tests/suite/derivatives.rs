@@ -72,7 +72,7 @@ fn assert_matches<const N: usize, const M: usize>(
 }
 
 /// `accelerations_jacobian(t, q, v, u)` of a system.
-type AccelerationsJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
+pub(crate) type AccelerationsJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
     fn(
         &S,
         f64,
@@ -288,40 +288,51 @@ fn double_pendulum_hanging_has_the_closed_form_normal_modes() {
 const PINOCCHIO_TOLERANCE: f64 = 1e-9;
 
 /// The entries of a JSON number or nested array of numbers, in order.
-fn numbers(v: &Value) -> Vec<f64> {
+pub(crate) fn numbers(v: &Value) -> Vec<f64> {
     match v {
         Value::Array(items) => items.iter().flat_map(numbers).collect(),
         other => vec![other.as_f64().expect("a number")],
     }
 }
 
-/// `max |got − want| ≤ PINOCCHIO_TOLERANCE · max |want|`.
-fn assert_agrees(what: &str, got: &[f64], want: &Value) {
-    let want = numbers(want);
+/// `max |got − want| / max |want|`, after checking the lengths agree.
+pub(crate) fn relative_error(what: &str, got: &[f64], want: &[f64]) -> f64 {
     assert_eq!(got.len(), want.len(), "{what}: length");
     let scale = want.iter().fold(f64::MIN_POSITIVE, |m, w| m.max(w.abs()));
     let error = got
         .iter()
-        .zip(&want)
+        .zip(want)
         .fold(0.0_f64, |m, (g, w)| m.max((g - w).abs()));
+    error / scale
+}
+
+/// `max |got − want| ≤ PINOCCHIO_TOLERANCE · max |want|`.
+fn assert_agrees(what: &str, got: &[f64], want: &Value) {
+    let error = relative_error(what, got, &numbers(want));
     assert!(
-        error <= PINOCCHIO_TOLERANCE * scale,
-        "{what}: off by {:e} relative",
-        error / scale
+        error <= PINOCCHIO_TOLERANCE,
+        "{what}: off by {error:e} relative"
     );
 }
 
-/// The reference states of `model` in `derivatives.json`.
-fn reference_states(model: &str) -> Vec<Value> {
-    let text = include_str!("../../../tests/reference/derivatives.json");
-    let document: Value = serde_json::from_str(text).expect("derivatives.json parses");
+/// The states (never none) of `model` in `document`, the text of a
+/// reference file `file` listing `models`, each with its `states`.
+pub(crate) fn model_states(document: &str, file: &str, model: &str) -> Vec<Value> {
+    let document: Value =
+        serde_json::from_str(document).unwrap_or_else(|e| panic!("{file} parses: {e}"));
     let entry = document["models"]
         .as_array()
         .expect("models")
         .iter()
         .find(|m| m["model"] == model)
-        .unwrap_or_else(|| panic!("{model} in derivatives.json"));
+        .unwrap_or_else(|| panic!("{model} in {file}"));
     dalembert_fixtures::reference::states(entry).to_vec()
+}
+
+/// The reference states of `model` in `derivatives.json`.
+fn reference_states(model: &str) -> Vec<Value> {
+    let text = include_str!("../../../tests/reference/derivatives.json");
+    model_states(text, "derivatives.json", model)
 }
 
 /// Both Jacobians of `system` against Pinocchio's at every reference state

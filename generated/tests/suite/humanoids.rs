@@ -9,6 +9,7 @@
 //! Run with `cargo test -p dalembert-generated --features humanoids --test
 //! suite humanoids::` (add `--release`: the humanoids' code is large).
 
+use crate::derivatives::{AccelerationsJacobian, model_states, numbers, relative_error};
 use dalembert::MultibodySystem;
 use dalembert_generated::{g1::G1, talos_reduced::Talos};
 use serde_json::Value;
@@ -16,50 +17,18 @@ use serde_json::Value;
 /// Relative agreement required, against the quantity's largest entry.
 const TOLERANCE: f64 = 1e-12;
 
-/// The entries of a JSON number or nested array of numbers, in order.
-fn numbers(v: &Value) -> Vec<f64> {
-    match v {
-        Value::Array(items) => items.iter().flat_map(numbers).collect(),
-        other => vec![other.as_f64().expect("a number")],
-    }
-}
-
 /// `max |got − want| ≤ TOLERANCE · max |want|`; the relative error.
 fn assert_agrees(what: &str, got: &[f64], want: &[f64]) -> f64 {
-    assert_eq!(got.len(), want.len(), "{what}: length");
-    let scale = want.iter().fold(f64::MIN_POSITIVE, |m, w| m.max(w.abs()));
-    let error = got
-        .iter()
-        .zip(want)
-        .fold(0.0_f64, |m, (g, w)| m.max((g - w).abs()))
-        / scale;
+    let error = relative_error(what, got, want);
     assert!(error <= TOLERANCE, "{what}: off by {error:e} relative");
     error
 }
 
-/// The reference states of `model`.
+/// The reference states of `model` in `humanoids/pinocchio.json`.
 fn reference_states(model: &str) -> Vec<Value> {
     let text = include_str!("../../../tests/reference/humanoids/pinocchio.json");
-    let document: Value = serde_json::from_str(text).expect("pinocchio.json parses");
-    let entry = document["models"]
-        .as_array()
-        .expect("models")
-        .iter()
-        .find(|m| m["model"] == model)
-        .unwrap_or_else(|| panic!("{model} in pinocchio.json"));
-    entry["states"].as_array().expect("states").clone()
+    model_states(text, "humanoids/pinocchio.json", model)
 }
-
-/// A generated `accelerations_jacobian`.
-type AccelerationsJacobian<S, const NQ: usize, const NV: usize, const NU: usize> =
-    fn(
-        &S,
-        f64,
-        &[f64; NQ],
-        &[f64; NV],
-        &[f64; NU],
-    )
-        -> Result<([[f64; NV]; NV], [[f64; NV]; NV], [[f64; NU]; NV]), dalembert::DynamicsError>;
 
 /// Every quantity of `system` against Pinocchio's at the states of `model`
 /// (the inputs are the joints' torques, the last `NU` speeds').
@@ -75,7 +44,6 @@ fn check<S, const NQ: usize, const NV: usize, const NU: usize>(
     }
     let flat = |m: &[[f64; NV]; NV]| -> Vec<f64> { m.iter().flatten().copied().collect() };
     let states = reference_states(model);
-    assert!(!states.is_empty(), "{model}: reference states");
     let mut worst = [0.0_f64; 6];
     for state in &states {
         let (q, v, u) = (

@@ -3,7 +3,7 @@
 //! rotation and angular velocity), against the interpreter's evaluation of
 //! every output (which checks the optimiser and the emitter), against
 //! `M v̇ − f` from the emitted `mass_matrix` and `forcing`, against the
-//! scene's positions (`testing::Geometry`), and `Y π = inverse_dynamics` at
+//! scene's positions (`dalembert_codegen::Geometry`), and `Y π = inverse_dynamics` at
 //! zero inputs.
 
 use dalembert_codegen::testing::{Interpreter, Random, Route, Values};
@@ -240,7 +240,7 @@ fn emitted_outputs_equal_the_interpreted_ones() {
 
 #[test]
 fn the_scene_draws_the_tip_where_position_puts_it() {
-    let geometry = Interpreter::geometry(SOURCE).unwrap();
+    let geometry = dalembert_codegen::Geometry::new(SOURCE).unwrap();
     let tip = geometry.points().iter().position(|p| p == "tip").unwrap();
     let mut random = Random::new(21);
     for _ in 0..20 {

@@ -8,7 +8,7 @@ use dalembert_fixtures::seeds::{DoublePendulum, RotatingBar};
 use dalembert_lab::{Recording, Scene, input_power};
 
 /// Seed example 1 as the language reference writes it.
-const DOUBLE_PENDULUM: &str = include_str!("../../generated/models/double_pendulum.dal");
+const DOUBLE_PENDULUM: &str = include_str!("../../../generated/models/double_pendulum.dal");
 
 /// A made-up swing of `nq` coordinates, `samples` samples over 2 s.
 fn swing(nq: usize, samples: usize) -> Recording {

@@ -5,7 +5,7 @@ use dalembert_codegen::chain::{Family, chain};
 use dalembert_lab::{Pose, Recording, Scene, decimate};
 
 /// Seed example 1, as the language reference writes it.
-const DOUBLE_PENDULUM: &str = include_str!("../../generated/models/double_pendulum.dal");
+const DOUBLE_PENDULUM: &str = include_str!("../../../generated/models/double_pendulum.dal");
 
 /// A smooth, wide made-up motion of `nq` coordinates over `[0, end]` with
 /// `samples` samples: what the scene draws depends on the configurations,
@@ -271,7 +271,7 @@ fn the_animated_model_texts_are_the_simulated_systems() {
     let unicode = dalembert_codegen::Style::Unicode;
     for (text, equations) in [
         (
-            include_str!("../../examples/slider_crank/slider_crank.dal"),
+            include_str!("../../../examples/slider_crank/slider_crank.dal"),
             SliderCrank::EQUATIONS,
         ),
         (
@@ -279,11 +279,11 @@ fn the_animated_model_texts_are_the_simulated_systems() {
             dalembert_fixtures::seeds::DoublePendulum::EQUATIONS,
         ),
         (
-            include_str!("../../generated/models/rotating_bar.dal"),
+            include_str!("../../../generated/models/rotating_bar.dal"),
             RotatingBar::EQUATIONS,
         ),
         (
-            include_str!("../../generated/models/constrained_pendulum.dal"),
+            include_str!("../../../generated/models/constrained_pendulum.dal"),
             ConstrainedPendulum::EQUATIONS,
         ),
     ] {
