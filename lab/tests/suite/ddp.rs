@@ -5,7 +5,7 @@
 //! tool reaching a pose over the generated kinematic outputs of `tool0`
 //! (`lab/models/ur5.rs`).
 
-#[path = "../models/ur5.rs"]
+#[path = "../../models/ur5.rs"]
 mod ur5;
 
 use dalembert::control::{Differentiated, euler_step, euler_step_jacobian};
@@ -17,7 +17,7 @@ use ur5::Ur5;
 
 /// Crocoddyl's optimal cost of `problem` in the stored run.
 fn crocoddyls_cost(problem: &str) -> f64 {
-    let runs = include_str!("data/ddp_crocoddyl.jsonl");
+    let runs = include_str!("../data/ddp_crocoddyl.jsonl");
     let costs: Vec<f64> = runs
         .lines()
         .map(|line| serde_json::from_str::<serde_json::Value>(line).expect("a JSON line"))
