@@ -70,7 +70,11 @@ fn copies<'a>(names: &[&str], statement: &'a str) -> Vec<(String, String, &'a st
                 }
                 None => std::fs::read_to_string(format!("models/{name}.dal")).expect("a model"),
             };
-            (name.trim_end_matches(".urdf").to_string(), source, statement)
+            (
+                name.trim_end_matches(".urdf").to_string(),
+                source,
+                statement,
+            )
         })
         .collect()
 }
@@ -204,9 +208,17 @@ fn main() {
     let mut derivatives = copies(&WITH_DERIVATIVES, DERIVATIVES);
     if std::env::var_os("CARGO_FEATURE_LARGE").is_some() {
         for n in [30, 60] {
-            derivatives.push((format!("spatial_chain_{n}"), chain(Family::Spatial, n), ADJOINT));
+            derivatives.push((
+                format!("spatial_chain_{n}"),
+                chain(Family::Spatial, n),
+                ADJOINT,
+            ));
         }
     }
     with_outputs(&out, "derivatives", derivatives);
-    with_outputs(&out, "lanes", copies(&WITH_LANES, "outputs accelerations_x4;"));
+    with_outputs(
+        &out,
+        "lanes",
+        copies(&WITH_LANES, "outputs accelerations_x4;"),
+    );
 }

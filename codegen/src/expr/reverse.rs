@@ -19,7 +19,7 @@
 //! only the nodes that may contain a chosen symbol are visited.
 
 use super::kinds::SymKinds;
-use super::{ExprId, Func, Node, Pool, Sym};
+use super::{ExprId, Node, Pool, Sym};
 use std::collections::HashMap;
 
 impl Pool {
@@ -67,7 +67,7 @@ impl Pool {
     /// `∂n/∂c` for the `i`-th child `c` of `n`, a node with children.
     fn local_partial(&mut self, n: ExprId, i: usize) -> ExprId {
         match self.node(n).clone() {
-            Node::Add(_) | Node::Func(Func::Group, _) => self.one(),
+            Node::Add(_) | Node::Group(_) => self.one(),
             Node::Mul(factors) => {
                 let others = factors
                     .iter()
@@ -88,6 +88,7 @@ impl Pool {
 
 #[cfg(test)]
 mod tests {
+    use super::super::Func;
     use super::super::test_util::{Point, Rng, Scratch, assert_close};
     use super::*;
 
