@@ -24,12 +24,19 @@ use dalembert_generated::derivatives::*;
 /// Relative agreement required between two exact routes.
 const EXACT: f64 = 1e-12;
 
-/// `|got − expected| ≤ EXACT |expected|_max`, entry by entry.
-fn assert_exact<const N: usize>(what: &str, got: [f64; N], expected: [f64; N]) {
+/// The floating quadruped's: its `accelerations_jacobian` takes the looped
+/// tree route (the runtime's recursion and `L D Lᵀ`), the adjoint a Cholesky
+/// solve and the symbolic sweep, and its `M` (a heavy base over light legs)
+/// magnifies their different roundings: 2.9e-12 of the largest entry
+/// measured, where both took the symbolic partials before.
+const FLOATING: f64 = 1e-11;
+
+/// `|got − expected| ≤ tolerance |expected|_max`, entry by entry.
+fn assert_exact<const N: usize>(tolerance: f64, what: &str, got: [f64; N], expected: [f64; N]) {
     let scale = expected.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     for i in 0..N {
         assert!(
-            (got[i] - expected[i]).abs() <= EXACT * scale,
+            (got[i] - expected[i]).abs() <= tolerance * scale,
             "{what}, entry {i}: {} against {} (scale {scale})",
             got[i],
             expected[i]
@@ -68,6 +75,7 @@ fn check_accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
     name: &str,
     system: &S,
     random: &mut Random,
+    tolerance: f64,
 ) where
     S: InverseDifferentiable<NQ, NV, NU>,
 {
@@ -79,9 +87,24 @@ fn check_accelerations<S, const NQ: usize, const NV: usize, const NU: usize>(
     let (vdot, adjoint) = accelerations_adjoint(system, t, &q, &v, &u, &lambda).expect("solvable");
     assert_eq!(vdot, system.accelerations(t, &q, &v, &u).expect("solvable"));
     let what = |of: &str| format!("{name} λᵀ∂v̇/∂{of}");
-    assert_exact(&what("q"), adjoint.by_q, weighted(&lambda, &jacobian_q));
-    assert_exact(&what("v"), adjoint.by_v, weighted(&lambda, &jacobian_v));
-    assert_exact(&what("u"), adjoint.by_u, weighted(&lambda, &jacobian_u));
+    assert_exact(
+        tolerance,
+        &what("q"),
+        adjoint.by_q,
+        weighted(&lambda, &jacobian_q),
+    );
+    assert_exact(
+        tolerance,
+        &what("v"),
+        adjoint.by_v,
+        weighted(&lambda, &jacobian_v),
+    );
+    assert_exact(
+        tolerance,
+        &what("u"),
+        adjoint.by_u,
+        weighted(&lambda, &jacobian_u),
+    );
     let phi = |q: &[f64; NQ], v: &[f64; NV], u: &[f64; NU]| {
         dot(
             &lambda,
@@ -128,6 +151,7 @@ fn check_steps<S, const NQ: usize, const NV: usize, const NU: usize>(
     name: &str,
     system: &S,
     random: &mut Random,
+    tolerance: f64,
 ) where
     S: InverseDifferentiable<NQ, NV, NU>,
 {
@@ -153,16 +177,18 @@ fn check_steps<S, const NQ: usize, const NV: usize, const NU: usize>(
             weighted(&lambda_v, &jacobian.v_by_u),
         );
         assert_exact(
+            tolerance,
             &what("q"),
             got.by_q,
             both(&jacobian.q_by_q, &jacobian.v_by_q),
         );
         assert_exact(
+            tolerance,
             &what("v"),
             got.by_v,
             both(&jacobian.q_by_v, &jacobian.v_by_v),
         );
-        assert_exact(&what("u"), got.by_u, by_u);
+        assert_exact(tolerance, &what("u"), got.by_u, by_u);
         let phi = |start: &State<NQ, NV>, u: &[f64; NU]| {
             let next = step(system, start, u, H).expect("a step");
             dot(&lambda_q, &space.difference(&end.q, &next.q)) + dot(&lambda_v, &next.v)
@@ -188,31 +214,33 @@ fn check_adjoints<S, const NQ: usize, const NV: usize, const NU: usize>(
     name: &str,
     system: &S,
     seed: u64,
+    tolerance: f64,
 ) where
     S: InverseDifferentiable<NQ, NV, NU>,
 {
     let mut random = Random::new(seed);
     for _ in 0..STATES {
-        check_accelerations(name, system, &mut random);
-        check_steps(name, system, &mut random);
+        check_accelerations(name, system, &mut random, tolerance);
+        check_steps(name, system, &mut random, tolerance);
     }
 }
 
 /// Each listed system, with its generated jacobian and reverse sweep.
 macro_rules! check_adjoints {
-    ($seed:expr; $($module:ident :: $system:ident $fields:tt),* $(,)?) => {$(
+    ($seed:expr, $tolerance:expr; $($module:ident :: $system:ident $fields:tt),* $(,)?) => {$(
         check_adjoints(
             stringify!($system),
             &Differentiated::new(&$module::$system $fields, $module::$system::accelerations_jacobian)
                 .with_inverse($module::$system::inverse_dynamics_adjoint),
             $seed,
+            $tolerance,
         );
     )*};
 }
 
 #[test]
 fn chains_adjoints_match_the_jacobians_and_central_differences() {
-    check_adjoints!(21;
+    check_adjoints!(21, EXACT;
         planar_chain_06::PlanarChain6 {},
         spatial_chain_06::SpatialChain6 {},
         spatial_chain_12::SpatialChain12 {},
@@ -222,17 +250,17 @@ fn chains_adjoints_match_the_jacobians_and_central_differences() {
 
 #[test]
 fn robot_arms_adjoints_match_the_jacobians_and_central_differences() {
-    check_adjoints!(22; ur5_robot::Ur5 {}, panda::Panda {});
+    check_adjoints!(22, EXACT; ur5_robot::Ur5 {}, panda::Panda {});
 }
 
 #[test]
 fn a_floating_quadruped_adjoints_match_the_jacobians_and_central_differences() {
-    check_adjoints!(23; floating_solo12::FloatingSolo {});
+    check_adjoints!(23, FLOATING; floating_solo12::FloatingSolo {});
 }
 
 #[test]
 fn a_spherical_joint_adjoints_match_the_jacobians_and_central_differences() {
-    check_adjoints!(24; dzhanibekov::Dzhanibekov { m: 12.0, a: 3.0, b: 2.0, c: 1.0 });
+    check_adjoints!(24, EXACT; dzhanibekov::Dzhanibekov { m: 12.0, a: 3.0, b: 2.0, c: 1.0 });
 }
 
 /// The generated sweep against `μᵀ` times the formed `∂τ/∂q`, `∂τ/∂v` of
@@ -248,8 +276,8 @@ macro_rules! check_sweep {
             let (by_q, by_v, _) = system.inverse_dynamics_adjoint(t, &q, &v, &vdot, &u, &mu);
             let (tau_q, tau_v, _) = system.inverse_dynamics_jacobian(t, &q, &v, &vdot, &u);
             let name = stringify!($system);
-            assert_exact(&format!("{name} μᵀ∂τ/∂q"), by_q, weighted(&mu, &tau_q));
-            assert_exact(&format!("{name} μᵀ∂τ/∂v"), by_v, weighted(&mu, &tau_v));
+            assert_exact(EXACT, &format!("{name} μᵀ∂τ/∂q"), by_q, weighted(&mu, &tau_q));
+            assert_exact(EXACT, &format!("{name} μᵀ∂τ/∂v"), by_v, weighted(&mu, &tau_v));
         }
     })*};
 }
