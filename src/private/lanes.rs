@@ -293,9 +293,9 @@ mod tests {
             let (s, c) = sin_cos(Lanes::new(x));
             let (scalar_s, scalar_c) = crate::__private::math::sin_cos_all(x);
             assert_eq!((s.to_array(), c.to_array()), (scalar_s, scalar_c));
-            for k in 0..4 {
-                worst = worst.max(ulps(s.to_array()[k], x[k].sin()));
-                worst = worst.max(ulps(c.to_array()[k], x[k].cos()));
+            for ((s, c), x) in s.to_array().into_iter().zip(c.to_array()).zip(x) {
+                worst = worst.max(ulps(s, x.sin()));
+                worst = worst.max(ulps(c, x.cos()));
             }
         }
         assert!(worst <= 2.0, "{worst} ulps");
