@@ -70,7 +70,7 @@ pub use urdf::{Imported, Urdf};
 ///   optimised equations) with the first, which checks the optimiser and
 ///   the emitter, and the two routes with each other, which checks the
 ///   d'Alembert assembly.
-/// * [`Values`](testing::Values): the values of every symbol, as the
+/// * [`testing::Values`]: the values of every symbol, as the
 ///   interpreter and [`Geometry`] read them (the same type as the crate's
 ///   root [`Values`]).
 /// * [`Random`](testing::Random) is the one deterministic generator of the
