@@ -22,20 +22,14 @@ reverse sweep's; the rest of the adjoint is the forward dynamics and the
 dense solve with `M`.
 
 MD
-python3 - "$CARGO_TARGET_DIR" "$STAMP" <<'PY'
-import glob, json, os, sys
-target, stamp = sys.argv[1], sys.argv[2]
-floor = os.path.getmtime(stamp)
-found = {}
-for path in glob.glob(os.path.join(target, "criterion", "adjoint_*", "*", "new", "estimates.json")):
-    if os.path.getmtime(path) < floor:
-        continue
-    with open(path.replace("estimates.json", "benchmark.json")) as f:
-        name = json.load(f)["full_id"]
-    with open(path) as f:
-        found[name] = json.load(f)["median"]["point_estimate"]
+python3 - "$CARGO_TARGET_DIR" "$STAMP" "$(dirname "${BASH_SOURCE[0]}")/lib" <<'PY'
+import sys
+target, stamp, lib = sys.argv[1:4]
+sys.path.insert(0, lib)
+from criterion_table import medians
+found = {k: v for k, v in medians(target, stamp).items() if k.startswith("adjoint/")}
 if not found:
-    sys.exit("no criterion results found: did the bench run?")
+    sys.exit("no adjoint results found: did the bench run?")
 ns = sorted({int(k.split("/")[1]) for k in found})
 def cell(x):
     return "–" if x is None else (f"{x:.1f}" if x < 100 else f"{x:.0f}")
