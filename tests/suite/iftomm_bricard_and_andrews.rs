@@ -30,7 +30,10 @@ const BRICARD: Bricard = Bricard {
     g: 9.81,
 };
 
+/// Seconds in a debug build (20 000 projected RK4 steps): CI runs it in its
+/// release step (`cargo test --release -p dalembert --test suite -- --ignored`).
 #[test]
+#[ignore = "long: run in release"]
 fn bricard_keeps_its_energy_and_its_closure_for_ten_seconds() {
     let dynamics = Constrained::without_inputs(&BRICARD, PROJECTION);
     let start = bricard_start();
@@ -268,7 +271,11 @@ fn andrews_squeezer_has_hairer_and_wanners_equations() {
     }
 }
 
+/// Tens of seconds in a debug build (30 000 projected RK4 steps on the
+/// written rows): CI runs it in its release step (`cargo test --release -p
+/// dalembert --test suite -- --ignored`).
 #[test]
+#[ignore = "long: run in release"]
 fn andrews_squeezer_by_two_formulations_and_integrators_agrees_to_1e_8() {
     // The loops closed by `closure` statements, DOP853 with projection...
     let closed = Integration::new(
