@@ -13,32 +13,27 @@ MuJoCo (M + f; forward) of the same run, and the slowest-to-fastest spelling
 ratio; and the summary rows of BENCHMARKS.md's opening table (n ≤ 12).
 """
 import csv
-import glob
-import json
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts", "bench", "lib"))
+from criterion_table import estimates  # noqa: E402  (the one reader of criterion's results)
+
 args = sys.argv[1:]
-since = 0.0
+since = None
 if "--since" in args:
     i = args.index("--since")
-    since = os.path.getmtime(args[i + 1])
+    since = args[i + 1]
     del args[i : i + 2]
 peer_csv = args[0]
 target = args[1] if len(args) > 1 else os.environ.get("CARGO_TARGET_DIR", "target")
 
 ours = {}  # (family, spelling, n, function) -> median ns
-for path in glob.glob(os.path.join(target, "criterion", "**", "new", "benchmark.json"), recursive=True):
-    if os.path.getmtime(path.replace("benchmark.json", "estimates.json")) < since:
-        continue  # an earlier run's
-    with open(path) as f:
-        bench = json.load(f)
-    parts = bench["group_id"].split("/")
-    if len(parts) != 3:
-        continue
-    family, spelling, n = parts
-    with open(path.replace("benchmark.json", "estimates.json")) as f:
-        ours[(family, spelling, int(n), bench["function_id"])] = json.load(f)["median"]["point_estimate"]
+for bench, median in estimates(target, since):
+    group = bench["group_id"].split("/")
+    if len(group) == 3 and group[1] in ("joints", "symbolic", "seed"):
+        family, spelling, n = group
+        ours[(family, spelling, int(n), bench["function_id"])] = median
 
 peer = {}  # (family, n, algo) -> median ns
 with open(peer_csv) as f:
