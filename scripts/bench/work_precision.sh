@@ -46,14 +46,6 @@ print()
 print(f"<!-- summary: DOP853 to equal final-state error, seed example 1 | SciPy `solve_ivp` DOP853 (SymPy `lambdify`) "
       f"| {float(scipy.group(2)) / float(scipy.group(3)):.4f} -->")
 '
-cat <<'MD'
-
-What the run printed:
-
-```text
-MD
-echo "$summary"
-echo '```'
 echo
 measured "one run, thread CPU time"
 cat <<'MD'
