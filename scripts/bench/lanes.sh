@@ -38,7 +38,7 @@ MD
 python3 - "$CARGO_TARGET_DIR" "$v3" "$STAMP" "${peers_csv[@]}" <<'PY'
 import sys
 sys.path.insert(0, "scripts/bench/lib")
-from criterion_table import medians, ns, peer_rows, ratio
+from criterion_table import medians, ns, peer_rows, quotient, ratio, summary
 
 target, v3, since, *csvs = sys.argv[1:]
 default, avx = medians(target, since), medians(v3, since)
@@ -69,6 +69,13 @@ mujoco = peers.get(("spatial_12", "mj_step_rk4"))
 for label, bench in [("one state a call", "rk4 step"), ("four a call, per state", "rk4 step x4 per state")]:
     ours, fast = default.get(f"lanes/spatial_chain_12/{bench}"), avx.get(f"lanes/spatial_chain_12/{bench}")
     print(f"| {label} | {ns(ours)} | {ratio(mujoco, ours)} | {ns(fast)} | {ratio(mujoco, fast)} |")
+print()
+summary("`accelerations_x4` per state, spatial chains 6–30, panda, Solo-12", "our scalar `accelerations`",
+        [quotient(default.get(f"lanes/{name}/accelerations_x4 per state"), default.get(f"lanes/{name}/accelerations"))
+         for name, _ in systems])
+if mujoco:
+    summary("one RK4 step, four states a call, per state, spatial chain of 12", "MuJoCo's RK4 step (`mj_step`)",
+            [quotient(default.get("lanes/spatial_chain_12/rk4 step x4 per state"), mujoco)])
 PY
 echo
 measured "criterion medians of thread CPU time; the peers' medians in the same window where given"
