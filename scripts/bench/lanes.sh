@@ -10,7 +10,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 out="$CARGO_TARGET_DIR/bench-peers/lanes"
 mkdir -p "$out"
 v3="$CARGO_TARGET_DIR/x86-64-v3"
-quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+quietly cargo bench -p dalembert-generated --features large --bench lanes -- --warm-up-time 1 --measurement-time 3
 RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR="$v3" \
     quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
 peers_csv=()
@@ -78,7 +78,7 @@ echo
 measured "criterion medians of thread CPU time; the peers' medians in the same window where given"
 cat <<'MD'
 
-    cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+    cargo bench -p dalembert-generated --features large --bench lanes -- --warm-up-time 1 --measurement-time 3
     RUSTFLAGS="-C target-cpu=x86-64-v3" cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
     bash $DALEMBERT_PEERS/run.sh --ns 12 --families spatial
     bash $DALEMBERT_PEERS/run.sh --urdf tests/reference/urdf/panda.urdf --only derivatives   # and solo12.urdf --floating
