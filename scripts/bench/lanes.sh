@@ -2,7 +2,8 @@
 # Section "Four states at once": the generated accelerations_x4 (one state in
 # each lane of a wide::f64x4) against the scalar accelerations, per state, on
 # the default target and on x86-64-v3 (generated/benches/lanes.rs, built a
-# second time in a target directory of its own), and accelerations_jacobian
+# second time in a target directory of its own; LANES_V3=0 leaves it out),
+# and accelerations_jacobian
 # against Pinocchio's computeABADerivatives in the same window when the
 # peers' harness is given (DALEMBERT_PEERS).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
@@ -11,8 +12,13 @@ out="$CARGO_TARGET_DIR/bench-peers/lanes"
 mkdir -p "$out"
 v3="$CARGO_TARGET_DIR/x86-64-v3"
 quietly cargo bench -p dalembert-generated --features large --bench lanes -- --warm-up-time 1 --measurement-time 3
-RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR="$v3" \
-    quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+# LANES_V3=0 leaves the x86-64-v3 run out (it is a release build of its own).
+if [ "${LANES_V3:-1}" = 0 ]; then
+    v3=""
+else
+    RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR="$v3" \
+        quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+fi
 peers_csv=()
 if [ -n "${DALEMBERT_PEERS:-}" ]; then
     peers --ns 12 --families spatial > "$out/chains.csv"
@@ -38,7 +44,7 @@ sys.path.insert(0, "scripts/bench/lib")
 from criterion_table import medians, ns, peer_rows, quotient, ratio, summary
 
 target, v3, since, *csvs = sys.argv[1:]
-default, avx = medians(target, since), medians(v3, since)
+default, avx = medians(target, since), (medians(v3, since) if v3 else {})
 peers = peer_rows(csvs)
 systems = [("spatial_chain_06", 6), ("spatial_chain_12", 12), ("spatial_chain_30", 30),
            ("panda", 9), ("floating_solo12", 18)]
@@ -51,6 +57,9 @@ for name, n in systems:
         four = found.get(f"lanes/{name}/accelerations_x4 per state")
         row += [ns(one), ns(four), ratio(four, one)]
     print(f"| {name} | {n} | " + " | ".join(row) + " |")
+if not v3:
+    print()
+    print("The x86-64-v3 build was left out of this run (`LANES_V3=0`).")
 print()
 print("| system | `accelerations_jacobian` (ns) | / `accelerations` | `computeABADerivatives` (ns) | ratio |")
 print("|---|---|---|---|---|")
