@@ -3,9 +3,8 @@
 # each lane of a wide::f64x4) against the scalar accelerations, per state, on
 # the default target and on x86-64-v3 (generated/benches/lanes.rs, built a
 # second time in a target directory of its own; LANES_V3=0 leaves it out),
-# and accelerations_jacobian
-# against Pinocchio's computeABADerivatives in the same window when the
-# peers' harness is given (DALEMBERT_PEERS).
+# and accelerations_jacobian against Pinocchio's computeABADerivatives in the
+# same window when the peers' harness is given (DALEMBERT_PEERS).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 out="$CARGO_TARGET_DIR/bench-peers/lanes"
