@@ -17,7 +17,8 @@
 # ($PINOCCHIO_HARNESS, set by scripts/benchmarks.sh --peers DIR) with $PYTHON (an
 # environment with `pin`; default: the peers'). The counting build is kept under
 # ${XDG_CACHE_HOME:-~/.cache}/dalembert-op-counts/ (one folder per source, compiler and
-# Pinocchio). Without the harness only our counts are printed.
+# Pinocchio; $PINOCCHIO_OP_COUNTER names another). Without the harness only our
+# counts are printed.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK" "$STAMP"' EXIT
@@ -28,13 +29,14 @@ if [ -n "${PINOCCHIO_HARNESS:-}" ]; then
   # The counting build instantiates Pinocchio's algorithms for every joint kind on
   # a new scalar: half an hour of a loaded core. Its counts do not depend on
   # optimisation (every operation is a call that counts), so it is built at -O0 and
-  # kept in a cache keyed by the source, the compiler and Pinocchio's headers.
+  # kept in a cache keyed by the source, the compiler and Pinocchio's headers; or
+  # $PINOCCHIO_OP_COUNTER names one already built from the same source.
   flags=(-O0 -DNDEBUG -std=c++17 -w -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30
     -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12
     -I"$PINOCCHIO_PREFIX/include" -I"$PINOCCHIO_PREFIX/include/eigen3")
   key=$({ cat scripts/bench/pinocchio_op_counts.cpp "$PINOCCHIO_PREFIX/include/pinocchio/config.hpp"
     g++ --version; echo "${flags[*]}"; } | sha256sum | cut -c1-16)
-  COUNTER="${XDG_CACHE_HOME:-$HOME/.cache}/dalembert-op-counts/$key/pinocchio_op_counts"
+  COUNTER="${PINOCCHIO_OP_COUNTER:-${XDG_CACHE_HOME:-$HOME/.cache}/dalembert-op-counts/$key/pinocchio_op_counts}"
   if [ ! -x "$COUNTER" ]; then
     mkdir -p "$(dirname "$COUNTER")"
     g++ "${flags[@]}" scripts/bench/pinocchio_op_counts.cpp -o "$COUNTER.partial"
