@@ -10,23 +10,20 @@ Writes docs/charts/chains.csv (family,n,tool,ns_per_call: the input of
 BENCHMARKS.md. Pinocchio M + f = pin_crba_sym + pin_nle; MuJoCo M + f = mj_M_f.
 """
 import csv
-import glob
-import json
 import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts", "bench", "lib"))
+from criterion_table import estimates  # noqa: E402  (the one reader of criterion's results)
 
 peer_csv = sys.argv[1]
 target = sys.argv[2] if len(sys.argv) > 2 else os.environ.get("CARGO_TARGET_DIR", "target")
 
 ours = {}  # (family, n, function) -> median ns
-for path in glob.glob(os.path.join(target, "criterion", "**", "new", "benchmark.json"), recursive=True):
-    with open(path) as f:
-        bench = json.load(f)
+for bench, median in estimates(target):
     family, _, n = bench["group_id"].partition("/")
-    if family not in ("planar", "spatial") or not n.isdigit():
-        continue  # the spellings bench's groups are FAMILY/SPELLING/N
-    with open(path.replace("benchmark.json", "estimates.json")) as f:
-        ours[(family, int(n), bench["function_id"])] = json.load(f)["median"]["point_estimate"]
+    if family in ("planar", "spatial") and n.isdigit():  # the spellings bench's groups are FAMILY/SPELLING/N
+        ours[(family, int(n), bench["function_id"])] = median
 
 peer = {}  # (family, n, algo) -> median ns (thread CPU time)
 with open(peer_csv) as f:

@@ -13,13 +13,14 @@ criterion's median per call of each form, the median and range over the rounds
 of the ratio looped / unrolled (each round's two figures come from the same
 window), and each form's cost per link.
 """
-import glob
-import json
 import os
 import re
 import statistics
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts", "bench", "lib"))
+from criterion_table import estimates  # noqa: E402  (the one reader of criterion's results)
 
 
 def option(args, name, default):
@@ -57,13 +58,11 @@ baselines = args
 
 rounds = {}  # (family, n) -> {baseline: {form: median ns}}
 for baseline in baselines:
-    pattern = os.path.join(target, "criterion", "forms_*", "*", baseline, "benchmark.json")
-    for path in glob.glob(pattern):
-        with open(path) as f:
-            bench = json.load(f)
-        _, family, n = bench["group_id"].split("/")
-        with open(path.replace("benchmark.json", "estimates.json")) as f:
-            median = json.load(f)["median"]["point_estimate"]
+    for bench, median in estimates(target, baseline=baseline):
+        group = bench["group_id"].split("/")
+        if len(group) != 3 or group[0] != "forms":
+            continue
+        _, family, n = group
         rounds.setdefault((family, int(n)), {}).setdefault(baseline, {})[bench["function_id"]] = median
 
 print(f"{len(baselines)} rounds: {' '.join(baselines)}")

@@ -14,10 +14,11 @@ and the summary rows of BENCHMARKS.md's opening table. A robot without
 figures on either side fails the script.
 """
 import csv
-import glob
-import json
 import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts", "bench", "lib"))
+from criterion_table import estimates  # noqa: E402  (the one reader of criterion's results)
 
 args = sys.argv[1:]
 target = os.environ.get("CARGO_TARGET_DIR", "target")
@@ -25,24 +26,17 @@ if "--target" in args:
     i = args.index("--target")
     target = args[i + 1]
     del args[i : i + 2]
-since = 0.0
+since = None
 if "--since" in args:
     i = args.index("--since")
-    since = os.path.getmtime(args[i + 1])
+    since = args[i + 1]
     del args[i : i + 2]
 
 ours = {}  # (robot, function) -> median ns
-for path in glob.glob(os.path.join(target, "criterion", "robots_*", "**", "new", "benchmark.json"), recursive=True) + \
-        glob.glob(os.path.join(target, "criterion", "robots", "**", "new", "benchmark.json"), recursive=True):
-    if os.path.getmtime(path.replace("benchmark.json", "estimates.json")) < since:
-        continue  # an earlier run's
-    with open(path) as f:
-        bench = json.load(f)
-    parts = bench["group_id"].split("/")
-    if len(parts) != 2 or parts[0] != "robots":
-        continue
-    with open(path.replace("benchmark.json", "estimates.json")) as f:
-        ours[(parts[1], bench["function_id"])] = json.load(f)["median"]["point_estimate"]
+for bench, median in estimates(target, since):
+    group = bench["group_id"].split("/")
+    if len(group) == 2 and group[0] == "robots":
+        ours[(group[1], bench["function_id"])] = median
 
 print("| robot | nv | M + f (ns) | Pinocchio crba_sym + nle (ns) | ratio | accelerations (ns) | Pinocchio aba (ns) | ratio |")
 print("|---|---|---|---|---|---|---|---|")

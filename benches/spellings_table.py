@@ -6,39 +6,34 @@ Usage: python3 benches/spellings_table.py PEER_CSV [TARGET_DIR] [--since FILE]
   TARGET_DIR   default: $CARGO_TARGET_DIR or target
   --since FILE read only the criterion results written after FILE was
 
-Prints the Markdown table of BENCHMARKS.md: per family, spelling and n, the
-median ns per call of `mass_matrix` + `forcing` and of the generated
-`accelerations`, with the ratios to Pinocchio (crba_sym + nle; aba) and to
-MuJoCo (M + f; forward) of the same run, and the slowest-to-fastest spelling
-ratio; and the summary rows of BENCHMARKS.md's opening table (n ≤ 12).
+Prints the Markdown table of BENCHMARKS.md: per family and n, for each
+spelling (joints / symbolic / seed in one cell), the median ns per call of
+`mass_matrix` + `forcing` and of the generated `accelerations`, with the
+ratios to Pinocchio (crba_sym + nle; aba) and to MuJoCo (M + f; forward) of
+the same run, and the slowest-to-fastest spelling ratio; and the summary rows of BENCHMARKS.md's opening table (n ≤ 12).
 """
 import csv
-import glob
-import json
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts", "bench", "lib"))
+from criterion_table import estimates  # noqa: E402  (the one reader of criterion's results)
+
 args = sys.argv[1:]
-since = 0.0
+since = None
 if "--since" in args:
     i = args.index("--since")
-    since = os.path.getmtime(args[i + 1])
+    since = args[i + 1]
     del args[i : i + 2]
 peer_csv = args[0]
 target = args[1] if len(args) > 1 else os.environ.get("CARGO_TARGET_DIR", "target")
 
 ours = {}  # (family, spelling, n, function) -> median ns
-for path in glob.glob(os.path.join(target, "criterion", "**", "new", "benchmark.json"), recursive=True):
-    if os.path.getmtime(path.replace("benchmark.json", "estimates.json")) < since:
-        continue  # an earlier run's
-    with open(path) as f:
-        bench = json.load(f)
-    parts = bench["group_id"].split("/")
-    if len(parts) != 3:
-        continue
-    family, spelling, n = parts
-    with open(path.replace("benchmark.json", "estimates.json")) as f:
-        ours[(family, spelling, int(n), bench["function_id"])] = json.load(f)["median"]["point_estimate"]
+for bench, median in estimates(target, since):
+    group = bench["group_id"].split("/")
+    if len(group) == 3 and group[1] in ("joints", "symbolic", "seed"):
+        family, spelling, n = group
+        ours[(family, spelling, int(n), bench["function_id"])] = median
 
 peer = {}  # (family, n, algo) -> median ns
 with open(peer_csv) as f:
@@ -46,41 +41,36 @@ with open(peer_csv) as f:
         peer[(row["family"], int(row["n"]), row["algo"])] = float(row["median_ns"])
 
 spellings = ["joints", "symbolic", "seed"]
-print("| family | n | spelling | M + f (ns) | / Pinocchio crba+nle | / MuJoCo M+f | accelerations (ns) | / Pinocchio aba | / MuJoCo forward |")
+print("| family | n | M + f (ns) | / Pinocchio crba+nle | / MuJoCo M+f | accelerations (ns) | / Pinocchio aba "
+      "| / MuJoCo forward | slowest / fastest, M + f; accelerations |")
 print("|---|---|---|---|---|---|---|---|---|")
 if not ours:
     sys.exit("no criterion results of the spellings bench: did it run?")
-spread = []
 headline = {"M + f": [], "Pinocchio": [], "MuJoCo": []}
+ratio = lambda a, b: f"{a / b:.2f}" if b else "–"
+cells = lambda values: " / ".join(values)
 for family in ["planar", "spatial"]:
     for n in sorted({k[2] for k in ours if k[0] == family}):
         pin_mf = peer.get((family, n, "pin_crba_sym"), 0) + peer.get((family, n, "pin_nle"), 0)
         pin_aba = peer.get((family, n, "pin_aba"))
         mj_mf = peer.get((family, n, "mj_M_f"))
         mj_fwd = peer.get((family, n, "mj_forward"))
-        row_mf, row_acc = [], []
-        for spelling in spellings:
-            mf = ours.get((family, spelling, n, "mass_matrix+forcing"))
-            acc = ours.get((family, spelling, n, "accelerations"))
-            if mf is None or acc is None:
-                continue
-            row_mf.append(mf)
-            row_acc.append(acc)
-            ratio = lambda a, b: f"{a / b:.2f}" if b else "–"
+        found = [(ours.get((family, s, n, "mass_matrix+forcing")), ours.get((family, s, n, "accelerations")))
+                 for s in spellings]
+        found = [(mf, acc) for mf, acc in found if mf is not None and acc is not None]
+        if not found:
+            continue
+        for mf, acc in found:
             if n <= 12 and pin_mf and pin_aba:
                 headline["M + f"].append(mf / pin_mf)
                 headline["Pinocchio"].append(acc / pin_aba)
             if n <= 12 and mj_fwd:
                 headline["MuJoCo"].append(acc / mj_fwd)
-            print(f"| {family} | {n} | {spelling} | {mf:.0f} | {ratio(mf, pin_mf)} | {ratio(mf, mj_mf)} "
-                  f"| {acc:.0f} | {ratio(acc, pin_aba)} | {ratio(acc, mj_fwd)} |")
-        if row_mf:
-            spread.append((family, n, max(row_mf) / min(row_mf), max(row_acc) / min(row_acc)))
-print()
-print("| family | n | slowest / fastest spelling, M + f | accelerations |")
-print("|---|---|---|---|")
-for family, n, mf, acc in spread:
-    print(f"| {family} | {n} | {mf:.2f} | {acc:.2f} |")
+        row_mf, row_acc = [mf for mf, _ in found], [acc for _, acc in found]
+        print(f"| {family} | {n} | {cells(f'{mf:.0f}' for mf in row_mf)} | {cells(ratio(mf, pin_mf) for mf in row_mf)} "
+              f"| {cells(ratio(mf, mj_mf) for mf in row_mf)} | {cells(f'{acc:.0f}' for acc in row_acc)} "
+              f"| {cells(ratio(acc, pin_aba) for acc in row_acc)} | {cells(ratio(acc, mj_fwd) for acc in row_acc)} "
+              f"| {max(row_mf) / min(row_mf):.2f}; {max(row_acc) / min(row_acc):.2f} |")
 
 if not all(headline.values()):
     sys.exit("the peers' CSV lacks Pinocchio's or MuJoCo's rows")

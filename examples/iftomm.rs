@@ -8,7 +8,7 @@
 //! drift, largest constraint residual and the error of the benchmark's
 //! reference point against an independent reference, then a work-precision
 //! chart per benchmark (error of the reference point at the final time
-//! against median wall time, one line per method).
+//! against median thread CPU time, one line per method).
 //!
 //! ```text
 //! cargo run --release --example iftomm [-- --out DIR] [--repeats N]
@@ -40,6 +40,7 @@ use dalembert::{
     Constrained, ConstrainedSystem, IntegrationError, Solution, Stabilisation, State,
     Unconstrained, energy,
 };
+use dalembert_fixtures::cpu_time::thread_time;
 use dalembert_fixtures::iftomm::{
     ANDREWS, ANDREWS_EQUATIONS, AnglePendulum, Bricard, CartesianPendulum, FourBars2, FourBars10,
     FourBars40, Parallelogram, andrews_start, four_bar_start,
@@ -458,7 +459,14 @@ where
                 println!("{method:<32} {setting:>9.1e} failed: {error}");
                 return Ok(());
             }
-            let measured = measure(method, setting, repeats, || run(&mut |_| {}), judge)?;
+            let measured = measure(
+                method,
+                setting,
+                repeats,
+                thread_time,
+                || run(&mut |_| {}),
+                judge,
+            )?;
             println!(
                 "{method:<32} {setting:>9.1e} {drift:>11.2e} {residual:>11.2e} {:>11.2e} {:>9.4}",
                 measured.accuracy.error, measured.seconds

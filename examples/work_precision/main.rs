@@ -1,7 +1,7 @@
 //! Work-precision diagrams and stability charts: for seed example 1 (the
 //! chaotic double pendulum of the reference data), seed example 3 and the
 //! slider-crank, every integrator over a sweep of tolerances or step sizes,
-//! its final-state error against median wall time (SVG, log-log) and a CSV
+//! its final-state error against median thread CPU time (SVG, log-log) and a CSV
 //! with the energy error, the constraint drift and the right-hand-side
 //! evaluations; then the long-time energy drift, the stiff joint and the
 //! sensitivity of the chaotic pendulum.
@@ -30,6 +30,7 @@ use dalembert::{
     Constrained, ConstrainedSystem, IntegrationError, Solution, Stabilisation, State, TaylorSystem,
     Unconstrained, energy,
 };
+use dalembert_fixtures::cpu_time::thread_time;
 use dalembert_fixtures::seeds::{CHAOTIC, CHAOTIC_END, CHAOTIC_START};
 use dalembert_fixtures::slider_crank::{CRANK_SPEED, SEED_3, SLIDER_CRANK};
 use dalembert_fixtures::stability::{ON_AXIS, STIFF, STIFF_START, TOWARDS_AXIS, chaotic_reference};
@@ -152,7 +153,7 @@ fn sweep<const NQ: usize>(
     let mut points = Vec::with_capacity(runs.len());
     for (method, setting, run) in runs {
         bar.set_message(format!("{method} at {setting:e}"));
-        match measure(&method, setting, repeats, run, judge) {
+        match measure(&method, setting, repeats, thread_time, run, judge) {
             Ok(point) => points.push(point),
             Err(error) => bar.println(format!("{method} at {setting:e} failed: {error}")),
         }

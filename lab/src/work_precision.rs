@@ -2,16 +2,16 @@
 //! of time on a given system.
 //!
 //! A run is a closure that integrates the system once and returns its
-//! [`Solution`]; [`measure`] times it (median CPU-clock wall time of several
-//! repeats), counts its right-hand-side evaluations and judges its final
-//! state against a reference with a caller-supplied [`Accuracy`] function.
-//! The points of a sweep go to a CSV ([`to_csv`]) and
-//! to a log-log chart of error against time
+//! [`Solution`]; [`measure`] times it (the median of several repeats on the
+//! caller's clock: the thread's CPU time on a shared machine), counts its
+//! right-hand-side evaluations and judges its final state against a
+//! reference with a caller-supplied [`Accuracy`] function. The points of a
+//! sweep go to a CSV ([`to_csv`]) and to a log-log chart of error against time
 //! ([`work_precision_chart`]); [`seconds_at_error`] interpolates the time a
 //! method needs for a given error, for comparisons at equal accuracy.
 
 use std::fmt::Write as _;
-use std::time::Instant;
+use std::time::Duration;
 
 use dalembert::{IntegrationError, Solution, State};
 
@@ -37,7 +37,7 @@ pub struct WorkPoint {
     pub method: String,
     /// Its tolerance or step size.
     pub setting: f64,
-    /// Median wall-clock time of one integration, in seconds.
+    /// Median time of one integration on the caller's clock, in seconds.
     pub seconds: f64,
     /// Right-hand-side evaluations of one integration.
     pub rhs_evaluations: u64,
@@ -57,22 +57,25 @@ pub fn state_error<const NQ: usize, const NV: usize>(
         .fold(0.0, |m, (a, b)| m.max((a - b).abs()))
 }
 
-/// Runs `run` `repeats` times (at least once) and returns its median time,
-/// its work and the accuracy `judge` gives its final state.
+/// Runs `run` `repeats` times (at least once) and returns its median time
+/// on `clock` (any monotonic reading: the thread's CPU time, which another
+/// process holding the core does not inflate, or `|| start.elapsed()` for
+/// wall time), its work and the accuracy `judge` gives its final state.
 ///
 /// Stops at the first run that fails.
 pub fn measure<const NQ: usize, const NV: usize>(
     method: &str,
     setting: f64,
     repeats: usize,
+    clock: impl Fn() -> Duration,
     mut run: impl FnMut() -> Result<Solution<NQ, NV>, IntegrationError<NQ>>,
     judge: impl Fn(&State<NQ, NV>) -> Accuracy,
 ) -> Result<WorkPoint, IntegrationError<NQ>> {
-    let (first_time, solution) = timed(&mut run)?;
+    let (first_time, solution) = timed(&clock, &mut run)?;
     let mut times = Vec::with_capacity(repeats.max(1));
     times.push(first_time);
     for _ in 1..repeats {
-        times.push(timed(&mut run)?.0);
+        times.push(timed(&clock, &mut run)?.0);
     }
     times.sort_by(f64::total_cmp);
     Ok(WorkPoint {
@@ -84,13 +87,14 @@ pub fn measure<const NQ: usize, const NV: usize>(
     })
 }
 
-/// One run of `run` and its wall-clock time in seconds.
+/// One run of `run` and its time on `clock` in seconds.
 fn timed<const NQ: usize, const NV: usize>(
+    clock: &impl Fn() -> Duration,
     run: &mut impl FnMut() -> Result<Solution<NQ, NV>, IntegrationError<NQ>>,
 ) -> Result<(f64, Solution<NQ, NV>), IntegrationError<NQ>> {
-    let start = Instant::now();
+    let start = clock();
     let solution = run()?;
-    Ok((start.elapsed().as_secs_f64(), solution))
+    Ok(((clock() - start).as_secs_f64(), solution))
 }
 
 /// The points as CSV with a header:
@@ -174,7 +178,7 @@ pub fn work_precision_chart(
     line_chart_log_log(
         path,
         title,
-        "median wall time per integration [s]",
+        "median time per integration [s]",
         "final-state error (max abs)",
         &series,
     )
@@ -249,7 +253,8 @@ mod tests {
             error: s.q[0],
             ..Accuracy::default()
         };
-        let point = measure("m", 0.1, 3, run, judge).unwrap();
+        let start = std::time::Instant::now();
+        let point = measure("m", 0.1, 3, || start.elapsed(), run, judge).unwrap();
         assert_eq!(runs, 3);
         assert_eq!((point.rhs_evaluations, point.accuracy.error), (42, 0.5));
         let csv = to_csv(&[point]);

@@ -17,10 +17,11 @@ cat <<'MD'
 
 The chains of `tests/reference/` (planar: revolute z, rods along −y;
 spatial: axes z, y, z, y, …), each in three spellings (`joint` statements
-with literals, with symbolic parameters, and the seed's frames and points):
-`mass_matrix` + `forcing` against Pinocchio's `crba` + `nonLinearEffects`
-and MuJoCo's M + bias, `accelerations` against Pinocchio's `aba` and
-MuJoCo's `mj_forward`. Ratios are ours / theirs.
+with literals, with symbolic parameters, and the seed's frames and points;
+each cell reads joints / symbolic / seed): `mass_matrix` + `forcing` against
+Pinocchio's `crba` + `nonLinearEffects` and MuJoCo's M + bias,
+`accelerations` against Pinocchio's `aba` and MuJoCo's `mj_forward`. Ratios
+are ours / theirs.
 
 MD
 python3 benches/spellings_table.py "$peers_csv" "$CARGO_TARGET_DIR" --since "$STAMP"

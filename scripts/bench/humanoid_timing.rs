@@ -9,7 +9,6 @@
 //! crate that depends on the repository's `dalembert`. Prints `robot function
 //! nanoseconds` lines.
 #![allow(missing_docs)]
-use dalembert::MultibodySystem;
 use std::hint::black_box;
 
 mod g1 {

@@ -2,17 +2,22 @@
 # Section "Four states at once": the generated accelerations_x4 (one state in
 # each lane of a wide::f64x4) against the scalar accelerations, per state, on
 # the default target and on x86-64-v3 (generated/benches/lanes.rs, built a
-# second time in a target directory of its own), and accelerations_jacobian
-# against Pinocchio's computeABADerivatives in the same window when the
-# peers' harness is given (DALEMBERT_PEERS).
+# second time in a target directory of its own; LANES_V3=0 leaves it out),
+# and accelerations_jacobian against Pinocchio's computeABADerivatives in the
+# same window when the peers' harness is given (DALEMBERT_PEERS).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 out="$CARGO_TARGET_DIR/bench-peers/lanes"
 mkdir -p "$out"
 v3="$CARGO_TARGET_DIR/x86-64-v3"
-quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
-RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR="$v3" \
-    quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+quietly cargo bench -p dalembert-generated --features large --bench lanes -- --warm-up-time 1 --measurement-time 3
+# LANES_V3=0 leaves the x86-64-v3 run out (it is a release build of its own).
+if [ "${LANES_V3:-1}" = 0 ]; then
+    v3=""
+else
+    RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR="$v3" \
+        quietly cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+fi
 peers_csv=()
 if [ -n "${DALEMBERT_PEERS:-}" ]; then
     peers --ns 12 --families spatial > "$out/chains.csv"
@@ -24,24 +29,21 @@ fi
 cat <<'MD'
 ## Four states at once
 
-`accelerations_x4` (from `outputs accelerations_x4;`) solves four states in
-one call, one state in each lane of a `wide::f64x4`, against the scalar
-`accelerations`, per state (the batched call's time over four). The chains
-of 6 and 12 take the unrolled `L D Lᵀ`, the chain of 30, the panda and
-Solo-12 the articulated-body recursion. Below, one RK4 step of the chain of
-12 through the scalar call and through `accelerations_x4` (four states a
-step) against MuJoCo's `mj_step` with its RK4, and `accelerations_jacobian`
-against the same states' `accelerations` and, when measured in the same
-window, Pinocchio's `computeABADerivatives`.
+`accelerations_x4` (`outputs accelerations_x4;`) solves four states a call,
+one in each lane of a `wide::f64x4`: its time over four against the scalar
+`accelerations` (the chains of 6 and 12 on the unrolled `L D Lᵀ`, the others
+on the articulated-body recursion); then `accelerations_jacobian` against
+`accelerations` and Pinocchio's `computeABADerivatives`, and one RK4 step of
+the chain of 12 against MuJoCo's `mj_step` RK4.
 
 MD
 python3 - "$CARGO_TARGET_DIR" "$v3" "$STAMP" "${peers_csv[@]}" <<'PY'
 import sys
 sys.path.insert(0, "scripts/bench/lib")
-from criterion_table import medians, ns, peer_rows, ratio
+from criterion_table import medians, ns, peer_rows, quotient, ratio, summary
 
 target, v3, since, *csvs = sys.argv[1:]
-default, avx = medians(target, since), medians(v3, since)
+default, avx = medians(target, since), (medians(v3, since) if v3 else {})
 peers = peer_rows(csvs)
 systems = [("spatial_chain_06", 6), ("spatial_chain_12", 12), ("spatial_chain_30", 30),
            ("panda", 9), ("floating_solo12", 18)]
@@ -54,6 +56,9 @@ for name, n in systems:
         four = found.get(f"lanes/{name}/accelerations_x4 per state")
         row += [ns(one), ns(four), ratio(four, one)]
     print(f"| {name} | {n} | " + " | ".join(row) + " |")
+if not v3:
+    print()
+    print("The x86-64-v3 build was left out of this run (`LANES_V3=0`).")
 print()
 print("| system | `accelerations_jacobian` (ns) | / `accelerations` | `computeABADerivatives` (ns) | ratio |")
 print("|---|---|---|---|---|")
@@ -69,12 +74,19 @@ mujoco = peers.get(("spatial_12", "mj_step_rk4"))
 for label, bench in [("one state a call", "rk4 step"), ("four a call, per state", "rk4 step x4 per state")]:
     ours, fast = default.get(f"lanes/spatial_chain_12/{bench}"), avx.get(f"lanes/spatial_chain_12/{bench}")
     print(f"| {label} | {ns(ours)} | {ratio(mujoco, ours)} | {ns(fast)} | {ratio(mujoco, fast)} |")
+print()
+summary("`accelerations_x4` per state, spatial chains 6–30, panda, Solo-12", "our scalar `accelerations`",
+        [quotient(default.get(f"lanes/{name}/accelerations_x4 per state"), default.get(f"lanes/{name}/accelerations"))
+         for name, _ in systems])
+if mujoco:
+    summary("one RK4 step, four states a call, per state, spatial chain of 12", "MuJoCo's RK4 step (`mj_step`)",
+            [quotient(default.get("lanes/spatial_chain_12/rk4 step x4 per state"), mujoco)])
 PY
 echo
 measured "criterion medians of thread CPU time; the peers' medians in the same window where given"
 cat <<'MD'
 
-    cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
+    cargo bench -p dalembert-generated --features large --bench lanes -- --warm-up-time 1 --measurement-time 3
     RUSTFLAGS="-C target-cpu=x86-64-v3" cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
     bash $DALEMBERT_PEERS/run.sh --ns 12 --families spatial
     bash $DALEMBERT_PEERS/run.sh --urdf tests/reference/urdf/panda.urdf --only derivatives   # and solo12.urdf --floating

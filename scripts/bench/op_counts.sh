@@ -15,23 +15,36 @@
 # wheel's cmeel.prefix, holding include/pinocchio and include/eigen3; default: the
 # peers' Python environment's), the robot read by the peers' harness's urdf_model.py
 # ($PINOCCHIO_HARNESS, set by scripts/benchmarks.sh --peers DIR) with $PYTHON (an
-# environment with `pin`; default: the peers'). Without the harness only our counts
-# are printed.
+# environment with `pin`; default: the peers'). The counting build is kept under
+# ${XDG_CACHE_HOME:-~/.cache}/dalembert-op-counts/ (one folder per source, compiler and
+# Pinocchio; $PINOCCHIO_OP_COUNTER names another). Without the harness only our
+# counts are printed.
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK" "$STAMP"' EXIT
-cargo build -q --release -p dalembert-codegen --bin dalembert
-DALEMBERT="$CARGO_TARGET_DIR/release/dalembert"
 COUNTER=""
 if [ -n "${PINOCCHIO_HARNESS:-}" ]; then
   PINOCCHIO_PREFIX="${PINOCCHIO_PREFIX:-$(peers_site)/cmeel.prefix}"
   PYTHON="${PYTHON:-$(peers_python)}"
-  g++ -O1 -DNDEBUG -std=c++17 -w -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
-    -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 \
-    -I"$PINOCCHIO_PREFIX/include" -I"$PINOCCHIO_PREFIX/include/eigen3" \
-    scripts/bench/pinocchio_op_counts.cpp -o "$WORK/pinocchio_op_counts"
-  COUNTER="$WORK/pinocchio_op_counts"
+  # The counting build instantiates Pinocchio's algorithms for every joint kind on
+  # a new scalar: half an hour of a loaded core. Its counts do not depend on
+  # optimisation (every operation is a call that counts), so it is built at -O0 and
+  # kept in a cache keyed by the source, the compiler and Pinocchio's headers; or
+  # $PINOCCHIO_OP_COUNTER names one already built from the same source.
+  flags=(-O0 -DNDEBUG -std=c++17 -w -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30
+    -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12
+    -I"$PINOCCHIO_PREFIX/include" -I"$PINOCCHIO_PREFIX/include/eigen3")
+  key=$({ cat scripts/bench/pinocchio_op_counts.cpp "$PINOCCHIO_PREFIX/include/pinocchio/config.hpp"
+    g++ --version; echo "${flags[*]}"; } | sha256sum | cut -c1-16)
+  COUNTER="${PINOCCHIO_OP_COUNTER:-${XDG_CACHE_HOME:-$HOME/.cache}/dalembert-op-counts/$key/pinocchio_op_counts}"
+  if [ ! -x "$COUNTER" ]; then
+    mkdir -p "$(dirname "$COUNTER")"
+    g++ "${flags[@]}" scripts/bench/pinocchio_op_counts.cpp -o "$COUNTER.partial"
+    mv "$COUNTER.partial" "$COUNTER"
+  fi
 fi
+cargo build -q --release -p dalembert-codegen --bin dalembert
+DALEMBERT="$CARGO_TARGET_DIR/release/dalembert"
 
 # "function flops row_solve" of ours; "algo flops" of Pinocchio's.
 flops() { awk -F, -v f="$2" '$1 == f { print $7 }' "$1"; }

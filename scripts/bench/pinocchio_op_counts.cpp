@@ -95,7 +95,6 @@ struct NumTraits<C> : GenericNumTraits<C> {
 #include <pinocchio/algorithm/rnea.hpp>
 #include <pinocchio/algorithm/aba.hpp>
 #include <pinocchio/algorithm/aba-derivatives.hpp>
-#include <pinocchio/algorithm/rnea-derivatives.hpp>
 
 namespace pin = pinocchio;
 
@@ -152,8 +151,8 @@ int main(int argc, char** argv) {
   Eigen::VectorXd lo = Eigen::VectorXd::Constant(model.nq, -M_PI), hi = Eigen::VectorXd::Constant(model.nq, M_PI);
   Eigen::VectorXd qd = pin::randomConfiguration(model, lo, hi);
   typedef Eigen::Matrix<C, Eigen::Dynamic, 1> VectorC;
-  VectorC q = qd.cast<C>(), v(nv), a(nv), tau(nv);
-  for (int j = 0; j < nv; ++j) { v[j] = C(0.1 * (j + 1)); a[j] = C(0.3 - 0.01 * j); tau[j] = C(1.0 + 0.2 * j); }
+  VectorC q = qd.cast<C>(), v(nv), tau(nv);
+  for (int j = 0; j < nv; ++j) { v[j] = C(0.1 * (j + 1)); tau[j] = C(1.0 + 0.2 * j); }
 
   std::printf("robot,nv,algo,add,mul,div,sqrt,sincos,other,flops\n");
   auto count = [&](const char* algo, auto run) {
@@ -163,9 +162,7 @@ int main(int argc, char** argv) {
   };
   count("crba", [&] { pin::crba(cmodel, data, q); });
   count("nonLinearEffects", [&] { pin::nonLinearEffects(cmodel, data, q, v); });
-  count("rnea", [&] { pin::rnea(cmodel, data, q, v, a); });
   count("aba", [&] { pin::aba(cmodel, data, q, v, tau); });
   count("computeABADerivatives", [&] { pin::computeABADerivatives(cmodel, data, q, v, tau); });
-  count("computeRNEADerivatives", [&] { pin::computeRNEADerivatives(cmodel, data, q, v, a); });
   return 0;
 }

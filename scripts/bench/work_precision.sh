@@ -22,8 +22,9 @@ on the generated code, SciPy's `solve_ivp` over a SymPy `lambdify(cse=True)`
 right-hand side beside them. Seed example 1 from θ₁ = θ₂ = 2 rad is chaotic
 (no double-precision method gets much below 3e-8); `--taylor` redraws the
 regular pendulum at 0.2 rad and seed example 3 with the Taylor integrator.
-Both sides' times are wall time (median of repeats), to reach the same
-final-state error:
+Both sides' times are the thread's CPU time (median of repeats; wall time
+on a loaded machine inflated SciPy's slow runs more than our short ones), to
+reach the same final-state error:
 
 MD
 printf '%s\n%s\n' "$summary" "$taylor" | python3 -c '
@@ -45,16 +46,8 @@ print()
 print(f"<!-- summary: DOP853 to equal final-state error, seed example 1 | SciPy `solve_ivp` DOP853 (SymPy `lambdify`) "
       f"| {float(scipy.group(2)) / float(scipy.group(3)):.4f} -->")
 '
-cat <<'MD'
-
-What the run printed:
-
-```text
-MD
-echo "$summary"
-echo '```'
 echo
-measured "one run, wall time"
+measured "one run, thread CPU time"
 cat <<'MD'
 
     scripts/scipy_baseline.sh --out target/charts/scipy_dop853.csv

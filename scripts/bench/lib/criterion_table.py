@@ -23,21 +23,28 @@ import os
 import sys
 
 
-def medians(target, since):
-    """Criterion's median per benchmark id, in ns."""
+def estimates(target, since=None, baseline="new"):
+    """Criterion's median in ns per benchmark, as (its benchmark.json, median):
+    the results saved under `baseline` (`new`: the last run), and with `since`
+    only those written after that file was."""
     floor = os.path.getmtime(since) if since else 0.0
-    found = {}
-    pattern = os.path.join(target, "criterion", "**", "new", "estimates.json")
+    found = []
+    pattern = os.path.join(target, "criterion", "**", baseline, "estimates.json")
     for path in glob.glob(pattern, recursive=True):
         if os.path.getmtime(path) < floor:
             continue
         with open(path.replace("estimates.json", "benchmark.json")) as f:
-            name = json.load(f)["full_id"]
+            bench = json.load(f)
         with open(path) as f:
-            found[name] = json.load(f)["median"]["point_estimate"]
+            found.append((bench, json.load(f)["median"]["point_estimate"]))
     if not found:
         sys.exit("no criterion results found: did the bench run?")
     return found
+
+
+def medians(target, since):
+    """Criterion's median per benchmark id, in ns."""
+    return {bench["full_id"]: median for bench, median in estimates(target, since)}
 
 
 def peer_rows(paths):
