@@ -98,8 +98,9 @@ def count(body):
 def add_row_operations(body, counts):
     """The row operations of the solve through `L D Lᵀ` (the runtime's
     `scale_and_subtract(row, factor, [(l, other), …])`: one product a column
-    and a product and a subtraction a column per term), on rows as wide as
-    the function's `[[f64; C]; N]` rows."""
+    and a product and a subtraction a column per term, on rows as wide as
+    the function's `[[f64; C]; N]` rows; `subtract_on_runs`: a product and a
+    subtraction a term and a column of its runs)."""
     # `let [mut b0, …]: [[f64; C]; N] = {`, or the first of a tuple's types
     # where the runtime's loops compute the rest (`: ([[f64; C]; N], …`).
     width = re.search(r"(?:\]|residual,?\s*\))\s*:\s*\(?\s*\[\[f64; (\d+)\]; \d+\]", body)
@@ -112,6 +113,17 @@ def add_row_operations(body, counts):
         counts["mul"] += columns * (1 + k)
         counts["add"] += columns * k
         counts["row_solve"] += columns * (1 + 2 * k)
+    # `subtract_on_runs(row, [(l, other), …], &[(start, end), …])`: a product
+    # and a subtraction a term and a column of the runs.
+    partial = re.findall(
+        r"subtract_on_runs\(\s*&mut \w+,\s*\[(.*?)\]\s*,\s*&\[(.*?)\]\s*,?\s*\)", body, re.S
+    )
+    for terms, runs in partial:
+        k = terms.count("(")
+        width = sum(int(b) - int(a) for a, b in re.findall(r"\((\d+),\s*(\d+)\)", runs))
+        counts["mul"] += width * k
+        counts["add"] += width * k
+        counts["row_solve"] += width * 2 * k
 
 
 TREE_LINK = re.compile(r"TreeLink \{\s*parent: ([\w:]+),\s*joint: (\d+),")

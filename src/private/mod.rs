@@ -21,5 +21,5 @@ pub use crate::dynamics::null_motion::{NULL_MOTION_NAMES, with_null_motion};
 pub use crate::dynamics::pairs::{
     TreeLink, TreeSpeed, add_to_diagonal, add_tree_pairs, tree_mass_matrix,
 };
-pub use crate::dynamics::rows::scale_and_subtract;
+pub use crate::dynamics::rows::{scale_and_subtract, subtract_on_runs};
 pub use crate::dynamics::tree_vectors::{LinkState, TreeRecursion};

@@ -12,7 +12,7 @@
 
 use super::body::{Given, Names, Straight, straight_line, straight_line_given};
 use super::solve::{
-    Elimination, Factorised, deferred_check, elimination, factorised, mass,
+    Elimination, Factorised, deferred_check, elimination, factorised, forward_in_runs, mass,
     negated_row_substitutions, state_check,
 };
 use super::{array, raw_string};
@@ -51,6 +51,28 @@ fn solved_columns(
             _ => (0..nv).any(|i| !pool.is_zero(blocks[block][i * widths[block] + j])),
         })
         .collect()
+}
+
+/// `columns` ordered by speed, each speed's `∂/∂q`, `∂/∂v` and the inputs
+/// that first act on it (the first row where their column is not
+/// structurally zero) together: on a tree whose speeds are numbered
+/// depth-first, the columns where a row of the forward substitution can
+/// be nonzero (its ancestors', its own and its subtree's) are then a few
+/// long runs.
+fn by_speed(
+    pool: &Pool,
+    blocks: &[&[ExprId]; 3],
+    widths: [usize; 3],
+    columns: &mut [(usize, usize)],
+) {
+    let nv = widths[0];
+    let speed = |&(block, j): &(usize, usize)| match block {
+        2 => (0..nv)
+            .find(|&i| !pool.is_zero(blocks[block][i * widths[block] + j]))
+            .unwrap_or(nv),
+        _ => j,
+    };
+    columns.sort_by_key(|column| (speed(column), column.0));
 }
 
 /// The tree of `paired` as the runtime's table of
@@ -151,6 +173,31 @@ impl Partials<'_> {
                 self.columns
                     .iter()
                     .map(move |&(block, j)| self.blocks[block][speed * self.widths[block] + j])
+            })
+            .collect()
+    }
+}
+
+impl Partials<'_> {
+    /// Which entries of the rows of the solve can be nonzero (row `i` that
+    /// of the `i`-th speed of `order` eliminated, a column each of
+    /// `columns`): those that are not structural zeros, and with `paired`
+    /// those where the runtime adds a pair, between a speed and one of
+    /// its ancestors, itself or one of its descendants.
+    fn support(&self, pool: &Pool, order: &[usize], paired: Option<&PairedTree>) -> Vec<Vec<bool>> {
+        order
+            .iter()
+            .map(|&speed| {
+                self.columns
+                    .iter()
+                    .map(|&(block, j)| {
+                        let entry = self.blocks[block][speed * self.widths[block] + j];
+                        let pair = paired.is_some_and(|paired| {
+                            block < 2 && (descends(paired, speed, j) || descends(paired, j, speed))
+                        });
+                        pair || !pool.is_zero(entry)
+                    })
+                    .collect()
             })
             .collect()
     }
@@ -352,7 +399,20 @@ pub fn emit_accelerations_jacobian(
     let (nv, nu) = (model.nv(), model.inputs.len());
     let widths = [nv, nv, nu];
     let blocks: [&[ExprId]; 3] = [0, 1, 2].map(|k| function.results[k].expressions.as_slice());
-    let columns = solved_columns(pool, &blocks, widths, paired);
+    let Factorisation { order, pattern } = factorisation;
+    // By speed where the forward substitution then takes rows in runs of
+    // columns (which that order makes long), else as they are.
+    let mut columns = solved_columns(pool, &blocks, widths, paired);
+    let mut by_speeds = columns.clone();
+    by_speed(pool, &blocks, widths, &mut by_speeds);
+    let reordered = Partials {
+        blocks,
+        widths,
+        columns: &by_speeds,
+    };
+    if forward_in_runs(pattern, &reordered.support(pool, order, paired)) {
+        columns = by_speeds;
+    }
     let rows: Vec<Ident> = (0..nv).map(|i| format_ident!("b{}", i)).collect();
     let partials = Partials {
         blocks,
@@ -372,8 +432,8 @@ pub fn emit_accelerations_jacobian(
             &rows,
         ),
     };
-    let Factorisation { order, pattern } = factorisation;
-    let solve = negated_row_substitutions(pattern, &rows);
+    let support = partials.support(pool, order, paired);
+    let solve = negated_row_substitutions(pattern, &rows, &support);
     // `∂v̇ᵢ/∂x_j`, by the speed `i`: `dq{i}_{j}`, `dv{i}_{j}`, `du{i}_{j}`.
     let entry = |block: usize, i: usize, j: usize| {
         format_ident!("{}{}_{}", ["dq", "dv", "du"][block], i, j)

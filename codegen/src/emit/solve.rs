@@ -13,8 +13,8 @@ use super::body::{Angles, Given, Names, straight_line, straight_line_taking};
 use crate::equations::{Articulated, Equations};
 use crate::expr::{ExprId, Pool};
 use crate::model::Model;
-use crate::plan::Plan;
 use crate::plan::solve::{Accelerations, Factorisation};
+use crate::plan::{FILLED_GAP, Plan};
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -555,34 +555,116 @@ fn backward_substitution(pattern: &[Vec<bool>]) -> TokenStream {
 /// names the mutable array holding row `i` (in the elimination order) of
 /// `B`, and holds that of `X` after `L Y = B` and `D Lᵀ X = −Y` (the
 /// negation folded into the reciprocal pivots). Each step is one
-/// `dalembert::__private::scale_and_subtract` over the columns.
-pub fn negated_row_substitutions(pattern: &[Vec<bool>], rows: &[Ident]) -> TokenStream {
+/// `dalembert::__private::scale_and_subtract` over the columns, or in `L Y
+/// = B`, where `support[i][c]` says which entries of `B` can be nonzero,
+/// `dalembert::__private::subtract_on_runs` over the columns where the
+/// rows subtracted can be (on a tree, a row of `Y` is nonzero only in the
+/// columns of its speed's ancestors, itself and its subtree).
+pub fn negated_row_substitutions(
+    pattern: &[Vec<bool>],
+    rows: &[Ident],
+    support: &[Vec<bool>],
+) -> TokenStream {
     let nq = pattern.len();
-    let step = |i: usize, factor: TokenStream, terms: Vec<(Ident, usize)>| -> TokenStream {
-        let row = &rows[i];
-        let terms = terms.iter().map(|(l, k)| {
-            let other = &rows[*k];
-            quote!((#l, &#other))
-        });
+    let terms_of = |terms: &[(Ident, usize)]| -> Vec<TokenStream> {
+        terms
+            .iter()
+            .map(|(l, k)| {
+                let other = &rows[*k];
+                quote!((#l, &#other))
+            })
+            .collect()
+    };
+    let step = |i: usize, factor: TokenStream, terms: &[(Ident, usize)]| -> TokenStream {
+        let (row, terms) = (&rows[i], terms_of(terms));
         quote!(::dalembert::__private::scale_and_subtract(&mut #row, #factor, [#(#terms),*]);)
     };
     let mut out = TokenStream::new();
+    let forward = forward_support(pattern, support);
     for (i, row) in pattern.iter().enumerate() {
         let terms: Vec<(Ident, usize)> = (0..i)
             .filter(|&k| row[k])
             .map(|k| (entry(i, k), k))
             .collect();
-        if !terms.is_empty() {
-            out.extend(step(i, quote!(1.0), terms));
+        // Consecutive terms nonzero on the same runs of columns, together.
+        for group in terms.chunk_by(|(_, a), (_, b)| runs(&forward[*a]) == runs(&forward[*b])) {
+            let runs = runs(&forward[group[0].1]);
+            match runs[..] {
+                [] => {}
+                [(0, end)] if end == forward[i].len() => out.extend(step(i, quote!(1.0), group)),
+                _ => {
+                    let (row, terms) = (&rows[i], terms_of(group));
+                    let runs = runs.iter().map(|&(a, b)| {
+                        let (a, b) = (Literal::usize_unsuffixed(a), Literal::usize_unsuffixed(b));
+                        quote!((#a, #b))
+                    });
+                    out.extend(quote! {
+                        ::dalembert::__private::subtract_on_runs(&mut #row, [#(#terms),*], &[#(#runs),*]);
+                    });
+                }
+            }
         }
     }
     for i in (0..nq).rev() {
         let r = format_ident!("r{}", i);
-        let terms = (i + 1..nq)
+        let terms: Vec<(Ident, usize)> = (i + 1..nq)
             .filter(|&k| pattern[k][i])
             .map(|k| (entry(k, i), k))
             .collect();
-        out.extend(step(i, quote!(-#r), terms));
+        out.extend(step(i, quote!(-#r), &terms));
     }
     out
+}
+
+/// Which entries of `Y` in `L Y = B` can be nonzero, row by row in the
+/// elimination order: those of `B` (`support`) and every column of a row
+/// that row `i` subtracts (`pattern[i][k]`).
+fn forward_support(pattern: &[Vec<bool>], support: &[Vec<bool>]) -> Vec<Vec<bool>> {
+    let mut forward: Vec<Vec<bool>> = support.to_vec();
+    for (i, row) in pattern.iter().enumerate() {
+        for k in (0..i).filter(|&k| row[k]) {
+            let below = forward[k].clone();
+            for (entry, nonzero) in forward[i].iter_mut().zip(below) {
+                *entry |= nonzero;
+            }
+        }
+    }
+    forward
+}
+
+/// Whether [`negated_row_substitutions`] takes a step of `L Y = B` in runs
+/// of columns (short of every column) for the entries of `B` that
+/// `support` says can be nonzero.
+pub fn forward_in_runs(pattern: &[Vec<bool>], support: &[Vec<bool>]) -> bool {
+    let forward = forward_support(pattern, support);
+    let subtracted = |k: usize| pattern.iter().skip(k + 1).any(|row| row[k]);
+    forward
+        .iter()
+        .enumerate()
+        .any(|(k, nonzero)| subtracted(k) && runs(nonzero) != [(0, nonzero.len())])
+}
+
+/// The runs `(start, end)` of consecutive `true` entries of `nonzero`, two
+/// runs apart by at most [`FILLED_GAP`] columns taken as one (their
+/// products by zeros cost less than a pass of their own), and as many
+/// columns at either end taken into the first and last run.
+fn runs(nonzero: &[bool]) -> Vec<(usize, usize)> {
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for (c, _) in nonzero.iter().enumerate().filter(|&(_, &n)| n) {
+        let start = match runs.is_empty() && c <= FILLED_GAP {
+            true => 0,
+            false => c,
+        };
+        match runs.last_mut() {
+            Some((_, end)) if c <= *end + FILLED_GAP => *end = c + 1,
+            _ => runs.push((start, c + 1)),
+        }
+    }
+    if let Some((_, end)) = runs
+        .last_mut()
+        .filter(|(_, end)| *end + FILLED_GAP >= nonzero.len())
+    {
+        *end = nonzero.len();
+    }
+    runs
 }

@@ -84,3 +84,69 @@ fn node_cost(pool: &Pool, n: ExprId) -> usize {
         Node::Func(..) => FUNCTION_COST,
     }
 }
+
+/// Operations of the runtime's loops over a tree's links in a looped
+/// `accelerations_jacobian` (`TreeRecursion::sweep`, `mass_and_bias`,
+/// `link_vectors`, `add_tree_pairs`), each link given by its parent and
+/// the index of its joint's first link (its own for a one-speed joint), as
+/// counted in their source (`src/dynamics/tree_vectors.rs`, `pairs.rs`;
+/// `scripts/bench/op_counts.py` counts the same from the generated table):
+/// per link 995 (the first pass's 189 outwards, 351 for its own inertia in
+/// `N`, 42 for `y`, 11 for `f`; the second's 114 and 288), less the 351 of
+/// a joint's speeds before its last (massless: skipped), plus 27 for
+/// `Φ = v × S` of a joint of several speeds; 43 a child added into its
+/// parent; 3 for gravity; per pair of a link and its ancestor-or-self 48
+/// in the pairs and 11 in `M`; per strict ancestor 24 more, 48 within one
+/// joint (the general paths of each step: a turn's or a diagonal inertia's
+/// zero products are counted).
+pub fn tree_loop_operations(links: &[(Option<usize>, usize)]) -> usize {
+    let several = |joint: usize| {
+        links
+            .iter()
+            .enumerate()
+            .any(|(i, &(_, j))| j == joint && i != joint)
+    };
+    let per_link = links.iter().enumerate().map(|(i, &(parent, joint))| {
+        let last = links.get(i + 1).is_none_or(|&(_, next)| next != joint);
+        let own = match (several(joint), last) {
+            (true, true) => 995 + 27,
+            (true, false) => 995 + 27 - 351,
+            (false, _) => 995,
+        } + parent.map_or(0, |_| 43);
+        let mut pairs = 0;
+        let mut ancestor = Some(i);
+        while let Some(a) = ancestor {
+            pairs += 48 + 11;
+            if a != i {
+                pairs += if links[a].1 == joint { 48 } else { 24 };
+            }
+            ancestor = links[a].0;
+        }
+        own + pairs
+    });
+    3 + per_link.sum::<usize>()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tree_loop_operations;
+
+    /// A free joint (six links, each the parent of the next) carrying a
+    /// chain of two hinges and a hinge beside it: the count that
+    /// `scripts/bench/op_counts.py` makes of the same table of links.
+    #[test]
+    fn the_loops_cost_what_the_op_count_script_counts() {
+        let links = [
+            (None, 0),
+            (Some(0), 0),
+            (Some(1), 0),
+            (Some(2), 0),
+            (Some(3), 0),
+            (Some(4), 0),
+            (Some(5), 6),
+            (Some(6), 7),
+            (Some(5), 8),
+        ];
+        assert_eq!(tree_loop_operations(&links), 11422);
+    }
+}

@@ -43,15 +43,36 @@ use solve::{Accelerations, Factorisation};
 /// against looped code", the subsection of 25 Nov 2026 on `mass_matrix`).
 pub const MASS_PAIRS_LOOPED_ABOVE: usize = 8000;
 
-/// The fewest operations of a tree's partials (unrolled) above which
-/// `accelerations_jacobian` computes them in loops at run time, link by
-/// link and pair of joints by pair: the unrolled code of larger ones
-/// streams from L2 at about twice the time per byte (BENCHMARKS.md,
-/// "where the jacobian's time goes"). Floating bases take the same route
-/// since the recursion knows free and spherical joints: the floating G1's
-/// code fell from 4.8 MB to 1.8 MB and its jacobian's operations from
-/// 220 k to 192 k (docs/humanoid.md, which has the timings).
+/// The operations of unrolled partials of a tree past which their code
+/// streams from L2 at about twice the time per byte (BENCHMARKS.md, "where
+/// the jacobian's time goes"): the plan charges the operations past it
+/// again at [`STREAMED_PERCENT`], and weighs them against the looped
+/// route's, which computes the partials in loops at run time, link by link
+/// and pair of joints by pair (its straight-line code and the loops'
+/// operations, `cost::tree_loop_operations`). Floating bases take the
+/// same routes since the recursion knows free and spherical joints: the
+/// floating G1's code fell from 4.8 MB to 1.8 MB and its jacobian's
+/// operations from 220 k to 192 k (docs/humanoid.md, which has the
+/// timings).
 pub const TREE_LOOPED_ABOVE: usize = 6000;
+
+/// The charge, in percent of their count, of the unrolled partials'
+/// operations past [`TREE_LOOPED_ABOVE`]. Set so that every route timed
+/// before the looped route was charged its loops keeps its choice: the
+/// floating Solo-12 (symbolic 16 640 operations, charged 32 600, against
+/// 27 236 looped; they measured alike, 6.1 µs unrolled and 6.2–6.4 looped,
+/// docs/humanoid.md), the panda (its unrolled recursion's 8 943 charged
+/// 13 357 against 13 040 looped), the floating humanoids, the spatial
+/// chains of 12 and 30 and the tree of 14 stay looped; ANYmal C (6 062
+/// symbolic against 14 601 looped, at the old threshold's edge) and the
+/// planar chain of 30 (its recursion 14 230 against 70 205) are unrolled.
+pub const STREAMED_PERCENT: usize = 250;
+
+/// The most columns of structural zeros between two runs of possibly
+/// nonzero columns that a step of the jacobian's forward substitution
+/// passes over rather than starting a run anew: four columns are one
+/// operation of the runtime's lanes (`dalembert::__private::subtract_on_runs`).
+pub const FILLED_GAP: usize = 4;
 
 /// The fewest coordinates for which `accelerations` may take the
 /// articulated-body recursion: with one or two coordinates the
