@@ -36,7 +36,7 @@ pub type StepWithJacobian<S, const NQ: usize, const NV: usize, const NU: usize> 
         f64,
     ) -> Result<(State<NQ, NV>, StepJacobian<NV, NU>), ControlError>;
 
-/// A step: `euler_step` or `rk4_step`.
+/// A step: `euler_step` or `rk4_group_step`.
 pub type Step<S, const NQ: usize, const NV: usize, const NU: usize> =
     fn(&S, &State<NQ, NV>, &[f64; NU], f64) -> Result<State<NQ, NV>, ControlError>;
 

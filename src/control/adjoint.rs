@@ -166,7 +166,7 @@ fn plus<const N: usize>(x: &[f64; N], s: f64, y: &[f64; N]) -> [f64; N] {
     std::array::from_fn(|i| x[i] + s * y[i])
 }
 
-/// The step of [`rk4_step`](super::rk4_step) (the same operations) and
+/// The step of [`rk4_group_step`](super::rk4_group_step) (the same operations) and
 /// `λ_qᵀ ∂q⁺/∂(x, u) + λ_vᵀ ∂v⁺/∂(x, u)`, by the reverse of the chain rule
 /// through its four stages: the stages forward, then from the last to the
 /// first one [`accelerations_adjoint`] each, the cotangents of each stage's

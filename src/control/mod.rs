@@ -27,7 +27,7 @@
 //! `M v̇ = f + Aᵀ λ`, `A v̇ = b` as functions of the whole state, so both
 //! step jacobians hold for a constrained system: they differentiate the
 //! step taken without drift stabilisation or projection (what
-//! [`euler_step`] and [`rk4_step`] take).
+//! [`euler_step`] and [`rk4_group_step`] take).
 
 pub mod adjoint;
 mod differentiated;
@@ -43,7 +43,7 @@ pub use adjoint::{
     euler_step_adjoint, rk4_step_adjoint,
 };
 pub use differentiated::Differentiated;
-pub use step::{StepJacobian, euler_step, euler_step_jacobian, rk4_step, rk4_step_jacobian};
+pub use step::{StepJacobian, euler_step, euler_step_jacobian, rk4_group_step, rk4_step_jacobian};
 pub use tangent::ConfigurationSpace;
 
 /// `∂v̇/∂q` (in the tangent space), `∂v̇/∂v`, `∂v̇/∂u`: entry `[i][j]` the

@@ -238,12 +238,16 @@ fn joined<const NV: usize, const NU: usize>(
 pub(super) const NODES: [f64; 3] = [0.5, 0.5, 1.0];
 pub(super) const WEIGHTS: [f64; 4] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0];
 
-/// One RK4 step from `state` with the inputs `u` held (the stages moved by
-/// the group update, see the module's docs), at `t + h`. Where every speed
-/// is its coordinate's rate, the same operations as
-/// [`integrate::Rk4::step`](crate::integrate::Rk4::step). Errors: those of the
-/// system's `accelerations`.
-pub fn rk4_step<S, const NQ: usize, const NV: usize, const NU: usize>(
+/// One RK4 step from `state` with the inputs `u` held, each stage moved by
+/// the group update `q ⊕ w` from the step's start (see the module's docs),
+/// at `t + h`: the step that [`rk4_step_jacobian`] and
+/// [`rk4_step_adjoint`](super::rk4_step_adjoint) differentiate. Where every
+/// speed is its coordinate's rate, the same operations as
+/// [`integrate::Rk4::step`](crate::integrate::Rk4::step), the integrator's
+/// step, which on a quaternion joint integrates `q̇ = N(q) v` in the
+/// quaternion's four numbers instead (hence the two names). Errors: those
+/// of the system's `accelerations`.
+pub fn rk4_group_step<S, const NQ: usize, const NV: usize, const NU: usize>(
     system: &S,
     state: &State<NQ, NV>,
     u: &[f64; NU],
@@ -272,7 +276,7 @@ where
     })
 }
 
-/// The step of [`rk4_step`] and its exact jacobian, by the chain rule
+/// The step of [`rk4_group_step`] and its exact jacobian, by the chain rule
 /// through the four stages (see the module's docs): four evaluations of the
 /// accelerations and of their jacobian. Errors: those of the system's
 /// `accelerations` and `accelerations_jacobian`, and

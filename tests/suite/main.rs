@@ -19,6 +19,7 @@ mod extreme_values;
 mod free_body;
 mod free_body_and_stiff_chain_integration;
 mod generated_api;
+mod generated_names;
 mod gimbal_lock;
 mod iftomm_bricard_and_andrews;
 mod iftomm_four_bars;

@@ -23,6 +23,9 @@ pub struct Names {
     pub inputs: Vec<Ident>,
     /// Prefix of temporaries, chosen to collide with no other name.
     pub temporary: String,
+    /// Prefix of the multipliers or weights (`Sym::Multiplier`): `lambda`,
+    /// lengthened until no user name is the prefix and a number.
+    pub multiplier: String,
     /// Whether elementary functions are called through `libm` (for
     /// `#![no_std]` crates) instead of as `f64`'s methods.
     pub libm: bool,
@@ -71,8 +74,24 @@ impl Names {
             Sym::Speed(i) => self.speeds[i as usize].clone(),
             Sym::Input(i) => self.inputs[i as usize].clone(),
             Sym::Accel(i) => self.accelerations[i as usize].clone(),
-            Sym::Multiplier(i) => format_ident!("lambda{}", i),
+            Sym::Multiplier(i) => self.multiplier(i as usize),
         }
+    }
+
+    /// The name of multiplier (or weight) `i`, which no user name shadows.
+    pub fn multiplier(&self, i: usize) -> Ident {
+        format_ident!("{}{}", self.multiplier, i)
+    }
+
+    /// `base`, or `base` with its last character repeated until it is no
+    /// user's name: a generated name that a user's `let` cannot shadow or
+    /// clash with (the const generic `K` of `taylor_coefficients`).
+    pub fn unused(&self, base: &str) -> Ident {
+        let mut name = base.to_string();
+        while self.is_taken(&name) {
+            name.extend(base.chars().last());
+        }
+        Ident::new(&name, Span::call_site())
     }
 
     /// One statement binding every used symbol from the arguments and

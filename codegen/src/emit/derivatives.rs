@@ -656,7 +656,7 @@ fn constrained_partials(
         false => accelerations,
     };
     let multipliers = (0..nc).map(|j| {
-        let name = format_ident!("lambda{}", j);
+        let name = names.multiplier(j);
         match used.contains(&Sym::Multiplier(j as u32)) {
             true => quote!(#name),
             false => quote!(_),

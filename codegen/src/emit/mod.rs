@@ -228,23 +228,30 @@ fn names(model: &Model, target: Target) -> Names {
     };
     let speeds = rates("dot", "", "qd");
     let accelerations = rates("ddot", "dot", "qdd");
-    let mut temporary = "x".to_string();
-    while taken.iter().any(|n| {
-        n.strip_prefix(&temporary)
-            .is_some_and(|rest| rest.chars().all(|c| c.is_ascii_digit()))
-    }) {
-        temporary.push('x');
-    }
     Names {
         parameters: model.parameters.clone(),
         coordinates: model.coordinates.clone(),
         speeds,
         accelerations,
         inputs: model.inputs.clone(),
-        temporary,
+        temporary: unused_prefix(&taken, "x", 'x'),
+        multiplier: unused_prefix(&taken, "lambda", '_'),
         libm: target == Target::NoStd,
         lanes: false,
     }
+}
+
+/// `base`, lengthened by `pad` until no name of `taken` is it followed by
+/// digits, so that the names it numbers (`x0`, `lambda3`) are free.
+fn unused_prefix(taken: &[String], base: &str, pad: char) -> String {
+    let mut prefix = base.to_string();
+    while taken.iter().any(|n| {
+        n.strip_prefix(&prefix)
+            .is_some_and(|rest| rest.chars().all(|c| c.is_ascii_digit()))
+    }) {
+        prefix.push(pad);
+    }
+    prefix
 }
 
 fn emit_struct(model: &Model, docs: &[String]) -> TokenStream {
@@ -421,7 +428,7 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
     let docs = function.docs.iter().map(|line| raw_string(line));
     let (name, statements) = (&function.name, &body.statements);
     let weights = match function.arguments.contains(&Argument::Weights) {
-        true => load_weights(model.nv(), &body.used),
+        true => load_weights(model.nv(), names, &body.used),
         false => TokenStream::new(),
     };
     quote! {
@@ -438,11 +445,12 @@ fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function)
 
 /// `let [lambda0, _, ..] = *mu;`: the weights of a vector–jacobian
 /// product (the symbols `Sym::Multiplier`, which the body names
-/// `lambda{i}`), `_` for those it does not read; nothing if it reads none.
-fn load_weights(nv: usize, used: &std::collections::BTreeSet<Sym>) -> TokenStream {
+/// [`Names::multiplier`]), `_` for those it does not read; nothing if it
+/// reads none.
+fn load_weights(nv: usize, names: &Names, used: &std::collections::BTreeSet<Sym>) -> TokenStream {
     let patterns = (0..nv).map(|i| match used.contains(&Sym::Multiplier(i as u32)) {
         true => {
-            let name = format_ident!("lambda{}", i);
+            let name = names.multiplier(i);
             quote!(#name)
         }
         false => quote!(_),

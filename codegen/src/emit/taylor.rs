@@ -174,6 +174,9 @@ struct Prelude<'a> {
     state: [Vec<Ident>; 4],
     /// The series of the coordinates' rates.
     rates: Vec<Ident>,
+    /// The const generic `K` of `taylor_coefficients`, the series' length
+    /// (`KK` beside a user name `K`, which a `let` could not bind).
+    length: Ident,
 }
 
 impl<'a> Prelude<'a> {
@@ -218,6 +221,7 @@ impl<'a> Prelude<'a> {
         ];
         let rates = named(&lowered.rates);
         let mut prelude = Prelude {
+            length: names.unused("K"),
             fields: TokenStream::new(),
             setup: TokenStream::new(),
             steps: Vec::new(),
@@ -254,9 +258,10 @@ impl<'a> Prelude<'a> {
         let body = straight_line(self.pool, names, &self.constants);
         let (statements, outputs) = (&body.statements, &body.outputs);
         let n_constants = Literal::usize_unsuffixed(self.constants.len());
+        let k = &self.length;
         let time_series = program.time.map(|slot| {
             let x = &self.slots[slot];
-            quote!(let mut #x = ::dalembert::__private::series::time::<K>(t);)
+            quote!(let mut #x = ::dalembert::__private::series::time::<#k>(t);)
         });
         let intermediate: Vec<&Ident> = program
             .operations
@@ -287,16 +292,16 @@ impl<'a> Prelude<'a> {
             };
             let [#(#q),*] = *q;
             let [#(#v),*] = *qd;
-            #(let mut #q = ::dalembert::__private::series::start::<K>(#q);)*
-            #(let mut #v = ::dalembert::__private::series::start::<K>(#v);)*
-            #(let mut #a = [0.0; K];)*
-            #(let mut #lambda = [0.0; K];)*
+            #(let mut #q = ::dalembert::__private::series::start::<#k>(#q);)*
+            #(let mut #v = ::dalembert::__private::series::start::<#k>(#v);)*
+            #(let mut #a = [0.0; #k];)*
+            #(let mut #lambda = [0.0; #k];)*
             #time_series
-            #(let mut #intermediate = [0.0; K];)*
-            let mut series = Series::<K> {
+            #(let mut #intermediate = [0.0; #k];)*
+            let mut series = Series::<#k> {
                 #(#all_series: &mut #all_series,)*
                 #(#bound,)*
-                order: order.min(K.saturating_sub(1)),
+                order: order.min(#k.saturating_sub(1)),
             };
         };
         (self.fields, self.setup, self.steps) = (fields, setup, steps);
@@ -340,8 +345,9 @@ impl<'a> Prelude<'a> {
     }
 }
 
-/// The signature shared by both forms of `taylor_coefficients`.
-fn signature(model: &Model) -> TokenStream {
+/// The signature shared by both forms of `taylor_coefficients`, its const
+/// generic named `k`.
+fn signature(model: &Model, k: &Ident) -> TokenStream {
     let (nq_lit, nv_lit) = (
         Literal::usize_unsuffixed(model.nq()),
         Literal::usize_unsuffixed(model.nv()),
@@ -352,14 +358,14 @@ fn signature(model: &Model) -> TokenStream {
         array(model.inputs.len()),
     );
     quote! {
-        pub fn taylor_coefficients<const K: usize>(
+        pub fn taylor_coefficients<const #k: usize>(
             &self,
             t: f64,
             q: &#coordinates_ty,
             qd: &#speeds_ty,
             u: &#inputs_ty,
             order: usize,
-        ) -> ::core::result::Result<([[f64; K]; #nq_lit], [[f64; K]; #nv_lit]), ::dalembert::DynamicsError>
+        ) -> ::core::result::Result<([[f64; #k]; #nq_lit], [[f64; #k]; #nv_lit]), ::dalembert::DynamicsError>
     }
 }
 
@@ -550,7 +556,7 @@ fn wrapped(
     let series_docs = series_docs
         .lines()
         .map(|line| super::raw_string(&format!(" {line}")));
-    let signature = signature(model);
+    let signature = signature(model, &prelude.length);
     let (fields, setup) = (&prelude.fields, &prelude.setup);
     quote! {
         #(#[doc = #docs])*

@@ -1090,6 +1090,17 @@ impl<'a> Reader<'a> {
         }
         let mut size = self.sizes(element, childclass).unwrap_or([0.0; 3]);
         let (pos, quat) = match self.numbers::<6>(element, childclass, "fromto") {
+            // MuJoCo's rule, also for a `fromto` a sphere inherits from a
+            // default class: it has no axis to lay along the segment.
+            Some(_) if matches!(shape, Shape::Sphere) => {
+                self.problem(
+                    element.loc(),
+                    "geom: `fromto` places a capsule, cylinder, box or ellipsoid; found a \
+                     sphere (set `pos` for a sphere, or give the geom its own `type`)"
+                        .to_owned(),
+                );
+                return None;
+            }
             Some(ends) => {
                 let Some((center, quat, half)) = pose::from_to(ends) else {
                     self.problem(

@@ -15,7 +15,7 @@ use super::step_derivatives::{
 use dalembert::State;
 use dalembert::control::{
     ConfigurationSpace, ControlError, Differentiated, InverseDifferentiable, StepAdjoint,
-    accelerations_adjoint, euler_step, euler_step_adjoint, euler_step_jacobian, rk4_step,
+    accelerations_adjoint, euler_step, euler_step_adjoint, euler_step_jacobian, rk4_group_step,
     rk4_step_adjoint, rk4_step_jacobian,
 };
 use dalembert_codegen::testing::Random;
@@ -161,7 +161,7 @@ fn check_steps<S, const NQ: usize, const NV: usize, const NU: usize>(
     let lambda_v: [f64; NV] = std::array::from_fn(|_| random.uniform(-1.0, 1.0));
     let routes: [StepRoutes<S, NQ, NV, NU>; 2] = [
         ("Euler", euler_step, euler_step_jacobian, euler_step_adjoint),
-        ("RK4", rk4_step, rk4_step_jacobian, rk4_step_adjoint),
+        ("RK4", rk4_group_step, rk4_step_jacobian, rk4_step_adjoint),
     ];
     for (method, step, with_jacobian, adjoint) in routes {
         let (end, jacobian) = with_jacobian(system, &start, &u, H).expect("a step");

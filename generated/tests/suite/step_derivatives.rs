@@ -10,7 +10,7 @@
 use dalembert::State;
 use dalembert::control::{
     ConfigurationSpace, ControlError, Differentiable, Differentiated, StepJacobian, euler_step,
-    euler_step_jacobian, rk4_step, rk4_step_jacobian,
+    euler_step_jacobian, rk4_group_step, rk4_step_jacobian,
 };
 use dalembert::{MultibodySystem, Unconstrained, integrate};
 use dalembert_codegen::testing::Random;
@@ -213,7 +213,7 @@ fn check_both<S, const NQ: usize, const NV: usize, const NU: usize>(
     check_step(
         &format!("{name} (RK4)"),
         system,
-        (rk4_step, rk4_step_jacobian),
+        (rk4_group_step, rk4_step_jacobian),
         seed + 1,
     );
 }
@@ -275,7 +275,10 @@ fn rk4_is_the_runtime_rk4_where_the_speeds_are_rates() {
         let (start, u) = random_state(&system, &mut random);
         let runtime = integrate::Rk4::step(&Unconstrained::new(&system, |_, _, _| u), &start, H)
             .expect("a step");
-        assert_eq!(rk4_step(&system, &start, &u, H).expect("a step"), runtime);
+        assert_eq!(
+            rk4_group_step(&system, &start, &u, H).expect("a step"),
+            runtime
+        );
     }
 }
 

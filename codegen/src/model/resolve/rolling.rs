@@ -37,10 +37,10 @@ impl Resolver {
             _ => axle_axis,
         };
         let center = center.and_then(|e| self.point_value(e, GEOMETRY));
-        let radius = radius.and_then(|e| self.scalar(e, SHAPE));
+        let radius = radius.and_then(|e| self.size(e, "a wheel's radius", false));
         let plane_axis = plane.and_then(|e| self.fixed_normal(e));
         let tire = match tire {
-            Some(e) => self.scalar(e, SHAPE),
+            Some(e) => self.size(e, "a tire's radius", true),
             None => Some(self.pool.zero()),
         };
         let through = match through {
@@ -78,6 +78,26 @@ impl Resolver {
         for row in rows.slip {
             self.push_rolling_row(span, row, true);
         }
+    }
+
+    /// A radius of the wheel (`what`): parameters only, and where it is a
+    /// number, positive (zero too if `zero_allowed`): a negative radius
+    /// puts the contact point on the wrong side of the centre.
+    fn size(&mut self, e: &Expr, what: &str, zero_allowed: bool) -> Option<ExprId> {
+        let value = self.scalar(e, SHAPE)?;
+        let Some(v) = self.pool.constant_value(value) else {
+            return Some(value);
+        };
+        if v > 0.0 || (zero_allowed && v == 0.0) {
+            return Some(value);
+        }
+        let expected = match zero_allowed {
+            true => "zero or positive",
+            false => "positive",
+        };
+        self.errors
+            .push(e.range(), format!("{what} must be {expected}; found {v}"));
+        None
     }
 
     /// A row of a rolling contact. One that vanishes identically (the

@@ -1,0 +1,341 @@
+//! A model computes the same whatever its names: each system here is
+//! written twice, once with plain names and once with names spelled like
+//! the generated code's own (the multipliers and weights `lambda{i}`, the
+//! temporaries `x{i}`, the solve's `m{i}_{j}`, `l{i}_{j}`, `w{i}_{j}`,
+//! `p{i}`, `r{i}`, `y{i}`, `f{i}`, the derivatives' `dq{i}_{j}`, `du{i}`,
+//! `k{i}`, `b{i}`, `row{i}`, the configuration update's `q{i}`, `v{i}`,
+//! `n{i}`, `k1_{i}`, the arguments `mu`, `qdd`, `order`, the locals
+//! `accelerations`, `partials`, the Taylor route's const generic `K`), and
+//! every output of DESIGN §4 and §7 (and the language's others) must agree
+//! between the two at states no test chose. A parameter `lambda0` once
+//! shadowed the adjoint's weight `lambda0`: it compiled and the adjoint
+//! was wrong.
+
+use dalembert::DynamicsError;
+
+dalembert::dalembert! {
+    /// A pendulum hanging from a cart on a spring and a damper, driven at
+    /// the cart and the pivot, with plain names.
+    pub Plain {
+        parameters mc, mp, l, g, k, c, d, a1, a2;
+        coordinates s, theta;
+        inputs force, motor;
+        frame B = N.rotate_z(theta);
+        point C = O + s * N.x;
+        point P = C - l * B.y;
+        particle cart { mass: mc, at: C };
+        body pole { mass: mp, center: P, frame: B, inertia: [0, 0, mp * l^2 / 12] };
+        gravity -g * N.y;
+        force force * N.x at C;
+        torque motor * N.z on B;
+        potential k * s^2 / 2 + a1 * cos(theta);
+        dissipation c * dt(s)^2 / 2 + d * dt(theta)^2 / 2 + a2 * dt(s) * dt(theta);
+        outputs inverse_dynamics, regressor, inverse_dynamics_jacobian, inverse_dynamics_adjoint;
+        outputs accelerations_jacobian, linearize, taylor, accelerations_x4;
+        outputs position(P), velocity(P in B), acceleration(P), jacobian(P);
+        outputs rotation(B), angular_velocity(B), angular_jacobian(B in B);
+    }
+}
+
+dalembert::dalembert! {
+    /// The same system, its names those of the generated code's locals.
+    pub Mimic {
+        parameters lambda0, lambda1, mu, x0, K, m0_0, l1_0, order, accelerations;
+        coordinates q0, v0;
+        inputs lambda2, n0;
+        frame B = N.rotate_z(v0);
+        point C = O + q0 * N.x;
+        point P = C - lambda1 * B.y;
+        particle cart { mass: lambda0, at: C };
+        body pole { mass: mu, center: P, frame: B, inertia: [0, 0, mu * lambda1^2 / 12] };
+        gravity -x0 * N.y;
+        force lambda2 * N.x at C;
+        torque n0 * N.z on B;
+        potential K * q0^2 / 2 + order * cos(v0);
+        dissipation m0_0 * dt(q0)^2 / 2 + l1_0 * dt(v0)^2 / 2 + accelerations * dt(q0) * dt(v0);
+        outputs inverse_dynamics, regressor, inverse_dynamics_jacobian, inverse_dynamics_adjoint;
+        outputs accelerations_jacobian, linearize, taylor, accelerations_x4;
+        outputs position(P), velocity(P in B), acceleration(P), jacobian(P);
+        outputs rotation(B), angular_velocity(B), angular_jacobian(B in B);
+    }
+}
+
+dalembert::dalembert! {
+    /// Seed example 3 (a bar held at its end by two constraints), with
+    /// plain names.
+    pub PlainBar {
+        parameters m, l, g;
+        coordinates x, y, theta;
+        inputs torque;
+        frame B = N.rotate_z(theta);
+        point G = O + x * N.x + y * N.y;
+        body bar { mass: m, center: G, frame: B, inertia: [0, 0, m*l^2/12] };
+        gravity -g * N.y;
+        torque torque * N.z on B;
+        constraint x - l/2 * sin(theta) == 0;
+        constraint y + l/2 * cos(theta) == 0;
+        outputs inverse_dynamics, accelerations_jacobian, linearize(theta), taylor;
+    }
+}
+
+dalembert::dalembert! {
+    /// The same bar, named like the multipliers and the locals of the
+    /// constrained derivatives.
+    pub MimicBar {
+        parameters lambda0, lambda1, partials;
+        coordinates accelerations, qdd, lambda_0;
+        inputs mu;
+        frame B = N.rotate_z(lambda_0);
+        point G = O + accelerations * N.x + qdd * N.y;
+        body bar { mass: lambda0, center: G, frame: B, inertia: [0, 0, lambda0*lambda1^2/12] };
+        gravity -partials * N.y;
+        torque mu * N.z on B;
+        constraint accelerations - lambda1/2 * sin(lambda_0) == 0;
+        constraint qdd + lambda1/2 * cos(lambda_0) == 0;
+        outputs inverse_dynamics, accelerations_jacobian, linearize(lambda_0), taylor;
+    }
+}
+
+const PARAMETERS: [f64; 9] = [1.3, 0.7, 0.9, 9.81, 4.0, 0.3, 0.05, 0.4, 0.02];
+
+fn plain() -> Plain {
+    let [mc, mp, l, g, k, c, d, a1, a2] = PARAMETERS;
+    Plain {
+        mc,
+        mp,
+        l,
+        g,
+        k,
+        c,
+        d,
+        a1,
+        a2,
+    }
+}
+
+#[allow(non_snake_case)]
+fn mimic() -> Mimic {
+    let [
+        lambda0,
+        mu,
+        lambda1,
+        x0,
+        K,
+        m0_0,
+        l1_0,
+        order,
+        accelerations,
+    ] = PARAMETERS;
+    Mimic {
+        lambda0,
+        lambda1,
+        mu,
+        x0,
+        K,
+        m0_0,
+        l1_0,
+        order,
+        accelerations,
+    }
+}
+
+/// States no other test uses: `(t, q, v, vdot, u, weights)`.
+fn states() -> Vec<(f64, [f64; 2], [f64; 2], [f64; 2], [f64; 2], [f64; 2])> {
+    vec![
+        (
+            0.0,
+            [0.31, -2.2],
+            [1.7, -0.4],
+            [0.2, 3.1],
+            [0.6, -1.9],
+            [0.8, -1.3],
+        ),
+        (
+            1.5,
+            [-1.1, 0.45],
+            [-0.3, 2.6],
+            [-1.4, 0.7],
+            [-2.5, 0.35],
+            [-0.2, 2.1],
+        ),
+        (
+            3.0,
+            [2.4, 3.0],
+            [0.05, -1.1],
+            [0.9, -0.6],
+            [1.2, 0.8],
+            [1.5, 0.4],
+        ),
+    ]
+}
+
+/// Whether `a` and `b` agree entry by entry to 1e-12 of their size.
+fn assert_same(what: &str, a: &[f64], b: &[f64]) {
+    assert_eq!(a.len(), b.len(), "{what}");
+    assert!(!a.is_empty(), "{what}");
+    let scale = a.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+    for (x, y) in a.iter().zip(b) {
+        assert!(
+            (x - y).abs() <= 1e-12 * scale,
+            "{what}: {a:?} against {b:?}"
+        );
+    }
+}
+
+fn flat<const R: usize, const C: usize>(m: [[f64; C]; R]) -> Vec<f64> {
+    m.iter().flatten().copied().collect()
+}
+
+fn ok<T>(result: Result<T, DynamicsError>) -> T {
+    result.expect("a regular state")
+}
+
+#[test]
+fn every_output_is_the_same_under_the_generated_code_s_names() {
+    let (a, b) = (plain(), mimic());
+    assert_eq!(Mimic::PARAMETERS[0], "lambda0");
+    let states = states();
+    assert!(!states.is_empty());
+    for (t, q, v, vdot, u, weights) in states {
+        assert_same("M", &flat(a.mass_matrix(&q)), &flat(b.mass_matrix(&q)));
+        assert_same("f", &a.forcing(t, &q, &v, &u), &b.forcing(t, &q, &v, &u));
+        let energies = |x: [f64; 2]| x.to_vec();
+        assert_same(
+            "energies",
+            &energies([a.kinetic_energy(&q, &v), a.potential_energy(&q)]),
+            &energies([b.kinetic_energy(&q, &v), b.potential_energy(&q)]),
+        );
+        assert_same(
+            "inverse dynamics",
+            &a.inverse_dynamics(t, &q, &v, &vdot, &u),
+            &b.inverse_dynamics(t, &q, &v, &vdot, &u),
+        );
+        assert_same(
+            "regressor times base parameters",
+            &mat_vec(&a.regressor(&q, &v, &vdot), &a.base_parameters()),
+            &mat_vec(&b.regressor(&q, &v, &vdot), &b.base_parameters()),
+        );
+        let (aq, av, am) = a.inverse_dynamics_jacobian(t, &q, &v, &vdot, &u);
+        let (bq, bv, bm) = b.inverse_dynamics_jacobian(t, &q, &v, &vdot, &u);
+        assert_same("dtau/dq", &flat(aq), &flat(bq));
+        assert_same("dtau/dv", &flat(av), &flat(bv));
+        assert_same("dtau/dvdot", &flat(am), &flat(bm));
+        let (aq, av, au) = a.inverse_dynamics_adjoint(t, &q, &v, &vdot, &u, &weights);
+        let (bq, bv, bu) = b.inverse_dynamics_adjoint(t, &q, &v, &vdot, &u, &weights);
+        assert_same("adjoint by q", &aq, &bq);
+        assert_same("adjoint by v", &av, &bv);
+        assert_same("adjoint by u", &au, &bu);
+        // And the adjoint is the weights times the jacobian.
+        let (by_q, ..) = a.inverse_dynamics_jacobian(t, &q, &v, &vdot, &u);
+        let weighted: Vec<f64> = (0..2)
+            .map(|j| (0..2).map(|i| weights[i] * by_q[i][j]).sum())
+            .collect();
+        assert_same("adjoint against the jacobian", &bq, &weighted);
+        let (aq, av, au) = ok(a.accelerations_jacobian(t, &q, &v, &u));
+        let (bq, bv, bu) = ok(b.accelerations_jacobian(t, &q, &v, &u));
+        assert_same("dvdot/dq", &flat(aq), &flat(bq));
+        assert_same("dvdot/dv", &flat(av), &flat(bv));
+        assert_same("dvdot/du", &flat(au), &flat(bu));
+        let (aa, ab) = ok(a.linearize(t, &q, &v, &u));
+        let (ba, bb) = ok(b.linearize(t, &q, &v, &u));
+        assert_same("A", &flat(aa), &flat(ba));
+        assert_same("B", &flat(ab), &flat(bb));
+        let (aq, av) = ok(a.taylor_coefficients::<5>(t, &q, &v, &u, 4));
+        let (bq, bv) = ok(b.taylor_coefficients::<5>(t, &q, &v, &u, 4));
+        assert_same("Taylor q", &flat(aq), &flat(bq));
+        assert_same("Taylor v", &flat(av), &flat(bv));
+        let lanes = |s: &[f64; 2]| [*s; 4];
+        let ax4 = a.accelerations_x4([t; 4], &lanes(&q), &lanes(&v), &lanes(&u));
+        let bx4 = b.accelerations_x4([t; 4], &lanes(&q), &lanes(&v), &lanes(&u));
+        for (x, y) in ax4.into_iter().zip(bx4) {
+            assert_same("accelerations x4", &ok(x), &ok(y));
+        }
+        assert_same("position", &a.position_P(t, &q), &b.position_P(t, &q));
+        assert_same(
+            "velocity in B",
+            &a.velocity_P_in_B(t, &q, &v),
+            &b.velocity_P_in_B(t, &q, &v),
+        );
+        assert_same(
+            "acceleration",
+            &a.acceleration_P(t, &q, &v, &vdot),
+            &b.acceleration_P(t, &q, &v, &vdot),
+        );
+        assert_same(
+            "jacobian",
+            &flat(a.jacobian_P(t, &q)),
+            &flat(b.jacobian_P(t, &q)),
+        );
+        assert_same(
+            "rotation",
+            &flat(a.rotation_B(t, &q)),
+            &flat(b.rotation_B(t, &q)),
+        );
+        assert_same(
+            "angular velocity",
+            &a.angular_velocity_B(t, &q, &v),
+            &b.angular_velocity_B(t, &q, &v),
+        );
+        assert_same(
+            "angular jacobian",
+            &flat(a.angular_jacobian_B_in_B(t, &q)),
+            &flat(b.angular_jacobian_B_in_B(t, &q)),
+        );
+    }
+}
+
+fn mat_vec<const R: usize, const C: usize>(m: &[[f64; C]; R], x: &[f64; C]) -> Vec<f64> {
+    m.iter()
+        .map(|row| row.iter().zip(x).map(|(a, b)| a * b).sum())
+        .collect()
+}
+
+#[test]
+fn a_constrained_system_is_the_same_under_the_multipliers_names() {
+    let a = PlainBar {
+        m: 1.2,
+        l: 0.8,
+        g: 9.81,
+    };
+    let b = MimicBar {
+        lambda0: 1.2,
+        lambda1: 0.8,
+        partials: 9.81,
+    };
+    let states: [(f64, f64, f64, f64); 2] = [(0.3, 1.1, -0.7, 0.9), (2.0, -0.4, 2.3, -1.6)];
+    for (t, angle, rate, torque) in states {
+        // On the constraint manifold: the bar's centre half a length from O.
+        let q = [0.4 * angle.sin(), -0.4 * angle.cos(), angle];
+        let v = [0.4 * angle.cos() * rate, 0.4 * angle.sin() * rate, rate];
+        let u = [torque];
+        assert_same(
+            "residual",
+            &a.constraint_residual(t, &q),
+            &b.constraint_residual(t, &q),
+        );
+        assert_same(
+            "accelerations",
+            &ok(dalembert::accelerations(&a, t, &q, &v, &u)),
+            &ok(dalembert::accelerations(&b, t, &q, &v, &u)),
+        );
+        let (aq, av, au) = ok(a.accelerations_jacobian(t, &q, &v, &u));
+        let (bq, bv, bu) = ok(b.accelerations_jacobian(t, &q, &v, &u));
+        assert_same("dvdot/dq", &flat(aq), &flat(bq));
+        assert_same("dvdot/dv", &flat(av), &flat(bv));
+        assert_same("dvdot/du", &flat(au), &flat(bu));
+        let (aa, ab) = ok(a.linearize(t, &q, &v, &u));
+        let (ba, bb) = ok(b.linearize(t, &q, &v, &u));
+        assert_same("A", &flat(aa), &flat(ba));
+        assert_same("B", &flat(ab), &flat(bb));
+        let (aq, av) = ok(a.taylor_coefficients::<4>(t, &q, &v, &u, 3));
+        let (bq, bv) = ok(b.taylor_coefficients::<4>(t, &q, &v, &u, 3));
+        assert_same("Taylor q", &flat(aq), &flat(bq));
+        assert_same("Taylor v", &flat(av), &flat(bv));
+        let vdot = ok(dalembert::accelerations(&a, t, &q, &v, &u));
+        assert_same(
+            "inverse dynamics",
+            &a.inverse_dynamics(t, &q, &v, &vdot, &u),
+            &b.inverse_dynamics(t, &q, &v, &vdot, &u),
+        );
+    }
+}
