@@ -112,7 +112,7 @@ fn outputs_not_asked(model: &Model) -> Vec<(String, String)> {
                 .iter()
                 .any(|o| std::mem::discriminant(&o.kind) == this)
         })
-        .map(|&(name, subject, _)| match subject {
+        .map(|&(name, subject)| match subject {
             Subject::Point => (format!("{name}(P)"), format!("{name}_P")),
             Subject::Frame => (format!("{name}(B)"), format!("{name}_B")),
             // The one output whose function is not named after it.

@@ -65,48 +65,30 @@ pub enum Subject {
     Coordinates,
 }
 
-/// Whether an output can be generated today.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Availability {
-    /// Generated.
-    Ready,
-    /// Part of the language, not generated yet: an error says so.
-    NotYet,
-}
-
-/// Every output name of the language, what it needs in parentheses and
-/// whether it is generated.
-pub const KINDS: [(&str, Subject, Availability); 15] = [
-    ("inverse_dynamics", Subject::None, Availability::Ready),
-    ("regressor", Subject::None, Availability::Ready),
-    ("accelerations_jacobian", Subject::None, Availability::Ready),
-    ("linearize", Subject::Coordinates, Availability::Ready),
-    ("taylor", Subject::None, Availability::Ready),
-    ("accelerations_x4", Subject::None, Availability::Ready),
-    (
-        "inverse_dynamics_jacobian",
-        Subject::None,
-        Availability::Ready,
-    ),
-    (
-        "inverse_dynamics_adjoint",
-        Subject::None,
-        Availability::Ready,
-    ),
-    ("position", Subject::Point, Availability::Ready),
-    ("velocity", Subject::Point, Availability::Ready),
-    ("acceleration", Subject::Point, Availability::Ready),
-    ("jacobian", Subject::Point, Availability::Ready),
-    ("rotation", Subject::Frame, Availability::Ready),
-    ("angular_velocity", Subject::Frame, Availability::Ready),
-    ("angular_jacobian", Subject::Frame, Availability::Ready),
+/// Every output name of the language and what it needs in parentheses.
+pub const KINDS: [(&str, Subject); 15] = [
+    ("inverse_dynamics", Subject::None),
+    ("regressor", Subject::None),
+    ("accelerations_jacobian", Subject::None),
+    ("linearize", Subject::Coordinates),
+    ("taylor", Subject::None),
+    ("accelerations_x4", Subject::None),
+    ("inverse_dynamics_jacobian", Subject::None),
+    ("inverse_dynamics_adjoint", Subject::None),
+    ("position", Subject::Point),
+    ("velocity", Subject::Point),
+    ("acceleration", Subject::Point),
+    ("jacobian", Subject::Point),
+    ("rotation", Subject::Frame),
+    ("angular_velocity", Subject::Frame),
+    ("angular_jacobian", Subject::Frame),
 ];
 
 /// The names of [`KINDS`], quoted, for messages.
 pub fn kind_list() -> String {
     KINDS
         .iter()
-        .map(|(name, subject, _)| match subject {
+        .map(|(name, subject)| match subject {
             Subject::None => format!("`{name}`"),
             Subject::Coordinates => format!("`{name}`"),
             Subject::Point => format!("`{name}(P)`"),

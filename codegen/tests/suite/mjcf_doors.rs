@@ -11,7 +11,8 @@
 //! the model's text, and its bodies' masses).
 
 use std::path::PathBuf;
-use std::process::Output;
+
+use crate::urdf_cli::dalembert;
 
 use dalembert_codegen::{BuildError, Builder, ImportOptions, Mjcf};
 
@@ -58,13 +59,6 @@ fn gripper(test: &str) -> (PathBuf, PathBuf) {
     let file = dir.join("gripper.xml");
     std::fs::write(&file, GRIPPER).unwrap();
     (dir, file)
-}
-
-fn dalembert(args: &[&str]) -> Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_dalembert"))
-        .args(args)
-        .output()
-        .expect("run dalembert")
 }
 
 #[test]

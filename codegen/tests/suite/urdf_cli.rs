@@ -19,7 +19,8 @@ fn robot(file: &str) -> String {
         .to_owned()
 }
 
-fn dalembert(args: &[&str]) -> Output {
+/// The `dalembert` command run with `args` (shared with `mjcf_doors.rs`).
+pub(crate) fn dalembert(args: &[&str]) -> Output {
     std::process::Command::new(env!("CARGO_BIN_EXE_dalembert"))
         .args(args)
         .output()

@@ -232,8 +232,12 @@ impl Resolver {
                 None
             }
             Expr::Array { span, .. } => {
-                self.errors
-                    .push(*span, "a list `[..]` is allowed only as a body's inertia");
+                self.errors.push(
+                    *span,
+                    "a list `[..]` is not a value: it is allowed only as a body's inertia \
+                     and as a constant axis `[ax, ay, az]` (of a joint or of `F.rotate`); \
+                     expected a scalar or a vector, such as `ax * N.x + ay * N.y`",
+                );
                 None
             }
             Expr::Paren { inner, .. } => self.value(inner, usage),

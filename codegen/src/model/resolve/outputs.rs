@@ -5,7 +5,7 @@ use super::Resolver;
 use super::scope::Binding;
 use crate::expr::Sym;
 use crate::language::ast::OutputRequest;
-use crate::model::output::{Availability, KINDS, Subject, function_name, kind, kind_list};
+use crate::model::output::{KINDS, Subject, function_name, kind, kind_list};
 use crate::model::{FrameId, NEWTONIAN, Output, OutputKind, PointId};
 use proc_macro2::Ident;
 
@@ -97,22 +97,15 @@ impl Resolver {
     }
 
     /// What the output `name` needs in parentheses, if it is a known
-    /// output that is generated.
+    /// output.
     fn output_subject_kind(&mut self, name: &Ident) -> Option<Subject> {
-        let Some(&(_, subject, availability)) = KINDS.iter().find(|(k, ..)| name == k) else {
+        let Some(&(_, subject)) = KINDS.iter().find(|(k, _)| name == k) else {
             self.errors.push(
                 name.span(),
                 format!("unknown output `{name}`; expected one of {}", kind_list()),
             );
             return None;
         };
-        if availability == Availability::NotYet {
-            self.errors.push(
-                name.span(),
-                format!("the output `{name}` is not generated yet; remove it from `outputs`"),
-            );
-            return None;
-        }
         Some(subject)
     }
 
@@ -129,7 +122,11 @@ impl Resolver {
             return false;
         }
         if let Some(extra) = request.speeds.first() {
-            let message = format!("`{name}` takes no speeds: remove `; {}`", extra.name);
+            let written = match extra.rate {
+                true => format!("dt({})", extra.name),
+                false => extra.name.to_string(),
+            };
+            let message = format!("`{name}` takes no speeds: remove `; {written}`");
             self.errors.push(extra.name.span(), message);
             return false;
         }
