@@ -89,14 +89,27 @@ impl ReadableForms {
 /// cancellation, and a bound on the work.
 const PRODUCT_SLACK: usize = 4;
 
-/// The number of top-level terms of `e`: its terms if it is a sum, 0 for
-/// zero, 1 otherwise.
+/// The number of terms of `e` read as a sum ([`terms`]): 0 for zero, 1
+/// for anything but a sum or a multiple of one.
 pub fn term_count(pool: &Pool, e: ExprId) -> usize {
-    match pool.node(e) {
-        Node::Add(terms) => terms.len(),
-        _ if pool.is_zero(e) => 0,
-        _ => 1,
+    match multiple_of_sum(pool, e) {
+        Some((_, sum)) => pool
+            .children(sum)
+            .iter()
+            .map(|&t| term_count(pool, t))
+            .sum(),
+        None if pool.is_zero(e) => 0,
+        None => 1,
     }
+}
+
+/// `e` as `c · sum` if it is a sum (`c = 1`) or a numeric multiple of one:
+/// the pool builds a sum whose first term is negative as `−1` times the
+/// sum with every sign turned, and keeps a multiple of a sum whole inside
+/// another sum where no term meets.
+fn multiple_of_sum(pool: &Pool, e: ExprId) -> Option<(Number, ExprId)> {
+    let (c, rest) = pool.split_coefficient(e);
+    matches!(pool.node(rest), Node::Add(_)).then_some((c, rest))
 }
 
 /// `e` as a short sum of monomials for humans: expanded, then with
@@ -117,15 +130,12 @@ fn readable_remembering(
     budget: usize,
     expansions: &mut Expansions,
 ) -> Option<ExprId> {
-    // Sums as they come, never as `−1` times a sum: the rules see every term.
-    pool.with_flat_signs(|pool| {
-        let expanded = expand_within(pool, e, budget, expansions)?;
-        let mut sum = Monomials::of(pool, expanded);
-        while let Some(shorter) = sum.recombined(pool) {
-            sum = shorter;
-        }
-        Some(sum.to_expr(pool))
-    })
+    let expanded = expand_within(pool, e, budget, expansions)?;
+    let mut sum = Monomials::of(pool, expanded);
+    while let Some(shorter) = sum.recombined(pool) {
+        sum = shorter;
+    }
+    Some(sum.to_expr(pool))
 }
 
 /// Like [`Pool::expand`], but giving up as soon as an intermediate result
@@ -144,9 +154,20 @@ fn expand_within(
     Some(expanded[0])
 }
 
-/// The expansion of `node`, given those of its children.
+/// The expansion of `node`, given those of its children: a sum is the sum
+/// of its children's monomials ([`terms`]), so that a child the pool holds
+/// as a multiple of a sum (`−(a + b)` beside `c`, where no term meets)
+/// has its constant and terms merged with the others as a flat polynomial
+/// would.
 fn expand_node(pool: &mut Pool, node: ExprId, images: &[ExprId], budget: usize) -> Option<ExprId> {
     match *pool.node(node) {
+        Node::Add(_) => {
+            let mut monomials = Vec::new();
+            for &image in images {
+                monomials.extend(terms(pool, image));
+            }
+            Some(pool.sum(monomials))
+        }
         Node::Mul(_) => distribute(pool, images, budget),
         Node::Pow(_, exp) => expand_power(pool, images[0], exp, budget),
         _ => Some(pool.with_children(node, images)),
@@ -156,9 +177,10 @@ fn expand_node(pool: &mut Pool, node: ExprId, images: &[ExprId], budget: usize) 
 /// `base ^ exp` for an expanded `base`, multiplied out if `base` is a sum
 /// and `exp` positive.
 fn expand_power(pool: &mut Pool, base: ExprId, exp: i32, budget: usize) -> Option<ExprId> {
-    match (pool.node(base), usize::try_from(exp)) {
-        (Node::Add(_), Ok(count)) if count > budget => None,
-        (Node::Add(_), Ok(count)) => distribute(pool, &vec![base; count], budget),
+    let is_sum = multiple_of_sum(pool, base).is_some();
+    match (is_sum, usize::try_from(exp)) {
+        (true, Ok(count)) if count > budget => None,
+        (true, Ok(count)) => distribute(pool, &vec![base; count], budget),
         _ => Some(pool.powi(base, exp)),
     }
 }
@@ -184,12 +206,21 @@ fn distribute(pool: &mut Pool, factors: &[ExprId], budget: usize) -> Option<Expr
     Some(acc)
 }
 
-/// The terms of `e` if it is a sum, else `[e]`.
-fn terms(pool: &Pool, e: ExprId) -> Vec<ExprId> {
-    match pool.node(e) {
-        Node::Add(terms) => terms.to_vec(),
-        _ => vec![e],
+/// The terms of `e` read as a sum of monomials, every sign seen: the
+/// terms of a sum, those of a multiple of a sum (`−(a − b)` is `−a + b`,
+/// read through [`multiple_of_sum`] here rather than built flat in the
+/// pool), else `[e]`.
+pub fn terms(pool: &mut Pool, e: ExprId) -> Vec<ExprId> {
+    let Some((c, sum)) = multiple_of_sum(pool, e) else {
+        return vec![e];
+    };
+    let coefficient = (c != Number::ONE).then(|| pool.number(c));
+    let mut flat = Vec::new();
+    for t in pool.children(sum).to_vec() {
+        let scaled = coefficient.map_or(t, |coefficient| pool.mul(coefficient, t));
+        flat.extend(terms(pool, scaled));
     }
+    flat
 }
 
 /// The factors of a coefficient-free monomial as `(base, exponent)`.
@@ -315,7 +346,7 @@ struct Monomials(BTreeMap<ExprId, Number>);
 
 impl Monomials {
     /// The monomials of an expanded expression.
-    fn of(pool: &Pool, e: ExprId) -> Monomials {
+    fn of(pool: &mut Pool, e: ExprId) -> Monomials {
         let mut sum = Monomials(BTreeMap::new());
         for t in terms(pool, e) {
             let (c, rest) = pool.split_coefficient(t);
@@ -349,7 +380,7 @@ impl Monomials {
 
     /// Adds `c · e` for any expression `e` (its coefficient and terms
     /// split off), returning the monomials it touched.
-    fn add_expr(&mut self, pool: &Pool, c: Number, e: ExprId) -> Vec<ExprId> {
+    fn add_expr(&mut self, pool: &mut Pool, c: Number, e: ExprId) -> Vec<ExprId> {
         terms(pool, e)
             .into_iter()
             .map(|t| {

@@ -17,8 +17,8 @@
 
 use crate::equations::Equations;
 use crate::expr::{ExprId, Func, Node, Pool, Sym, SymKinds};
-use crate::readable::ReadableForms;
-use std::collections::HashMap;
+use crate::readable::{self, ReadableForms};
+use std::collections::{HashMap, HashSet};
 
 /// The index of one series of the program.
 pub type Slot = usize;
@@ -79,12 +79,16 @@ struct Lowering<'a> {
     nodes: HashMap<ExprId, Slot>,
     /// The series of each call made so far.
     calls: HashMap<(&'static str, Vec<Slot>), Slot>,
+    /// The readable forms among the entries: one stands for the flat sum
+    /// of its terms ([`readable::terms`]), and `−s` among them is lowered
+    /// as that sum (one linear combination), not as `s` negated.
+    forms: HashSet<ExprId>,
 }
 
 impl<'a> Lowering<'a> {
     /// The series of the state: `q`, `v` and `v̇`, then the multipliers
     /// `λ` of `sizes[2]` constraints.
-    fn new(pool: &'a mut Pool, sizes: [usize; 3]) -> Self {
+    fn new(pool: &'a mut Pool, sizes: [usize; 3], forms: HashSet<ExprId>) -> Self {
         let [nq, nv, nc] = sizes;
         let program = Program {
             operations: Vec::new(),
@@ -99,6 +103,7 @@ impl<'a> Lowering<'a> {
             program,
             nodes: HashMap::new(),
             calls: HashMap::new(),
+            forms,
         };
         lowering.program.coordinates = lowering.states(nq);
         lowering.program.speeds = lowering.states(nv);
@@ -130,6 +135,10 @@ impl<'a> Lowering<'a> {
             Node::Sym(Sym::Speed(i)) => self.program.speeds[i as usize],
             Node::Sym(_) => self.time_slot(),
             Node::Add(terms) => self.sum(&terms),
+            Node::Mul(_) if self.forms.contains(&e) => {
+                let terms = readable::terms(self.pool, e);
+                self.sum(&terms)
+            }
             Node::Mul(factors) => self.scaled_product(&factors),
             Node::Pow(..) => self.product(&[e]),
             Node::Func(function, argument) => self.function(function, argument),
@@ -386,7 +395,7 @@ impl Lowered {
     /// The equations as derived, lowered over `pool`, then the rates of
     /// `nq` coordinates.
     pub fn derived(pool: &mut Pool, nq: usize, equations: &Equations) -> Self {
-        Lowered::new(pool, nq, &Expressions::of(equations))
+        Lowered::new(pool, nq, &Expressions::of(equations), HashSet::new())
     }
 
     /// The equations with their angle sums recombined (their readable
@@ -400,16 +409,22 @@ impl Lowered {
         equations: &Equations,
         budget: usize,
     ) -> Self {
-        let recombined =
-            Expressions::of(equations).map(|e| forms.get(pool, e, budget).unwrap_or(e));
-        Lowered::new(pool, nq, &recombined)
+        let mut found = HashSet::new();
+        let recombined = Expressions::of(equations).map(|e| match forms.get(pool, e, budget) {
+            Some(form) => {
+                found.insert(form);
+                form
+            }
+            None => e,
+        });
+        Lowered::new(pool, nq, &recombined, found)
     }
 
     /// The entries of `expressions` lowered over `pool`, then the rates of
     /// `nq` coordinates (a speed where it is its coordinate's rate).
-    fn new(pool: &mut Pool, nq: usize, expressions: &Expressions) -> Self {
+    fn new(pool: &mut Pool, nq: usize, expressions: &Expressions, forms: HashSet<ExprId>) -> Self {
         let sizes = [nq, expressions.forcing.len(), expressions.bias.len()];
-        let mut lowering = Lowering::new(pool, sizes);
+        let mut lowering = Lowering::new(pool, sizes, forms);
         let matrix = lowering.lower_rows(&expressions.matrix);
         let forcing = lowering.lower_all(&expressions.forcing);
         let jacobian = lowering.lower_rows(&expressions.jacobian);

@@ -314,57 +314,80 @@ fn count_uses(
     uses
 }
 
-/// A sum written as an earlier sum plus a constant and other terms.
+/// A sum written as an earlier sum plus a constant and other terms, or as
+/// the other terms and a constant minus an earlier sum.
 struct NestedSum {
-    /// The earlier sum, all of whose non-constant terms this sum holds.
+    /// The earlier sum, all of whose non-constant terms this sum holds
+    /// (negated if `negated`).
     inner: ExprId,
-    /// This sum's constant minus the earlier one's.
+    /// Whether this sum holds the earlier sum's terms negated: it is
+    /// written `rest − inner`, not `inner + rest`.
+    negated: bool,
+    /// This sum's constant less the earlier one's (plus it, if `negated`).
     constant: Number,
     /// The terms not in the earlier sum.
     rest: Vec<ExprId>,
 }
 
 /// Sums as they are written: a sum that holds every non-constant term of
-/// an earlier sum (the largest such, ties to the lower id) is written as
-/// that sum plus the difference, so that the running totals of a recursion
-/// — which canonical sums flatten — cost one addition per step again.
+/// an earlier sum (the largest such, one holding them with their signs
+/// before one holding them negated, ties to the lower id) is written as
+/// that sum plus the difference, or as the difference minus that sum, so
+/// that the running totals of a recursion — which canonical sums flatten —
+/// cost one addition per step again. The negated case is the pool's one
+/// form per sum at work: a sum whose first term would be negative is
+/// stored as `−1` times the sum with every sign turned, so a later sum may
+/// hold an earlier one's terms with every sign turned.
 fn nested_sums(pool: &Pool, order: &[ExprId]) -> HashMap<ExprId, NestedSum> {
-    let mut containing: HashMap<ExprId, Vec<ExprId>> = HashMap::new();
+    // The earlier sums holding each term, the term as its coefficient-free
+    // part and coefficient (so that its negation is found without building it).
+    let mut containing: HashMap<(ExprId, Number), Vec<ExprId>> = HashMap::new();
     let mut nested = HashMap::new();
     for &e in order {
         let Node::Add(terms) = pool.node(e) else {
             continue;
         };
         let (constant, variable) = split_constant(pool, terms);
-        let mut counts: HashMap<ExprId, usize> = HashMap::new();
-        for term in variable {
-            for &sum in containing.get(term).into_iter().flatten() {
-                *counts.entry(sum).or_default() += 1;
+        let mut counts: HashMap<(ExprId, bool), usize> = HashMap::new();
+        for &term in variable {
+            let (c, rest) = pool.split_coefficient(term);
+            for (negated, key) in [(false, (rest, c)), (true, (rest, -c))] {
+                for &sum in containing.get(&key).into_iter().flatten() {
+                    *counts.entry((sum, negated)).or_default() += 1;
+                }
             }
         }
         let best = counts
             .into_iter()
-            .filter(|&(sum, count)| {
+            .filter(|&((sum, _), count)| {
                 count >= 2 && count == split_constant(pool, pool.children(sum)).1.len()
             })
-            .max_by_key(|&(sum, count)| (count, std::cmp::Reverse(sum)));
-        if let Some((inner, _)) = best {
+            .max_by_key(|&((sum, negated), count)| (count, !negated, std::cmp::Reverse(sum)));
+        if let Some(((inner, negated), _)) = best {
             let (inner_constant, inner_terms) = split_constant(pool, pool.children(inner));
+            let held = |t: ExprId| {
+                let (c, rest) = pool.split_coefficient(t);
+                let c = if negated { -c } else { c };
+                inner_terms
+                    .iter()
+                    .any(|&i| pool.split_coefficient(i) == (c, rest))
+            };
             nested.insert(
                 e,
                 NestedSum {
                     inner,
-                    constant: constant + -inner_constant,
-                    rest: variable
-                        .iter()
-                        .filter(|t| !inner_terms.contains(t))
-                        .copied()
-                        .collect(),
+                    negated,
+                    constant: match negated {
+                        true => constant + inner_constant,
+                        false => constant + -inner_constant,
+                    },
+                    rest: variable.iter().copied().filter(|&t| !held(t)).collect(),
                 },
             );
         }
-        for term in variable {
-            containing.entry(*term).or_default().push(e);
+        for &term in variable {
+            let (c, rest) = pool.split_coefficient(term);
+            containing.entry((rest, c)).or_default().push(e);
         }
     }
     nested
@@ -653,10 +676,22 @@ impl Writer<'_> {
     }
 
     /// `a + b - c`: terms with a negative coefficient are subtracted.
-    /// `inner ± constant ± rest…`.
+    /// `inner ± constant ± rest…`, or `rest… − inner ± constant` for an
+    /// earlier sum held negated.
     fn nested_sum(&self, sum: &NestedSum) -> TokenStream {
-        let inner = self.expr(sum.inner);
-        let mut out = quote!(#inner);
+        let mut out = match sum.negated {
+            false => {
+                let inner = self.expr(sum.inner);
+                quote!(#inner)
+            }
+            true => {
+                let (rest, inner) = (self.terms(&sum.rest, true, false), self.operand(sum.inner));
+                match sum.rest.is_empty() {
+                    true => quote!(-#inner),
+                    false => quote!(#rest - #inner),
+                }
+            }
+        };
         if !sum.constant.is_zero() {
             let magnitude = number(sum.constant.abs());
             out.extend(if sum.constant.is_negative() {
@@ -665,7 +700,9 @@ impl Writer<'_> {
                 quote!(+ #magnitude)
             });
         }
-        out.extend(self.terms(&sum.rest, false, false));
+        if !sum.negated {
+            out.extend(self.terms(&sum.rest, false, false));
+        }
         out
     }
 

@@ -21,16 +21,19 @@
 //! * in a pool made [`Pool::with_positive_sums`] (every derivation's), a
 //!   sum whose first non-constant term has a negative coefficient is `−1`
 //!   times the sum with every sign turned, so that `a − b` and `b − a`
-//!   share one sum. The one exception to one node per value: the
-//!   readable forms (`crate::readable`, and the docs' collected sums) are
-//!   expanded inside [`Pool::with_flat_signs`], where sums are built as
-//!   they come, so that their recombination rules see every term with its
-//!   sign; a readable form may therefore hold `b − a` where the derived
-//!   expressions hold `−(a − b)`. The two families meet where a readable
-//!   form is chosen over its derived expression (the optimiser's compact
-//!   forms, the Taylor program's recombined form): the choice is by cost,
-//!   and one function may then compute a difference in both
-//!   orientations;
+//!   share one sum. The setting is chosen when the pool is made and holds
+//!   for all its life, so every pool holds one form per sum (in this one,
+//!   `b − a` and `−(a − b)` are one id). The readable forms
+//!   (`crate::readable`, and the docs' collected sums) are expanded in
+//!   the same pool and read a multiple of a sum as its terms, each with
+//!   its sign, so that their recombination rules see every sign without
+//!   building a second form. Where `−s` ([`Pool::negated_sum`]) stands
+//!   for a flat sum it is read as one: the printers write it as the terms
+//!   of `s` negated, the emitter too where `s` is not shared (so the
+//!   optimiser costs a compact form `−s` as `s`), the emitter writes a sum
+//!   holding an earlier sum's terms negated as the rest minus that sum,
+//!   and the Taylor lowering takes a recombined form `−s` as one linear
+//!   combination;
 //! * a group ([`Node::Group`], made by [`Pool::group`]) holds a sum as one
 //!   operand: its value is the sum's, its derivative the sum's derivative
 //!   grouped, and construction never spreads a coefficient into it nor

@@ -45,24 +45,19 @@ impl Pool {
         pool
     }
 
-    /// This pool, building every sum whose first term (after its
+    /// An empty pool that builds every sum whose first term (after its
     /// constant) has a negative coefficient as `−1` times the sum with every
     /// sign turned: `b − a` and `a − b` then share one sum, which a
     /// derivation full of cross products (`a × b = −b × a`) needs to compute
-    /// each value once. Expansion for the readable forms turns it off
-    /// ([`Pool::with_flat_signs`]): polynomials stay flat there.
-    pub fn with_positive_sums(mut self) -> Pool {
-        self.positive_sums = true;
-        self
-    }
-
-    /// `f` run with sums built as they come (see
-    /// [`Pool::with_positive_sums`]), the pool's setting restored after.
-    pub fn with_flat_signs<R>(&mut self, f: impl FnOnce(&mut Pool) -> R) -> R {
-        let positive = std::mem::replace(&mut self.positive_sums, false);
-        let result = f(self);
-        self.positive_sums = positive;
-        result
+    /// each value once. The setting is the pool's from its first node to its
+    /// last, so that it holds one form per sum; the readable forms read `−1`
+    /// times a sum as its terms negated (`crate::readable`), and the
+    /// printers decide how to show it.
+    pub fn with_positive_sums() -> Pool {
+        Pool {
+            positive_sums: true,
+            ..Pool::new()
+        }
     }
 
     /// The node named by `e`.
@@ -215,6 +210,15 @@ impl Pool {
             _ => Number::ONE,
         };
         (coefficient, self.meta[e.0 as usize].rest)
+    }
+
+    /// The sum `s` if `e` is `−s`: how a pool
+    /// [with positive sums](Pool::with_positive_sums) holds a sum whose
+    /// first term is negative. The printers write it, and the emitter an
+    /// unshared one, as the terms of `s` negated.
+    pub fn negated_sum(&self, e: ExprId) -> Option<ExprId> {
+        let (c, sum) = self.split_coefficient(e);
+        (c == -Number::ONE && matches!(self.node(sum), Node::Add(_))).then_some(sum)
     }
 
     /// The children of `e` (terms, factors, base or argument).

@@ -88,63 +88,8 @@ impl Pool {
 
 #[cfg(test)]
 mod tests {
-    use super::super::Func;
-    use super::super::test_util::{Point, Rng, Scratch, assert_close};
+    use super::super::test_util::{Point, Rng, SYMS, Scratch, assert_close, random_expression};
     use super::*;
-
-    /// The symbols the random expressions are built from and differentiated
-    /// by (the parameter is a constant of the gradient).
-    const SYMS: [Sym; 5] = [
-        Sym::Coord(0),
-        Sym::Coord(1),
-        Sym::Speed(0),
-        Sym::Input(0),
-        Sym::Param(0),
-    ];
-
-    /// A random expression over [`SYMS`] of about `depth` levels, with every
-    /// node kind: sums, products with coefficients, powers, each function.
-    fn random_expression(pool: &mut Pool, rng: &mut Rng, depth: usize) -> ExprId {
-        let pick = |rng: &mut Rng, n: usize| (rng.uniform(0.0, n as f64) as usize).min(n - 1);
-        if depth == 0 {
-            return match pick(rng, 6) {
-                5 => pool.int(pick(rng, 5) as i64 + 1),
-                k => pool.sym(SYMS[k]),
-            };
-        }
-        let operand = |pool: &mut Pool, rng: &mut Rng| random_expression(pool, rng, depth - 1);
-        match pick(rng, 8) {
-            0 | 1 => {
-                let terms: Vec<ExprId> =
-                    (0..2 + pick(rng, 3)).map(|_| operand(pool, rng)).collect();
-                pool.sum(terms)
-            }
-            2 | 3 => {
-                let factors: Vec<ExprId> =
-                    (0..2 + pick(rng, 2)).map(|_| operand(pool, rng)).collect();
-                let c = pool.rational(pick(rng, 7) as i128 - 3, 2);
-                let product = pool.product(factors);
-                pool.mul(c, product)
-            }
-            4 => {
-                let base = operand(pool, rng);
-                pool.powi(base, [-1, 2, 3][pick(rng, 3)])
-            }
-            5 => {
-                let inner = operand(pool, rng);
-                let one = pool.one();
-                let sum = pool.sum([inner, one]);
-                pool.group(sum)
-            }
-            _ => {
-                let f = [Func::Sin, Func::Cos, Func::Exp, Func::Tan][pick(rng, 4)];
-                let arg = operand(pool, rng);
-                let scaled = pool.rational(1, 3);
-                let arg = pool.mul(scaled, arg);
-                pool.func(f, arg)
-            }
-        }
-    }
 
     #[test]
     fn gradients_of_random_expressions_match_the_forward_partials() {
@@ -199,7 +144,7 @@ mod tests {
     #[test]
     fn the_gradient_of_a_chain_of_sums_grows_linearly() {
         let new_nodes = |steps: u32| -> usize {
-            let mut pool = Pool::new().with_positive_sums();
+            let mut pool = Pool::with_positive_sums();
             let mut total = pool.sym(Sym::Coord(0));
             for k in 1..=steps {
                 let q = pool.sym(Sym::Coord(k));

@@ -1,5 +1,6 @@
 //! Helpers shared by the tests of the engine: points to evaluate at, a
-//! small deterministic random generator, and a tolerant comparison.
+//! small deterministic random generator, random expressions, and a
+//! tolerant comparison.
 
 use std::collections::BTreeMap;
 
@@ -215,5 +216,57 @@ impl Scratch {
     /// [`Pool::display`] with the naming [`parse`] reads.
     pub fn show(&self, e: ExprId) -> String {
         self.pool.display(e, &name)
+    }
+}
+
+/// The symbols the random expressions are built from and differentiated
+/// by (the parameter is a constant of the gradients).
+pub const SYMS: [Sym; 5] = [
+    Sym::Coord(0),
+    Sym::Coord(1),
+    Sym::Speed(0),
+    Sym::Input(0),
+    Sym::Param(0),
+];
+
+/// A random expression over [`SYMS`] of about `depth` levels, with every
+/// node kind: sums, products with coefficients, powers, each function.
+pub fn random_expression(pool: &mut Pool, rng: &mut Rng, depth: usize) -> ExprId {
+    let pick = |rng: &mut Rng, n: usize| (rng.uniform(0.0, n as f64) as usize).min(n - 1);
+    if depth == 0 {
+        return match pick(rng, 6) {
+            5 => pool.int(pick(rng, 5) as i64 + 1),
+            k => pool.sym(SYMS[k]),
+        };
+    }
+    let operand = |pool: &mut Pool, rng: &mut Rng| random_expression(pool, rng, depth - 1);
+    match pick(rng, 8) {
+        0 | 1 => {
+            let terms: Vec<ExprId> = (0..2 + pick(rng, 3)).map(|_| operand(pool, rng)).collect();
+            pool.sum(terms)
+        }
+        2 | 3 => {
+            let factors: Vec<ExprId> = (0..2 + pick(rng, 2)).map(|_| operand(pool, rng)).collect();
+            let c = pool.rational(pick(rng, 7) as i128 - 3, 2);
+            let product = pool.product(factors);
+            pool.mul(c, product)
+        }
+        4 => {
+            let base = operand(pool, rng);
+            pool.powi(base, [-1, 2, 3][pick(rng, 3)])
+        }
+        5 => {
+            let inner = operand(pool, rng);
+            let one = pool.one();
+            let sum = pool.sum([inner, one]);
+            pool.group(sum)
+        }
+        _ => {
+            let f = [Func::Sin, Func::Cos, Func::Exp, Func::Tan][pick(rng, 4)];
+            let arg = operand(pool, rng);
+            let scaled = pool.rational(1, 3);
+            let arg = pool.mul(scaled, arg);
+            pool.func(f, arg)
+        }
     }
 }

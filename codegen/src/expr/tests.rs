@@ -2,8 +2,8 @@
 //! the kind of expressions kinematics builds, and size guards against
 //! expression swell.
 
-use super::test_util::{Point, Rng, assert_close};
-use super::{ExprId, Pool, Sym};
+use super::test_util::{Point, Rng, Scratch, assert_close, random_expression};
+use super::{ExprId, Node, Pool, Sym};
 
 /// A 2×2 matrix of expressions.
 type Mat2 = [[ExprId; 2]; 2];
@@ -99,4 +99,58 @@ fn association_does_not_matter_after_expansion() {
         &[Sym::Coord(0), Sym::Coord(1), Sym::Coord(2)],
     );
     assert_close(p.eval(det, &env), 1.0, 1e-14, "det R");
+}
+
+/// One form per sum: in a pool with positive sums, `b − a` and `−(a − b)`
+/// are one node, for named differences and for random expressions, and
+/// every sum the pool holds has a positive first non-constant term, so no
+/// sum of the pool is another with every sign turned.
+#[test]
+fn a_pool_holds_one_form_per_sum() {
+    let mut s = Scratch {
+        pool: Pool::with_positive_sums(),
+    };
+    assert_eq!(s.e("q1 - q0"), s.e("-(q0 - q1)"));
+    assert_eq!(s.e("2*p0 - q0*u0 + 1"), s.e("-(q0*u0 - 2*p0 - 1)"));
+    // A multiple of a sum stays whole inside another sum, so the random
+    // operands are kept to those that are not sums or multiples of one.
+    let is_sum =
+        |pool: &Pool, e: ExprId| matches!(pool.node(pool.split_coefficient(e).1), Node::Add(_));
+    let mut rng = Rng::new(36);
+    let mut differences = 0;
+    while differences < 200 {
+        let a = random_expression(&mut s.pool, &mut rng, 3);
+        let b = random_expression(&mut s.pool, &mut rng, 3);
+        if is_sum(&s.pool, a) || is_sum(&s.pool, b) {
+            continue;
+        }
+        let (a_minus_b, b_minus_a) = (s.pool.sub(a, b), s.pool.sub(b, a));
+        assert_eq!(
+            s.pool.neg(a_minus_b),
+            b_minus_a,
+            "{} and {}",
+            s.show(a_minus_b),
+            s.show(b_minus_a)
+        );
+        differences += 1;
+    }
+    let sums: Vec<ExprId> = (0..s.pool.len() as u32)
+        .map(ExprId)
+        .filter(|&e| matches!(s.pool.node(e), Node::Add(_)))
+        .collect();
+    assert!(sums.len() > 200, "only {} sums", sums.len());
+    for &sum in &sums {
+        let first = s
+            .pool
+            .children(sum)
+            .iter()
+            .find(|&&t| s.pool.as_number(t).is_none())
+            .expect("a sum has a term besides its constant");
+        let (c, _) = s.pool.split_coefficient(*first);
+        assert!(
+            !c.is_negative(),
+            "{} leads with a negative term",
+            s.show(sum)
+        );
+    }
 }

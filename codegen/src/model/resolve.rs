@@ -70,7 +70,7 @@ struct Resolver {
 
 impl Resolver {
     fn new(system: &System) -> Resolver {
-        let pool = Pool::new().with_positive_sums();
+        let pool = Pool::with_positive_sums();
         let zero = pool.zero();
         let mut bindings = HashMap::new();
         let builtin = Span::call_site();

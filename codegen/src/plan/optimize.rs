@@ -103,7 +103,10 @@ fn cheaper_form(
         return e;
     };
     let compact = expand_angle_sums(pool, split, compact);
-    let compact_cost = cost_past(pool, compact, computed, usize::MAX);
+    // `−s` costs what `s` does: the emitter writes it as the terms of `s`
+    // negated where `s` is not shared, as the sum it reads.
+    let written = pool.negated_sum(compact).unwrap_or(compact);
+    let compact_cost = cost_past(pool, written, computed, usize::MAX);
     if compact_cost < cost_past(pool, e, computed, compact_cost) {
         compact
     } else {

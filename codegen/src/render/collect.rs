@@ -9,7 +9,7 @@
 //! docs only (the equations and the generated code never see it).
 
 use crate::expr::{ExprId, Node, Number, Pool, Sym};
-use crate::readable::factors;
+use crate::readable::{factors, terms};
 
 /// One term split into its number, its parameter factors and the product
 /// of everything else.
@@ -24,16 +24,11 @@ struct Split {
 /// rest of `1` and no parameter (`I_1c + m ℓ²` stays, `m_A g − m_B g` is
 /// `(m_A − m_B) g`).
 pub fn collect_parameters(pool: &mut Pool, e: ExprId) -> ExprId {
-    // Sums as they come: `2 (I₃ − I_1c)`, not `−2 (I_1c − I₃)`.
-    pool.with_flat_signs(|pool| collected(pool, e))
-}
-
-/// [`collect_parameters`] in a pool that builds sums as they come.
-fn collected(pool: &mut Pool, e: ExprId) -> ExprId {
-    let Node::Add(terms) = pool.node(e) else {
+    // `−(a − b)` read as `−a + b`, every sign seen.
+    let terms = terms(pool, e);
+    if terms.len() < 2 {
         return e;
-    };
-    let terms = terms.clone();
+    }
     let mut groups: Vec<(ExprId, Vec<Split>)> = Vec::new();
     for &term in &terms {
         let (number, rest) = pool.split_coefficient(term);

@@ -631,7 +631,7 @@ fn map_char(c: char, from: &str, to: &str) -> char {
 }
 
 /// One factor of a printed monomial: `base^exp`, with the argument of an
-/// odd or even function negated when `flipped`.
+/// odd or even function, or a sum, negated when `flipped`.
 #[derive(Clone, Copy, Debug)]
 struct Factor {
     base: ExprId,
@@ -663,6 +663,18 @@ impl Term {
             })
             .collect();
         factors.sort_by_key(|f| (f.exp < 0, factor_order(pool, f.base, f.exp)));
+        // The pool holds `c − b` as `−(b − c)`: a negative term's sign goes
+        // into its one sum of both signs, `+ ½ (c − b) m`, not `− ½ (b − c) m`.
+        if coefficient.is_negative()
+            && let [sum] = factors
+                .iter_mut()
+                .filter(|f| f.exp == 1 && has_both_signs(pool, f.base))
+                .collect::<Vec<_>>()
+                .as_mut_slice()
+        {
+            coefficient = -coefficient;
+            sum.flipped = true;
+        }
         Term {
             coefficient,
             factors,
@@ -686,6 +698,18 @@ impl Term {
             .filter(|f| factor_order(pool, f.base, f.exp).0 != FactorClass::Param)
             .count()
     }
+}
+
+/// Whether `e` is a sum (or a group of one) with a positive and a
+/// negative term.
+fn has_both_signs(pool: &Pool, e: ExprId) -> bool {
+    let terms = match pool.node(e) {
+        Node::Add(terms) => terms,
+        Node::Group(sum) => return has_both_signs(pool, *sum),
+        _ => return false,
+    };
+    let negative = |&t: &ExprId| pool.split_coefficient(t).0.is_negative();
+    terms.iter().any(negative) && !terms.iter().all(negative)
 }
 
 /// Whether the argument of `base`, an odd or even function, prints
@@ -794,12 +818,17 @@ impl<'a> Walker<'a> {
         self.truncated
     }
 
-    /// Writes `e`, its terms negated if `negate`.
+    /// Writes `e`, its terms negated if `negate`; `−s` for a sum `s` is
+    /// written as the terms of `s` negated ([`Pool::negated_sum`]).
     fn expr_signed(&mut self, e: ExprId, negate: bool) {
         if self.cut_off() {
             return;
         }
         self.depth += 1;
+        let (e, negate) = match self.pool.negated_sum(e) {
+            Some(sum) => (sum, !negate),
+            None => (e, negate),
+        };
         let terms: &[ExprId] = match self.pool.node(e) {
             Node::Add(terms) => terms,
             _ => std::slice::from_ref(&e),
@@ -898,9 +927,9 @@ impl<'a> Walker<'a> {
                 self.power(exp);
             }
             Node::Func(f, arg) => self.call(f, arg, exp, flipped),
-            Node::Group(sum) => self.enclosed(self.notation.parentheses, sum, exp, false),
+            Node::Group(sum) => self.enclosed(self.notation.parentheses, sum, exp, flipped),
             _ => {
-                self.parenthesised(base, false);
+                self.parenthesised(base, flipped);
                 self.power(exp);
             }
         }
@@ -988,7 +1017,10 @@ impl<'a> Walker<'a> {
         let first = self.out.is_empty();
         match c {
             Coefficient::Expr(e) if self.pool.is_zero(*e) => return,
-            Coefficient::Expr(e) if matches!(self.pool.node(*e), Node::Add(_)) => {
+            Coefficient::Expr(e)
+                if matches!(self.pool.node(*e), Node::Add(_))
+                    || self.pool.negated_sum(*e).is_some() =>
+            {
                 self.sign(false, first);
                 self.parenthesised(*e, false);
             }
@@ -1189,12 +1221,12 @@ mod tests {
             unicode(&p, f1, &names),
             "½ m L² sin(θ₂ − θ₁) θ\u{307}₂² − 3/2 m L g sin θ₁"
         );
-        // Unexpanded, a negated sum keeps its parentheses; expanded, the
-        // term with speeds still leads.
+        // A negated sum prints as its terms negated, unexpanded or
+        // expanded; the term with speeds still leads.
         let minus_f1 = p.neg(f1);
         assert_eq!(
             unicode(&p, minus_f1, &names),
-            "−(½ m L² sin(θ₂ − θ₁) θ\u{307}₂² − 3/2 m L g sin θ₁)"
+            "−½ m L² sin(θ₂ − θ₁) θ\u{307}₂² + 3/2 m L g sin θ₁"
         );
         let minus_f1 = readable(&mut p, minus_f1, 400).expect("small");
         assert_eq!(
