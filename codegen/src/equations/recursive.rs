@@ -196,7 +196,7 @@ impl JointTree {
                 own_turn = parent_turn;
             }
             if let Some(q) = &parent_turn {
-                link.from_parent_axes(pool, q);
+                link.with_parent_axes(pool, q);
             }
             link.keep_sparse_factors(pool, own_turn.is_some() || parent_turn.is_some());
             if let (JointKind::Prismatic, Some(q)) = (link.kind, &own_turn) {
@@ -553,8 +553,8 @@ impl JointTree {
             // a_J = a_p + α_p × d + ω_p × (ω_p × d) (+ 2 ω_p × ḋ for a slide),
             // then into the link's axes.
             let mut accel = parent.point_acceleration(pool, d);
-            let carried = link.from_parent(pool, &parent.omega);
-            let alpha = link.from_parent(pool, &parent.alpha);
+            let carried = link.to_link(pool, &parent.omega);
+            let alpha = link.to_link(pool, &parent.alpha);
             let (omega, alpha) = match link.kind {
                 JointKind::Revolute | JointKind::Spherical => {
                     // ω = Rᵀ ω_p + Σ vₖ eₖ;  α = Rᵀ α_p + Σ v̇ₖ eₖ + (Rᵀ ω_p) × Σ vₖ eₖ.
@@ -573,7 +573,7 @@ impl JointTree {
                     // On the ground: ω = Σ wₖ eₖ and α = Σ ẇₖ eₖ; the
                     // origin's velocity v (in the link's axes) turns with
                     // it, adding ω × v to its rate v̇.
-                    let turning = link.from_parent(pool, &accel);
+                    let turning = link.to_link(pool, &accel);
                     let transport = cross(pool, &spin, &slide);
                     let accel = add3(pool, &turning, &transport);
                     let accel = add3(pool, &accel, &slide_rate);
@@ -586,7 +586,7 @@ impl JointTree {
                     continue;
                 }
             };
-            let accel = link.from_parent(pool, &accel);
+            let accel = link.to_link(pool, &accel);
             motions.push(Motion {
                 omega: group3(pool, &omega),
                 alpha: group3(pool, &alpha),
@@ -677,7 +677,7 @@ impl Link {
     /// columns, in the parent frame's): offset `qᵀ d`, rotation `qᵀ R`
     /// (`qᵀ` joins the rotation's fixed first factor, or comes first). A
     /// slide keeps its parent's axes, and its rotation the identity.
-    fn from_parent_axes(&mut self, pool: &mut Pool, q: &Mat3) {
+    fn with_parent_axes(&mut self, pool: &mut Pool, q: &Mat3) {
         self.offset = transpose_mul(pool, q, &self.offset);
         if self.kind == JointKind::Prismatic {
             return;
@@ -708,7 +708,7 @@ impl Link {
 
     /// `Rᵀ v`: components in the parent's axes, in the link's, factor by
     /// factor as [`Link::to_parent`].
-    fn from_parent(&self, pool: &mut Pool, v: &Vec3) -> Vec3 {
+    fn to_link(&self, pool: &mut Pool, v: &Vec3) -> Vec3 {
         match self.factors.as_slice() {
             [outer @ .., last] if !outer.is_empty() => {
                 let turned = outer.iter().fold(*v, |v, f| {
