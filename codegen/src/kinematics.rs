@@ -13,7 +13,7 @@
 //! differentiates in time at constant speeds; so no expression ever holds
 //! a `v̇`.
 
-use crate::expr::{ExprId, Pool, Sym};
+use crate::expr::{ExprId, Pool, Sym, SymKinds};
 use crate::model::{
     FrameId, FramePlacement, Model, NEWTONIAN, PointId, Vector, principal_axis, quaternion,
 };
@@ -190,19 +190,41 @@ impl Kinematics {
         if ancestor == NEWTONIAN {
             return self.rotation[frame.0];
         }
-        let mut chain = Vec::new();
-        let mut f = frame;
-        while f != ancestor {
-            let Some(p) = &model.frames[f.0].placement else {
-                break;
-            };
-            chain.push(placement_rotation(pool, model, p));
-            f = p.parent;
-        }
-        chain
+        placement_chain(pool, model, ancestor, frame)
             .iter()
             .rev()
             .fold(identity(pool), |acc, r| mat_mul(pool, &acc, r))
+    }
+
+    /// [`Kinematics::relative_rotation`] as a product of factors, the
+    /// outermost first: the rotations of the frame placements between
+    /// `ancestor` and `frame`, each run of constant ones (no coordinate in
+    /// them: a mount's fixed turn) multiplied into one, identities left out.
+    /// Applied one after the other, a joint's turn about one of its axes
+    /// and a fixed turn about another cost two sparse products, where their
+    /// product is a dense matrix whose constants spread over every sum it
+    /// enters.
+    pub fn rotation_factors(
+        &self,
+        pool: &mut Pool,
+        model: &Model,
+        ancestor: FrameId,
+        frame: FrameId,
+    ) -> Vec<Mat3> {
+        if ancestor == NEWTONIAN {
+            return vec![self.rotation[frame.0]];
+        }
+        let mut factors: Vec<Mat3> = Vec::new();
+        for r in placement_chain(pool, model, ancestor, frame).iter().rev() {
+            match factors.last_mut() {
+                Some(last) if is_fixed(pool, last) && is_fixed(pool, r) => {
+                    *last = mat_mul(pool, last, r)
+                }
+                _ => factors.push(*r),
+            }
+        }
+        factors.retain(|f| *f != identity(pool));
+        factors
     }
 }
 
@@ -248,6 +270,21 @@ fn placement_rotation(pool: &mut Pool, model: &Model, p: &FramePlacement) -> Mat
         }
         None => axis_rotation(pool, &p.axis, p.angle),
     }
+}
+
+/// The rotations of the frame placements from `frame` up to `ancestor`,
+/// `frame`'s first.
+fn placement_chain(pool: &mut Pool, model: &Model, ancestor: FrameId, frame: FrameId) -> Vec<Mat3> {
+    let mut chain = Vec::new();
+    let mut f = frame;
+    while f != ancestor {
+        let Some(p) = &model.frames[f.0].placement else {
+            break;
+        };
+        chain.push(placement_rotation(pool, model, p));
+        f = p.parent;
+    }
+    chain
 }
 
 /// The frames from `f` up to `N`, `f` first.
@@ -325,6 +362,19 @@ pub fn identity(pool: &Pool) -> Mat3 {
         row[i] = pool.one();
     }
     r
+}
+
+/// Whether the rotation `m` is fixed: no coordinate or time in it.
+pub fn is_fixed(pool: &Pool, m: &Mat3) -> bool {
+    let moving = SymKinds::COORD | SymKinds::TIME;
+    m.iter()
+        .flatten()
+        .all(|&x| !pool.kinds(x).intersects(moving))
+}
+
+/// `aᵀ`.
+pub fn transpose(a: &Mat3) -> Mat3 {
+    [0, 1, 2].map(|i| [a[0][i], a[1][i], a[2][i]])
 }
 
 /// `a · b`.

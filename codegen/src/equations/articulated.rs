@@ -28,7 +28,7 @@
 
 use super::recursive::{Column, Composite, JointTree, rotate_symmetric, rotate_tensor};
 use crate::expr::{ExprId, Pool};
-use crate::kinematics::{Mat3, Vec3, add3, cross, dot, mat_vec, transpose_mul};
+use crate::kinematics::{Mat3, Vec3, add3, cross, dot, mat_vec, transpose, transpose_mul};
 
 /// The tree's accelerations, per speed.
 #[derive(Clone, Debug)]
@@ -355,10 +355,6 @@ fn from_parent(pool: &mut Pool, rotation: &Mat3, offset: &Vec3, parent: &Pair) -
 
 fn scale3(pool: &mut Pool, v: &Vec3, s: ExprId) -> Vec3 {
     v.map(|x| pool.mul(x, s))
-}
-
-fn transpose(m: &Mat3) -> Mat3 {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| m[j][i]))
 }
 
 fn mat_mul(pool: &mut Pool, a: &Mat3, b: &Mat3) -> Mat3 {
