@@ -54,7 +54,7 @@ fn combine<const C: usize, const K: usize>(
     for first in (start..lanes).step_by(4) {
         let mut value = Lanes::new(four(row, first));
         if let Some(factor) = factor {
-            value = value * factor;
+            value *= Lanes::splat(factor);
         }
         for (l, other) in terms {
             value -= Lanes::new(four(other, first)) * *l;
@@ -66,7 +66,7 @@ fn combine<const C: usize, const K: usize>(
     for column in lanes..end {
         let mut value = row[column];
         if let Some(factor) = factor {
-            value = factor * value;
+            value *= factor;
         }
         for (l, other) in terms {
             value -= l * other[column];

@@ -4,7 +4,8 @@
 //! prismatic, spherical and free joints) the world-frame recursion's
 //! partials, unrolled or in the runtime's loops.
 //!
-//! The choice is by operation count ([`operations`]), and an operation
+//! The choice is by operation count ([`operations`], and for the looped
+//! route its loops' own, [`tree_loop_operations`]), and an operation
 //! count is a property of expressions: both candidates are derived here
 //! and measured, and the outputs receive the partials of the route chosen
 //! (their nodes stay in the pool; the other candidate's are never

@@ -195,7 +195,9 @@ fn pair_operations(parents: &[Option<usize>]) -> (usize, usize, usize) {
 /// The columns of the jacobian's solve (`let [mut b0, …]: [[f64; C]; N]`) and
 /// its multiplications and subtractions at run time: per call of
 /// `scale_and_subtract(row, factor, [(l, other), …])`, `2 C` per term and
-/// `C` for a factor other than `1.0`.
+/// `C` for a factor other than `1.0`; per call of
+/// `subtract_on_runs(row, [(l, other), …], &[(start, end), …])`, two per
+/// term and column of its runs.
 fn solve_operations(code: &str) -> (usize, usize) {
     use proc_macro2::{Delimiter, TokenTree};
     let tokens = flat_tokens(code);
@@ -232,7 +234,41 @@ fn solve_operations(code: &str) -> (usize, usize) {
             2 * terms + scaling
         })
         .sum();
-    (columns, columns * per_column)
+    let in_runs: usize = tokens
+        .windows(2)
+        .filter(|w| text(&w[0]) == "subtract_on_runs")
+        .map(|w| {
+            let TokenTree::Group(arguments) = &w[1] else {
+                panic!("a call")
+            };
+            let groups: Vec<TokenTree> = arguments
+                .stream()
+                .into_iter()
+                .filter(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Bracket))
+                .collect();
+            let pairs = |list: &TokenTree| -> Vec<Vec<usize>> {
+                let TokenTree::Group(list) = list else {
+                    panic!("a list")
+                };
+                list.stream()
+                    .into_iter()
+                    .filter_map(|t| match t {
+                        TokenTree::Group(g) if g.delimiter() == Delimiter::Parenthesis => Some(
+                            g.stream()
+                                .into_iter()
+                                .filter_map(|t| text(&t).parse().ok())
+                                .collect(),
+                        ),
+                        _ => None,
+                    })
+                    .collect()
+            };
+            let [terms, runs] = [&groups[0], &groups[1]];
+            let width: usize = pairs(runs).iter().map(|run| run[1] - run[0]).sum();
+            2 * pairs(terms).len() * width
+        })
+        .sum();
+    (columns, columns * per_column + in_runs)
 }
 
 #[test]
