@@ -29,8 +29,9 @@ one call, one state in each lane of a `wide::f64x4`, against the scalar
 `accelerations`, per state (the batched call's time over four). The chains
 of 6 and 12 take the unrolled `L D Lᵀ`, the chain of 30, the panda and
 Solo-12 the articulated-body recursion. Below, one RK4 step of the chain of
-12 through the scalar call and through `accelerations_x4` (four states a
-step) against MuJoCo's `mj_step` with its RK4, and `accelerations_jacobian`
+12 through the scalar `Rk4::step` and through `control::rk4_step_x4` (four
+states a step, its stages over `accelerations_x4`) against MuJoCo's
+`mj_step` with its RK4, and `accelerations_jacobian`
 against the same states' `accelerations` and, when measured in the same
 window, Pinocchio's `computeABADerivatives`.
 

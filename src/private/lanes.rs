@@ -316,6 +316,8 @@ pub fn per_state<const NQ: usize, const NV: usize, const NU: usize>(
     scalar: impl Fn(f64, &[f64; NQ], &[f64; NV], &[f64; NU]) -> Result<[f64; NV], DynamicsError>,
 ) -> [Result<[f64; NV], DynamicsError>; LANES] {
     let (t, q, v, u) = states;
+    // `x − x` is zero where `x` is finite, NaN where it is infinite or NaN.
+    #[allow(clippy::eq_op)]
     let residue = solved.iter().fold(Lanes::ZERO, |sum, &x| sum + (x - x));
     let good = (hold & residue.simd_eq(Lanes::ZERO)).to_bitmask();
     let mut lanes = [[0.0; NV]; LANES];
