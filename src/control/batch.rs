@@ -51,9 +51,12 @@ use crate::{DynamicsError, MultibodySystem, State};
 /// let states = [0.1, 0.5, 1.0, 2.0].map(|angle| State { t: 0.0, q: [0.0, angle], v: [0.0; 2] });
 /// let pushes = [[0.0], [0.5], [-0.5], [1.0]];
 /// let ends = rk4_step_x4(&cart_pole, &states, &pushes, 1e-3);
-/// for k in 0..4 {
-///     let one = rk4_step(&cart_pole, &states[k], &pushes[k], 1e-3)?;
-///     assert_eq!(ends[k]?, one);
+/// for ((end, state), push) in ends.into_iter().zip(&states).zip(&pushes) {
+///     // The scalar step's, to rounding.
+///     let (end, one) = (end?, rk4_step(&cart_pole, state, push, 1e-3)?);
+///     for (a, b) in end.q.iter().chain(&end.v).zip(one.q.iter().chain(&one.v)) {
+///         assert!((a - b).abs() <= 1e-12 * b.abs().max(1.0));
+///     }
 /// }
 /// # Ok::<(), dalembert::control::ControlError>(())
 /// ```
