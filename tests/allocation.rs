@@ -288,7 +288,8 @@ fn the_taylor_integrator_its_polynomials_and_events_allocate_nothing() {
 
 /// `accelerations_x4` over lanes, on both routes of the solve (the unrolled
 /// factorisation of seed example 1, the articulated-body recursion of the
-/// chain of 30) and through the scalar call of a state that fails.
+/// chain of 30) and through the scalar call of a state that fails; the RK4
+/// step of four states over it (`control::rk4_group_step_x4`).
 #[test]
 fn four_states_in_lanes_allocate_nothing() {
     use dalembert_generated::lanes::{double_pendulum, spatial_chain_30};
@@ -303,15 +304,21 @@ fn four_states_in_lanes_allocate_nothing() {
     let chain_q: [[f64; 30]; 4] =
         std::array::from_fn(|k| std::array::from_fn(|i| 0.1 * (i + k) as f64));
     let chain_v = [[0.2; 30]; 4];
-    let (made, (a, b)) = allocations(|| {
+    let states = std::array::from_fn(|k| dalembert::State {
+        t: 0.0,
+        q: chain_q[k],
+        v: chain_v[k],
+    });
+    let (made, (a, b, c)) = allocations(|| {
         (
             pendulum.accelerations_x4([0.0; 4], &q, &v, &[[]; 4]),
             dalembert::accelerations_x4(&chain, [0.0; 4], &chain_q, &chain_v, &[[]; 4]),
+            dalembert::control::rk4_group_step_x4(&chain, &states, &[[]; 4], 1e-3),
         )
     });
-    assert_eq!(made, 0, "accelerations_x4 allocated");
+    assert_eq!(made, 0, "accelerations_x4 or rk4_group_step_x4 allocated");
     assert!(
-        a[1].is_err() && a[0].is_ok() && b.iter().all(Result::is_ok),
-        "{a:?} {b:?}"
+        a[1].is_err() && a[0].is_ok() && b.iter().all(Result::is_ok) && c.iter().all(Result::is_ok),
+        "{a:?} {b:?} {c:?}"
     );
 }

@@ -13,9 +13,10 @@
 //! columns of each row (`dalembert::__private::scale_and_subtract`).
 //!
 //! And one fixed RK4 step (h = 1 ms) of the spatial chain of 12, per
-//! state: `dalembert::integrate::Rk4::step` against the same four stages
-//! written over `accelerations_x4` for four states at once (`rk4_x4`
-//! below), the figure to set beside MuJoCo's `mj_step` with its RK4.
+//! state: `dalembert::integrate::Rk4::step` against
+//! `dalembert::control::rk4_group_step_x4` (the same four stages, over
+//! `accelerations_x4`, for four states at once), the figure to set beside
+//! MuJoCo's `mj_step` with its RK4.
 //!
 //! Run with `cargo bench -p dalembert-generated --bench lanes` (and with
 //! `RUSTFLAGS="-C target-cpu=x86-64-v3"` for AVX2 and FMA);
@@ -25,6 +26,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use dalembert::control::rk4_group_step_x4;
 use dalembert::integrate::Rk4;
 use dalembert::{DynamicsError, MultibodySystem, State, Unconstrained};
 use dalembert_codegen::testing::Random;
@@ -152,50 +154,6 @@ fn bench_system<S, const NQ: usize, const NV: usize, const NU: usize>(
     group.finish();
 }
 
-/// `a + h b`, entry by entry, for each of four states.
-fn step<const N: usize>(a: &[[f64; N]; 4], h: f64, b: &[[f64; N]; 4]) -> [[f64; N]; 4] {
-    std::array::from_fn(|k| std::array::from_fn(|i| a[k][i] + h * b[k][i]))
-}
-
-/// The accelerations of four states, a failed state's as zeros (the bench's
-/// states all solve).
-fn accelerations_x4<S: MultibodySystem<N, N, 0>, const N: usize>(
-    system: &S,
-    t: [f64; 4],
-    q: &[[f64; N]; 4],
-    v: &[[f64; N]; 4],
-) -> [[f64; N]; 4] {
-    system
-        .accelerations_x4(t, q, v, &[[]; 4])
-        .map(|a| a.unwrap_or([0.0; N]))
-}
-
-/// One classical RK4 step of length `h` of four states of a system whose
-/// speeds are its coordinates' rates, the stages through `accelerations_x4`.
-fn rk4_x4<S: MultibodySystem<N, N, 0>, const N: usize>(
-    system: &S,
-    h: f64,
-    (t, q, v): ([f64; 4], &[[f64; N]; 4], &[[f64; N]; 4]),
-) -> ([[f64; N]; 4], [[f64; N]; 4]) {
-    let at = |fraction: f64| t.map(|t| t + fraction * h);
-    let a1 = accelerations_x4(system, t, q, v);
-    let (q2, v2) = (step(q, h / 2.0, v), step(v, h / 2.0, &a1));
-    let a2 = accelerations_x4(system, at(0.5), &q2, &v2);
-    let (q3, v3) = (step(q, h / 2.0, &v2), step(v, h / 2.0, &a2));
-    let a3 = accelerations_x4(system, at(0.5), &q3, &v3);
-    let (q4, v4) = (step(q, h, &v3), step(v, h, &a3));
-    let a4 = accelerations_x4(system, at(1.0), &q4, &v4);
-    let sum = |a: &[[f64; N]; 4], b: &[[f64; N]; 4], c: &[[f64; N]; 4], d: &[[f64; N]; 4]| {
-        std::array::from_fn(|k| {
-            std::array::from_fn(|i| a[k][i] + 2.0 * (b[k][i] + c[k][i]) + d[k][i])
-        })
-    };
-    (
-        step(q, h / 6.0, &sum(v, &v2, &v3, &v4)),
-        step(v, h / 6.0, &sum(&a1, &a2, &a3, &a4)),
-    )
-}
-
 /// One RK4 step of 1 ms, one state a call and four a call (per state), in
 /// group `lanes/NAME`.
 fn bench_rk4<S: MultibodySystem<N, N, 0>, const N: usize>(
@@ -203,17 +161,17 @@ fn bench_rk4<S: MultibodySystem<N, N, 0>, const N: usize>(
     name: &str,
     system: S,
 ) {
-    let batches = batches(&system);
-    let states: Vec<_> = batches
+    let quads: Vec<[State<N, N>; 4]> = batches(&system)
         .iter()
-        .flat_map(|(t, q, v, _)| {
-            (0..4).map(move |k| State {
+        .map(|(t, q, v, _)| {
+            std::array::from_fn(|k| State {
                 t: t[k],
                 q: q[k],
                 v: v[k],
             })
         })
         .collect();
+    let states: Vec<State<N, N>> = quads.iter().flatten().copied().collect();
     let dynamics = Unconstrained::without_inputs(&system);
     let h = 1e-3;
     let mut group = c.benchmark_group(format!("lanes/{name}"));
@@ -222,8 +180,8 @@ fn bench_rk4<S: MultibodySystem<N, N, 0>, const N: usize>(
     });
     group.bench_function("rk4 step x4 per state", |b| {
         b.iter_custom(|iters| {
-            per_call(&batches, iters.div_ceil(4), |(t, q, v, _)| {
-                rk4_x4(black_box(&system), h, (*t, q, v))
+            per_call(&quads, iters.div_ceil(4), |quad| {
+                rk4_group_step_x4(black_box(&system), quad, &[[]; 4], h)
             })
         })
     });

@@ -29,12 +29,16 @@ fi
 cat <<'MD'
 ## Four states at once
 
-`accelerations_x4` (`outputs accelerations_x4;`) solves four states a call,
-one in each lane of a `wide::f64x4`: its time over four against the scalar
-`accelerations` (the chains of 6 and 12 on the unrolled `L D Lᵀ`, the others
-on the articulated-body recursion); then `accelerations_jacobian` against
-`accelerations` and Pinocchio's `computeABADerivatives`, and one RK4 step of
-the chain of 12 against MuJoCo's `mj_step` RK4.
+`accelerations_x4` (from `outputs accelerations_x4;`) solves four states in
+one call, one state in each lane of a `wide::f64x4`, against the scalar
+`accelerations`, per state (the batched call's time over four). The chains
+of 6 and 12 take the unrolled `L D Lᵀ`, the chain of 30, the panda and
+Solo-12 the articulated-body recursion. Below, one RK4 step of the chain of
+12 through the scalar `Rk4::step` and through `control::rk4_group_step_x4` (four
+states a step, its stages over `accelerations_x4`) against MuJoCo's
+`mj_step` with its RK4, and `accelerations_jacobian`
+against the same states' `accelerations` and, when measured in the same
+window, Pinocchio's `computeABADerivatives`.
 
 MD
 python3 - "$CARGO_TARGET_DIR" "$v3" "$STAMP" "${peers_csv[@]}" <<'PY'

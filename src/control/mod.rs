@@ -17,6 +17,8 @@
 //! * [`adjoint`]: `λᵀ ∂v̇/∂(q, v, u)` and its step counterparts
 //!   ([`euler_step_adjoint`], [`rk4_step_adjoint`]) without forming a
 //!   jacobian;
+//! * [`rk4_group_step_x4`]: the step of [`rk4_group_step`] from four states at once,
+//!   its stages through the system's `accelerations_x4` (SIMD lanes);
 //! * [`ConfigurationSpace`]: the product of vector spaces, SO(3) and SE(3)
 //!   that the coordinates live in, read from the system's names, with the
 //!   derivatives of `q ⊕ w` and the inverse of the update
@@ -30,6 +32,7 @@
 //! [`euler_step`] and [`rk4_group_step`] take).
 
 pub mod adjoint;
+mod batch;
 mod differentiated;
 pub mod step;
 mod tangent;
@@ -42,6 +45,7 @@ pub use adjoint::{
     AccelerationsAdjoint, InverseDifferentiable, StepAdjoint, accelerations_adjoint,
     euler_step_adjoint, rk4_step_adjoint,
 };
+pub use batch::rk4_group_step_x4;
 pub use differentiated::Differentiated;
 pub use step::{StepJacobian, euler_step, euler_step_jacobian, rk4_group_step, rk4_step_jacobian};
 pub use tangent::ConfigurationSpace;

@@ -151,7 +151,7 @@ where
 }
 
 /// `v + s a`.
-fn moved<const NV: usize>(v: &[f64; NV], s: f64, a: &[f64; NV]) -> [f64; NV] {
+pub(super) fn moved<const NV: usize>(v: &[f64; NV], s: f64, a: &[f64; NV]) -> [f64; NV] {
     std::array::from_fn(|i| v[i] + s * a[i])
 }
 

@@ -10,16 +10,22 @@
 //! `accelerations`, whose error it returns.
 //!
 //! Sines and cosines are the kernel of [`super::math::sin_cos_all`]
-//! (FreeBSD's polynomials after a three-part reduction, branch-free), lane by
-//! lane, which the compiler runs on the lanes together: the same values as
-//! the scalar body's for the angles it takes together, and within a unit in
-//! the last place of `libm`'s `sincos`. (`wide`'s own `sin_cos`, Cephes'
-//! polynomials, was measured against `f64::sin` and `f64::cos`: see the
-//! tests below.)
+//! (FreeBSD's polynomials after a three-part reduction, branch-free) written
+//! over the lanes, its quadrant's swaps and signs as `wide::u64x4` bit
+//! masks: the same operations on each lane as on one angle, so the same
+//! values as the scalar body's for the angles it takes together, and within
+//! a unit in the last place of `libm`'s `sincos`. (`wide`'s own `sin_cos`,
+//! Cephes' polynomials, was measured against `f64::sin` and `f64::cos`: see
+//! the tests below.)
+//!
+//! The pivot tests and the finiteness of the results are masks over the
+//! lanes too, and a state the lanes cannot answer goes to the scalar call
+//! out of the body: the per-state work left is handing out the four
+//! results.
 
-use super::math::sin_cos_lanes;
+use super::math::{REDUCED_DIRECTLY, reduced};
 use crate::dynamics::DynamicsError;
-use crate::dynamics::cholesky::{check_pivots, pivot_tolerance};
+use crate::dynamics::cholesky::RELATIVE_PIVOT_TOLERANCE;
 
 /// Four `f64`, one state each.
 pub type Lanes = wide::f64x4;
@@ -172,10 +178,45 @@ pub fn powi<T: LaneMath>(x: T, n: i32) -> T {
     x.powi(n)
 }
 
-/// The sine and the cosine of each lane of `x`.
-#[inline]
+/// The sine and the cosine of each lane of `x`: the kernel of
+/// [`super::math::sin_cos_all`] on the lanes together (its reduction and
+/// polynomials, [`reduced`], then the quadrant's swap and signs as bit
+/// masks, the same operations on each lane as on one angle, so the same
+/// values), and `libm`'s `sincos` for a lane beyond
+/// [`REDUCED_DIRECTLY`] or NaN, as there.
+#[inline(always)]
 pub fn sin_cos(x: Lanes) -> (Lanes, Lanes) {
-    let (s, c) = sin_cos_lanes(x.to_array());
+    let (shifted, sine, cosine) = reduced(x);
+    let quadrant = shifted.to_bits();
+    let [one, two] = [1, 2].map(wide::u64x4::splat);
+    // Quadrant n: (sin x, cos x) = (sin r, cos r), (cos r, −sin r),
+    // (−sin r, −cos r), (−cos r, sin r) for n ≡ 0, 1, 2, 3 (mod 4).
+    let swap = wide::u64x4::ZERO - (quadrant & one);
+    let (s, c) = (sine.to_bits(), cosine.to_bits());
+    let sine_bits = (s & !swap) | (c & swap);
+    let cosine_bits = (c & !swap) | (s & swap);
+    let sine_sign = (quadrant & two) << 62u32;
+    let cosine_sign = ((quadrant + one) & two) << 62u32;
+    let sines = Lanes::from_bits(sine_bits ^ sine_sign);
+    let cosines = Lanes::from_bits(cosine_bits ^ cosine_sign);
+    match (x.is_nan() | x.abs().simd_gt(Lanes::splat(REDUCED_DIRECTLY))).any() {
+        true => sin_cos_directly(x, sines, cosines),
+        false => (sines, cosines),
+    }
+}
+
+/// `sines` and `cosines` with the lanes whose angle `x` the kernel does
+/// not reduce (beyond [`REDUCED_DIRECTLY`], or NaN) replaced by `libm`'s
+/// `sincos`: rare, so out of the body.
+#[cold]
+#[inline(never)]
+fn sin_cos_directly(x: Lanes, sines: Lanes, cosines: Lanes) -> (Lanes, Lanes) {
+    let (mut s, mut c) = (sines.to_array(), cosines.to_array());
+    for ((x, s), c) in x.to_array().into_iter().zip(&mut s).zip(&mut c) {
+        if x.is_nan() || x.abs() > REDUCED_DIRECTLY {
+            (*s, *c) = libm::sincos(x);
+        }
+    }
     (Lanes::new(s), Lanes::new(c))
 }
 
@@ -209,27 +250,46 @@ pub fn columns<const N: usize>(states: &[[f64; N]; LANES]) -> [Lanes; N] {
     core::array::from_fn(|i| Lanes::new([a[i], b[i], c[i], d[i]]))
 }
 
-/// Whether, in each lane, every pivot `Dⱼ` of the unrolled `L D Lᵀ` solve
-/// of `M` is above the tolerance of the lane's diagonal (the scalar
-/// solve's test, [`pivot_tolerance`]).
-#[inline]
-pub fn factorised_pivots_hold<const N: usize>(
-    pivots: [Lanes; N],
-    diagonal: [Lanes; N],
-) -> [bool; LANES] {
-    let (pivots, diagonal) = (pivots.map(Lanes::to_array), diagonal.map(Lanes::to_array));
-    core::array::from_fn(|k| {
-        let tolerance = pivot_tolerance(diagonal.map(|d| d[k]));
-        pivots.iter().all(|p| p[k] > tolerance)
-    })
+/// Where every pivot `Dⱼ` of the unrolled `L D Lᵀ` solve of `M` is above
+/// the tolerance of the lane's diagonal (the scalar solve's test,
+/// [`pivot_tolerance`](crate::dynamics::cholesky::pivot_tolerance)): a
+/// mask, all ones in such a lane.
+#[inline(always)]
+pub fn factorised_pivots_hold<const N: usize>(pivots: [Lanes; N], diagonal: [Lanes; N]) -> Lanes {
+    above(pivots, tolerance(diagonal))
 }
 
-/// Whether, in each lane, the articulated-body recursion's pivots pass
-/// the scalar route's test ([`check_pivots`]).
-#[inline]
-pub fn articulated_pivots_hold<const N: usize>(pivots: [Lanes; N]) -> [bool; LANES] {
-    let pivots = pivots.map(Lanes::to_array);
-    core::array::from_fn(|k| check_pivots(pivots.map(|p| p[k]), [""; N]).is_ok())
+/// Where the articulated-body recursion's pivots pass the scalar route's
+/// test ([`check_pivots`](crate::dynamics::cholesky::check_pivots)): a
+/// mask, all ones in such a lane.
+#[inline(always)]
+pub fn articulated_pivots_hold<const N: usize>(pivots: [Lanes; N]) -> Lanes {
+    above(pivots, tolerance(pivots))
+}
+
+/// [`RELATIVE_PIVOT_TOLERANCE`] times the largest of `values` in each
+/// lane, NaN ignored: `pivot_tolerance`, lane by lane (`f64::max` keeps
+/// the number when the other is NaN, as a comparison that fails does).
+#[inline(always)]
+fn tolerance<const N: usize>(values: [Lanes; N]) -> Lanes {
+    let largest = values.into_iter().fold(Lanes::ZERO, |largest, x| {
+        x.simd_gt(largest).select(x, largest)
+    });
+    Lanes::splat(RELATIVE_PIVOT_TOLERANCE) * largest
+}
+
+/// Where every one of `pivots` is above `tolerance` (false for NaN).
+#[inline(always)]
+fn above<const N: usize>(pivots: [Lanes; N], tolerance: Lanes) -> Lanes {
+    pivots
+        .into_iter()
+        .fold(all_lanes(), |hold, p| hold & p.simd_gt(tolerance))
+}
+
+/// A mask with every lane set.
+#[inline(always)]
+fn all_lanes() -> Lanes {
+    Lanes::ZERO.simd_eq(Lanes::ZERO)
 }
 
 /// Four states: their times, coordinates, speeds and inputs.
@@ -241,26 +301,55 @@ pub type States<'a, const NQ: usize, const NV: usize, const NU: usize> = (
 );
 
 /// The accelerations of each state: the lanes' `solved` where the state,
-/// its pivots (`hold`) and its result are all good, else what the scalar
-/// `accelerations` (`scalar`) says of that state, an error or a value.
-#[inline]
+/// its pivots (`hold`, a mask) and its result are all finite and good,
+/// else what the scalar `accelerations` (`scalar`) says of that state, an
+/// error or a value.
+///
+/// The tests are branch-free over the lanes: a result is finite where
+/// `Σᵢ (xᵢ − xᵢ)` is zero (NaN from an infinite or NaN entry), a state
+/// where none of its numbers is infinite or NaN.
+#[inline(always)]
 pub fn per_state<const NQ: usize, const NV: usize, const NU: usize>(
     solved: [Lanes; NV],
-    hold: [bool; LANES],
+    hold: Lanes,
     states: States<'_, NQ, NV, NU>,
     scalar: impl Fn(f64, &[f64; NQ], &[f64; NV], &[f64; NU]) -> Result<[f64; NV], DynamicsError>,
 ) -> [Result<[f64; NV], DynamicsError>; LANES] {
     let (t, q, v, u) = states;
-    let solved = solved.map(Lanes::to_array);
-    let finite = |x: &[f64]| x.iter().all(|x| x.is_finite());
-    core::array::from_fn(|k| {
-        let lane: [f64; NV] = core::array::from_fn(|i| solved[i][k]);
-        let state = t[k].is_finite() && finite(&q[k]) && finite(&v[k]) && finite(&u[k]);
-        match hold[k] && state && finite(&lane) {
-            true => Ok(lane),
-            false => scalar(t[k], &q[k], &v[k], &u[k]),
+    // `x − x` is zero where `x` is finite, NaN where it is infinite or NaN.
+    #[allow(clippy::eq_op)]
+    let residue = solved.iter().fold(Lanes::ZERO, |sum, &x| sum + (x - x));
+    let good = (hold & residue.simd_eq(Lanes::ZERO)).to_bitmask();
+    let mut lanes = [[0.0; NV]; LANES];
+    for (i, x) in solved.iter().enumerate() {
+        for (lane, x) in lanes.iter_mut().zip(x.to_array()) {
+            lane[i] = x;
         }
-    })
+    }
+    let finite = |x: &[f64]| x.iter().fold(true, |all, x| all & x.is_finite());
+    let mut results = [Ok([0.0; NV]); LANES];
+    for (k, (result, lane)) in results.iter_mut().zip(lanes).enumerate() {
+        let state = t[k].is_finite() & finite(&q[k]) & finite(&v[k]) & finite(&u[k]);
+        *result = match state && good & (1 << k) != 0 {
+            true => Ok(lane),
+            false => by_the_scalar_call(&scalar, t[k], &q[k], &v[k], &u[k]),
+        };
+    }
+    results
+}
+
+/// `scalar` of a state the lanes could not answer: rare, so out of the
+/// body that inlines [`per_state`].
+#[cold]
+#[inline(never)]
+fn by_the_scalar_call<const NQ: usize, const NV: usize, const NU: usize>(
+    scalar: &impl Fn(f64, &[f64; NQ], &[f64; NV], &[f64; NU]) -> Result<[f64; NV], DynamicsError>,
+    t: f64,
+    q: &[f64; NQ],
+    v: &[f64; NV],
+    u: &[f64; NU],
+) -> Result<[f64; NV], DynamicsError> {
+    scalar(t, q, v, u)
 }
 
 #[cfg(test)]
@@ -299,6 +388,13 @@ mod tests {
             }
         }
         assert!(worst <= 2.0, "{worst} ulps");
+        // Beyond the kernel's reduction, NaN and infinite: `libm`'s, as there.
+        let x = [1e7, f64::NAN, 0.5, f64::NEG_INFINITY];
+        let (s, c) = sin_cos(Lanes::new(x));
+        let (scalar_s, scalar_c) = crate::__private::math::sin_cos_all(x);
+        let bits = |x: [f64; 4]| x.map(f64::to_bits);
+        assert_eq!(bits(s.to_array()), bits(scalar_s));
+        assert_eq!(bits(c.to_array()), bits(scalar_c));
     }
 
     /// `wide`'s own `sin_cos` (Cephes' polynomials), measured the same way:
@@ -335,12 +431,11 @@ mod tests {
         let v = [[0.0]; 4];
         let u: [[f64; 0]; 4] = [[]; 4];
         let solved = columns(&[[10.0], [20.0], [30.0], [40.0]]);
-        let results = per_state(
-            solved,
-            [true, true, false, true],
-            ([0.0; 4], &q, &v, &u),
-            |_, q, _, _| Ok([-q[0]]),
-        );
+        let set = u64::MAX;
+        let hold = Lanes::from_bits(wide::u64x4::new([set, set, 0, set]));
+        let results = per_state(solved, hold, ([0.0; 4], &q, &v, &u), |_, q, _, _| {
+            Ok([-q[0]])
+        });
         assert_eq!(results[0], Ok([10.0]));
         assert!(results[1].as_ref().is_ok_and(|x| x[0].is_nan()));
         assert_eq!(results[2], Ok([-3.0]));

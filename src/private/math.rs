@@ -12,6 +12,7 @@
 //! call and no branch and so runs several angles per instruction.
 
 use core::f64::consts::FRAC_2_PI;
+use core::ops::{Add, Mul, Sub};
 
 /// The sine and the cosine of `x` (radians), with one argument reduction.
 ///
@@ -62,14 +63,6 @@ pub const INLINED_ANGLES: usize = 2;
 /// [`sin_cos_each`] behind a call, for many angles.
 #[inline(never)]
 fn sin_cos_out_of_line<const K: usize>(x: [f64; K]) -> ([f64; K], [f64; K]) {
-    sin_cos_each(x)
-}
-
-/// The sines and the cosines of four angles, one in each lane of the
-/// generated code over lanes (`super::lanes`): the kernel of
-/// [`sin_cos_all`], always in the caller's body.
-#[inline(always)]
-pub(crate) fn sin_cos_lanes(x: [f64; 4]) -> ([f64; 4], [f64; 4]) {
     sin_cos_each(x)
 }
 
@@ -132,22 +125,38 @@ const C: [f64; 6] = [
     -1.1359647557788195e-11,
 ];
 
+/// The first steps of the kernel of [`sin_cos_all`], on one angle or on
+/// the lanes of `super::lanes` (the same operations in the same order, so
+/// the same values): the reduction `x = n π/2 + r`, with `n` held in the
+/// low bits of the returned `shifted`, and the polynomials' `sin r` and
+/// `cos r`, which the quadrant then swaps and negates.
+#[inline(always)]
+pub(crate) fn reduced<T>(x: T) -> (T, T, T)
+where
+    T: Copy + From<f64> + Add<Output = T> + Sub<Output = T> + Mul<Output = T>,
+{
+    let k = T::from;
+    let shifted = x * k(FRAC_2_PI) + k(ROUND_TO_INTEGER);
+    let n = shifted - k(ROUND_TO_INTEGER);
+    let r = ((x - n * k(PIO2_1)) - n * k(PIO2_2)) - n * k(PIO2_2T);
+    let z = r * r;
+    let w = z * z;
+    let sine_tail = k(S[1]) + z * (k(S[2]) + z * k(S[3])) + z * w * (k(S[4]) + z * k(S[5]));
+    let sine = r + z * r * (k(S[0]) + z * sine_tail);
+    let cosine_tail = z * (k(C[0]) + z * (k(C[1]) + z * k(C[2])))
+        + w * w * (k(C[3]) + z * (k(C[4]) + z * k(C[5])));
+    let half = k(0.5) * z;
+    let one_minus_half = k(1.0) - half;
+    let cosine = one_minus_half + (((k(1.0) - one_minus_half) - half) + z * cosine_tail);
+    (shifted, sine, cosine)
+}
+
 /// The sine and the cosine of `x`, for `|x| ≤ REDUCED_DIRECTLY`, without a
 /// branch.
 #[inline(always)]
 fn reduced_sin_cos(x: f64) -> (f64, f64) {
-    let shifted = x * FRAC_2_PI + ROUND_TO_INTEGER;
+    let (shifted, sine, cosine) = reduced(x);
     let quadrant = shifted.to_bits();
-    let n = shifted - ROUND_TO_INTEGER;
-    let r = ((x - n * PIO2_1) - n * PIO2_2) - n * PIO2_2T;
-    let z = r * r;
-    let w = z * z;
-    let sine_tail = S[1] + z * (S[2] + z * S[3]) + z * w * (S[4] + z * S[5]);
-    let sine = r + z * r * (S[0] + z * sine_tail);
-    let cosine_tail = z * (C[0] + z * (C[1] + z * C[2])) + w * w * (C[3] + z * (C[4] + z * C[5]));
-    let half = 0.5 * z;
-    let one_minus_half = 1.0 - half;
-    let cosine = one_minus_half + (((1.0 - one_minus_half) - half) + z * cosine_tail);
     // Quadrant n: (sin x, cos x) = (sin r, cos r), (cos r, −sin r),
     // (−sin r, −cos r), (−cos r, sin r) for n ≡ 0, 1, 2, 3 (mod 4).
     let swap = 0u64.wrapping_sub(quadrant & 1);

@@ -25,12 +25,17 @@ const TOLERANCE: f64 = 1e-11;
 const BATCHES: usize = 25;
 
 /// The four states of a batch.
-type Batch<const NQ: usize, const NV: usize, const NU: usize> =
+pub(crate) type Batch<const NQ: usize, const NV: usize, const NU: usize> =
     ([f64; 4], [[f64; NQ]; 4], [[f64; NV]; 4], [[f64; NU]; 4]);
 
 /// Four random states: coordinates in `[−π, π)` (each quaternion then
 /// normalised), speeds and inputs in `[−2, 2)`, times in `[0, 3)`.
-fn batch<S: MultibodySystem<NQ, NV, NU>, const NQ: usize, const NV: usize, const NU: usize>(
+pub(crate) fn batch<
+    S: MultibodySystem<NQ, NV, NU>,
+    const NQ: usize,
+    const NV: usize,
+    const NU: usize,
+>(
     system: &S,
     random: &mut Random,
 ) -> Batch<NQ, NV, NU> {

@@ -5,6 +5,7 @@
 //! with `cargo test -p dalembert-generated --test suite <module>::`.
 
 mod adjoints;
+mod batched_rk4;
 mod chains;
 mod common;
 mod derivatives;
