@@ -56,9 +56,15 @@ mod tests {
             assert_eq!(lanes.to_array(), [(10 * s + 4) as f64, 0.0, 0.0, 0.0]);
         }
         let mut rows = [[0.0; 2]; 5];
-        let values = [Lanes::new([1.0, 2.0, 3.0, 4.0]), Lanes::new([5.0, 6.0, 7.0, 8.0])];
+        let values = [
+            Lanes::new([1.0, 2.0, 3.0, 4.0]),
+            Lanes::new([5.0, 6.0, 7.0, 8.0]),
+        ];
         put_rows(&mut rows, 0, &values);
         put_rows(&mut rows, 1, &values);
-        assert_eq!(rows, [[1.0, 5.0], [2.0, 6.0], [3.0, 7.0], [4.0, 8.0], [1.0, 5.0]]);
+        assert_eq!(
+            rows,
+            [[1.0, 5.0], [2.0, 6.0], [3.0, 7.0], [4.0, 8.0], [1.0, 5.0]]
+        );
     }
 }

@@ -86,7 +86,7 @@ pub enum Body {
     /// results are `inverse_dynamics_adjoint`'s, `μᵀ ∂τ/∂q`, `μᵀ ∂τ/∂v`,
     /// `μᵀ ∂τ/∂u` at the solved accelerations, and row `i` of the jacobian
     /// is them at `μ = −M⁻¹ eᵢ`, four rows a pass in SIMD lanes (see
-    /// [`crate::plan::ADJOINT_PASS_PERCENT`]).
+    /// [`crate::plan::ADJOINT_ROW_AT_MOST`]).
     AdjointRows,
     /// `mass_matrix` of a large tree: its result is each speed's vectors,
     /// whose dot products a loop of the runtime puts into `M`.

@@ -54,39 +54,31 @@ pub const MASS_PAIRS_LOOPED_ABOVE: usize = 8000;
 /// 220 k to 192 k (docs/humanoid.md, which has the timings).
 pub const TREE_LOOPED_ABOVE: usize = 6000;
 
-/// The cost of one pass of the adjoint rows of `accelerations_jacobian`
-/// ([`crate::outputs::Body::AdjointRows`]: row `i` is `μᵀ ∂τ/∂x` at
-/// `μ = −M⁻¹ eᵢ`, one reverse sweep over `τ` for four rows in SIMD lanes),
-/// in percent of the sweep's operations, against the operations of the
-/// partials of `τ` formed. A fixed-base tree whose partials take the
-/// runtime's loops (above [`TREE_LOOPED_ABOVE`]) takes the rows where
-/// `passes · sweep · ADJOINT_PASS_PERCENT / 100` is below its partials'
-/// count. Measured (criterion, 28 Nov 2026, under load, the rows against
-/// the loops): the spatial chain of 12 (3 passes of 2088, partials 12994)
-/// 3.50 → 2.99 µs; the panda (3 of 2461, partials 8350) 2.46 → 2.79 µs and
-/// the branching tree of 14 (4 of 2843, partials 13636) 3.97 → 4.59 µs,
-/// both slower: they keep the loops.
-pub const ADJOINT_PASS_PERCENT: usize = 180;
+/// The most operations a row of `accelerations_jacobian` may cost by
+/// adjoints ([`crate::outputs::Body::AdjointRows`]: row `i` is `μᵀ ∂τ/∂x`
+/// at `μ = −M⁻¹ eᵢ`, one reverse sweep over `τ` for four rows in SIMD
+/// lanes, `⌈n/4⌉ · sweep / n` a row) for a fixed-base tree on the loops'
+/// route (above [`TREE_LOOPED_ABOVE`]) to take them. The loops' work is
+/// the same for every link whatever its geometry; the sweep, unrolled with
+/// the model's constants folded, is shorter for simpler links. Measured
+/// (criterion, 28 Nov 2026, under load, the rows against the loops; the
+/// sweep's operations as [`operations`] counts them): the spatial chain of
+/// 12 (3 passes of a 2809-operation sweep, 702 a row) 3.50 → 2.99 µs; the
+/// panda (3 of 2967, 989 a row) 2.46 → 2.79 µs and the branching tree of
+/// 14 (4 of 3665, 1047 a row) 3.97 → 4.59 µs.
+pub const ADJOINT_ROW_AT_MOST: usize = 800;
 
 /// Whether `accelerations_jacobian` of `model`, whose partials of `τ` are
 /// `partials` (by the route the plan chose), takes its rows as adjoints in
 /// lanes, the reverse sweep `sweep` (every entry of
 /// `inverse_dynamics_adjoint`) four rows a pass: a tree on a fixed base
-/// (quaternion joints keep the loops) on the loops' route where the passes
-/// cost less ([`ADJOINT_PASS_PERCENT`]).
+/// (quaternion joints keep the loops) on the loops' route whose rows cost
+/// at most [`ADJOINT_ROW_AT_MOST`] that way.
 pub fn adjoint_rows(model: &Model, partials: &TauPartials, sweep: &[ExprId], pool: &Pool) -> bool {
-    if !model.balls.is_empty() || partials.route != Partials::Looped {
-        return false;
-    }
-    let jacobian = &partials.jacobian;
-    let entries: Vec<ExprId> = [&jacobian.coordinates, &jacobian.speeds, &jacobian.inputs]
-        .into_iter()
-        .flatten()
-        .flatten()
-        .copied()
-        .collect();
-    let passes = model.nv().div_ceil(4);
-    passes * operations(pool, sweep) * ADJOINT_PASS_PERCENT / 100 < operations(pool, &entries)
+    let nv = model.nv();
+    model.balls.is_empty()
+        && partials.route == Partials::Looped
+        && nv.div_ceil(4) * operations(pool, sweep) <= nv * ADJOINT_ROW_AT_MOST
 }
 
 /// The fewest coordinates for which `accelerations` may take the
