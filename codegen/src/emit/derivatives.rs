@@ -397,6 +397,26 @@ pub fn emit_accelerations_jacobian(
         quote!([#(#rows),*])
     };
     let (dq, dv, du) = (block(0), block(1), block(2));
+    let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
+    jacobian_function(
+        model,
+        function,
+        quote! {
+            // `∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the columns of `∂τ/∂x` that are not
+            // structurally zero, row by row in the order of elimination.
+            #rows_of_partials
+            #solve
+            #(#unpacked)*
+            let jacobian: (#square, #square, #wide) = (#dq, #dv, #du);
+        },
+    )
+}
+
+/// `pub fn accelerations_jacobian(..)` with the docs of `function`, whose
+/// `body` binds `jacobian`, `(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u)`: returned if every
+/// entry is finite, else `NonFiniteEquations`.
+fn jacobian_function(model: &Model, function: &Function, body: TokenStream) -> TokenStream {
+    let (nv, nu) = (model.nv(), model.inputs.len());
     let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
     let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
     let (name, docs) = (
@@ -413,12 +433,7 @@ pub fn emit_accelerations_jacobian(
             qd: &#vector,
             u: &#inputs,
         ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
-            // `∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the columns of `∂τ/∂x` that are not
-            // structurally zero, row by row in the order of elimination.
-            #rows_of_partials
-            #solve
-            #(#unpacked)*
-            let jacobian: (#square, #square, #wide) = (#dq, #dv, #du);
+            #body
             if jacobian.0.iter().chain(&jacobian.1).all(|row| finite(row))
                 && jacobian.2.iter().all(|row| finite(row))
             {
@@ -848,24 +863,13 @@ pub fn emit_adjoint_rows(
         Literal::usize_unsuffixed(coefficients.len()),
     );
     let passes = Literal::usize_unsuffixed(nv.div_ceil(4));
-    let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
     let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
     let [n, m] = [nv, nu].map(Literal::usize_unsuffixed);
     let lane = quote!(::dalembert::__private::lanes::Lanes);
-    let (name, docs) = (
-        &function.name,
-        function.docs.iter().map(|line| raw_string(line)),
-    );
-    quote! {
-        #(#[doc = #docs])*
-        #[inline]
-        pub fn #name(
-            &self,
-            t: f64,
-            q: &#coordinates,
-            qd: &#vector,
-            u: &#inputs,
-        ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
+    jacobian_function(
+        model,
+        function,
+        quote! {
             #prelude
             let qdd = &{
                 #substitutions
@@ -893,13 +897,6 @@ pub fn emit_adjoint_rows(
                 ::dalembert::__private::put_rows(&mut jacobian.1, pass, &by_v);
                 ::dalembert::__private::put_rows(&mut jacobian.2, pass, &by_u);
             }
-            if jacobian.0.iter().chain(&jacobian.1).all(|row| finite(row))
-                && jacobian.2.iter().all(|row| finite(row))
-            {
-                ::core::result::Result::Ok(jacobian)
-            } else {
-                ::core::result::Result::Err(::dalembert::DynamicsError::NonFiniteEquations)
-            }
-        }
-    }
+        },
+    )
 }
