@@ -1,6 +1,7 @@
 //! Forward dynamics: the accelerations `v̇` that solve `M(q) v̇ = f`, and the
 //! total energy.
 
+pub(crate) mod adjoint_rows;
 pub(crate) mod cholesky;
 mod error;
 pub(crate) mod null_motion;

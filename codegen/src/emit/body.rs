@@ -2,7 +2,7 @@
 //! loaded once, every shared subexpression (and every `sin`/`cos`) is bound
 //! to a `let` once, in dependency order, and the rest is written inline.
 
-use crate::expr::{ExprId, Func, Node, Number, Pool, Sym};
+use crate::expr::{ExprId, Func, Node, Number, Pool, Sym, SymKinds};
 use crate::plan::{DECLARED_AHEAD_ABOVE, DECLARED_TOGETHER};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -34,6 +34,11 @@ pub struct Names {
     /// parameters are loaded into every lane, the temporaries are lanes,
     /// and the functions are the runtime's `lanes` module's.
     pub lanes: bool,
+    /// Whether the weights (`Sym::Multiplier`) are lanes in an otherwise
+    /// scalar body (the adjoint rows of `accelerations_jacobian`, four rows
+    /// a pass): a temporary that reads them is then a lane where it is
+    /// declared ahead.
+    pub weights_in_lanes: bool,
 }
 
 impl Names {
@@ -263,10 +268,7 @@ fn write(
         }
     }
     let outputs = roots.iter().map(|&r| writer.output(r)).collect();
-    let declarations = declarations(
-        writer.declared.as_deref().unwrap_or_default(),
-        &names.number_type(),
-    );
+    let declarations = declarations(writer.declared.as_deref().unwrap_or_default(), names);
     let statements = writer.statements;
     Straight {
         statements: quote!(#loads #declarations #statements),
@@ -275,16 +277,28 @@ fn write(
     }
 }
 
-/// `let (x1, x2, …): (f64, f64, …);` declaring `names` ahead of their
-/// assignments, [`DECLARED_TOGETHER`] to a statement.
-fn declarations(names: &[Ident], ty: &TokenStream) -> TokenStream {
-    names
+/// `let (x1, x2, …): (f64, f64, …);` declaring `declared` ahead of their
+/// assignments, [`DECLARED_TOGETHER`] to a statement, each of the body's
+/// number type or (one that reads lanes of weights) a lane.
+fn declarations(declared: &[(Ident, bool)], names: &Names) -> TokenStream {
+    let (number, lane) = (
+        names.number_type(),
+        quote!(::dalembert::__private::lanes::Lanes),
+    );
+    declared
         .chunks(DECLARED_TOGETHER)
         .map(|chunk| {
-            let types = chunk.iter().map(|_| ty);
+            let names = chunk.iter().map(|(name, _)| name);
+            let types = chunk.iter().map(|(_, weighted)| match weighted {
+                true => &lane,
+                false => &number,
+            });
             match chunk {
-                [name] => quote!(let #name: #ty;),
-                _ => quote!(let (#(#chunk),*): (#(#types),*);),
+                [(name, weighted)] => {
+                    let ty = if *weighted { &lane } else { &number };
+                    quote!(let #name: #ty;)
+                }
+                _ => quote!(let (#(#names),*): (#(#types),*);),
             }
         })
         .collect()
@@ -452,7 +466,7 @@ struct Writer<'a> {
     /// The temporaries declared ahead of their assignments, in a long body
     /// ([`DECLARED_AHEAD_ABOVE`]); `None` in a short one, whose every
     /// temporary has its own `let`.
-    declared: Option<Vec<Ident>>,
+    declared: Option<Vec<(Ident, bool)>>,
 }
 
 impl Writer<'_> {
@@ -578,7 +592,9 @@ impl Writer<'_> {
         let name = self.temporary_name(e);
         self.statements.extend(match &mut self.declared {
             Some(declared) => {
-                declared.push(name.clone());
+                let weighted = self.names.weights_in_lanes
+                    && self.pool.kinds(e).intersects(SymKinds::MULTIPLIER);
+                declared.push((name.clone(), weighted));
                 quote!(#name = #value;)
             }
             None if self.pool.kinds(e).is_empty() && !self.names.lanes => {

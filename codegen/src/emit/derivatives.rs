@@ -18,12 +18,13 @@ use super::solve::{
 use super::{array, raw_string};
 use crate::equations::derivatives::direction_names;
 use crate::equations::{Equations, LinkState, subtree_ends};
-use crate::expr::{ExprId, Func, Node, Pool, Sym};
+use crate::expr::{ExprId, Func, Node, Pool, Sym, SymKinds};
 use crate::model::Model;
 use crate::outputs::{Function, PairedTree};
 use crate::plan::solve::Factorisation;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
+use std::collections::HashSet;
 
 /// `[[f64; columns]; rows]` as tokens.
 fn matrix(rows: usize, columns: usize) -> TokenStream {
@@ -456,6 +457,26 @@ pub fn emit_accelerations_jacobian(
         quote!([#(#rows),*])
     };
     let (dq, dv, du) = (block(0), block(1), block(2));
+    let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
+    jacobian_function(
+        model,
+        function,
+        quote! {
+            // `∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the columns of `∂τ/∂x` that are not
+            // structurally zero, row by row in the order of elimination.
+            #rows_of_partials
+            #solve
+            #(#unpacked)*
+            let jacobian: (#square, #square, #wide) = (#dq, #dv, #du);
+        },
+    )
+}
+
+/// `pub fn accelerations_jacobian(..)` with the docs of `function`, whose
+/// `body` binds `jacobian`, `(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u)`: returned if every
+/// entry is finite, else `NonFiniteEquations`.
+fn jacobian_function(model: &Model, function: &Function, body: TokenStream) -> TokenStream {
+    let (nv, nu) = (model.nv(), model.inputs.len());
     let (coordinates, vector, inputs) = (array(model.nq()), array(nv), array(nu));
     let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
     let (name, docs) = (
@@ -472,12 +493,7 @@ pub fn emit_accelerations_jacobian(
             qd: &#vector,
             u: &#inputs,
         ) -> ::core::result::Result<(#square, #square, #wide), ::dalembert::DynamicsError> {
-            // `∂v̇/∂x = −M⁻¹ ∂τ/∂x` for the columns of `∂τ/∂x` that are not
-            // structurally zero, row by row in the order of elimination.
-            #rows_of_partials
-            #solve
-            #(#unpacked)*
-            let jacobian: (#square, #square, #wide) = (#dq, #dv, #du);
+            #body
             if jacobian.0.iter().chain(&jacobian.1).all(|row| finite(row))
                 && jacobian.2.iter().all(|row| finite(row))
             {
@@ -798,4 +814,149 @@ pub fn emit_constrained_accelerations_jacobian(
             )
         }
     }
+}
+
+/// The nodes that the weighted part of `roots` (the nodes reading the
+/// weights `Sym::Multiplier`) reads and that read no weight: the
+/// coefficients of a reverse sweep, computed once for every pass of its
+/// weights (constants excepted, which are written in place).
+fn sweep_coefficients(pool: &Pool, roots: &[ExprId]) -> Vec<ExprId> {
+    let weighted = |e: ExprId| pool.kinds(e).intersects(SymKinds::MULTIPLIER);
+    let mut seen = HashSet::new();
+    pool.topo_order(roots)
+        .into_iter()
+        .filter(|&e| weighted(e))
+        .flat_map(|e| pool.children(e).to_vec())
+        .filter(|&c| !weighted(c) && !pool.kinds(c).is_empty() && seen.insert(c))
+        .collect()
+}
+
+/// `pub fn accelerations_jacobian(..)` from `function`, whose results are
+/// `μᵀ ∂τ/∂q`, `μᵀ ∂τ/∂v`, `μᵀ ∂τ/∂u` (those of
+/// `inverse_dynamics_adjoint`), by its rows: `v̇` through the plan's
+/// `factorisation` of `M` (with `accelerations`' checks and errors), `−M⁻¹`
+/// by the same factorisation (its columns four at a time), the sweep's
+/// coefficients (what reads no weight) in one straight-line body, then a
+/// loop over passes of four rows, each with its weights `μ = −M⁻¹ eᵢ` in
+/// SIMD lanes (`dalembert::__private::weight_lanes`): row `i` of
+/// `∂v̇/∂x = −M⁻¹ ∂τ/∂x` is `μᵀ ∂τ/∂x`.
+pub fn emit_adjoint_rows(
+    model: &Model,
+    pool: &Pool,
+    equations: &Equations,
+    names: &Names,
+    function: &Function,
+    factorisation: Option<&Factorisation>,
+) -> TokenStream {
+    let Some(factorisation) = factorisation else {
+        return TokenStream::new();
+    };
+    let (nv, nu) = (model.nv(), model.inputs.len());
+    let roots: Vec<ExprId> = function
+        .results
+        .iter()
+        .flat_map(|v| v.expressions.iter().copied())
+        .collect();
+    let coefficients = sweep_coefficients(pool, &roots);
+    let angles = angle_functions(pool, &coefficients);
+    let given_angles = Given {
+        array: format_ident!("angles"),
+        expressions: &angles,
+    };
+    let given_angles = (!angles.is_empty()).then_some(&given_angles);
+    let Factorised {
+        prelude,
+        substitutions,
+        solution,
+        unsolved,
+    } = factorised(model, pool, equations, factorisation, names, given_angles);
+    let scalar = match given_angles {
+        Some(given) => straight_line_given(pool, names, &coefficients, given),
+        None => straight_line(pool, names, &coefficients),
+    };
+    let given = Given {
+        array: format_ident!("coefficients"),
+        expressions: &coefficients,
+    };
+    let lanes_names = Names {
+        weights_in_lanes: true,
+        ..names.clone()
+    };
+    let sweep = straight_line_given(pool, &lanes_names, &roots, &given);
+    let weighted = |e: ExprId| pool.kinds(e).intersects(SymKinds::MULTIPLIER);
+    let outputs: Vec<TokenStream> = roots
+        .iter()
+        .zip(&sweep.outputs)
+        .map(|(&e, output)| match weighted(e) {
+            true => output.clone(),
+            false => quote!(::dalembert::__private::lanes::splat(#output)),
+        })
+        .collect();
+    let (by_q, rest) = outputs.split_at(nv);
+    let (by_v, by_u) = rest.split_at(nv);
+    let weights = (0..nv).map(|i| match sweep.used.contains(&Sym::Multiplier(i as u32)) {
+        true => {
+            let name = names.multiplier(i);
+            quote!(#name)
+        }
+        false => quote!(_),
+    });
+    // `−M⁻¹`: the columns of the identity through the factorisation, rows
+    // in the order of elimination, then by speed.
+    let Factorisation { order, pattern } = factorisation;
+    let rows: Vec<Ident> = (0..nv).map(|i| format_ident!("b{}", i)).collect();
+    let unit_rows = order.iter().map(|&speed| {
+        let row = (0..nv).map(|c| match c == speed {
+            true => quote!(1.0),
+            false => quote!(0.0),
+        });
+        quote!([#(#row),*])
+    });
+    let solve = negated_row_substitutions(pattern, &rows);
+    let by_speed = (0..nv).map(|speed| {
+        let k = order.iter().position(|&s| s == speed).unwrap_or(speed);
+        &rows[k]
+    });
+    let (statements, values) = (&scalar.statements, &scalar.outputs);
+    let (lane_statements, count) = (
+        &sweep.statements,
+        Literal::usize_unsuffixed(coefficients.len()),
+    );
+    let passes = Literal::usize_unsuffixed(nv.div_ceil(4));
+    let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
+    let [n, m] = [nv, nu].map(Literal::usize_unsuffixed);
+    let lane = quote!(::dalembert::__private::lanes::Lanes);
+    jacobian_function(
+        model,
+        function,
+        quote! {
+            #prelude
+            let qdd = &{
+                #substitutions
+                [#(#solution),*]
+            };
+            if !finite(qdd) {
+                return ::core::result::Result::Err(#unsolved);
+            }
+            let [#(mut #rows),*]: [[f64; #n]; #n] = [#(#unit_rows),*];
+            #solve
+            let inverse: [[f64; #n]; #n] = [#(#by_speed),*];
+            let coefficients: [f64; #count] = {
+                #statements
+                [#(#values),*]
+            };
+            let mut jacobian: (#square, #square, #wide) =
+                ([[0.0; #n]; #n], [[0.0; #n]; #n], [[0.0; #m]; #n]);
+            for pass in 0..#passes {
+                let [#(#weights),*] = ::dalembert::__private::weight_lanes(&inverse, pass);
+                let (by_q, by_v, by_u): ([#lane; #n], [#lane; #n], [#lane; #m]) = {
+                    #lane_statements
+                    ([#(#by_q),*], [#(#by_v),*], [#(#by_u),*])
+                };
+                ::dalembert::__private::put_rows(&mut jacobian.0, pass, &by_q);
+                ::dalembert::__private::put_rows(&mut jacobian.1, pass, &by_v);
+                ::dalembert::__private::put_rows(&mut jacobian.2, pass, &by_u);
+            }
+        },
+    )
 }

@@ -82,6 +82,14 @@ pub fn emit(
                     factorisation,
                 )
             }
+            (Body::AdjointRows, Target::Std) => derivatives::emit_adjoint_rows(
+                model,
+                pool,
+                equations,
+                &names,
+                function,
+                factorisation,
+            ),
             (Body::Linearize, Target::Std) => {
                 derivatives::emit_linearize(model, pool, &names, function)
             }
@@ -238,6 +246,7 @@ fn names(model: &Model, target: Target) -> Names {
         multiplier: unused_prefix(&taken, "lambda", '_'),
         libm: target == Target::NoStd,
         lanes: false,
+        weights_in_lanes: false,
     }
 }
 

@@ -3,6 +3,7 @@
 //! inverse dynamics `τ = M v̇ − f` (see
 //! [`crate::equations::derivatives`]).
 
+use super::adjoint::inverse_dynamics_adjoint;
 use super::{Argument, Body, Function, PairedTree, Value, doc_lines};
 use crate::equations::derivatives::{
     ResidualJacobian, TangentDirections, along, direction_names, plain_speeds, residual_jacobian,
@@ -12,8 +13,8 @@ use crate::equations::{Equations, LinkState, TreeJacobian, depth_first, inverse_
 use crate::expr::{ExprId, Pool, Sym};
 use crate::model::Chart;
 use crate::model::Model;
-use crate::plan::Partials;
 use crate::plan::partials::TauPartials;
+use crate::plan::{Partials, adjoint_rows};
 use proc_macro2::{Ident, Span};
 
 use Argument::{Accelerations, Coordinates, Inputs, Speeds, Time};
@@ -130,23 +131,45 @@ pub fn inverse_dynamics_jacobian(
 }
 
 /// `accelerations_jacobian(t, q, v, u) -> Result<(∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u), _>`.
-pub fn accelerations_jacobian(model: &Model, partials: &TauPartials, pool: &Pool) -> Function {
+pub fn accelerations_jacobian(
+    model: &Model,
+    equations: &Equations,
+    partials: &TauPartials,
+    pool: &mut Pool,
+) -> Function {
     let (nv, nu) = (model.nv(), model.inputs.len());
     let TauPartials { jacobian, tree, .. } = partials;
-    let how = how(partials);
-    let tangent = tangent_note(model);
-    let (results, paired) = match tree {
-        Some(tree) => {
-            let (results, paired) = paired_results(tree, jacobian, pool);
-            (results, Some(paired))
+    let (mut how, tangent) = (how(partials).to_string(), tangent_note(model));
+    // The rows as adjoints where the plan says so: the sweep is derived
+    // only on the loops' route, where it may be chosen.
+    let adjoint = (partials.route == Partials::Looped && model.balls.is_empty())
+        .then(|| inverse_dynamics_adjoint(model, equations, pool))
+        .filter(|adjoint| {
+            let sweep: Vec<ExprId> = adjoint
+                .results
+                .iter()
+                .flat_map(|v| v.expressions.iter().copied())
+                .collect();
+            adjoint_rows(model, partials, &sweep, pool)
+        });
+    let (results, body) = match (tree, adjoint) {
+        (_, Some(adjoint)) => {
+            how = "each row by one reverse sweep over `τ` (its vector–jacobian\n\
+                   product at the row of `−M⁻¹`), four rows at once in SIMD lanes"
+                .to_string();
+            (adjoint.results, Body::AdjointRows)
         }
-        None => (
+        (Some(tree), None) => {
+            let (results, paired) = paired_results(tree, jacobian, pool);
+            (results, Body::AccelerationsJacobian(Some(paired)))
+        }
+        (None, None) => (
             vec![
                 Value::matrix(&jacobian.coordinates, nv),
                 Value::matrix(&jacobian.speeds, nv),
                 Value::matrix(&jacobian.inputs, nu),
             ],
-            None,
+            Body::AccelerationsJacobian(None),
         ),
     };
     function(
@@ -163,7 +186,7 @@ pub fn accelerations_jacobian(model: &Model, partials: &TauPartials, pool: &Pool
         ),
         &[Time, Coordinates, Speeds, Inputs],
         results,
-        Body::AccelerationsJacobian(paired),
+        body,
     )
 }
 

@@ -82,6 +82,12 @@ pub enum Body {
     /// with a [`PairedTree`], the inertia and gravity terms are added at
     /// run time from its links' states.
     AccelerationsJacobian(Option<PairedTree>),
+    /// `accelerations_jacobian` of a fixed-base tree by its rows: its
+    /// results are `inverse_dynamics_adjoint`'s, `μᵀ ∂τ/∂q`, `μᵀ ∂τ/∂v`,
+    /// `μᵀ ∂τ/∂u` at the solved accelerations, and row `i` of the jacobian
+    /// is them at `μ = −M⁻¹ eᵢ`, four rows a pass in SIMD lanes (see
+    /// [`crate::plan::ADJOINT_ROW_AT_MOST`]).
+    AdjointRows,
     /// `mass_matrix` of a large tree: its result is each speed's vectors,
     /// whose dot products a loop of the runtime puts into `M`.
     MassPairs(SpeedTree),
@@ -349,7 +355,9 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Reque
                 let partials = tau_partials(&mut partials, model, equations, pool);
                 requested
                     .functions
-                    .push(derivatives::accelerations_jacobian(model, partials, pool))
+                    .push(derivatives::accelerations_jacobian(
+                        model, equations, partials, pool,
+                    ))
             }
             OutputKind::Linearize if !model.constraints.is_empty() => {
                 if let Some(chart) = &output.chart {
@@ -363,7 +371,9 @@ pub fn requested(model: &Model, equations: &Equations, pool: &mut Pool) -> Reque
                     let partials = tau_partials(&mut partials, model, equations, pool);
                     requested
                         .functions
-                        .push(derivatives::accelerations_jacobian(model, partials, pool));
+                        .push(derivatives::accelerations_jacobian(
+                            model, equations, partials, pool,
+                        ));
                 }
                 requested
                     .functions
