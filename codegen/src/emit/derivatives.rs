@@ -912,7 +912,14 @@ pub fn emit_adjoint_rows(
         });
         quote!([#(#row),*])
     });
-    let solve = negated_row_substitutions(pattern, &rows);
+    // The identity's entries: row `k` (speed `order[k]`) has its one in
+    // that speed's column, so `L Y = I` steps only over the columns where
+    // `Y` can be nonzero (as the solve of `∂τ/∂x`; the same values).
+    let identity: Vec<Vec<bool>> = order
+        .iter()
+        .map(|&speed| (0..nv).map(|c| c == speed).collect())
+        .collect();
+    let solve = negated_row_substitutions(pattern, &rows, &identity);
     let by_speed = (0..nv).map(|speed| {
         let k = order.iter().position(|&s| s == speed).unwrap_or(speed);
         &rows[k]
