@@ -133,7 +133,8 @@ fn with_statements(source: &str, statements: &str) -> String {
 /// `mass_matrix` adds them to the diagonal that the runtime's pairs fill,
 /// and its looped `accelerations_jacobian` to the diagonal entries of the
 /// runtime's `M` that it factorises (neither loop of the runtime knows
-/// them): the entries of the generated code, by name.
+/// them): the entries of the generated code, by name. The chain of 12,
+/// whose rows are adjoints, adds them to its own `M`.
 #[test]
 fn the_looped_tree_routes_add_the_armatures() {
     use dalembert_codegen::chain::{Family, chain};
@@ -149,16 +150,28 @@ fn the_looped_tree_routes_add_the_armatures() {
     );
     let outputs = format!("{armature}\n    outputs accelerations_jacobian;");
     let derivatives =
-        dalembert_codegen::generate(&with_statements(&chain(Family::Spatial, 12), &outputs))
+        dalembert_codegen::generate(&with_statements(&chain(Family::Spatial, 16), &outputs))
             .unwrap()
             .replace(char::is_whitespace, "");
     assert!(derivatives.contains("TreeRecursion::default()"));
-    // Speed 2 (q3) and 6 (q7) are rows 9 and 5 of the reversed chain.
-    for (entry, value) in [("m2_2=mass[9][9]+", "0.25"), ("m6_6=mass[5][5]+", "0.5")] {
+    // Speed 2 (q3) and 6 (q7) are rows 13 and 9 of the reversed chain of
+    // 16 (the chain of 12 takes its rows as adjoints: below).
+    for (entry, value) in [("m2_2=mass[13][13]+", "0.25"), ("m6_6=mass[9][9]+", "0.5")] {
         assert!(
             derivatives.contains(&format!("{entry}{value};")),
             "{entry}{value} in the looped accelerations_jacobian"
         );
     }
-    assert!(derivatives.contains("m1_1=mass[10][10];"));
+    assert!(derivatives.contains("m1_1=mass[14][14];"));
+    // The chain of 12 takes the jacobian's rows as adjoints
+    // (`plan::ADJOINT_ROW_AT_MOST`), over its own unrolled `M`, whose
+    // diagonal carries the armatures.
+    let rows = dalembert_codegen::generate(&with_statements(&chain(Family::Spatial, 12), &outputs))
+        .unwrap()
+        .replace(char::is_whitespace, "");
+    assert!(rows.contains("weight_lanes") && !rows.contains("TreeRecursion::default()"));
+    assert!(
+        rows.contains(",0.25+x") && rows.contains(",0.5+x"),
+        "the armatures in M"
+    );
 }
