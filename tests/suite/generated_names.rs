@@ -139,8 +139,11 @@ fn mimic() -> Mimic {
     }
 }
 
-/// States no other test uses: `(t, q, v, vdot, u, weights)`.
-fn states() -> Vec<(f64, [f64; 2], [f64; 2], [f64; 2], [f64; 2], [f64; 2])> {
+/// A state of the two systems: `(t, q, v, vdot, u, weights)`.
+type Sample = (f64, [f64; 2], [f64; 2], [f64; 2], [f64; 2], [f64; 2]);
+
+/// States no other test uses.
+fn states() -> Vec<Sample> {
     vec![
         (
             0.0,
