@@ -180,7 +180,7 @@ pub fn powi<T: LaneMath>(x: T, n: i32) -> T {
 
 /// The sine and the cosine of each lane of `x`: the kernel of
 /// [`super::math::sin_cos_all`] on the lanes together (its reduction and
-/// polynomials, [`reduced`], then the quadrant's swap and signs as bit
+/// polynomials, `math::reduced`, then the quadrant's swap and signs as bit
 /// masks, the same operations on each lane as on one angle, so the same
 /// values), and `libm`'s `sincos` for a lane beyond
 /// [`REDUCED_DIRECTLY`] or NaN, as there.
