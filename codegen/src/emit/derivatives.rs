@@ -228,7 +228,42 @@ fn unrolled_rows(
     rows: &[Ident],
 ) -> TokenStream {
     let columns = partials.columns;
-    let angles = angle_functions(pool, &partials.blocks.concat());
+    let roots = partials.rows(&factorisation.order);
+    let (solved, body) = solved_then(
+        model,
+        pool,
+        (equations, factorisation),
+        names,
+        &partials.blocks.concat(),
+        &roots,
+    );
+    let (statements, count) = (&body.statements, Literal::usize_unsuffixed(columns.len()));
+    let (n, values) = (
+        Literal::usize_unsuffixed(rows.len()),
+        row_values(&body.outputs, rows.len(), columns.len()),
+    );
+    quote! {
+        #solved
+        let [#(mut #rows),*]: [[f64; #count]; #n] = {
+            #statements
+            #values
+        };
+    }
+}
+
+/// `q̈` through the factorisation, bound to `qdd` and checked finite (with
+/// `accelerations`' checks and errors), the sines and cosines of the angles
+/// in `angle_roots` computed once beside `M` and `f`; and the straight-line
+/// body of `roots`, which takes those sines and cosines.
+fn solved_then(
+    model: &Model,
+    pool: &Pool,
+    (equations, factorisation): (&Equations, &Factorisation),
+    names: &Names,
+    angle_roots: &[ExprId],
+    roots: &[ExprId],
+) -> (TokenStream, Straight) {
+    let angles = angle_functions(pool, angle_roots);
     let given = Given {
         array: format_ident!("angles"),
         expressions: &angles,
@@ -240,17 +275,11 @@ fn unrolled_rows(
         solution,
         unsolved,
     } = factorised(model, pool, equations, factorisation, names, given);
-    let roots = partials.rows(&factorisation.order);
     let body = match given {
-        Some(given) => straight_line_given(pool, names, &roots, given),
-        None => straight_line(pool, names, &roots),
+        Some(given) => straight_line_given(pool, names, roots, given),
+        None => straight_line(pool, names, roots),
     };
-    let (statements, count) = (&body.statements, Literal::usize_unsuffixed(columns.len()));
-    let (n, values) = (
-        Literal::usize_unsuffixed(rows.len()),
-        row_values(&body.outputs, rows.len(), columns.len()),
-    );
-    quote! {
+    let solved = quote! {
         #prelude
         let qdd = &{
             #substitutions
@@ -259,11 +288,8 @@ fn unrolled_rows(
         if !finite(qdd) {
             return ::core::result::Result::Err(#unsolved);
         }
-        let [#(mut #rows),*]: [[f64; #count]; #n] = {
-            #statements
-            #values
-        };
-    }
+    };
+    (solved, body)
 }
 
 /// The solve of a large tree: one straight-line body computing the rest of
@@ -858,22 +884,14 @@ pub fn emit_adjoint_rows(
         .flat_map(|v| v.expressions.iter().copied())
         .collect();
     let coefficients = sweep_coefficients(pool, &roots);
-    let angles = angle_functions(pool, &coefficients);
-    let given_angles = Given {
-        array: format_ident!("angles"),
-        expressions: &angles,
-    };
-    let given_angles = (!angles.is_empty()).then_some(&given_angles);
-    let Factorised {
-        prelude,
-        substitutions,
-        solution,
-        unsolved,
-    } = factorised(model, pool, equations, factorisation, names, given_angles);
-    let scalar = match given_angles {
-        Some(given) => straight_line_given(pool, names, &coefficients, given),
-        None => straight_line(pool, names, &coefficients),
-    };
+    let (solved, scalar) = solved_then(
+        model,
+        pool,
+        (equations, factorisation),
+        names,
+        &coefficients,
+        &coefficients,
+    );
     let given = Given {
         array: format_ident!("coefficients"),
         expressions: &coefficients,
@@ -937,14 +955,7 @@ pub fn emit_adjoint_rows(
         model,
         function,
         quote! {
-            #prelude
-            let qdd = &{
-                #substitutions
-                [#(#solution),*]
-            };
-            if !finite(qdd) {
-                return ::core::result::Result::Err(#unsolved);
-            }
+            #solved
             let [#(mut #rows),*]: [[f64; #n]; #n] = [#(#unit_rows),*];
             #solve
             let inverse: [[f64; #n]; #n] = [#(#by_speed),*];
