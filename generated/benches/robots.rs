@@ -18,9 +18,10 @@
 //! counterpart of `computeABADerivatives`.
 //!
 //! Run with `cargo bench -p dalembert-generated --bench robots [--features
-//! humanoids]`; `scripts/benchmarks.sh --peers DIR robots mjcf` runs it with
-//! Pinocchio (the peers' harness, `run.sh --urdf ROBOT.urdf [--floating]`) and
-//! MuJoCo's `mj_forward` (`scripts/bench/mj_forward.c`) in the same window.
+//! humanoids]`; `scripts/benchmarks.sh --peers DIR robots` runs it with
+//! Pinocchio (the peers' harness, `run.sh --urdf ROBOT.urdf [--floating]`) in
+//! the same window. The MJCF models against MuJoCo's `mj_forward`
+//! (`scripts/bench/mj_forward.c`) are the `humanoid` section's.
 
 use std::hint::black_box;
 use std::time::Duration;

@@ -12,14 +12,10 @@ quietly cargo bench -p dalembert-generated --bench adjoint --features large -- -
 cat <<'MD'
 ## Adjoints: the reverse sweep against forming the jacobian
 
-`accelerations_adjoint` (`dalembert::control`: `accelerations`, one Cholesky
-solve `μ = M⁻¹ λ`, then the generated `inverse_dynamics_adjoint`, the
-gradient of `μᵀ τ` by one reverse sweep over the Newton–Euler recursion)
-against `accelerations_jacobian` followed by the product `λᵀ J` (what a
-gradient method would do without the adjoint), on the spatial chains.
-`inverse_dynamics_adjoint` is the sweep alone: its growth with `n` is the
-reverse sweep's; the rest of the adjoint is the forward dynamics and the
-dense solve with `M`.
+`accelerations_adjoint` (`dalembert::control`: `accelerations`, one solve
+`μ = M⁻¹ λ`, then `inverse_dynamics_adjoint`, one reverse sweep over the
+Newton–Euler recursion) against `accelerations_jacobian` and the product
+`λᵀ J`, on the spatial chains (the sweep alone: columns two and three).
 
 MD
 python3 - "$CARGO_TARGET_DIR" "$STAMP" "$(dirname "${BASH_SOURCE[0]}")/lib" <<'PY'
@@ -48,24 +44,5 @@ echo
 measured "criterion medians of thread CPU time, 1000 states"
 cat <<'MD'
 
-The operations of the generated functions (`dalembert check MODEL --stats`,
-the chain asking for `outputs inverse_dynamics, inverse_dynamics_adjoint;`):
-
-| n | `inverse_dynamics` | `inverse_dynamics_adjoint` | sweep / `τ` | sweep per link |
-|---|---|---|---|---|
-MD
-model="$(mktemp --suffix .dal)"
-for n in 6 12 30 60; do
-    cargo run -q -p dalembert-codegen --bin dalembert -- chain spatial "$n" 2>/dev/null \
-        | sed 's/^}$/    outputs inverse_dynamics, inverse_dynamics_adjoint;\n}/' > "$model"
-    cargo run -q -p dalembert-codegen --bin dalembert -- check "$model" --stats 2>/dev/null \
-        | awk -v n="$n" '$2 == "inverse_dynamics" { tau = $1 } $2 == "inverse_dynamics_adjoint" { sweep = $1 }
-            END { printf "| %d | %d | %d | %.2f | %.0f |\n", n, tau, sweep, sweep / tau, sweep / n }'
-done
-rm -f "$model"
-cat <<'MD'
-
     cargo bench -p dalembert-generated --bench adjoint --features large -- --warm-up-time 1 --measurement-time 3
-    dalembert chain spatial N > chain.dal   # plus `outputs inverse_dynamics, inverse_dynamics_adjoint;`
-    dalembert check chain.dal --stats
 MD

@@ -15,13 +15,10 @@ peers --ns 60 > "${peers_csv%.csv}_60.csv"
 cat <<'MD'
 ## Chains against Pinocchio and MuJoCo
 
-The chains of `tests/reference/` (planar: revolute z, rods along −y;
-spatial: axes z, y, z, y, …), each in three spellings (`joint` statements
-with literals, with symbolic parameters, and the seed's frames and points;
-each cell reads joints / symbolic / seed): `mass_matrix` + `forcing` against
-Pinocchio's `crba` + `nonLinearEffects` and MuJoCo's M + bias,
-`accelerations` against Pinocchio's `aba` and MuJoCo's `mj_forward`. Ratios
-are ours / theirs.
+The chains of `tests/reference/` (planar: revolute z; spatial: axes z, y,
+z, …) in three spellings, each cell joints / symbolic / seed's frames:
+M + f against `crba` + `nonLinearEffects` and MuJoCo's M + bias,
+`accelerations` against `aba` and `mj_forward`.
 
 MD
 python3 benches/spellings_table.py "$peers_csv" "$CARGO_TARGET_DIR" --since "$STAMP"

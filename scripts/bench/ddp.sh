@@ -10,16 +10,12 @@ quietly scripts/ddp_compare.sh ${CROCODDYL_PYTHON:+"$CROCODDYL_PYTHON"}
 cat <<'MD'
 ## DDP over the exact step jacobians against Crocoddyl
 
-The problems of `lab/examples/ddp.rs` solved by `dalembert_lab::ddp` over
-`dalembert::control::euler_step_jacobian` and by Crocoddyl 3.2.1's
-`SolverFDDP` (one thread) on the same problem (`scripts/ddp_crocoddyl.py`):
-a UR5 reaching a joint-space pose (`ur5`), the UR5's tool flange reaching a
-pose (`ur5_pose`: translation and `log₃` rotation errors of `tool0`,
-Crocoddyl's `ResidualModelFrameTranslation` and `ResidualModelFrameRotation`),
-both 100 × 10 ms, and a cart-pole swing-up (`cart_pole`, 150 × 20 ms); see
-`docs/control.md`. Time per iteration is the best of 5 solves, CPU time of
-the solving thread. The cart-pole's actuation in Crocoddyl is a Python
-model, so only the UR5's ratios are fair ones.
+`lab/examples/ddp.rs` (`dalembert_lab::ddp` over `euler_step_jacobian`)
+against Crocoddyl 3.2.1's `SolverFDDP`, one thread, same problems
+(`scripts/ddp_crocoddyl.py`, `docs/control.md`): a UR5 to a joint pose and
+its `tool0` to a pose (100 × 10 ms), a cart-pole swing-up (150 × 20 ms).
+Best of 5 solves, thread CPU time; the cart-pole's actuation in Crocoddyl
+is Python, so only the UR5's ratios are fair.
 
 MD
 python3 - target/ddp_compare/dalembert.jsonl target/ddp_compare/crocoddyl.jsonl <<'PY'

@@ -14,9 +14,8 @@ peers --urdf tests/reference/urdf/ur5_robot.urdf --only derivatives > "$out/ur5.
 cat <<'MD'
 ## Exact derivatives against Pinocchio
 
-`accelerations_jacobian` (∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u, from `outputs
-accelerations_jacobian;`) against the same system's `accelerations` and
-Pinocchio's `computeABADerivatives`.
+`accelerations_jacobian` (∂v̇/∂q, ∂v̇/∂v, ∂v̇/∂u) against the system's
+`accelerations` and Pinocchio's `computeABADerivatives`.
 
 MD
 table derivatives "$out"/{chains,panda,ur5}.csv

@@ -95,13 +95,11 @@ sum() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { print a +
 
 echo "## Floating humanoids against Pinocchio and MuJoCo"
 echo
-echo "Ours: default release build, \`scripts/bench/humanoid_timing.rs\`; Pinocchio: the peers'"
-echo "harness, header-only, \`-O3 -march=native\`; both thread CPU time, the median of repeats over"
-echo "1000 random states; MuJoCo: \`mj_forward\` through its C API, contacts, constraints and"
-echo "actuation disabled; all in one run; µs per call, and ours / theirs. Targets (issue #40): M + f ≤ 0.20 of \`crba\` +"
-echo "\`nonLinearEffects\`, accelerations ≤ 0.20 of \`aba\`, \`accelerations_jacobian\` ≤ 0.33 of"
-echo "\`computeABADerivatives\`; ≤ 0.25 of \`mj_forward\` (issue #35). The operation counts that"
-echo "explain the gaps: docs/humanoid.md."
+echo "Ours (\`scripts/bench/humanoid_timing.rs\`, default release build), Pinocchio (header-only,"
+echo "\`-O3 -march=native\`) and MuJoCo's \`mj_forward\` (C API; contacts, constraints, actuation"
+echo "off) in one run, thread CPU time over 1000 random states: µs per call and ours / theirs."
+echo "Targets: M + f and accelerations ≤ 0.20 of Pinocchio's, the jacobian ≤ 0.33; ≤ 0.25 of"
+echo "\`mj_forward\`. Operation counts explain the gaps (docs/humanoid.md)."
 echo
 echo "| robot (speeds) | M + f | crba + nle | ratio | accelerations | aba | ratio | accelerations_jacobian | computeABADerivatives | ratio |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
@@ -123,13 +121,13 @@ for model in humanoid:27 cheetah:9; do
   echo "| dm_control $name ($nv) | $(us "$mf") | $(us "$acc") | $(us "$fwd") | $(ratio "$mf" "$fwd") | $(ratio "$acc" "$fwd") |"
 done
 echo
-echo "Building the five models' code (the humanoids and Solo-12 with \`accelerations_jacobian\` and"
-echo "\`linearize\`) with the harness in release took ${build_s} s wall, the runtime built beforehand."
+echo "The five models' code (the humanoids and Solo-12 with \`accelerations_jacobian\` and \`linearize\`) built in release in ${build_s} s wall."
 g1_mf=$(ours g1 "mass_matrix+forcing"); g1_pmf=$(sum "$(pin g1 pin_crba_sym)" "$(pin g1 pin_nle)")
 echo
 summary "\`mass_matrix\` + \`forcing\`, G1 floating (35 speeds)" "Pinocchio \`crba\` + \`nonLinearEffects\`" "$(ratio "$g1_mf" "$g1_pmf" | tr -d '*')"
 summary "\`accelerations\`, G1 floating" "Pinocchio \`aba\`" "$(ratio "$(ours g1 accelerations)" "$(pin g1 pin_aba)" | tr -d '*')"
 summary "\`accelerations_jacobian\`, G1 floating" "Pinocchio \`computeABADerivatives\`" "$(ratio "$(ours g1 accelerations_jacobian)" "$(pin g1 pin_aba_derivatives)" | tr -d '*')"
+summary "\`accelerations\`, dm_control humanoid (27 speeds)" "MuJoCo \`mj_forward\`" "$(ratio "$(ours humanoid accelerations)" "$(mj humanoid)" | tr -d '*')"
 echo
 measured "ours and the peers' medians of thread CPU time"
 cat <<'MD'

@@ -9,17 +9,12 @@ quietly cargo bench -p dalembert --bench iftomm
 cat <<'MD'
 ## IFToMM A02: whole simulations through singular positions
 
-Thread CPU time of one 20 s simulation of the N-four-bar mechanism (A02) per
-method; only the runs checked to reach 1e-3 m on the reference point B0 are
-timed (`benches/iftomm.rs`; `docs/iftomm.md` has the benchmarks and their
-references).
+Thread CPU time of one 20 s simulation of the N-four-bar mechanism per
+method, for the runs that reach 1e-3 m on point B0 (`docs/iftomm.md`).
 
 MD
 BENCH_PREFIX=a02_ table list
 cat <<'MD'
-
-The bench also prints the error on B0 of each candidate at N = 40, as set
-and under perturbed starts (docs/iftomm.md discusses them).
 MD
 echo
 measured "criterion medians of thread CPU time"

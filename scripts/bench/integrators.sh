@@ -12,8 +12,7 @@ peers --ns 2,6,12,30 --only mj_step > "$out/chains.csv"
 cat <<'MD'
 ## Integrators: cost per evaluation, and throughput against MuJoCo
 
-What each integrator adds to the evaluations of the equations, per
-evaluation, beside a bare loop of `accelerations`:
+Each integrator's cost per evaluation beside a bare loop of `accelerations`:
 
 MD
 table integrators

@@ -55,15 +55,10 @@ ratio() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { printf 
 
 echo "## Operation counts: generated functions against Pinocchio's algorithms"
 echo
-echo "Flops (additions, subtractions, negations, multiplications, divisions) of one call;"
-echo "sin/cos not included."
-echo "Ours: the generated code (\`dalembert generate\`), straight-line, each shared subexpression"
-echo "once, the solve's row operations (in brackets, their share) and the runtime's loops over the"
-echo "tree where the jacobian takes them (the floating robots; counted per link and pair of links"
-echo "from the loops' source, \`scripts/bench/op_counts.py\`); Pinocchio's: its header-only"
-echo "algorithms run once on a counting scalar (\`scripts/bench/pinocchio_op_counts.cpp\`; it"
-echo "multiplies the structural zeros of its dense 6-vectors and 6×6 blocks, which it packs into"
-echo "SIMD registers)."
+echo "Flops of one call (+, −, ×, ÷; not sin/cos). Ours: the generated code, each shared"
+echo "subexpression once, with the solve's share in brackets and the runtime's loops where the"
+echo "jacobian takes them (\`scripts/bench/op_counts.py\`); Pinocchio's: its algorithms run on a"
+echo "counting scalar (\`scripts/bench/pinocchio_op_counts.cpp\`), structural zeros of its 6×6 blocks included."
 echo
 echo "| robot (speeds) | M + f | crba + nle | ratio | accelerations | aba | ratio | accelerations_jacobian (solve) | computeABADerivatives | ratio | jacobian / accelerations, ours |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"

@@ -15,10 +15,8 @@ peers --urdf tests/reference/urdf/solo12.urdf --floating > "$out/floating_solo12
 cat <<'MD'
 ## Robots from URDF against Pinocchio
 
-The robots of `tests/reference/urdf/` imported by `Builder::urdf`, against
-Pinocchio reading the same files: `mass_matrix` + `forcing` against `crba`
-+ `nonLinearEffects`, `dalembert::accelerations` against `aba`. Ratios are
-ours / theirs.
+`tests/reference/urdf/` by `Builder::urdf` against Pinocchio reading the
+same files: M + f against `crba` + `nonLinearEffects`, `accelerations` against `aba`.
 
 MD
 python3 benches/robots_table.py "$out"/{panda,ur5,solo12,floating_solo12}.csv --target "$CARGO_TARGET_DIR" --since "$STAMP"

@@ -9,10 +9,8 @@ quietly cargo bench --bench seed_examples -- --warm-up-time 1 --measurement-time
 cat <<'MD'
 ## Seed examples: the generated code per call
 
-The generated `mass_matrix` and `forcing` of seed examples 1 and 2 and the
-runtime's generic Cholesky solve of `M v̇ = f` (`cholesky_accelerations`,
-kept for such comparisons beside the system's own solver), one call per
-state over 1000 fixed pseudo-random states (`benches/seed_examples.rs`).
+The generated `mass_matrix` and `forcing` of seed examples 1 and 2, and
+the generic Cholesky solve `cholesky_accelerations` (`benches/seed_examples.rs`).
 
 MD
 table seed

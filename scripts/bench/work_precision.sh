@@ -17,14 +17,10 @@ taylor=$(run --taylor)
 cat <<'MD'
 ## Work-precision: what each integrator buys
 
-Final-state error against time, every integrator of `dalembert::integrate`
-on the generated code, SciPy's `solve_ivp` over a SymPy `lambdify(cse=True)`
-right-hand side beside them. Seed example 1 from θ₁ = θ₂ = 2 rad is chaotic
-(no double-precision method gets much below 3e-8); `--taylor` redraws the
-regular pendulum at 0.2 rad and seed example 3 with the Taylor integrator.
-Both sides' times are the thread's CPU time (median of repeats; wall time
-on a loaded machine inflated SciPy's slow runs more than our short ones), to
-reach the same final-state error:
+Final-state error against thread CPU time, every integrator of
+`dalembert::integrate` and SciPy's `solve_ivp` over SymPy's `lambdify(cse=True)`.
+Seed example 1 from θ₁ = θ₂ = 2 rad is chaotic (floor ≈ 3e-8); `--taylor`
+adds the pendulum at 0.2 rad and seed example 3. Times to equal error:
 
 MD
 printf '%s\n%s\n' "$summary" "$taylor" | python3 -c '
