@@ -16,7 +16,9 @@ pub use crate::constrained::linearize::{
 };
 pub use crate::constrained::multipliers::SaddlePoint;
 pub use crate::constrained::series::{SeriesSolver, constrained_series};
-pub use crate::dynamics::adjoint_rows::{put_rows, weight_lanes};
+pub use crate::dynamics::adjoint_rows::{
+    WEIGHT_LANES, WeightLanes, put_rows, weight_lanes, weight_passes,
+};
 pub use crate::dynamics::cholesky::{check_pivots, cholesky_accelerations, pivot_tolerance};
 pub use crate::dynamics::null_motion::{NULL_MOTION_NAMES, with_null_motion};
 pub use crate::dynamics::pairs::{

@@ -75,31 +75,41 @@ pub const STREAMED_PERCENT: usize = 250;
 /// operation of the runtime's lanes (`dalembert::__private::subtract_on_runs`).
 pub const FILLED_GAP: usize = 4;
 
+/// The rows of `accelerations_jacobian` a pass of its rows as adjoints
+/// takes, as the plan charges them: two, the lanes of an SSE2 register
+/// (the x86-64 baseline; `dalembert::__private::WEIGHT_LANES` is four on
+/// a target with AVX).
+pub const ADJOINT_LANES: usize = 2;
+
 /// The most operations a row of `accelerations_jacobian` may cost by
 /// adjoints ([`crate::outputs::Body::AdjointRows`]: row `i` is `μᵀ ∂τ/∂x`
-/// at `μ = −M⁻¹ eᵢ`, one reverse sweep over `τ` for four rows in SIMD
-/// lanes, `⌈n/4⌉ · sweep / n` a row) for a fixed-base tree on the loops'
-/// route (above [`TREE_LOOPED_ABOVE`]) to take them. The loops' work is
-/// the same for every link whatever its geometry; the sweep, unrolled with
-/// the model's constants folded, is shorter for simpler links. Measured
-/// (criterion, 28 Nov 2026, under load, the rows against the loops; the
-/// sweep's operations as [`operations`] counts them): the spatial chain of
-/// 12 (3 passes of a 2809-operation sweep, 702 a row) 3.50 → 2.99 µs; the
-/// panda (3 of 2967, 989 a row) 2.46 → 2.79 µs and the branching tree of
-/// 14 (4 of 3665, 1047 a row) 3.97 → 4.59 µs.
-pub const ADJOINT_ROW_AT_MOST: usize = 800;
+/// at `μ = −M⁻¹ eᵢ`, one reverse sweep over `τ` for [`ADJOINT_LANES`]
+/// rows in SIMD lanes, `⌈n/2⌉ · sweep / n` a row) for a fixed-base tree on
+/// the loops' route (above [`TREE_LOOPED_ABOVE`]) to take them. The loops'
+/// work is the same for every link whatever its geometry; the sweep,
+/// unrolled with the model's constants folded, is shorter for simpler
+/// links. Measured (28 Nov 2026, thread CPU time, both routes' code in one
+/// binary, medians of 31 interleaved runs; the sweep's operations as
+/// [`operations`] counts them), the rows in passes of two lanes against
+/// the loops: the panda (5 passes of a 2964-operation sweep, 1647 a row)
+/// 0.75 of the loops' time, the branching tree of 14 (7 of 3665, 1833 a
+/// row) 0.90, the spatial chain of 16 (8 of 3897, 1949 a row) 0.87 and
+/// of 20 (10 of 4994, 2497 a row) 0.95, for 30 % more code; the spatial
+/// chain of 12 (6 of 2809, 1405 a row) took 0.87 of its time in passes
+/// of four lanes.
+pub const ADJOINT_ROW_AT_MOST: usize = 2200;
 
 /// Whether `accelerations_jacobian` of `model`, whose partials of `τ` are
 /// `partials` (by the route the plan chose), takes its rows as adjoints in
 /// lanes, the reverse sweep `sweep` (every entry of
-/// `inverse_dynamics_adjoint`) four rows a pass: a tree on a fixed base
-/// (quaternion joints keep the loops) on the loops' route whose rows cost
-/// at most [`ADJOINT_ROW_AT_MOST`] that way.
+/// `inverse_dynamics_adjoint`) [`ADJOINT_LANES`] rows a pass: a tree on a
+/// fixed base (quaternion joints keep the loops) on the loops' route whose
+/// rows cost at most [`ADJOINT_ROW_AT_MOST`] that way.
 pub fn adjoint_rows(model: &Model, partials: &TauPartials, sweep: &[ExprId], pool: &Pool) -> bool {
     let nv = model.nv();
     model.balls.is_empty()
         && partials.route == Partials::Looped
-        && nv.div_ceil(4) * operations(pool, sweep) <= nv * ADJOINT_ROW_AT_MOST
+        && nv.div_ceil(ADJOINT_LANES) * operations(pool, sweep) <= nv * ADJOINT_ROW_AT_MOST
 }
 
 /// The fewest coordinates for which `accelerations` may take the
