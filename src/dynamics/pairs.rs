@@ -233,29 +233,35 @@ mod tests {
         v
     }
 
-    #[test]
-    fn a_chain_of_two_gets_each_pair_once_and_skips_columns_not_solved() {
-        // Link 0 the root, link 1 its child; rows in the reverse order
-        // (speed 1 first); columns: ∂/∂q₁, ∂/∂v₀, ∂/∂v₁ (∂/∂q₀ not solved).
-        let none = usize::MAX;
-        let links = [
+    /// Link 0 the root and link 1 its child, rows in the reverse order
+    /// (speed 1 first), each link's columns `(by_q, by_v)` as `columns`.
+    fn chain_of_two(columns: [(usize, usize); 2]) -> [TreeLink; 2] {
+        let [(q0, v0), (q1, v1)] = columns;
+        [
             TreeLink {
-                parent: none,
+                parent: usize::MAX,
                 joint: 0,
                 row: 1,
-                by_q: none,
-                by_v: 1,
+                by_q: q0,
+                by_v: v0,
                 end: 2,
             },
             TreeLink {
                 parent: 0,
                 joint: 1,
                 row: 0,
-                by_q: 0,
-                by_v: 2,
+                by_q: q1,
+                by_v: v1,
                 end: 2,
             },
-        ];
+        ]
+    }
+
+    #[test]
+    fn a_chain_of_two_gets_each_pair_once_and_skips_columns_not_solved() {
+        // Link 0 the root, link 1 its child; rows in the reverse order
+        // (speed 1 first); columns: ∂/∂q₁, ∂/∂v₀, ∂/∂v₁ (∂/∂q₀ not solved).
+        let links = chain_of_two([(usize::MAX, 1), (0, 2)]);
         // [S, Ψ̇, Ψ̈, Ψ̇ + Φ, y, z, w, u], each along one entry so that each
         // dot product is one product of the two scales or zero (one-speed
         // joints: Ψ̇ + Φ = 2 Ψ̇).
@@ -296,25 +302,7 @@ mod tests {
     /// the same sums as the dot products over all six entries give.
     #[test]
     fn a_root_column_along_one_axis_gets_the_same_pairs_as_the_dot_products() {
-        let none = usize::MAX;
-        let links = [
-            TreeLink {
-                parent: none,
-                joint: 0,
-                row: 1,
-                by_q: 0,
-                by_v: 1,
-                end: 2,
-            },
-            TreeLink {
-                parent: 0,
-                joint: 1,
-                row: 0,
-                by_q: 2,
-                by_v: 3,
-                end: 2,
-            },
-        ];
+        let links = chain_of_two([(0, 1), (2, 3)]);
         let filled = |seed: f64| -> [f64; 6] { core::array::from_fn(|k| seed + k as f64 / 8.0) };
         let mut root = [0.0; 6].map(|_| [0.0; 6]);
         root[0] = along(2, 1.0);
