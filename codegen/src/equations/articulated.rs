@@ -308,18 +308,19 @@ fn to_parent(pool: &mut Pool, link: &Link, i: &Spatial, w: &Pair) -> (Spatial, P
     let r = skew(pool, offset);
     let rc = mat_mul(pool, &r, &c);
     let b_moved = add_mat(pool, &b, &rc);
-    // [r×]Bᵀ − B[r×] = Q + Qᵀ with Q = [r×]Bᵀ, since [r×]ᵀ = −[r×].
-    let bt = transpose(&b);
-    let q = mat_mul(pool, &r, &bt);
-    let rcr = mat_mul(pool, &rc, &r);
+    let b_moved = b_moved.map(|row| row.map(|x| pool.group(x)));
+    // −B[r×] − [r×]C[r×] = −B'[r×] with B' = B + [r×]C, and [r×]ᵀ = −[r×]:
+    // the (i, j) entry of A + [r×]Bᵀ − B'[r×] is Aᵢⱼ + rᵢ · Bⱼ + B'ᵢ · rⱼ
+    // (rows of [r×], B and B'), taken on and above the diagonal.
     let mut a_moved = a;
     for i in 0..3 {
         for j in 0..3 {
             a_moved[i][j] = if j < i {
                 a_moved[j][i]
             } else {
-                let minus = pool.neg(rcr[i][j]);
-                pool.sum([a[i][j], q[i][j], q[j][i], minus])
+                let turned = dot(pool, &r[i], &b[j]);
+                let moved = dot(pool, &b_moved[i], &r[j]);
+                pool.sum([a[i][j], turned, moved])
             };
         }
     }
