@@ -124,6 +124,17 @@ pub const MIN_ARTICULATED: usize = 3;
 /// long (BENCHMARKS.md, "The recursion's operations cost more").
 pub const ARTICULATED_PERCENT: usize = 120;
 
+/// [`ARTICULATED_PERCENT`] on a floating base (a free joint on `N`): its
+/// tree's limbs are swept side by side, and the recursion ran its
+/// operations a little faster than the factorisation, not slower. Measured
+/// (thread CPU time, the median of 9 repeats over 1000 random states,
+/// docs/humanoid.md, 28 Nov 2026) against the factorisation, at the count
+/// ratio (recursion's / factorisation's operations) in brackets: dm_control's
+/// humanoid 2.20 → 2.09 µs (1.01), the G1 3.38 → 3.00 (0.90), Talos 3.21 →
+/// 2.78 (0.89), the floating Solo-12 0.90 → 0.95 (1.12); the time ratios
+/// are 0.94–0.97 of the count ratios, so the recursion wins below 0.95.
+pub const FLOATING_ARTICULATED_PERCENT: usize = 95;
+
 /// Most monomials a result may expand to for its compact form to be
 /// offered ([`optimize`]); a larger one keeps its DAG form. Set with the
 /// first optimisation pass (`ae08658`), with no measurement recorded: it

@@ -11,7 +11,7 @@
 //! which never forms `M` and wins for long chains.
 
 use super::cost::operations;
-use super::{ARTICULATED_PERCENT, MIN_ARTICULATED};
+use super::{ARTICULATED_PERCENT, FLOATING_ARTICULATED_PERCENT, MIN_ARTICULATED};
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool};
 use crate::model::Model;
@@ -58,7 +58,8 @@ pub fn factorisation(model: &Model, pool: &Pool, equations: &Equations) -> Optio
 }
 
 /// The articulated-body recursion where the model has one and it costs
-/// fewer operations, charged at [`ARTICULATED_PERCENT`], than forming `M`
+/// fewer operations, charged at [`ARTICULATED_PERCENT`] (on a floating
+/// base [`FLOATING_ARTICULATED_PERCENT`]), than forming `M`
 /// and `f` (together, sharing their subexpressions) and factorising;
 /// systems of fewer than [`MIN_ARTICULATED`] coordinates keep the
 /// factorisation.
@@ -80,10 +81,20 @@ pub fn accelerations(
         .collect();
     let factorised =
         operations(pool, &mass_and_forcing) + factorisation_operations(&factorisation.pattern);
-    let charged = operations(pool, &articulated.roots()) * ARTICULATED_PERCENT;
+    let charged = operations(pool, &articulated.roots()) * articulated_percent(model);
     match model.nq() >= MIN_ARTICULATED && charged < factorised * 100 {
         true => Accelerations::Articulated,
         false => Accelerations::Factorised,
+    }
+}
+
+/// The charge of the articulated-body recursion's operations, in percent:
+/// [`FLOATING_ARTICULATED_PERCENT`] on a floating base (a free joint),
+/// [`ARTICULATED_PERCENT`] otherwise.
+fn articulated_percent(model: &Model) -> usize {
+    match model.balls.iter().any(|b| b.translation.is_some()) {
+        true => FLOATING_ARTICULATED_PERCENT,
+        false => ARTICULATED_PERCENT,
     }
 }
 
