@@ -362,11 +362,12 @@ fn looped_rows(
             .zip(armature)
             .filter(|((speed, _), _)| i == j && *speed == i)
             .map(|(_, value)| value);
-        quote!(let #name = mass[#r][#c] #(+ #added)*;)
+        quote!(let #name = ::dalembert::__private::matrix_entry(&mass, #r, #c) #(+ #added)*;)
     });
     let forcing = right_hand_side.iter().enumerate().map(|(k, name)| {
         let (r, k) = (row(k), Literal::usize_unsuffixed(k));
-        quote!(let #name = -(bias[#r] + residual[#k]);)
+        quote!(let #name = -(::dalembert::__private::vector_entry(&bias, #r)
+            + ::dalembert::__private::vector_entry(&residual, #k));)
     });
     let solved = (0..nv).map(|i| format_ident!("x{}", i));
     let (check, table) = (state_check(), tree_table(paired, order, columns));
