@@ -35,10 +35,9 @@ cat <<'MD'
 `accelerations_x4` (from `outputs accelerations_x4;`) solves four states in
 one call, one state in each lane of a `wide::f64x4`, against the scalar
 `accelerations`, per state (the batched call's time over four). The scalar
-call takes the unrolled `L D Lᵀ` on the chains of 6 and 12, the
-articulated-body recursion on the chain of 30, the panda and Solo-12; the
-lanes, where the factorisation gains less, the recursion on the chains of
-12 and 30 and the factorisation on the others. Below, one RK4 step of the chain of
+call takes the articulated-body recursion on the chain of 30 and the
+unrolled `L D Lᵀ` on the others; the lanes, where the factorisation gains
+less, the recursion on the chains of 12 and 30. Below, one RK4 step of the chain of
 12 through the scalar `Rk4::step` and through `control::rk4_group_step_x4` (four
 states a step, its stages over `accelerations_x4`) against MuJoCo's
 `mj_step` with its RK4, and `accelerations_jacobian`

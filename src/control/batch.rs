@@ -19,7 +19,7 @@ use crate::{DynamicsError, MultibodySystem, State};
 /// the group update `q ⊕ w` from the step's start), so an entry is the
 /// scalar step's to the rounding of `accelerations_x4` against
 /// `accelerations`: bit for bit where those agree exactly (both on the
-/// unrolled factorisation, as on the spatial chain of 6 and the UR5), to
+/// unrolled factorisation, as on the chains of 6, the panda, the UR5), to
 /// rounding otherwise (the lanes may take another route, see
 /// `accelerations_x4`). Where every speed is its coordinate's rate it
 /// is also [`integrate::Rk4::step`](crate::integrate::Rk4::step) of each
