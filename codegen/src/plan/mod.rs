@@ -135,6 +135,16 @@ pub const ARTICULATED_PERCENT: usize = 120;
 /// are 0.94–0.97 of the count ratios, so the recursion wins below 0.95.
 pub const FLOATING_ARTICULATED_PERCENT: usize = 95;
 
+/// [`ARTICULATED_PERCENT`] for `accelerations_x4` (four states at once,
+/// one in each SIMD lane). The scalar factorisation's substitutions and
+/// rows are vectorised by the compiler two entries at a time, which the
+/// lanes, already full, cannot be: over the lanes the factorisation gains
+/// less and the recursion wins sooner. With `wide::f64x4` on the default
+/// x86-64 target, the spatial chain of 12 (the recursion at 96 % of the
+/// factorisation's count) ran 0.62 of the scalar call by the factorisation
+/// and 0.55 by the recursion; the chain of 6 (128 %) 0.53 and 0.82.
+pub const LANES_ARTICULATED_PERCENT: usize = 100;
+
 /// Most monomials a result may expand to for its compact form to be
 /// offered ([`optimize`]); a larger one keeps its DAG form. Set with the
 /// first optimisation pass (`ae08658`), with no measurement recorded: it
@@ -213,6 +223,10 @@ pub struct Plan {
     /// The route of `accelerations`; `None` where there is no such
     /// method.
     pub accelerations: Option<Accelerations>,
+    /// The route of `accelerations_x4`, which may differ from that of
+    /// `accelerations` ([`LANES_ARTICULATED_PERCENT`]); `None` where
+    /// there is no `accelerations`.
+    pub accelerations_x4: Option<Accelerations>,
     /// The program of `taylor_coefficients`, if it is emitted.
     pub taylor: Option<Taylor>,
 }
@@ -242,14 +256,15 @@ pub fn plan(
     let factorisation = runtime
         .then(|| solve::factorisation(model, pool, equations))
         .flatten();
-    let accelerations = factorisation
+    let routes = factorisation
         .as_ref()
         .map(|f| solve::accelerations(model, pool, equations, f));
     Plan {
         functions,
         constants: requested.constants,
         factorisation,
-        accelerations,
+        accelerations: routes.map(|r| r.scalar),
+        accelerations_x4: routes.map(|r| r.lanes),
         taylor: None,
     }
 }
