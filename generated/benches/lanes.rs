@@ -1,8 +1,9 @@
 //! Four states at once against one: the generated `accelerations_x4`
 //! (`outputs accelerations_x4;`, one state in each lane of a `wide::f64x4`)
 //! against the scalar `accelerations`, per state, on the spatial chains of
-//! n = 6, 12, 30 (the unrolled factorisation at 6 and 12, the
-//! articulated-body recursion at 30), the panda and Solo-12 on a free joint,
+//! n = 6, 12, 30 (the scalar call factorises at 6 and 12, the lanes at 6
+//! only: the chain of 12 is on the articulated-body recursion over lanes),
+//! the panda and Solo-12 on a free joint,
 //! from `dalembert_generated::lanes`. Same method as `chains.rs`: 1000
 //! fixed pseudo-random states in batches of four, thread CPU time; the
 //! batched figure is per state (a call's time over four).

@@ -18,9 +18,10 @@ use crate::{DynamicsError, MultibodySystem, State};
 /// The stages are those of `rk4_group_step`, operation for operation (moved by
 /// the group update `q ⊕ w` from the step's start), so an entry is the
 /// scalar step's to the rounding of `accelerations_x4` against
-/// `accelerations`: bit for bit where those agree exactly (the unrolled
-/// factorisation of the chains, the panda, the UR5), within a few units in
-/// the last place otherwise. Where every speed is its coordinate's rate it
+/// `accelerations`: bit for bit where those agree exactly (both on the
+/// unrolled factorisation, as on the chains of 6, the panda, the UR5), to
+/// rounding otherwise (the lanes may take another route, see
+/// `accelerations_x4`). Where every speed is its coordinate's rate it
 /// is also [`integrate::Rk4::step`](crate::integrate::Rk4::step) of each
 /// state with its inputs held.
 ///
@@ -77,20 +78,20 @@ where
     for (i, &weight) in WEIGHTS.iter().enumerate() {
         let c = if i == 0 { 0.0 } else { NODES[i - 1] };
         let stage = system.accelerations_x4(t.map(|t| t + c * h), &qi, &vi, u);
-        // A failed state goes on with no acceleration: its lanes are its
-        // own, and its answer is its first error.
-        let a = each(|k| match stage[k] {
-            Ok(a) => a,
-            Err(cause) => {
+        // State by state, in place (no copies of the four states' arrays
+        // a stage): a failed state goes on with no acceleration, its lanes
+        // being its own, and its answer is its first error.
+        for (k, stage) in stage.into_iter().enumerate() {
+            let a = stage.unwrap_or_else(|cause| {
                 failed[k].get_or_insert(cause);
                 [0.0; NV]
+            });
+            sum_v[k] = moved(&sum_v[k], weight, &vi[k]);
+            sum_a[k] = moved(&sum_a[k], weight, &a);
+            if let Some(&next) = NODES.get(i) {
+                qi[k] = system.integrate_configuration(&q[k], &vi[k], next * h);
+                vi[k] = moved(&v[k], next * h, &a);
             }
-        });
-        sum_v = each(|k| moved(&sum_v[k], weight, &vi[k]));
-        sum_a = each(|k| moved(&sum_a[k], weight, &a[k]));
-        if let Some(&next) = NODES.get(i) {
-            qi = each(|k| system.integrate_configuration(&q[k], &vi[k], next * h));
-            vi = each(|k| moved(&v[k], next * h, &a[k]));
         }
     }
     each(|k| match failed[k] {

@@ -75,45 +75,96 @@ fn lineage<'a, const L: usize>(
 /// `rows[row of τ][column of the variable]` as `links` places them. Link
 /// `i`'s own row is found once and its entries added one by one (each gets
 /// at most one value from the pairs); the ancestors' rows, one entry pair
-/// each, in a second walk up the tree.
+/// each, in a second walk up the tree. A column that is not solved gets no
+/// dot product; a link whose `Sⱼ` is a unit vector and `Ψ̇ⱼ` zero (a root
+/// joint's column in the recursion's frame, as a free base's are) has
+/// its products by `Sⱼ` read as one entry and those by `Ψ̇ⱼ` left out:
+/// the same values, about a third of the operations of its pairs.
 pub fn add_tree_pairs<const C: usize, const N: usize, const L: usize>(
     mut rows: [&mut [f64; C]; N],
     vectors: &[[[f64; 6]; 8]; L],
     links: &[TreeLink; L],
 ) {
+    let units: [Option<usize>; L] = core::array::from_fn(|k| vectors.get(k).and_then(unit_column));
+    let unit = |k: usize| units.get(k).copied().flatten();
     for (i, (own, link)) in vectors.iter().zip(links).enumerate() {
         if let Some(row) = rows.get_mut(link.row) {
+            let mut j = i;
             for (other, ancestor) in lineage(vectors, links, i) {
-                let (by_q, by_v) = ancestor_pair(own, other);
-                add(row, ancestor.by_q, by_q);
-                add(row, ancestor.by_v, by_v);
+                add_ancestor_pair(row, ancestor, own, (other, unit(j)));
+                j = ancestor.parent;
             }
         }
         let [.., w, u] = own;
+        let mut j = link.parent;
         for (other, ancestor) in lineage(vectors, links, link.parent) {
             if let Some(row) = rows.get_mut(ancestor.row) {
-                let (by_q, by_v) = match ancestor.joint == link.joint {
-                    true => ancestor_pair(other, own),
-                    false => (dot(&other[0], w), dot(&other[0], u)),
-                };
-                add(row, link.by_q, by_q);
-                add(row, link.by_v, by_v);
+                match (ancestor.joint == link.joint, unit(j)) {
+                    (true, _) => add_ancestor_pair(row, link, other, (own, unit(i))),
+                    (false, Some(k)) => {
+                        add(row, link.by_q, w[k]);
+                        add(row, link.by_v, u[k]);
+                    }
+                    (false, None) => {
+                        if link.by_q < C {
+                            add(row, link.by_q, dot(&other[0], w));
+                        }
+                        add(row, link.by_v, dot(&other[0], u));
+                    }
+                }
             }
+            j = ancestor.parent;
         }
     }
 }
 
-/// `(∂τᵢ/∂qⱼ, ∂τᵢ/∂q̇ⱼ)` of the link of `own` (`i`) and that of `other`
-/// (`j`, an ancestor of `i`, `i` itself or a speed of its joint):
-/// `yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ` and `zᵢ · Sⱼ + yᵢ · (Ψ̇ⱼ + Φⱼ)`.
+/// The entry `k` where `S` of `link` (`[S, Ψ̇, ..]`) is one and every
+/// other entry zero, if it is a unit vector and `Ψ̇` is zero.
+#[inline]
+fn unit_column(link: &[[f64; 6]; 8]) -> Option<usize> {
+    let [s, rate, ..] = link;
+    if rate.iter().any(|&x| x != 0.0) {
+        return None;
+    }
+    unit_entry(s)
+}
+
+/// The entry `k` where `s` is one and every other entry zero, if `s` is
+/// such a unit vector.
+#[inline]
+pub(super) fn unit_entry(s: &[f64; 6]) -> Option<usize> {
+    let k = s.iter().position(|&x| x == 1.0)?;
+    let rest_zero = s.iter().enumerate().all(|(m, &x)| m == k || x == 0.0);
+    rest_zero.then_some(k)
+}
+
+/// Adds to `row` at the columns of `columns` (link `j`) the pair
+/// `(∂τᵢ/∂qⱼ, ∂τᵢ/∂q̇ⱼ)` of the link of `own` (`i`) and `other` (`j`, an
+/// ancestor of `i`, `i` itself or a speed of its joint):
+/// `yᵢ · Ψ̈ⱼ + zᵢ · Ψ̇ⱼ` and `zᵢ · Sⱼ + yᵢ · (Ψ̇ⱼ + Φⱼ)`; where `unit` is
+/// `Some(k)` (`Sⱼ` the unit vector along entry `k`, `Ψ̇ⱼ` zero),
+/// `yᵢ · Ψ̈ⱼ` and `zᵢ[k] + yᵢ · (Ψ̇ⱼ + Φⱼ)`.
 #[inline(always)]
-fn ancestor_pair(own: &[[f64; 6]; 8], other: &[[f64; 6]; 8]) -> (f64, f64) {
+fn add_ancestor_pair<const C: usize>(
+    row: &mut [f64; C],
+    columns: &TreeLink,
+    own: &[[f64; 6]; 8],
+    (other, unit): (&[[f64; 6]; 8], Option<usize>),
+) {
     let [.., y, z, _, _] = own;
     let [s, rate, second_rate, driven, ..] = other;
-    (
-        dot(y, second_rate) + dot(z, rate),
-        dot(z, s) + dot(y, driven),
-    )
+    if columns.by_q < C {
+        let by_q = match unit {
+            Some(_) => dot(y, second_rate),
+            None => dot(y, second_rate) + dot(z, rate),
+        };
+        add(row, columns.by_q, by_q);
+    }
+    let by_v = match unit.and_then(|k| z.get(k)) {
+        Some(z_k) => z_k + dot(y, driven),
+        None => dot(z, s) + dot(y, driven),
+    };
+    add(row, columns.by_v, by_v);
 }
 
 /// One speed of a tree for [`tree_mass_matrix`], the speeds depth-first
@@ -182,29 +233,35 @@ mod tests {
         v
     }
 
-    #[test]
-    fn a_chain_of_two_gets_each_pair_once_and_skips_columns_not_solved() {
-        // Link 0 the root, link 1 its child; rows in the reverse order
-        // (speed 1 first); columns: ∂/∂q₁, ∂/∂v₀, ∂/∂v₁ (∂/∂q₀ not solved).
-        let none = usize::MAX;
-        let links = [
+    /// Link 0 the root and link 1 its child, rows in the reverse order
+    /// (speed 1 first), each link's columns `(by_q, by_v)` as `columns`.
+    fn chain_of_two(columns: [(usize, usize); 2]) -> [TreeLink; 2] {
+        let [(q0, v0), (q1, v1)] = columns;
+        [
             TreeLink {
-                parent: none,
+                parent: usize::MAX,
                 joint: 0,
                 row: 1,
-                by_q: none,
-                by_v: 1,
+                by_q: q0,
+                by_v: v0,
                 end: 2,
             },
             TreeLink {
                 parent: 0,
                 joint: 1,
                 row: 0,
-                by_q: 0,
-                by_v: 2,
+                by_q: q1,
+                by_v: v1,
                 end: 2,
             },
-        ];
+        ]
+    }
+
+    #[test]
+    fn a_chain_of_two_gets_each_pair_once_and_skips_columns_not_solved() {
+        // Link 0 the root, link 1 its child; rows in the reverse order
+        // (speed 1 first); columns: ∂/∂q₁, ∂/∂v₀, ∂/∂v₁ (∂/∂q₀ not solved).
+        let links = chain_of_two([(usize::MAX, 1), (0, 2)]);
         // [S, Ψ̇, Ψ̈, Ψ̇ + Φ, y, z, w, u], each along one entry so that each
         // dot product is one product of the two scales or zero (one-speed
         // joints: Ψ̇ + Φ = 2 Ψ̇).
@@ -238,6 +295,65 @@ mod tests {
         // Row 0 (τ₁): ∂τ₁/∂q₁ = y₁·Ψ̈₁ + z₁·Ψ̇₁ = 29·23 + 31·19,
         // ∂τ₁/∂v₁ = z₁·S₁ + y₁·(Ψ̇₁ + Φ₁) = 0, ∂τ₁/∂v₀ = z₁·S₀ + y₁·(Ψ̇₀ + Φ₀) = 0.
         assert_eq!(first, [100.0 + 29.0 * 23.0 + 31.0 * 19.0, 100.0, 100.0]);
+    }
+
+    /// A chain of two whose root's `S₀` is a unit vector with `Ψ̇₀ = 0`
+    /// (a root's column in its own axes), its pairs read `S₀`'s entry:
+    /// the same sums as the dot products over all six entries give.
+    #[test]
+    fn a_root_column_along_one_axis_gets_the_same_pairs_as_the_dot_products() {
+        let links = chain_of_two([(0, 1), (2, 3)]);
+        let filled = |seed: f64| -> [f64; 6] { core::array::from_fn(|k| seed + k as f64 / 8.0) };
+        let mut root = [0.0; 6].map(|_| [0.0; 6]);
+        root[0] = along(2, 1.0);
+        for (k, v) in root.iter_mut().enumerate().skip(2) {
+            *v = filled(k as f64);
+        }
+        let child: [[f64; 6]; 8] = core::array::from_fn(|k| filled(0.5 + k as f64));
+        let mut root_vectors = [[0.0; 6]; 8];
+        root_vectors[..6].copy_from_slice(&root);
+        root_vectors[6] = filled(9.0);
+        root_vectors[7] = filled(10.0);
+        let vectors = [root_vectors, child];
+        let (mut first, mut second) = ([0.0; 4], [0.0; 4]);
+        add_tree_pairs([&mut first, &mut second], &vectors, &links);
+        let dot = |a: &[f64; 6], b: &[f64; 6]| -> f64 { a.iter().zip(b).map(|(x, y)| x * y).sum() };
+        let pair = |own: &[[f64; 6]; 8], other: &[[f64; 6]; 8]| {
+            let ([s, rate, second_rate, driven], [y, z]) = (
+                [&other[0], &other[1], &other[2], &other[3]],
+                [&own[4], &own[5]],
+            );
+            (
+                dot(y, second_rate) + dot(z, rate),
+                dot(z, s) + dot(y, driven),
+            )
+        };
+        let [
+            (root_q, root_v),
+            (child_root_q, child_root_v),
+            (child_q, child_v),
+        ] = [
+            pair(&vectors[0], &vectors[0]),
+            pair(&vectors[1], &vectors[0]),
+            pair(&vectors[1], &vectors[1]),
+        ];
+        let (w, u) = (&vectors[1][6], &vectors[1][7]);
+        let expected_root_row = [
+            root_q,
+            root_v,
+            dot(&vectors[0][0], w),
+            dot(&vectors[0][0], u),
+        ];
+        let expected_child_row = [child_root_q, child_root_v, child_q, child_v];
+        for (got, expected) in [(second, expected_root_row), (first, expected_child_row)] {
+            for (g, e) in got.iter().zip(expected) {
+                assert!(
+                    (g - e).abs() <= 1e-12 * e.abs().max(1.0),
+                    "{got:?} against {expected:?}"
+                );
+            }
+        }
+        assert!(first.iter().chain(&second).all(|&x| x != 0.0));
     }
 
     #[test]

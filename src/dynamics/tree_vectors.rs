@@ -17,7 +17,14 @@
 //! more than over its arithmetic.
 //!
 //! Spatial vectors are in `N`'s axes at `N`'s origin: `(ω, v)` for a
-//! motion, `(n, f)` for a force.
+//! motion, `(n, f)` for a force. `N` here is the frame of the links'
+//! states, which the engine takes, for a tree whose one root is a free or
+//! spherical joint, as the root link's axes at its origin at the state (an
+//! inertial frame that coincides with the link at that instant; gravity
+//! given in it): the pairs are dot products, the same in any frame, and
+//! the root's columns are then unit vectors, whose pairs
+//! [`add_tree_pairs`](super::pairs::add_tree_pairs) and
+//! [`TreeRecursion::mass_and_bias`] read as entries.
 //!
 //! A joint of several speeds (spherical, free) is as many links, one a
 //! speed, each the parent of the next ([`TreeLink::joint`] names the
@@ -26,7 +33,7 @@
 //! rates `Ψ̇`, `Ψ̈` are taken from the joint's parent, and `Φ = v × S`
 //! (`v` the twist of the joint's last link) from the link's own twist.
 
-use super::pairs::TreeLink;
+use super::pairs::{TreeLink, unit_entry};
 
 type Vec3 = [f64; 3];
 type Mat3 = [[f64; 3]; 3];
@@ -131,12 +138,18 @@ impl<const L: usize> TreeRecursion<L> {
             .enumerate()
         {
             let s = &moving.subspace;
-            put(&mut bias, link.row, dot6(s, &subtree.force));
+            // `S · x` of a unit `S` is an entry of `x`: the same value.
+            let unit = unit_entry(&s.flat());
+            let project = |x: &Spatial| match unit {
+                Some(k) => x.flat()[k],
+                None => dot6(s, x),
+            };
+            put(&mut bias, link.row, project(&subtree.force));
             let below = links.get(i..link.end).unwrap_or_default();
             let momenta = self.unit_momenta.get(i..link.end).unwrap_or_default();
             for (other, y) in below.iter().zip(momenta) {
                 if let Some(row) = mass.get_mut(other.row) {
-                    put(row, link.row, dot6(s, y));
+                    put(row, link.row, project(y));
                 }
             }
         }

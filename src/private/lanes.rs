@@ -259,13 +259,30 @@ pub fn factorised_pivots_hold<const N: usize>(pivots: [Lanes; N], diagonal: [Lan
     above(pivots, tolerance(diagonal))
 }
 
-/// Where the articulated-body recursion's pivots pass the scalar route's
-/// test ([`check_pivots`](crate::dynamics::cholesky::check_pivots)): a
-/// mask, all ones in such a lane.
+/// Where the articulated-body recursion's pivots pass the scalar
+/// recursion's test ([`check_pivots`](crate::dynamics::cholesky::check_pivots))
+/// with [`RECURSION_PIVOT_MARGIN`] to spare: a mask, all ones in such a lane.
 #[inline(always)]
 pub fn articulated_pivots_hold<const N: usize>(pivots: [Lanes; N]) -> Lanes {
-    above(pivots, tolerance(pivots))
+    above(
+        pivots,
+        Lanes::splat(RECURSION_PIVOT_MARGIN) * tolerance(pivots),
+    )
 }
+
+/// How far above the scalar test a pivot of the lanes' articulated-body
+/// recursion must be for the lanes to answer its state. The lanes take the
+/// recursion where the scalar call may factorise `M` (the plan charges
+/// the recursion less over lanes): the same pivots (a joint's articulated
+/// inertia about its axis is the pivot of `M`'s elimination from the
+/// leaves), but the factorisation measures them against `M`'s largest
+/// diagonal entry and the recursion against the largest pivot, which is
+/// smaller. A state within this margin of singular goes to the scalar
+/// call, whose error is then the answer; only a model whose largest
+/// diagonal entry of `M` exceeds its largest pivot ten thousand times could
+/// still see the lanes answer a state that the scalar factorisation
+/// refuses.
+pub const RECURSION_PIVOT_MARGIN: f64 = 1e4;
 
 /// [`RELATIVE_PIVOT_TOLERANCE`] times the largest of `values` in each
 /// lane, NaN ignored: `pivot_tolerance`, lane by lane (`f64::max` keeps
@@ -354,7 +371,11 @@ fn by_the_scalar_call<const NQ: usize, const NV: usize, const NU: usize>(
 
 #[cfg(test)]
 mod tests {
-    use super::{LaneMath, Lanes, columns, per_state, sin_cos};
+    use super::{
+        LaneMath, Lanes, RECURSION_PIVOT_MARGIN, articulated_pivots_hold, columns, per_state,
+        sin_cos,
+    };
+    use crate::dynamics::cholesky::{RELATIVE_PIVOT_TOLERANCE, check_pivots};
 
     /// The distance of `ours` from `theirs` in units of the last place of
     /// `theirs`.
@@ -440,5 +461,27 @@ mod tests {
         assert!(results[1].as_ref().is_ok_and(|x| x[0].is_nan()));
         assert_eq!(results[2], Ok([-3.0]));
         assert_eq!(results[3], Ok([40.0]));
+    }
+
+    /// The recursion's pivots over lanes: a lane holds where the scalar
+    /// test passes with the margin to spare; a lane between the scalar
+    /// tolerance and the margin is left to the scalar call, and one the
+    /// scalar test refuses never holds.
+    #[test]
+    fn recursion_pivots_hold_with_the_margin() {
+        let tolerance = RELATIVE_PIVOT_TOLERANCE;
+        let small = [
+            1.0,
+            10.0 * tolerance * RECURSION_PIVOT_MARGIN,
+            10.0 * tolerance,
+            0.5 * tolerance,
+        ];
+        let names = ["a", "b"];
+        let held = articulated_pivots_hold([Lanes::splat(1.0), Lanes::new(small)]).to_bitmask();
+        for (k, x) in small.into_iter().enumerate() {
+            let scalar = check_pivots([1.0, x], names).is_ok();
+            assert_eq!(held & (1 << k) != 0, k < 2, "lane {k}");
+            assert_eq!(scalar, k < 3, "lane {k}");
+        }
     }
 }

@@ -124,6 +124,7 @@ fn seed_3_accelerations_and_multipliers_match_the_reference() {
 }
 
 #[test]
+#[ignore = "long: run in release"]
 fn seed_3_drift_grows_unstabilised_and_is_held_by_baumgarte_and_projection() {
     // Critical damping at the bar's natural frequency √(3g/2l) ≈ 3.66/s.
     let natural_frequency = (1.5 * SEED_3.g / SEED_3.l).sqrt();

@@ -88,6 +88,7 @@ fn driven_crank_bias_carries_the_explicit_time_derivative() {
 }
 
 #[test]
+#[ignore = "long: run in release"]
 fn driven_crank_follows_its_drive_and_the_motor_does_the_work() {
     // No degree of freedom is left: the integration must follow the
     // prescribed motion, and the work of the driving row's multiplier (the

@@ -9,7 +9,11 @@
 //! every output of DESIGN §4 and §7 (and the language's others) must agree
 //! between the two at states no test chose. A parameter `lambda0` once
 //! shadowed the adjoint's weight `lambda0`: it compiled and the adjoint
-//! was wrong.
+//! was wrong. The spatial chain of 12, whose `accelerations_jacobian` takes
+//! its rows as adjoints in lanes, is written once more with coordinates
+//! named like that function's fixed locals (`inverse`, `coefficients`,
+//! `pass`, `jacobian`, `by_q`, `by_v`, `by_u`, `angles`, `finite`, the
+//! rows `b{i}`, `equations_or`) and must agree with the generated crate's.
 
 use dalembert::DynamicsError;
 
@@ -93,6 +97,41 @@ dalembert::dalembert! {
         constraint accelerations - lambda1/2 * sin(lambda_0) == 0;
         constraint qdd + lambda1/2 * cos(lambda_0) == 0;
         outputs inverse_dynamics, accelerations_jacobian, linearize(lambda_0), taylor;
+    }
+}
+
+dalembert::dalembert! {
+    /// The spatial chain of 12 links (`generated/models/spatial_chain_12.dal`),
+    /// its coordinates named like the locals of the jacobian's rows as
+    /// adjoints.
+    pub MimicChain12 {
+        coordinates inverse, coefficients, pass, jacobian, by_q, by_v, by_u, angles, finite, b0, b11, equations_or;
+        joint revolute J1 { parent: N, child: B1, axis: z, coordinate: inverse, at: O };
+        body link1 { mass: 1.1, center: J1 + 0.55/2 * B1.x, frame: B1, inertia: [0, 1.1 * 0.55^2/12, 1.1 * 0.55^2/12] };
+        joint revolute J2 { parent: B1, child: B2, axis: y, coordinate: coefficients, at: J1 + 0.55 * B1.x };
+        body link2 { mass: 1.2, center: J2 + 0.60/2 * B2.x, frame: B2, inertia: [0, 1.2 * 0.60^2/12, 1.2 * 0.60^2/12] };
+        joint revolute J3 { parent: B2, child: B3, axis: z, coordinate: pass, at: J2 + 0.60 * B2.x };
+        body link3 { mass: 1.3, center: J3 + 0.65/2 * B3.x, frame: B3, inertia: [0, 1.3 * 0.65^2/12, 1.3 * 0.65^2/12] };
+        joint revolute J4 { parent: B3, child: B4, axis: y, coordinate: jacobian, at: J3 + 0.65 * B3.x };
+        body link4 { mass: 1.4, center: J4 + 0.70/2 * B4.x, frame: B4, inertia: [0, 1.4 * 0.70^2/12, 1.4 * 0.70^2/12] };
+        joint revolute J5 { parent: B4, child: B5, axis: z, coordinate: by_q, at: J4 + 0.70 * B4.x };
+        body link5 { mass: 1.5, center: J5 + 0.75/2 * B5.x, frame: B5, inertia: [0, 1.5 * 0.75^2/12, 1.5 * 0.75^2/12] };
+        joint revolute J6 { parent: B5, child: B6, axis: y, coordinate: by_v, at: J5 + 0.75 * B5.x };
+        body link6 { mass: 1.6, center: J6 + 0.80/2 * B6.x, frame: B6, inertia: [0, 1.6 * 0.80^2/12, 1.6 * 0.80^2/12] };
+        joint revolute J7 { parent: B6, child: B7, axis: z, coordinate: by_u, at: J6 + 0.80 * B6.x };
+        body link7 { mass: 1.7, center: J7 + 0.85/2 * B7.x, frame: B7, inertia: [0, 1.7 * 0.85^2/12, 1.7 * 0.85^2/12] };
+        joint revolute J8 { parent: B7, child: B8, axis: y, coordinate: angles, at: J7 + 0.85 * B7.x };
+        body link8 { mass: 1.8, center: J8 + 0.90/2 * B8.x, frame: B8, inertia: [0, 1.8 * 0.90^2/12, 1.8 * 0.90^2/12] };
+        joint revolute J9 { parent: B8, child: B9, axis: z, coordinate: finite, at: J8 + 0.90 * B8.x };
+        body link9 { mass: 1.9, center: J9 + 0.95/2 * B9.x, frame: B9, inertia: [0, 1.9 * 0.95^2/12, 1.9 * 0.95^2/12] };
+        joint revolute J10 { parent: B9, child: B10, axis: y, coordinate: b0, at: J9 + 0.95 * B9.x };
+        body link10 { mass: 2.0, center: J10 + 1.00/2 * B10.x, frame: B10, inertia: [0, 2.0 * 1.00^2/12, 2.0 * 1.00^2/12] };
+        joint revolute J11 { parent: B10, child: B11, axis: z, coordinate: b11, at: J10 + 1.00 * B10.x };
+        body link11 { mass: 2.1, center: J11 + 1.05/2 * B11.x, frame: B11, inertia: [0, 2.1 * 1.05^2/12, 2.1 * 1.05^2/12] };
+        joint revolute J12 { parent: B11, child: B12, axis: y, coordinate: equations_or, at: J11 + 1.05 * B11.x };
+        body link12 { mass: 2.2, center: J12 + 1.10/2 * B12.x, frame: B12, inertia: [0, 2.2 * 1.10^2/12, 2.2 * 1.10^2/12] };
+        gravity -9.81 * N.z;
+        outputs accelerations_jacobian;
     }
 }
 
@@ -340,5 +379,23 @@ fn a_constrained_system_is_the_same_under_the_multipliers_names() {
             &a.inverse_dynamics(t, &q, &v, &vdot, &u),
             &b.inverse_dynamics(t, &q, &v, &vdot, &u),
         );
+    }
+}
+
+#[test]
+fn the_jacobian_rows_as_adjoints_are_the_same_under_their_locals_names() {
+    use dalembert_generated::derivatives::spatial_chain_12::SpatialChain12;
+    // The route this test is about: rows as adjoints, four in SIMD lanes.
+    let code = dalembert_codegen::generate(MimicChain12::SOURCE).expect("the model");
+    assert!(code.contains("weight_lanes"), "not the adjoint rows' route");
+    let (a, b) = (SpatialChain12 {}, MimicChain12 {});
+    let states: [(f64, f64); 3] = [(0.3, 1.7), (-1.2, -0.4), (2.6, 0.9)];
+    for (angle, rate) in states {
+        let q: [f64; 12] = std::array::from_fn(|i| angle * (1.0 + 0.13 * i as f64).sin());
+        let v: [f64; 12] = std::array::from_fn(|i| rate * (0.7 * i as f64).cos());
+        let (aq, av, _) = ok(a.accelerations_jacobian(0.0, &q, &v, &[]));
+        let (bq, bv, _) = ok(b.accelerations_jacobian(0.0, &q, &v, &[]));
+        assert_same("dvdot/dq", &flat(aq), &flat(bq));
+        assert_same("dvdot/dv", &flat(av), &flat(bv));
     }
 }

@@ -35,9 +35,9 @@ pub struct Names {
     /// and the functions are the runtime's `lanes` module's.
     pub lanes: bool,
     /// Whether the weights (`Sym::Multiplier`) are lanes in an otherwise
-    /// scalar body (the adjoint rows of `accelerations_jacobian`, four rows
-    /// a pass): a temporary that reads them is then a lane where it is
-    /// declared ahead.
+    /// scalar body (the adjoint rows of `accelerations_jacobian`, a few rows
+    /// a pass): a temporary that reads them is then a
+    /// `dalembert::__private::WeightLanes` where it is declared ahead.
     pub weights_in_lanes: bool,
 }
 
@@ -283,7 +283,7 @@ fn write(
 fn declarations(declared: &[(Ident, bool)], names: &Names) -> TokenStream {
     let (number, lane) = (
         names.number_type(),
-        quote!(::dalembert::__private::lanes::Lanes),
+        quote!(::dalembert::__private::WeightLanes),
     );
     declared
         .chunks(DECLARED_TOGETHER)

@@ -362,11 +362,12 @@ fn looped_rows(
             .zip(armature)
             .filter(|((speed, _), _)| i == j && *speed == i)
             .map(|(_, value)| value);
-        quote!(let #name = mass[#r][#c] #(+ #added)*;)
+        quote!(let #name = ::dalembert::__private::matrix_entry(&mass, #r, #c) #(+ #added)*;)
     });
     let forcing = right_hand_side.iter().enumerate().map(|(k, name)| {
         let (r, k) = (row(k), Literal::usize_unsuffixed(k));
-        quote!(let #name = -(bias[#r] + residual[#k]);)
+        quote!(let #name = -(::dalembert::__private::vector_entry(&bias, #r)
+            + ::dalembert::__private::vector_entry(&residual, #k));)
     });
     let solved = (0..nv).map(|i| format_ident!("x{}", i));
     let (check, table) = (state_check(), tree_table(paired, order, columns));
@@ -863,8 +864,10 @@ fn sweep_coefficients(pool: &Pool, roots: &[ExprId]) -> Vec<ExprId> {
 /// `factorisation` of `M` (with `accelerations`' checks and errors), `−M⁻¹`
 /// by the same factorisation (its columns four at a time), the sweep's
 /// coefficients (what reads no weight) in one straight-line body, then a
-/// loop over passes of four rows, each with its weights `μ = −M⁻¹ eᵢ` in
-/// SIMD lanes (`dalembert::__private::weight_lanes`): row `i` of
+/// loop over passes of a few rows (`dalembert::__private::WEIGHT_LANES`,
+/// the target's SIMD width), each with its weights `μ = −M⁻¹ eᵢ` in the
+/// lanes of a `dalembert::__private::WeightLanes`
+/// (`dalembert::__private::weight_lanes`): row `i` of
 /// `∂v̇/∂x = −M⁻¹ ∂τ/∂x` is `μᵀ ∂τ/∂x`.
 pub fn emit_adjoint_rows(
     model: &Model,
@@ -907,7 +910,7 @@ pub fn emit_adjoint_rows(
         .zip(&sweep.outputs)
         .map(|(&e, output)| match weighted(e) {
             true => output.clone(),
-            false => quote!(::dalembert::__private::lanes::splat(#output)),
+            false => quote!(::dalembert::__private::WeightLanes::splat(#output)),
         })
         .collect();
     let (by_q, rest) = outputs.split_at(nv);
@@ -947,10 +950,9 @@ pub fn emit_adjoint_rows(
         &sweep.statements,
         Literal::usize_unsuffixed(coefficients.len()),
     );
-    let passes = Literal::usize_unsuffixed(nv.div_ceil(4));
     let (square, wide) = (matrix(nv, nv), matrix(nv, nu));
     let [n, m] = [nv, nu].map(Literal::usize_unsuffixed);
-    let lane = quote!(::dalembert::__private::lanes::Lanes);
+    let lane = quote!(::dalembert::__private::WeightLanes);
     jacobian_function(
         model,
         function,
@@ -965,7 +967,7 @@ pub fn emit_adjoint_rows(
             };
             let mut jacobian: (#square, #square, #wide) =
                 ([[0.0; #n]; #n], [[0.0; #n]; #n], [[0.0; #m]; #n]);
-            for pass in 0..#passes {
+            for pass in 0..::dalembert::__private::weight_passes(#n) {
                 let [#(#weights),*] = ::dalembert::__private::weight_lanes(&inverse, pass);
                 let (by_q, by_v, by_u): ([#lane; #n], [#lane; #n], [#lane; #m]) = {
                     #lane_statements

@@ -1,14 +1,17 @@
-//! `accelerations_x4` (`outputs accelerations_x4;`): the planned solve of
+//! `accelerations_x4` (`outputs accelerations_x4;`): the solve of
 //! `accelerations` written again over SIMD lanes, four states at once, one
-//! in each lane of a `dalembert::__private::lanes::Lanes` (`wide::f64x4`).
-//! The straight-line body is the scalar route's, with its names bound to
-//! lanes ([`Names::lanes`]); the unrolled `L D Lᵀ` factorisation and
-//! substitutions, or the articulated-body recursion, are the same
-//! statements on lanes. Nothing branches on a lane: the pivots are tested
-//! at the end, state by state, and a state that fails anything (not
-//! finite, a pivot, a non-finite result) is answered by the scalar
-//! `accelerations` (`dalembert::__private::lanes::per_state`), so that the
-//! errors are the scalar call's.
+//! in each lane of a `dalembert::__private::lanes::Lanes` (`wide::f64x4`),
+//! by the plan's route for the lanes (`Plan::accelerations_x4`: the scalar
+//! route, or the articulated-body recursion where that is the faster over
+//! lanes, `plan::LANES_ARTICULATED_PERCENT`). The straight-line body is
+//! that route's, with its names bound to lanes ([`Names::lanes`]); the
+//! unrolled `L D Lᵀ` factorisation and substitutions, or the
+//! articulated-body recursion, are the same statements on lanes. Nothing
+//! branches on a lane: the pivots are tested at the end, state by state,
+//! and a state that fails anything (not finite, a pivot, a non-finite
+//! result) is answered by the scalar `accelerations`
+//! (`dalembert::__private::lanes::per_state`), so that the errors are the
+//! scalar call's.
 
 use super::body::{Angles, Names, straight_line, straight_line_taking};
 use super::solve::{mass, unchecked_elimination};
@@ -21,7 +24,7 @@ use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 use std::collections::BTreeSet;
 
-/// `pub fn accelerations_x4(..)` by the plan's route of `accelerations`;
+/// `pub fn accelerations_x4(..)` by the plan's route for the lanes;
 /// nothing where the plan has no `accelerations` (the checks refuse the
 /// output on a system with constraints).
 pub fn emit_accelerations_x4(
@@ -37,7 +40,7 @@ pub fn emit_accelerations_x4(
         ..names.clone()
     };
     let body = match (
-        plan.accelerations,
+        plan.accelerations_x4,
         &equations.articulated,
         &plan.factorisation,
     ) {

@@ -26,7 +26,7 @@
 //! body `A` is the inertia about the origin, `B = [h×]` with `h` the first
 //! moment and `C = m 1`).
 
-use super::recursive::{Column, Composite, JointTree, rotate_symmetric, rotate_tensor};
+use super::recursive::{Column, Composite, JointTree, Link};
 use crate::expr::{ExprId, Pool};
 use crate::kinematics::{Mat3, Vec3, add3, cross, dot, mat_vec, transpose, transpose_mul};
 
@@ -123,7 +123,7 @@ pub fn articulated(
         link_steps.reverse();
         steps.push(link_steps);
         if let Some(p) = link.parent {
-            let (moved, wrench) = to_parent(pool, &link.rotation, &link.offset, &i_a, &delta);
+            let (moved, wrench) = to_parent(pool, link, &i_a, &delta);
             inertia[p] = sum(pool, &inertia[p], &moved);
             bias[p] = (
                 add3(pool, &bias[p].0, &wrench.0),
@@ -136,7 +136,7 @@ pub fn articulated(
     let mut accelerations = vec![zero; n];
     for (link, link_steps) in tree.links.iter().zip(&steps) {
         let mut motion = match link.parent {
-            Some(p) => from_parent(pool, &link.rotation, &link.offset, &motions[p]),
+            Some(p) => from_parent(pool, link, &motions[p]),
             None => ([zero; 3], [zero; 3]),
         };
         for (column, step) in link.columns.iter().zip(link_steps) {
@@ -296,39 +296,36 @@ fn minus_outer(pool: &mut Pool, m: &Mat3, a: &Vec3, b: &Vec3, symmetric: bool) -
 
 /// A link's articulated inertia and bias wrench, given in its axes about
 /// its origin, in its parent's axes about the parent's origin (`Xᵀ I X`,
-/// `Xᵀ w`): turned by `rotation`, then moved by `offset` (from the
-/// parent's origin to the link's): `A + [r×]Bᵀ − B[r×] − [r×]C[r×]`,
-/// `B + [r×]C`, `C`; moment `n + r × f`.
-fn to_parent(
-    pool: &mut Pool,
-    rotation: &Mat3,
-    offset: &Vec3,
-    i: &Spatial,
-    w: &Pair,
-) -> (Spatial, Pair) {
-    let a = rotate_symmetric(pool, rotation, &i.a);
-    let b = rotate_tensor(pool, rotation, &i.b);
-    let c = rotate_symmetric(pool, rotation, &i.c);
+/// `Xᵀ w`): turned by the link's rotation (factor by factor where the
+/// link keeps its factors, as the composite inertias are), then moved by
+/// its offset `r` (from the parent's origin to the link's):
+/// `A + [r×]Bᵀ − B[r×] − [r×]C[r×]`, `B + [r×]C`, `C`; moment `n + r × f`.
+fn to_parent(pool: &mut Pool, link: &Link, i: &Spatial, w: &Pair) -> (Spatial, Pair) {
+    let offset = &link.offset;
+    let a = link.tensor_to_parent(pool, &i.a);
+    let b = link.general_tensor_to_parent(pool, &i.b);
+    let c = link.tensor_to_parent(pool, &i.c);
     let r = skew(pool, offset);
     let rc = mat_mul(pool, &r, &c);
     let b_moved = add_mat(pool, &b, &rc);
-    // [r×]Bᵀ − B[r×] = Q + Qᵀ with Q = [r×]Bᵀ, since [r×]ᵀ = −[r×].
-    let bt = transpose(&b);
-    let q = mat_mul(pool, &r, &bt);
-    let rcr = mat_mul(pool, &rc, &r);
+    let b_moved = b_moved.map(|row| row.map(|x| pool.group(x)));
+    // −B[r×] − [r×]C[r×] = −B'[r×] with B' = B + [r×]C, and [r×]ᵀ = −[r×]:
+    // the (i, j) entry of A + [r×]Bᵀ − B'[r×] is Aᵢⱼ + rᵢ · Bⱼ + B'ᵢ · rⱼ
+    // (rows of [r×], B and B'), taken on and above the diagonal.
     let mut a_moved = a;
     for i in 0..3 {
         for j in 0..3 {
             a_moved[i][j] = if j < i {
                 a_moved[j][i]
             } else {
-                let minus = pool.neg(rcr[i][j]);
-                pool.sum([a[i][j], q[i][j], q[j][i], minus])
+                let turned = dot(pool, &r[i], &b[j]);
+                let moved = dot(pool, &b_moved[i], &r[j]);
+                pool.sum([a[i][j], turned, moved])
             };
         }
     }
-    let f = mat_vec(pool, rotation, &w.1);
-    let n = mat_vec(pool, rotation, &w.0);
+    let f = link.to_parent(pool, &w.1);
+    let n = link.to_parent(pool, &w.0);
     let lever = cross(pool, offset, &f);
     let moment = add3(pool, &n, &lever);
     (
@@ -342,15 +339,12 @@ fn to_parent(
 }
 
 /// The parent's motion `(ω, v)` in a link's axes at its origin:
-/// `(Rᵀ ω, Rᵀ (v + ω × r))`.
-fn from_parent(pool: &mut Pool, rotation: &Mat3, offset: &Vec3, parent: &Pair) -> Pair {
+/// `(Rᵀ ω, Rᵀ (v + ω × r))`, factor by factor as [`to_parent`].
+fn from_parent(pool: &mut Pool, link: &Link, parent: &Pair) -> Pair {
     let (omega, v) = parent;
-    let swept = cross(pool, omega, offset);
+    let swept = cross(pool, omega, &link.offset);
     let at_origin = add3(pool, v, &swept);
-    (
-        transpose_mul(pool, rotation, omega),
-        transpose_mul(pool, rotation, &at_origin),
-    )
+    (link.to_link(pool, omega), link.to_link(pool, &at_origin))
 }
 
 fn scale3(pool: &mut Pool, v: &Vec3, s: ExprId) -> Vec3 {

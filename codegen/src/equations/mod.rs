@@ -265,7 +265,8 @@ pub struct TreeJacobian {
     /// The links' vectors, parents before children.
     pub links: Vec<LinkVectors>,
     /// What the runtime computes the links' vectors from, in the same
-    /// order, and gravity in `N`'s axes.
+    /// order, and gravity, in the axes of its recursion (`N`'s, or a free
+    /// or spherical root's: see `tree_partials::link_states`).
     pub states: Vec<LinkState>,
     pub gravity: Vec3,
 }
@@ -312,6 +313,7 @@ pub fn tree_jacobian(
     }
     let links = tree_partials::link_vectors(tree, pool)?;
     let states = tree_partials::link_states(tree, pool);
+    let gravity = tree_partials::recursion_gravity(tree, pool);
     let loads = tree.applied_loads(pool);
     let residual: Vec<ExprId> = (0..model.nv())
         .map(|k| {
@@ -326,7 +328,7 @@ pub fn tree_jacobian(
         rest,
         links,
         states,
-        gravity: tree.gravity,
+        gravity,
     })
 }
 

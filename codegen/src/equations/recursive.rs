@@ -693,7 +693,7 @@ impl Link {
     /// `R v`: components in the link's axes, in its parent's. Where the
     /// rotation has several factors, they are applied innermost first,
     /// each intermediate result grouped.
-    fn to_parent(&self, pool: &mut Pool, v: &Vec3) -> Vec3 {
+    pub(super) fn to_parent(&self, pool: &mut Pool, v: &Vec3) -> Vec3 {
         match self.factors.as_slice() {
             [_, inner @ ..] if !inner.is_empty() => {
                 let turned = inner.iter().rev().fold(*v, |v, f| {
@@ -708,7 +708,7 @@ impl Link {
 
     /// `Rᵀ v`: components in the parent's axes, in the link's, factor by
     /// factor as [`Link::to_parent`].
-    fn to_link(&self, pool: &mut Pool, v: &Vec3) -> Vec3 {
+    pub(super) fn to_link(&self, pool: &mut Pool, v: &Vec3) -> Vec3 {
         match self.factors.as_slice() {
             [outer @ .., last] if !outer.is_empty() => {
                 let turned = outer.iter().fold(*v, |v, f| {
@@ -723,16 +723,33 @@ impl Link {
 
     /// `R K Rᵀ` for a symmetric `K` in the link's axes, factor by factor as
     /// [`Link::to_parent`].
-    fn tensor_to_parent(&self, pool: &mut Pool, k: &Mat3) -> Mat3 {
+    pub(super) fn tensor_to_parent(&self, pool: &mut Pool, k: &Mat3) -> Mat3 {
+        self.turned_by_factors(pool, k, rotate_symmetric)
+    }
+
+    /// `R K Rᵀ` for any `K` (not symmetric), factor by factor as
+    /// [`Link::to_parent`].
+    pub(super) fn general_tensor_to_parent(&self, pool: &mut Pool, k: &Mat3) -> Mat3 {
+        self.turned_by_factors(pool, k, rotate_tensor)
+    }
+
+    /// `R K Rᵀ` by `rotate` (`(R, K) ↦ R K Rᵀ`), applied factor by factor,
+    /// innermost first, each intermediate result grouped.
+    fn turned_by_factors(
+        &self,
+        pool: &mut Pool,
+        k: &Mat3,
+        rotate: fn(&mut Pool, &Mat3, &Mat3) -> Mat3,
+    ) -> Mat3 {
         match self.factors.as_slice() {
             [_, inner @ ..] if !inner.is_empty() => {
                 let turned = inner.iter().rev().fold(*k, |k, f| {
-                    let t = rotate_symmetric(pool, f, &k);
+                    let t = rotate(pool, f, &k);
                     t.map(|row| group3(pool, &row))
                 });
-                rotate_symmetric(pool, &self.factors[0], &turned)
+                rotate(pool, &self.factors[0], &turned)
             }
-            _ => rotate_symmetric(pool, &self.rotation, k),
+            _ => rotate(pool, &self.rotation, k),
         }
     }
 

@@ -47,7 +47,7 @@ use super::recursive::{
     shifted,
 };
 use crate::expr::{ExprId, Pool, Sym};
-use crate::kinematics::{Mat3, Vec3, add3, cross, dot, identity, mat_mul, mat_vec};
+use crate::kinematics::{Mat3, Vec3, add3, cross, dot, identity, mat_mul, mat_vec, transpose_mul};
 use crate::model::JointKind;
 
 /// A square block of partials, `[i][j]` by the `j`-th variable.
@@ -129,7 +129,8 @@ pub struct LinkVectors {
 /// inertia about the link's origin in its axes. A joint of several speeds
 /// puts the link's placement on its first entry and its inertia on its
 /// last; the others are placed at their parent entry (the identity, no
-/// offset) and carry no mass.
+/// offset) and carry no mass. A free or spherical root is placed at the
+/// identity too: the recursion runs in its axes ([`frame_root`]).
 pub struct LinkState {
     /// Maps the link's components to its parent's.
     pub rotation: Mat3,
@@ -161,13 +162,45 @@ impl LinkState {
     }
 }
 
+/// The root link whose axes at its origin the runtime's recursion takes
+/// as its frame: the tree's one root, if it is a free or spherical joint.
+/// The frame is the inertial one that coincides with the link at the
+/// state: the pairs are dot products, the same in any frame, and in it the
+/// root's columns are unit vectors (which the runtime's pairs read rather
+/// than multiply, `dalembert::__private::add_tree_pairs`) and its rotation
+/// enters only gravity ([`recursion_gravity`]).
+fn frame_root(tree: &JointTree) -> Option<usize> {
+    let mut roots = tree
+        .links
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.parent.is_none());
+    match (roots.next(), roots.next()) {
+        (Some((k, link)), None) => {
+            matches!(link.kind, JointKind::Free | JointKind::Spherical).then_some(k)
+        }
+        _ => None,
+    }
+}
+
+/// Gravity in the axes of the runtime's recursion (see [`frame_root`]):
+/// `Rᵀ g` in the root's, `g` in `N`'s.
+pub(super) fn recursion_gravity(tree: &JointTree, pool: &mut Pool) -> Vec3 {
+    match frame_root(tree) {
+        Some(root) => transpose_mul(pool, &tree.links[root].rotation, &tree.gravity),
+        None => tree.gravity,
+    }
+}
+
 /// The [`LinkState`] of every speed of `tree` (whose [`link_vectors`] are
-/// found), in the order of its [`LinkVectors`].
+/// found), in the order of its [`LinkVectors`], in the frame of
+/// [`frame_root`] (the root placed at the identity, at the origin).
 pub(super) fn link_states(tree: &JointTree, pool: &mut Pool) -> Vec<LinkState> {
     let zero = pool.zero();
     let inertias = tree.link_inertias(pool);
+    let root = frame_root(tree);
     let mut states = Vec::new();
-    for (link, inertia) in tree.links.iter().zip(inertias) {
+    for (l, (link, inertia)) in tree.links.iter().zip(inertias).enumerate() {
         let last = link.columns.len() - 1;
         for (c, column) in link.columns.iter().enumerate() {
             let [a, b, d] = column.axis;
@@ -175,9 +208,9 @@ pub(super) fn link_states(tree: &JointTree, pool: &mut Pool) -> Vec<LinkState> {
                 true => [a, b, d, zero, zero, zero],
                 false => [zero, zero, zero, a, b, d],
             };
-            let (rotation, offset) = match c {
-                0 => (link.rotation, link.offset),
-                _ => (identity(pool), [zero; 3]),
+            let (rotation, offset) = match c == 0 && root != Some(l) {
+                true => (link.rotation, link.offset),
+                false => (identity(pool), [zero; 3]),
             };
             let massless = Composite {
                 mass: zero,

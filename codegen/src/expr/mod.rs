@@ -78,6 +78,7 @@ mod eval;
 #[cfg(test)]
 mod expand;
 mod func;
+mod hashing;
 mod kinds;
 mod number;
 mod pool;
@@ -87,8 +88,6 @@ mod reverse;
 pub(crate) mod test_util;
 #[cfg(test)]
 mod tests;
-
-use std::collections::HashMap;
 
 pub use kinds::SymKinds;
 
@@ -189,9 +188,9 @@ pub struct Pool {
     /// Symbol summaries and coefficient splits, indexed by id.
     meta: Vec<pool::Meta>,
     /// Node to id, for hash-consing (looked up, never iterated).
-    index: HashMap<Node, ExprId>,
+    index: hashing::FxHashMap<Node, ExprId>,
     /// Memoised derivatives (looked up, never iterated).
-    derivatives: HashMap<(ExprId, calculus::Derivation), ExprId>,
+    derivatives: hashing::FxHashMap<(ExprId, calculus::Derivation), ExprId>,
     /// The kinematic differential equations `q̇ᵢ = Nᵢ(q) v` that
     /// [`Pool::time_derivative`] follows, by coordinate; a coordinate
     /// beyond them has `q̇ᵢ = vᵢ`.

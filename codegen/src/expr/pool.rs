@@ -34,8 +34,8 @@ impl Pool {
         let mut pool = Pool {
             nodes: Vec::new(),
             meta: Vec::new(),
-            index: HashMap::new(),
-            derivatives: HashMap::new(),
+            index: HashMap::default(),
+            derivatives: HashMap::default(),
             rates: Vec::new(),
             positive_sums: false,
         };

@@ -155,7 +155,8 @@ pub fn accelerations_jacobian(
     let (results, body) = match (tree, adjoint) {
         (_, Some(adjoint)) => {
             how = "each row by one reverse sweep over `τ` (its vector–jacobian\n\
-                   product at the row of `−M⁻¹`), four rows at once in SIMD lanes"
+                   product at the row of `−M⁻¹`), as many rows at once as the target's\n\
+                   SIMD registers hold"
                 .to_string();
             (adjoint.results, Body::AdjointRows)
         }

@@ -114,7 +114,7 @@ pub fn taylor(model: &Model, equations: &Equations, pool: &Pool) -> Function {
 }
 
 /// `accelerations_x4(t, q, v, u)`: four states at once (its body is the
-/// emitter's, from the plan's route of `accelerations`).
+/// emitter's, from the plan's route for the lanes).
 pub fn accelerations_x4() -> Function {
     Function {
         body: Body::AccelerationsX4,
@@ -131,12 +131,12 @@ pub fn accelerations_x4() -> Function {
 /// The docs of `accelerations_x4`.
 const ACCELERATIONS_X4_DOCS: &str =
     "The accelerations of four states at once: entry `k` is `accelerations` of the
-state `(t[k], q[k], qd[k], u[k])`. The same straight-line solve, with each
-number of the four states in one lane of a SIMD vector
-(`wide::f64x4`): equal to the scalar call's results to a few units in the
-last place. A state that is not finite, or whose solve fails a pivot or
-gives a non-finite value, is answered by the scalar `accelerations`, with
-its error.";
+state `(t[k], q[k], qd[k], u[k])`. A straight-line solve (the scalar call's
+route, or the articulated-body recursion where that is the faster over
+lanes), with each number of the four states in one lane of a SIMD vector
+(`wide::f64x4`): equal to the scalar call's results to rounding. A state
+that is not finite, or whose solve fails a pivot or gives a non-finite
+value, is answered by the scalar `accelerations`, with its error.";
 
 /// The docs of `taylor_coefficients`.
 const TAYLOR_DOCS: &str =

@@ -85,7 +85,7 @@ pub enum Body {
     /// `accelerations_jacobian` of a fixed-base tree by its rows: its
     /// results are `inverse_dynamics_adjoint`'s, `μᵀ ∂τ/∂q`, `μᵀ ∂τ/∂v`,
     /// `μᵀ ∂τ/∂u` at the solved accelerations, and row `i` of the jacobian
-    /// is them at `μ = −M⁻¹ eᵢ`, four rows a pass in SIMD lanes (see
+    /// is them at `μ = −M⁻¹ eᵢ`, a few rows a pass in SIMD lanes (see
     /// [`crate::plan::ADJOINT_ROW_AT_MOST`]).
     AdjointRows,
     /// `mass_matrix` of a large tree: its result is each speed's vectors,

@@ -75,31 +75,41 @@ pub const STREAMED_PERCENT: usize = 250;
 /// operation of the runtime's lanes (`dalembert::__private::subtract_on_runs`).
 pub const FILLED_GAP: usize = 4;
 
+/// The rows of `accelerations_jacobian` a pass of its rows as adjoints
+/// takes, as the plan charges them: two, the lanes of an SSE2 register
+/// (the x86-64 baseline; `dalembert::__private::WEIGHT_LANES` is four on
+/// a target with AVX).
+pub const ADJOINT_LANES: usize = 2;
+
 /// The most operations a row of `accelerations_jacobian` may cost by
 /// adjoints ([`crate::outputs::Body::AdjointRows`]: row `i` is `μᵀ ∂τ/∂x`
-/// at `μ = −M⁻¹ eᵢ`, one reverse sweep over `τ` for four rows in SIMD
-/// lanes, `⌈n/4⌉ · sweep / n` a row) for a fixed-base tree on the loops'
-/// route (above [`TREE_LOOPED_ABOVE`]) to take them. The loops' work is
-/// the same for every link whatever its geometry; the sweep, unrolled with
-/// the model's constants folded, is shorter for simpler links. Measured
-/// (criterion, 28 Nov 2026, under load, the rows against the loops; the
-/// sweep's operations as [`operations`] counts them): the spatial chain of
-/// 12 (3 passes of a 2809-operation sweep, 702 a row) 3.50 → 2.99 µs; the
-/// panda (3 of 2967, 989 a row) 2.46 → 2.79 µs and the branching tree of
-/// 14 (4 of 3665, 1047 a row) 3.97 → 4.59 µs.
-pub const ADJOINT_ROW_AT_MOST: usize = 800;
+/// at `μ = −M⁻¹ eᵢ`, one reverse sweep over `τ` for [`ADJOINT_LANES`]
+/// rows in SIMD lanes, `⌈n/2⌉ · sweep / n` a row) for a fixed-base tree on
+/// the loops' route (above [`TREE_LOOPED_ABOVE`]) to take them. The loops'
+/// work is the same for every link whatever its geometry; the sweep,
+/// unrolled with the model's constants folded, is shorter for simpler
+/// links. Measured (28 Nov 2026, thread CPU time, both routes' code in one
+/// binary, medians of 31 interleaved runs; the sweep's operations as
+/// [`operations`] counts them), the rows in passes of two lanes against
+/// the loops: the panda (5 passes of a 2964-operation sweep, 1647 a row)
+/// 0.75 of the loops' time, the branching tree of 14 (7 of 3665, 1833 a
+/// row) 0.90, the spatial chain of 16 (8 of 3897, 1949 a row) 0.87 and
+/// of 20 (10 of 4994, 2497 a row) 0.95, for 30 % more code; the spatial
+/// chain of 12 (6 of 2809, 1405 a row) took 0.87 of its time in passes
+/// of four lanes.
+pub const ADJOINT_ROW_AT_MOST: usize = 2200;
 
 /// Whether `accelerations_jacobian` of `model`, whose partials of `τ` are
 /// `partials` (by the route the plan chose), takes its rows as adjoints in
 /// lanes, the reverse sweep `sweep` (every entry of
-/// `inverse_dynamics_adjoint`) four rows a pass: a tree on a fixed base
-/// (quaternion joints keep the loops) on the loops' route whose rows cost
-/// at most [`ADJOINT_ROW_AT_MOST`] that way.
+/// `inverse_dynamics_adjoint`) [`ADJOINT_LANES`] rows a pass: a tree on a
+/// fixed base (quaternion joints keep the loops) on the loops' route whose
+/// rows cost at most [`ADJOINT_ROW_AT_MOST`] that way.
 pub fn adjoint_rows(model: &Model, partials: &TauPartials, sweep: &[ExprId], pool: &Pool) -> bool {
     let nv = model.nv();
     model.balls.is_empty()
         && partials.route == Partials::Looped
-        && nv.div_ceil(4) * operations(pool, sweep) <= nv * ADJOINT_ROW_AT_MOST
+        && nv.div_ceil(ADJOINT_LANES) * operations(pool, sweep) <= nv * ADJOINT_ROW_AT_MOST
 }
 
 /// The fewest coordinates for which `accelerations` may take the
@@ -113,6 +123,27 @@ pub const MIN_ARTICULATED: usize = 3;
 /// factorisation's count the spatial chains of 12 ran 1.13–1.17 times as
 /// long (BENCHMARKS.md, "The recursion's operations cost more").
 pub const ARTICULATED_PERCENT: usize = 120;
+
+/// [`ARTICULATED_PERCENT`] on a floating base (a free joint on `N`): its
+/// tree's limbs are swept side by side, and the recursion ran its
+/// operations a little faster than the factorisation, not slower. Measured
+/// (thread CPU time, the median of 9 repeats over 1000 random states,
+/// docs/humanoid.md, 28 Nov 2026) against the factorisation, at the count
+/// ratio (recursion's / factorisation's operations) in brackets: dm_control's
+/// humanoid 2.20 → 2.09 µs (1.01), the G1 3.38 → 3.00 (0.90), Talos 3.21 →
+/// 2.78 (0.89), the floating Solo-12 0.90 → 0.95 (1.12); the time ratios
+/// are 0.94–0.97 of the count ratios, so the recursion wins below 0.95.
+pub const FLOATING_ARTICULATED_PERCENT: usize = 95;
+
+/// [`ARTICULATED_PERCENT`] for `accelerations_x4` (four states at once,
+/// one in each SIMD lane). The scalar factorisation's substitutions and
+/// rows are vectorised by the compiler two entries at a time, which the
+/// lanes, already full, cannot be: over the lanes the factorisation gains
+/// less and the recursion wins sooner. With `wide::f64x4` on the default
+/// x86-64 target, the spatial chain of 12 (the recursion at 96 % of the
+/// factorisation's count) ran 0.62 of the scalar call by the factorisation
+/// and 0.55 by the recursion; the chain of 6 (128 %) 0.53 and 0.82.
+pub const LANES_ARTICULATED_PERCENT: usize = 100;
 
 /// Most monomials a result may expand to for its compact form to be
 /// offered ([`optimize`]); a larger one keeps its DAG form. Set with the
@@ -192,6 +223,10 @@ pub struct Plan {
     /// The route of `accelerations`; `None` where there is no such
     /// method.
     pub accelerations: Option<Accelerations>,
+    /// The route of `accelerations_x4`, which may differ from that of
+    /// `accelerations` ([`LANES_ARTICULATED_PERCENT`]); `None` where
+    /// there is no `accelerations`.
+    pub accelerations_x4: Option<Accelerations>,
     /// The program of `taylor_coefficients`, if it is emitted.
     pub taylor: Option<Taylor>,
 }
@@ -221,14 +256,15 @@ pub fn plan(
     let factorisation = runtime
         .then(|| solve::factorisation(model, pool, equations))
         .flatten();
-    let accelerations = factorisation
+    let routes = factorisation
         .as_ref()
         .map(|f| solve::accelerations(model, pool, equations, f));
     Plan {
         functions,
         constants: requested.constants,
         factorisation,
-        accelerations,
+        accelerations: routes.map(|r| r.scalar),
+        accelerations_x4: routes.map(|r| r.lanes),
         taylor: None,
     }
 }

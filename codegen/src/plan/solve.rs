@@ -11,7 +11,9 @@
 //! which never forms `M` and wins for long chains.
 
 use super::cost::operations;
-use super::{ARTICULATED_PERCENT, MIN_ARTICULATED};
+use super::{
+    ARTICULATED_PERCENT, FLOATING_ARTICULATED_PERCENT, LANES_ARTICULATED_PERCENT, MIN_ARTICULATED,
+};
 use crate::equations::Equations;
 use crate::expr::{ExprId, Pool};
 use crate::model::Model;
@@ -57,8 +59,20 @@ pub fn factorisation(model: &Model, pool: &Pool, equations: &Equations) -> Optio
         .min_by_key(|f| factorisation_operations(&f.pattern))
 }
 
+/// The routes of `accelerations` (`scalar`) and of `accelerations_x4`
+/// (`lanes`, four states at once).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Routes {
+    /// The route of `accelerations`.
+    pub scalar: Accelerations,
+    /// The route of `accelerations_x4`.
+    pub lanes: Accelerations,
+}
+
 /// The articulated-body recursion where the model has one and it costs
-/// fewer operations, charged at [`ARTICULATED_PERCENT`], than forming `M`
+/// fewer operations, charged at [`ARTICULATED_PERCENT`] (on a floating
+/// base [`FLOATING_ARTICULATED_PERCENT`]; over the lanes
+/// [`LANES_ARTICULATED_PERCENT`] where that is lower), than forming `M`
 /// and `f` (together, sharing their subexpressions) and factorising;
 /// systems of fewer than [`MIN_ARTICULATED`] coordinates keep the
 /// factorisation.
@@ -67,9 +81,12 @@ pub fn accelerations(
     pool: &Pool,
     equations: &Equations,
     factorisation: &Factorisation,
-) -> Accelerations {
+) -> Routes {
     let Some(articulated) = &equations.articulated else {
-        return Accelerations::Factorised;
+        return Routes {
+            scalar: Accelerations::Factorised,
+            lanes: Accelerations::Factorised,
+        };
     };
     let mass_and_forcing: Vec<ExprId> = equations
         .mass_matrix
@@ -80,10 +97,26 @@ pub fn accelerations(
         .collect();
     let factorised =
         operations(pool, &mass_and_forcing) + factorisation_operations(&factorisation.pattern);
-    let charged = operations(pool, &articulated.roots()) * ARTICULATED_PERCENT;
-    match model.nq() >= MIN_ARTICULATED && charged < factorised * 100 {
+    let recursion = operations(pool, &articulated.roots());
+    let charged_at = |percent: usize| match model.nq() >= MIN_ARTICULATED
+        && recursion * percent < factorised * 100
+    {
         true => Accelerations::Articulated,
         false => Accelerations::Factorised,
+    };
+    Routes {
+        scalar: charged_at(articulated_percent(model)),
+        lanes: charged_at(articulated_percent(model).min(LANES_ARTICULATED_PERCENT)),
+    }
+}
+
+/// The charge of the articulated-body recursion's operations, in percent:
+/// [`FLOATING_ARTICULATED_PERCENT`] on a floating base (a free joint),
+/// [`ARTICULATED_PERCENT`] otherwise.
+fn articulated_percent(model: &Model) -> usize {
+    match model.balls.iter().any(|b| b.translation.is_some()) {
+        true => FLOATING_ARTICULATED_PERCENT,
+        false => ARTICULATED_PERCENT,
     }
 }
 

@@ -134,7 +134,7 @@ fn with_statements(source: &str, statements: &str) -> String {
 /// and its looped `accelerations_jacobian` to the diagonal entries of the
 /// runtime's `M` that it factorises (neither loop of the runtime knows
 /// them): the entries of the generated code, by name. The chain of 12,
-/// whose rows are adjoints, adds them to its own `M`.
+/// whose rows are adjoints (as the chain of 16's), adds them to its own `M`.
 #[test]
 fn the_looped_tree_routes_add_the_armatures() {
     use dalembert_codegen::chain::{Family, chain};
@@ -150,19 +150,28 @@ fn the_looped_tree_routes_add_the_armatures() {
     );
     let outputs = format!("{armature}\n    outputs accelerations_jacobian;");
     let derivatives =
-        dalembert_codegen::generate(&with_statements(&chain(Family::Spatial, 16), &outputs))
+        dalembert_codegen::generate(&with_statements(&chain(Family::Spatial, 20), &outputs))
             .unwrap()
             .replace(char::is_whitespace, "");
     assert!(derivatives.contains("TreeRecursion::default()"));
-    // Speed 2 (q3) and 6 (q7) are rows 13 and 9 of the reversed chain of
-    // 16 (the chain of 12 takes its rows as adjoints: below).
-    for (entry, value) in [("m2_2=mass[13][13]+", "0.25"), ("m6_6=mass[9][9]+", "0.5")] {
+    // Speed 2 (q3) and 6 (q7) are rows 17 and 13 of the reversed chain of
+    // 20 (the chain of 12 takes its rows as adjoints: below).
+    for (entry, value) in [
+        (
+            "m2_2=::dalembert::__private::matrix_entry(&mass,17,17)+",
+            "0.25",
+        ),
+        (
+            "m6_6=::dalembert::__private::matrix_entry(&mass,13,13)+",
+            "0.5",
+        ),
+    ] {
         assert!(
             derivatives.contains(&format!("{entry}{value};")),
             "{entry}{value} in the looped accelerations_jacobian"
         );
     }
-    assert!(derivatives.contains("m1_1=mass[14][14];"));
+    assert!(derivatives.contains("m1_1=::dalembert::__private::matrix_entry(&mass,18,18);"));
     // The chain of 12 takes the jacobian's rows as adjoints
     // (`plan::ADJOINT_ROW_AT_MOST`), over its own unrolled `M`, whose
     // diagonal carries the armatures.

@@ -20,14 +20,17 @@ const H: f64 = 1e-2;
 /// Relative agreement of a batched step with the scalar one (to the
 /// largest entry of the scalar step's end, at least one). The stages are
 /// the same operations in the same order, so the ends differ only where
-/// `accelerations_x4` differs from `accelerations`: nowhere on the
-/// unrolled factorisation (the chains of 6 and 12, the panda, the UR5: the
-/// ends are asserted equal bit for bit there), within 1.7e-12 of the
-/// largest acceleration on the articulated-body recursion (the chain of
-/// 30: `libm`'s `sincos` of an angle taken alone against the lanes'
-/// kernel, `lanes.rs`), which a step scales by `h` and which the four
-/// stages carry on through the state. 1e-11 leaves room for that and for
-/// the accelerations' size, as the lanes' own tolerance does.
+/// `accelerations_x4` differs from `accelerations`: nowhere where both
+/// take the unrolled factorisation (the chains of 6, the panda, the UR5:
+/// the ends are asserted equal bit for bit there); by rounding where the
+/// lanes take the articulated-body recursion and the scalar call the
+/// factorisation (the chain of 12: 1.5e-13 of the largest acceleration);
+/// within 1.7e-12 of the largest
+/// acceleration where both take the recursion (the chain of 30: `libm`'s
+/// `sincos` of an angle taken alone against the lanes' kernel,
+/// `lanes.rs`), which a step scales by `h` and which the four stages carry
+/// on through the state. 1e-11 leaves room for that and for the
+/// accelerations' size, as the lanes' own tolerance does.
 const TOLERANCE: f64 = 1e-11;
 
 /// Batches of four random states per model.
@@ -105,7 +108,7 @@ fn chains_and_robots_step_as_four_scalar_steps() {
         check(
             "spatial_chain_12",
             &spatial_chain_12::SpatialChain12 {},
-            true,
+            false,
         ),
         check("panda", &panda::Panda {}, true),
         check("ur5", &ur5_robot::Ur5 {}, true),
@@ -131,7 +134,7 @@ fn a_system_without_lanes_steps_by_the_scalar_calls() {
 /// `integrate::Rk4::step` of each state with its inputs held.
 #[test]
 fn on_a_vector_space_it_is_the_integrators_step() {
-    let system = spatial_chain_12::SpatialChain12 {};
+    let system = spatial_chain_06::SpatialChain6 {};
     let (t, q, v, u) = batch(&system, &mut Random::new(12));
     let states = std::array::from_fn(|k| State {
         t: t[k],

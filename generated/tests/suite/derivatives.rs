@@ -204,8 +204,9 @@ fn robots_match_central_differences() {
     check!(3; panda::Panda {}, ur5_robot::Ur5 {});
 }
 
-/// A branching tree large enough for the world-frame partials in loops
-/// (`dalembert::__private::TreeRecursion`), with a slide among its joints.
+/// A branching tree large enough for the jacobian's rows as adjoints
+/// (`plan::ADJOINT_ROW_AT_MOST`; the world-frame partials in loops before),
+/// with a slide among its joints.
 #[test]
 fn a_branching_tree_matches_central_differences() {
     check!(6; spatial_tree_14::SpatialTree14 {});
