@@ -3,8 +3,8 @@
 # each lane of a wide::f64x4) against the scalar accelerations, per state, on
 # the default target and on x86-64-v3 (generated/benches/lanes.rs, built a
 # second time in a target directory of its own; LANES_V3=0 leaves it out),
-# and accelerations_jacobian against Pinocchio's computeABADerivatives in the
-# same window when the peers' harness is given (DALEMBERT_PEERS).
+# and the batched RK4 step against MuJoCo's in the same window when the
+# peers' harness is given (DALEMBERT_PEERS).
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 out="$CARGO_TARGET_DIR/bench-peers/lanes"
@@ -23,26 +23,19 @@ else
 fi
 peers_csv=()
 if [ -n "${DALEMBERT_PEERS:-}" ]; then
-    peers --ns 12 --families spatial > "$out/chains.csv"
-    peers --urdf tests/reference/urdf/panda.urdf --only derivatives > "$out/panda.csv"
-    peers --urdf tests/reference/urdf/solo12.urdf --floating --only derivatives > "$out/floating_solo12.csv"
-    peers_csv=("$out"/{chains,panda,floating_solo12}.csv)
+    peers --ns 12 --families spatial --only mj_step > "$out/chains.csv"
+    peers_csv=("$out/chains.csv")
 fi
 
 cat <<'MD'
 ## Four states at once
 
-`accelerations_x4` (from `outputs accelerations_x4;`) solves four states in
-one call, one state in each lane of a `wide::f64x4`, against the scalar
-`accelerations`, per state (the batched call's time over four). The scalar
-call takes the articulated-body recursion on the chain of 30 and the
-unrolled `L D Lᵀ` on the others; the lanes, where the factorisation gains
-less, the recursion on the chains of 12 and 30. Below, one RK4 step of the chain of
-12 through the scalar `Rk4::step` and through `control::rk4_group_step_x4` (four
-states a step, its stages over `accelerations_x4`) against MuJoCo's
-`mj_step` with its RK4, and `accelerations_jacobian`
-against the same states' `accelerations` and, when measured in the same
-window, Pinocchio's `computeABADerivatives`.
+`accelerations_x4` (`outputs accelerations_x4;`) solves four states a call,
+one in each lane of a `wide::f64x4`: its time over four against the scalar
+`accelerations` (the recursion on the chain of 30, over the lanes on the
+chains of 12 and 30; the unrolled `L D Lᵀ` elsewhere). Then one RK4 step of
+the chain of 12, `Rk4::step` and `control::rk4_group_step_x4`, against
+MuJoCo's `mj_step` with its RK4.
 
 MD
 python3 - "$CARGO_TARGET_DIR" "$v3" "${v3_missing:-}" "$STAMP" "${peers_csv[@]}" <<'PY'
@@ -68,14 +61,6 @@ if not v3:
     print()
     print(f"The x86-64-v3 build was {v3_missing}.")
 print()
-print("| system | `accelerations_jacobian` (ns) | / `accelerations` | `computeABADerivatives` (ns) | ratio |")
-print("|---|---|---|---|---|")
-for name, peer in [("spatial_chain_12", "spatial_12"), ("panda", "panda"), ("floating_solo12", "floating_solo12")]:
-    jacobian = default.get(f"lanes/{name}/accelerations_jacobian")
-    one = default.get(f"lanes/{name}/accelerations")
-    theirs = peers.get((peer, "pin_aba_derivatives"))
-    print(f"| {name} | {ns(jacobian)} | {ratio(jacobian, one)} | {ns(theirs)} | {ratio(jacobian, theirs)} |")
-print()
 print("| RK4 step, h = 1 ms, spatial chain of 12 | default (ns) | MuJoCo `mj_step` RK4 / ours | v3 (ns) | MuJoCo / ours |")
 print("|---|---|---|---|---|")
 mujoco = peers.get(("spatial_12", "mj_step_rk4"))
@@ -96,6 +81,5 @@ cat <<'MD'
 
     cargo bench -p dalembert-generated --features large --bench lanes -- --warm-up-time 1 --measurement-time 3
     RUSTFLAGS="-C target-cpu=x86-64-v3" cargo bench -p dalembert-generated --bench lanes -- --warm-up-time 1 --measurement-time 3
-    bash $DALEMBERT_PEERS/run.sh --ns 12 --families spatial
-    bash $DALEMBERT_PEERS/run.sh --urdf tests/reference/urdf/panda.urdf --only derivatives   # and solo12.urdf --floating
+    bash $DALEMBERT_PEERS/run.sh --ns 12 --families spatial --only mj_step
 MD
