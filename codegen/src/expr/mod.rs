@@ -78,7 +78,6 @@ mod eval;
 #[cfg(test)]
 mod expand;
 mod func;
-mod hashing;
 mod kinds;
 mod number;
 mod pool;
@@ -187,10 +186,14 @@ pub struct Pool {
     nodes: Vec<Node>,
     /// Symbol summaries and coefficient splits, indexed by id.
     meta: Vec<pool::Meta>,
-    /// Node to id, for hash-consing (looked up, never iterated).
-    index: hashing::FxHashMap<Node, ExprId>,
-    /// Memoised derivatives (looked up, never iterated).
-    derivatives: hashing::FxHashMap<(ExprId, calculus::Derivation), ExprId>,
+    /// Node to id, for hash-consing (looked up, never iterated). Fx hash
+    /// (`rustc-hash`): the keys are the engine's own small integers, so
+    /// SipHash's resistance to chosen collisions buys nothing, and hashing
+    /// with it was a quarter of a derivation's time; the maps are never
+    /// iterated, so the output does not depend on the hasher.
+    index: rustc_hash::FxHashMap<Node, ExprId>,
+    /// Memoised derivatives (looked up, never iterated; Fx hash as `index`).
+    derivatives: rustc_hash::FxHashMap<(ExprId, calculus::Derivation), ExprId>,
     /// The kinematic differential equations `q̇ᵢ = Nᵢ(q) v` that
     /// [`Pool::time_derivative`] follows, by coordinate; a coordinate
     /// beyond them has `q̇ᵢ = vᵢ`.
