@@ -271,11 +271,7 @@ mod tests {
                     crate::outputs::requested(&model, &equations, &mut pool).functions;
                 crate::plan::optimize::optimize_functions(&mut requested, &mut pool, &mut forms);
                 let function: &Function = requested.iter().find(|f| f.name == name).unwrap();
-                function
-                    .results
-                    .iter()
-                    .flat_map(|v| v.expressions.clone())
-                    .collect()
+                function.roots()
             }
         };
         let states = States::new(

@@ -155,11 +155,7 @@ impl Interpreter {
     /// [`mass_matrix`](Self::mass_matrix).
     pub fn output(&self, name: &str, at: &Values<'_>, rates: &[f64]) -> Option<Vec<f64>> {
         let function = self.outputs.iter().find(|f| f.name == name)?;
-        let roots: Vec<ExprId> = function
-            .results
-            .iter()
-            .flat_map(|value| value.expressions.iter().copied())
-            .collect();
+        let roots = function.roots();
         Some(
             self.pool
                 .eval_many(&roots, &WithRates { values: at, rates }),

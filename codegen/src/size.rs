@@ -137,16 +137,9 @@ pub struct FunctionSize {
 pub(crate) fn sizes(pool: &Pool, functions: &[Function]) -> Vec<FunctionSize> {
     functions
         .iter()
-        .map(|function| {
-            let roots: Vec<_> = function
-                .results
-                .iter()
-                .flat_map(|value| value.expressions.iter().copied())
-                .collect();
-            FunctionSize {
-                name: function.name.to_string(),
-                operations: operations(pool, &roots),
-            }
+        .map(|function| FunctionSize {
+            name: function.name.to_string(),
+            operations: operations(pool, &function.roots()),
         })
         .collect()
 }

@@ -585,15 +585,6 @@ fn zero_rows(model: &Model) -> Vec<TokenStream> {
     (0..model.nv()).map(|_| quote!([0.0; #nu])).collect()
 }
 
-/// The expressions of `function`'s results, in order.
-fn roots(function: &Function) -> Vec<ExprId> {
-    function
-        .results
-        .iter()
-        .flat_map(|value| value.expressions.iter().copied())
-        .collect()
-}
-
 /// `pub fn linearize(..)`: the kinematic rows `K_δ`, `K_v` (the results
 /// of `function`) by a straight-line body, the dynamic rows from
 /// `accelerations_jacobian`, with the docs of `function`.
@@ -608,7 +599,7 @@ pub fn emit_linearize(
         statements,
         outputs,
         ..
-    } = straight_line(pool, names, &roots(function));
+    } = straight_line(pool, names, &function.roots());
     let (kinematic_by_q, kinematic_by_v) = outputs.split_at(nv * nv);
     let kinematic_rows = kinematic_by_q
         .chunks(nv)
@@ -657,7 +648,7 @@ fn constrained_partials(
         statements,
         outputs,
         used,
-    } = straight_line(pool, names, &roots(function));
+    } = straight_line(pool, names, &function.roots());
     let mut outputs = outputs.into_iter();
     let mut block = |rows: usize, columns: usize| -> Vec<TokenStream> {
         let entries: Vec<TokenStream> = outputs.by_ref().take(rows * columns).collect();
@@ -881,11 +872,7 @@ pub fn emit_adjoint_rows(
         return TokenStream::new();
     };
     let (nv, nu) = (model.nv(), model.inputs.len());
-    let roots: Vec<ExprId> = function
-        .results
-        .iter()
-        .flat_map(|v| v.expressions.iter().copied())
-        .collect();
+    let roots = function.roots();
     let coefficients = sweep_coefficients(pool, &roots);
     let (solved, scalar) = solved_then(
         model,

@@ -16,7 +16,7 @@ mod taylor;
 
 use crate::api::Api;
 use crate::equations::Equations;
-use crate::expr::{ExprId, Pool, Sym};
+use crate::expr::{Pool, Sym};
 use crate::model::Model;
 use crate::outputs::{Argument, Body, Function, NameList, Shape, SpeedTree};
 use crate::plan::Plan;
@@ -383,12 +383,7 @@ fn rows(outputs: &[TokenStream], width: usize) -> Vec<TokenStream> {
 /// named with a leading `_`) and a straight-line body computing all its
 /// results, which share their subexpressions.
 fn emit_function(model: &Model, pool: &Pool, names: &Names, function: &Function) -> TokenStream {
-    let roots: Vec<ExprId> = function
-        .results
-        .iter()
-        .flat_map(|value| value.expressions.iter().copied())
-        .collect();
-    let body = straight_line(pool, names, &roots);
+    let body = straight_line(pool, names, &function.roots());
     let reads = |kind: fn(&Sym) -> bool| body.used.iter().any(kind);
     let (nq, nv, nu) = (
         array(model.nq()),

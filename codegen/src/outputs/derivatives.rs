@@ -144,14 +144,7 @@ pub fn accelerations_jacobian(
     // only on the loops' route, where it may be chosen.
     let adjoint = (partials.route == Partials::Looped && model.balls.is_empty())
         .then(|| inverse_dynamics_adjoint(model, equations, pool))
-        .filter(|adjoint| {
-            let sweep: Vec<ExprId> = adjoint
-                .results
-                .iter()
-                .flat_map(|v| v.expressions.iter().copied())
-                .collect();
-            adjoint_rows(model, partials, &sweep, pool)
-        });
+        .filter(|adjoint| adjoint_rows(model, partials, &adjoint.roots(), pool));
     let (results, body) = match (tree, adjoint) {
         (_, Some(adjoint)) => {
             how = "each row by one reverse sweep over `τ` (its vector–jacobian\n\

@@ -203,6 +203,14 @@ impl Function {
         self
     }
 
+    /// Every expression it returns, in order: the roots of its body.
+    pub fn roots(&self) -> Vec<ExprId> {
+        self.results
+            .iter()
+            .flat_map(|v| v.expressions.iter().copied())
+            .collect()
+    }
+
     /// Every expression it returns, in order, for passes that rewrite them.
     pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut ExprId> {
         self.results

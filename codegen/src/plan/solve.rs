@@ -104,9 +104,10 @@ pub fn accelerations(
         true => Accelerations::Articulated,
         false => Accelerations::Factorised,
     };
+    let percent = articulated_percent(model);
     Routes {
-        scalar: charged_at(articulated_percent(model)),
-        lanes: charged_at(articulated_percent(model).min(LANES_ARTICULATED_PERCENT)),
+        scalar: charged_at(percent),
+        lanes: charged_at(percent.min(LANES_ARTICULATED_PERCENT)),
     }
 }
 
