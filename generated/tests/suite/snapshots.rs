@@ -211,14 +211,19 @@ fn solve_operations(code: &str) -> (usize, usize) {
         .find(|w| text(&w[0]) == "f64" && text(&w[1]) == ";")
         .map(|w| text(&w[2]).parse().expect("a number of columns"))
         .expect("the jacobian's columns");
-    let per_column: usize = tokens
-        .windows(2)
-        .filter(|w| text(&w[0]) == "scale_and_subtract")
-        .map(|w| {
-            let TokenTree::Group(arguments) = &w[1] else {
-                panic!("a call")
-            };
-            let arguments: Vec<TokenTree> = arguments.stream().into_iter().collect();
+    // The argument tokens of every call of `name`.
+    let calls = |name: &'static str| {
+        tokens
+            .windows(2)
+            .filter(move |w| text(&w[0]) == name)
+            .map(move |w| match &w[1] {
+                TokenTree::Group(arguments) => arguments.stream(),
+                _ => panic!("a call of {name}"),
+            })
+    };
+    let per_column: usize = calls("scale_and_subtract")
+        .map(|arguments| {
+            let arguments: Vec<TokenTree> = arguments.into_iter().collect();
             let mut parts = arguments.split(|t| text(t) == ",");
             let (_, factor, terms) = (parts.next(), parts.next(), parts.next());
             let scaling = usize::from(factor.map(|f| f.iter().map(text).collect::<String>())
@@ -234,15 +239,9 @@ fn solve_operations(code: &str) -> (usize, usize) {
             2 * terms + scaling
         })
         .sum();
-    let in_runs: usize = tokens
-        .windows(2)
-        .filter(|w| text(&w[0]) == "subtract_on_runs")
-        .map(|w| {
-            let TokenTree::Group(arguments) = &w[1] else {
-                panic!("a call")
-            };
+    let in_runs: usize = calls("subtract_on_runs")
+        .map(|arguments| {
             let groups: Vec<TokenTree> = arguments
-                .stream()
                 .into_iter()
                 .filter(|t| matches!(t, TokenTree::Group(g) if g.delimiter() == Delimiter::Bracket))
                 .collect();
